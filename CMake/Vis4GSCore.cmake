@@ -1,0 +1,50 @@
+# Helpers for the VTK-free Core libraries (DESIGN §1): plain C++17 static libraries with
+# position-independent code, unit-tested with GoogleTest.
+
+# Flags for code we write (never for VTK's generated wrapping code).
+set(vis4gs_warning_flags -Wall -Wextra)
+if (VIS4GS_WARNINGS_AS_ERRORS)
+  list(APPEND vis4gs_warning_flags -Werror)
+endif ()
+
+# vis4gs_add_core_library(<name> SOURCES ... [DEPENDS ...] [PRIVATE_DEPENDS ...])
+# Creates target vis4gsCore<name> with alias vis4gs::Core<name>; headers are included as
+# "<Name>.h" from the library's folder.
+function (vis4gs_add_core_library name)
+  cmake_parse_arguments(arg "" "" "SOURCES;DEPENDS;PRIVATE_DEPENDS" ${ARGN})
+  set(target "vis4gsCore${name}")
+  add_library(${target} STATIC ${arg_SOURCES})
+  add_library(vis4gs::Core${name} ALIAS ${target})
+  target_include_directories(${target} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  target_compile_options(${target} PRIVATE ${vis4gs_warning_flags})
+  target_link_libraries(${target} PUBLIC ${arg_DEPENDS} PRIVATE ${arg_PRIVATE_DEPENDS})
+endfunction ()
+
+# vis4gs_add_core_test(<name> SOURCES ... DEPENDS ...)
+# One GoogleTest executable per Core folder; every TEST becomes its own CTest test named
+# Core<name>.<Suite>.<Test>, labelled Core and Core<name>.
+function (vis4gs_add_core_test name)
+  if (NOT BUILD_TESTING)
+    return ()
+  endif ()
+  cmake_parse_arguments(arg "" "" "SOURCES;DEPENDS" ${ARGN})
+  set(target "vis4gsCore${name}Tests")
+  add_executable(${target} ${arg_SOURCES})
+  target_compile_options(${target} PRIVATE ${vis4gs_warning_flags})
+  target_link_libraries(${target} PRIVATE ${arg_DEPENDS} vis4gs::TestingCore GTest::gtest_main)
+  gtest_discover_tests(${target}
+    TEST_PREFIX "Core${name}."
+    PROPERTIES LABELS "Core;Core${name}"
+    DISCOVERY_TIMEOUT 60)
+endfunction ()
+
+# vis4gs_add_benchmark(<name> SOURCES ... DEPENDS ...)
+# Benchmarks are programs that print figures; they are built, never run by CTest.
+function (vis4gs_add_benchmark name)
+  cmake_parse_arguments(arg "" "" "SOURCES;DEPENDS" ${ARGN})
+  add_executable(${name} ${arg_SOURCES})
+  target_compile_options(${name} PRIVATE ${vis4gs_warning_flags})
+  target_link_libraries(${name} PRIVATE ${arg_DEPENDS})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/benchmarks")
+endfunction ()

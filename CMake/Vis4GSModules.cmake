@@ -1,0 +1,55 @@
+# Scans, builds and wraps every VTK module of the project (folders with a vtk.module file).
+# See ../shared/guides/vtk-9.1.md §5 for the Debian VTK 9.1 traps handled here.
+
+vtk_module_find_modules(vis4gs_module_files "${PROJECT_SOURCE_DIR}")
+list(FILTER vis4gs_module_files EXCLUDE REGEX "/build[^/]*/")
+
+vtk_module_scan(
+  MODULE_FILES ${vis4gs_module_files}
+  WANT_BY_DEFAULT ON
+  PROVIDES_MODULES vis4gs_modules
+  ENABLE_TESTS "${BUILD_TESTING}")
+
+set(vis4gs_python_destination "")
+if (TARGET VTK::Python AND TARGET VTK::WrappingPythonCore)
+  set(VIS4GS_WRAP_PYTHON ON)
+  vtk_module_python_default_destination(vis4gs_python_destination)
+else ()
+  set(VIS4GS_WRAP_PYTHON OFF)
+endif ()
+
+# Debian ships no VTK::vtkpython target; its interpreter is /usr/bin/vtkpython-9.0 (the
+# plain python3 rejects the --enable-bt flag VTK's test macros add).
+find_program(VIS4GS_VTKPYTHON NAMES vtkpython vtkpython-9.1 vtkpython-9.0 pvtkpython
+  PATHS /usr/bin NO_DEFAULT_PATH)
+set(_vtk_testing_python_exe "${VIS4GS_VTKPYTHON}")
+set(VIS4GS_PYTHONPATH "${CMAKE_BINARY_DIR}/${vis4gs_python_destination}")
+
+vtk_module_build(
+  MODULES ${vis4gs_modules}
+  INSTALL_EXPORT Vis4GSTargets
+  CMAKE_DESTINATION "${CMAKE_INSTALL_LIBDIR}/cmake/vis4gs"
+  VERSION "${PROJECT_VERSION}"
+  SOVERSION "0"
+  TEST_INPUT_DATA_DIRECTORY "${PROJECT_SOURCE_DIR}"
+  TEST_OUTPUT_DATA_DIRECTORY "${PROJECT_SOURCE_DIR}")
+
+foreach (_vis4gs_module IN LISTS vis4gs_modules)
+  get_property(_vis4gs_target GLOBAL PROPERTY "_vtk_module_${_vis4gs_module}_target_name")
+  if (_vis4gs_target)
+    target_compile_options(${_vis4gs_target} PRIVATE ${vis4gs_warning_flags})
+  endif ()
+endforeach ()
+
+if (VIS4GS_WRAP_PYTHON)
+  vtk_module_wrap_python(
+    MODULES ${vis4gs_modules}
+    PYTHON_PACKAGE "vis4gs"
+    MODULE_DESTINATION "${vis4gs_python_destination}"
+    INSTALL_EXPORT Vis4GSPython
+    CMAKE_DESTINATION "${CMAKE_INSTALL_LIBDIR}/cmake/vis4gs"
+    BUILD_STATIC OFF
+    INSTALL_HEADERS OFF
+    TARGET vis4gs::PythonModules)
+  add_subdirectory("${PROJECT_SOURCE_DIR}/Wrapping/Python" "${CMAKE_BINARY_DIR}/Wrapping/Python")
+endif ()

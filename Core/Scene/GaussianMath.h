@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file GaussianMath.h
+ * @brief Activations and small per-Gaussian math shared by the readers, the rasteriser and
+ * the diagnostics. Every function is defined for extreme inputs (logits and log-scales of
+ * +-1000, zero quaternions) without overflow or NaN, as documented per function.
+ */
+#ifndef vis4gs_GaussianMath_h
+#define vis4gs_GaussianMath_h
+
+#include <array>
+#include <cmath>
+
+namespace vis4gs
+{
+
+/// SH basis constants of the reference rasteriser (reference §2.4).
+namespace sh
+{
+constexpr double C0 = 0.28209479177387814;
+constexpr double C1 = 0.4886025119029199;
+constexpr double C2[5] = { 1.0925484305920792, -1.0925484305920792, 0.31539156525252005,
+  -1.0925484305920792, 0.5462742152960396 };
+constexpr double C3[7] = { -0.5900435899266435, 2.890611442640554, -0.4570457994644658,
+  0.3731763325901154, -0.4570457994644658, 1.445305721320277, -0.5900435899266435 };
+}
+
+/// Logistic sigmoid that never overflows: exact 0 < s < 1 for finite x, 0 and 1 at -inf/+inf.
+template <typename T>
+inline T Sigmoid(T x)
+{
+  if (x >= T(0))
+  {
+    return T(1) / (T(1) + std::exp(-x));
+  }
+  const T e = std::exp(x);
+  return e / (T(1) + e);
+}
+
+/// Inverse sigmoid; logit(0) = -inf and logit(1) = +inf.
+template <typename T>
+inline T Logit(T p)
+{
+  return std::log(p) - std::log1p(-p);
+}
+
+/// Normalises a (w,x,y,z) quaternion the way PyTorch's F.normalize does (norm floored at
+/// 1e-12). A zero quaternion stays zero, which gives the zero rotation matrix: the Gaussian
+/// collapses to a point, exactly as in the reference trainer.
+template <typename T>
+inline std::array<T, 4> NormalizeQuaternion(const T q[4])
+{
+  const T n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const T d = n > T(1e-12) ? n : T(1e-12);
+  return { q[0] / d, q[1] / d, q[2] / d, q[3] / d };
+}
+
+/// Row-major rotation matrix of a unit quaternion (w,x,y,z), reference §2.1.
+template <typename T>
+inline std::array<T, 9> QuaternionToMatrix(const std::array<T, 4>& q)
+{
+  const T w = q[0], x = q[1], y = q[2], z = q[3];
+  return { T(1) - T(2) * (y * y + z * z), T(2) * (x * y - w * z), T(2) * (x * z + w * y),
+    T(2) * (x * y + w * z), T(1) - T(2) * (x * x + z * z), T(2) * (y * z - w * x),
+    T(2) * (x * z - w * y), T(2) * (y * z + w * x), T(1) - T(2) * (x * x + y * y) };
+}
+
+} // namespace vis4gs
+
+#endif
