@@ -15,10 +15,14 @@ function (vis4gs_add_core_library name)
   set(target "vis4gsCore${name}")
   add_library(${target} STATIC ${arg_SOURCES})
   add_library(vis4gs::Core${name} ALIAS ${target})
-  target_include_directories(${target} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+  target_include_directories(${target} PUBLIC
+    "$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}>"
+    "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/vis4gs>")
   target_compile_features(${target} PUBLIC cxx_std_17)
   target_compile_options(${target} PRIVATE ${vis4gs_warning_flags})
   target_link_libraries(${target} PUBLIC ${arg_DEPENDS} PRIVATE ${arg_PRIVATE_DEPENDS})
+  # VTK modules link Core publicly, so Core joins their export set.
+  install(TARGETS ${target} EXPORT Vis4GSTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
 endfunction ()
 
 # vis4gs_add_core_test(<name> SOURCES ... DEPENDS ...)

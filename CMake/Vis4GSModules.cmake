@@ -25,6 +25,25 @@ find_program(VIS4GS_VTKPYTHON NAMES vtkpython vtkpython-9.1 vtkpython-9.0 pvtkpy
 set(_vtk_testing_python_exe "${VIS4GS_VTKPYTHON}")
 set(VIS4GS_PYTHONPATH "${CMAKE_BINARY_DIR}/${vis4gs_python_destination}")
 
+# vis4gs_add_python_test(<module> <script.py>... [ARGS ...])
+# Runs each script with Debian's VTK Python (/usr/bin/python3) and the build tree's vis4gs
+# package on PYTHONPATH; the test is named <module>Python-<script> and labelled like the
+# module's C++ tests. Scripts exit non-zero and print "FAILED: ..." on failure.
+function (vis4gs_add_python_test module)
+  cmake_parse_arguments(arg "" "" "ARGS" ${ARGN})
+  string(REPLACE "Vis4GS::" "vis4gs" _library "${module}")
+  foreach (_script IN LISTS arg_UNPARSED_ARGUMENTS)
+    get_filename_component(_name "${_script}" NAME_WE)
+    add_test(NAME "${module}Python-${_name}"
+      COMMAND /usr/bin/python3 "${CMAKE_CURRENT_SOURCE_DIR}/${_script}" ${arg_ARGS}
+      WORKING_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}")
+    set_tests_properties("${module}Python-${_name}" PROPERTIES
+      ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH};VIS4GS_SHARED_DATA_DIR=${VIS4GS_SHARED_DATA_DIR};VIS4GS_SOURCE_DIR=${PROJECT_SOURCE_DIR};VIS4GS_BINARY_DIR=${CMAKE_BINARY_DIR}"
+      LABELS "${_library};Python"
+      FAIL_REGULAR_EXPRESSION "FAILED:;Traceback")
+  endforeach ()
+endfunction ()
+
 vtk_module_build(
   MODULES ${vis4gs_modules}
   INSTALL_EXPORT Vis4GSTargets
@@ -49,7 +68,6 @@ if (VIS4GS_WRAP_PYTHON)
     INSTALL_EXPORT Vis4GSPython
     CMAKE_DESTINATION "${CMAKE_INSTALL_LIBDIR}/cmake/vis4gs"
     BUILD_STATIC OFF
-    INSTALL_HEADERS OFF
-    TARGET vis4gs::PythonModules)
+    INSTALL_HEADERS OFF)
   add_subdirectory("${PROJECT_SOURCE_DIR}/Wrapping/Python" "${CMAKE_BINARY_DIR}/Wrapping/Python")
 endif ()

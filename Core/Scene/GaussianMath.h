@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace vis4gs
 {
@@ -19,10 +20,18 @@ namespace sh
 {
 constexpr double C0 = 0.28209479177387814;
 constexpr double C1 = 0.4886025119029199;
-constexpr double C2[5] = { 1.0925484305920792, -1.0925484305920792, 0.31539156525252005,
-  -1.0925484305920792, 0.5462742152960396 };
-constexpr double C3[7] = { -0.5900435899266435, 2.890611442640554, -0.4570457994644658,
-  0.3731763325901154, -0.4570457994644658, 1.445305721320277, -0.5900435899266435 };
+constexpr double C2[5] = { 1.0925484305920792,
+  -1.0925484305920792,
+  0.31539156525252005,
+  -1.0925484305920792,
+  0.5462742152960396 };
+constexpr double C3[7] = { -0.5900435899266435,
+  2.890611442640554,
+  -0.4570457994644658,
+  0.3731763325901154,
+  -0.4570457994644658,
+  1.445305721320277,
+  -0.5900435899266435 };
 }
 
 /// Logistic sigmoid that never overflows: exact 0 < s < 1 for finite x, 0 and 1 at -inf/+inf.
@@ -44,6 +53,15 @@ inline T Logit(T p)
   return std::log(p) - std::log1p(-p);
 }
 
+/// exp of a log-scale, saturated at the largest finite value of T instead of overflowing to
+/// infinity (log-scales of +1000 occur in broken scenes); NaN stays NaN.
+template <typename T>
+inline T ActivatedScale(T logScale)
+{
+  const T maxLog = std::log(std::numeric_limits<T>::max());
+  return logScale > maxLog ? std::numeric_limits<T>::max() : std::exp(logScale);
+}
+
 /// Normalises a (w,x,y,z) quaternion the way PyTorch's F.normalize does (norm floored at
 /// 1e-12). A zero quaternion stays zero, which gives the zero rotation matrix: the Gaussian
 /// collapses to a point, exactly as in the reference trainer.
@@ -60,9 +78,15 @@ template <typename T>
 inline std::array<T, 9> QuaternionToMatrix(const std::array<T, 4>& q)
 {
   const T w = q[0], x = q[1], y = q[2], z = q[3];
-  return { T(1) - T(2) * (y * y + z * z), T(2) * (x * y - w * z), T(2) * (x * z + w * y),
-    T(2) * (x * y + w * z), T(1) - T(2) * (x * x + z * z), T(2) * (y * z - w * x),
-    T(2) * (x * z - w * y), T(2) * (y * z + w * x), T(1) - T(2) * (x * x + y * y) };
+  return { T(1) - T(2) * (y * y + z * z),
+    T(2) * (x * y - w * z),
+    T(2) * (x * z + w * y),
+    T(2) * (x * y + w * z),
+    T(1) - T(2) * (x * x + z * z),
+    T(2) * (y * z - w * x),
+    T(2) * (x * z - w * y),
+    T(2) * (y * z + w * x),
+    T(1) - T(2) * (x * x + y * y) };
 }
 
 } // namespace vis4gs

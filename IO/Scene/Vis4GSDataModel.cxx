@@ -1,0 +1,514 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    Vis4GSDataModel.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "Vis4GSDataModel.h"
+
+#include "GaussianMath.h"
+
+#include "vtkCharArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkShortArray.h"
+#include "vtkSignedCharArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedIntArray.h"
+#include "vtkUnsignedShortArray.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <set>
+
+namespace vis4gs
+{
+namespace
+{
+constexpr int MaxDistortion = 12;
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkFloatArray> MakeFloatArray(const char* name,
+  int components,
+  const std::vector<float>& values)
+{
+  auto a = vtkSmartPointer<vtkFloatArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+  if (!values.empty())
+  {
+    std::memcpy(a->GetPointer(0), values.data(), values.size() * sizeof(float));
+  }
+  return a;
+}
+
+//------------------------------------------------------------------------------
+// Copies a named array into @p out; false with a message when its component count is wrong.
+bool FetchFloats(vtkPointData* pd,
+  const char* name,
+  int components,
+  std::size_t count,
+  std::vector<float>& out,
+  std::string* error)
+{
+  vtkDataArray* a = pd->GetArray(name);
+  if (!a)
+  {
+    out.clear();
+    return true;
+  }
+  if ((components > 0 && a->GetNumberOfComponents() != components) ||
+    static_cast<std::size_t>(a->GetNumberOfTuples()) != count)
+  {
+    if (error)
+    {
+      *error = std::string("array '") + name + "' has " +
+        std::to_string(a->GetNumberOfComponents()) + " components and " +
+        std::to_string(a->GetNumberOfTuples()) + " tuples; expected " + std::to_string(components) +
+        " components and " + std::to_string(count) + " tuples";
+    }
+    return false;
+  }
+  const std::size_t n = count * static_cast<std::size_t>(a->GetNumberOfComponents());
+  out.resize(n);
+  if (auto* f = vtkFloatArray::SafeDownCast(a))
+  {
+    if (n)
+    {
+      std::memcpy(out.data(), f->GetPointer(0), n * sizeof(float));
+    }
+  }
+  else
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      out[i] = static_cast<float>(a->GetVariantValue(static_cast<vtkIdType>(i)).ToDouble());
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool ScalarTypeFromVTK(int vtkType, ScalarType& type)
+{
+  switch (vtkType)
+  {
+    case VTK_SIGNED_CHAR:
+    case VTK_CHAR:
+      type = ScalarType::Int8;
+      return true;
+    case VTK_UNSIGNED_CHAR:
+      type = ScalarType::UInt8;
+      return true;
+    case VTK_SHORT:
+      type = ScalarType::Int16;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      type = ScalarType::UInt16;
+      return true;
+    case VTK_INT:
+      type = ScalarType::Int32;
+      return true;
+    case VTK_UNSIGNED_INT:
+      type = ScalarType::UInt32;
+      return true;
+    case VTK_FLOAT:
+      type = ScalarType::Float32;
+      return true;
+    case VTK_DOUBLE:
+      type = ScalarType::Float64;
+      return true;
+    default:
+      return false;
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+vtkDataArray* NewArrayFromExtra(const ExtraProperty& extra)
+{
+  vtkDataArray* a = nullptr;
+  switch (extra.Type)
+  {
+    case ScalarType::Int8:
+      a = vtkSignedCharArray::New();
+      break;
+    case ScalarType::UInt8:
+      a = vtkUnsignedCharArray::New();
+      break;
+    case ScalarType::Int16:
+      a = vtkShortArray::New();
+      break;
+    case ScalarType::UInt16:
+      a = vtkUnsignedShortArray::New();
+      break;
+    case ScalarType::Int32:
+      a = vtkIntArray::New();
+      break;
+    case ScalarType::UInt32:
+      a = vtkUnsignedIntArray::New();
+      break;
+    case ScalarType::Float32:
+      a = vtkFloatArray::New();
+      break;
+    case ScalarType::Float64:
+      a = vtkDoubleArray::New();
+      break;
+  }
+  const std::size_t size = ScalarTypeSize(extra.Type);
+  a->SetName(extra.Name.c_str());
+  a->SetNumberOfComponents(1);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(extra.Bytes.size() / size));
+  if (!extra.Bytes.empty())
+  {
+    std::memcpy(a->GetVoidPointer(0), extra.Bytes.data(), extra.Bytes.size());
+  }
+  return a;
+}
+
+//------------------------------------------------------------------------------
+void GaussianCloudToPolyData(const GaussianCloud& cloud,
+  vtkPolyData* output,
+  const PolyDataOptions& options)
+{
+  output->Initialize();
+  const std::size_t n = cloud.Count;
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  if (cloud.Positions.size() == 3 * n && n > 0)
+  {
+    std::memcpy(static_cast<vtkFloatArray*>(points->GetData())->GetPointer(0),
+      cloud.Positions.data(),
+      3 * n * sizeof(float));
+  }
+  output->SetPoints(points);
+
+  vtkPointData* pd = output->GetPointData();
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName(arrays::GaussianId);
+  ids->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ids->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(cloud.GetId(i)));
+  }
+  pd->SetPedigreeIds(ids);
+
+  if (cloud.LogScales.size() == 3 * n)
+  {
+    pd->AddArray(MakeFloatArray(arrays::LogScale, 3, cloud.LogScales));
+  }
+  if (cloud.Rotations.size() == 4 * n)
+  {
+    pd->AddArray(MakeFloatArray(arrays::Rotation, 4, cloud.Rotations));
+  }
+  if (cloud.OpacityLogits.size() == n)
+  {
+    pd->AddArray(MakeFloatArray(arrays::OpacityLogit, 1, cloud.OpacityLogits));
+  }
+  const int shComponents = 3 * cloud.ShCoefficientCount();
+  if (n > 0 && cloud.SH.size() == n * static_cast<std::size_t>(shComponents))
+  {
+    pd->AddArray(MakeFloatArray(arrays::SH, shComponents, cloud.SH));
+  }
+
+  if (options.ActivatedArrays)
+  {
+    if (cloud.OpacityLogits.size() == n)
+    {
+      std::vector<float> opacity(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        opacity[i] = Sigmoid(cloud.OpacityLogits[i]);
+      }
+      pd->AddArray(MakeFloatArray(arrays::Opacity, 1, opacity));
+    }
+    if (cloud.LogScales.size() == 3 * n)
+    {
+      std::vector<float> scale(3 * n);
+      for (std::size_t i = 0; i < 3 * n; ++i)
+      {
+        scale[i] = ActivatedScale(cloud.LogScales[i]);
+      }
+      pd->AddArray(MakeFloatArray(arrays::Scale, 3, scale));
+    }
+  }
+
+  for (const auto& extra : cloud.Extra)
+  {
+    vtkSmartPointer<vtkDataArray> a;
+    a.TakeReference(NewArrayFromExtra(extra));
+    pd->AddArray(a);
+  }
+
+  vtkNew<vtkIntArray> degree;
+  degree->SetName(arrays::SHDegree);
+  degree->InsertNextValue(cloud.ShDegree);
+  output->GetFieldData()->AddArray(degree);
+}
+
+//------------------------------------------------------------------------------
+bool PolyDataToGaussianCloud(vtkPolyData* input,
+  GaussianCloud& cloud,
+  std::string* error,
+  bool withExtras)
+{
+  cloud = GaussianCloud();
+  if (!input || !input->GetPoints())
+  {
+    if (error)
+    {
+      *error = "the Gaussian scene has no points";
+    }
+    return false;
+  }
+  const std::size_t n = static_cast<std::size_t>(input->GetNumberOfPoints());
+  cloud.Count = n;
+  cloud.Positions.resize(3 * n);
+  if (auto* f = vtkFloatArray::SafeDownCast(input->GetPoints()->GetData()))
+  {
+    if (n)
+    {
+      std::memcpy(cloud.Positions.data(), f->GetPointer(0), 3 * n * sizeof(float));
+    }
+  }
+  else
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      double p[3];
+      input->GetPoint(static_cast<vtkIdType>(i), p);
+      for (int c = 0; c < 3; ++c)
+      {
+        cloud.Positions[3 * i + c] = static_cast<float>(p[c]);
+      }
+    }
+  }
+
+  vtkPointData* pd = input->GetPointData();
+  if (!FetchFloats(pd, arrays::LogScale, 3, n, cloud.LogScales, error) ||
+    !FetchFloats(pd, arrays::Rotation, 4, n, cloud.Rotations, error) ||
+    !FetchFloats(pd, arrays::OpacityLogit, 1, n, cloud.OpacityLogits, error) ||
+    !FetchFloats(pd, arrays::SH, 0, n, cloud.SH, error))
+  {
+    return false;
+  }
+
+  int degree = -1;
+  if (auto* fd = vtkIntArray::SafeDownCast(input->GetFieldData()->GetArray(arrays::SHDegree)))
+  {
+    if (fd->GetNumberOfTuples() > 0)
+    {
+      degree = fd->GetValue(0);
+    }
+  }
+  if (vtkDataArray* sh = pd->GetArray(arrays::SH))
+  {
+    const int k = sh->GetNumberOfComponents() / 3;
+    const int inferred = static_cast<int>(std::lround(std::sqrt(static_cast<double>(k)))) - 1;
+    if (sh->GetNumberOfComponents() % 3 != 0 || (inferred + 1) * (inferred + 1) != k ||
+      inferred > 3)
+    {
+      if (error)
+      {
+        *error = "array 'SH' has " + std::to_string(sh->GetNumberOfComponents()) +
+          " components; expected 3*(D+1)^2 for an SH degree D of 0 to 3";
+      }
+      return false;
+    }
+    degree = inferred;
+  }
+  cloud.ShDegree = degree < 0 ? 0 : degree;
+
+  if (vtkDataArray* ids = pd->GetArray(arrays::GaussianId))
+  {
+    cloud.Ids.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      cloud.Ids[i] = static_cast<std::int64_t>(ids->GetTuple1(static_cast<vtkIdType>(i)));
+    }
+  }
+
+  if (withExtras)
+  {
+    static const std::set<std::string> model = { arrays::GaussianId,
+      arrays::LogScale,
+      arrays::Rotation,
+      arrays::OpacityLogit,
+      arrays::SH,
+      arrays::Opacity,
+      arrays::Scale };
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* array = pd->GetArray(a);
+      ScalarType type;
+      if (!array || !array->GetName() || model.count(array->GetName()) ||
+        !ScalarTypeFromVTK(array->GetDataType(), type))
+      {
+        continue;
+      }
+      const int components = array->GetNumberOfComponents();
+      const std::size_t size = ScalarTypeSize(type);
+      for (int c = 0; c < components; ++c)
+      {
+        ExtraProperty extra;
+        extra.Name = components == 1 ? std::string(array->GetName())
+                                     : std::string(array->GetName()) + "_" + std::to_string(c);
+        extra.Type = type;
+        extra.Bytes.resize(n * size);
+        const auto* src = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          std::memcpy(extra.Bytes.data() + i * size, src + (i * components + c) * size, size);
+        }
+        cloud.Extra.push_back(std::move(extra));
+      }
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void CamerasToTable(const std::vector<Camera>& cameras, vtkTable* table)
+{
+  table->Initialize();
+  const vtkIdType n = static_cast<vtkIdType>(cameras.size());
+  vtkNew<vtkStringArray> name, image, model;
+  name->SetName(arrays::CameraName);
+  image->SetName(arrays::CameraImage);
+  model->SetName(arrays::CameraModel);
+  vtkNew<vtkUnsignedCharArray> split;
+  split->SetName(arrays::CameraSplit);
+  vtkNew<vtkIntArray> width, height;
+  width->SetName(arrays::CameraWidth);
+  height->SetName(arrays::CameraHeight);
+  vtkNew<vtkDoubleArray> fx, fy, cx, cy, w2c, distortion;
+  fx->SetName(arrays::CameraFx);
+  fy->SetName(arrays::CameraFy);
+  cx->SetName(arrays::CameraCx);
+  cy->SetName(arrays::CameraCy);
+  w2c->SetName(arrays::CameraWorldToCamera);
+  w2c->SetNumberOfComponents(16);
+  distortion->SetName(arrays::CameraDistortion);
+  distortion->SetNumberOfComponents(MaxDistortion);
+  for (auto* a : std::initializer_list<vtkAbstractArray*>{
+         name, image, model, split, width, height, fx, fy, cx, cy, w2c, distortion })
+  {
+    a->SetNumberOfTuples(n);
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const Camera& c = cameras[static_cast<std::size_t>(i)];
+    name->SetValue(i, c.Name);
+    image->SetValue(i, c.ImagePath);
+    model->SetValue(i, c.Model);
+    split->SetValue(i, static_cast<unsigned char>(c.Split));
+    width->SetValue(i, c.Width);
+    height->SetValue(i, c.Height);
+    fx->SetValue(i, c.Fx);
+    fy->SetValue(i, c.Fy);
+    cx->SetValue(i, c.Cx);
+    cy->SetValue(i, c.Cy);
+    w2c->SetTypedTuple(i, c.WorldToCamera.data());
+    for (int k = 0; k < MaxDistortion; ++k)
+    {
+      distortion->SetTypedComponent(i,
+        k,
+        k < static_cast<int>(c.Distortion.size()) ? c.Distortion[static_cast<std::size_t>(k)]
+                                                  : std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  for (auto* a : std::initializer_list<vtkAbstractArray*>{
+         name, split, width, height, fx, fy, cx, cy, w2c, image, model, distortion })
+  {
+    table->AddColumn(a);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool TableToCameras(vtkTable* table, std::vector<Camera>& cameras, std::string* error)
+{
+  cameras.clear();
+  auto column = [&](const char* colName) -> vtkAbstractArray*
+  {
+    vtkAbstractArray* a = table ? table->GetColumnByName(colName) : nullptr;
+    if (!a && error)
+    {
+      *error = std::string("the camera table has no column '") + colName + "'";
+    }
+    return a;
+  };
+  auto* name = vtkStringArray::SafeDownCast(column(arrays::CameraName));
+  auto* width = vtkDataArray::SafeDownCast(column(arrays::CameraWidth));
+  auto* height = vtkDataArray::SafeDownCast(column(arrays::CameraHeight));
+  auto* fx = vtkDataArray::SafeDownCast(column(arrays::CameraFx));
+  auto* fy = vtkDataArray::SafeDownCast(column(arrays::CameraFy));
+  auto* w2c = vtkDataArray::SafeDownCast(column(arrays::CameraWorldToCamera));
+  if (!name || !width || !height || !fx || !fy || !w2c)
+  {
+    return false;
+  }
+  if (w2c->GetNumberOfComponents() != 16)
+  {
+    if (error)
+    {
+      *error = "the camera table's WorldToCamera column must have 16 components";
+    }
+    return false;
+  }
+  auto* split = vtkDataArray::SafeDownCast(table->GetColumnByName(arrays::CameraSplit));
+  auto* cx = vtkDataArray::SafeDownCast(table->GetColumnByName(arrays::CameraCx));
+  auto* cy = vtkDataArray::SafeDownCast(table->GetColumnByName(arrays::CameraCy));
+  auto* image = vtkStringArray::SafeDownCast(table->GetColumnByName(arrays::CameraImage));
+  auto* model = vtkStringArray::SafeDownCast(table->GetColumnByName(arrays::CameraModel));
+  auto* distortion = vtkDataArray::SafeDownCast(table->GetColumnByName(arrays::CameraDistortion));
+  const vtkIdType n = table->GetNumberOfRows();
+  cameras.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    Camera& c = cameras[static_cast<std::size_t>(i)];
+    c.Name = name->GetValue(i);
+    c.Split = split && split->GetTuple1(i) != 0 ? CameraSplit::Test : CameraSplit::Train;
+    c.Width = static_cast<int>(width->GetTuple1(i));
+    c.Height = static_cast<int>(height->GetTuple1(i));
+    c.Fx = fx->GetTuple1(i);
+    c.Fy = fy->GetTuple1(i);
+    c.Cx = cx ? cx->GetTuple1(i) : c.Width / 2.0;
+    c.Cy = cy ? cy->GetTuple1(i) : c.Height / 2.0;
+    w2c->GetTuple(i, c.WorldToCamera.data());
+    c.ImagePath = image ? image->GetValue(i) : std::string();
+    c.Model = model ? model->GetValue(i) : std::string();
+    if (distortion)
+    {
+      for (int k = 0; k < distortion->GetNumberOfComponents(); ++k)
+      {
+        const double v = distortion->GetComponent(i, k);
+        if (std::isnan(v))
+        {
+          break;
+        }
+        c.Distortion.push_back(v);
+      }
+    }
+  }
+  return true;
+}
+
+} // namespace vis4gs

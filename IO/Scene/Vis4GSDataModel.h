@@ -1,0 +1,109 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    Vis4GSDataModel.h
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+/**
+ * @file Vis4GSDataModel.h
+ * @brief Conversion between Core's Gaussian scene and cameras and their VTK form (DESIGN §2).
+ *
+ * The array names below are the contract between modules. A Gaussian scene is a vtkPolyData
+ * whose points are the means; cameras are a vtkTable with one row per view. Every reader,
+ * writer and filter converts through these functions so the names and layouts live in one
+ * place.
+ */
+#ifndef Vis4GSDataModel_h
+#define Vis4GSDataModel_h
+
+#include "vis4gsIOSceneModule.h" // For export macro
+
+#include "Camera.h"        // For vis4gs::Camera
+#include "GaussianCloud.h" // For vis4gs::GaussianCloud
+
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkPolyData;
+class vtkTable;
+
+namespace vis4gs
+{
+namespace arrays
+{
+// Gaussian point data
+constexpr const char* GaussianId = "GaussianId";
+constexpr const char* LogScale = "LogScale";
+constexpr const char* Rotation = "Rotation";
+constexpr const char* OpacityLogit = "OpacityLogit";
+constexpr const char* SH = "SH";
+constexpr const char* Opacity = "Opacity";
+constexpr const char* Scale = "Scale";
+constexpr const char* ViewCoverage = "ViewCoverage";
+constexpr const char* BlurScore = "BlurScore";
+constexpr const char* NeedleScore = "NeedleScore";
+constexpr const char* NeedleShape = "NeedleShape";
+// Gaussian field data
+constexpr const char* SHDegree = "SHDegree";
+// Camera table columns
+constexpr const char* CameraName = "Name";
+constexpr const char* CameraSplit = "Split";
+constexpr const char* CameraWidth = "Width";
+constexpr const char* CameraHeight = "Height";
+constexpr const char* CameraFx = "Fx";
+constexpr const char* CameraFy = "Fy";
+constexpr const char* CameraCx = "Cx";
+constexpr const char* CameraCy = "Cy";
+constexpr const char* CameraWorldToCamera = "WorldToCamera";
+constexpr const char* CameraImage = "Image";
+constexpr const char* CameraModel = "Model";
+constexpr const char* CameraDistortion = "Distortion";
+}
+
+/// What GaussianCloudToPolyData adds besides the raw parameters.
+struct PolyDataOptions
+{
+  /// Add the activated Opacity and Scale arrays (for display and tables).
+  bool ActivatedArrays = true;
+};
+
+/**
+ * Fills @p output with the Gaussians of @p cloud: points = means (float), raw parameter arrays
+ * (those loaded in @p cloud; empty vectors are left out), GaussianId as pedigree ids, extra
+ * properties as arrays of their own type, SHDegree as field data. Float values are copied
+ * bit-exactly.
+ */
+VIS4GSIOSCENE_EXPORT void GaussianCloudToPolyData(const GaussianCloud& cloud,
+  vtkPolyData* output,
+  const PolyDataOptions& options = {});
+
+/**
+ * Reads a Gaussian scene back from @p input. Missing parameter arrays stay empty in @p cloud;
+ * arrays that are present with the wrong number of components, or a missing point set, give
+ * false and a message in @p error. Point-data arrays that are not part of the model (scores,
+ * normals, other tools' properties) are returned as extra properties when @p withExtras.
+ */
+VIS4GSIOSCENE_EXPORT bool PolyDataToGaussianCloud(vtkPolyData* input,
+  GaussianCloud& cloud,
+  std::string* error,
+  bool withExtras = false);
+
+/// Fills @p table with one row per camera (columns named in vis4gs::arrays).
+VIS4GSIOSCENE_EXPORT void CamerasToTable(const std::vector<Camera>& cameras, vtkTable* table);
+
+/// Reads cameras back from @p table; false with a message in @p error when a column is missing.
+VIS4GSIOSCENE_EXPORT bool TableToCameras(vtkTable* table,
+  std::vector<Camera>& cameras,
+  std::string* error);
+
+/// A new VTK array holding a copy of @p extra (vtkFloatArray for Float32, and so on).
+VIS4GSIOSCENE_EXPORT vtkDataArray* NewArrayFromExtra(const ExtraProperty& extra);
+
+} // namespace vis4gs
+
+#endif

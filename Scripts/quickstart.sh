@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The README's two commands. Both install what is missing, configure once, build
+# incrementally, and are cheap to re-run when nothing changed.
+#   bash Scripts/quickstart.sh demo   # build and run `vis4gs demo` on the embedded scene
+#   bash Scripts/quickstart.sh test   # build and run every test and check (what CI runs)
+# Environment: VIS4GS_BUILD_DIR (default: build), VIS4GS_JOBS (default: nproc).
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${VIS4GS_BUILD_DIR:-$here/build}"
+jobs="${VIS4GS_JOBS:-$(nproc)}"
+what="${1:-}"
+
+case "$what" in
+  demo|test) ;;
+  *)
+    echo "usage: bash Scripts/quickstart.sh demo|test" >&2
+    exit 2
+    ;;
+esac
+
+bash "$here/Scripts/setup-deps.sh"
+
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DVIS4GS_WARNINGS_AS_ERRORS=ON
+fi
+cmake --build "$build" -j "$jobs"
+
+if [ "$what" = demo ]; then
+  if [ -n "${DISPLAY:-}" ]; then
+    exec "$build/bin/vis4gs" demo "${@:2}"
+  fi
+  exec xvfb-run -a "$build/bin/vis4gs" demo "${@:2}"
+fi
+
+cd "$build"
+xvfb-run -a -s "-screen 0 1920x1080x24" \
+  ctest --output-on-failure --timeout 900 -j "$jobs" "${@:2}"
