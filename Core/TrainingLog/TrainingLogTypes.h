@@ -7,6 +7,8 @@
 #define vis4gs_TrainingLogTypes_h
 
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
 namespace vis4gs
@@ -38,6 +40,125 @@ struct EventTable
   std::vector<std::int64_t> Child;
 
   std::size_t Size() const { return this->Iteration.size(); }
+  void Reserve(std::size_t n)
+  {
+    this->Iteration.reserve(n);
+    this->Kind.reserve(n);
+    this->Parent.reserve(n);
+    this->Child.reserve(n);
+  }
+  void Append(const TrainingEvent& e)
+  {
+    this->Iteration.push_back(e.Iteration);
+    this->Kind.push_back(static_cast<std::uint8_t>(e.Kind));
+    this->Parent.push_back(e.Parent);
+    this->Child.push_back(e.Child);
+  }
+  TrainingEvent Get(std::size_t i) const
+  {
+    return TrainingEvent{
+      this->Iteration[i], static_cast<EventKind>(this->Kind[i]), this->Parent[i], this->Child[i]
+    };
+  }
+};
+
+/// One row of /metrics (or /metrics/test). Values not measured are NaN.
+struct MetricsRow
+{
+  std::int32_t Iteration = 0;
+  std::int64_t NumGaussians = 0;
+  double Loss = std::numeric_limits<double>::quiet_NaN();
+  double L1 = std::numeric_limits<double>::quiet_NaN();
+  double Psnr = std::numeric_limits<double>::quiet_NaN();
+  double Ssim = std::numeric_limits<double>::quiet_NaN();
+  double Lpips = std::numeric_limits<double>::quiet_NaN();
+  double ElapsedSeconds = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Columns of /metrics (or /metrics/test) as structure of arrays, rows in logging order.
+struct MetricsTable
+{
+  std::vector<std::int32_t> Iteration;
+  std::vector<std::int64_t> NumGaussians;
+  std::vector<double> Loss;
+  std::vector<double> L1;
+  std::vector<double> Psnr;
+  std::vector<double> Ssim;
+  std::vector<double> Lpips;
+  std::vector<double> ElapsedSeconds;
+
+  std::size_t Size() const { return this->Iteration.size(); }
+  void Append(const MetricsRow& r)
+  {
+    this->Iteration.push_back(r.Iteration);
+    this->NumGaussians.push_back(r.NumGaussians);
+    this->Loss.push_back(r.Loss);
+    this->L1.push_back(r.L1);
+    this->Psnr.push_back(r.Psnr);
+    this->Ssim.push_back(r.Ssim);
+    this->Lpips.push_back(r.Lpips);
+    this->ElapsedSeconds.push_back(r.ElapsedSeconds);
+  }
+  MetricsRow Get(std::size_t i) const
+  {
+    MetricsRow r;
+    r.Iteration = this->Iteration[i];
+    r.NumGaussians = this->NumGaussians[i];
+    r.Loss = this->Loss[i];
+    r.L1 = this->L1[i];
+    r.Psnr = this->Psnr[i];
+    r.Ssim = this->Ssim[i];
+    r.Lpips = this->Lpips[i];
+    r.ElapsedSeconds = this->ElapsedSeconds[i];
+    return r;
+  }
+};
+
+/// Root attributes of a training log.
+struct TrainingLogHeader
+{
+  std::string Format = "vis4gs-training-log";
+  int FormatVersion = 1;
+  std::string Producer;
+  std::string Scene;
+  int ShDegree = 3;   ///< the trainer's maximum SH degree
+  int Iterations = 0; ///< planned last iteration
+};
+
+/// Per-Gaussian arrays of a snapshot, as bit flags (what to read or what a history holds).
+enum SnapshotArray : unsigned
+{
+  SnapshotIds = 1u << 0,
+  SnapshotPositions = 1u << 1,
+  SnapshotLogScales = 1u << 2,
+  SnapshotRotations = 1u << 3,
+  SnapshotOpacityLogits = 1u << 4,
+  SnapshotSH = 1u << 5,
+  SnapshotGradAccum = 1u << 6,
+  SnapshotDenom = 1u << 7,
+  /// The Gaussian parameters (ids, position, log_scale, rotation, opacity_logit, sh).
+  SnapshotParameters = (1u << 6) - 1u,
+  SnapshotAll = (1u << 8) - 1u
+};
+
+/**
+ * History of some Gaussians across all snapshots: one row per (id, snapshot) where the id
+ * is alive, ordered by id then iteration. Only the arrays named in Arrays are filled.
+ */
+struct PropertyHistory
+{
+  unsigned Arrays = 0;
+  std::vector<std::int64_t> Id;
+  std::vector<std::int32_t> Iteration;
+  std::vector<float> Positions;     ///< 3 per row
+  std::vector<float> LogScales;     ///< 3 per row
+  std::vector<float> Rotations;     ///< 4 per row
+  std::vector<float> OpacityLogits; ///< 1 per row
+  std::vector<float> SHDC;          ///< 3 per row: the k=0 (DC) RGB coefficients
+  std::vector<float> GradAccum;     ///< 1 per row (NaN where the snapshot lacks it)
+  std::vector<float> Denom;         ///< 1 per row (NaN where the snapshot lacks it)
+
+  std::size_t Size() const { return this->Id.size(); }
 };
 
 } // namespace vis4gs
