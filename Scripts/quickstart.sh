@@ -3,7 +3,8 @@
 # incrementally, and are cheap to re-run when nothing changed.
 #   bash Scripts/quickstart.sh demo   # build and run `vis4gs demo` on the embedded scene
 #   bash Scripts/quickstart.sh test   # build and run every test and check (what CI runs)
-# Environment: VIS4GS_BUILD_DIR (default: build), VIS4GS_JOBS (default: nproc).
+# Environment: VIS4GS_BUILD_DIR (default: build), VIS4GS_JOBS (default: nproc),
+# VIS4GS_FUZZ_SECONDS (per fuzz target in the test command, default: 15).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -33,6 +34,9 @@ if [ "$what" = demo ]; then
   fi
   exec xvfb-run -a "$build/bin/vis4gs" demo "${@:2}"
 fi
+
+# The parsers' libFuzzer targets, for a bounded time (clang + ASan, Core only, own build dir).
+bash "$here/Scripts/run-fuzzers.sh" "${VIS4GS_FUZZ_SECONDS:-15}" "$build-fuzz"
 
 cd "$build"
 xvfb-run -a -s "-screen 0 1920x1080x24" \

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file GaussianIO.h
+ * @brief Reading and writing 3DGS scenes: the trainer's PLY (binary little/big endian and
+ * ASCII) and the antimatter15 `.splat` format (reference §1.1).
+ *
+ * PLY properties are looked up by name in any order; every PLY scalar type name is accepted
+ * (char/int8, uchar/uint8, short/int16, ushort/uint16, int/int32, uint/uint32,
+ * float/float32, double/float64). float32 values are copied bit for bit (NaN payloads
+ * included). The SH degree (0..3) is inferred from the number of `f_rest_*` properties, which
+ * the file stores channel-major (all R, then G, then B); GaussianCloud::SH is
+ * coefficient-major. Per-vertex properties the model does not interpret (normals, scores,
+ * other tools' fields) are kept as GaussianCloud::Extra with their type and written back.
+ *
+ * Errors (unreadable file, truncated data, a header count larger than the file, missing
+ * required properties, non-numeric ASCII, ...) throw std::runtime_error whose message starts
+ * with the file name. NaN/Inf parameters are not an error: they are kept, and counted in the
+ * GaussianReadReport so the caller can warn. Nothing is allocated before the header's counts
+ * are checked against the file size.
+ */
+#ifndef vis4gs_GaussianIO_h
+#define vis4gs_GaussianIO_h
+
+#include "GaussianCloud.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace vis4gs
+{
+
+/// What a read should load. Arrays left out stay empty in the GaussianCloud.
+struct GaussianReadOptions
+{
+  /// Highest SH degree to load (0..3); a file with fewer coefficients loads what it has.
+  int MaxShDegree = 3;
+  bool LoadPositions = true;
+  bool LoadScales = true;
+  bool LoadRotations = true;
+  bool LoadOpacities = true;
+  bool LoadSH = true;
+  /// Keep unknown per-vertex properties as GaussianCloud::Extra.
+  bool LoadExtras = true;
+  /// If not empty: fill GaussianCloud::Ids from this property (integer valued; it is then not
+  /// kept as an extra). A file without it gives an error.
+  std::string IdProperty;
+};
+
+/// What a read found besides the data.
+struct GaussianReadReport
+{
+  std::string Format;   ///< "binary_little_endian", "binary_big_endian", "ascii", "splat"
+  int FileShDegree = 0; ///< SH degree stored in the file
+  /// Non-finite (NaN or +-Inf) values among the loaded parameters, and Gaussians with at
+  /// least one. The values are kept as read.
+  std::size_t NonFiniteValues = 0;
+  std::size_t NonFiniteGaussians = 0;
+  /// Human-readable warnings (already formatted with the file name).
+  std::vector<std::string> Warnings;
+};
+
+/// Reads a 3DGS PLY file.
+GaussianCloud ReadGaussianPly(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+
+/// Reads a 3DGS PLY from memory; @p name is used in error messages (used by fuzzers/tests).
+GaussianCloud ReadGaussianPlyFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+
+enum class PlyFormat
+{
+  BinaryLittleEndian,
+  BinaryBigEndian,
+  Ascii
+};
+
+struct GaussianWriteOptions
+{
+  PlyFormat Format = PlyFormat::BinaryLittleEndian;
+  /// Name of the property that stores GaussianCloud::Ids when they are not empty
+  /// (int32 when every id fits, float64 otherwise: PLY has no 64-bit integer type).
+  std::string IdProperty = "id";
+  /// Comment lines written into the header.
+  std::vector<std::string> Comments;
+};
+
+/**
+ * Writes @p cloud as a 3DGS PLY: properties in the trainer's order x y z [nx ny nz] f_dc_0..2
+ * f_rest_* (channel-major) opacity scale_0..2 rot_0..3, then the remaining extras, then the
+ * ids. Standard arrays are float32; extras keep their type; normals are written only when the
+ * cloud holds them as extras (the trainer's loader never reads them). Arrays that are empty
+ * (not loaded) are left out. The file is written to a temporary file in the same folder and
+ * renamed into place, so a failed write never leaves a half-written @p path.
+ *
+ * ASCII writes the shortest decimal that reads back to the same float; float32 NaNs other
+ * than the default quiet NaN are written as `nan(0x<payload>)` (which this reader restores bit
+ * for bit). float64 extras in ASCII keep their value but not a NaN payload.
+ */
+void WriteGaussianPly(const std::string& path,
+  const GaussianCloud& cloud,
+  const GaussianWriteOptions& options = {});
+
+/// Same as WriteGaussianPly, into memory.
+std::vector<unsigned char> WriteGaussianPlyToMemory(const GaussianCloud& cloud,
+  const GaussianWriteOptions& options = {});
+
+/**
+ * Reads an antimatter15 `.splat` file (32 bytes per Gaussian: 3 float32 position, 3 float32
+ * linear scale, RGBA uint8, quaternion uint8 w x y z as (q-128)/128) and converts it to raw
+ * parameters: log scale, opacity logit of alpha/255 clamped to [1e-4, 1-1e-4], SH DC
+ * (c/255-0.5)/C0, SH degree 0. A size that is not a multiple of 32 is an error.
+ */
+GaussianCloud ReadSplat(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+GaussianCloud ReadSplatFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+
+/// Writes the antimatter15 `.splat` format (quantising colour, opacity and rotation; used by
+/// tests and exports, never for analysis).
+void WriteSplat(const std::string& path, const GaussianCloud& cloud);
+
+/// Reads a scene by extension: ".splat" with ReadSplat, anything else with ReadGaussianPly.
+GaussianCloud ReadGaussianScene(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+
+} // namespace vis4gs
+
+#endif

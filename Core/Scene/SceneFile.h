@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SceneFile.h
+ * @brief Small file helpers shared by the scene readers and writers: whole-file and
+ * positioned reads with errors that name the file, byte swapping, parallel row blocks, and
+ * writes that go to a temporary file in the destination folder and are renamed into place.
+ */
+#ifndef vis4gs_SceneFile_h
+#define vis4gs_SceneFile_h
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vis4gs
+{
+namespace detail
+{
+
+/// Byte-swaps @p size bytes in place (size 1, 2, 4 or 8).
+inline void SwapBytes(unsigned char* p, std::size_t size)
+{
+  for (std::size_t i = 0; i < size / 2; ++i)
+  {
+    const unsigned char t = p[i];
+    p[i] = p[size - 1 - i];
+    p[size - 1 - i] = t;
+  }
+}
+
+inline std::uint32_t ByteSwap32(std::uint32_t v)
+{
+  return __builtin_bswap32(v);
+}
+
+/// True on little-endian hosts.
+inline bool HostIsLittleEndian()
+{
+  const std::uint16_t one = 1;
+  unsigned char b;
+  std::memcpy(&b, &one, 1);
+  return b == 1;
+}
+
+/// A read-only file opened for positioned reads; every failure throws std::runtime_error
+/// naming the file.
+class InputFile
+{
+public:
+  explicit InputFile(const std::string& path);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+
+  const std::string& Path() const { return this->FilePath; }
+  std::uint64_t Size() const { return this->FileSize; }
+  /// Reads exactly @p size bytes at @p offset (throws on a short read).
+  void ReadAt(std::uint64_t offset, void* buffer, std::size_t size) const;
+  /// Reads up to @p size bytes at @p offset; returns the number read.
+  std::size_t ReadSomeAt(std::uint64_t offset, void* buffer, std::size_t size) const;
+
+private:
+  std::string FilePath;
+  int Fd = -1;
+  std::uint64_t FileSize = 0;
+};
+
+/// Reads a whole (small) file; throws std::runtime_error naming the file on failure.
+std::vector<unsigned char> ReadWholeFile(const std::string& path);
+
+/// Bytes of a file or of a caller's buffer, read either way through the same interface.
+struct ByteSource
+{
+  const InputFile* File = nullptr;       ///< set for files
+  const unsigned char* Memory = nullptr; ///< set for in-memory buffers
+  std::uint64_t Size = 0;
+  std::string Name; ///< file name used in error messages
+};
+
+/**
+ * Calls @p kernel(rows, firstRow, rowCount) over @p rowCount rows of @p rowSize bytes that
+ * start at @p offset of @p source, in blocks processed by OpenMP threads. A file is read with
+ * one positioned read per block into a per-thread buffer of about @p blockBytes (so memory
+ * stays bounded); a memory buffer is passed through directly. The caller has checked that
+ * the rows lie inside the source. Exceptions thrown by @p kernel are re-thrown (the first).
+ */
+void ForEachRowBlock(const ByteSource& source,
+  std::uint64_t offset,
+  std::size_t rowSize,
+  std::size_t rowCount,
+  const std::function<void(const unsigned char*, std::size_t, std::size_t)>& kernel,
+  std::size_t blockBytes = std::size_t(4) << 20);
+
+/**
+ * Writes a file safely: @p write is given a FILE* of a temporary file created in the folder
+ * of @p path; on success the temporary is flushed, closed and renamed onto @p path, on any
+ * failure it is removed and std::runtime_error naming @p path is thrown.
+ */
+void WriteFileAtomically(const std::string& path, const std::function<void(std::FILE*)>& write);
+
+/// fwrite that throws naming @p path when the write is short.
+void WriteBytes(std::FILE* f, const void* data, std::size_t size, const std::string& path);
+
+/// Folder part of @p path ("." when there is none).
+std::string ParentFolder(const std::string& path);
+/// True if @p path names an existing regular file / directory.
+bool IsRegularFile(const std::string& path);
+bool IsDirectory(const std::string& path);
+/// Lower-cased extension of @p path including the dot (".ply"), or "".
+std::string LowerExtension(const std::string& path);
+
+} // namespace detail
+} // namespace vis4gs
+
+#endif

@@ -1,0 +1,139 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianPLYReader.h
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+/**
+ * @class   vtkGaussianPLYReader
+ * @brief   Reads a 3DGS scene (the trainer's PLY, or an antimatter15 .splat) as the Gaussian
+ * vtkPolyData of DESIGN §2.
+ *
+ * The output's points are the means; point data holds the raw parameters (LogScale,
+ * Rotation, OpacityLogit, SH coefficient-major), GaussianId (pedigree ids), the activated
+ * Opacity and Scale, and every property the model does not interpret (normals, scores) as an
+ * array of its own type. float32 values are copied bit-exactly. Files ending in `.splat` are
+ * read as antimatter15 splats, anything else as PLY (binary little/big endian or ASCII).
+ *
+ * Errors (missing file, truncated data, missing properties, ...) are reported with
+ * vtkErrorMacro naming the file and the problem, and the request fails. Gaussians with NaN or
+ * infinite values are kept and reported once with vtkWarningMacro; their number is available
+ * from GetNumberOfNonFiniteGaussians() after an update.
+ *
+ * The parsing is done by vis4gs::ReadGaussianScene (Core/Scene/GaussianIO.h).
+ */
+#ifndef vtkGaussianPLYReader_h
+#define vtkGaussianPLYReader_h
+
+#include "vis4gsIOSceneModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For std::string
+
+class VIS4GSIOSCENE_EXPORT vtkGaussianPLYReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkGaussianPLYReader* New();
+  vtkTypeMacro(vtkGaussianPLYReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The file to read (.ply or .splat). Default: none.
+   */
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /**
+   * Highest SH degree to load (0..3); a file with fewer coefficients loads what it has.
+   * Default: 3.
+   */
+  vtkSetClampMacro(MaxSHDegree, int, 0, 3);
+  vtkGetMacro(MaxSHDegree, int);
+  ///@}
+
+  ///@{
+  /**
+   * Arrays to load; leaving one out saves the time and memory it would take (the positions
+   * are always read). Defaults: all on.
+   */
+  vtkSetMacro(LoadSH, bool);
+  vtkGetMacro(LoadSH, bool);
+  vtkBooleanMacro(LoadSH, bool);
+  vtkSetMacro(LoadScales, bool);
+  vtkGetMacro(LoadScales, bool);
+  vtkBooleanMacro(LoadScales, bool);
+  vtkSetMacro(LoadRotations, bool);
+  vtkGetMacro(LoadRotations, bool);
+  vtkBooleanMacro(LoadRotations, bool);
+  vtkSetMacro(LoadOpacities, bool);
+  vtkGetMacro(LoadOpacities, bool);
+  vtkBooleanMacro(LoadOpacities, bool);
+  /** Properties the model does not interpret (normals, scores, ...). */
+  vtkSetMacro(LoadExtras, bool);
+  vtkGetMacro(LoadExtras, bool);
+  vtkBooleanMacro(LoadExtras, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Add the activated Opacity and Scale arrays. Default: on.
+   */
+  vtkSetMacro(ActivatedArrays, bool);
+  vtkGetMacro(ActivatedArrays, bool);
+  vtkBooleanMacro(ActivatedArrays, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Name of an integer property holding the Gaussians' ids (GaussianId). Empty: ids are the
+   * row indices. Default: empty.
+   */
+  vtkSetStdStringFromCharMacro(IdProperty);
+  vtkGetCharFromStdStringMacro(IdProperty);
+  ///@}
+
+  ///@{
+  /**
+   * Facts about the last file read: its SH degree, its format ("binary_little_endian",
+   * "binary_big_endian", "ascii" or "splat"), and the number of Gaussians holding a NaN or
+   * infinite value.
+   */
+  vtkGetMacro(FileSHDegree, int);
+  vtkGetCharFromStdStringMacro(FileFormat);
+  vtkGetMacro(NumberOfNonFiniteGaussians, vtkIdType);
+  ///@}
+
+protected:
+  vtkGaussianPLYReader();
+  ~vtkGaussianPLYReader() override = default;
+
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  std::string FileName;
+  int MaxSHDegree = 3;
+  bool LoadSH = true;
+  bool LoadScales = true;
+  bool LoadRotations = true;
+  bool LoadOpacities = true;
+  bool LoadExtras = true;
+  bool ActivatedArrays = true;
+  std::string IdProperty;
+  int FileSHDegree = 0;
+  std::string FileFormat;
+  vtkIdType NumberOfNonFiniteGaussians = 0;
+
+private:
+  vtkGaussianPLYReader(const vtkGaussianPLYReader&) = delete;
+  void operator=(const vtkGaussianPLYReader&) = delete;
+};
+
+#endif

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of the scene parsers (Testing/Fuzz) with clang + AddressSanitizer
+# in build-fuzz and runs each for a bounded time. Exits non-zero when a fuzzer finds a crash
+# (the reproducer is left in build-fuzz/artifacts/; turn it into a regression test in
+# Core/Scene/Testing before fixing the bug).
+#
+# Usage: Scripts/run-fuzzers.sh [seconds-per-target, default 20] [build dir, default build-fuzz]
+# VIS4GS_FUZZ_SKIP_BUILD=1 runs already built targets (in <build dir>/fuzz).
+set -euo pipefail
+
+seconds="${1:-20}"
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${2:-$root/build-fuzz}"
+data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
+targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzColmap)
+
+if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
+  CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
+    -DVIS4GS_CORE_ONLY=ON -DVIS4GS_ENABLE_FUZZING=ON -DBUILD_TESTING=OFF \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_FLAGS="-fsanitize=address,fuzzer-no-link" \
+    -DCMAKE_CXX_FLAGS="-fsanitize=address,fuzzer-no-link" >/dev/null
+  cmake --build "$build" -j2 --target "${targets[@]}"
+fi
+
+# Seed corpora: small real inputs (headers plus a few rows of the real files) and hand-made ones.
+seeds="$build/seeds"
+rm -rf "$seeds"
+mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzColmap}
+ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
+donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
+if [ -f "$ply" ]; then
+  header=$(grep -a -b -m1 -o 'end_header' "$ply" | cut -d: -f1)
+  head -c $((header + 11 + 3 * 248)) "$ply" >"$seeds/FuzzGaussianPly/inria3.ply"
+  header=$(grep -a -b -m1 -o 'end_header' "$donut" | cut -d: -f1)
+  head -c $((header + 11 + 4 * 56)) "$donut" >"$seeds/FuzzGaussianPly/donut4.ply"
+  head -c $((32 * 4)) "$data/inria_ply_tiny_kacytran/model_1.splat" >"$seeds/FuzzSplat/four.splat"
+fi
+cat >"$seeds/FuzzGaussianPly/ascii.ply" <<'PLY'
+ply
+format ascii 1.0
+comment seed
+element vertex 2
+property float x
+property float y
+property float z
+property uchar score
+property float f_dc_0
+property float f_dc_1
+property float f_dc_2
+property double opacity
+property float scale_0
+property float scale_1
+property float scale_2
+property float rot_0
+property float rot_1
+property float rot_2
+property float rot_3
+property int id
+end_header
+1 2 3 7 0.1 0.2 0.3 -2.19 -4 -4 -4 1 0 0 0 10
+nan -inf 1e-50 255 0 0 0 9 1 2 3 0 0 0 0 11
+PLY
+cat >"$seeds/FuzzCamerasJson/cameras.json" <<'JSON'
+[{"id": 0, "img_name": "DSC0001", "width": 800, "height": 600, "position": [1.0, 2.0, 3.0],
+  "rotation": [[0, -1, 0], [1, 0, 0], [0, 0, 1]], "fy": 700.5, "fx": 710.25},
+ {"id": 1, "img_name": "b", "width": 8, "height": 6, "position": [0, 0, 0],
+  "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "fy": 7, "fx": 7, "cx": 4, "cy": 3}]
+JSON
+statue="$data/colmap_statue_bartoszek/sparse/0"
+if [ -f "$statue/cameras.bin" ]; then
+  { printf '\x00'; cat "$statue/cameras.bin"; } >"$seeds/FuzzColmap/cameras.bin"
+  { printf '\x01'; head -c 4096 "$statue/images.bin"; } >"$seeds/FuzzColmap/images.bin"
+  { printf '\x02'; head -c 4096 "$statue/points3D.bin"; } >"$seeds/FuzzColmap/points3D.bin"
+fi
+{ printf '\x03'; printf '# c\n1 PINHOLE 640 480 500 500 320 240\n2 OPENCV 640 480 1 2 3 4 5 6 7 8\n'; } \
+  >"$seeds/FuzzColmap/cameras.txt"
+{ printf '\x04'; printf '1 1 0 0 0 0 0 0 1 a.png\n1.5 2.5 7 3 4 -1\n2 0 1 0 0 1 2 3 1 b.png\n\n'; } \
+  >"$seeds/FuzzColmap/images.txt"
+{ printf '\x05'; printf '5 1 2 3 255 0 10 0.25 1 0 2 1\n'; } >"$seeds/FuzzColmap/points3D.txt"
+
+status=0
+mkdir -p "$build/artifacts"
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"
+  mkdir -p "$corpus"
+  echo "== $t: ${seconds}s"
+  if ! "$build/fuzz/$t" "$corpus" "$seeds/$t" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
+    -artifact_prefix="$build/artifacts/$t-" 2>"$build/$t.log"; then
+    echo "!! $t found a problem; see $build/$t.log and $build/artifacts/"
+    tail -40 "$build/$t.log"
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|cov:" "$build/$t.log" | tail -2
+  fi
+done
+exit $status
