@@ -63,8 +63,8 @@ inline T ActivatedScale(T logScale)
 }
 
 /// Normalises a (w,x,y,z) quaternion the way PyTorch's F.normalize does (norm floored at
-/// 1e-12). A zero quaternion stays zero, which gives the zero rotation matrix: the Gaussian
-/// collapses to a point, exactly as in the reference trainer.
+/// 1e-12). A zero quaternion stays zero; QuaternionToMatrix then gives the identity (every
+/// product term vanishes), so the Gaussian is axis-aligned, exactly as in the reference.
 template <typename T>
 inline std::array<T, 4> NormalizeQuaternion(const T q[4])
 {

@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Rasterizer.h
+ * @brief Exact CPU port of the forward pass of the reference 3DGS rasteriser
+ * (diff-gaussian-rasterization, reference §2), with per-pixel attribution.
+ *
+ * The pass is split into three public steps so that diagnostics and the trainer can reuse
+ * the parts they need:
+ *
+ *  1. ProjectGaussians(): per-Gaussian preprocessing (§2.3, §2.4): world-to-view, near cull,
+ *     EWA projection with the Jacobian clamp, +0.3 dilation, det == 0 cull, conic, 3-sigma
+ *     radius, pixel-space mean, 16x16 tile rectangle, SH colour. Parallel over Gaussians.
+ *  2. BinGaussians(): per-tile lists sorted front to back by view z, ties by Gaussian index
+ *     (the order of the reference's stable radix sort on (tile, depth) keys).
+ *  3. CompositeTiles(): front-to-back blending per pixel (§2.6), parallel over tiles.
+ *
+ * Rasterize() runs all three. AttributePixels() replays the blending of chosen pixels and
+ * returns every contributing Gaussian with its weight w = alpha*T. Footprint statistics
+ * (|Omega(g,v)|, sums of per-pixel maps over Omega) are in Footprint.h.
+ *
+ * Templated on the scalar type: float reproduces the reference (float32, default); double
+ * is a reference mode for accuracy checks. Only float and double are instantiated.
+ *
+ * Conventions: images are row-major with row 0 at the TOP (the camera's +y points down),
+ * pixel (x, y) is sampled at the integer position (x, y). The principal point is the image
+ * centre, as in the reference: Camera::Cx/Cy are ignored; the focal lengths used are
+ * Camera::Fx/Fy (tan(fov/2) = W/(2 fx)). To render at another resolution, pass
+ * Camera::Resized(w, h), which keeps the field of view.
+ *
+ * Degenerate input never poisons other Gaussians or pixels: a Gaussian with any NaN/Inf
+ * parameter it would use is skipped and counted (ProjectionStatus::InvalidParameters), and
+ * one whose projection overflows the scalar type is skipped and counted
+ * (ProjectionStatus::NonFinite). Core/Render/README.md documents every stiff case.
+ */
+#ifndef vis4gs_Rasterizer_h
+#define vis4gs_Rasterizer_h
+
+#include "Camera.h"
+#include "GaussianCloud.h"
+#include "RasterKernel.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace vis4gs
+{
+
+/// Options of a rasterisation.
+struct RasterSettings
+{
+  /// Background colour added as T*bg to every pixel. Default black.
+  std::array<double, 3> Background{ 0.0, 0.0, 0.0 };
+  /// Active SH degree; -1 (default) uses every degree the cloud holds. Clamped to the cloud's.
+  int ShDegree = -1;
+  /// Multiplies every scale (the reference's scale_modifier). Default 1.
+  double ScaleModifier = 1.0;
+  /// Evaluate SH colours in ProjectGaussians(). Footprint-only work can turn this off.
+  bool ComputeColors = true;
+  /// OpenMP threads; 0 (default) uses OpenMP's default.
+  int Threads = 0;
+  /// Instruction set of the compositing loop: 0 = best available (default), 1 = baseline
+  /// x86-64 (SSE2), 2 = AVX2, 3 = AVX-512. Results are bit-identical on every path; this is
+  /// a knob for tests and benchmarks.
+  int KernelIsa = 0;
+};
+
+/// Why a Gaussian does or does not take part in a view.
+enum class ProjectionStatus : std::uint8_t
+{
+  Visible = 0,           ///< survived every cull: radius > 0 and a non-empty tile rectangle
+  InvalidParameters = 1, ///< a NaN/Inf raw parameter it would use; skipped and counted
+  NearPlane = 2,         ///< view z <= 0.2 (behind the camera included), reference cull
+  Degenerate = 3,        ///< det of the dilated 2D covariance == 0, reference cull
+  NonFinite = 4,         ///< the projection overflowed the scalar type (Inf/NaN covariance,
+                         ///< conic or radius); skipped and counted (the reference would
+                         ///< produce garbage)
+  OffScreen = 5          ///< empty tile rectangle, reference cull
+};
+
+/// Number of Gaussians per ProjectionStatus.
+struct ProjectionCounts
+{
+  std::size_t Visible = 0;
+  std::size_t InvalidParameters = 0;
+  std::size_t NearPlane = 0;
+  std::size_t Degenerate = 0;
+  std::size_t NonFinite = 0;
+  std::size_t OffScreen = 0;
+};
+
+/**
+ * Result of preprocessing one Gaussian for one view (reference §2.3 step 12, plus what the
+ * backward pass needs). Fields other than Status are meaningful only when Status == Visible,
+ * except ViewPosition (set whenever the parameters are finite).
+ */
+template <typename T>
+struct ProjectedGaussian
+{
+  T U = 0, V = 0;                       ///< pixel-space mean (ndc2Pix)
+  T ConicA = 0, ConicB = 0, ConicC = 0; ///< inverse of the dilated 2D covariance
+  T Opacity = 0;                        ///< sigmoid(logit)
+  T Depth = 0;                          ///< view-space z of the mean (sort key)
+  T Color[3] = { 0, 0, 0 };             ///< SH colour + 0.5, clamped at 0
+  T Cov2D[3] = { 0, 0, 0 };             ///< dilated 2D covariance a, b, c (pixels^2)
+  T ViewPosition[3] = { 0, 0, 0 };      ///< t = R mu + t_v
+  int Radius = 0;                       ///< ceil(3 sqrt(lambda_max)) pixels; 0 when culled
+  int TileRect[4] = { 0, 0, 0, 0 };     ///< tiles x_min, y_min, x_max, y_max (max exclusive)
+  ProjectionStatus Status = ProjectionStatus::InvalidParameters;
+  std::uint8_t ClampedChannels = 0; ///< bit c set when colour channel c was clamped at 0
+  bool IsVisible() const { return this->Status == ProjectionStatus::Visible; }
+};
+
+/// The camera as the rasteriser sees it, and every Gaussian projected into it.
+template <typename T>
+struct ViewProjection
+{
+  int Width = 0, Height = 0;
+  int TilesX = 0, TilesY = 0;
+  int ShDegree = 0; ///< active degree used for the colours
+  T Fx = 0, Fy = 0; ///< focal lengths W/(2 tan), H/(2 tan)
+  T TanFovX = 0, TanFovY = 0;
+  std::array<T, 16> ViewMatrix{};     ///< row-major world-to-camera
+  std::array<T, 16> FullProjection{}; ///< row-major P * W2C (reference §2.2)
+  std::array<T, 3> CameraCenter{};
+  std::vector<ProjectedGaussian<T>> Gaussians; ///< one per input Gaussian, input order
+  ProjectionCounts Counts;
+};
+
+/**
+ * Preprocesses every Gaussian of @p cloud for @p camera (reference §2.3, §2.4). Throws
+ * std::invalid_argument for an unusable camera (non-positive size or focal length,
+ * non-finite pose) or a cloud whose arrays do not match its Count, and when Count exceeds
+ * 2^32 - 1.
+ */
+template <typename T>
+ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings = {});
+
+/// Per-tile Gaussian lists, front to back.
+struct TileBins
+{
+  int TilesX = 0, TilesY = 0;
+  /// TilesX*TilesY + 1 offsets: tile t (= ty*TilesX + tx) holds Ids[Offsets[t], Offsets[t+1]).
+  std::vector<std::uint64_t> Offsets;
+  /// Gaussian indices, each tile's run sorted by view z, ties by index.
+  std::vector<std::uint32_t> Ids;
+  std::size_t TileCount() const { return static_cast<std::size_t>(this->TilesX) * this->TilesY; }
+};
+
+/// Builds the per-tile lists of the visible Gaussians (counting pass, then a parallel
+/// per-tile sort on (depth, index)).
+template <typename T>
+TileBins BinGaussians(const ViewProjection<T>& projection, int threads = 0);
+
+/// Rasteriser outputs, row-major, row 0 at the top.
+template <typename T>
+struct RasterImage
+{
+  int Width = 0, Height = 0;
+  std::vector<T> Color;         ///< 3 per pixel, RGB interleaved: C + T*bg (not clamped)
+  std::vector<T> Alpha;         ///< accumulated alpha 1 - T
+  std::vector<T> Transmittance; ///< final T (the reference's final_T)
+  /// Alpha-weighted view z, sum_i w_i z_i with w_i = alpha_i T_i (background adds 0), as
+  /// the later reference renderers accumulate depth (they accumulate 1/z the same way).
+  /// The expected depth of the visible surface is Depth / Alpha.
+  std::vector<T> Depth;
+  /// The reference's n_contrib: 1-based position, in the pixel's tile list, of the last
+  /// blended Gaussian (skipped list entries before it are counted); 0 if none blended.
+  std::vector<std::uint32_t> Contributors;
+};
+
+/// Optional per-Gaussian statistics gathered while compositing (occlusion-aware).
+struct GaussianWeightStats
+{
+  std::vector<float> MaxWeight;             ///< max over pixels of alpha*T
+  std::vector<double> WeightSum;            ///< sum over pixels of alpha*T
+  std::vector<std::uint32_t> BlendedPixels; ///< pixels where the Gaussian was blended
+};
+
+/// Work counters of a rasterisation, for benchmarks and diagnostics.
+struct RasterWorkCounts
+{
+  std::uint64_t TilePairs = 0;         ///< (tile, Gaussian) pairs in the bins
+  std::uint64_t KernelEvaluations = 0; ///< Gaussian-pixel kernels evaluated by this code
+  /// Gaussian-pixel pairs the reference evaluates (every pixel of the tile until that pixel
+  /// stops): a machine-independent work measure.
+  std::uint64_t ReferenceEvaluations = 0;
+};
+
+/**
+ * Blends every pixel (reference §2.6) into @p image (resized as needed). When @p weights
+ * is given, it is resized to the Gaussian count and filled. When @p work is given, the
+ * counters are computed (slightly slower).
+ */
+template <typename T>
+void CompositeTiles(const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  RasterImage<T>& image,
+  GaussianWeightStats* weights = nullptr,
+  RasterWorkCounts* work = nullptr);
+
+/// Projection, binning and compositing in one call.
+template <typename T>
+RasterImage<T> Rasterize(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings = {},
+  ProjectionCounts* counts = nullptr);
+
+/// One Gaussian's contribution to one pixel.
+struct PixelContribution
+{
+  std::uint32_t Gaussian = 0;     ///< index in the cloud
+  std::uint32_t ListPosition = 0; ///< 1-based position in the pixel's tile list
+  double Alpha = 0;               ///< alpha = min(0.99, o e^power)
+  double Transmittance = 0;       ///< T before this Gaussian
+  double Weight = 0;              ///< blending weight w = alpha * T
+};
+
+/// Every Gaussian blended into one pixel, ranked by weight (largest first, ties front first).
+struct PixelAttribution
+{
+  int X = 0, Y = 0;
+  std::vector<PixelContribution> Contributions;
+  double FinalTransmittance = 1;
+  std::uint32_t Contributors = 0;         ///< n_contrib
+  std::array<double, 3> Color{ 0, 0, 0 }; ///< the pixel's value, as rendered
+};
+
+/**
+ * Replays the blending of each requested pixel (x, y), exactly as CompositeTiles() does,
+ * and returns the contributing Gaussians with their weights. Pixels outside the image give
+ * an empty attribution with FinalTransmittance 1. Parallel over pixels.
+ */
+template <typename T>
+std::vector<PixelAttribution> AttributePixels(const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  const std::vector<std::array<int, 2>>& pixels);
+
+/// A Gaussian's total contribution to a set of pixels.
+struct GaussianContribution
+{
+  std::uint32_t Gaussian = 0;
+  double WeightSum = 0;     ///< sum over the pixels of w
+  double MaxWeight = 0;     ///< max over the pixels of w
+  std::uint32_t Pixels = 0; ///< pixels of the set it was blended into
+};
+
+/// Aggregates attributions of a pixel set per Gaussian, ranked by WeightSum (largest first,
+/// ties by Gaussian index).
+std::vector<GaussianContribution> RankContributors(
+  const std::vector<PixelAttribution>& attributions);
+
+extern template ViewProjection<float> ProjectGaussians<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&);
+extern template ViewProjection<double> ProjectGaussians<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&);
+extern template TileBins BinGaussians<float>(const ViewProjection<float>&, int);
+extern template TileBins BinGaussians<double>(const ViewProjection<double>&, int);
+extern template void CompositeTiles<float>(const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<float>&,
+  GaussianWeightStats*,
+  RasterWorkCounts*);
+extern template void CompositeTiles<double>(const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<double>&,
+  GaussianWeightStats*,
+  RasterWorkCounts*);
+extern template RasterImage<float> Rasterize<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  ProjectionCounts*);
+extern template RasterImage<double> Rasterize<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  ProjectionCounts*);
+extern template std::vector<PixelAttribution> AttributePixels<float>(const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  const std::vector<std::array<int, 2>>&);
+extern template std::vector<PixelAttribution> AttributePixels<double>(const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  const std::vector<std::array<int, 2>>&);
+
+} // namespace vis4gs
+
+#endif

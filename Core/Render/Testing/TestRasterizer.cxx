@@ -1,0 +1,475 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Rasteriser correctness: hand-computed single Gaussians, compositing order, agreement with
+// naive per-pixel implementations, order/thread/instruction-set invariance, attribution.
+#include "RasterTestUtils.h"
+
+#include "Footprint.h"
+#include "Rasterizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+using namespace vis4gs;
+using namespace vis4gs::rastertest;
+
+namespace
+{
+
+GaussianCloud OneGaussian(std::array<float, 3> pos,
+  std::array<float, 3> logScale,
+  std::array<float, 4> rot,
+  float logit,
+  std::array<float, 3> rgb,
+  int degree = 0)
+{
+  GaussianCloud c;
+  c.Resize(1, degree);
+  SetGaussian(c, 0, pos, logScale, rot, logit, rgb);
+  return c;
+}
+
+template <typename T>
+std::size_t Pix(const RasterImage<T>& img, int x, int y)
+{
+  return static_cast<std::size_t>(y) * img.Width + x;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+TEST(RasterKernel, ExpWithinTwoUlp)
+{
+  double worst = 0;
+  for (int i = 0; i <= 2000000; ++i)
+  {
+    const float x = -87.0f * static_cast<float>(i) / 2000000.0f;
+    const float e = raster::KernelExp(x);
+    const double ref = std::exp(static_cast<double>(x));
+    const double ulp = std::nextafter(static_cast<float>(ref), 1e30f) - static_cast<float>(ref);
+    worst = std::max(worst, std::abs(e - ref) / ulp);
+  }
+  EXPECT_LE(worst, 2.0);
+  EXPECT_EQ(raster::KernelExp(0.0f), 1.0f);
+  EXPECT_EQ(raster::KernelExp(-100.0f), 0.0f);
+  EXPECT_EQ(raster::KernelExp(-std::numeric_limits<float>::infinity()), 0.0f);
+}
+
+//------------------------------------------------------------------------------
+// Isotropic Gaussian on the optical axis: every quantity by hand.
+// W = H = 33, f = 40: the mean projects to pixel (16, 16) exactly. sigma = 0.05 at z = 4:
+// 2D variance (40*0.05/4)^2 = 0.25, + 0.3 dilation = 0.55. opacity sigmoid(0) = 0.5.
+TEST(Rasterizer, HandComputedIsotropic)
+{
+  const std::array<float, 3> rgb{ 0.8f, 0.3f, 0.1f };
+  const auto cloud = OneGaussian(
+    { 0, 0, 4 }, { std::log(0.05f), std::log(0.05f), std::log(0.05f) }, { 1, 0, 0, 0 }, 0.0f, rgb);
+  const Camera cam = AxisCamera(33, 33, 40, 40);
+  RasterSettings s;
+  s.Background = { 0.1, 0.2, 0.3 };
+  const auto imgD = Rasterize<double>(cloud, cam, s);
+  const auto imgF = Rasterize<float>(cloud, cam, s);
+  // The stored log-scale is a float: sigma = exp(float(log 0.05)).
+  const double sigma = std::exp(static_cast<double>(std::log(0.05f)));
+  const double var = std::pow(40.0 * sigma / 4.0, 2) + 0.3;
+  const int pts[][2] = { { 16, 16 }, { 17, 16 }, { 18, 15 }, { 14, 19 }, { 16, 20 } };
+  for (const auto& p : pts)
+  {
+    const double dx = 16.0 - p[0], dy = 16.0 - p[1];
+    const double power = -0.5 * (dx * dx + dy * dy) / var;
+    double alpha = std::min(0.99, 0.5 * std::exp(power));
+    alpha = alpha < 1.0 / 255 ? 0.0 : alpha; // (16, 20): 0.5 e^{-14.5} is skipped
+    const std::size_t i = Pix(imgD, p[0], p[1]);
+    for (int c = 0; c < 3; ++c)
+    {
+      // SH DC round trip: 0.5 + C0 * (rgb - 0.5)/C0 (float SH coefficient).
+      const double col =
+        0.5 + sh::C0 * static_cast<double>(static_cast<float>((rgb[c] - 0.5) / sh::C0));
+      const double expected = col * alpha + (1 - alpha) * s.Background[c];
+      EXPECT_NEAR(imgD.Color[3 * i + c], expected, 1e-12) << p[0] << "," << p[1];
+      EXPECT_NEAR(imgF.Color[3 * i + c], expected, 1e-6) << p[0] << "," << p[1];
+    }
+    EXPECT_NEAR(imgD.Alpha[i], alpha, 1e-12);
+    EXPECT_NEAR(imgD.Depth[i], 4.0 * alpha, 1e-12);
+    EXPECT_EQ(imgD.Contributors[i], alpha > 0 ? 1u : 0u);
+    EXPECT_EQ(imgF.Contributors[i], alpha > 0 ? 1u : 0u);
+  }
+  // Radius ceil(3 sqrt(0.55)) = 3; pixels beyond the tile rectangle see nothing.
+  const auto proj = ProjectGaussians<double>(cloud, cam, s);
+  EXPECT_EQ(proj.Gaussians[0].Radius, 3);
+  EXPECT_DOUBLE_EQ(proj.Gaussians[0].U, 16.0);
+  EXPECT_DOUBLE_EQ(proj.Gaussians[0].V, 16.0);
+  // Far pixel: alpha < 1/255 -> background, 0 contributors.
+  const std::size_t far = Pix(imgD, 0, 0);
+  EXPECT_EQ(imgD.Contributors[far], 0u);
+  EXPECT_DOUBLE_EQ(imgD.Color[3 * far + 2], 0.3);
+}
+
+//------------------------------------------------------------------------------
+// A rotated anisotropic Gaussian with SH degree 2 seen by an oblique camera: expected pixel
+// values from the formulas written out in the test (NaiveProject, double) and the blending
+// equation of a single Gaussian.
+TEST(Rasterizer, HandComputedGeneral)
+{
+  GaussianCloud cloud;
+  cloud.Resize(1, 2);
+  SetGaussian(cloud,
+    0,
+    { 0.3f, -0.2f, 0.5f },
+    { std::log(0.4f), std::log(0.08f), std::log(0.15f) },
+    { 0.8f, 0.3f, -0.4f, 0.2f },
+    1.2f,
+    { 0.6f, 0.5f, 0.4f });
+  for (int k = 3; k < 27; ++k)
+  {
+    cloud.SH[k] = 0.05f * static_cast<float>((k * 7) % 11 - 5);
+  }
+  const Camera cam = LookAt(80, 60, 70, 75, { 1.0, -0.5, -3.0 }, { 0.2, 0.0, 0.5 });
+  RasterSettings s;
+  s.Background = { 0.2, 0.7, 0.1 };
+  const auto ref = NaiveProject<double>(cloud, cam, 2);
+  ASSERT_TRUE(ref.Gaussians[0].IsVisible());
+  const auto& g = ref.Gaussians[0];
+  const auto projD = ProjectGaussians<double>(cloud, cam, s);
+  const auto& h = projD.Gaussians[0];
+  EXPECT_NEAR(h.U, g.U, 1e-10);
+  EXPECT_NEAR(h.V, g.V, 1e-10);
+  EXPECT_NEAR(h.ConicA, g.ConicA, 1e-12 * std::abs(g.ConicA) + 1e-14);
+  EXPECT_NEAR(h.ConicB, g.ConicB, 1e-12 * std::abs(g.ConicA) + 1e-14);
+  EXPECT_NEAR(h.ConicC, g.ConicC, 1e-12 * std::abs(g.ConicC) + 1e-14);
+  EXPECT_EQ(h.Radius, g.Radius);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(h.Color[c], g.Color[c], 1e-12);
+  }
+  const auto imgD = Rasterize<double>(cloud, cam, s);
+  const auto imgF = Rasterize<float>(cloud, cam, s);
+  int checked = 0;
+  for (int y = 0; y < cam.Height; ++y)
+  {
+    for (int x = 0; x < cam.Width; ++x)
+    {
+      const double dx = g.U - x, dy = g.V - y;
+      const double power = -0.5 * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+      double alpha = std::min(0.99, g.Opacity * std::exp(power));
+      const int tx = x / 16, ty = y / 16;
+      const bool inRect =
+        tx >= g.TileRect[0] && tx < g.TileRect[2] && ty >= g.TileRect[1] && ty < g.TileRect[3];
+      if (power > 0 || alpha < 1.0 / 255 || !inRect)
+      {
+        alpha = 0;
+      }
+      const std::size_t i = Pix(imgD, x, y);
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = g.Color[c] * alpha + (1 - alpha) * s.Background[c];
+        ASSERT_NEAR(imgD.Color[3 * i + c], expected, 1e-11) << x << "," << y;
+        ASSERT_NEAR(imgF.Color[3 * i + c], expected, 2e-5) << x << "," << y;
+      }
+      checked += alpha > 0.05;
+    }
+  }
+  EXPECT_GT(checked, 20); // the splat really covers pixels
+}
+
+//------------------------------------------------------------------------------
+// Two Gaussians on the same pixel: front-to-back blending by view z, whatever the input
+// order; and the stop rule: with alpha = 0.99 twice, T would drop below 1e-4, so the second
+// Gaussian is not blended.
+TEST(Rasterizer, HandComputedOcclusionAndStop)
+{
+  GaussianCloud cloud;
+  cloud.Resize(2, 0);
+  const float ls = std::log(0.02f);
+  // Back Gaussian first in the input.
+  SetGaussian(cloud, 0, { 0, 0, 6 }, { ls, ls, ls }, { 1, 0, 0, 0 }, -0.5f, { 0.1f, 0.9f, 0.2f });
+  SetGaussian(cloud, 1, { 0, 0, 3 }, { ls, ls, ls }, { 1, 0, 0, 0 }, 0.7f, { 0.9f, 0.2f, 0.3f });
+  const Camera cam = AxisCamera(17, 17, 30, 30); // centre pixel (8, 8)
+  RasterSettings s;
+  s.Background = { 1, 1, 1 };
+  const auto img = Rasterize<double>(cloud, cam, s);
+  const auto proj = ProjectGaussians<double>(cloud, cam, s);
+  const double o1 = 1 / (1 + std::exp(-static_cast<double>(0.7f))), o0 = 1 / (1 + std::exp(0.5));
+  const std::size_t i = Pix(img, 8, 8);
+  for (int c = 0; c < 3; ++c)
+  {
+    const double c1 = proj.Gaussians[1].Color[c], c0 = proj.Gaussians[0].Color[c];
+    const double expected = c1 * o1 + c0 * o0 * (1 - o1) + (1 - o1) * (1 - o0) * 1.0;
+    EXPECT_NEAR(img.Color[3 * i + c], expected, 1e-12);
+  }
+  EXPECT_NEAR(img.Depth[i], 3 * o1 + 6 * o0 * (1 - o1), 1e-12);
+  EXPECT_EQ(img.Contributors[i], 2u);
+
+  // Opaque: logit 100 -> o = 1 -> alpha = 0.99; T after one = 0.01, next would be 1e-4 - eps.
+  cloud.OpacityLogits[0] = 100.0f;
+  cloud.OpacityLogits[1] = 100.0f;
+  const auto imgF = Rasterize<float>(cloud, cam, s);
+  const auto projF = ProjectGaussians<float>(cloud, cam, s);
+  const float T1 = 1.0f * (1.0f - 0.99f);
+  ASSERT_LT(T1 * (1.0f - 0.99f), 1e-4f); // the reference's stop fires
+  EXPECT_EQ(imgF.Contributors[i], 1u);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_FLOAT_EQ(imgF.Color[3 * i + c], projF.Gaussians[1].Color[c] * 0.99f * 1.0f + T1 * 1.0f);
+  }
+  EXPECT_FLOAT_EQ(imgF.Transmittance[i], T1);
+}
+
+//------------------------------------------------------------------------------
+TEST(Rasterizer, NaiveCompositeBitIdentical)
+{
+  const auto cloud = RandomScene(1500, 3, 11u);
+  const Camera cam = LookAt(97, 75, 60, 62, { 0.3, -0.2, -0.5 }, { 0, 0, 5 });
+  RasterSettings s;
+  s.Background = { 0.25, 0.5, 0.75 };
+  {
+    const auto proj = ProjectGaussians<float>(cloud, cam, s);
+    const auto bins = BinGaussians(proj);
+    RasterImage<float> img;
+    CompositeTiles(proj, bins, s, img);
+    const auto naive = NaiveComposite(proj, s.Background);
+    EXPECT_EQ(
+      0, std::memcmp(img.Color.data(), naive.Color.data(), img.Color.size() * sizeof(float)));
+    EXPECT_EQ(img.Contributors, naive.Contributors);
+    EXPECT_EQ(
+      0, std::memcmp(img.Depth.data(), naive.Depth.data(), img.Depth.size() * sizeof(float)));
+    EXPECT_EQ(0,
+      std::memcmp(img.Transmittance.data(),
+        naive.Transmittance.data(),
+        img.Transmittance.size() * sizeof(float)));
+  }
+  {
+    const auto proj = ProjectGaussians<double>(cloud, cam, s);
+    const auto bins = BinGaussians(proj);
+    RasterImage<double> img;
+    CompositeTiles(proj, bins, s, img);
+    const auto naive = NaiveComposite(proj, s.Background);
+    EXPECT_EQ(img.Color, naive.Color);
+    EXPECT_EQ(img.Contributors, naive.Contributors);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Independent preprocessing (no shared code): double agrees to rounding, float to 1e-5
+// except where a threshold decision (alpha vs 1/255, T vs 1e-4) flips.
+TEST(Rasterizer, NaiveIndependentAgreement)
+{
+  const auto cloud = RandomScene(1200, 3, 5u);
+  const Camera cam = LookAt(90, 70, 55, 58, { -0.4, 0.3, -0.8 }, { 0.1, 0, 5 });
+  RasterSettings s;
+  s.Background = { 0.3, 0.3, 0.3 };
+  const auto naiveD = NaiveComposite(NaiveProject<double>(cloud, cam, 3), s.Background);
+  const auto imgD = Rasterize<double>(cloud, cam, s);
+  EXPECT_LT(MaxAbsDiff(imgD.Color, naiveD.Color), 1e-9);
+  EXPECT_EQ(imgD.Contributors, naiveD.Contributors);
+  const auto imgF = Rasterize<float>(cloud, cam, s);
+  std::size_t off = 0;
+  for (std::size_t i = 0; i < imgF.Color.size(); ++i)
+  {
+    off += std::abs(imgF.Color[i] - naiveD.Color[i]) > 1e-5;
+  }
+  EXPECT_LE(off, imgF.Color.size() / 500) << off << " channel values differ by more than 1e-5";
+}
+
+//------------------------------------------------------------------------------
+TEST(Rasterizer, ShuffleGivesIdenticalImage)
+{
+  const auto cloud = RandomScene(3000, 1, 21u);
+  std::vector<std::size_t> perm(cloud.Count);
+  std::iota(perm.begin(), perm.end(), 0);
+  std::mt19937 rng(4);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  GaussianCloud shuffled;
+  shuffled.Resize(cloud.Count, cloud.ShDegree);
+  const int K = cloud.ShCoefficientCount();
+  for (std::size_t j = 0; j < cloud.Count; ++j)
+  {
+    const std::size_t i = perm[j];
+    std::copy_n(&cloud.Positions[3 * i], 3, &shuffled.Positions[3 * j]);
+    std::copy_n(&cloud.LogScales[3 * i], 3, &shuffled.LogScales[3 * j]);
+    std::copy_n(&cloud.Rotations[4 * i], 4, &shuffled.Rotations[4 * j]);
+    shuffled.OpacityLogits[j] = cloud.OpacityLogits[i];
+    std::copy_n(&cloud.SH[3 * K * i], 3 * K, &shuffled.SH[3 * K * j]);
+  }
+  const Camera cam = LookAt(128, 96, 80, 80, { 0, 0, -1 }, { 0, 0, 5 });
+  RasterSettings s;
+  s.Background = { 0.1, 0.2, 0.3 };
+  const auto a = Rasterize<float>(cloud, cam, s);
+  const auto b = Rasterize<float>(shuffled, cam, s);
+  EXPECT_EQ(0, std::memcmp(a.Color.data(), b.Color.data(), a.Color.size() * sizeof(float)));
+  EXPECT_EQ(a.Contributors, b.Contributors);
+  const auto ad = Rasterize<double>(cloud, cam, s);
+  const auto bd = Rasterize<double>(shuffled, cam, s);
+  EXPECT_EQ(ad.Color, bd.Color);
+}
+
+//------------------------------------------------------------------------------
+TEST(Rasterizer, ThreadsAndInstructionSetsBitIdentical)
+{
+  const auto cloud = RandomScene(4000, 3, 8u, 1.0f, 10.0f, -5.0f, 0.0f);
+  const Camera cam = LookAt(150, 100, 90, 90, { 0, 0, -0.5 }, { 0, 0, 5 });
+  RasterSettings s;
+  s.Threads = 1;
+  s.KernelIsa = 1;
+  const auto ref = Rasterize<float>(cloud, cam, s);
+  for (int isa = 0; isa <= 3; ++isa)
+  {
+    for (int threads : { 1, 2, 3 })
+    {
+      s.KernelIsa = isa;
+      s.Threads = threads;
+      const auto img = Rasterize<float>(cloud, cam, s);
+      EXPECT_EQ(
+        0, std::memcmp(ref.Color.data(), img.Color.data(), ref.Color.size() * sizeof(float)))
+        << "isa " << isa << " threads " << threads;
+      EXPECT_EQ(ref.Contributors, img.Contributors);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+TEST(Rasterizer, AttributionReproducesPixels)
+{
+  const auto cloud = RandomScene(2500, 2, 9u);
+  const Camera cam = LookAt(64, 48, 40, 40, { 0, 0, 0 }, { 0, 0, 5 });
+  RasterSettings s;
+  s.Background = { 0.5, 0.4, 0.3 };
+  const auto proj = ProjectGaussians<float>(cloud, cam, s);
+  const auto bins = BinGaussians(proj);
+  RasterImage<float> img;
+  GaussianWeightStats weights;
+  CompositeTiles(proj, bins, s, img, &weights);
+  std::vector<std::array<int, 2>> pixels;
+  for (int y = 0; y < cam.Height; ++y)
+  {
+    for (int x = 0; x < cam.Width; ++x)
+    {
+      pixels.push_back({ x, y });
+    }
+  }
+  pixels.push_back({ -1, 3 });
+  pixels.push_back({ 64, 0 });
+  const auto att = AttributePixels(proj, bins, s, pixels);
+  ASSERT_EQ(att.size(), pixels.size());
+  std::vector<double> maxW(cloud.Count, 0), sumW(cloud.Count, 0);
+  std::vector<std::uint32_t> cnt(cloud.Count, 0);
+  for (std::size_t q = 0; q + 2 < att.size(); ++q)
+  {
+    const auto& pa = att[q];
+    const std::size_t i = Pix(img, pa.X, pa.Y);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_EQ(pa.Color[c], static_cast<double>(img.Color[3 * i + c])); // same bits
+    }
+    EXPECT_EQ(pa.Contributors, img.Contributors[i]);
+    EXPECT_EQ(pa.FinalTransmittance, static_cast<double>(img.Transmittance[i]));
+    double wsum = 0;
+    for (std::size_t k = 0; k < pa.Contributions.size(); ++k)
+    {
+      const auto& c = pa.Contributions[k];
+      if (k > 0)
+      {
+        EXPECT_GE(pa.Contributions[k - 1].Weight, c.Weight);
+      }
+      EXPECT_NEAR(c.Weight, c.Alpha * c.Transmittance, 1e-7);
+      wsum += c.Weight;
+      maxW[c.Gaussian] = std::max(maxW[c.Gaussian], c.Weight);
+      sumW[c.Gaussian] += c.Weight;
+      ++cnt[c.Gaussian];
+    }
+    // sum of weights = 1 - T (accumulated alpha)
+    EXPECT_NEAR(wsum, 1.0 - pa.FinalTransmittance, 1e-5);
+  }
+  EXPECT_TRUE(att[att.size() - 1].Contributions.empty());
+  EXPECT_EQ(att[att.size() - 2].FinalTransmittance, 1.0);
+  for (std::size_t g = 0; g < cloud.Count; ++g)
+  {
+    EXPECT_FLOAT_EQ(weights.MaxWeight[g], static_cast<float>(maxW[g]));
+    EXPECT_NEAR(weights.WeightSum[g], sumW[g], 1e-9);
+    EXPECT_EQ(weights.BlendedPixels[g], cnt[g]);
+  }
+  // Aggregation over a pixel set.
+  const std::vector<PixelAttribution> some(att.begin(), att.begin() + 100);
+  const auto ranked = RankContributors(some);
+  double total = 0, expectedTotal = 0;
+  for (std::size_t k = 0; k < ranked.size(); ++k)
+  {
+    total += ranked[k].WeightSum;
+    if (k > 0)
+    {
+      EXPECT_GE(ranked[k - 1].WeightSum, ranked[k].WeightSum);
+    }
+  }
+  for (const auto& pa : some)
+  {
+    expectedTotal += 1.0 - pa.FinalTransmittance;
+  }
+  EXPECT_NEAR(total, expectedTotal, 1e-4);
+}
+
+//------------------------------------------------------------------------------
+TEST(Rasterizer, ShDegreeAndBackgroundSettings)
+{
+  const auto cloud = RandomScene(500, 3, 2u);
+  const Camera cam = LookAt(40, 30, 25, 25, { 0, 0, 0 }, { 0, 0, 5 });
+  RasterSettings s;
+  ProjectionCounts counts;
+  const auto full = Rasterize<double>(cloud, cam, s, &counts);
+  EXPECT_EQ(counts.Visible + counts.OffScreen + counts.NearPlane, cloud.Count);
+  s.ShDegree = 3;
+  EXPECT_EQ(Rasterize<double>(cloud, cam, s).Color, full.Color);
+  s.ShDegree = 7; // clamped to the cloud's 3
+  EXPECT_EQ(Rasterize<double>(cloud, cam, s).Color, full.Color);
+  s.ShDegree = 0;
+  const auto dc = Rasterize<double>(cloud, cam, s);
+  EXPECT_GT(MaxAbsDiff(dc.Color, full.Color), 1e-3);
+  // Degree-0 rendering of the degree-3 cloud = rendering of its DC-only copy.
+  GaussianCloud dcCloud = cloud;
+  dcCloud.ShDegree = 0;
+  dcCloud.SH.resize(3 * cloud.Count);
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    std::copy_n(&cloud.SH[48 * i], 3, &dcCloud.SH[3 * i]);
+  }
+  s.ShDegree = -1;
+  EXPECT_EQ(Rasterize<double>(dcCloud, cam, s).Color, dc.Color);
+  // Background adds exactly T * bg.
+  s.Background = { 1, 0.5, 0.25 };
+  const auto bg = Rasterize<double>(cloud, cam, s);
+  for (std::size_t i = 0; i < bg.Transmittance.size(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(
+        bg.Color[3 * i + c], full.Color[3 * i + c] + bg.Transmittance[i] * s.Background[c], 1e-15);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+TEST(Rasterizer, BadInputThrows)
+{
+  const auto cloud = RandomScene(10, 0, 1u);
+  Camera cam = AxisCamera(0, 10, 10, 10);
+  EXPECT_THROW(Rasterize<float>(cloud, cam), std::invalid_argument);
+  cam = AxisCamera(10, 10, -1, 10);
+  EXPECT_THROW(Rasterize<float>(cloud, cam), std::invalid_argument);
+  cam = AxisCamera(10, 10, 10, 10);
+  cam.WorldToCamera[3] = std::nan("");
+  EXPECT_THROW(Rasterize<float>(cloud, cam), std::invalid_argument);
+  GaussianCloud bad = cloud;
+  bad.SH.pop_back();
+  EXPECT_THROW(Rasterize<float>(bad, AxisCamera(10, 10, 10, 10)), std::invalid_argument);
+  bad = cloud;
+  bad.Rotations.resize(4);
+  EXPECT_THROW(Rasterize<float>(bad, AxisCamera(10, 10, 10, 10)), std::invalid_argument);
+  // Without colours, SH may be absent (footprint-only use).
+  bad = cloud;
+  bad.SH.clear();
+  RasterSettings s;
+  s.ComputeColors = false;
+  EXPECT_NO_THROW(ProjectGaussians<float>(bad, AxisCamera(10, 10, 10, 10), s));
+}
