@@ -1,0 +1,500 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ArtifactScores.h"
+
+#include "FastCoverage.h"
+#include "NeedleShape.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace vis4gs
+{
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since)
+{
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+bool ValidFactor(int f)
+{
+  return f == 1 || f == 2 || f == 4 || f == 8;
+}
+
+Camera ViewAt(const Camera& camera, int factor)
+{
+  if (factor == 1)
+  {
+    return camera;
+  }
+  return camera.Resized(LossMapSize(camera.Width, factor), LossMapSize(camera.Height, factor));
+}
+
+bool AllFinite(const std::vector<float>& values, std::size_t first, std::size_t count)
+{
+  if (values.empty())
+  {
+    return true;
+  }
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    if (!std::isfinite(values[first + k]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Per-view visibility (and optionally occlusion-aware visibility) into the coverage counts.
+void AddCoverage(const std::vector<std::uint32_t>& pixelCount,
+  const GaussianWeightStats* weights,
+  double threshold,
+  std::vector<std::uint32_t>& views)
+{
+  const std::int64_t n = static_cast<std::int64_t>(views.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t g = 0; g < n; ++g)
+  {
+    bool visible = pixelCount[g] >= 1;
+    if (visible && weights)
+    {
+      visible = static_cast<double>(weights->MaxWeight[g]) >= threshold;
+    }
+    views[g] += visible ? 1u : 0u;
+  }
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
+  const ScoreSettings& settings)
+{
+  std::vector<std::size_t> views;
+  if (!settings.ViewList.empty())
+  {
+    for (std::size_t i : settings.ViewList)
+    {
+      if (i >= cameras.size())
+      {
+        throw std::invalid_argument("view list: camera index " + std::to_string(i) +
+          " is out of range (" + std::to_string(cameras.size()) + " cameras)");
+      }
+      if (cameras[i].Split != CameraSplit::Train)
+      {
+        throw std::invalid_argument("view list: camera " + std::to_string(i) + " ('" +
+          cameras[i].Name + "') is a test view; scores use training views only");
+      }
+      if (std::find(views.begin(), views.end(), i) != views.end())
+      {
+        throw std::invalid_argument(
+          "view list: camera index " + std::to_string(i) + " is listed twice");
+      }
+      views.push_back(i);
+    }
+    return views;
+  }
+  if (settings.ViewStride < 1)
+  {
+    throw std::invalid_argument(
+      "view stride must be at least 1 (got " + std::to_string(settings.ViewStride) + ")");
+  }
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < cameras.size(); ++i)
+  {
+    if (cameras[i].Split != CameraSplit::Train)
+    {
+      continue;
+    }
+    if (k++ % static_cast<std::size_t>(settings.ViewStride) == 0)
+    {
+      views.push_back(i);
+    }
+  }
+  return views;
+}
+
+//------------------------------------------------------------------------------
+GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const TrainingImageProvider& images,
+  const ScoreProgress& progress)
+{
+  const auto start = Clock::now();
+  const ScoreRequest& request = settings.Request;
+  const bool scores = request.Blur || request.Needle;
+  const bool needCameras = scores || request.ViewCoverage;
+  if (!ValidFactor(settings.LossResolution) || !ValidFactor(settings.CoverageResolution))
+  {
+    throw std::invalid_argument("resolution factors must be 1, 2, 4 or 8 (got loss " +
+      std::to_string(settings.LossResolution) + ", coverage " +
+      std::to_string(settings.CoverageResolution) + ")");
+  }
+  if (!(settings.OcclusionThreshold >= 0 && settings.OcclusionThreshold <= 1))
+  {
+    throw std::invalid_argument("the occlusion threshold must be in [0, 1]");
+  }
+  if (!(settings.Lambda >= 0 && settings.Lambda <= 1))
+  {
+    throw std::invalid_argument("lambda must be in [0, 1]");
+  }
+  const std::size_t n = cloud.Count;
+  if ((request.Needle || request.NeedleShape) && cloud.LogScales.size() != 3 * n)
+  {
+    throw std::invalid_argument("the needle shape needs the log-scales of every Gaussian");
+  }
+  if (needCameras &&
+    (cloud.Positions.size() != 3 * n || cloud.LogScales.size() != 3 * n ||
+      cloud.Rotations.size() != 4 * n || cloud.OpacityLogits.size() != n))
+  {
+    throw std::invalid_argument(
+      "coverage, blur and needle need positions, log-scales, rotations and opacities");
+  }
+  if (scores && !images)
+  {
+    throw std::invalid_argument("blur and needle scores need training images");
+  }
+  if (n > 0xffffffffull)
+  {
+    throw std::invalid_argument("more than 2^32-1 Gaussians");
+  }
+
+  GaussianScores out;
+  out.Flags.assign(n, 0);
+  // Invalid parameters (flag only; the rasteriser skips these Gaussians by itself).
+  {
+    std::size_t invalid = 0;
+    const std::int64_t sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for reduction(+ : invalid) schedule(static)
+    for (std::int64_t g = 0; g < sn; ++g)
+    {
+      const std::size_t i = static_cast<std::size_t>(g);
+      const bool ok = AllFinite(cloud.Positions, 3 * i, 3) &&
+        AllFinite(cloud.LogScales, 3 * i, 3) && AllFinite(cloud.Rotations, 4 * i, 4) &&
+        AllFinite(cloud.OpacityLogits, i, 1);
+      if (!ok)
+      {
+        out.Flags[i] |= InvalidParameters;
+        ++invalid;
+      }
+    }
+    out.InvalidCount = invalid;
+  }
+
+  // Needle shape: no cameras needed.
+  std::vector<double> shape;
+  if (request.Needle || request.NeedleShape)
+  {
+    const auto t0 = Clock::now();
+    shape.resize(n);
+    ComputeNeedleShapes(cloud.LogScales.data(), n, shape.data());
+    out.Timings.NeedleShape = Seconds(t0);
+  }
+  if (request.NeedleShape)
+  {
+    out.NeedleShape = shape;
+  }
+  if (!needCameras)
+  {
+    out.Timings.Total = Seconds(start);
+    return out;
+  }
+
+  out.ViewIndices = SelectViews(cameras, settings);
+  out.ViewsUsed = out.ViewIndices.size();
+  for (std::size_t i : out.ViewIndices)
+  {
+    const Camera& c = cameras[i];
+    if (c.Width <= 0 || c.Height <= 0 || !(c.Fx > 0) || !(c.Fy > 0))
+    {
+      throw std::invalid_argument(
+        "camera " + std::to_string(i) + " ('" + c.Name + "') has no usable size or focal length");
+    }
+  }
+
+  RasterSettings raster = settings.Raster;
+  raster.Threads = settings.Threads;
+  RasterSettings projectionOnly = raster;
+  projectionOnly.ComputeColors = false;
+  FootprintOptions footprint;
+  footprint.Mode = settings.Footprint;
+  footprint.Accumulation = settings.Accumulation;
+  footprint.BruteForce = settings.BruteForceFootprints;
+  footprint.Threads = settings.Threads;
+
+  const bool occlusion = settings.OcclusionThreshold > 0;
+  // The score pass provides the coverage of the views it scores when both passes run at the
+  // same resolution (identical projections and footprints).
+  const bool shareCoverage =
+    request.ViewCoverage && scores && settings.LossResolution == settings.CoverageResolution;
+  if (request.ViewCoverage)
+  {
+    out.CoverageViews.assign(n, 0);
+  }
+  std::vector<double> blurSum, needleSum;
+  if (scores)
+  {
+    out.ScoredViews.assign(n, 0);
+    blurSum.assign(n, 0.0);
+    needleSum.assign(n, 0.0);
+  }
+  std::vector<bool> coveredByScorePass(cameras.size(), false);
+  const std::size_t totalSteps =
+    (request.ViewCoverage ? out.ViewsUsed : 0) + (scores ? out.ViewsUsed : 0);
+  std::size_t done = 0;
+  auto step = [&]()
+  {
+    ++done;
+    if (progress)
+    {
+      progress(done, totalSteps);
+    }
+  };
+
+  // Blur / needle pass.
+  if (scores)
+  {
+    const std::int64_t sn = static_cast<std::int64_t>(n);
+    for (std::size_t vi : out.ViewIndices)
+    {
+      const Camera& full = cameras[vi];
+      auto t0 = Clock::now();
+      Image image;
+      const bool hasImage = images(vi, full, image);
+      if (hasImage &&
+        (image.Width != full.Width || image.Height != full.Height || image.Channels != 3 ||
+          image.Pixels.size() != 3 * static_cast<std::size_t>(image.Width) * image.Height))
+      {
+        throw std::runtime_error("view '" + full.Name + "': the image is " +
+          std::to_string(image.Width) + "x" + std::to_string(image.Height) + " but the camera is " +
+          std::to_string(full.Width) + "x" + std::to_string(full.Height));
+      }
+      if (!hasImage)
+      {
+        ++out.ViewsWithoutImage;
+        out.Timings.Images += Seconds(t0);
+        step();
+        continue;
+      }
+      const Camera view = ViewAt(full, settings.LossResolution);
+      if (settings.LossResolution != 1)
+      {
+        image = BoxDownsample(image, view.Width, view.Height);
+      }
+      out.Timings.Images += Seconds(t0);
+
+      t0 = Clock::now();
+      const ViewProjection<float> projection = ProjectGaussians<float>(cloud, view, raster);
+      out.Timings.Projection += Seconds(t0);
+      t0 = Clock::now();
+      const TileBins bins = BinGaussians(projection, settings.Threads);
+      RasterImage<float> render;
+      GaussianWeightStats weights;
+      const bool wantWeights = occlusion && shareCoverage;
+      CompositeTiles(projection, bins, raster, render, wantWeights ? &weights : nullptr);
+      out.Timings.Rendering += Seconds(t0);
+
+      t0 = Clock::now();
+      const double area = (static_cast<double>(full.Width) * full.Height) /
+        (static_cast<double>(view.Width) * view.Height);
+      const std::vector<float> loss = ComputeLossMap(render.Color.data(),
+        image.Pixels.data(),
+        view.Width,
+        view.Height,
+        settings.Lambda,
+        1.0 / area);
+      out.Timings.LossMaps += Seconds(t0);
+
+      t0 = Clock::now();
+      const FootprintStats stats = ComputeFootprints(projection, footprint, loss.data());
+      out.Timings.Footprints += Seconds(t0);
+
+      t0 = Clock::now();
+      std::uint32_t maxCount = 0;
+      for (std::uint32_t c : stats.PixelCount)
+      {
+        maxCount = std::max(maxCount, c);
+      }
+      const double invMax = maxCount > 0 ? 1.0 / maxCount : 0.0;
+#pragma omp parallel for schedule(static)
+      for (std::int64_t g = 0; g < sn; ++g)
+      {
+        const std::uint32_t count = stats.PixelCount[g];
+        if (count == 0)
+        {
+          continue;
+        }
+        const double lp = area * stats.MapSum[g];
+        const double omega = count * invMax;
+        out.ScoredViews[g] += 1;
+        blurSum[g] += omega * lp;
+        needleSum[g] += lp;
+      }
+      if (shareCoverage)
+      {
+        AddCoverage(stats.PixelCount,
+          wantWeights ? &weights : nullptr,
+          settings.OcclusionThreshold,
+          out.CoverageViews);
+        coveredByScorePass[vi] = true;
+      }
+      out.Timings.Accumulation += Seconds(t0);
+      ++out.ViewsScored;
+      step();
+    }
+    if (out.ViewsWithoutImage > 0)
+    {
+      out.Warnings.push_back(std::to_string(out.ViewsWithoutImage) + " of " +
+        std::to_string(out.ViewsUsed) +
+        " training views have no image and were skipped for the blur and needle scores");
+    }
+  }
+
+  // Coverage pass (views the score pass did not cover).
+  if (request.ViewCoverage && !occlusion && !settings.BruteForceFootprints)
+  {
+    // Fused, early-exit visibility (FastCoverage.h): identical counts, no footprint sizes.
+    std::vector<Camera> pending;
+    for (std::size_t vi : out.ViewIndices)
+    {
+      if (!coveredByScorePass[vi])
+      {
+        pending.push_back(ViewAt(cameras[vi], settings.CoverageResolution));
+      }
+    }
+    // Batches of views: the cloud is read once per batch, progress is reported per batch.
+    constexpr std::size_t batch = 16;
+    for (std::size_t first = 0; first < pending.size(); first += batch)
+    {
+      const std::size_t last = std::min(pending.size(), first + batch);
+      const std::vector<Camera> views(pending.begin() + first, pending.begin() + last);
+      const auto t0 = Clock::now();
+      CountVisibleViews(cloud,
+        views,
+        settings.Footprint,
+        out.CoverageViews,
+        settings.Threads,
+        settings.Raster.ScaleModifier);
+      out.Timings.Footprints += Seconds(t0);
+      for (std::size_t k = first; k < last; ++k)
+      {
+        step();
+      }
+    }
+    for (std::size_t k = pending.size(); k < out.ViewIndices.size(); ++k)
+    {
+      step(); // views the score pass covered
+    }
+  }
+  else if (request.ViewCoverage)
+  {
+    for (std::size_t vi : out.ViewIndices)
+    {
+      if (coveredByScorePass[vi])
+      {
+        step();
+        continue;
+      }
+      const Camera view = ViewAt(cameras[vi], settings.CoverageResolution);
+      auto t0 = Clock::now();
+      const ViewProjection<float> projection =
+        ProjectGaussians<float>(cloud, view, occlusion ? raster : projectionOnly);
+      out.Timings.Projection += Seconds(t0);
+      GaussianWeightStats weights;
+      if (occlusion)
+      {
+        t0 = Clock::now();
+        const TileBins bins = BinGaussians(projection, settings.Threads);
+        RasterImage<float> render;
+        CompositeTiles(projection, bins, raster, render, &weights);
+        out.Timings.Rendering += Seconds(t0);
+      }
+      t0 = Clock::now();
+      FootprintOptions countOnly = footprint;
+      const FootprintStats stats = ComputeFootprints(projection, countOnly, nullptr);
+      out.Timings.Footprints += Seconds(t0);
+      t0 = Clock::now();
+      AddCoverage(stats.PixelCount,
+        occlusion ? &weights : nullptr,
+        settings.OcclusionThreshold,
+        out.CoverageViews);
+      out.Timings.Accumulation += Seconds(t0);
+      step();
+    }
+  }
+
+  // Final scores.
+  const auto t0 = Clock::now();
+  if (request.ViewCoverage)
+  {
+    out.ViewCoverage.assign(n, 0.0);
+  }
+  if (request.Blur)
+  {
+    out.BlurScore.assign(n, 0.0);
+  }
+  if (request.Needle)
+  {
+    out.NeedleScore.assign(n, 0.0);
+  }
+  const double invViews = out.ViewsUsed > 0 ? 1.0 / out.ViewsUsed : 0.0;
+  std::size_t noCoverage = 0, noScored = 0;
+  const std::int64_t sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for reduction(+ : noCoverage, noScored) schedule(static)
+  for (std::int64_t g = 0; g < sn; ++g)
+  {
+    if (request.ViewCoverage)
+    {
+      const std::uint32_t k = out.CoverageViews[g];
+      out.ViewCoverage[g] = k * invViews;
+      if (k == 0)
+      {
+        out.Flags[g] |= NoVisibleCoverageView;
+        ++noCoverage;
+      }
+    }
+    if (scores)
+    {
+      const std::uint32_t k = out.ScoredViews[g];
+      if (k == 0)
+      {
+        out.Flags[g] |= NoVisibleScoredView;
+        ++noScored;
+        continue;
+      }
+      if (request.Blur)
+      {
+        out.BlurScore[g] = blurSum[g] / k;
+      }
+      if (request.Needle)
+      {
+        out.NeedleScore[g] = shape[g] * (needleSum[g] / k);
+      }
+    }
+  }
+  out.NoCoverageViewCount = noCoverage;
+  out.NoScoredViewCount = noScored;
+  out.Timings.Accumulation += Seconds(t0);
+  if (noCoverage > 0)
+  {
+    out.Warnings.push_back(std::to_string(noCoverage) + " of " + std::to_string(n) +
+      " Gaussians are visible in no training view (ViewCoverage 0, flagged)");
+  }
+  if (out.InvalidCount > 0)
+  {
+    out.Warnings.push_back(std::to_string(out.InvalidCount) +
+      " Gaussians have NaN or infinite parameters; they are never visible and are flagged");
+  }
+  out.Timings.Total = Seconds(start);
+  return out;
+}
+
+} // namespace vis4gs

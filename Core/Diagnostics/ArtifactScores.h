@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file ArtifactScores.h
+ * @brief View Coverage, Blur and Needle scores of every Gaussian (DESIGN §4), with every
+ * approximation exposed as a parameter.
+ *
+ * Definitions (exact mode: full resolution, every training view, alpha footprints, double
+ * accumulation):
+ *   Omega(g,v)  pixels where the rasteriser evaluates g with power <= 0 and
+ *               alpha = min(0.99, o e^power) >= 1/255, occluded or not (Render/Footprint.h)
+ *   V~_g        training views with |Omega(g,v)| >= 1
+ *   E_VC(g)  = |V~_g| / |V|
+ *   L'(g,v)  = sum over Omega(g,v) of the loss map L(v) (LossMap.h)
+ *   w(g,v)   = |Omega(g,v)| / max_h |Omega(h,v)|
+ *   E_B(g)   = mean over V~_g of w(g,v) L'(g,v)
+ *   E_N(g)   = s(g) mean over V~_g of L'(g,v)          (s from NeedleShape.h)
+ *   A Gaussian with no visible view gets E_VC = E_B = E_N = 0 and a flag.
+ *
+ * Approximations (ScoreSettings):
+ * - LossResolution f in {1, 2, 4, 8}: blur/needle views are rendered at
+ *   LossMapSize(W, f) x LossMapSize(H, f) with Camera::Resized, the image is box-reduced to
+ *   that size (LossMap.h), footprints are taken in the low-resolution view, and L' is scaled
+ *   by the area ratio (W H)/(w' h') so that it estimates the full-resolution sum; the loss
+ *   map's Laplacian term is divided by the same ratio (LossMap.h explains why). V~_g for
+ *   blur/needle is then the set of views where the low-resolution footprint is non-empty.
+ * - CoverageResolution f: the same for the coverage pass (no images involved).
+ * - ViewStride k / ViewList: the views used (|V| is the size of the subset).
+ * - Footprint: alpha footprint (exact) or the 3-sigma ellipse.
+ * - Accumulation: footprint sums of the loss map in double (exact) or float.
+ * - OcclusionThreshold t > 0: occlusion-aware coverage, a view counts for E_VC only when the
+ *   Gaussian's maximum blending weight alpha*T over its footprint is >= t (needs compositing).
+ *
+ * Only what is requested is computed: coverage alone projects the Gaussians and counts
+ * footprints, with no rendering and no images; needle shape alone needs no cameras.
+ * Blur/needle views without an image are skipped (counted in ViewsWithoutImage, one warning).
+ * NaN/Inf Gaussians never become visible (the rasteriser skips them), so they get 0 and the
+ * flag, and never poison other Gaussians.
+ */
+#ifndef vis4gs_ArtifactScores_h
+#define vis4gs_ArtifactScores_h
+
+#include "Camera.h"
+#include "Footprint.h"
+#include "GaussianCloud.h"
+#include "LossMap.h"
+#include "Rasterizer.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vis4gs
+{
+
+/// Which scores to compute.
+struct ScoreRequest
+{
+  bool ViewCoverage = true;
+  bool Blur = true;
+  bool Needle = true;
+  bool NeedleShape = true;
+};
+
+/// Every parameter of the scores; the defaults are the exact mode.
+struct ScoreSettings
+{
+  ScoreRequest Request;
+  /// lambda of the loss map. Default 0.2 (DESIGN §4).
+  double Lambda = 0.2;
+  /// Loss-map resolution factor for blur/needle: 1 (exact), 2, 4 or 8.
+  int LossResolution = 1;
+  /// Resolution factor of the coverage pass: 1 (exact), 2, 4 or 8.
+  int CoverageResolution = 1;
+  /// Use every k-th training view (in camera order), starting with the first. Default 1.
+  int ViewStride = 1;
+  /// If not empty: the camera indices to use instead (ViewStride is then ignored). Indices
+  /// of test views or out of range give std::invalid_argument.
+  std::vector<std::size_t> ViewList;
+  /// Footprint definition. Default: the rasteriser's alpha footprint (exact).
+  FootprintMode Footprint = FootprintMode::Rasterizer;
+  /// Accumulation of the footprint sums of the loss map. Default double (exact).
+  FootprintAccumulation Accumulation = FootprintAccumulation::Double;
+  /// Occlusion-aware coverage when > 0 (see the file comment). Default 0: off.
+  double OcclusionThreshold = 0;
+  /// Footprints by brute force over the tile rectangle (the straightforward implementation,
+  /// for benchmarks and tests). Default off.
+  bool BruteForceFootprints = false;
+  /// Rasteriser options for the renders (background, SH degree). Threads are overridden.
+  RasterSettings Raster;
+  /// OpenMP threads; 0 uses OpenMP's default.
+  int Threads = 0;
+};
+
+/// Bits of GaussianScores::Flags.
+enum ScoreFlag : std::uint8_t
+{
+  /// No visible view in the coverage pass (E_VC = 0).
+  NoVisibleCoverageView = 1,
+  /// No visible view with an image in the blur/needle pass (E_B = E_N = 0).
+  NoVisibleScoredView = 2,
+  /// A position, scale, rotation or opacity value is NaN or infinite.
+  InvalidParameters = 4
+};
+
+/// Seconds spent per stage (summed over views).
+struct ScoreTimings
+{
+  double Projection = 0;   ///< ProjectGaussians (coverage and score passes)
+  double Rendering = 0;    ///< binning and compositing
+  double Images = 0;       ///< loading and reducing training images
+  double LossMaps = 0;     ///< ComputeLossMap
+  double Footprints = 0;   ///< ComputeFootprints
+  double Accumulation = 0; ///< per-Gaussian sums
+  double NeedleShape = 0;
+  double Total = 0;
+};
+
+struct GaussianScores
+{
+  /// One value per Gaussian for each requested score; empty when not requested.
+  std::vector<double> ViewCoverage;
+  std::vector<double> BlurScore;
+  std::vector<double> NeedleScore;
+  std::vector<double> NeedleShape;
+  /// ScoreFlag bits per Gaussian (always filled).
+  std::vector<std::uint8_t> Flags;
+  /// |V~_g| of the coverage pass and of the blur/needle pass (empty when not run).
+  std::vector<std::uint32_t> CoverageViews;
+  std::vector<std::uint32_t> ScoredViews;
+  /// Views of the subset (|V|), views scored (with an image), views skipped for lack of one.
+  std::size_t ViewsUsed = 0;
+  std::size_t ViewsScored = 0;
+  std::size_t ViewsWithoutImage = 0;
+  /// Camera indices of the views used, in order.
+  std::vector<std::size_t> ViewIndices;
+  /// Gaussians flagged NoVisibleCoverageView / NoVisibleScoredView / InvalidParameters.
+  std::size_t NoCoverageViewCount = 0;
+  std::size_t NoScoredViewCount = 0;
+  std::size_t InvalidCount = 0;
+  std::vector<std::string> Warnings;
+  ScoreTimings Timings;
+};
+
+/**
+ * Loads the training image of camera @p index into @p image (RGB, 3 channels, the camera's
+ * size, values in [0, 1]; LoadTrainingImage() of Core/Scene/ImageIO.h does this). Returns false
+ * when the view has no image (it is then skipped for blur/needle); throws std::runtime_error naming
+ * the file when an image exists but cannot be read.
+ */
+using TrainingImageProvider =
+  std::function<bool(std::size_t index, const Camera& camera, Image& image)>;
+
+/// Called after each view with (views done, views in all passes).
+using ScoreProgress = std::function<void(std::size_t done, std::size_t total)>;
+
+/**
+ * Computes the requested scores. @p images may be empty when neither blur nor needle is
+ * requested. Throws std::invalid_argument for unusable settings (resolution factor not in
+ * {1,2,4,8}, stride < 1, bad view list), for a cloud without the arrays a requested score
+ * needs, and for blur/needle without an image provider; std::runtime_error when an image's
+ * size differs from its camera's.
+ */
+GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const TrainingImageProvider& images = {},
+  const ScoreProgress& progress = {});
+
+/// The camera indices a setting selects (training views, stride or list).
+std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
+  const ScoreSettings& settings);
+
+} // namespace vis4gs
+
+#endif

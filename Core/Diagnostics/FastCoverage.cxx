@@ -1,0 +1,351 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "FastCoverage.h"
+
+#include "GaussianMath.h"
+#include "RasterBounds.h"
+#include "RasterKernel.h"
+#include "Rasterizer.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vis4gs
+{
+namespace
+{
+
+// View-independent part of ProjectGaussians<float> (same operations, same order).
+struct PreparedGaussian
+{
+  float X, Y, Z;
+  float S00, S01, S02, S11, S12, S22;
+  float Opacity;
+  bool Valid;
+};
+
+// The rasteriser's float parameters of a view.
+struct PreparedView
+{
+  int W, H, Gx, Gy;
+  float V[12];
+  float F0[4], F1[4], F3[4];
+  float LimX, LimY, FocalX, FocalY;
+};
+
+bool Finite(const float* v, int n)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    if (!std::isfinite(v[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+PreparedGaussian Prepare(const GaussianCloud& cloud, std::size_t i, float mod)
+{
+  PreparedGaussian p{};
+  const float* pos = &cloud.Positions[3 * i];
+  const float* ls = &cloud.LogScales[3 * i];
+  const float* rot = &cloud.Rotations[4 * i];
+  const float logit = cloud.OpacityLogits[i];
+  p.Valid = Finite(pos, 3) && Finite(ls, 3) && Finite(rot, 4) && std::isfinite(logit);
+  if (!p.Valid)
+  {
+    return p;
+  }
+  p.X = pos[0];
+  p.Y = pos[1];
+  p.Z = pos[2];
+  const float s[3] = { mod * std::exp(ls[0]), mod * std::exp(ls[1]), mod * std::exp(ls[2]) };
+  const float qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
+  const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(qraw));
+  float M[3][3];
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      M[k][r] = s[k] * R[3 * r + k];
+    }
+  }
+  auto sig = [&](int r, int c)
+  { return M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c]; };
+  p.S00 = sig(0, 0);
+  p.S01 = sig(0, 1);
+  p.S02 = sig(0, 2);
+  p.S11 = sig(1, 1);
+  p.S12 = sig(1, 2);
+  p.S22 = sig(2, 2);
+  p.Opacity = Sigmoid(logit);
+  return p;
+}
+
+PreparedView PrepareView(const Camera& camera)
+{
+  // An empty cloud validates the camera and yields the rasteriser's own float matrices.
+  GaussianCloud empty;
+  RasterSettings settings;
+  settings.ComputeColors = false;
+  const ViewProjection<float> p = ProjectGaussians<float>(empty, camera, settings);
+  PreparedView v{};
+  v.W = p.Width;
+  v.H = p.Height;
+  v.Gx = p.TilesX;
+  v.Gy = p.TilesY;
+  for (int i = 0; i < 12; ++i)
+  {
+    v.V[i] = p.ViewMatrix[i];
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    v.F0[i] = p.FullProjection[i];
+    v.F1[i] = p.FullProjection[4 + i];
+    v.F3[i] = p.FullProjection[12 + i];
+  }
+  v.LimX = float(raster::JacobianClamp) * p.TanFovX;
+  v.LimY = float(raster::JacobianClamp) * p.TanFovY;
+  v.FocalX = p.Fx;
+  v.FocalY = p.Fy;
+  return v;
+}
+
+int ClampToInt(float x)
+{
+  const float big = 1073741824.0f;
+  return static_cast<int>(x < -big ? -big : (x > big ? big : x));
+}
+
+float Ndc2Pix(float ndc, int size)
+{
+  return static_cast<float>(((static_cast<double>(ndc) + 1.0) * size - 1.0) * 0.5);
+}
+
+int NearestIn(float u, int lo, int hi)
+{
+  const double r = std::floor(static_cast<double>(u) + 0.5);
+  return static_cast<int>(std::max<double>(lo, std::min<double>(hi, r)));
+}
+
+// True when Gaussian g has at least one footprint pixel in view v.
+bool Visible(const PreparedGaussian& g, const PreparedView& w, bool rasterMode)
+{
+  if (!g.Valid)
+  {
+    return false;
+  }
+  const float* V = w.V;
+  const float x = g.X, y = g.Y, z = g.Z;
+  const float t0 = V[0] * x + V[1] * y + V[2] * z + V[3];
+  const float t1 = V[4] * x + V[5] * y + V[6] * z + V[7];
+  const float t2 = V[8] * x + V[9] * y + V[10] * z + V[11];
+  if (t2 <= float(raster::NearPlane))
+  {
+    return false;
+  }
+  if (rasterMode && !(g.Opacity >= raster::MinAlpha<float>()))
+  {
+    return false; // alpha <= o < 1/255 everywhere
+  }
+  const float hx = w.F0[0] * x + w.F0[1] * y + w.F0[2] * z + w.F0[3];
+  const float hy = w.F1[0] * x + w.F1[1] * y + w.F1[2] * z + w.F1[3];
+  const float hw = w.F3[0] * x + w.F3[1] * y + w.F3[2] * z + w.F3[3];
+  const float pw = 1.0f / (hw + 0.0000001f);
+  const float ndcX = hx * pw, ndcY = hy * pw;
+  const float txtz = t0 / t2, tytz = t1 / t2;
+  const float tx = std::min(w.LimX, std::max(-w.LimX, txtz)) * t2;
+  const float ty = std::min(w.LimY, std::max(-w.LimY, tytz)) * t2;
+  const float J00 = w.FocalX / t2, J02 = -(w.FocalX * tx) / (t2 * t2);
+  const float J11 = w.FocalY / t2, J12 = -(w.FocalY * ty) / (t2 * t2);
+  float Tm[2][3];
+  for (int c = 0; c < 3; ++c)
+  {
+    Tm[0][c] = J00 * V[c] + J02 * V[8 + c];
+    Tm[1][c] = J11 * V[4 + c] + J12 * V[8 + c];
+  }
+  const float Sig[3][3] = {
+    { g.S00, g.S01, g.S02 }, { g.S01, g.S11, g.S12 }, { g.S02, g.S12, g.S22 }
+  };
+  float TS[2][3];
+  for (int r = 0; r < 2; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      TS[r][c] = Tm[r][0] * Sig[0][c] + Tm[r][1] * Sig[1][c] + Tm[r][2] * Sig[2][c];
+    }
+  }
+  const float cxx = TS[0][0] * Tm[0][0] + TS[0][1] * Tm[0][1] + TS[0][2] * Tm[0][2];
+  const float cxy = TS[0][0] * Tm[1][0] + TS[0][1] * Tm[1][1] + TS[0][2] * Tm[1][2];
+  const float cyy = TS[1][0] * Tm[1][0] + TS[1][1] * Tm[1][1] + TS[1][2] * Tm[1][2];
+  const float a = cxx + float(raster::Dilation);
+  const float b = cxy;
+  const float c = cyy + float(raster::Dilation);
+  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
+  {
+    return false;
+  }
+  const float det = a * c - b * b;
+  if (det == 0.0f)
+  {
+    return false;
+  }
+  const float detInv = 1.0f / det;
+  const float conA = c * detInv, conB = -b * detInv, conC = a * detInv;
+  const float mid = 0.5f * (a + c);
+  const float root = std::sqrt(std::max(0.1f, mid * mid - det));
+  const float l1 = mid + root, l2 = mid - root;
+  const float radiusF = std::ceil(3.0f * std::sqrt(std::max(l1, l2)));
+  if (!std::isfinite(conA) || !std::isfinite(conB) || !std::isfinite(conC) ||
+    !std::isfinite(radiusF) || !std::isfinite(det))
+  {
+    return false;
+  }
+  const float u = Ndc2Pix(ndcX, w.W), v = Ndc2Pix(ndcY, w.H);
+  if (!std::isfinite(u) || !std::isfinite(v))
+  {
+    return false;
+  }
+  const int radius = ClampToInt(radiusF);
+  const float rr = static_cast<float>(radius);
+  const float bs = float(raster::TileSize);
+  const int x0 = std::min(w.Gx, std::max(0, ClampToInt((u - rr) / bs)));
+  const int y0 = std::min(w.Gy, std::max(0, ClampToInt((v - rr) / bs)));
+  const int x1 = std::min(w.Gx, std::max(0, ClampToInt((u + rr + bs - 1.0f) / bs)));
+  const int y1 = std::min(w.Gy, std::max(0, ClampToInt((v + rr + bs - 1.0f) / bs)));
+  if (static_cast<long long>(x1 - x0) * (y1 - y0) == 0)
+  {
+    return false;
+  }
+
+  // Footprint search, exactly as ComputeFootprints decides, stopping at the first pixel.
+  int xLo, xHi, yLo, yHi;
+  double level;
+  if (rasterMode)
+  {
+    xLo = x0 * raster::TileSize;
+    yLo = y0 * raster::TileSize;
+    xHi = std::min(x1 * raster::TileSize, w.W) - 1;
+    yHi = std::min(y1 * raster::TileSize, w.H) - 1;
+    level = std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity)));
+  }
+  else
+  {
+    const double A = conA, B = conB, C = conC;
+    if (!(A > 0 && C > 0 && A * C - B * B > 0))
+    {
+      return false;
+    }
+    xLo = 0;
+    yLo = 0;
+    xHi = w.W - 1;
+    yHi = w.H - 1;
+    level = -4.5;
+  }
+  const float opacity = g.Opacity;
+  auto inside = [&](int px, int py)
+  {
+    const float power = raster::KernelPower<float>(
+      u, v, conA, conB, conC, static_cast<float>(px), static_cast<float>(py));
+    return rasterMode ? raster::KernelAlpha<float>(opacity, power) >= 0.0f : power >= -4.5f;
+  };
+  if (inside(NearestIn(u, xLo, xHi), NearestIn(v, yLo, yHi)))
+  {
+    return true;
+  }
+  const raster::detail::SpanBounds sb =
+    raster::detail::MakeSpanBounds<float>(u, v, conA, conB, conC, level);
+  if (!sb.Bounded && !rasterMode)
+  {
+    const double r = radius + 1.0;
+    xLo = std::max(xLo, static_cast<int>(std::floor(std::max(-1e9, u - r))));
+    xHi = std::min(xHi, static_cast<int>(std::ceil(std::min(1e9, u + r))));
+    yLo = std::max(yLo, static_cast<int>(std::floor(std::max(-1e9, v - r))));
+    yHi = std::min(yHi, static_cast<int>(std::ceil(std::min(1e9, v + r))));
+  }
+  if (sb.Bounded)
+  {
+    yLo = std::max(yLo, sb.RowMin);
+    yHi = std::min(yHi, sb.RowMax);
+  }
+  for (int py = yLo; py <= yHi; ++py)
+  {
+    int xa = xLo, xb = xHi;
+    if (sb.Bounded)
+    {
+      int ca, cb;
+      if (!sb.Columns(py, ca, cb))
+      {
+        continue;
+      }
+      xa = std::max(xa, ca);
+      xb = std::min(xb, cb);
+    }
+    for (int px = xa; px <= xb; ++px)
+    {
+      if (inside(px, py))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+void CountVisibleViews(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  FootprintMode mode,
+  std::vector<std::uint32_t>& visibleViews,
+  int threads,
+  double scaleModifier)
+{
+  const std::size_t n = cloud.Count;
+  if (cloud.Positions.size() != 3 * n || cloud.LogScales.size() != 3 * n ||
+    cloud.Rotations.size() != 4 * n || cloud.OpacityLogits.size() != n)
+  {
+    // Same message as the rasteriser.
+    ProjectGaussians<float>(cloud, cameras.empty() ? Camera{} : cameras[0]);
+  }
+  std::vector<PreparedView> views;
+  views.reserve(cameras.size());
+  for (const Camera& camera : cameras)
+  {
+    views.push_back(PrepareView(camera));
+  }
+  visibleViews.resize(n, 0);
+  const bool rasterMode = mode == FootprintMode::Rasterizer;
+  const float mod = static_cast<float>(scaleModifier);
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(nt)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const PreparedGaussian g = Prepare(cloud, i, mod);
+    std::uint32_t k = 0;
+    for (const PreparedView& w : views)
+    {
+      k += Visible(g, w, rasterMode) ? 1u : 0u;
+    }
+    visibleViews[i] += k;
+  }
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::uint8_t> VisibleInView(const GaussianCloud& cloud,
+  const Camera& camera,
+  FootprintMode mode,
+  int threads,
+  double scaleModifier)
+{
+  std::vector<std::uint32_t> counts;
+  CountVisibleViews(cloud, { camera }, mode, counts, threads, scaleModifier);
+  return std::vector<std::uint8_t>(counts.begin(), counts.end());
+}
+
+} // namespace vis4gs

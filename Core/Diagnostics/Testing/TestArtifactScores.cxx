@@ -1,0 +1,551 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// View Coverage, Blur and Needle scores (DESIGN §4): hand-computed small cases, omega
+// normalisation, exact vs brute-force footprints, and the stiff cases (zero-area footprints,
+// empty views, views without images, NaN/Inf Gaussians, behind the camera, huge and tiny
+// scales, opacity logits at +-1000). Footprints in the expectations are counted here by a
+// plain scan of the tile rectangle with the rasteriser's kernel (the definition of Omega).
+#include "ArtifactScores.h"
+#include "FastCoverage.h"
+#include "NeedleShape.h"
+#include "RasterKernel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+namespace
+{
+
+using vis4gs::Camera;
+using vis4gs::GaussianCloud;
+
+Camera MakeCamera(double cz = 0, bool flipped = false, int w = 64, int h = 48)
+{
+  Camera c;
+  c.Name = "view";
+  c.Width = w;
+  c.Height = h;
+  c.Fx = c.Fy = 60;
+  c.Cx = w / 2.0;
+  c.Cy = h / 2.0;
+  // flipped: looking down -z from (0, 0, cz): R = diag(-1, 1, -1), t = -R C.
+  const double s = flipped ? -1 : 1;
+  c.WorldToCamera = { s, 0, 0, 0, 0, 1, 0, 0, 0, 0, s, -s * cz, 0, 0, 0, 1 };
+  return c;
+}
+
+void SetGaussian(GaussianCloud& cloud,
+  std::size_t i,
+  float x,
+  float y,
+  float z,
+  float ls0,
+  float ls1,
+  float ls2,
+  float logit)
+{
+  const float p[3] = { x, y, z };
+  const float ls[3] = { ls0, ls1, ls2 };
+  for (int k = 0; k < 3; ++k)
+  {
+    cloud.Positions[3 * i + k] = p[k];
+    cloud.LogScales[3 * i + k] = ls[k];
+    cloud.SH[3 * i + k] = 0.3f * static_cast<float>(k) - 0.2f;
+  }
+  cloud.Rotations[4 * i + 0] = 1;
+  cloud.Rotations[4 * i + 1] = 0;
+  cloud.Rotations[4 * i + 2] = 0;
+  cloud.Rotations[4 * i + 3] = 0;
+  cloud.OpacityLogits[i] = logit;
+}
+
+// Footprint sizes by a plain scan of each tile rectangle (the definition of Omega).
+std::vector<std::uint32_t> NaiveFootprints(const GaussianCloud& cloud, const Camera& camera)
+{
+  vis4gs::RasterSettings settings;
+  const auto proj = vis4gs::ProjectGaussians<float>(cloud, camera, settings);
+  std::vector<std::uint32_t> count(cloud.Count, 0);
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    const auto& g = proj.Gaussians[i];
+    if (!g.IsVisible())
+    {
+      continue;
+    }
+    for (int y = g.TileRect[1] * 16; y < std::min(g.TileRect[3] * 16, camera.Height); ++y)
+    {
+      for (int x = g.TileRect[0] * 16; x < std::min(g.TileRect[2] * 16, camera.Width); ++x)
+      {
+        const float power = vis4gs::raster::KernelPower<float>(
+          g.U, g.V, g.ConicA, g.ConicB, g.ConicC, static_cast<float>(x), static_cast<float>(y));
+        count[i] += vis4gs::raster::KernelAlpha<float>(g.Opacity, power) >= 0 ? 1 : 0;
+      }
+    }
+  }
+  return count;
+}
+
+// Images = the scene's own render + a constant offset per view, so that the loss map is
+// 0.8 * offset everywhere (the Laplacian of a constant is 0) whatever the render is.
+struct OffsetImages
+{
+  const GaussianCloud* Cloud;
+  std::vector<float> Offsets;
+  std::vector<bool> Missing;
+  bool operator()(std::size_t index, const Camera& camera, vis4gs::Image& image) const
+  {
+    if (index < this->Missing.size() && this->Missing[index])
+    {
+      return false;
+    }
+    const auto render = vis4gs::Rasterize<float>(*this->Cloud, camera);
+    image.Width = camera.Width;
+    image.Height = camera.Height;
+    image.Channels = 3;
+    image.Pixels = render.Color;
+    for (float& v : image.Pixels)
+    {
+      v += this->Offsets[index];
+    }
+    return true;
+  }
+};
+
+double Shape(const GaussianCloud& cloud, std::size_t i)
+{
+  const double ls[3] = {
+    cloud.LogScales[3 * i], cloud.LogScales[3 * i + 1], cloud.LogScales[3 * i + 2]
+  };
+  return vis4gs::NeedleShape(ls);
+}
+
+} // namespace
+
+TEST(ArtifactScores, SingleGaussianByHand)
+{
+  GaussianCloud cloud;
+  cloud.Resize(1, 0);
+  SetGaussian(cloud, 0, 0.1f, -0.05f, 5, std::log(0.3f), std::log(0.1f), std::log(0.08f), 1.5f);
+  const std::vector<Camera> cameras{ MakeCamera() };
+  const float c = 0.25f;
+  OffsetImages images{ &cloud, { c }, {} };
+  const auto scores = vis4gs::ComputeGaussianScores(cloud, cameras, {}, images);
+  const double omega = NaiveFootprints(cloud, cameras[0])[0];
+  ASSERT_GT(omega, 20);
+  const double lossPrime = 0.8 * c * omega; // L = 0.8 c on every pixel
+  EXPECT_EQ(scores.ViewCoverage[0], 1.0);
+  EXPECT_NEAR(scores.BlurScore[0], 1.0 * lossPrime, 1e-5 * lossPrime); // omega(g,v) = 1
+  EXPECT_NEAR(scores.NeedleScore[0], Shape(cloud, 0) * lossPrime, 1e-5 * lossPrime);
+  EXPECT_GT(Shape(cloud, 0), 0.2);
+  EXPECT_EQ(scores.NeedleShape[0], Shape(cloud, 0));
+  EXPECT_EQ(scores.Flags[0], 0);
+  EXPECT_EQ(scores.ViewsUsed, 1u);
+  EXPECT_EQ(scores.ViewsScored, 1u);
+  EXPECT_TRUE(scores.Warnings.empty());
+}
+
+TEST(ArtifactScores, TwoViewsAndOmegaNormalisation)
+{
+  // A at z = 5 is seen by both views; B at z = 9.9 is 0.1 in front of view 1's camera
+  // (near-plane cull there) and seen by view 0 only.
+  GaussianCloud cloud;
+  cloud.Resize(2, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, std::log(0.4f), std::log(0.2f), std::log(0.2f), 2.0f);
+  SetGaussian(cloud, 1, 0.5f, 0.3f, 9.9f, std::log(0.05f), std::log(0.05f), std::log(0.05f), 3.0f);
+  const std::vector<Camera> cameras{ MakeCamera(), MakeCamera(10, true) };
+  const float c0 = 0.1f, c1 = 0.4f;
+  OffsetImages images{ &cloud, { c0, c1 }, {} };
+  const auto s = vis4gs::ComputeGaussianScores(cloud, cameras, {}, images);
+  const auto f0 = NaiveFootprints(cloud, cameras[0]);
+  const auto f1 = NaiveFootprints(cloud, cameras[1]);
+  ASSERT_GT(f0[0], 0u);
+  ASSERT_GT(f0[1], 0u);
+  ASSERT_GT(f1[0], 0u);
+  ASSERT_EQ(f1[1], 0u);
+  const double max0 = std::max(f0[0], f0[1]), max1 = f1[0];
+  const double lA0 = 0.8 * c0 * f0[0], lA1 = 0.8 * c1 * f1[0], lB0 = 0.8 * c0 * f0[1];
+  EXPECT_EQ(s.ViewCoverage[0], 1.0);
+  EXPECT_EQ(s.ViewCoverage[1], 0.5);
+  const double blurA = 0.5 * (f0[0] / max0 * lA0 + f1[0] / max1 * lA1);
+  const double blurB = f0[1] / max0 * lB0;
+  EXPECT_NEAR(s.BlurScore[0], blurA, 1e-5 * blurA);
+  EXPECT_NEAR(s.BlurScore[1], blurB, 1e-5 * blurB);
+  EXPECT_NEAR(s.NeedleScore[0], Shape(cloud, 0) * 0.5 * (lA0 + lA1), 1e-5 * (lA0 + lA1));
+  EXPECT_NEAR(s.NeedleScore[1], Shape(cloud, 1) * lB0, 1e-6 * lB0);
+  EXPECT_LT(f0[1], f0[0]); // B is the smaller: omega < 1
+  EXPECT_EQ(s.CoverageViews[1], 1u);
+  EXPECT_EQ(s.ScoredViews[1], 1u);
+}
+
+TEST(ArtifactScores, FastFootprintsEqualBruteForce)
+{
+  GaussianCloud cloud;
+  const std::size_t n = 400;
+  cloud.Resize(n, 0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    SetGaussian(cloud,
+      i,
+      1.5f * u(rng),
+      u(rng),
+      5 + 2 * u(rng),
+      -2.5f + 1.5f * u(rng),
+      -2.5f + 1.5f * u(rng),
+      -2.5f + 1.5f * u(rng),
+      3 * u(rng));
+    for (int k = 0; k < 4; ++k)
+    {
+      cloud.Rotations[4 * i + k] = u(rng);
+    }
+  }
+  const std::vector<Camera> cameras{ MakeCamera(), MakeCamera(10, true), MakeCamera(-1) };
+  OffsetImages images{ &cloud, { 0.1f, 0.2f, 0.3f }, {} };
+  vis4gs::ScoreSettings fast, brute;
+  brute.BruteForceFootprints = true;
+  const auto a = vis4gs::ComputeGaussianScores(cloud, cameras, fast, images);
+  const auto b = vis4gs::ComputeGaussianScores(cloud, cameras, brute, images);
+  EXPECT_EQ(a.CoverageViews, b.CoverageViews);
+  EXPECT_EQ(a.ScoredViews, b.ScoredViews);
+  EXPECT_EQ(a.BlurScore, b.BlurScore);
+  EXPECT_EQ(a.NeedleScore, b.NeedleScore);
+  // And the per-view counts equal the plain scan.
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    vis4gs::FootprintOptions options;
+    const auto proj = vis4gs::ProjectGaussians<float>(cloud, cameras[v]);
+    EXPECT_EQ(
+      vis4gs::ComputeFootprints(proj, options).PixelCount, NaiveFootprints(cloud, cameras[v]));
+  }
+  // Coverage computed alone equals coverage computed with the blur pass.
+  vis4gs::ScoreSettings coverageOnly;
+  coverageOnly.Request = { true, false, false, false };
+  EXPECT_EQ(
+    vis4gs::ComputeGaussianScores(cloud, cameras, coverageOnly).CoverageViews, a.CoverageViews);
+}
+
+TEST(ArtifactScores, StiffGaussiansAreFlaggedAndDoNotPoison)
+{
+  // 0: normal; 1: NaN position; 2: +Inf log-scale; 3: behind the camera; 4: opacity logit
+  // -1000 (o = 0: zero-area footprint); 5: opacity logit +1000 (o = 1); 6: huge (log-scale
+  // 30); 7: tiny (log-scale -30, the 0.3 px^2 dilation keeps it about a pixel wide).
+  GaussianCloud cloud;
+  cloud.Resize(8, 0);
+  for (std::size_t i = 0; i < 8; ++i)
+  {
+    SetGaussian(cloud, i, 0.2f * (static_cast<float>(i) - 4), 0.1f, 5, -2.5f, -3, -3.5f, 1);
+  }
+  cloud.Positions[3 * 1] = std::numeric_limits<float>::quiet_NaN();
+  cloud.LogScales[3 * 2 + 1] = std::numeric_limits<float>::infinity();
+  cloud.Positions[3 * 3 + 2] = -5;
+  cloud.OpacityLogits[4] = -1000;
+  cloud.OpacityLogits[5] = 1000;
+  for (int k = 0; k < 3; ++k)
+  {
+    cloud.LogScales[3 * 6 + k] = 30;
+    cloud.LogScales[3 * 7 + k] = -30;
+  }
+  const std::vector<Camera> cameras{ MakeCamera(), MakeCamera(-2) };
+  OffsetImages images{ &cloud, { 0.2f, 0.3f }, {} };
+  const auto s = vis4gs::ComputeGaussianScores(cloud, cameras, {}, images);
+  for (std::size_t i = 0; i < 8; ++i)
+  {
+    EXPECT_TRUE(std::isfinite(s.ViewCoverage[i])) << i;
+    EXPECT_TRUE(std::isfinite(s.BlurScore[i])) << i;
+    EXPECT_TRUE(std::isfinite(s.NeedleScore[i])) << i;
+    EXPECT_GE(s.BlurScore[i], 0) << i;
+  }
+  for (std::size_t i : { 1, 2, 3, 4 })
+  {
+    EXPECT_EQ(s.ViewCoverage[i], 0.0) << i;
+    EXPECT_EQ(s.BlurScore[i], 0.0) << i;
+    EXPECT_EQ(s.NeedleScore[i], 0.0) << i;
+    EXPECT_TRUE(s.Flags[i] & vis4gs::NoVisibleCoverageView) << i;
+    EXPECT_TRUE(s.Flags[i] & vis4gs::NoVisibleScoredView) << i;
+  }
+  EXPECT_EQ(s.Flags[1] & vis4gs::InvalidParameters, vis4gs::InvalidParameters);
+  EXPECT_EQ(s.Flags[2] & vis4gs::InvalidParameters, vis4gs::InvalidParameters);
+  EXPECT_EQ(s.Flags[3] & vis4gs::InvalidParameters, 0);
+  EXPECT_EQ(s.InvalidCount, 2u);
+  EXPECT_TRUE(std::isnan(s.NeedleShape[1]) == false); // NaN position, finite log-scales
+  for (std::size_t i : { 0, 5, 7 })
+  {
+    EXPECT_EQ(s.ViewCoverage[i], 1.0) << i;
+    EXPECT_GT(s.BlurScore[i], 0.0) << i;
+    EXPECT_EQ(s.Flags[i], 0) << i;
+  }
+  // The normal Gaussian's needle score does not depend on the stiff ones (it does not use
+  // omega, and the loss map is a constant): same value with Gaussian 0 alone.
+  GaussianCloud alone;
+  alone.Resize(1, 0);
+  SetGaussian(alone, 0, 0.2f * -4, 0.1f, 5, -2.5f, -3, -3.5f, 1);
+  OffsetImages aloneImages{ &alone, { 0.2f, 0.3f }, {} };
+  const auto a = vis4gs::ComputeGaussianScores(alone, cameras, {}, aloneImages);
+  EXPECT_NEAR(a.NeedleScore[0], s.NeedleScore[0], 1e-6 * a.NeedleScore[0]);
+  EXPECT_EQ(a.ViewCoverage[0], s.ViewCoverage[0]);
+  // Every footprint equals the plain scan, stiff Gaussians included.
+  for (const Camera& camera : cameras)
+  {
+    const auto proj = vis4gs::ProjectGaussians<float>(cloud, camera);
+    EXPECT_EQ(vis4gs::ComputeFootprints(proj).PixelCount, NaiveFootprints(cloud, camera));
+  }
+}
+
+TEST(ArtifactScores, EmptyViewsAndViewsWithoutImages)
+{
+  GaussianCloud cloud;
+  cloud.Resize(2, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, -2, -2, -2.5f, 2);
+  SetGaussian(cloud, 1, 0.3f, 0, 4, -2.5f, -2, -2, 2);
+  // View 1 looks away from every Gaussian (empty view); view 2 has no image.
+  const std::vector<Camera> cameras{ MakeCamera(), MakeCamera(-1, true), MakeCamera(-1) };
+  OffsetImages images{ &cloud, { 0.3f, 0.3f, 0.3f }, { false, false, true } };
+  const auto s = vis4gs::ComputeGaussianScores(cloud, cameras, {}, images);
+  EXPECT_EQ(s.ViewsUsed, 3u);
+  EXPECT_EQ(s.ViewsScored, 2u);
+  EXPECT_EQ(s.ViewsWithoutImage, 1u);
+  ASSERT_EQ(s.Warnings.size(), 1u);
+  EXPECT_NE(s.Warnings[0].find("1 of 3 training views have no image"), std::string::npos);
+  const auto f0 = NaiveFootprints(cloud, cameras[0]);
+  for (std::size_t i = 0; i < 2; ++i)
+  {
+    // Coverage counts views without images (visible in views 0 and 2 of 3) ...
+    EXPECT_NEAR(s.ViewCoverage[i], 2.0 / 3.0, 1e-15);
+    // ... blur and needle average over the one scored view where it is visible.
+    EXPECT_EQ(s.ScoredViews[i], 1u);
+    const double l = 0.8 * 0.3f * f0[i];
+    EXPECT_NEAR(s.NeedleScore[i], Shape(cloud, i) * l, 1e-5 * l);
+  }
+  // A scene where every view is empty: everything 0 and flagged, no division by zero.
+  const std::vector<Camera> away{ MakeCamera(-1, true) };
+  const auto e = vis4gs::ComputeGaussianScores(cloud, away, {}, images);
+  EXPECT_EQ(e.NoCoverageViewCount, 2u);
+  EXPECT_EQ(e.NoScoredViewCount, 2u);
+  EXPECT_EQ(e.BlurScore, std::vector<double>(2, 0.0));
+  // No cameras at all.
+  vis4gs::ScoreSettings coverageOnly;
+  coverageOnly.Request = { true, false, false, false };
+  const auto none = vis4gs::ComputeGaussianScores(cloud, {}, coverageOnly);
+  EXPECT_EQ(none.ViewCoverage, std::vector<double>(2, 0.0));
+}
+
+TEST(ArtifactScores, OnlyWhatIsRequested)
+{
+  GaussianCloud cloud;
+  cloud.Resize(3, 0);
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    SetGaussian(cloud, i, 0.3f * i, 0, 5, -2, -3, -4, 1);
+  }
+  // Needle shape alone: no cameras, no images.
+  vis4gs::ScoreSettings shapeOnly;
+  shapeOnly.Request = { false, false, false, true };
+  const auto a = vis4gs::ComputeGaussianScores(cloud, {}, shapeOnly);
+  EXPECT_EQ(a.NeedleShape.size(), 3u);
+  EXPECT_TRUE(a.ViewCoverage.empty() && a.BlurScore.empty() && a.NeedleScore.empty());
+  // Coverage alone: no image provider needed, nothing rendered, no image loaded.
+  vis4gs::ScoreSettings coverageOnly;
+  coverageOnly.Request = { true, false, false, false };
+  const auto b = vis4gs::ComputeGaussianScores(cloud, { MakeCamera() }, coverageOnly);
+  EXPECT_EQ(b.ViewCoverage, std::vector<double>(3, 1.0));
+  EXPECT_EQ(b.Timings.Rendering, 0.0);
+  EXPECT_EQ(b.Timings.Images, 0.0);
+  EXPECT_TRUE(b.NeedleShape.empty() && b.BlurScore.empty());
+  // Blur without images is an error.
+  vis4gs::ScoreSettings blur;
+  EXPECT_THROW(vis4gs::ComputeGaussianScores(cloud, { MakeCamera() }, blur), std::invalid_argument);
+}
+
+TEST(ArtifactScores, OcclusionAwareCoverage)
+{
+  // An opaque wall (large, opacity 1) at z = 3 hides a small Gaussian at z = 6 in view 0;
+  // view 1 (behind the small one, looking back) sees the small one in front.
+  GaussianCloud cloud;
+  cloud.Resize(2, 0);
+  SetGaussian(cloud, 0, 0, 0, 3, 1, 1, -3, 1000);
+  SetGaussian(cloud, 1, 0, 0, 6, -2.5f, -2.5f, -2.5f, 2);
+  const std::vector<Camera> cameras{ MakeCamera(), MakeCamera(9, true) };
+  vis4gs::ScoreSettings plain, occluded;
+  plain.Request = occluded.Request = { true, false, false, false };
+  occluded.OcclusionThreshold = 0.01;
+  const auto p = vis4gs::ComputeGaussianScores(cloud, cameras, plain);
+  const auto o = vis4gs::ComputeGaussianScores(cloud, cameras, occluded);
+  EXPECT_EQ(p.ViewCoverage[1], 1.0);
+  EXPECT_EQ(o.ViewCoverage[1], 0.5);
+  EXPECT_EQ(o.ViewCoverage[0], 1.0);
+  // Shared with the score pass, the same result.
+  occluded.Request = { true, true, false, false };
+  OffsetImages images{ &cloud, { 0.1f, 0.1f }, {} };
+  EXPECT_EQ(
+    vis4gs::ComputeGaussianScores(cloud, cameras, occluded, images).ViewCoverage, o.ViewCoverage);
+}
+
+TEST(ArtifactScores, ViewSubsets)
+{
+  std::vector<Camera> cameras;
+  for (int i = 0; i < 6; ++i)
+  {
+    cameras.push_back(MakeCamera(-0.1 * i));
+  }
+  cameras[1].Split = vis4gs::CameraSplit::Test;
+  vis4gs::ScoreSettings s;
+  EXPECT_EQ(vis4gs::SelectViews(cameras, s), (std::vector<std::size_t>{ 0, 2, 3, 4, 5 }));
+  s.ViewStride = 2;
+  EXPECT_EQ(vis4gs::SelectViews(cameras, s), (std::vector<std::size_t>{ 0, 3, 5 }));
+  s.ViewList = { 4, 2 };
+  EXPECT_EQ(vis4gs::SelectViews(cameras, s), (std::vector<std::size_t>{ 4, 2 }));
+  s.ViewList = { 1 };
+  EXPECT_THROW(vis4gs::SelectViews(cameras, s), std::invalid_argument);
+  s.ViewList = { 9 };
+  EXPECT_THROW(vis4gs::SelectViews(cameras, s), std::invalid_argument);
+  s.ViewList = { 2, 2 };
+  EXPECT_THROW(vis4gs::SelectViews(cameras, s), std::invalid_argument);
+  s.ViewList.clear();
+  s.ViewStride = 0;
+  EXPECT_THROW(vis4gs::SelectViews(cameras, s), std::invalid_argument);
+}
+
+TEST(ArtifactScores, ApproximationsStayClose)
+{
+  GaussianCloud cloud;
+  cloud.Resize(1, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, std::log(0.5f), std::log(0.3f), std::log(0.3f), 2);
+  const std::vector<Camera> cameras{ MakeCamera(0, false, 128, 96) };
+  OffsetImages images{ &cloud, { 0.2f }, {} };
+  const auto exact = vis4gs::ComputeGaussianScores(cloud, cameras, {}, images);
+  // Float accumulation: relative error at the float rounding level.
+  vis4gs::ScoreSettings f;
+  f.Accumulation = vis4gs::FootprintAccumulation::Float;
+  const auto fl = vis4gs::ComputeGaussianScores(cloud, cameras, f, images);
+  EXPECT_NEAR(fl.NeedleScore[0], exact.NeedleScore[0], 1e-4 * exact.NeedleScore[0]);
+  // Half resolution: L' is scaled by the area ratio, so it estimates the full sum closely
+  // for a footprint of thousands of pixels.
+  vis4gs::ScoreSettings half;
+  half.LossResolution = 2;
+  const auto h = vis4gs::ComputeGaussianScores(cloud, cameras, half, images);
+  EXPECT_NEAR(h.NeedleScore[0], exact.NeedleScore[0], 0.1 * exact.NeedleScore[0]);
+  // 3-sigma ellipse: a different but similar region (power >= -4.5 vs alpha >= 1/255).
+  vis4gs::ScoreSettings ellipse;
+  ellipse.Footprint = vis4gs::FootprintMode::Ellipse3Sigma;
+  const auto e = vis4gs::ComputeGaussianScores(cloud, cameras, ellipse, images);
+  EXPECT_NEAR(e.NeedleScore[0], exact.NeedleScore[0], 0.3 * exact.NeedleScore[0]);
+  EXPECT_NE(e.NeedleScore[0], exact.NeedleScore[0]);
+  // Bad settings.
+  vis4gs::ScoreSettings bad;
+  bad.LossResolution = 3;
+  EXPECT_THROW(vis4gs::ComputeGaussianScores(cloud, cameras, bad, images), std::invalid_argument);
+  bad.LossResolution = 1;
+  bad.OcclusionThreshold = 2;
+  EXPECT_THROW(vis4gs::ComputeGaussianScores(cloud, cameras, bad, images), std::invalid_argument);
+}
+
+TEST(ArtifactScores, ImageOfTheWrongSizeIsAnError)
+{
+  GaussianCloud cloud;
+  cloud.Resize(1, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, -2, -2, -2, 2);
+  auto provider = [](std::size_t, const Camera&, vis4gs::Image& image)
+  {
+    image.Width = 10;
+    image.Height = 10;
+    image.Pixels.assign(300, 0.5f);
+    return true;
+  };
+  try
+  {
+    vis4gs::ComputeGaussianScores(cloud, { MakeCamera() }, {}, provider);
+    FAIL() << "no exception";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("10x10 but the camera is 64x48"), std::string::npos)
+      << e.what();
+  }
+}
+
+TEST(ArtifactScores, FastCoverageEqualsProjectionAndFootprints)
+{
+  // Random anisotropic Gaussians with stiff ones mixed in, seen from several cameras (some
+  // Gaussians cross the near plane, some leave the image, some are huge or tiny, some have
+  // opacities near 1/255). The fused early-exit visibility must equal PixelCount >= 1.
+  GaussianCloud cloud;
+  const std::size_t n = 3000;
+  cloud.Resize(n, 0);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    SetGaussian(cloud,
+      i,
+      4 * u(rng),
+      3 * u(rng),
+      3 + 4 * u(rng),
+      -3 + 3 * u(rng),
+      -3 + 3 * u(rng),
+      -4 + 4 * u(rng),
+      -5.5f + 8 * (u(rng) + 1) / 2);
+    for (int k = 0; k < 4; ++k)
+    {
+      cloud.Rotations[4 * i + k] = u(rng);
+    }
+    switch (i % 50)
+    {
+      case 0:
+        cloud.LogScales[3 * i] = 40;
+        break;
+      case 1:
+        cloud.LogScales[3 * i + 1] = -60;
+        cloud.LogScales[3 * i + 2] = -60;
+        break;
+      case 2:
+        cloud.OpacityLogits[i] = -1000;
+        break;
+      case 3:
+        cloud.OpacityLogits[i] = 1000;
+        break;
+      case 4:
+        cloud.Positions[3 * i + 2] = 0.2f;
+        break;
+      case 5:
+        cloud.Rotations[4 * i] = cloud.Rotations[4 * i + 1] = cloud.Rotations[4 * i + 2] =
+          cloud.Rotations[4 * i + 3] = 0;
+        break;
+      case 6:
+        cloud.OpacityLogits[i] = std::nanf("");
+        break;
+      case 7:
+        cloud.OpacityLogits[i] = -5.54f;
+        break; // o just above / below 1/255
+      default:
+        break;
+    }
+  }
+  const std::vector<Camera> cameras{ MakeCamera(),
+    MakeCamera(10, true),
+    MakeCamera(-3, false, 37, 23),
+    MakeCamera(0, false, 200, 150) };
+  for (auto mode : { vis4gs::FootprintMode::Rasterizer, vis4gs::FootprintMode::Ellipse3Sigma })
+  {
+    std::size_t visible = 0;
+    for (const Camera& camera : cameras)
+    {
+      vis4gs::FootprintOptions options;
+      options.Mode = mode;
+      const auto counts =
+        vis4gs::ComputeFootprints(vis4gs::ProjectGaussians<float>(cloud, camera), options)
+          .PixelCount;
+      const auto fast = vis4gs::VisibleInView(cloud, camera, mode);
+      ASSERT_EQ(fast.size(), n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        ASSERT_EQ(fast[i] != 0, counts[i] >= 1) << "Gaussian " << i << " mode " << int(mode);
+        visible += fast[i];
+      }
+    }
+    EXPECT_GT(visible, n / 2);
+  }
+}

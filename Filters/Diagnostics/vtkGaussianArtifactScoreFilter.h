@@ -1,0 +1,180 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianArtifactScoreFilter.h
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+/**
+ * @class   vtkGaussianArtifactScoreFilter
+ * @brief   adds View Coverage, Blur and Needle scores and the needle shape of each Gaussian
+ *
+ * Input port 0 is a Gaussian scene (vtkPolyData, DESIGN §2); input port 1 (optional when only
+ * the needle shape is asked for) is the camera table (one row per view, IO/Scene
+ * Vis4GSDataModel.h). Training images are the files named in the table's `Image` column,
+ * read with the Core image reader (PNG/JPEG, resized to the camera's size as the trainer
+ * does); when ImageDirectory is set, each camera's image is instead looked up by name in that
+ * folder (the file whose name up to the first '.' is the camera's Name). A view whose image
+ * file does not exist is skipped for blur/needle, with one warning giving the count.
+ *
+ * Only the requested arrays are computed and added: `ViewCoverage`, `BlurScore`,
+ * `NeedleScore`, `NeedleShape` (double), and `NoVisibleView` (unsigned char, the bits of
+ * vis4gs::ScoreFlag: 1 no visible view for coverage, 2 no visible view with an image for
+ * blur/needle, 4 NaN/Inf parameters; 0 for a normal Gaussian) whenever a score needing
+ * cameras is computed. Coverage alone renders nothing and reads no image. Every
+ * approximation of Core/Diagnostics/ArtifactScores.h is a parameter; the defaults are the
+ * exact mode. Progress is reported per view.
+ */
+#ifndef vtkGaussianArtifactScoreFilter_h
+#define vtkGaussianArtifactScoreFilter_h
+
+#include "vis4gsFiltersDiagnosticsModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For ImageDirectory
+
+class vtkTable;
+
+class VIS4GSFILTERSDIAGNOSTICS_EXPORT vtkGaussianArtifactScoreFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkGaussianArtifactScoreFilter* New();
+  vtkTypeMacro(vtkGaussianArtifactScoreFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * The camera table (input port 1).
+   */
+  void SetCamerasData(vtkTable* cameras);
+  void SetCamerasConnection(vtkAlgorithmOutput* output);
+
+  ///@{
+  /**
+   * Which arrays to compute. Defaults: ViewCoverage on, BlurScore on, NeedleScore on,
+   * NeedleShape on.
+   */
+  vtkSetMacro(ComputeViewCoverage, bool);
+  vtkGetMacro(ComputeViewCoverage, bool);
+  vtkBooleanMacro(ComputeViewCoverage, bool);
+  vtkSetMacro(ComputeBlurScore, bool);
+  vtkGetMacro(ComputeBlurScore, bool);
+  vtkBooleanMacro(ComputeBlurScore, bool);
+  vtkSetMacro(ComputeNeedleScore, bool);
+  vtkGetMacro(ComputeNeedleScore, bool);
+  vtkBooleanMacro(ComputeNeedleScore, bool);
+  vtkSetMacro(ComputeNeedleShape, bool);
+  vtkGetMacro(ComputeNeedleShape, bool);
+  vtkBooleanMacro(ComputeNeedleShape, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Folder of the training images, matched to cameras by name. Default empty: use the
+   * camera table's Image column.
+   */
+  vtkSetStdStringFromCharMacro(ImageDirectory);
+  vtkGetCharFromStdStringMacro(ImageDirectory);
+  ///@}
+
+  ///@{
+  /**
+   * Loss-map resolution factor of blur/needle: 1 (exact, default), 2, 4 or 8.
+   */
+  vtkSetClampMacro(LossResolution, int, 1, 8);
+  vtkGetMacro(LossResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Resolution factor of the coverage pass: 1 (exact, default), 2, 4 or 8.
+   */
+  vtkSetClampMacro(CoverageResolution, int, 1, 8);
+  vtkGetMacro(CoverageResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Use every k-th training view. Default 1 (all).
+   */
+  vtkSetClampMacro(ViewStride, int, 1, VTK_INT_MAX);
+  vtkGetMacro(ViewStride, int);
+  ///@}
+
+  ///@{
+  /**
+   * Footprint: 0 = the rasteriser's alpha footprint (exact, default), 1 = 3-sigma ellipse.
+   */
+  vtkSetClampMacro(FootprintMode, int, 0, 1);
+  vtkGetMacro(FootprintMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * Accumulate the footprint sums of the loss map in float instead of double. Default off.
+   */
+  vtkSetMacro(FloatAccumulation, bool);
+  vtkGetMacro(FloatAccumulation, bool);
+  vtkBooleanMacro(FloatAccumulation, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Occlusion-aware coverage threshold on the maximum blending weight alpha*T; 0 (default)
+   * is the plain coverage of DESIGN §4.
+   */
+  vtkSetClampMacro(OcclusionThreshold, double, 0.0, 1.0);
+  vtkGetMacro(OcclusionThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * lambda of the loss map. Default 0.2.
+   */
+  vtkSetClampMacro(Lambda, double, 0.0, 1.0);
+  vtkGetMacro(Lambda, double);
+  ///@}
+
+  ///@{
+  /**
+   * Results of the last execution: training views used, views skipped for lack of an image,
+   * Gaussians flagged NoVisibleView (any bit).
+   */
+  vtkGetMacro(NumberOfViewsUsed, vtkIdType);
+  vtkGetMacro(NumberOfViewsWithoutImage, vtkIdType);
+  vtkGetMacro(NumberOfFlaggedGaussians, vtkIdType);
+  ///@}
+
+protected:
+  vtkGaussianArtifactScoreFilter();
+  ~vtkGaussianArtifactScoreFilter() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  bool ComputeViewCoverage = true;
+  bool ComputeBlurScore = true;
+  bool ComputeNeedleScore = true;
+  bool ComputeNeedleShape = true;
+  std::string ImageDirectory;
+  int LossResolution = 1;
+  int CoverageResolution = 1;
+  int ViewStride = 1;
+  int FootprintMode = 0;
+  bool FloatAccumulation = false;
+  double OcclusionThreshold = 0.0;
+  double Lambda = 0.2;
+  vtkIdType NumberOfViewsUsed = 0;
+  vtkIdType NumberOfViewsWithoutImage = 0;
+  vtkIdType NumberOfFlaggedGaussians = 0;
+
+private:
+  vtkGaussianArtifactScoreFilter(const vtkGaussianArtifactScoreFilter&) = delete;
+  void operator=(const vtkGaussianArtifactScoreFilter&) = delete;
+};
+
+#endif

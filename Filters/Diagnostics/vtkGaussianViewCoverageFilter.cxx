@@ -1,0 +1,30 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianViewCoverageFilter.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianViewCoverageFilter.h"
+
+#include "vtkObjectFactory.h"
+
+vtkStandardNewMacro(vtkGaussianViewCoverageFilter);
+
+//------------------------------------------------------------------------------
+vtkGaussianViewCoverageFilter::vtkGaussianViewCoverageFilter()
+{
+  this->ComputeViewCoverage = true;
+  this->ComputeBlurScore = false;
+  this->ComputeNeedleScore = false;
+  this->ComputeNeedleShape = false;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianViewCoverageFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
