@@ -1,0 +1,87 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Independent checks of a written log: the format read back with h5py, and (when the
+build provides it) the same log read by the C++ reader through TrainingLogDump."""
+
+import json
+import os
+import subprocess
+
+import h5py
+import numpy as np
+
+
+def read_events(path):
+    with h5py.File(path, "r") as f:
+        e = f["events"]
+        return (e["iteration"][:], e["kind"][:], e["parent"][:], e["child"][:])
+
+
+def check_format(path):
+    """Asserts the contract of DESIGN §3 on the file (names, types, shapes, order)."""
+    with h5py.File(path, "r") as f:
+        assert f.attrs["format"] == "vis4gs-training-log"
+        assert int(f.attrs["format_version"]) == 1
+        for key in ("producer", "scene", "sh_degree", "iterations"):
+            assert key in f.attrs
+        m = f["metrics"]
+        assert m["iteration"].dtype == np.int32 and m["num_gaussians"].dtype == np.int64
+        for c in ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s"):
+            assert m[c].dtype == np.float64 and m[c].shape == m["iteration"].shape
+        e = f["events"]
+        assert e["iteration"].dtype == np.int32 and e["kind"].dtype == np.uint8
+        assert e["parent"].dtype == np.int64 and e["child"].dtype == np.int64
+        last = -1
+        for name in sorted(f["snapshots"].keys()):
+            g = f["snapshots"][name]
+            assert len(name) == 6 and int(name) == int(g.attrs["iteration"])
+            assert int(name) > last
+            last = int(name)
+            ids = g["id"][:]
+            n = len(ids)
+            assert ids.dtype == np.int64 and np.all(np.diff(ids) > 0)
+            assert g["position"].shape == (n, 3) and g["position"].dtype == np.float32
+            assert g["log_scale"].shape == (n, 3)
+            assert g["rotation"].shape == (n, 4)
+            assert g["opacity_logit"].shape == (n,)
+            assert g["sh"].ndim == 3 and g["sh"].shape[0] == n and g["sh"].shape[2] == 3
+            assert g["position"].compression == "gzip" and g["position"].chunks is not None
+
+
+def dump(path, *args):
+    """Runs the C++ reader on the log (TrainingLogDump); None when it is not built."""
+    exe = os.environ.get("VIS4GS_TRAINING_LOG_DUMP")
+    if not exe:
+        return None
+    out = subprocess.run([exe, path] + list(args), check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def require_dump():
+    """Under CTest the C++ reader is always given; standalone pytest may lack it."""
+    return os.environ.get("VIS4GS_TRAINING_LOG_DUMP") is not None
+
+
+def replay_genealogy(events, n0):
+    """Replays events: returns the set of alive ids, asserting every rule of DESIGN §3."""
+    it, kind, parent, child = events
+    alive = set(range(n0))
+    ended = {}
+    next_id = n0
+    for i in range(len(it)):
+        p = int(parent[i])
+        if kind[i] in (1, 2):
+            assert int(child[i]) == next_id, "new ids must be the next unused id"
+            next_id += 1
+            assert p in alive or (kind[i] == 2 and ended.get(p) == ("split", int(it[i])))
+            alive.add(int(child[i]))
+            if kind[i] == 2:
+                alive.discard(p)
+                ended[p] = ("split", int(it[i]))
+        else:
+            assert kind[i] == 3 and int(child[i]) == -1
+            assert p in alive, f"prune of id {p} which is not alive"
+            alive.discard(p)
+            ended[p] = ("prune", int(it[i]))
+        if i > 0:
+            assert it[i] >= it[i - 1]
+    return alive, next_id

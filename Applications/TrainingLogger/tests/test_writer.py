@@ -1,0 +1,92 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The h5py writer on its own: format, crash safety (a writer process SIGKILL-ed mid-run
+leaves a readable log up to its last flush) and input checks."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import h5py
+import numpy as np
+import pytest
+
+from logcheck import check_format, dump, require_dump
+from vis4gs_logger import TrainingLogWriter
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def test_format_and_sorting(tmp_path):
+    path = str(tmp_path / "w.h5")
+    with TrainingLogWriter(path, scene="s", sh_degree=1, iterations=10) as w:
+        w.append_metrics(1, num_gaussians=3, loss=0.5, l1=None)
+        w.append_events(1, 1, [0], [3])
+        ids = np.array([3, 0, 2])  # unsorted: rows are sorted by id on write
+        pos = np.arange(9, dtype=np.float32).reshape(3, 3)
+        w.write_snapshot(5, ids, pos, np.zeros((3, 3)), np.ones((3, 4)), np.zeros(3),
+                         np.zeros((3, 4, 3)))
+        with pytest.raises(ValueError):
+            w.write_snapshot(5, ids, pos, np.zeros((3, 3)), np.ones((3, 4)), np.zeros(3), np.zeros((3, 1, 3)))
+        with pytest.raises(ValueError):
+            w.write_snapshot(6, [1, 1, 2], pos, np.zeros((3, 3)), np.ones((3, 4)), np.zeros(3), np.zeros((3, 1, 3)))
+    check_format(path)
+    with h5py.File(path, "r") as f:
+        assert list(f["snapshots/000005/id"][:]) == [0, 2, 3]
+        np.testing.assert_array_equal(f["snapshots/000005/position"][:], pos[[1, 2, 0]])
+        assert np.isnan(f["metrics/l1"][0])
+    with pytest.raises(RuntimeError):
+        w.flush()
+
+
+WRITER = textwrap.dedent("""
+    import sys, numpy as np
+    sys.path.insert(0, {pkg!r})
+    from vis4gs_logger import TrainingLogWriter
+    w = TrainingLogWriter({path!r}, chunk_rows=4096)
+    rng = np.random.default_rng(0)
+    s = 0
+    while True:
+        for k in range(100):
+            w.append_metrics(s * 100 + k, num_gaussians=s, loss=float(k))
+            w.append_events(s * 100 + k, 1, [k], [1000000 + s * 100 + k])
+        n = 30000 + 1000 * s
+        w.write_snapshot(s * 100, np.arange(n), np.full((n, 3), s, np.float32),
+                         rng.normal(size=(n, 3)), rng.normal(size=(n, 4)), rng.normal(size=n),
+                         rng.normal(size=(n, 4, 3)))
+        print(s, flush=True)
+        s += 1
+""")
+
+
+@pytest.mark.parametrize("delay", [0.0, 0.004, 0.02])
+def test_killed_writer_leaves_readable_log(tmp_path, delay):
+    path = str(tmp_path / "crash.h5")
+    code = WRITER.format(pkg=os.path.dirname(HERE), path=path)
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    done = -1
+    for _ in range(2):
+        line = proc.stdout.readline()
+        assert line, "the writer stopped early"
+        done = int(line)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert proc.returncode == -signal.SIGKILL
+    for line in proc.stdout:
+        done = int(line)
+    with h5py.File(path, "r") as f:
+        names = sorted(f["snapshots"].keys())
+        assert len(names) >= done + 1
+        for s, name in enumerate(names):
+            assert int(name) == 100 * s
+            assert np.all(f["snapshots"][name]["position"][:] == s)
+        m = f["metrics/iteration"][:]
+        assert np.array_equal(m, np.arange(len(m))) and len(m) >= 100 * len(names)
+    check_format(path)
+    info = dump(path)
+    if require_dump():
+        assert info["snapshots"] == [100 * s for s in range(len(names))]
+        assert info["metrics"] == len(m)

@@ -1,0 +1,197 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Hooks for the original 3DGS trainer (graphdeco-inria/gaussian-splatting, 2023 and the
+2024 update): wraps a GaussianModel instance's densify_and_clone, densify_and_split,
+prune_points and densification_postfix (instance attributes, so the model's own
+densify_and_prune calls the wrappers) and keeps a persistent id per row.
+
+Index bookkeeping (reference §4.4-4.5):
+* densify_and_clone: parents = rows of selected_pts_mask over N0; children appended at
+  N0 + r in ascending parent order -> clone events (parent id, new id).
+* densify_and_split: parents q_r of selected_pts_mask over N1; children appended as "all
+  first samples, then all second samples" (q_r -> N1 + r and N1 + K + r) -> split events;
+  then prune_points(prune_filter) removes the parents: the parent's end is the split,
+  no prune event is recorded for it.
+* prune_points(mask) outside a split: prune events (id, -1); survivors keep their order.
+
+The selection masks are local variables of the trainer's methods, so the wrappers
+recompute them with the trainer's own formulas on the same state just before calling the
+original, and check them against what densification_postfix receives (counts, and for
+clones the copied positions). A mismatch (a modified trainer) gives a warning and the new
+rows get fresh ids without events.
+"""
+
+import time
+
+from .tracking import CLONE, SPLIT, IdTracker
+
+__all__ = ["GaussianModelTracker", "track_3dgs"]
+
+
+class GaussianModelTracker(IdTracker):
+    """Tracks the ids of one GaussianModel; created by track_3dgs()."""
+
+    _METHODS = ("densify_and_clone", "densify_and_split", "prune_points", "densification_postfix")
+
+    def __init__(self, gaussians, logger):
+        super().__init__(logger)
+        self.g = gaussians
+        self._pending = None  # ("clone" | "split", mask, n_per_parent)
+        self._in_split = False
+        self._originals = {}
+
+    # -- model access --------------------------------------------------------------------
+    def count(self):
+        return int(self.g.get_xyz.shape[0])
+
+    def _device(self):
+        return self.g.get_xyz.device
+
+    # -- masks as the trainer computes them ----------------------------------------------
+    def _clone_mask(self, grads, grad_threshold, scene_extent):
+        import torch
+
+        g = self.g
+        mask = torch.where(torch.norm(grads, dim=-1) >= grad_threshold, True, False)
+        return torch.logical_and(
+            mask, torch.max(g.get_scaling, dim=1).values <= g.percent_dense * scene_extent)
+
+    def _split_mask(self, grads, grad_threshold, scene_extent):
+        import torch
+
+        g = self.g
+        n_init = g.get_xyz.shape[0]
+        padded = torch.zeros((n_init,), device=grads.device)
+        padded[: grads.shape[0]] = grads.squeeze()
+        mask = torch.where(padded >= grad_threshold, True, False)
+        return torch.logical_and(
+            mask, torch.max(g.get_scaling, dim=1).values > g.percent_dense * scene_extent)
+
+    # -- wrappers ------------------------------------------------------------------------
+    def install(self):
+        if self._originals:
+            return self
+        g = self.g
+        for name in self._METHODS:
+            if not hasattr(g, name):
+                raise AttributeError(f"the model has no method {name}: not a 3DGS GaussianModel")
+            self._originals[name] = getattr(g, name)
+        orig = self._originals
+        tracker = self
+
+        def densify_and_clone(grads, grad_threshold, scene_extent, *args, **kwargs):
+            tracker._ensure()
+            mask = tracker._clone_mask(grads, grad_threshold, scene_extent)
+            tracker._pending = ("clone", mask, 1)
+            try:
+                return orig["densify_and_clone"](grads, grad_threshold, scene_extent, *args, **kwargs)
+            finally:
+                tracker._pending = None
+                tracker._check("densify_and_clone")
+
+        def densify_and_split(grads, grad_threshold, scene_extent, *args, **kwargs):
+            tracker._ensure()
+            n = kwargs.get("N", args[0] if args else 2)
+            mask = tracker._split_mask(grads, grad_threshold, scene_extent)
+            tracker._pending = ("split", mask, int(n))
+            tracker._in_split = True
+            try:
+                return orig["densify_and_split"](grads, grad_threshold, scene_extent, *args, **kwargs)
+            finally:
+                tracker._pending = None
+                tracker._in_split = False
+                tracker._check("densify_and_split")
+
+        def densification_postfix(new_xyz, *args, **kwargs):
+            t0 = time.perf_counter()
+            ids = tracker._ensure()
+            n_new = int(new_xyz.shape[0])
+            pending = tracker._pending
+            parents = None
+            if pending is not None:
+                kind, mask, per = pending
+                mask = mask.to(ids.device)
+                selected = ids[mask]
+                if len(selected) * per != n_new:
+                    tracker._warn(
+                        f"{kind} at iteration {tracker.logger.iteration}: the trainer added {n_new} "
+                        f"Gaussians where its {kind} rule selects {len(selected)} parents x {per}; "
+                        "recording them without parents")
+                elif kind == "clone" and n_new > 0 and not bool(
+                        (new_xyz.detach() == tracker.g.get_xyz.detach()[mask]).all()):
+                    tracker._warn(
+                        f"clone at iteration {tracker.logger.iteration}: the new Gaussians are "
+                        "not copies of the rows the clone rule selects; recording them without parents")
+                else:
+                    # Children order "all first samples, then all second samples".
+                    parents = selected.repeat(per) if per > 1 else selected
+            tracker.logger.time_spent_s += time.perf_counter() - t0
+            result = orig["densification_postfix"](new_xyz, *args, **kwargs)
+            t0 = time.perf_counter()
+            added = tracker.count() - len(ids)
+            if parents is not None and added != n_new:
+                tracker._warn(f"densification_postfix added {added} Gaussians for {n_new} new rows; "
+                              "recording them without parents")
+                parents = None
+            if parents is None:
+                tracker.append_orphans(added)
+            else:
+                tracker.append_children(CLONE if pending[0] == "clone" else SPLIT, parents)
+            tracker.logger.time_spent_s += time.perf_counter() - t0
+            tracker._check("densification_postfix")
+            return result
+
+        def prune_points(mask, *args, **kwargs):
+            t0 = time.perf_counter()
+            tracker._ensure()
+            # Inside a split the removed rows are the split parents: their end is the split.
+            tracker.remove_rows(mask, record=not tracker._in_split)
+            tracker.logger.time_spent_s += time.perf_counter() - t0
+            result = orig["prune_points"](mask, *args, **kwargs)
+            tracker._check("prune_points")
+            return result
+
+        g.densify_and_clone = densify_and_clone
+        g.densify_and_split = densify_and_split
+        g.densification_postfix = densification_postfix
+        g.prune_points = prune_points
+        return self
+
+    def uninstall(self):
+        for name in self._originals:
+            try:
+                delattr(self.g, name)  # the class methods show through again
+            except AttributeError:
+                pass
+        self._originals = {}
+
+    # -- snapshots -----------------------------------------------------------------------
+    def write_snapshot(self, iteration):
+        import torch
+
+        g = self.g
+        ids = self._ensure()
+        self._check("a snapshot")
+        with torch.no_grad():
+            if self.logger.snapshot_sh_rest:
+                sh = torch.cat([g._features_dc, g._features_rest], dim=1)
+            else:
+                sh = g._features_dc
+            grad_accum = denom = None
+            if self.logger.snapshot_statistics and hasattr(g, "xyz_gradient_accum"):
+                d = g.denom.reshape(-1)
+                grad_accum = g.xyz_gradient_accum.reshape(-1) / d
+                grad_accum[grad_accum.isnan()] = 0.0
+                denom = d
+            self.logger.writer.write_snapshot(
+                iteration, ids, g._xyz, g._scaling, g._rotation, g._opacity, sh,
+                grad_accum=grad_accum, denom=denom)
+
+
+def track_3dgs(gaussians, logger, snapshot_initial=True):
+    """Starts tracking a GaussianModel (call after Scene(...) has created its Gaussians):
+    wraps its densification methods and, by default, writes a snapshot at iteration 0."""
+    tracker = GaussianModelTracker(gaussians, logger).install()
+    tracker._ensure()
+    if snapshot_initial:
+        logger.snapshot(0)
+    return tracker

@@ -1,0 +1,277 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Appending writer of the Vis4GS training log (HDF5, format version 1; see
+Documentation/file-formats.md). Depends on numpy and h5py only; torch tensors are
+accepted wherever an array is (they are moved to the CPU and converted)."""
+
+import math
+import os
+import time
+
+import h5py
+import numpy as np
+
+__all__ = ["TrainingLogWriter", "to_numpy", "FORMAT", "FORMAT_VERSION", "CLONE", "SPLIT", "PRUNE"]
+
+FORMAT = "vis4gs-training-log"
+FORMAT_VERSION = 1
+CLONE, SPLIT, PRUNE = 1, 2, 3
+
+_METRIC_COLUMNS = ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s")
+
+
+def to_numpy(array, dtype=None):
+    """Converts a numpy array, a torch tensor (any device) or a sequence to numpy."""
+    if hasattr(array, "detach") and hasattr(array, "cpu"):
+        array = array.detach().cpu().numpy()
+    array = np.asarray(array)
+    if dtype is not None:
+        array = array.astype(dtype, copy=False)
+    return array
+
+
+def _scalar(value):
+    """A float from a python number, numpy scalar or one-element tensor; NaN for None."""
+    if value is None:
+        return math.nan
+    if hasattr(value, "item"):
+        value = value.item()
+    return float(value)
+
+
+class TrainingLogWriter:
+    """Writes one training log while a trainer runs.
+
+    Metrics rows and events are buffered and written at each flush(); a snapshot is
+    written and flushed when it is handed over, so a training run killed mid-way leaves
+    a log that is complete up to its last snapshot. Between flushes HDF5 is kept from
+    writing any metadata (metadata-cache evictions off) and freed file space is never
+    reused (file-space strategy "none"), so the file on disk stays the valid log of the
+    last flush.
+
+    Parameters: path of the .h5 file (created, truncated); scene name; the trainer's
+    maximum SH degree; planned number of iterations; producer string; deflate level of
+    every dataset (shuffle + gzip; 0 = none); rows per chunk of the snapshot datasets;
+    flush_every_s: also flush buffered rows when this many seconds have passed since the
+    last flush (None: only at snapshots and close).
+    """
+
+    def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
+                 deflate=1, chunk_rows=4096, flush_every_s=300.0):
+        from . import __version__
+
+        self.path = os.fspath(path)
+        self.deflate = int(deflate)
+        self.chunk_rows = int(chunk_rows)
+        self.flush_every_s = flush_every_s
+        self._file = h5py.File(self.path, "w", fs_strategy="none", libver="earliest")
+        cfg = self._file.id.get_mdc_config()
+        cfg.evictions_enabled = False
+        cfg.incr_mode = 0  # H5C_incr__off
+        cfg.flash_incr_mode = 0  # H5C_flash_incr__off
+        cfg.decr_mode = 0  # H5C_decr__off
+        self._file.id.set_mdc_config(cfg)
+        f = self._file
+        f.attrs["format"] = FORMAT
+        f.attrs["format_version"] = np.int64(FORMAT_VERSION)
+        f.attrs["producer"] = producer or "vis4gs_logger " + __version__
+        f.attrs["scene"] = scene
+        f.attrs["sh_degree"] = np.int64(sh_degree)
+        f.attrs["iterations"] = np.int64(iterations)
+        self._metrics = {False: self._create_metrics("metrics"), True: None}
+        self._pending_metrics = {False: [], True: []}
+        events = f.create_group("events")
+        for name, dtype in (("iteration", "<i4"), ("kind", "u1"), ("parent", "<i8"), ("child", "<i8")):
+            self._create_table(events, name, dtype, 65536)
+        self._pending_events = []
+        f.create_group("snapshots")
+        self._last_snapshot = -1
+        self._last_flush = time.monotonic()
+        self._cameras_written = False
+        self.flush()
+
+    # -- helpers ----------------------------------------------------------------------
+    def _compression(self):
+        if self.deflate > 0:
+            return dict(compression="gzip", compression_opts=self.deflate, shuffle=True)
+        return {}
+
+    def _create_table(self, group, name, dtype, chunk):
+        return group.create_dataset(name, shape=(0,), maxshape=(None,), dtype=dtype,
+                                    chunks=(chunk,), **self._compression())
+
+    def _create_metrics(self, path):
+        g = self._file.create_group(path)
+        self._create_table(g, "iteration", "<i4", 1024)
+        self._create_table(g, "num_gaussians", "<i8", 1024)
+        for name in _METRIC_COLUMNS:
+            self._create_table(g, name, "<f8", 1024)
+        return g
+
+    def _dataset(self, group, name, data, chunk):
+        data = np.ascontiguousarray(data)
+        chunks = tuple(max(1, min(c, s)) if s > 0 else max(1, c) for c, s in zip(chunk, data.shape))
+        return group.create_dataset(name, data=data, maxshape=(None,) + data.shape[1:],
+                                    chunks=chunks, **self._compression())
+
+    @staticmethod
+    def _append(dataset, values):
+        n = len(values)
+        if n == 0:
+            return
+        start = dataset.shape[0]
+        dataset.resize((start + n,))
+        dataset[start:start + n] = values
+
+    def _check_open(self):
+        if self._file is None:
+            raise RuntimeError(f"{self.path}: the training log is already closed")
+
+    # -- public API -------------------------------------------------------------------
+    @property
+    def last_snapshot_iteration(self):
+        return self._last_snapshot
+
+    def write_cameras(self, names, widths, heights, fx, fy, cx, cy, world_to_camera,
+                      splits=None, images=None):
+        """Writes /cameras (once). world_to_camera is [V,4,4]; splits 0 train / 1 test;
+        images are paths relative to the log, or "/images/<name>" for embedded ones."""
+        self._check_open()
+        if self._cameras_written:
+            raise RuntimeError(f"{self.path}: /cameras is already written")
+        v = len(names)
+        w2c = to_numpy(world_to_camera, np.float64).reshape(v, 4, 4)
+        g = self._file.create_group("cameras")
+        str_type = h5py.string_dtype("utf-8")
+        g.create_dataset("name", data=np.array([str(n) for n in names], dtype=object), dtype=str_type)
+        g.create_dataset("split", data=to_numpy(splits if splits is not None else np.zeros(v), np.uint8))
+        g.create_dataset("width", data=to_numpy(widths, np.int32))
+        g.create_dataset("height", data=to_numpy(heights, np.int32))
+        for key, values in (("fx", fx), ("fy", fy), ("cx", cx), ("cy", cy)):
+            g.create_dataset(key, data=to_numpy(values, np.float64))
+        g.create_dataset("world_to_camera", data=w2c)
+        images = images if images is not None else [""] * v
+        g.create_dataset("image", data=np.array([str(p) for p in images], dtype=object), dtype=str_type)
+        self._cameras_written = True
+
+    def write_image(self, name, image):
+        """Embeds an image as /images/<name>: [H,W,3] uint8, or float in [0,1] as
+        [H,W,3] or [3,H,W] (torch layout)."""
+        self._check_open()
+        a = to_numpy(image)
+        if a.ndim == 3 and a.shape[0] == 3 and a.shape[2] != 3:
+            a = np.transpose(a, (1, 2, 0))
+        if a.dtype != np.uint8:
+            a = np.clip(np.rint(a.astype(np.float64) * 255.0), 0, 255).astype(np.uint8)
+        if a.ndim != 3 or a.shape[2] != 3 or "/" in name or not name:
+            raise ValueError(f"{self.path}: image {name!r} must be [H,W,3]")
+        g = self._file.require_group("images")
+        self._dataset(g, name, a, (256, a.shape[1], 3))
+
+    def append_metrics(self, iteration, num_gaussians=-1, loss=None, l1=None, psnr=None,
+                       ssim=None, lpips=None, elapsed_s=None, test=False):
+        """Buffers one metrics row (test=True: /metrics/test). Unmeasured values: None."""
+        self._check_open()
+        row = (int(iteration), int(num_gaussians), _scalar(loss), _scalar(l1), _scalar(psnr),
+               _scalar(ssim), _scalar(lpips), _scalar(elapsed_s))
+        self._pending_metrics[bool(test)].append(row)
+        self._maybe_timed_flush()
+
+    def append_events(self, iteration, kind, parents, children=None):
+        """Buffers events of one kind: parents[i] -> children[i] (prunes: children None)."""
+        self._check_open()
+        parents = to_numpy(parents, np.int64).reshape(-1)
+        if len(parents) == 0:
+            return
+        if children is None:
+            children = np.full(len(parents), -1, np.int64)
+        children = to_numpy(children, np.int64).reshape(-1)
+        if len(children) != len(parents):
+            raise ValueError("parents and children differ in length")
+        n = len(parents)
+        self._pending_events.append((np.full(n, int(iteration), np.int32),
+                                     np.full(n, int(kind), np.uint8), parents, children))
+
+    def write_snapshot(self, iteration, ids, position, log_scale, rotation, opacity_logit, sh,
+                       grad_accum=None, denom=None, flush=True):
+        """Writes /snapshots/<iteration>. Rows are sorted by id if they are not already;
+        sh is [N,K,3] (or [N,3] for DC only); ids must be unique."""
+        self._check_open()
+        iteration = int(iteration)
+        if iteration <= self._last_snapshot:
+            raise ValueError(f"{self.path}: snapshot {iteration} is not after {self._last_snapshot}")
+        ids = to_numpy(ids, np.int64).reshape(-1)
+        n = len(ids)
+        arrays = {
+            "position": to_numpy(position, np.float32).reshape(n, 3),
+            "log_scale": to_numpy(log_scale, np.float32).reshape(n, 3),
+            "rotation": to_numpy(rotation, np.float32).reshape(n, 4),
+            "opacity_logit": to_numpy(opacity_logit, np.float32).reshape(n),
+            "sh": to_numpy(sh, np.float32).reshape(n, -1, 3),
+        }
+        if grad_accum is not None:
+            arrays["grad_accum"] = to_numpy(grad_accum, np.float32).reshape(n)
+        if denom is not None:
+            arrays["denom"] = to_numpy(denom, np.float32).reshape(n)
+        k = arrays["sh"].shape[1]
+        if int(round(math.sqrt(k))) ** 2 != k:
+            raise ValueError(f"{self.path}: sh has {k} coefficients, not a square number")
+        if n > 1 and not np.all(ids[1:] > ids[:-1]):
+            order = np.argsort(ids, kind="stable")
+            ids = ids[order]
+            if np.any(ids[1:] == ids[:-1]):
+                raise ValueError(f"{self.path}: snapshot {iteration} has duplicate ids")
+            arrays = {key: value[order] for key, value in arrays.items()}
+        g = self._file.create_group(f"snapshots/{iteration:06d}")
+        g.attrs["iteration"] = np.int64(iteration)
+        c = self.chunk_rows
+        self._dataset(g, "id", ids, (c,))
+        for key, value in arrays.items():
+            if key == "sh":
+                self._dataset(g, key, value, (c, 1, 3))
+            else:
+                self._dataset(g, key, value, (c,) + value.shape[1:])
+        self._last_snapshot = iteration
+        if flush:
+            self.flush()
+
+    def flush(self):
+        """Writes the buffered rows and flushes: the file is then a valid log."""
+        self._check_open()
+        for test in (False, True):
+            rows = self._pending_metrics[test]
+            if not rows:
+                continue
+            if self._metrics[test] is None:
+                self._metrics[test] = self._create_metrics("metrics/test")
+            g = self._metrics[test]
+            cols = list(zip(*rows))
+            self._append(g["iteration"], np.asarray(cols[0], np.int32))
+            self._append(g["num_gaussians"], np.asarray(cols[1], np.int64))
+            for j, name in enumerate(_METRIC_COLUMNS):
+                self._append(g[name], np.asarray(cols[2 + j], np.float64))
+            self._pending_metrics[test] = []
+        if self._pending_events:
+            events = self._file["events"]
+            for j, name in enumerate(("iteration", "kind", "parent", "child")):
+                self._append(events[name], np.concatenate([e[j] for e in self._pending_events]))
+            self._pending_events = []
+        self._file.flush()
+        self._last_flush = time.monotonic()
+
+    def _maybe_timed_flush(self):
+        if self.flush_every_s is not None and time.monotonic() - self._last_flush > self.flush_every_s:
+            self.flush()
+
+    def close(self):
+        if self._file is None:
+            return
+        self.flush()
+        self._file.close()
+        self._file = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False

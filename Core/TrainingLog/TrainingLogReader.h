@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file TrainingLogReader.h
+ * @brief Reads a training log (DESIGN §3, format version 1) lazily and validates it.
+ *
+ * Opening reads only the root attributes and the list of groups and snapshots. Each table
+ * and snapshot is read when asked for, and only the arrays asked for: a snapshot read
+ * without SH rest reads the k = 0 hyperslab of `sh`; the property history of a few ids
+ * reads, per snapshot, the id chunks its search touches and then the selected rows, never
+ * whole snapshots.
+ *
+ * Validation: a file that is not a training log, or of another format version, throws.
+ * Missing optional groups are reported by GetLacks() as sentences a user can read. Broken
+ * content (events naming unknown ids, duplicate or decreasing ids in a snapshot,
+ * snapshot names that disagree with their iteration) throws a std::runtime_error naming
+ * the file and the problem; with TrainingLogReaderOptions::Repair the reader returns a
+ * repaired result instead and lists each repair in GetRepairs(). The file is never written.
+ *
+ * The reader opens the file without HDF5 file locking, so a log can be read while a trainer
+ * still appends to it (it sees the state of the trainer's last flush).
+ */
+#ifndef vis4gs_TrainingLogReader_h
+#define vis4gs_TrainingLogReader_h
+
+#include "Camera.h"
+#include "GaussianCloud.h"
+#include "TrainingLogTypes.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vis4gs
+{
+
+struct TrainingLogReaderOptions
+{
+  /// Repair broken content in memory (listed by GetRepairs()) instead of throwing.
+  bool Repair = false;
+};
+
+struct SnapshotReadOptions
+{
+  /// SnapshotArray flags of the arrays to read. Ids are always read (they are validated).
+  unsigned Arrays = SnapshotParameters;
+  /// SH degree to read when SnapshotSH is set: 0 = DC only (the default; the SH rest is not
+  /// read), -1 = everything the snapshot holds; clamped to what it holds.
+  int ShDegree = 0;
+};
+
+class TrainingLogReader
+{
+public:
+  /// Opens and validates @p path; throws std::runtime_error naming the file on failure.
+  explicit TrainingLogReader(const std::string& path,
+    const TrainingLogReaderOptions& options = TrainingLogReaderOptions());
+  ~TrainingLogReader();
+  TrainingLogReader(const TrainingLogReader&) = delete;
+  TrainingLogReader& operator=(const TrainingLogReader&) = delete;
+
+  const std::string& GetPath() const;
+  const TrainingLogHeader& GetHeader() const;
+  /// What the file lacks, one sentence each (empty for a complete log).
+  const std::vector<std::string>& GetLacks() const;
+  /// Repairs made so far (with Repair on), one sentence each.
+  const std::vector<std::string>& GetRepairs() const;
+
+  bool HasCameras() const;
+  bool HasImages() const;
+  bool HasMetrics() const;
+  bool HasTestMetrics() const;
+  bool HasEvents() const;
+
+  /// Logged snapshot iterations, increasing.
+  const std::vector<int>& GetSnapshotIterations() const;
+  /// The logged iteration nearest to @p iteration (ties: the earlier one); -1 when none.
+  int FindNearestSnapshot(int iteration) const;
+  /// Number of Gaussians of the snapshot at exactly @p iteration (throws if not logged).
+  std::size_t GetSnapshotSize(int iteration) const;
+  /// SH degree held by the snapshot at @p iteration ((K = (degree+1)^2 coefficients).
+  int GetSnapshotShDegree(int iteration) const;
+  /// SnapshotArray flags of the datasets the snapshot at @p iteration holds.
+  unsigned GetSnapshotArrays(int iteration) const;
+
+  /**
+   * Reads the snapshot at exactly @p iteration. grad_accum / denom, when asked for and
+   * present, are returned as float32 extra properties "grad_accum" / "denom".
+   */
+  GaussianCloud ReadSnapshot(int iteration, const SnapshotReadOptions& options = {}) const;
+  /// Reads the snapshot nearest to @p iteration; its iteration goes to @p loggedIteration.
+  GaussianCloud ReadNearestSnapshot(int iteration,
+    const SnapshotReadOptions& options,
+    int* loggedIteration) const;
+
+  std::vector<Camera> ReadCameras() const;
+  /// Reads /images/<name> ([H,W,3] u8); throws when absent.
+  std::vector<unsigned char> ReadImage(const std::string& name, int& width, int& height) const;
+  /// Names of the embedded images.
+  std::vector<std::string> GetImageNames() const;
+  /// Reads /metrics (or /metrics/test); missing value columns are filled with NaN.
+  MetricsTable ReadMetrics(bool test = false) const;
+  /// Reads and validates /events (empty table when the file has none).
+  EventTable ReadEvents() const;
+  /**
+   * History of @p ids across all snapshots: one row per (id, snapshot holding it), ordered
+   * by id then iteration, with the arrays named by @p arrays (SnapshotSH means the DC term).
+   * Reads only the id chunks the search touches and the selected rows of each dataset.
+   */
+  PropertyHistory ReadPropertyHistory(const std::vector<std::int64_t>& ids,
+    unsigned arrays = SnapshotPositions | SnapshotLogScales | SnapshotRotations |
+      SnapshotOpacityLogits | SnapshotSH) const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+} // namespace vis4gs
+
+#endif

@@ -1,0 +1,636 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "TrainingLogWriter.h"
+
+#include "TrainingLogHDF5.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace vis4gs
+{
+
+namespace
+{
+const char* const MetricsColumns[] = { "loss", "l1", "psnr", "ssim", "lpips", "elapsed_s" };
+
+/// The extendable columns of one metrics table and its pending rows.
+struct MetricsSink
+{
+  std::string GroupPath;
+  h5::Handle IterationSet;
+  h5::Handle CountSet;
+  h5::Handle ValueSets[6];
+  MetricsTable Pending;
+  std::size_t Written = 0;
+};
+
+std::vector<double> Column(const MetricsTable& t, int c)
+{
+  switch (c)
+  {
+    case 0:
+      return t.Loss;
+    case 1:
+      return t.L1;
+    case 2:
+      return t.Psnr;
+    case 3:
+      return t.Ssim;
+    case 4:
+      return t.Lpips;
+    default:
+      return t.ElapsedSeconds;
+  }
+}
+} // namespace
+
+struct TrainingLogWriter::Internals
+{
+  std::string Path;      ///< final path
+  std::string WritePath; ///< path being written (Path or Path.tmp)
+  TrainingLogWriterOptions Options;
+  h5::Handle File;
+  MetricsSink Train;
+  MetricsSink Test;
+  bool HasTest = false;
+  h5::Handle EventSets[4];
+  EventTable PendingEvents;
+  std::size_t EventsWritten = 0;
+  bool CamerasWritten = false;
+  int LastSnapshot = -1;
+  bool Closed = false;
+
+  void CreateMetrics(MetricsSink& sink, const std::string& groupPath)
+  {
+    h5::Handle group(
+      h5::Check(H5Gcreate2(this->File, groupPath.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        this->WritePath,
+        "cannot create " + groupPath));
+    const std::vector<hsize_t> dims{ 0 };
+    const std::vector<hsize_t> chunk{ 1024 };
+    const int level = this->Options.DeflateLevel;
+    sink.GroupPath = groupPath;
+    sink.IterationSet = h5::CreateAndWrite(group,
+      "iteration",
+      H5T_STD_I32LE,
+      H5T_NATIVE_INT32,
+      dims,
+      chunk,
+      level,
+      nullptr,
+      this->WritePath);
+    sink.CountSet = h5::CreateAndWrite(group,
+      "num_gaussians",
+      H5T_STD_I64LE,
+      H5T_NATIVE_INT64,
+      dims,
+      chunk,
+      level,
+      nullptr,
+      this->WritePath);
+    for (int c = 0; c < 6; ++c)
+    {
+      sink.ValueSets[c] = h5::CreateAndWrite(group,
+        MetricsColumns[c],
+        H5T_IEEE_F64LE,
+        H5T_NATIVE_DOUBLE,
+        dims,
+        chunk,
+        level,
+        nullptr,
+        this->WritePath);
+    }
+  }
+
+  void FlushMetrics(MetricsSink& sink)
+  {
+    const MetricsTable& t = sink.Pending;
+    const std::size_t n = t.Size();
+    if (n == 0)
+    {
+      return;
+    }
+    const std::string what = sink.GroupPath;
+    h5::Append1D(sink.IterationSet,
+      H5T_NATIVE_INT32,
+      n,
+      t.Iteration.data(),
+      this->WritePath,
+      what + "/iteration");
+    h5::Append1D(sink.CountSet,
+      H5T_NATIVE_INT64,
+      n,
+      t.NumGaussians.data(),
+      this->WritePath,
+      what + "/num_gaussians");
+    for (int c = 0; c < 6; ++c)
+    {
+      std::vector<double> values = Column(t, c);
+      h5::Append1D(sink.ValueSets[c],
+        H5T_NATIVE_DOUBLE,
+        n,
+        values.data(),
+        this->WritePath,
+        what + "/" + MetricsColumns[c]);
+    }
+    sink.Written += n;
+    sink.Pending = MetricsTable();
+  }
+
+  void FlushEvents()
+  {
+    const std::size_t n = this->PendingEvents.Size();
+    if (n == 0)
+    {
+      return;
+    }
+    const EventTable& e = this->PendingEvents;
+    h5::Append1D(this->EventSets[0],
+      H5T_NATIVE_INT32,
+      n,
+      e.Iteration.data(),
+      this->WritePath,
+      "/events/iteration");
+    h5::Append1D(
+      this->EventSets[1], H5T_NATIVE_UINT8, n, e.Kind.data(), this->WritePath, "/events/kind");
+    h5::Append1D(
+      this->EventSets[2], H5T_NATIVE_INT64, n, e.Parent.data(), this->WritePath, "/events/parent");
+    h5::Append1D(
+      this->EventSets[3], H5T_NATIVE_INT64, n, e.Child.data(), this->WritePath, "/events/child");
+    this->EventsWritten += n;
+    this->PendingEvents = EventTable();
+  }
+
+  void EnsureOpen() const
+  {
+    if (this->Closed)
+    {
+      throw std::runtime_error(this->Path + ": the training log is already closed");
+    }
+  }
+};
+
+//------------------------------------------------------------------------------
+std::string TrainingLogWriter::SnapshotName(int iteration)
+{
+  char name[32];
+  std::snprintf(name, sizeof(name), "%06d", iteration);
+  return name;
+}
+
+//------------------------------------------------------------------------------
+TrainingLogWriter::TrainingLogWriter(const std::string& path,
+  const TrainingLogWriterOptions& options)
+  : Impl(new Internals)
+{
+  Internals& d = *this->Impl;
+  d.Path = path;
+  d.Options = options;
+  d.WritePath = options.WriteToTemporary ? path + ".tmp" : path;
+  if (options.DeflateLevel < 0 || options.DeflateLevel > 9)
+  {
+    throw std::runtime_error(path + ": deflate level must be 0..9");
+  }
+  if (options.SnapshotChunkRows == 0 || options.TableChunkRows == 0)
+  {
+    throw std::runtime_error(path + ": chunk sizes must be positive");
+  }
+  h5::ErrorSilencer silence;
+
+  // Crash safety: never reuse freed file space (flushed metadata may still point at it) ...
+  h5::Handle fcpl(H5Pcreate(H5P_FILE_CREATE));
+  H5Pset_file_space_strategy(fcpl, H5F_FSPACE_STRATEGY_NONE, 0, 1);
+  // ... and keep dirty metadata in memory until Flush(): between flushes the file on disk
+  // only gains raw data in fresh space, so it stays the valid log of the last flush.
+  h5::Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+  H5AC_cache_config_t config;
+  config.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  H5Pget_mdc_config(fapl, &config);
+  config.evictions_enabled = false;
+  config.incr_mode = H5C_incr__off;
+  config.flash_incr_mode = H5C_flash_incr__off;
+  config.decr_mode = H5C_decr__off;
+  H5Pset_mdc_config(fapl, &config);
+#if H5_VERSION_GE(1, 10, 7)
+  // As the reader does, so that both can have the file open in one process.
+  H5Pset_file_locking(fapl, false, true);
+#endif
+
+  d.File = h5::Handle(h5::Check(H5Fcreate(d.WritePath.c_str(), H5F_ACC_TRUNC, fcpl, fapl),
+    d.WritePath,
+    "cannot create the training log"));
+  h5::WriteStringAttribute(d.File, "format", "vis4gs-training-log");
+  h5::WriteIntAttribute(d.File, "format_version", 1);
+  h5::WriteStringAttribute(d.File, "producer", options.Producer);
+  h5::WriteStringAttribute(d.File, "scene", options.Scene);
+  h5::WriteIntAttribute(d.File, "sh_degree", options.ShDegree);
+  h5::WriteIntAttribute(d.File, "iterations", options.Iterations);
+
+  d.CreateMetrics(d.Train, "/metrics");
+  {
+    h5::Handle events(
+      h5::Check(H5Gcreate2(d.File, "/events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        d.WritePath,
+        "cannot create /events"));
+    const std::vector<hsize_t> dims{ 0 };
+    const std::vector<hsize_t> chunk{ options.TableChunkRows };
+    const int level = options.DeflateLevel;
+    d.EventSets[0] = h5::CreateAndWrite(events,
+      "iteration",
+      H5T_STD_I32LE,
+      H5T_NATIVE_INT32,
+      dims,
+      chunk,
+      level,
+      nullptr,
+      d.WritePath);
+    d.EventSets[1] = h5::CreateAndWrite(
+      events, "kind", H5T_STD_U8LE, H5T_NATIVE_UINT8, dims, chunk, level, nullptr, d.WritePath);
+    d.EventSets[2] = h5::CreateAndWrite(
+      events, "parent", H5T_STD_I64LE, H5T_NATIVE_INT64, dims, chunk, level, nullptr, d.WritePath);
+    d.EventSets[3] = h5::CreateAndWrite(
+      events, "child", H5T_STD_I64LE, H5T_NATIVE_INT64, dims, chunk, level, nullptr, d.WritePath);
+  }
+  h5::Handle snapshots(
+    h5::Check(H5Gcreate2(d.File, "/snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      d.WritePath,
+      "cannot create /snapshots"));
+  this->Flush();
+}
+
+//------------------------------------------------------------------------------
+TrainingLogWriter::~TrainingLogWriter()
+{
+  try
+  {
+    this->Close();
+  }
+  catch (...)
+  {
+  }
+}
+
+//------------------------------------------------------------------------------
+const std::string& TrainingLogWriter::GetPath() const
+{
+  return this->Impl->Path;
+}
+
+//------------------------------------------------------------------------------
+std::size_t TrainingLogWriter::GetNumberOfEvents() const
+{
+  return this->Impl->EventsWritten + this->Impl->PendingEvents.Size();
+}
+
+//------------------------------------------------------------------------------
+std::size_t TrainingLogWriter::GetNumberOfMetricsRows(bool test) const
+{
+  const MetricsSink& s = test ? this->Impl->Test : this->Impl->Train;
+  return s.Written + s.Pending.Size();
+}
+
+//------------------------------------------------------------------------------
+int TrainingLogWriter::GetLastSnapshotIteration() const
+{
+  return this->Impl->LastSnapshot;
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::WriteCameras(const std::vector<Camera>& cameras)
+{
+  Internals& d = *this->Impl;
+  d.EnsureOpen();
+  if (d.CamerasWritten)
+  {
+    throw std::runtime_error(d.Path + ": /cameras is already written");
+  }
+  h5::ErrorSilencer silence;
+  h5::Handle group(h5::Check(H5Gcreate2(d.File, "/cameras", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+    d.WritePath,
+    "cannot create /cameras"));
+  const std::size_t v = cameras.size();
+  std::vector<std::string> names(v), images(v);
+  std::vector<std::uint8_t> split(v);
+  std::vector<std::int32_t> width(v), height(v);
+  std::vector<double> fx(v), fy(v), cx(v), cy(v), w2c(v * 16);
+  for (std::size_t i = 0; i < v; ++i)
+  {
+    const Camera& c = cameras[i];
+    names[i] = c.Name;
+    images[i] = c.ImagePath;
+    split[i] = static_cast<std::uint8_t>(c.Split);
+    width[i] = c.Width;
+    height[i] = c.Height;
+    fx[i] = c.Fx;
+    fy[i] = c.Fy;
+    cx[i] = c.Cx;
+    cy[i] = c.Cy;
+    for (int k = 0; k < 16; ++k)
+    {
+      w2c[i * 16 + k] = c.WorldToCamera[k];
+    }
+  }
+  const int level = d.Options.DeflateLevel;
+  const hsize_t n = v;
+  const std::vector<hsize_t> chunk{ 256 };
+  try
+  {
+    h5::WriteStrings(group, "name", names, level);
+    h5::WriteStrings(group, "image", images, level);
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw std::runtime_error(d.WritePath + ": " + e.what());
+  }
+  h5::CreateAndWrite(
+    group, "split", H5T_STD_U8LE, H5T_NATIVE_UINT8, { n }, chunk, level, split.data(), d.WritePath);
+  h5::CreateAndWrite(group,
+    "width",
+    H5T_STD_I32LE,
+    H5T_NATIVE_INT32,
+    { n },
+    chunk,
+    level,
+    width.data(),
+    d.WritePath);
+  h5::CreateAndWrite(group,
+    "height",
+    H5T_STD_I32LE,
+    H5T_NATIVE_INT32,
+    { n },
+    chunk,
+    level,
+    height.data(),
+    d.WritePath);
+  h5::CreateAndWrite(
+    group, "fx", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, { n }, chunk, level, fx.data(), d.WritePath);
+  h5::CreateAndWrite(
+    group, "fy", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, { n }, chunk, level, fy.data(), d.WritePath);
+  h5::CreateAndWrite(
+    group, "cx", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, { n }, chunk, level, cx.data(), d.WritePath);
+  h5::CreateAndWrite(
+    group, "cy", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, { n }, chunk, level, cy.data(), d.WritePath);
+  h5::CreateAndWrite(group,
+    "world_to_camera",
+    H5T_IEEE_F64LE,
+    H5T_NATIVE_DOUBLE,
+    { n, 4, 4 },
+    { 256, 4, 4 },
+    level,
+    w2c.data(),
+    d.WritePath);
+  d.CamerasWritten = true;
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::WriteImage(const std::string& name,
+  int width,
+  int height,
+  const unsigned char* rgb)
+{
+  Internals& d = *this->Impl;
+  d.EnsureOpen();
+  if (name.empty() || name.find('/') != std::string::npos || width <= 0 || height <= 0 || !rgb)
+  {
+    throw std::runtime_error(d.Path + ": bad embedded image '" + name + "'");
+  }
+  h5::ErrorSilencer silence;
+  if (!h5::LinkExists(d.File, "/images"))
+  {
+    h5::Handle g(h5::Check(H5Gcreate2(d.File, "/images", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      d.WritePath,
+      "cannot create /images"));
+  }
+  h5::Handle group(H5Gopen2(d.File, "/images", H5P_DEFAULT));
+  const hsize_t h = static_cast<hsize_t>(height), w = static_cast<hsize_t>(width);
+  h5::CreateAndWrite(group,
+    name,
+    H5T_STD_U8LE,
+    H5T_NATIVE_UINT8,
+    { h, w, 3 },
+    { std::min<hsize_t>(h, 256), w, 3 },
+    d.Options.DeflateLevel,
+    rgb,
+    d.WritePath);
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::AppendMetrics(const MetricsRow& row, bool test)
+{
+  Internals& d = *this->Impl;
+  d.EnsureOpen();
+  if (test && !d.HasTest)
+  {
+    h5::ErrorSilencer silence;
+    d.CreateMetrics(d.Test, "/metrics/test");
+    d.HasTest = true;
+  }
+  (test ? d.Test : d.Train).Pending.Append(row);
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::AppendEvent(const TrainingEvent& event)
+{
+  this->Impl->EnsureOpen();
+  this->Impl->PendingEvents.Append(event);
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::AppendEvents(const EventTable& events)
+{
+  Internals& d = *this->Impl;
+  d.EnsureOpen();
+  EventTable& p = d.PendingEvents;
+  p.Iteration.insert(p.Iteration.end(), events.Iteration.begin(), events.Iteration.end());
+  p.Kind.insert(p.Kind.end(), events.Kind.begin(), events.Kind.end());
+  p.Parent.insert(p.Parent.end(), events.Parent.begin(), events.Parent.end());
+  p.Child.insert(p.Child.end(), events.Child.begin(), events.Child.end());
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::WriteSnapshot(int iteration,
+  const GaussianCloud& cloud,
+  const SnapshotStatistics* statistics)
+{
+  Internals& d = *this->Impl;
+  d.EnsureOpen();
+  const std::string name = "/snapshots/" + SnapshotName(iteration);
+  const std::size_t n = cloud.Count;
+  const std::size_t k = static_cast<std::size_t>(cloud.ShCoefficientCount());
+  auto fail = [&](const std::string& what)
+  { throw std::runtime_error(d.Path + ": snapshot " + std::to_string(iteration) + ": " + what); };
+  if (iteration < 0)
+  {
+    fail("negative iteration");
+  }
+  if (iteration <= d.LastSnapshot)
+  {
+    fail("snapshots must be written in increasing iteration order (last was " +
+      std::to_string(d.LastSnapshot) + ")");
+  }
+  if (cloud.Positions.size() != 3 * n || cloud.LogScales.size() != 3 * n ||
+    cloud.Rotations.size() != 4 * n || cloud.OpacityLogits.size() != n ||
+    cloud.SH.size() != 3 * k * n || (!cloud.Ids.empty() && cloud.Ids.size() != n))
+  {
+    fail("array sizes do not match the Gaussian count " + std::to_string(n));
+  }
+  if (statistics &&
+    ((!statistics->GradAccum.empty() && statistics->GradAccum.size() != n) ||
+      (!statistics->Denom.empty() && statistics->Denom.size() != n)))
+  {
+    fail("grad_accum/denom sizes do not match the Gaussian count");
+  }
+  std::vector<std::int64_t> ids;
+  const std::int64_t* idData = cloud.Ids.data();
+  if (cloud.Ids.empty())
+  {
+    ids.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      ids[i] = static_cast<std::int64_t>(i);
+    }
+    idData = ids.data();
+  }
+  for (std::size_t i = 1; i < n; ++i)
+  {
+    if (idData[i] <= idData[i - 1])
+    {
+      fail("ids must be strictly increasing (id " + std::to_string(idData[i]) + " at row " +
+        std::to_string(i) + " follows " + std::to_string(idData[i - 1]) + ")");
+    }
+  }
+  h5::ErrorSilencer silence;
+  h5::Handle group(
+    h5::Check(H5Gcreate2(d.File, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      d.WritePath,
+      "cannot create " + name));
+  h5::WriteIntAttribute(group, "iteration", iteration);
+  const hsize_t rows = n;
+  const hsize_t c = std::max<hsize_t>(1, std::min<hsize_t>(d.Options.SnapshotChunkRows, 1u << 30));
+  const int level = d.Options.DeflateLevel;
+  const std::string& f = d.WritePath;
+  h5::CreateAndWrite(
+    group, "id", H5T_STD_I64LE, H5T_NATIVE_INT64, { rows }, { c }, level, idData, f);
+  h5::CreateAndWrite(group,
+    "position",
+    H5T_IEEE_F32LE,
+    H5T_NATIVE_FLOAT,
+    { rows, 3 },
+    { c, 3 },
+    level,
+    cloud.Positions.data(),
+    f);
+  h5::CreateAndWrite(group,
+    "log_scale",
+    H5T_IEEE_F32LE,
+    H5T_NATIVE_FLOAT,
+    { rows, 3 },
+    { c, 3 },
+    level,
+    cloud.LogScales.data(),
+    f);
+  h5::CreateAndWrite(group,
+    "rotation",
+    H5T_IEEE_F32LE,
+    H5T_NATIVE_FLOAT,
+    { rows, 4 },
+    { c, 4 },
+    level,
+    cloud.Rotations.data(),
+    f);
+  h5::CreateAndWrite(group,
+    "opacity_logit",
+    H5T_IEEE_F32LE,
+    H5T_NATIVE_FLOAT,
+    { rows },
+    { c },
+    level,
+    cloud.OpacityLogits.data(),
+    f);
+  // One coefficient per chunk along K, so that the DC term reads without the SH rest.
+  h5::CreateAndWrite(group,
+    "sh",
+    H5T_IEEE_F32LE,
+    H5T_NATIVE_FLOAT,
+    { rows, k, 3 },
+    { c, 1, 3 },
+    level,
+    cloud.SH.data(),
+    f);
+  if (statistics && !statistics->GradAccum.empty())
+  {
+    h5::CreateAndWrite(group,
+      "grad_accum",
+      H5T_IEEE_F32LE,
+      H5T_NATIVE_FLOAT,
+      { rows },
+      { c },
+      level,
+      statistics->GradAccum.data(),
+      f);
+  }
+  if (statistics && !statistics->Denom.empty())
+  {
+    h5::CreateAndWrite(group,
+      "denom",
+      H5T_IEEE_F32LE,
+      H5T_NATIVE_FLOAT,
+      { rows },
+      { c },
+      level,
+      statistics->Denom.data(),
+      f);
+  }
+  d.LastSnapshot = iteration;
+  if (d.Options.FlushOnSnapshot)
+  {
+    this->Flush();
+  }
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::Flush()
+{
+  Internals& d = *this->Impl;
+  d.EnsureOpen();
+  h5::ErrorSilencer silence;
+  d.FlushMetrics(d.Train);
+  if (d.HasTest)
+  {
+    d.FlushMetrics(d.Test);
+  }
+  d.FlushEvents();
+  h5::CheckStatus(H5Fflush(d.File, H5F_SCOPE_GLOBAL), d.WritePath, "cannot flush the training log");
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::Close()
+{
+  Internals& d = *this->Impl;
+  if (d.Closed)
+  {
+    return;
+  }
+  this->Flush();
+  d.Closed = true;
+  d.Train = MetricsSink();
+  d.Test = MetricsSink();
+  for (auto& e : d.EventSets)
+  {
+    e.Reset();
+  }
+  h5::ErrorSilencer silence;
+  hid_t file = d.File.Get();
+  herr_t status = H5Fclose(file);
+  d.File = h5::Handle();
+  if (status < 0)
+  {
+    h5::Fail(d.WritePath, "cannot close the training log");
+  }
+  if (d.Options.WriteToTemporary && std::rename(d.WritePath.c_str(), d.Path.c_str()) != 0)
+  {
+    throw std::runtime_error(d.Path + ": cannot rename " + d.WritePath + " onto it");
+  }
+}
+
+} // namespace vis4gs

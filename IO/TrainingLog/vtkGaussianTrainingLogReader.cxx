@@ -1,0 +1,482 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianTrainingLogReader.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianTrainingLogReader.h"
+
+#include "GaussianMath.h"
+#include "TrainingLogReader.h"
+#include "Vis4GSDataModel.h"
+
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkGaussianTrainingLogReader::vtkInternals
+{
+public:
+  std::unique_ptr<vis4gs::TrainingLogReader> Log;
+  std::string OpenedName;
+  bool OpenedRepair = false;
+  std::vector<int> Iterations;
+  std::vector<std::string> Lacks;
+  std::vector<std::string> Repairs;
+};
+
+vtkStandardNewMacro(vtkGaussianTrainingLogReader);
+
+namespace
+{
+template <typename ArrayT, typename T>
+vtkSmartPointer<ArrayT> MakeColumn(const char* name,
+  const std::vector<T>& values,
+  int components = 1)
+{
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkGaussianTrainingLogReader::vtkGaussianTrainingLogReader()
+  : Internals(new vtkInternals)
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(4);
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianTrainingLogReader::~vtkGaussianTrainingLogReader()
+{
+  this->SetFileName(nullptr);
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTrainingLogReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Iteration: " << this->Iteration << "\n";
+  os << indent << "LoadSHRest: " << this->LoadSHRest << "\n";
+  os << indent << "LoadScales: " << this->LoadScales << "\n";
+  os << indent << "LoadRotations: " << this->LoadRotations << "\n";
+  os << indent << "LoadOpacities: " << this->LoadOpacities << "\n";
+  os << indent << "LoadSH: " << this->LoadSH << "\n";
+  os << indent << "LoadStatistics: " << this->LoadStatistics << "\n";
+  os << indent << "Repair: " << this->Repair << "\n";
+  os << indent << "LoadedIteration: " << this->LoadedIteration << "\n";
+  os << indent << "SnapshotReads: " << this->SnapshotReads << "\n";
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTrainingLogReader::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkGaussianTrainingLogReader::GetGaussiansOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(0));
+}
+vtkTable* vtkGaussianTrainingLogReader::GetCamerasOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+vtkTable* vtkGaussianTrainingLogReader::GetMetricsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(2));
+}
+vtkTable* vtkGaussianTrainingLogReader::GetEventsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(3));
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTrainingLogReader::GetNumberOfSnapshots()
+{
+  return static_cast<int>(this->Internals->Iterations.size());
+}
+int vtkGaussianTrainingLogReader::GetSnapshotIteration(int i)
+{
+  const auto& its = this->Internals->Iterations;
+  return i >= 0 && i < static_cast<int>(its.size()) ? its[static_cast<std::size_t>(i)] : -1;
+}
+int vtkGaussianTrainingLogReader::GetNumberOfLacks()
+{
+  return static_cast<int>(this->Internals->Lacks.size());
+}
+const char* vtkGaussianTrainingLogReader::GetLack(int i)
+{
+  const auto& v = this->Internals->Lacks;
+  return i >= 0 && i < static_cast<int>(v.size()) ? v[static_cast<std::size_t>(i)].c_str()
+                                                  : nullptr;
+}
+int vtkGaussianTrainingLogReader::GetNumberOfRepairs()
+{
+  return static_cast<int>(this->Internals->Repairs.size());
+}
+const char* vtkGaussianTrainingLogReader::GetRepair(int i)
+{
+  const auto& v = this->Internals->Repairs;
+  return i >= 0 && i < static_cast<int>(v.size()) ? v[static_cast<std::size_t>(i)].c_str()
+                                                  : nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTrainingLogReader::OpenLog()
+{
+  vtkInternals& d = *this->Internals;
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "No FileName set.");
+    return false;
+  }
+  try
+  {
+    // Reopened at each RequestInformation: a log still being written shows its new snapshots.
+    vis4gs::TrainingLogReaderOptions options;
+    options.Repair = this->Repair;
+    d.Log.reset(new vis4gs::TrainingLogReader(this->FileName, options));
+    d.OpenedName = this->FileName;
+    d.OpenedRepair = this->Repair;
+    d.Iterations = d.Log->GetSnapshotIterations();
+    d.Lacks = d.Log->GetLacks();
+    d.Repairs = d.Log->GetRepairs();
+  }
+  catch (const std::exception& e)
+  {
+    d.Log.reset();
+    d.Iterations.clear();
+    d.Lacks.clear();
+    d.Repairs.clear();
+    vtkErrorMacro(<< e.what());
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkGaussianTrainingLogReader::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inInfo,
+  vtkInformationVector* outInfo)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+  {
+    return this->RequestInformation(request, outInfo);
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+  {
+    // Only the requested output is produced; the others keep their data and stay out of date.
+    const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+      ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+      : -1;
+    for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i)
+    {
+      vtkInformation* info = outInfo->GetInformationObject(i);
+      if (port >= 0 && i != port)
+      {
+        info->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+      }
+      else
+      {
+        info->Remove(vtkDemandDrivenPipeline::DATA_NOT_GENERATED());
+      }
+    }
+    return 1;
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, outInfo);
+  }
+  return this->Superclass::ProcessRequest(request, inInfo, outInfo);
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTrainingLogReader::RequestInformation(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector* outInfo)
+{
+  if (!this->OpenLog())
+  {
+    return 0;
+  }
+  const std::vector<int>& its = this->Internals->Iterations;
+  vtkInformation* info = outInfo->GetInformationObject(0);
+  if (its.empty())
+  {
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    return 1;
+  }
+  std::vector<double> steps(its.begin(), its.end());
+  info->Set(
+    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(), static_cast<int>(steps.size()));
+  double range[2] = { steps.front(), steps.back() };
+  info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
+  vtkInformationVector* outInfo)
+{
+  vtkInternals& d = *this->Internals;
+  if ((!d.Log || d.OpenedName != (this->FileName ? this->FileName : "") ||
+        d.OpenedRepair != this->Repair) &&
+    !this->OpenLog())
+  {
+    return 0;
+  }
+  const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+    ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+    : -1;
+  auto wanted = [port](int p) { return port < 0 || port == p; };
+  try
+  {
+    if (wanted(0))
+    {
+      vtkInformation* info = outInfo->GetInformationObject(0);
+      vtkPolyData* output = vtkPolyData::GetData(info);
+      double requested = this->Iteration;
+      if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+      {
+        requested = info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+      }
+      else if (this->Iteration < 0 && !d.Iterations.empty())
+      {
+        requested = d.Iterations.back();
+      }
+      const int iteration = d.Log->FindNearestSnapshot(
+        static_cast<int>(std::lround(std::max(-1e9, std::min(1e9, requested)))));
+      output->Initialize();
+      this->LoadedIteration = iteration;
+      if (iteration >= 0)
+      {
+        vis4gs::SnapshotReadOptions options;
+        options.Arrays = vis4gs::SnapshotIds | vis4gs::SnapshotPositions;
+        options.Arrays |= this->LoadScales ? vis4gs::SnapshotLogScales : 0u;
+        options.Arrays |= this->LoadRotations ? vis4gs::SnapshotRotations : 0u;
+        options.Arrays |= this->LoadOpacities ? vis4gs::SnapshotOpacityLogits : 0u;
+        options.Arrays |= this->LoadSH ? vis4gs::SnapshotSH : 0u;
+        options.Arrays |=
+          this->LoadStatistics ? vis4gs::SnapshotGradAccum | vis4gs::SnapshotDenom : 0u;
+        options.ShDegree = this->LoadSHRest ? -1 : 0;
+        vis4gs::GaussianCloud cloud = d.Log->ReadSnapshot(iteration, options);
+        ++this->SnapshotReads;
+        vis4gs::GaussianCloudToPolyData(cloud, output);
+        output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), iteration);
+      }
+    }
+    if (wanted(1))
+    {
+      vtkTable* output = vtkTable::GetData(outInfo->GetInformationObject(1));
+      output->Initialize();
+      vis4gs::CamerasToTable(d.Log->ReadCameras(), output);
+    }
+    if (wanted(2))
+    {
+      vtkTable* output = vtkTable::GetData(outInfo->GetInformationObject(2));
+      output->Initialize();
+      const vis4gs::MetricsTable train = d.Log->ReadMetrics(false);
+      const vis4gs::MetricsTable test = d.Log->ReadMetrics(true);
+      // One row per iteration: the train rows in order, then test-only iterations, sorted.
+      std::map<int, std::size_t> testRow;
+      for (std::size_t i = 0; i < test.Size(); ++i)
+      {
+        testRow.emplace(test.Iteration[i], i);
+      }
+      struct Row
+      {
+        int Iteration;
+        long long Train; // row in train or -1
+        long long Test;  // row in test or -1
+      };
+      std::vector<Row> rows;
+      std::map<int, bool> trainHas;
+      for (std::size_t i = 0; i < train.Size(); ++i)
+      {
+        auto t = testRow.find(train.Iteration[i]);
+        const bool first = trainHas.emplace(train.Iteration[i], true).second;
+        rows.push_back({ train.Iteration[i],
+          static_cast<long long>(i),
+          t != testRow.end() && first ? static_cast<long long>(t->second) : -1 });
+      }
+      for (const auto& t : testRow)
+      {
+        if (!trainHas.count(t.first))
+        {
+          rows.push_back({ t.first, -1, static_cast<long long>(t.second) });
+        }
+      }
+      std::stable_sort(rows.begin(),
+        rows.end(),
+        [](const Row& a, const Row& b) { return a.Iteration < b.Iteration; });
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      std::vector<int> iterations;
+      std::vector<vtkIdType> counts;
+      std::vector<double> columns[11];
+      for (const Row& r : rows)
+      {
+        iterations.push_back(r.Iteration);
+        counts.push_back(r.Train >= 0 ? train.NumGaussians[static_cast<std::size_t>(r.Train)]
+                                      : test.NumGaussians[static_cast<std::size_t>(r.Test)]);
+        if (r.Train >= 0)
+        {
+          const std::size_t i = static_cast<std::size_t>(r.Train);
+          const double v[6] = { train.Loss[i],
+            train.L1[i],
+            train.Psnr[i],
+            train.Ssim[i],
+            train.Lpips[i],
+            train.ElapsedSeconds[i] };
+          for (int c = 0; c < 6; ++c)
+          {
+            columns[c].push_back(v[c]);
+          }
+        }
+        else
+        {
+          for (int c = 0; c < 6; ++c)
+          {
+            columns[c].push_back(
+              c == 5 ? test.ElapsedSeconds[static_cast<std::size_t>(r.Test)] : nan);
+          }
+        }
+        if (r.Test >= 0)
+        {
+          const std::size_t i = static_cast<std::size_t>(r.Test);
+          const double v[5] = {
+            test.Loss[i], test.L1[i], test.Psnr[i], test.Ssim[i], test.Lpips[i]
+          };
+          for (int c = 0; c < 5; ++c)
+          {
+            columns[6 + c].push_back(v[c]);
+          }
+        }
+        else
+        {
+          for (int c = 0; c < 5; ++c)
+          {
+            columns[6 + c].push_back(nan);
+          }
+        }
+      }
+      output->AddColumn(MakeColumn<vtkIntArray>("Iteration", iterations));
+      output->AddColumn(MakeColumn<vtkIdTypeArray>("NumGaussians", counts));
+      const char* names[11] = { "Loss",
+        "L1",
+        "PSNR",
+        "SSIM",
+        "LPIPS",
+        "ElapsedSeconds",
+        "TestLoss",
+        "TestL1",
+        "TestPSNR",
+        "TestSSIM",
+        "TestLPIPS" };
+      for (int c = 0; c < 11; ++c)
+      {
+        output->AddColumn(MakeColumn<vtkDoubleArray>(names[c], columns[c]));
+      }
+    }
+    if (wanted(3))
+    {
+      vtkTable* output = vtkTable::GetData(outInfo->GetInformationObject(3));
+      output->Initialize();
+      const vis4gs::EventTable e = d.Log->ReadEvents();
+      output->AddColumn(MakeColumn<vtkIntArray>("Iteration", e.Iteration));
+      output->AddColumn(MakeColumn<vtkUnsignedCharArray>("Kind", e.Kind));
+      output->AddColumn(MakeColumn<vtkIdTypeArray>("Parent", e.Parent));
+      output->AddColumn(MakeColumn<vtkIdTypeArray>("Child", e.Child));
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  d.Repairs = d.Log->GetRepairs();
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTrainingLogReader::GetPropertyHistory(vtkIdTypeArray* ids, vtkTable* output)
+{
+  vtkInternals& d = *this->Internals;
+  if (!ids || !output)
+  {
+    vtkErrorMacro(<< "GetPropertyHistory needs an id array and an output table.");
+    return 0;
+  }
+  if (!d.Log && !this->OpenLog())
+  {
+    return 0;
+  }
+  std::vector<std::int64_t> wanted(static_cast<std::size_t>(ids->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
+  {
+    wanted[static_cast<std::size_t>(i)] = ids->GetValue(i);
+  }
+  vis4gs::PropertyHistory h;
+  try
+  {
+    h = d.Log->ReadPropertyHistory(wanted,
+      vis4gs::SnapshotPositions | vis4gs::SnapshotLogScales | vis4gs::SnapshotRotations |
+        vis4gs::SnapshotOpacityLogits | vis4gs::SnapshotSH);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  d.Repairs = d.Log->GetRepairs();
+  output->Initialize();
+  output->AddColumn(MakeColumn<vtkIdTypeArray>(vis4gs::arrays::GaussianId, h.Id));
+  output->AddColumn(MakeColumn<vtkIntArray>("Iteration", h.Iteration));
+  output->AddColumn(MakeColumn<vtkFloatArray>("Position", h.Positions, 3));
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::LogScale, h.LogScales, 3));
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::Rotation, h.Rotations, 4));
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::OpacityLogit, h.OpacityLogits));
+  output->AddColumn(MakeColumn<vtkFloatArray>("SHDC", h.SHDC, 3));
+  std::vector<float> opacity(h.Size()), scale(3 * h.Size());
+  for (std::size_t i = 0; i < h.Size(); ++i)
+  {
+    opacity[i] = vis4gs::Sigmoid(h.OpacityLogits[i]);
+    for (int c = 0; c < 3; ++c)
+    {
+      scale[3 * i + c] = std::exp(h.LogScales[3 * i + c]);
+    }
+  }
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::Opacity, opacity));
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::Scale, scale, 3));
+  return 1;
+}
