@@ -1,0 +1,47 @@
+# `vis4gs view`: the Qt5 application of the linked views (issue 10). Included from
+# CMakeLists.txt after the vis4gs target exists. Without Qt5 or VTK::GUISupportQt the
+# program builds without the `view` command.
+find_package(Qt5 QUIET COMPONENTS Widgets)
+if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLinked)
+  set_property(SOURCE Vis4GSMainWindow.h PROPERTY SKIP_AUTOMOC OFF)
+  target_sources(vis4gs PRIVATE
+    vis4gsViewCommand.cxx
+    Vis4GSMainWindow.cxx
+    Vis4GSMainWindow.h
+    Vis4GSDocument.cxx)
+  set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
+  target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
+    vis4gs::CoreTrainingLog vis4gs::CoreScene VTK::RenderingCore VTK::RenderingOpenGL2
+    VTK::InteractionStyle VTK::RenderingContext2D VTK::ChartsCore VTK::ViewsCore
+    VTK::ViewsContext2D VTK::CommonExecutionModel VTK::RenderingFreeType
+    VTK::RenderingContextOpenGL2)
+  if (TARGET Vis4GS::FiltersGenealogy)
+    target_compile_definitions(vis4gs PRIVATE VIS4GS_HAVE_GENEALOGY_FILTER)
+  endif ()
+  set(VIS4GS_HAVE_VIEW_COMMAND ON)
+else ()
+  message(STATUS "vis4gs: Qt5 Widgets or VTK::GUISupportQt not found, `vis4gs view` is left out")
+  set(VIS4GS_HAVE_VIEW_COMMAND OFF)
+endif ()
+
+# A small SYNTHETIC training log for the application tests and benchmarks.
+add_executable(vis4gsMakeTestLog vis4gsMakeTestLog.cxx)
+target_compile_options(vis4gsMakeTestLog PRIVATE ${vis4gs_warning_flags})
+target_link_libraries(vis4gsMakeTestLog PRIVATE vis4gs::CoreTrainingLog vis4gs::CoreGenealogy)
+
+if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
+  set(_vis4gs_view_dir "${CMAKE_CURRENT_BINARY_DIR}/Testing/view")
+  add_test(NAME vis4gs-ViewMakeLog
+    COMMAND vis4gsMakeTestLog "${_vis4gs_view_dir}/synthetic.h5" 400 4)
+  add_test(NAME vis4gs-ViewEndToEnd
+    COMMAND vis4gs view "${_vis4gs_view_dir}/synthetic.h5"
+      "--self-test=${_vis4gs_view_dir}/screenshots" --resolution=1200,800)
+  set_tests_properties(vis4gs-ViewMakeLog PROPERTIES LABELS "Application;GUI"
+    FIXTURES_SETUP vis4gsViewLog)
+  set_tests_properties(vis4gs-ViewEndToEnd PROPERTIES LABELS "Application;GUI"
+    FIXTURES_REQUIRED vis4gsViewLog
+    PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
+  add_test(NAME vis4gs-ViewHelp COMMAND vis4gs view --help)
+  set_tests_properties(vis4gs-ViewHelp PROPERTIES LABELS "Application"
+    PASS_REGULAR_EXPRESSION "--self-test=DIR")
+endif ()

@@ -1,0 +1,362 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianHistogramView.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianHistogramView.h"
+
+#include "vtkAxis.h"
+#include "vtkCallbackCommand.h"
+#include "vtkChartXY.h"
+#include "vtkContextMouseEvent.h"
+#include "vtkContextScene.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkGaussianSelectionHub.h"
+#include "vtkIdTypeArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPlot.h"
+#include "vtkPlotBar.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkTable.h"
+#include "vtkWeakPointer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+vtkStandardNewMacro(vtkGaussianHistogramView);
+
+struct vtkGaussianHistogramView::vtkInternals
+{
+  vtkNew<vtkChartXY> Chart;
+  vtkNew<vtkTable> Bins;
+  vtkSmartPointer<vtkDataObject> Data;
+  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
+  unsigned long Observer = 0;
+  vtkNew<vtkCallbackCommand> HubCommand;
+  vtkNew<vtkCallbackCommand> ChartCommand;
+  std::vector<double> Edges;
+  std::vector<vtkIdType> Counts, SelectedCounts;
+  vtkPlot* AllPlot = nullptr;
+  vtkPlot* SelectedPlot = nullptr;
+  bool Brushing = false;
+};
+
+//------------------------------------------------------------------------------
+vtkGaussianHistogramView::vtkGaussianHistogramView()
+  : Internals(new vtkInternals)
+{
+  this->SetArrayName("Opacity");
+  this->SetIdArrayName("GaussianId");
+  auto& in = *this->Internals;
+  this->GetScene()->AddItem(in.Chart);
+  this->GetRenderer()->SetBackground(1, 1, 1);
+  in.Chart->SetActionToButton(vtkChart::SELECT, vtkContextMouseEvent::LEFT_BUTTON);
+  in.Chart->SetActionToButton(vtkChart::PAN, vtkContextMouseEvent::MIDDLE_BUTTON);
+  in.Chart->SetBarWidthFraction(0.95f);
+  in.HubCommand->SetClientData(this);
+  in.HubCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
+    { static_cast<vtkGaussianHistogramView*>(client)->UpdateHistogram(); });
+  in.ChartCommand->SetClientData(this);
+  in.ChartCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
+    { static_cast<vtkGaussianHistogramView*>(client)->OnChartSelection(); });
+  in.Chart->AddObserver(vtkCommand::SelectionChangedEvent, in.ChartCommand);
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianHistogramView::~vtkGaussianHistogramView()
+{
+  this->SetSelectionHub(nullptr);
+  this->SetArrayName(nullptr);
+  this->SetIdArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::SetInputData(vtkDataObject* data)
+{
+  this->Internals->Data = data;
+  this->UpdateHistogram();
+}
+
+//------------------------------------------------------------------------------
+vtkDataObject* vtkGaussianHistogramView::GetInputData()
+{
+  return this->Internals->Data;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::SetSelectionHub(vtkGaussianSelectionHub* hub)
+{
+  auto& in = *this->Internals;
+  if (in.Hub == hub)
+  {
+    return;
+  }
+  if (in.Hub)
+  {
+    in.Hub->RemoveObserver(in.Observer);
+    in.Hub->RemoveView(this);
+  }
+  in.Hub = hub;
+  if (hub)
+  {
+    in.Observer = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
+    hub->AddView(this);
+  }
+  this->UpdateHistogram();
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSelectionHub* vtkGaussianHistogramView::GetSelectionHub()
+{
+  return this->Internals->Hub;
+}
+
+//------------------------------------------------------------------------------
+vtkChartXY* vtkGaussianHistogramView::GetChart()
+{
+  return this->Internals->Chart;
+}
+
+namespace
+{
+vtkAbstractArray* FindArray(vtkDataObject* data, const char* name)
+{
+  if (!data || !name)
+  {
+    return nullptr;
+  }
+  if (auto* table = vtkTable::SafeDownCast(data))
+  {
+    return table->GetColumnByName(name);
+  }
+  if (auto* ds = vtkDataSet::SafeDownCast(data))
+  {
+    vtkAbstractArray* a = ds->GetPointData()->GetAbstractArray(name);
+    if (!a && ds->GetPointData()->GetPedigreeIds() &&
+      ds->GetPointData()->GetPedigreeIds()->GetName() &&
+      std::string(ds->GetPointData()->GetPedigreeIds()->GetName()) == name)
+    {
+      a = ds->GetPointData()->GetPedigreeIds();
+    }
+    return a;
+  }
+  return nullptr;
+}
+
+double ValueOf(vtkDataArray* a, vtkIdType i, int component)
+{
+  const int nc = a->GetNumberOfComponents();
+  if (component >= 0 && component < nc)
+  {
+    return a->GetComponent(i, component);
+  }
+  double v = a->GetComponent(i, 0);
+  for (int c = 1; c < nc; ++c)
+  {
+    v = std::max(v, a->GetComponent(i, c));
+  }
+  return v;
+}
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::UpdateHistogram()
+{
+  auto& in = *this->Internals;
+  in.Chart->ClearPlots();
+  in.AllPlot = in.SelectedPlot = nullptr;
+  in.Edges.assign(this->NumberOfBins + 1, 0.0);
+  in.Counts.assign(this->NumberOfBins, 0);
+  in.SelectedCounts.assign(this->NumberOfBins, 0);
+  auto* values = vtkDataArray::SafeDownCast(FindArray(in.Data, this->ArrayName));
+  vtkAbstractArray* ids = FindArray(in.Data, this->IdArrayName);
+  if (!values)
+  {
+    return;
+  }
+  const vtkIdType n = values->GetNumberOfTuples();
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double v = ValueOf(values, i, this->Component);
+    if (std::isfinite(v))
+    {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  if (lo > hi)
+  {
+    lo = 0;
+    hi = 1;
+  }
+  if (hi == lo)
+  {
+    hi = lo + 1;
+  }
+  const int nb = this->NumberOfBins;
+  for (int b = 0; b <= nb; ++b)
+  {
+    in.Edges[b] = lo + (hi - lo) * b / nb;
+  }
+  auto binOf = [&](double v)
+  { return std::min(nb - 1, std::max(0, static_cast<int>((v - lo) / (hi - lo) * nb))); };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double v = ValueOf(values, i, this->Component);
+    if (std::isfinite(v))
+    {
+      ++in.Counts[binOf(v)];
+    }
+  }
+  if (in.Hub && ids && in.Hub->GetNumberOfSelectedIds() > 0)
+  {
+    const auto& sel = in.Hub->GetSelectedIdVector();
+    vtkNew<vtkIdTypeArray> rows;
+    vtkGaussianSelectionHub::IdsToIndices(
+      sel.data(), static_cast<vtkIdType>(sel.size()), ids, rows);
+    for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
+    {
+      const double v = ValueOf(values, rows->GetValue(k), this->Component);
+      if (std::isfinite(v))
+      {
+        ++in.SelectedCounts[binOf(v)];
+      }
+    }
+  }
+  in.Bins->Initialize();
+  vtkNew<vtkDoubleArray> centre, all, selected;
+  centre->SetName("Value");
+  all->SetName("All");
+  selected->SetName("Selected");
+  for (int b = 0; b < nb; ++b)
+  {
+    centre->InsertNextValue(0.5 * (in.Edges[b] + in.Edges[b + 1]));
+    all->InsertNextValue(static_cast<double>(in.Counts[b]));
+    selected->InsertNextValue(static_cast<double>(in.SelectedCounts[b]));
+  }
+  in.Bins->AddColumn(centre);
+  in.Bins->AddColumn(all);
+  in.Bins->AddColumn(selected);
+  in.AllPlot = in.Chart->AddPlot(vtkChart::BAR);
+  in.AllPlot->SetInputData(in.Bins, "Value", "All");
+  in.AllPlot->SetColor(160, 160, 170, 255);
+  in.AllPlot->SetLabel("all");
+  in.SelectedPlot = in.Chart->AddPlot(vtkChart::BAR);
+  in.SelectedPlot->SetInputData(in.Bins, "Value", "Selected");
+  in.SelectedPlot->SetColor(255, 140, 0, 255);
+  in.SelectedPlot->SetLabel("selected");
+  in.SelectedPlot->SetSelectable(false);
+  in.Chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(this->ArrayName ? this->ArrayName : "");
+  in.Chart->GetAxis(vtkAxis::LEFT)->SetTitle("Gaussians");
+  in.Chart->SetTitle(std::string("Histogram: ") + (this->ArrayName ? this->ArrayName : ""));
+  in.Chart->RecalculateBounds();
+  this->GetScene()->SetDirty(true);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianHistogramView::SelectRange(double lo, double hi, int mode)
+{
+  auto& in = *this->Internals;
+  auto* values = vtkDataArray::SafeDownCast(FindArray(in.Data, this->ArrayName));
+  vtkAbstractArray* ids = FindArray(in.Data, this->IdArrayName);
+  if (!values || !ids)
+  {
+    vtkErrorMacro("SelectRange: the input lacks '"
+      << (this->ArrayName ? this->ArrayName : "") << "' or '"
+      << (this->IdArrayName ? this->IdArrayName : "") << "'");
+    return 0;
+  }
+  vtkNew<vtkIdTypeArray> rows, selected;
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    const double v = ValueOf(values, i, this->Component);
+    if (v >= lo && v <= hi)
+    {
+      rows->InsertNextValue(i);
+    }
+  }
+  vtkGaussianSelectionHub::IndicesToIds(rows, ids, selected);
+  if (in.Hub)
+  {
+    in.Hub->SelectIds(selected, mode);
+  }
+  return rows->GetNumberOfTuples();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::OnChartSelection()
+{
+  auto& in = *this->Internals;
+  if (!in.AllPlot || in.Edges.size() < 2)
+  {
+    return;
+  }
+  vtkIdTypeArray* bins = in.AllPlot->GetSelection();
+  if (!bins || bins->GetNumberOfTuples() == 0)
+  {
+    if (in.Hub)
+    {
+      in.Hub->ClearSelection();
+    }
+    return;
+  }
+  vtkIdType b0 = bins->GetValue(0), b1 = b0;
+  for (vtkIdType k = 1; k < bins->GetNumberOfTuples(); ++k)
+  {
+    b0 = std::min(b0, bins->GetValue(k));
+    b1 = std::max(b1, bins->GetValue(k));
+  }
+  b0 = std::max<vtkIdType>(0, b0);
+  b1 = std::min<vtkIdType>(this->NumberOfBins - 1, b1);
+  // The last bin is closed on the right; the others are half open, as in UpdateHistogram.
+  const double lo = in.Edges[b0];
+  const double hi = (b1 == this->NumberOfBins - 1)
+    ? in.Edges[b1 + 1]
+    : std::nextafter(in.Edges[b1 + 1], -std::numeric_limits<double>::infinity());
+  this->SelectRange(lo, hi, vtkGaussianSelectionHub::REPLACE);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::GetBinEdges(double* edges)
+{
+  std::copy(this->Internals->Edges.begin(), this->Internals->Edges.end(), edges);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianHistogramView::GetBinCount(int bin)
+{
+  const auto& c = this->Internals->Counts;
+  return (bin >= 0 && bin < static_cast<int>(c.size())) ? c[bin] : 0;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianHistogramView::GetSelectedBinCount(int bin)
+{
+  const auto& c = this->Internals->SelectedCounts;
+  return (bin >= 0 && bin < static_cast<int>(c.size())) ? c[bin] : 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ArrayName: " << (this->ArrayName ? this->ArrayName : "(none)") << "\n";
+  os << indent << "IdArrayName: " << (this->IdArrayName ? this->IdArrayName : "(none)") << "\n";
+  os << indent << "Component: " << this->Component << "\n";
+  os << indent << "NumberOfBins: " << this->NumberOfBins << "\n";
+  os << indent << "InputData: " << this->Internals->Data.GetPointer() << "\n";
+  os << indent << "SelectionHub: " << this->Internals->Hub.GetPointer() << "\n";
+}

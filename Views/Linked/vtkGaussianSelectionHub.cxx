@@ -1,0 +1,609 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianSelectionHub.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianSelectionHub.h"
+
+#include "vtkAbstractArray.h"
+#include "vtkAnnotationLink.h"
+#include "vtkCallbackCommand.h"
+#include "vtkChartXY.h"
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkRenderViewBase.h"
+#include "vtkRenderWindow.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+#include "vtkTable.h"
+#include "vtkView.h"
+
+#include <algorithm>
+#include <string>
+#include <unordered_set>
+
+vtkStandardNewMacro(vtkGaussianSelectionHub);
+
+namespace
+{
+struct ChartEntry
+{
+  vtkSmartPointer<vtkChartXY> Chart;
+  vtkSmartPointer<vtkTable> Table;
+  std::string IdColumn;
+  vtkSmartPointer<vtkAnnotationLink> Link;
+  unsigned long Observer = 0;
+};
+
+void SortUnique(std::vector<vtkIdType>& ids)
+{
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+}
+
+// Reads any id-like array (vtkIdTypeArray fast path, other vtkDataArrays, variant arrays).
+vtkIdType IdAt(vtkAbstractArray* column, vtkIdTypeArray* fast, vtkDataArray* data, vtkIdType i)
+{
+  if (fast)
+  {
+    return fast->GetValue(i);
+  }
+  if (data)
+  {
+    return static_cast<vtkIdType>(data->GetComponent(i, 0));
+  }
+  return column->GetVariantValue(i).ToTypeInt64();
+}
+
+void AppendList(vtkAbstractArray* list, std::vector<vtkIdType>& out)
+{
+  if (!list)
+  {
+    return;
+  }
+  auto* fast = vtkIdTypeArray::SafeDownCast(list);
+  auto* data = vtkDataArray::SafeDownCast(list);
+  const vtkIdType n = list->GetNumberOfTuples();
+  out.reserve(out.size() + static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    out.push_back(IdAt(list, fast, data, i));
+  }
+}
+}
+
+struct vtkGaussianSelectionHub::vtkInternals
+{
+  vtkNew<vtkAnnotationLink> Link;
+  unsigned long LinkObserver = 0;
+  std::vector<vtkSmartPointer<vtkView>> Views;
+  std::vector<vtkSmartPointer<vtkRenderWindow>> Windows;
+  std::vector<ChartEntry> Charts;
+  vtkNew<vtkCallbackCommand> LinkCommand;
+  vtkNew<vtkCallbackCommand> ChartCommand;
+  bool Updating = false;
+};
+
+//------------------------------------------------------------------------------
+vtkGaussianSelectionHub::vtkGaussianSelectionHub()
+  : Internals(new vtkInternals)
+{
+  auto& in = *this->Internals;
+  in.LinkCommand->SetClientData(this);
+  in.LinkCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
+    { static_cast<vtkGaussianSelectionHub*>(client)->OnLinkChanged(); });
+  in.ChartCommand->SetClientData(this);
+  in.ChartCommand->SetCallback([](vtkObject* caller, unsigned long, void* client, void*)
+    { static_cast<vtkGaussianSelectionHub*>(client)->OnChartChanged(caller); });
+  vtkNew<vtkIdTypeArray> none;
+  in.Link->SetCurrentSelection(MakePedigreeSelection(none));
+  in.LinkObserver = in.Link->AddObserver(vtkCommand::AnnotationChangedEvent, in.LinkCommand);
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSelectionHub::~vtkGaussianSelectionHub()
+{
+  auto& in = *this->Internals;
+  in.Link->RemoveObserver(in.LinkObserver);
+  for (auto& c : in.Charts)
+  {
+    c.Chart->RemoveObserver(c.Observer);
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkAnnotationLink* vtkGaussianSelectionHub::GetAnnotationLink()
+{
+  return this->Internals->Link;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::SetSelection(vtkSelection* selection)
+{
+  std::vector<vtkIdType> ids;
+  if (selection)
+  {
+    for (unsigned int n = 0; n < selection->GetNumberOfNodes(); ++n)
+    {
+      vtkSelectionNode* node = selection->GetNode(n);
+      const int content = node->GetContentType();
+      if (content == vtkSelectionNode::PEDIGREEIDS || content == vtkSelectionNode::GLOBALIDS)
+      {
+        AppendList(node->GetSelectionList(), ids);
+      }
+      else if (content == vtkSelectionNode::INDICES)
+      {
+        // Only meaningful with a registered table of the same kind: a chart's rows.
+        bool converted = false;
+        for (auto& c : this->Internals->Charts)
+        {
+          vtkAbstractArray* column = c.Table->GetColumnByName(c.IdColumn.c_str());
+          auto* indices = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+          if (column && indices && node->GetFieldType() != vtkSelectionNode::VERTEX)
+          {
+            vtkNew<vtkIdTypeArray> out;
+            IndicesToIds(indices, column, out);
+            AppendList(out, ids);
+            converted = true;
+            break;
+          }
+        }
+        if (!converted)
+        {
+          vtkWarningMacro("SetSelection: an INDICES selection node without a registered id "
+                          "column was ignored; pass GaussianId pedigree ids");
+        }
+      }
+      else
+      {
+        vtkWarningMacro("SetSelection: selection node of content type "
+          << vtkSelectionNode::GetContentTypeAsString(content) << " ignored");
+      }
+    }
+  }
+  SortUnique(ids);
+  this->Publish(std::move(ids));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::SelectIds(vtkIdTypeArray* ids, int mode)
+{
+  if (!ids)
+  {
+    this->SelectIds(nullptr, 0, mode);
+    return;
+  }
+  this->SelectIds(ids->GetPointer(0), ids->GetNumberOfTuples(), mode);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::SelectIds(const vtkIdType* ids, vtkIdType count, int mode)
+{
+  std::vector<vtkIdType> given(ids, ids + (ids ? count : 0));
+  SortUnique(given);
+  std::vector<vtkIdType> result;
+  const auto& cur = this->Selected;
+  switch (mode)
+  {
+    case ADD:
+      std::set_union(
+        cur.begin(), cur.end(), given.begin(), given.end(), std::back_inserter(result));
+      break;
+    case SUBTRACT:
+      std::set_difference(
+        cur.begin(), cur.end(), given.begin(), given.end(), std::back_inserter(result));
+      break;
+    case TOGGLE:
+      std::set_symmetric_difference(
+        cur.begin(), cur.end(), given.begin(), given.end(), std::back_inserter(result));
+      break;
+    default:
+      result = std::move(given);
+      break;
+  }
+  this->Publish(std::move(result));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::ClearSelection()
+{
+  this->Publish({});
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::Publish(std::vector<vtkIdType>&& ids)
+{
+  auto& in = *this->Internals;
+  if (ids == this->Selected || in.Updating)
+  {
+    return;
+  }
+  in.Updating = true;
+  this->Selected = std::move(ids);
+  ++this->NumberOfChanges;
+
+  vtkNew<vtkIdTypeArray> array;
+  array->SetNumberOfTuples(static_cast<vtkIdType>(this->Selected.size()));
+  std::copy(this->Selected.begin(), this->Selected.end(), array->GetPointer(0));
+  in.Link->SetCurrentSelection(MakePedigreeSelection(array));
+
+  for (auto& c : in.Charts)
+  {
+    vtkAbstractArray* column = c.Table->GetColumnByName(c.IdColumn.c_str());
+    vtkNew<vtkIdTypeArray> rows;
+    if (column)
+    {
+      IdsToIndices(array, column, rows);
+    }
+    c.Link->SetCurrentSelection(MakeIndexSelection(rows, vtkSelectionNode::POINT));
+    // vtkChartXY only re-reads its link when painting; make sure it does.
+    c.Chart->Modified();
+  }
+  this->InvokeEvent(vtkCommand::SelectionChangedEvent, nullptr);
+  in.Updating = false;
+  this->Modified();
+  if (this->RenderOnChange)
+  {
+    this->RenderAll();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::OnLinkChanged()
+{
+  if (this->Internals->Updating)
+  {
+    return;
+  }
+  // Someone set the shared link directly (e.g. a representation of the scene view).
+  this->SetSelection(this->Internals->Link->GetCurrentSelection());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::OnChartChanged(vtkObject* caller)
+{
+  auto& in = *this->Internals;
+  if (in.Updating)
+  {
+    return;
+  }
+  for (auto& c : in.Charts)
+  {
+    if (c.Chart.GetPointer() != caller)
+    {
+      continue;
+    }
+    vtkAbstractArray* column = c.Table->GetColumnByName(c.IdColumn.c_str());
+    vtkSelection* selection = c.Link->GetCurrentSelection();
+    std::vector<vtkIdType> ids;
+    if (column && selection)
+    {
+      for (unsigned int n = 0; n < selection->GetNumberOfNodes(); ++n)
+      {
+        auto* rows = vtkIdTypeArray::SafeDownCast(selection->GetNode(n)->GetSelectionList());
+        if (rows)
+        {
+          vtkNew<vtkIdTypeArray> out;
+          IndicesToIds(rows, column, out);
+          AppendList(out, ids);
+        }
+      }
+    }
+    SortUnique(ids);
+    this->Publish(std::move(ids));
+    return;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::GetSelectedIds(vtkIdTypeArray* ids)
+{
+  if (!ids)
+  {
+    return;
+  }
+  ids->SetNumberOfComponents(1);
+  ids->SetNumberOfTuples(static_cast<vtkIdType>(this->Selected.size()));
+  std::copy(this->Selected.begin(), this->Selected.end(), ids->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSelectionHub::GetNumberOfSelectedIds()
+{
+  return static_cast<vtkIdType>(this->Selected.size());
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSelectionHub::IsSelected(vtkIdType gaussianId)
+{
+  return std::binary_search(this->Selected.begin(), this->Selected.end(), gaussianId);
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkSelection> vtkGaussianSelectionHub::GetCurrentSelection()
+{
+  vtkNew<vtkIdTypeArray> ids;
+  this->GetSelectedIds(ids);
+  return MakePedigreeSelection(ids);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::AddView(vtkView* view)
+{
+  auto& views = this->Internals->Views;
+  if (view && std::find(views.begin(), views.end(), view) == views.end())
+  {
+    views.emplace_back(view);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::RemoveView(vtkView* view)
+{
+  auto& views = this->Internals->Views;
+  views.erase(std::remove(views.begin(), views.end(), view), views.end());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::AddRenderWindow(vtkRenderWindow* window)
+{
+  auto& windows = this->Internals->Windows;
+  if (window && std::find(windows.begin(), windows.end(), window) == windows.end())
+  {
+    windows.emplace_back(window);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::RemoveAllViews()
+{
+  this->Internals->Views.clear();
+  this->Internals->Windows.clear();
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianSelectionHub::GetNumberOfViews()
+{
+  return static_cast<int>(this->Internals->Views.size() + this->Internals->Windows.size());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::AddChart(vtkChartXY* chart, vtkTable* table, const char* idColumn)
+{
+  if (!chart || !table || !idColumn)
+  {
+    vtkErrorMacro("AddChart needs a chart, a table and an id column name");
+    return;
+  }
+  this->RemoveChart(chart);
+  ChartEntry entry;
+  entry.Chart = chart;
+  entry.Table = table;
+  entry.IdColumn = idColumn;
+  entry.Link = vtkSmartPointer<vtkAnnotationLink>::New();
+  chart->SetAnnotationLink(entry.Link);
+  entry.Observer =
+    chart->AddObserver(vtkCommand::SelectionChangedEvent, this->Internals->ChartCommand);
+  this->Internals->Charts.push_back(entry);
+  // Show the current selection right away.
+  vtkNew<vtkIdTypeArray> ids, rows;
+  this->GetSelectedIds(ids);
+  if (vtkAbstractArray* column = table->GetColumnByName(idColumn))
+  {
+    IdsToIndices(ids, column, rows);
+  }
+  entry.Link->SetCurrentSelection(MakeIndexSelection(rows, vtkSelectionNode::POINT));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::RemoveChart(vtkChartXY* chart)
+{
+  auto& charts = this->Internals->Charts;
+  for (auto it = charts.begin(); it != charts.end(); ++it)
+  {
+    if (it->Chart.GetPointer() == chart)
+    {
+      chart->RemoveObserver(it->Observer);
+      charts.erase(it);
+      return;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::RenderAll()
+{
+  for (auto& view : this->Internals->Views)
+  {
+    if (auto* rv = vtkRenderViewBase::SafeDownCast(view))
+    {
+      rv->Render();
+    }
+    else
+    {
+      view->Update();
+    }
+  }
+  for (auto& window : this->Internals->Windows)
+  {
+    window->Render();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::SetIteration(int iteration)
+{
+  if (iteration == this->Iteration)
+  {
+    return;
+  }
+  this->Iteration = iteration;
+  this->Modified();
+  this->InvokeEvent(IterationChangedEvent, &iteration);
+  if (this->RenderOnChange)
+  {
+    this->RenderAll();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::IdsToIndices(vtkIdTypeArray* ids,
+  vtkAbstractArray* idColumn,
+  vtkIdTypeArray* indices)
+{
+  if (!ids)
+  {
+    IdsToIndices(nullptr, 0, idColumn, indices);
+    return;
+  }
+  IdsToIndices(ids->GetPointer(0), ids->GetNumberOfTuples(), idColumn, indices);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::IdsToIndices(const vtkIdType* ids,
+  vtkIdType count,
+  vtkAbstractArray* idColumn,
+  vtkIdTypeArray* indices)
+{
+  if (!indices)
+  {
+    return;
+  }
+  indices->SetNumberOfComponents(1);
+  indices->SetNumberOfTuples(0);
+  if (!idColumn || !ids || count <= 0)
+  {
+    return;
+  }
+  auto* fast = vtkIdTypeArray::SafeDownCast(idColumn);
+  auto* data = vtkDataArray::SafeDownCast(idColumn);
+  const vtkIdType n = idColumn->GetNumberOfTuples();
+  bool sorted = true;
+  for (vtkIdType i = 1; i < n && sorted; ++i)
+  {
+    sorted = IdAt(idColumn, fast, data, i - 1) <= IdAt(idColumn, fast, data, i);
+  }
+  if (sorted && count * 20 < n)
+  {
+    // Few ids in a sorted column (snapshot ids are strictly increasing): binary searches.
+    for (vtkIdType k = 0; k < count; ++k)
+    {
+      vtkIdType lo = 0, hi = n;
+      while (lo < hi)
+      {
+        const vtkIdType mid = lo + (hi - lo) / 2;
+        if (IdAt(idColumn, fast, data, mid) < ids[k])
+        {
+          lo = mid + 1;
+        }
+        else
+        {
+          hi = mid;
+        }
+      }
+      for (; lo < n && IdAt(idColumn, fast, data, lo) == ids[k]; ++lo)
+      {
+        indices->InsertNextValue(lo);
+      }
+    }
+    return;
+  }
+  std::unordered_set<vtkIdType> wanted(ids, ids + count);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (wanted.count(IdAt(idColumn, fast, data, i)))
+    {
+      indices->InsertNextValue(i);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::IndicesToIds(vtkIdTypeArray* indices,
+  vtkAbstractArray* idColumn,
+  vtkIdTypeArray* ids)
+{
+  if (!ids)
+  {
+    return;
+  }
+  ids->SetNumberOfComponents(1);
+  ids->SetNumberOfTuples(0);
+  if (!indices || !idColumn)
+  {
+    return;
+  }
+  auto* fast = vtkIdTypeArray::SafeDownCast(idColumn);
+  auto* data = vtkDataArray::SafeDownCast(idColumn);
+  const vtkIdType n = idColumn->GetNumberOfTuples();
+  std::vector<vtkIdType> out;
+  out.reserve(static_cast<std::size_t>(indices->GetNumberOfTuples()));
+  for (vtkIdType k = 0; k < indices->GetNumberOfTuples(); ++k)
+  {
+    const vtkIdType i = indices->GetValue(k);
+    if (i >= 0 && i < n)
+    {
+      out.push_back(IdAt(idColumn, fast, data, i));
+    }
+  }
+  SortUnique(out);
+  ids->SetNumberOfTuples(static_cast<vtkIdType>(out.size()));
+  std::copy(out.begin(), out.end(), ids->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkSelection> vtkGaussianSelectionHub::MakeIndexSelection(vtkIdTypeArray* indices,
+  int fieldType)
+{
+  vtkNew<vtkSelectionNode> node;
+  node->SetContentType(vtkSelectionNode::INDICES);
+  node->SetFieldType(fieldType);
+  vtkNew<vtkIdTypeArray> list;
+  if (indices)
+  {
+    list->DeepCopy(indices);
+  }
+  node->SetSelectionList(list);
+  auto selection = vtkSmartPointer<vtkSelection>::New();
+  selection->AddNode(node);
+  return selection;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkSelection> vtkGaussianSelectionHub::MakePedigreeSelection(vtkIdTypeArray* ids)
+{
+  vtkNew<vtkSelectionNode> node;
+  node->SetContentType(vtkSelectionNode::PEDIGREEIDS);
+  node->SetFieldType(vtkSelectionNode::POINT);
+  vtkNew<vtkIdTypeArray> list;
+  if (ids)
+  {
+    list->DeepCopy(ids);
+  }
+  list->SetName("GaussianId");
+  node->SetSelectionList(list);
+  auto selection = vtkSmartPointer<vtkSelection>::New();
+  selection->AddNode(node);
+  return selection;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelectionHub::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RenderOnChange: " << this->RenderOnChange << "\n";
+  os << indent << "Iteration: " << this->Iteration << "\n";
+  os << indent << "NumberOfChanges: " << this->NumberOfChanges << "\n";
+  os << indent << "NumberOfSelectedIds: " << this->Selected.size() << "\n";
+  os << indent << "NumberOfViews: " << this->Internals->Views.size() << "\n";
+  os << indent << "NumberOfRenderWindows: " << this->Internals->Windows.size() << "\n";
+  os << indent << "NumberOfCharts: " << this->Internals->Charts.size() << "\n";
+  os << indent << "AnnotationLink: " << this->Internals->Link.GetPointer() << "\n";
+}

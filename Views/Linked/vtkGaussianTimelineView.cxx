@@ -1,0 +1,469 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianTimelineView.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianTimelineView.h"
+
+#include "vtkAxis.h"
+#include "vtkCallbackCommand.h"
+#include "vtkChartLegend.h"
+#include "vtkChartMatrix.h"
+#include "vtkContextScene.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkGaussianSelectionHub.h"
+#include "vtkGaussianTimelineChart.h"
+#include "vtkObjectFactory.h"
+#include "vtkPen.h"
+#include "vtkPlot.h"
+#include "vtkPlotPoints.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkTable.h"
+#include "vtkTextProperty.h"
+#include "vtkVector.h"
+#include "vtkWeakPointer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkGaussianTimelineView);
+
+namespace
+{
+const unsigned char Palette[8][3] = { { 31, 119, 180 },
+  { 255, 127, 14 },
+  { 44, 160, 44 },
+  { 214, 39, 40 },
+  { 148, 103, 189 },
+  { 140, 86, 75 },
+  { 227, 119, 194 },
+  { 127, 127, 127 } };
+
+bool HasFiniteValue(vtkDataArray* a)
+{
+  for (vtkIdType i = 0; a && i < a->GetNumberOfTuples(); ++i)
+  {
+    if (std::isfinite(a->GetComponent(i, 0)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
+struct vtkGaussianTimelineView::vtkInternals
+{
+  vtkNew<vtkChartMatrix> Matrix;
+  vtkNew<vtkGaussianTimelineChart> Charts[3];
+  vtkSmartPointer<vtkTable> Metrics, TestMetrics, History;
+  vtkNew<vtkTable> Wide;
+  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
+  unsigned long SelectionObserver = 0, IterationObserver = 0;
+  vtkNew<vtkCallbackCommand> HubCommand;
+  vtkNew<vtkCallbackCommand> ClickCommand;
+  int Iteration = -1;
+  int HistoryLines = 0;
+  int MetricPlots = 0;
+};
+
+//------------------------------------------------------------------------------
+vtkGaussianTimelineView::vtkGaussianTimelineView()
+  : Internals(new vtkInternals)
+{
+  this->SetHistoryProperty("Opacity");
+  this->SetIterationColumn("iteration");
+  this->SetCountColumn("num_gaussians");
+  this->SetPSNRColumn("psnr");
+  this->SetSSIMColumn("ssim");
+  this->SetLPIPSColumn("lpips");
+  this->SetHistoryIterationColumn("Iteration");
+  this->SetHistoryIdColumn("GaussianId");
+  auto& in = *this->Internals;
+  in.Matrix->SetSize(vtkVector2i(1, 3));
+  in.Matrix->SetGutter(vtkVector2f(30.f, 30.f));
+  const char* titles[3] = { "Quality", "Gaussians", "Selected Gaussians" };
+  in.ClickCommand->SetClientData(this);
+  in.ClickCommand->SetCallback([](vtkObject*, unsigned long, void* client, void* data)
+    { static_cast<vtkGaussianTimelineView*>(client)->OnChartClicked(*static_cast<int*>(data)); });
+  for (int k = 0; k < 3; ++k)
+  {
+    vtkGaussianTimelineChart* chart = in.Charts[k];
+    in.Matrix->SetChart(vtkVector2i(0, 2 - k), chart);
+    chart->SetTitle(titles[k]);
+    chart->GetTitleProperties()->SetFontSize(12);
+    chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(k == HISTORY ? "iteration" : "");
+    chart->GetAxis(vtkAxis::LEFT)->SetTitle("");
+    chart->GetAxis(vtkAxis::RIGHT)->SetTitle("");
+    chart->SetShowLegend(true);
+    chart->AddObserver(vtkGaussianTimelineChart::IterationClickedEvent, in.ClickCommand);
+  }
+  this->GetScene()->AddItem(in.Matrix);
+  this->GetRenderer()->SetBackground(1, 1, 1);
+  in.HubCommand->SetClientData(this);
+  in.HubCommand->SetCallback(
+    [](vtkObject*, unsigned long event, void* client, void*)
+    {
+      auto* self = static_cast<vtkGaussianTimelineView*>(client);
+      if (event == vtkGaussianSelectionHub::IterationChangedEvent)
+      {
+        self->SetIteration(self->GetSelectionHub()->GetIteration());
+      }
+      else
+      {
+        self->UpdatePlots();
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianTimelineView::~vtkGaussianTimelineView()
+{
+  this->SetSelectionHub(nullptr);
+  this->SetHistoryProperty(nullptr);
+  this->SetIterationColumn(nullptr);
+  this->SetCountColumn(nullptr);
+  this->SetPSNRColumn(nullptr);
+  this->SetSSIMColumn(nullptr);
+  this->SetLPIPSColumn(nullptr);
+  this->SetHistoryIterationColumn(nullptr);
+  this->SetHistoryIdColumn(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetMetrics(vtkTable* metrics)
+{
+  this->Internals->Metrics = metrics;
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkGaussianTimelineView::GetMetrics()
+{
+  return this->Internals->Metrics;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetTestMetrics(vtkTable* metrics)
+{
+  this->Internals->TestMetrics = metrics;
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkGaussianTimelineView::GetTestMetrics()
+{
+  return this->Internals->TestMetrics;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetHistory(vtkTable* history)
+{
+  this->Internals->History = history;
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkGaussianTimelineView::GetHistory()
+{
+  return this->Internals->History;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetSelectionHub(vtkGaussianSelectionHub* hub)
+{
+  auto& in = *this->Internals;
+  if (in.Hub == hub)
+  {
+    return;
+  }
+  if (in.Hub)
+  {
+    in.Hub->RemoveObserver(in.SelectionObserver);
+    in.Hub->RemoveObserver(in.IterationObserver);
+    in.Hub->RemoveView(this);
+  }
+  in.Hub = hub;
+  if (hub)
+  {
+    in.SelectionObserver = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
+    in.IterationObserver =
+      hub->AddObserver(vtkGaussianSelectionHub::IterationChangedEvent, in.HubCommand);
+    hub->AddView(this);
+    in.Iteration = hub->GetIteration();
+  }
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSelectionHub* vtkGaussianTimelineView::GetSelectionHub()
+{
+  return this->Internals->Hub;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetIteration(int iteration)
+{
+  auto& in = *this->Internals;
+  in.Iteration = iteration;
+  for (auto& chart : in.Charts)
+  {
+    chart->SetCursorIteration(iteration);
+  }
+  this->GetScene()->SetDirty(true);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::GetIteration()
+{
+  return this->Internals->Iteration;
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianTimelineChart* vtkGaussianTimelineView::GetChart(int which)
+{
+  return (which >= 0 && which < 3) ? this->Internals->Charts[which].GetPointer() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::GetNumberOfHistoryLines()
+{
+  return this->Internals->HistoryLines;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::GetNumberOfMetricPlots()
+{
+  return this->Internals->MetricPlots;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::SnapIteration(int iteration)
+{
+  vtkTable* m = this->Internals->Metrics;
+  vtkDataArray* it =
+    m ? vtkDataArray::SafeDownCast(m->GetColumnByName(this->IterationColumn)) : nullptr;
+  if (!it || it->GetNumberOfTuples() == 0)
+  {
+    return iteration;
+  }
+  double best = it->GetComponent(0, 0);
+  for (vtkIdType i = 1; i < it->GetNumberOfTuples(); ++i)
+  {
+    const double v = it->GetComponent(i, 0);
+    if (std::abs(v - iteration) < std::abs(best - iteration))
+    {
+      best = v;
+    }
+  }
+  return static_cast<int>(best);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::OnChartClicked(int iteration)
+{
+  int snapped = this->SnapIteration(iteration);
+  this->InvokeEvent(IterationSelectedEvent, &snapped);
+  if (this->Internals->Hub)
+  {
+    this->Internals->Hub->SetIteration(snapped);
+  }
+  else
+  {
+    this->SetIteration(snapped);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::UpdatePlots()
+{
+  auto& in = *this->Internals;
+  for (auto& chart : in.Charts)
+  {
+    chart->ClearPlots();
+  }
+  in.MetricPlots = 0;
+  in.HistoryLines = 0;
+  double xmin = std::numeric_limits<double>::max(), xmax = std::numeric_limits<double>::lowest();
+
+  auto addMetric = [&](vtkTable* table,
+                     const char* column,
+                     int chart,
+                     int corner,
+                     const unsigned char* color,
+                     bool dashed,
+                     const char* label)
+  {
+    if (!table || !column)
+    {
+      return;
+    }
+    auto* x = vtkDataArray::SafeDownCast(table->GetColumnByName(this->IterationColumn));
+    auto* y = vtkDataArray::SafeDownCast(table->GetColumnByName(column));
+    if (!x || !y || !HasFiniteValue(y))
+    {
+      return;
+    }
+    double range[2];
+    x->GetRange(range);
+    xmin = std::min(xmin, range[0]);
+    xmax = std::max(xmax, range[1]);
+    vtkPlot* plot = in.Charts[chart]->AddPlot(vtkChart::LINE);
+    plot->SetInputData(table, this->IterationColumn, column);
+    plot->SetColor(color[0], color[1], color[2], 255);
+    plot->SetWidth(2.f);
+    plot->SetLabel(label);
+    if (dashed)
+    {
+      plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+    }
+    if (corner)
+    {
+      in.Charts[chart]->SetPlotCorner(plot, corner);
+    }
+    ++in.MetricPlots;
+  };
+  addMetric(in.Metrics, this->PSNRColumn, QUALITY, 0, Palette[0], false, "PSNR");
+  addMetric(in.Metrics, this->SSIMColumn, QUALITY, 1, Palette[1], false, "SSIM");
+  addMetric(in.Metrics, this->LPIPSColumn, QUALITY, 1, Palette[2], false, "LPIPS");
+  addMetric(in.TestMetrics, this->PSNRColumn, QUALITY, 0, Palette[0], true, "PSNR test");
+  addMetric(in.TestMetrics, this->SSIMColumn, QUALITY, 1, Palette[1], true, "SSIM test");
+  addMetric(in.TestMetrics, this->LPIPSColumn, QUALITY, 1, Palette[2], true, "LPIPS test");
+  addMetric(in.Metrics, this->CountColumn, COUNT, 0, Palette[4], false, "Gaussians");
+  in.Charts[QUALITY]->GetAxis(vtkAxis::LEFT)->SetTitle("PSNR (dB)");
+  in.Charts[QUALITY]->GetAxis(vtkAxis::RIGHT)->SetTitle("SSIM, LPIPS");
+  in.Charts[COUNT]->GetAxis(vtkAxis::LEFT)->SetTitle("count");
+
+  // History of the selected Gaussians: long table -> one column per Gaussian.
+  in.Wide->Initialize();
+  vtkTable* h = in.History;
+  auto* hit =
+    h ? vtkDataArray::SafeDownCast(h->GetColumnByName(this->HistoryIterationColumn)) : nullptr;
+  auto* hid = h ? vtkDataArray::SafeDownCast(h->GetColumnByName(this->HistoryIdColumn)) : nullptr;
+  auto* hval = (h && this->HistoryProperty)
+    ? vtkDataArray::SafeDownCast(h->GetColumnByName(this->HistoryProperty))
+    : nullptr;
+  in.Charts[HISTORY]->SetTitle(
+    std::string("Selected Gaussians: ") + (this->HistoryProperty ? this->HistoryProperty : ""));
+  if (hit && hid && hval)
+  {
+    std::vector<double> iterations;
+    std::map<vtkIdType, std::map<double, double>> series;
+    for (vtkIdType r = 0; r < h->GetNumberOfRows(); ++r)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(hid->GetComponent(r, 0));
+      if (in.Hub && !in.Hub->IsSelected(id))
+      {
+        continue;
+      }
+      if (series.count(id) == 0 && static_cast<int>(series.size()) >= this->MaximumHistoryLines)
+      {
+        continue;
+      }
+      const double t = hit->GetComponent(r, 0);
+      // Multi-component properties (Scale) are drawn by their largest component.
+      double value = hval->GetComponent(r, 0);
+      for (int c = 1; c < hval->GetNumberOfComponents(); ++c)
+      {
+        value = std::max(value, hval->GetComponent(r, c));
+      }
+      series[id][t] = value;
+      iterations.push_back(t);
+    }
+    std::sort(iterations.begin(), iterations.end());
+    iterations.erase(std::unique(iterations.begin(), iterations.end()), iterations.end());
+    if (!iterations.empty() && !series.empty())
+    {
+      vtkNew<vtkDoubleArray> x;
+      x->SetName("Iteration");
+      for (double t : iterations)
+      {
+        x->InsertNextValue(t);
+      }
+      in.Wide->AddColumn(x);
+      xmin = std::min(xmin, iterations.front());
+      xmax = std::max(xmax, iterations.back());
+      int k = 0;
+      for (auto& s : series)
+      {
+        vtkNew<vtkDoubleArray> y;
+        const std::string name = "Gaussian " + std::to_string(static_cast<long long>(s.first));
+        y->SetName(name.c_str());
+        for (double t : iterations)
+        {
+          auto f = s.second.find(t);
+          y->InsertNextValue(
+            f == s.second.end() ? std::numeric_limits<double>::quiet_NaN() : f->second);
+        }
+        in.Wide->AddColumn(y);
+        vtkPlot* plot = in.Charts[HISTORY]->AddPlot(vtkChart::LINE);
+        plot->SetInputData(in.Wide, "Iteration", name);
+        const unsigned char* c = Palette[k % 8];
+        plot->SetColor(c[0], c[1], c[2], 255);
+        plot->SetWidth(2.f);
+        if (auto* points = vtkPlotPoints::SafeDownCast(plot))
+        {
+          points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+          points->SetMarkerSize(5.f);
+        }
+        ++k;
+      }
+      in.HistoryLines = k;
+    }
+  }
+  in.Charts[HISTORY]
+    ->GetAxis(vtkAxis::LEFT)
+    ->SetTitle(this->HistoryProperty ? this->HistoryProperty : "");
+  // One iteration range for the three charts, so the cursor lines up.
+  if (xmax >= xmin)
+  {
+    const double pad = std::max(1.0, 0.02 * (xmax - xmin));
+    for (auto& chart : in.Charts)
+    {
+      vtkAxis* axis = chart->GetAxis(vtkAxis::BOTTOM);
+      axis->SetBehavior(vtkAxis::FIXED);
+      axis->SetRange(xmin - pad, xmax + pad);
+    }
+  }
+  for (auto& chart : in.Charts)
+  {
+    chart->RecalculateBounds();
+    chart->SetCursorIteration(in.Iteration);
+  }
+  this->GetScene()->SetDirty(true);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  auto& in = *this->Internals;
+  auto str = [](const char* s) { return s ? s : "(none)"; };
+  os << indent << "Metrics: " << in.Metrics.GetPointer() << "\n";
+  os << indent << "TestMetrics: " << in.TestMetrics.GetPointer() << "\n";
+  os << indent << "History: " << in.History.GetPointer() << "\n";
+  os << indent << "HistoryProperty: " << str(this->HistoryProperty) << "\n";
+  os << indent << "MaximumHistoryLines: " << this->MaximumHistoryLines << "\n";
+  os << indent << "IterationColumn: " << str(this->IterationColumn) << "\n";
+  os << indent << "CountColumn: " << str(this->CountColumn) << "\n";
+  os << indent << "PSNRColumn: " << str(this->PSNRColumn) << "\n";
+  os << indent << "SSIMColumn: " << str(this->SSIMColumn) << "\n";
+  os << indent << "LPIPSColumn: " << str(this->LPIPSColumn) << "\n";
+  os << indent << "HistoryIterationColumn: " << str(this->HistoryIterationColumn) << "\n";
+  os << indent << "HistoryIdColumn: " << str(this->HistoryIdColumn) << "\n";
+  os << indent << "SelectionHub: " << in.Hub.GetPointer() << "\n";
+  os << indent << "Iteration: " << in.Iteration << "\n";
+}

@@ -1,0 +1,173 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianTimelineView.h
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+/**
+ * @class   vtkGaussianTimelineView
+ * @brief   view D of DESIGN: metrics and the selected Gaussians' history over iterations
+ *
+ * A vtkContextView with three stacked vtkGaussianTimelineCharts sharing the iteration axis:
+ * - quality (top): PSNR on the left axis, SSIM and LPIPS on the right axis, training metrics
+ *   solid and test metrics (when given) dashed; columns that are all NaN are left out;
+ * - Gaussian count (middle);
+ * - the selected Gaussians' HistoryProperty over iterations (bottom): one line per selected
+ *   Gaussian (at most MaximumHistoryLines; the first ids) from the History table.
+ *
+ * Every chart shows the iteration cursor (the hub's iteration). A click on a chart invokes
+ * IterationSelectedEvent (call data int*, snapped to the nearest metrics iteration) and, when
+ * a hub is linked, sets the hub's iteration, which moves every view.
+ *
+ * Tables (column names settable):
+ * - metrics (SetMetrics, SetTestMetrics): iteration, num_gaussians, psnr, ssim, lpips
+ *   (DESIGN §3 /metrics);
+ * - history (SetHistory): long format, one row per (iteration, Gaussian): Iteration,
+ *   GaussianId and one column per property or score (Opacity, ViewCoverage, ...), as the log
+ *   reader's history query gives it. Only rows of selected ids are drawn when a hub is linked.
+ */
+#ifndef vtkGaussianTimelineView_h
+#define vtkGaussianTimelineView_h
+
+#include "vis4gsViewsLinkedModule.h" // For export macro
+#include "vtkCommand.h"              // For vtkCommand::UserEvent
+#include "vtkContextView.h"
+#include "vtkNew.h" // For vtkNew
+
+#include <memory> // For std::unique_ptr
+
+class vtkChartMatrix;
+class vtkGaussianSelectionHub;
+class vtkGaussianTimelineChart;
+class vtkTable;
+
+class VIS4GSVIEWSLINKED_EXPORT vtkGaussianTimelineView : public vtkContextView
+{
+public:
+  static vtkGaussianTimelineView* New();
+  vtkTypeMacro(vtkGaussianTimelineView, vtkContextView);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Events
+  {
+    /// A click picked an iteration; call data: int* iteration.
+    IterationSelectedEvent = vtkCommand::UserEvent + 4103
+  };
+
+  enum Charts
+  {
+    QUALITY = 0,
+    COUNT = 1,
+    HISTORY = 2
+  };
+
+  ///@{
+  /**
+   * Training and test metrics tables. Default none.
+   */
+  void SetMetrics(vtkTable* metrics);
+  vtkTable* GetMetrics();
+  void SetTestMetrics(vtkTable* metrics);
+  vtkTable* GetTestMetrics();
+  ///@}
+
+  ///@{
+  /**
+   * History of Gaussians in long format. Default none.
+   */
+  void SetHistory(vtkTable* history);
+  vtkTable* GetHistory();
+  ///@}
+
+  ///@{
+  /**
+   * Property of the history drawn in the bottom chart. Default "Opacity".
+   */
+  vtkSetStringMacro(HistoryProperty);
+  vtkGetStringMacro(HistoryProperty);
+  ///@}
+
+  ///@{
+  /**
+   * At most this many Gaussians' lines in the history chart. Default 16.
+   */
+  vtkSetClampMacro(MaximumHistoryLines, int, 1, 1000);
+  vtkGetMacro(MaximumHistoryLines, int);
+  ///@}
+
+  ///@{
+  /**
+   * Column names. Defaults: iteration, num_gaussians, psnr, ssim, lpips (metrics);
+   * Iteration, GaussianId (history).
+   */
+  vtkSetStringMacro(IterationColumn);
+  vtkGetStringMacro(IterationColumn);
+  vtkSetStringMacro(CountColumn);
+  vtkGetStringMacro(CountColumn);
+  vtkSetStringMacro(PSNRColumn);
+  vtkGetStringMacro(PSNRColumn);
+  vtkSetStringMacro(SSIMColumn);
+  vtkGetStringMacro(SSIMColumn);
+  vtkSetStringMacro(LPIPSColumn);
+  vtkGetStringMacro(LPIPSColumn);
+  vtkSetStringMacro(HistoryIterationColumn);
+  vtkGetStringMacro(HistoryIterationColumn);
+  vtkSetStringMacro(HistoryIdColumn);
+  vtkGetStringMacro(HistoryIdColumn);
+  ///@}
+
+  /// Links the view to @p hub (cursor, history of the selection, clicks); nullptr unlinks.
+  void SetSelectionHub(vtkGaussianSelectionHub* hub);
+  vtkGaussianSelectionHub* GetSelectionHub();
+
+  ///@{
+  /**
+   * The iteration cursor (also set from the hub). Negative hides it.
+   */
+  void SetIteration(int iteration);
+  int GetIteration();
+  ///@}
+
+  /// Rebuilds the plots from the tables and the selection (done on every change).
+  void UpdatePlots();
+
+  /// One of the three charts (QUALITY, COUNT, HISTORY).
+  vtkGaussianTimelineChart* GetChart(int which);
+
+  /// Number of Gaussians whose history is drawn (after the last UpdatePlots).
+  int GetNumberOfHistoryLines();
+  /// Number of metric plots drawn in the quality and count charts.
+  int GetNumberOfMetricPlots();
+
+  /// The metrics iteration nearest @p iteration (itself when there are no metrics).
+  int SnapIteration(int iteration);
+
+protected:
+  vtkGaussianTimelineView();
+  ~vtkGaussianTimelineView() override;
+
+  void OnChartClicked(int iteration);
+
+  char* HistoryProperty = nullptr;
+  int MaximumHistoryLines = 16;
+  char* IterationColumn = nullptr;
+  char* CountColumn = nullptr;
+  char* PSNRColumn = nullptr;
+  char* SSIMColumn = nullptr;
+  char* LPIPSColumn = nullptr;
+  char* HistoryIterationColumn = nullptr;
+  char* HistoryIdColumn = nullptr;
+
+private:
+  vtkGaussianTimelineView(const vtkGaussianTimelineView&) = delete;
+  void operator=(const vtkGaussianTimelineView&) = delete;
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

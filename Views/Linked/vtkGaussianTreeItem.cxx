@@ -1,0 +1,1273 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianTreeItem.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianTreeItem.h"
+
+#include "vtkGaussianSelectionHub.h"
+
+#include "vtkBrush.h"
+#include "vtkCallbackCommand.h"
+#include "vtkContext2D.h"
+#include "vtkContextDevice2D.h"
+#include "vtkContextMouseEvent.h"
+#include "vtkContextScene.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPen.h"
+#include "vtkTable.h"
+#include "vtkTextProperty.h"
+#include "vtkTree.h"
+#include "vtkWeakPointer.h"
+
+#include "Genealogy.h" // vis4gs::ZoomThreshold (DESIGN §4)
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkGaussianTreeItem);
+
+namespace
+{
+// DESIGN §6 node colours (CSS names).
+const unsigned char KindColors[5][4] = {
+  { 165, 42, 42, 255 },   // root: brown
+  { 127, 255, 212, 255 }, // clone: aquamarine
+  { 210, 180, 140, 255 }, // split: tan
+  { 0, 128, 128, 255 },   // clone-split: teal
+  { 128, 0, 128, 255 },   // prune: purple
+};
+const unsigned char HighlightColor[4] = { 255, 215, 0, 255 };
+const unsigned char SelectedColor[4] = { 255, 64, 64, 255 };
+
+int KindSlot(int kind)
+{
+  switch (kind)
+  {
+    case 1:
+      return 1;
+    case 2:
+      return 2;
+    case 3: // tolerate 3 as clone-split
+    case 4:
+      return 3;
+    default:
+      return 0;
+  }
+}
+
+constexpr float MarginLeft = 8.f;
+constexpr float MarginRight = 8.f;
+constexpr float MarginBottom = 26.f;
+constexpr float MarginTop = 8.f;
+
+// vtkContextMouseEvent::GetModifiers dereferences the interactor; scripted events have none.
+int Modifiers(const vtkContextMouseEvent& mouse)
+{
+  return mouse.GetInteractor() ? mouse.GetModifiers() : 0;
+}
+
+double NiceStep(double span, int ticks)
+{
+  const double raw = span / std::max(1, ticks);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : { 1.0, 2.0, 5.0, 10.0 })
+  {
+    if (m * mag >= raw)
+    {
+      return m * mag;
+    }
+  }
+  return 10 * mag;
+}
+}
+
+struct vtkGaussianTreeItem::vtkInternals
+{
+  vtkSmartPointer<vtkTree> Tree;
+  vtkSmartPointer<vtkTable> Bands;
+  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
+  unsigned long SelectionObserver = 0;
+  unsigned long IterationObserver = 0;
+  vtkNew<vtkCallbackCommand> HubCommand;
+  vtkMTimeType BuiltTreeTime = 0;
+  vtkMTimeType BuiltBandsTime = 0;
+
+  // Per vertex (index = tree vertex id).
+  vtkSmartPointer<vtkDataArray> IdArray;
+  std::vector<std::int32_t> Birth, End;
+  std::vector<double> Row, P;
+  std::vector<std::uint8_t> Kind, Pruned, Valid;
+  std::vector<vtkIdType> ByP;   // valid vertices, P descending
+  std::vector<vtkIdType> ByRow; // valid vertices, row ascending
+  // GaussianId -> vertex: dense table when ids are dense, else sorted pairs.
+  vtkIdType IdMin = 0;
+  std::vector<vtkIdType> DenseIdToVertex;
+  std::vector<std::pair<vtkIdType, vtkIdType>> SortedIdToVertex;
+  double DataMinX = 0, DataMaxX = 1, DataMinY = 0, DataMaxY = 1;
+  vtkIdType NumberOfRows = 0;
+
+  std::vector<float> BandMinX, BandMaxX, BandMinY, BandMaxY;
+
+  double VX0 = 0, VX1 = 1, VY0 = 0, VY1 = 1;
+  bool ViewportSet = false;
+
+  std::vector<vtkIdType> Selected, Lineage;
+  std::vector<std::uint8_t> InLineage;
+  std::vector<vtkIdType> Visible;
+  vtkIdType Work = 0;
+  int Iteration = -1;
+
+  bool Pressed = false;
+  bool Dragging = false;
+  vtkVector2f PressPos;
+  int PressModifiers = 0;
+
+  std::vector<float> Pts;
+  std::vector<unsigned char> Cols;
+
+  vtkIdType VertexOfId(vtkIdType id) const
+  {
+    if (!this->DenseIdToVertex.empty())
+    {
+      const vtkIdType k = id - this->IdMin;
+      return (k >= 0 && k < static_cast<vtkIdType>(this->DenseIdToVertex.size()))
+        ? this->DenseIdToVertex[k]
+        : -1;
+    }
+    auto it = std::lower_bound(this->SortedIdToVertex.begin(),
+      this->SortedIdToVertex.end(),
+      std::make_pair(id, std::numeric_limits<vtkIdType>::min()));
+    return (it != this->SortedIdToVertex.end() && it->first == id) ? it->second : -1;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkGaussianTreeItem::vtkGaussianTreeItem()
+  : Internals(new vtkInternals)
+{
+  this->SetIdArrayName("GaussianId");
+  this->SetXArrayName("LayoutX");
+  this->SetYArrayName("LayoutY");
+  this->SetDeathArrayName("DeathIteration");
+  this->SetPerceptionArrayName("PerceptionValue");
+  this->SetKindArrayName("BirthKind");
+  this->SetPrunedArrayName("Pruned");
+  this->Internals->HubCommand->SetClientData(this);
+  this->Internals->HubCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
+    { static_cast<vtkGaussianTreeItem*>(client)->UpdateFromHub(); });
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianTreeItem::~vtkGaussianTreeItem()
+{
+  this->SetSelectionHub(nullptr);
+  this->SetIdArrayName(nullptr);
+  this->SetXArrayName(nullptr);
+  this->SetYArrayName(nullptr);
+  this->SetDeathArrayName(nullptr);
+  this->SetPerceptionArrayName(nullptr);
+  this->SetKindArrayName(nullptr);
+  this->SetPrunedArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::SetTree(vtkTree* tree)
+{
+  if (this->Internals->Tree != tree)
+  {
+    this->Internals->Tree = tree;
+    this->Internals->BuiltTreeTime = 0;
+    this->Internals->ViewportSet = false;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTree* vtkGaussianTreeItem::GetTree()
+{
+  return this->Internals->Tree;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::SetFamilyBands(vtkTable* bands)
+{
+  if (this->Internals->Bands != bands)
+  {
+    this->Internals->Bands = bands;
+    this->Internals->BuiltBandsTime = 0;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkGaussianTreeItem::GetFamilyBands()
+{
+  return this->Internals->Bands;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::SetSelectionHub(vtkGaussianSelectionHub* hub)
+{
+  auto& in = *this->Internals;
+  if (in.Hub == hub)
+  {
+    return;
+  }
+  if (in.Hub)
+  {
+    in.Hub->RemoveObserver(in.SelectionObserver);
+    in.Hub->RemoveObserver(in.IterationObserver);
+  }
+  in.Hub = hub;
+  if (hub)
+  {
+    in.SelectionObserver = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
+    in.IterationObserver =
+      hub->AddObserver(vtkGaussianSelectionHub::IterationChangedEvent, in.HubCommand);
+    this->UpdateFromHub();
+  }
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSelectionHub* vtkGaussianTreeItem::GetSelectionHub()
+{
+  return this->Internals->Hub;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::BuildIndex()
+{
+  auto& in = *this->Internals;
+  vtkTree* tree = in.Tree;
+  const bool treeCurrent = tree && in.BuiltTreeTime >= tree->GetMTime();
+  if (!tree)
+  {
+    in.Birth.clear();
+    in.End.clear();
+    in.Row.clear();
+    in.P.clear();
+    in.Kind.clear();
+    in.Pruned.clear();
+    in.Valid.clear();
+    in.ByP.clear();
+    in.ByRow.clear();
+    in.InLineage.clear();
+    in.Selected.clear();
+    in.Lineage.clear();
+    in.IdArray = nullptr;
+    in.NumberOfRows = 0;
+  }
+  else if (!treeCurrent)
+  {
+    vtkDataSetAttributes* vd = tree->GetVertexData();
+    const vtkIdType n = tree->GetNumberOfVertices();
+    auto get = [&](const char* name) -> vtkDataArray*
+    {
+      vtkDataArray* a = name ? vd->GetArray(name) : nullptr;
+      if (!a && name && std::string(name) != (this->PrunedArrayName ? this->PrunedArrayName : ""))
+      {
+        vtkErrorMacro("the tree has no vertex array '" << name << "'");
+      }
+      return a;
+    };
+    vtkDataArray* ids = get(this->IdArrayName);
+    vtkDataArray* xs = get(this->XArrayName);
+    vtkDataArray* ys = get(this->YArrayName);
+    vtkDataArray* death = get(this->DeathArrayName);
+    vtkDataArray* ps = get(this->PerceptionArrayName);
+    vtkDataArray* kinds = get(this->KindArrayName);
+    vtkDataArray* pruned = this->PrunedArrayName ? vd->GetArray(this->PrunedArrayName) : nullptr;
+    in.BuiltTreeTime = tree->GetMTime();
+    if (!ids || !xs || !ys || !death || !ps || !kinds)
+    {
+      in.Tree = nullptr;
+      this->BuildIndex();
+      return;
+    }
+    in.IdArray = ids;
+    in.Birth.assign(n, 0);
+    in.End.assign(n, 0);
+    in.Row.assign(n, 0);
+    in.P.assign(n, 0);
+    in.Kind.assign(n, 0);
+    in.Pruned.assign(n, 0);
+    in.Valid.assign(n, 0);
+    std::int32_t last = std::numeric_limits<std::int32_t>::min();
+    vtkIdType idMin = std::numeric_limits<vtkIdType>::max(), idMax = -1, valid = 0;
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(ids->GetComponent(v, 0));
+      in.Valid[v] = id >= 0;
+      in.Birth[v] = static_cast<std::int32_t>(xs->GetComponent(v, 0));
+      in.End[v] = static_cast<std::int32_t>(death->GetComponent(v, 0));
+      in.Row[v] = ys->GetComponent(v, 0);
+      in.P[v] = ps->GetComponent(v, 0);
+      in.Kind[v] = static_cast<std::uint8_t>(KindSlot(static_cast<int>(kinds->GetComponent(v, 0))));
+      in.Pruned[v] = pruned ? pruned->GetComponent(v, 0) != 0 : 0;
+      if (in.Valid[v])
+      {
+        ++valid;
+        last = std::max({ last, in.Birth[v], in.End[v] });
+        idMin = std::min(idMin, id);
+        idMax = std::max(idMax, id);
+      }
+    }
+    if (vtkDataArray* l = tree->GetFieldData()->GetArray("LastIteration"))
+    {
+      if (l->GetNumberOfTuples() > 0)
+      {
+        last = static_cast<std::int32_t>(l->GetComponent(0, 0));
+      }
+    }
+    double minX = std::numeric_limits<double>::max(), minY = minX;
+    double maxX = std::numeric_limits<double>::lowest(), maxY = maxX;
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      if (!in.Valid[v])
+      {
+        continue;
+      }
+      if (in.End[v] < 0)
+      {
+        in.End[v] = last;
+      }
+      minX = std::min(minX, double(in.Birth[v]));
+      maxX = std::max(maxX, double(in.End[v]));
+      minY = std::min(minY, in.Row[v]);
+      maxY = std::max(maxY, in.Row[v]);
+    }
+    if (valid == 0)
+    {
+      minX = minY = 0;
+      maxX = maxY = 1;
+    }
+    in.DataMinX = minX;
+    in.DataMaxX = std::max(maxX, minX + 1);
+    in.DataMinY = minY;
+    in.DataMaxY = maxY;
+    in.NumberOfRows = valid;
+
+    // P descending: counting sort on a 16-bit key, then exact order inside each bucket.
+    const int buckets = 65537;
+    auto key = [&](vtkIdType v) -> int
+    {
+      const double p = in.P[v];
+      if (!(p == p))
+      {
+        return buckets - 1; // NaN last
+      }
+      const double c = std::min(1.0, std::max(0.0, p));
+      return 65535 - static_cast<int>(c * 65535.0);
+    };
+    std::vector<vtkIdType> count(buckets + 1, 0);
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      if (in.Valid[v])
+      {
+        ++count[key(v) + 1];
+      }
+    }
+    for (int b = 0; b < buckets; ++b)
+    {
+      count[b + 1] += count[b];
+    }
+    in.ByP.assign(valid, 0);
+    {
+      std::vector<vtkIdType> pos(count.begin(), count.end() - 1);
+      for (vtkIdType v = 0; v < n; ++v)
+      {
+        if (in.Valid[v])
+        {
+          in.ByP[pos[key(v)]++] = v;
+        }
+      }
+    }
+    for (int b = 0; b < buckets; ++b)
+    {
+      if (count[b + 1] - count[b] > 1)
+      {
+        std::sort(in.ByP.begin() + count[b],
+          in.ByP.begin() + count[b + 1],
+          [&](vtkIdType a, vtkIdType c) { return in.P[a] > in.P[c]; });
+      }
+    }
+    // Rows ascending: counting sort when the rows are dense integers, else a sort.
+    in.ByRow.clear();
+    in.ByRow.reserve(valid);
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      if (in.Valid[v])
+      {
+        in.ByRow.push_back(v);
+      }
+    }
+    const double rowSpan = maxY - minY + 1;
+    if (valid > 0 && rowSpan <= 2.0 * valid + 16)
+    {
+      std::vector<vtkIdType> rc(static_cast<std::size_t>(rowSpan) + 1, 0);
+      for (vtkIdType v : in.ByRow)
+      {
+        ++rc[static_cast<std::size_t>(in.Row[v] - minY) + 1];
+      }
+      for (std::size_t b = 0; b + 1 < rc.size(); ++b)
+      {
+        rc[b + 1] += rc[b];
+      }
+      std::vector<vtkIdType> sorted(in.ByRow.size());
+      for (vtkIdType v : in.ByRow)
+      {
+        sorted[rc[static_cast<std::size_t>(in.Row[v] - minY)]++] = v;
+      }
+      in.ByRow.swap(sorted);
+    }
+    else
+    {
+      std::stable_sort(in.ByRow.begin(),
+        in.ByRow.end(),
+        [&](vtkIdType a, vtkIdType b) { return in.Row[a] < in.Row[b]; });
+    }
+    // GaussianId -> vertex.
+    in.DenseIdToVertex.clear();
+    in.SortedIdToVertex.clear();
+    if (valid > 0 && idMax - idMin < 4 * valid + 1024)
+    {
+      in.IdMin = idMin;
+      in.DenseIdToVertex.assign(static_cast<std::size_t>(idMax - idMin + 1), -1);
+      for (vtkIdType v = 0; v < n; ++v)
+      {
+        if (in.Valid[v])
+        {
+          in.DenseIdToVertex[static_cast<vtkIdType>(ids->GetComponent(v, 0)) - idMin] = v;
+        }
+      }
+    }
+    else
+    {
+      for (vtkIdType v = 0; v < n; ++v)
+      {
+        if (in.Valid[v])
+        {
+          in.SortedIdToVertex.emplace_back(static_cast<vtkIdType>(ids->GetComponent(v, 0)), v);
+        }
+      }
+      std::sort(in.SortedIdToVertex.begin(), in.SortedIdToVertex.end());
+    }
+    in.InLineage.assign(n, 0);
+    in.Selected.clear();
+    in.Lineage.clear();
+    this->UpdateSelection();
+  }
+
+  vtkTable* bands = in.Bands;
+  if (!bands)
+  {
+    in.BandMinX.clear();
+    in.BandMaxX.clear();
+    in.BandMinY.clear();
+    in.BandMaxY.clear();
+  }
+  else if (in.BuiltBandsTime < bands->GetMTime())
+  {
+    in.BuiltBandsTime = bands->GetMTime();
+    auto col = [&](const char* name)
+    { return vtkDataArray::SafeDownCast(bands->GetColumnByName(name)); };
+    vtkDataArray* a = col("MinIteration");
+    vtkDataArray* b = col("MaxIteration");
+    vtkDataArray* c = col("MinRow");
+    vtkDataArray* d = col("MaxRow");
+    in.BandMinX.clear();
+    in.BandMaxX.clear();
+    in.BandMinY.clear();
+    in.BandMaxY.clear();
+    if (!a || !b || !c || !d)
+    {
+      vtkErrorMacro("the family bands table needs the columns MinIteration, MaxIteration, "
+                    "MinRow and MaxRow");
+    }
+    else
+    {
+      for (vtkIdType r = 0; r < bands->GetNumberOfRows(); ++r)
+      {
+        in.BandMinX.push_back(static_cast<float>(a->GetComponent(r, 0)));
+        in.BandMaxX.push_back(static_cast<float>(b->GetComponent(r, 0)));
+        in.BandMinY.push_back(static_cast<float>(c->GetComponent(r, 0)));
+        in.BandMaxY.push_back(static_cast<float>(d->GetComponent(r, 0)));
+      }
+    }
+  }
+  if (!in.ViewportSet)
+  {
+    in.ViewportSet = true;
+    const double mx = 0.02 * (in.DataMaxX - in.DataMinX);
+    in.VX0 = in.DataMinX - mx;
+    in.VX1 = in.DataMaxX + mx;
+    in.VY0 = in.DataMinY - 0.5;
+    in.VY1 = in.DataMaxY + 0.5;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::UpdateFromHub()
+{
+  auto& in = *this->Internals;
+  if (!in.Hub)
+  {
+    return;
+  }
+  in.Iteration = in.Hub->GetIteration();
+  this->BuildIndex();
+  this->UpdateSelection();
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::UpdateSelection()
+{
+  auto& in = *this->Internals;
+  for (vtkIdType v : in.Lineage)
+  {
+    in.InLineage[v] = 0;
+  }
+  in.Selected.clear();
+  in.Lineage.clear();
+  if (!in.Hub || !in.Tree || in.Valid.empty())
+  {
+    return;
+  }
+  for (vtkIdType id : in.Hub->GetSelectedIdVector())
+  {
+    const vtkIdType v = in.VertexOfId(id);
+    if (v >= 0)
+    {
+      in.Selected.push_back(v);
+    }
+  }
+  std::sort(in.Selected.begin(), in.Selected.end());
+  vtkTree* tree = in.Tree;
+  // Ancestors, then the selection and its descendants (breadth first, iterative).
+  for (vtkIdType s : in.Selected)
+  {
+    for (vtkIdType a = tree->GetParent(s); a >= 0 && in.Valid[a] && !in.InLineage[a];
+         a = tree->GetParent(a))
+    {
+      in.InLineage[a] = 1;
+      in.Lineage.push_back(a);
+    }
+  }
+  std::vector<vtkIdType> queue;
+  for (vtkIdType s : in.Selected)
+  {
+    if (in.InLineage[s] != 2)
+    {
+      if (!in.InLineage[s])
+      {
+        in.Lineage.push_back(s);
+      }
+      in.InLineage[s] = 2; // 2: visited downwards
+      queue.push_back(s);
+    }
+  }
+  for (std::size_t q = 0; q < queue.size(); ++q)
+  {
+    const vtkIdType v = queue[q];
+    const vtkIdType nc = tree->GetNumberOfChildren(v);
+    for (vtkIdType c = 0; c < nc; ++c)
+    {
+      const vtkIdType child = tree->GetChild(v, c);
+      if (in.InLineage[child] != 2)
+      {
+        if (!in.InLineage[child])
+        {
+          in.Lineage.push_back(child);
+        }
+        in.InLineage[child] = 2;
+        queue.push_back(child);
+      }
+    }
+  }
+  std::sort(in.Lineage.begin(), in.Lineage.end());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::SetViewport(double minX, double maxX, double minY, double maxY)
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  if (!(maxX > minX) || !(maxY > minY))
+  {
+    vtkErrorMacro("SetViewport: empty range");
+    return;
+  }
+  in.VX0 = minX;
+  in.VX1 = maxX;
+  in.VY0 = minY;
+  in.VY1 = maxY;
+  in.ViewportSet = true;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::GetViewport(double viewport[4])
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  viewport[0] = in.VX0;
+  viewport[1] = in.VX1;
+  viewport[2] = in.VY0;
+  viewport[3] = in.VY1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::ResetViewport()
+{
+  this->Internals->ViewportSet = false;
+  this->BuildIndex();
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+double vtkGaussianTreeItem::GetZoom()
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  const vis4gs::ZoomParameters zp;
+  const double all = in.DataMaxY - in.DataMinY + 1.0;
+  const double sMax = all / this->ZoomedInRows;
+  if (sMax <= 1.0)
+  {
+    return zp.ZMax;
+  }
+  const double s = std::max(1.0, all / (in.VY1 - in.VY0));
+  const double z = zp.ZMin + (zp.ZMax - zp.ZMin) * std::log(s) / std::log(sMax);
+  return std::min(zp.ZMax, std::max(zp.ZMin, z));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::SetZoom(double z)
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  const vis4gs::ZoomParameters zp;
+  const double all = in.DataMaxY - in.DataMinY + 1.0;
+  const double sMax = std::max(1.0, all / this->ZoomedInRows);
+  const double t = (std::min(zp.ZMax, std::max(zp.ZMin, z)) - zp.ZMin) / (zp.ZMax - zp.ZMin);
+  const double s = std::exp(t * std::log(sMax));
+  const double centre = 0.5 * (in.VY0 + in.VY1);
+  const double half = 0.5 * all / s;
+  in.VY0 = centre - half;
+  in.VY1 = centre + half;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+double vtkGaussianTreeItem::GetZoomThreshold()
+{
+  return vis4gs::ZoomThreshold(this->GetZoom());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::ZoomRows(double factor, double aboutRow)
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  if (!(factor > 0))
+  {
+    return;
+  }
+  // Never zoom in past a few rows nor out past the whole tree.
+  const double all = in.DataMaxY - in.DataMinY + 1.0;
+  double span = (in.VY1 - in.VY0) / factor;
+  span = std::min(std::max(span, 4.0), all + 1.0);
+  const double f = (aboutRow - in.VY0) / (in.VY1 - in.VY0);
+  in.VY0 = aboutRow - f * span;
+  in.VY1 = in.VY0 + span;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::ZoomIterations(double factor, double aboutIteration)
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  if (!(factor > 0))
+  {
+    return;
+  }
+  const double all = 1.1 * (in.DataMaxX - in.DataMinX) + 1.0;
+  double span = (in.VX1 - in.VX0) / factor;
+  span = std::min(std::max(span, 10.0), all);
+  const double f = (aboutIteration - in.VX0) / (in.VX1 - in.VX0);
+  in.VX0 = aboutIteration - f * span;
+  in.VX1 = in.VX0 + span;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::Pan(double dIterations, double dRows)
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  in.VX0 += dIterations;
+  in.VX1 += dIterations;
+  in.VY0 += dRows;
+  in.VY1 += dRows;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::ZoomToSelection()
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  if (in.Lineage.empty())
+  {
+    return;
+  }
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (vtkIdType v : in.Lineage)
+  {
+    lo = std::min(lo, in.Row[v]);
+    hi = std::max(hi, in.Row[v]);
+  }
+  const double pad = std::max(2.0, 0.1 * (hi - lo));
+  in.VY0 = lo - pad;
+  in.VY1 = hi + pad;
+  const double mx = 0.02 * (in.DataMaxX - in.DataMinX);
+  in.VX0 = in.DataMinX - mx;
+  in.VX1 = in.DataMaxX + mx;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianTreeItem::UpdateLevelOfDetail()
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  in.Visible.clear();
+  in.Work = 0;
+  if (in.ByP.empty())
+  {
+    return 0;
+  }
+  const double tau = vis4gs::ZoomThreshold(this->GetZoom());
+  const double rowLo = in.VY0, rowHi = in.VY1;
+  const double xLo = in.VX0, xHi = in.VX1;
+  auto rowLess = [&](vtkIdType v, double r) { return in.Row[v] < r; };
+  auto k0 = std::lower_bound(in.ByRow.begin(), in.ByRow.end(), rowLo, rowLess);
+  auto k1 = std::lower_bound(k0, in.ByRow.end(), std::nextafter(rowHi, HUGE_VAL), rowLess);
+  auto p1 =
+    std::partition_point(in.ByP.begin(), in.ByP.end(), [&](vtkIdType v) { return in.P[v] >= tau; });
+  const vtkIdType nRows = k1 - k0;
+  const vtkIdType nP = p1 - in.ByP.begin();
+  auto inView = [&](vtkIdType v)
+  { return in.Row[v] >= rowLo && in.Row[v] <= rowHi && in.Birth[v] <= xHi && in.End[v] >= xLo; };
+  if (nP <= nRows)
+  {
+    for (auto it = in.ByP.begin(); it != p1; ++it)
+    {
+      const vtkIdType v = *it;
+      if (!in.InLineage[v] && inView(v))
+      {
+        in.Visible.push_back(v);
+      }
+    }
+    in.Work = nP;
+  }
+  else
+  {
+    for (auto it = k0; it != k1; ++it)
+    {
+      const vtkIdType v = *it;
+      if (in.P[v] >= tau && !in.InLineage[v] && in.Birth[v] <= xHi && in.End[v] >= xLo)
+      {
+        in.Visible.push_back(v);
+      }
+    }
+    in.Work = nRows;
+  }
+  for (vtkIdType v : in.Lineage)
+  {
+    if (inView(v))
+    {
+      in.Visible.push_back(v);
+    }
+  }
+  in.Work += static_cast<vtkIdType>(in.Lineage.size());
+  return static_cast<vtkIdType>(in.Visible.size());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::GetVisibleVertices(vtkIdTypeArray* vertices)
+{
+  std::vector<vtkIdType> v = this->Internals->Visible;
+  std::sort(v.begin(), v.end());
+  vertices->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  std::copy(v.begin(), v.end(), vertices->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianTreeItem::GetNumberOfVisibleVertices()
+{
+  return static_cast<vtkIdType>(this->Internals->Visible.size());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::GetSelectedVertices(vtkIdTypeArray* vertices)
+{
+  const auto& v = this->Internals->Selected;
+  vertices->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  std::copy(v.begin(), v.end(), vertices->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::GetLineageVertices(vtkIdTypeArray* vertices)
+{
+  const auto& v = this->Internals->Lineage;
+  vertices->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  std::copy(v.begin(), v.end(), vertices->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianTreeItem::GetLastLevelOfDetailWork()
+{
+  return this->Internals->Work;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianTreeItem::GetNumberOfVertices()
+{
+  return this->Internals->Tree ? this->Internals->Tree->GetNumberOfVertices() : 0;
+}
+
+namespace
+{
+struct ScreenMap
+{
+  float L, R, B, T;
+  double X0, X1, Y0, Y1;
+  float X(double x) const { return static_cast<float>(L + (x - X0) / (X1 - X0) * (R - L)); }
+  float Y(double row) const { return static_cast<float>(T - (row - Y0) / (Y1 - Y0) * (T - B)); }
+  double DataX(float sx) const { return X0 + (sx - L) / (R - L) * (X1 - X0); }
+  double DataY(float sy) const { return Y0 + (T - sy) / (T - B) * (Y1 - Y0); }
+};
+}
+
+#define VIS4GS_TREE_MAP(item, in)                                                                  \
+  int w_ = (item)->Size[0], h_ = (item)->Size[1];                                                  \
+  if ((item)->GetScene() && (item)->GetScene()->GetSceneWidth() > 0)                               \
+  {                                                                                                \
+    w_ = (item)->GetScene()->GetSceneWidth();                                                      \
+    h_ = (item)->GetScene()->GetSceneHeight();                                                     \
+  }                                                                                                \
+  const ScreenMap map                                                                              \
+  {                                                                                                \
+    MarginLeft, std::max(MarginLeft + 1.f, w_ - MarginRight), MarginBottom,                        \
+      std::max(MarginBottom + 1.f, h_ - MarginTop), (in).VX0, (in).VX1, (in).VY0, (in).VY1         \
+  }
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::GetVertexPosition(vtkIdType vertex, float position[2])
+{
+  this->BuildIndex();
+  auto& in = *this->Internals;
+  VIS4GS_TREE_MAP(this, in);
+  position[0] = position[1] = 0.f;
+  if (vertex >= 0 && vertex < static_cast<vtkIdType>(in.Row.size()))
+  {
+    position[0] = map.X(in.Birth[vertex]);
+    position[1] = map.Y(in.Row[vertex]);
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianTreeItem::PickVertex(float x, float y, float tolerance)
+{
+  auto& in = *this->Internals;
+  VIS4GS_TREE_MAP(this, in);
+  vtkIdType best = -1;
+  float bestD = tolerance;
+  for (vtkIdType v : in.Visible)
+  {
+    const float sy = map.Y(in.Row[v]);
+    const float dy = std::abs(sy - y);
+    if (dy > bestD)
+    {
+      continue;
+    }
+    const float sx0 = map.X(in.Birth[v]), sx1 = map.X(in.End[v]);
+    float dx = 0.f;
+    if (x < sx0)
+    {
+      dx = sx0 - x;
+    }
+    else if (x > sx1)
+    {
+      dx = x - sx1;
+    }
+    const float d = std::sqrt(dx * dx + dy * dy);
+    if (d <= bestD)
+    {
+      bestD = d;
+      best = v;
+    }
+  }
+  return best;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
+{
+  this->BuildIndex();
+  this->UpdateLevelOfDetail();
+  auto& in = *this->Internals;
+  VIS4GS_TREE_MAP(this, in);
+  vtkContextDevice2D* device = painter->GetDevice();
+
+  // Background.
+  painter->GetPen()->SetLineType(vtkPen::NO_PEN);
+  painter->GetBrush()->SetColor(36, 40, 48, 255);
+  painter->DrawRect(0, 0, static_cast<float>(w_), static_cast<float>(h_));
+  painter->GetBrush()->SetColor(44, 49, 58, 255);
+  painter->DrawRect(map.L, map.B, map.R - map.L, map.T - map.B);
+
+  // Family bands (alternating shades), only those in the viewport.
+  std::vector<float> quads[2];
+  for (std::size_t f = 0; f < in.BandMinY.size(); ++f)
+  {
+    if (in.BandMaxY[f] + 0.5 < in.VY0 || in.BandMinY[f] - 0.5 > in.VY1 || in.BandMaxX[f] < in.VX0 ||
+      in.BandMinX[f] > in.VX1)
+    {
+      continue;
+    }
+    const float x0 = std::max(map.L, map.X(in.BandMinX[f]));
+    const float x1 = std::min(map.R, map.X(in.BandMaxX[f]));
+    const float y0 = std::min(map.T, map.Y(in.BandMinY[f] - 0.5));
+    const float y1 = std::max(map.B, map.Y(in.BandMaxY[f] + 0.5));
+    if (y0 - y1 < 0.5f)
+    {
+      continue;
+    }
+    auto& q = quads[f % 2];
+    q.insert(q.end(), { x0, y1, x1, y1, x1, y0, x0, y0 });
+  }
+  const unsigned char bandColors[2][4] = { { 62, 70, 84, 255 }, { 54, 60, 72, 255 } };
+  for (int k = 0; k < 2; ++k)
+  {
+    if (!quads[k].empty())
+    {
+      painter->GetBrush()->SetColor(bandColors[k][0], bandColors[k][1], bandColors[k][2], 255);
+      device->ApplyBrush(painter->GetBrush());
+      device->DrawQuad(quads[k].data(), static_cast<int>(quads[k].size() / 2));
+    }
+  }
+
+  // Lifespan lines (birth -> end) coloured by birth kind; parent-child edges in grey.
+  auto& pts = in.Pts;
+  auto& cols = in.Cols;
+  pts.clear();
+  cols.clear();
+  std::vector<float> edges;
+  vtkTree* tree = in.Tree;
+  for (vtkIdType v : in.Visible)
+  {
+    const float y = map.Y(in.Row[v]);
+    const float x0 = map.X(in.Birth[v]);
+    pts.insert(pts.end(), { x0, y, std::max(map.X(in.End[v]), x0 + 1.f), y });
+    const unsigned char* c = KindColors[in.Kind[v]];
+    for (int k = 0; k < 2; ++k)
+    {
+      cols.insert(cols.end(), { c[0], c[1], c[2], 200 });
+    }
+    const vtkIdType parent = tree->GetParent(v);
+    if (parent >= 0 && in.Valid[parent])
+    {
+      edges.insert(edges.end(), { x0, map.Y(in.Row[parent]), x0, y });
+    }
+  }
+  vtkNew<vtkPen> pen;
+  pen->SetWidth(1.f);
+  pen->SetColor(150, 150, 160, 160);
+  if (!edges.empty())
+  {
+    device->ApplyPen(pen);
+    device->DrawLines(edges.data(), static_cast<int>(edges.size() / 2));
+  }
+  pen->SetWidth(in.Visible.size() > 20000 ? 1.f : 2.f);
+  device->ApplyPen(pen);
+  if (!pts.empty())
+  {
+    device->DrawLines(pts.data(), static_cast<int>(pts.size() / 2), cols.data(), 4);
+  }
+
+  // Selected lineage: thick highlight lines.
+  if (!in.Lineage.empty())
+  {
+    pts.clear();
+    for (vtkIdType v : in.Lineage)
+    {
+      if (in.Row[v] < in.VY0 || in.Row[v] > in.VY1)
+      {
+        continue;
+      }
+      const float y = map.Y(in.Row[v]);
+      const float x0 = map.X(in.Birth[v]);
+      pts.insert(pts.end(), { x0, y, std::max(map.X(in.End[v]), x0 + 1.f), y });
+      const vtkIdType parent = tree->GetParent(v);
+      if (parent >= 0 && in.Valid[parent] && in.InLineage[parent])
+      {
+        pts.insert(pts.end(), { x0, map.Y(in.Row[parent]), x0, y });
+      }
+    }
+    pen->SetWidth(3.f);
+    pen->SetColor(HighlightColor[0], HighlightColor[1], HighlightColor[2], 220);
+    device->ApplyPen(pen);
+    if (!pts.empty())
+    {
+      device->DrawLines(pts.data(), static_cast<int>(pts.size() / 2));
+    }
+  }
+
+  // Node markers: births by kind; a purple marker at the death of pruned Gaussians.
+  pts.clear();
+  cols.clear();
+  for (vtkIdType v : in.Visible)
+  {
+    pts.insert(pts.end(), { map.X(in.Birth[v]), map.Y(in.Row[v]) });
+    const unsigned char* c = KindColors[in.Kind[v]];
+    cols.insert(cols.end(), { c[0], c[1], c[2], 255 });
+    if (in.Pruned[v])
+    {
+      pts.insert(pts.end(), { map.X(in.End[v]), map.Y(in.Row[v]) });
+      const unsigned char* pc = KindColors[4];
+      cols.insert(cols.end(), { pc[0], pc[1], pc[2], 255 });
+    }
+  }
+  pen->SetWidth(in.Visible.size() > 20000 ? 2.f : 5.f);
+  device->ApplyPen(pen);
+  if (!pts.empty())
+  {
+    device->DrawPoints(pts.data(), static_cast<int>(pts.size() / 2), cols.data(), 4);
+  }
+  if (!in.Selected.empty())
+  {
+    pts.clear();
+    for (vtkIdType v : in.Selected)
+    {
+      if (in.Row[v] >= in.VY0 && in.Row[v] <= in.VY1)
+      {
+        pts.insert(pts.end(), { map.X(in.Birth[v]), map.Y(in.Row[v]) });
+      }
+    }
+    pen->SetWidth(9.f);
+    pen->SetColor(SelectedColor[0], SelectedColor[1], SelectedColor[2], 255);
+    device->ApplyPen(pen);
+    if (!pts.empty())
+    {
+      device->DrawPoints(pts.data(), static_cast<int>(pts.size() / 2));
+    }
+  }
+
+  // Iteration cursor.
+  if (in.Iteration >= 0 && in.Iteration >= in.VX0 && in.Iteration <= in.VX1)
+  {
+    pen->SetWidth(2.f);
+    pen->SetColor(255, 255, 255, 200);
+    painter->ApplyPen(pen);
+    const float x = map.X(in.Iteration);
+    painter->DrawLine(x, map.B, x, map.T);
+  }
+
+  // Iteration axis.
+  vtkTextProperty* text = painter->GetTextProp();
+  text->SetColor(0.85, 0.85, 0.85);
+  text->SetFontSize(11);
+  text->SetJustificationToCentered();
+  text->SetVerticalJustificationToTop();
+  text->SetBold(false);
+  pen->SetWidth(1.f);
+  pen->SetColor(200, 200, 200, 255);
+  painter->ApplyPen(pen);
+  painter->DrawLine(map.L, map.B, map.R, map.B);
+  const double step =
+    NiceStep(in.VX1 - in.VX0, std::max(2, static_cast<int>((map.R - map.L) / 90)));
+  for (double t = std::ceil(in.VX0 / step) * step; t <= in.VX1; t += step)
+  {
+    const float x = map.X(t);
+    painter->DrawLine(x, map.B, x, map.B - 4);
+    std::ostringstream label;
+    label << static_cast<long long>(t);
+    painter->DrawString(x, map.B - 6, label.str());
+  }
+
+  // Legend (top right).
+  const char* names[6] = { "root", "clone", "split", "clone-split", "prune", "selected" };
+  const float lx = map.R - 92.f, ly = map.T - 6.f;
+  painter->GetPen()->SetLineType(vtkPen::NO_PEN);
+  painter->GetBrush()->SetColor(20, 22, 28, 200);
+  painter->DrawRect(lx - 6, ly - 6 * 14 - 4, 96, 6 * 14 + 8);
+  text->SetJustificationToLeft();
+  text->SetVerticalJustificationToCentered();
+  for (int k = 0; k < 6; ++k)
+  {
+    const unsigned char* c = k < 5 ? KindColors[k] : SelectedColor;
+    painter->GetBrush()->SetColor(c[0], c[1], c[2], 255);
+    const float y = ly - 14.f * k - 7.f;
+    painter->DrawRect(lx, y - 4, 10, 8);
+    painter->DrawString(lx + 16, y, names[k]);
+  }
+
+  // Status: zoom, threshold, counts.
+  std::ostringstream status;
+  status.precision(3);
+  status << "z=" << this->GetZoom() << "  tau=" << vis4gs::ZoomThreshold(this->GetZoom())
+         << "  shown " << in.Visible.size() << " of " << in.NumberOfRows;
+  text->SetJustificationToLeft();
+  text->SetVerticalJustificationToTop();
+  painter->DrawString(map.L + 4, map.T - 4, status.str());
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTreeItem::Hit(const vtkContextMouseEvent& vtkNotUsed(mouse))
+{
+  return this->Visible && this->Internals->Tree;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTreeItem::MouseButtonPressEvent(const vtkContextMouseEvent& mouse)
+{
+  auto& in = *this->Internals;
+  if (mouse.GetButton() != vtkContextMouseEvent::LEFT_BUTTON)
+  {
+    return false;
+  }
+  in.Pressed = true;
+  in.Dragging = false;
+  in.PressPos = mouse.GetScenePos();
+  in.PressModifiers = Modifiers(mouse);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTreeItem::MouseMoveEvent(const vtkContextMouseEvent& mouse)
+{
+  auto& in = *this->Internals;
+  if (!in.Pressed)
+  {
+    return false;
+  }
+  const vtkVector2f pos = mouse.GetScenePos();
+  if (!in.Dragging &&
+    std::abs(pos.GetX() - in.PressPos.GetX()) + std::abs(pos.GetY() - in.PressPos.GetY()) < 3.f)
+  {
+    return true;
+  }
+  in.Dragging = true;
+  VIS4GS_TREE_MAP(this, in);
+  const vtkVector2f last = mouse.GetLastScenePos();
+  const double dx = map.DataX(last.GetX()) - map.DataX(pos.GetX());
+  const double dy = map.DataY(last.GetY()) - map.DataY(pos.GetY());
+  this->Pan(dx, dy);
+  if (this->GetScene())
+  {
+    this->GetScene()->SetDirty(true);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTreeItem::MouseButtonReleaseEvent(const vtkContextMouseEvent& mouse)
+{
+  auto& in = *this->Internals;
+  if (mouse.GetButton() != vtkContextMouseEvent::LEFT_BUTTON || !in.Pressed)
+  {
+    return false;
+  }
+  in.Pressed = false;
+  if (in.Dragging)
+  {
+    in.Dragging = false;
+    return true;
+  }
+  const vtkVector2f pos = mouse.GetScenePos();
+  const vtkIdType v = this->PickVertex(pos.GetX(), pos.GetY());
+  if (in.Hub)
+  {
+    const int mods = in.PressModifiers | Modifiers(mouse);
+    if (v < 0)
+    {
+      if (!(mods & (vtkContextMouseEvent::SHIFT_MODIFIER | vtkContextMouseEvent::CONTROL_MODIFIER)))
+      {
+        in.Hub->ClearSelection();
+      }
+    }
+    else
+    {
+      const vtkIdType id = static_cast<vtkIdType>(in.IdArray->GetComponent(v, 0));
+      const int mode = (mods & vtkContextMouseEvent::SHIFT_MODIFIER)
+        ? vtkGaussianSelectionHub::ADD
+        : ((mods & vtkContextMouseEvent::CONTROL_MODIFIER) ? vtkGaussianSelectionHub::TOGGLE
+                                                           : vtkGaussianSelectionHub::REPLACE);
+      in.Hub->SelectIds(&id, 1, mode);
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianTreeItem::MouseWheelEvent(const vtkContextMouseEvent& mouse, int delta)
+{
+  auto& in = *this->Internals;
+  VIS4GS_TREE_MAP(this, in);
+  const vtkVector2f pos = mouse.GetScenePos();
+  const double factor = std::pow(1.25, delta);
+  if (Modifiers(mouse) & vtkContextMouseEvent::CONTROL_MODIFIER)
+  {
+    this->ZoomIterations(factor, map.DataX(pos.GetX()));
+  }
+  else
+  {
+    this->ZoomRows(factor, map.DataY(pos.GetY()));
+  }
+  if (this->GetScene())
+  {
+    this->GetScene()->SetDirty(true);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTreeItem::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  auto& in = *this->Internals;
+  auto str = [](const char* s) { return s ? s : "(none)"; };
+  os << indent << "Tree: " << in.Tree.GetPointer() << "\n";
+  os << indent << "FamilyBands: " << in.Bands.GetPointer() << "\n";
+  os << indent << "SelectionHub: " << in.Hub.GetPointer() << "\n";
+  os << indent << "IdArrayName: " << str(this->IdArrayName) << "\n";
+  os << indent << "XArrayName: " << str(this->XArrayName) << "\n";
+  os << indent << "YArrayName: " << str(this->YArrayName) << "\n";
+  os << indent << "DeathArrayName: " << str(this->DeathArrayName) << "\n";
+  os << indent << "PerceptionArrayName: " << str(this->PerceptionArrayName) << "\n";
+  os << indent << "KindArrayName: " << str(this->KindArrayName) << "\n";
+  os << indent << "PrunedArrayName: " << str(this->PrunedArrayName) << "\n";
+  os << indent << "ZoomedInRows: " << this->ZoomedInRows << "\n";
+  os << indent << "Size: " << this->Size[0] << " " << this->Size[1] << "\n";
+  os << indent << "Viewport: " << in.VX0 << " " << in.VX1 << " " << in.VY0 << " " << in.VY1 << "\n";
+}
