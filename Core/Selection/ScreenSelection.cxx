@@ -1,0 +1,506 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ScreenSelection.h"
+
+#include "Footprint.h"
+#include "RasterKernel.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace vis4gs
+{
+namespace
+{
+int ThreadCount(int requested)
+{
+  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
+}
+
+typedef float V16 __attribute__((vector_size(64)));
+typedef std::int32_t I16 __attribute__((vector_size(64)));
+
+// raster::KernelExp(float) on 16 lanes with the same operations (bit-identical per lane).
+inline __attribute__((always_inline)) V16 VectorKernelExp(V16 x)
+{
+  const I16 inRange = x >= -87.33654f;
+  x = inRange ? x : V16{};
+  const V16 t = x * 1.44269504088896341f;
+  const V16 n = (t + 12582912.0f) - 12582912.0f;
+  V16 r = x - n * 0.693359375f;
+  r = r - n * -2.12194440e-4f;
+  const V16 r2 = r * r;
+  V16 p = V16{} + 1.9875691500E-4f;
+  p = p * r + 1.3981999507E-3f;
+  p = p * r + 8.3334519073E-3f;
+  p = p * r + 4.1665795894E-2f;
+  p = p * r + 1.6666665459E-1f;
+  p = p * r + 5.0000001201E-1f;
+  p = p * r2 + r + 1.0f;
+  const I16 bits = (__builtin_convertvector(n, I16) + 127) << 23;
+  const V16 res = p * (V16)bits;
+  return inRange ? res : V16{};
+}
+
+void AtomicMax(std::uint32_t* slot, float value)
+{
+  // Non-negative floats order like their bit patterns.
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof(bits));
+  std::uint32_t cur = __atomic_load_n(slot, __ATOMIC_RELAXED);
+  while (bits > cur &&
+    !__atomic_compare_exchange_n(slot, &cur, bits, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+  {
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+SelectionView PrepareSelectionView(const GaussianCloud& cloud, const Camera& camera, int threads)
+{
+  SelectionView view;
+  view.Settings.ComputeColors = false;
+  view.Settings.Threads = threads;
+  view.Projection = ProjectGaussians<float>(cloud, camera, view.Settings);
+  view.Bins = BinGaussians<float>(view.Projection, threads);
+  return view;
+}
+
+//------------------------------------------------------------------------------
+std::int64_t SelectSingle(const SelectionView& view, int x, int y)
+{
+  const auto att = AttributePixels<float>(view.Projection, view.Bins, view.Settings, { { x, y } });
+  if (att.empty() || att[0].Contributions.empty())
+  {
+    return -1;
+  }
+  return att[0].Contributions.front().Gaussian;
+}
+
+namespace
+{
+struct GroupContext
+{
+  const ViewProjection<float>* Projection;
+  const TileBins* Bins;
+  const std::vector<std::uint64_t>* Keys;
+  const std::vector<std::size_t>* Starts;
+  std::uint32_t* Best;
+};
+
+// One tile's pixels walk the tile's list together, 16 pixels per vector, until every pixel
+// has stopped (T < 1e-4) or the list ends. Per lane the arithmetic is RasterKernel.h's.
+inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx, std::int64_t gi)
+{
+  const auto& proj = *ctx.Projection;
+  const auto& bins = *ctx.Bins;
+  const auto& keys = *ctx.Keys;
+  const auto& starts = *ctx.Starts;
+  std::uint32_t* best = ctx.Best;
+  const int ts = raster::TileSize;
+  const std::size_t b = starts[static_cast<std::size_t>(gi)];
+  const std::size_t e = starts[static_cast<std::size_t>(gi) + 1];
+  const std::uint64_t tile = keys[b] / 256;
+  const int tx = static_cast<int>(tile % static_cast<std::uint64_t>(proj.TilesX));
+  const int ty = static_cast<int>(tile / static_cast<std::uint64_t>(proj.TilesX));
+  // Lanes of 16 pixels; dead lanes are padding or pixels that stopped (T < 1e-4).
+  const int m = static_cast<int>(e - b);
+  const int blocks = (m + 15) / 16;
+  V16 px[16], py[16], T[16];
+  I16 alive[16];
+  for (int k = 0; k < blocks; ++k)
+  {
+    for (int l = 0; l < 16; ++l)
+    {
+      const int j = 16 * k + l;
+      const int local = j < m ? static_cast<int>(keys[b + static_cast<std::size_t>(j)] % 256) : 0;
+      px[k][l] = static_cast<float>(tx * ts + local % ts);
+      py[k][l] = static_cast<float>(ty * ts + local / ts);
+      T[k][l] = 1.0f;
+      alive[k][l] = j < m ? -1 : 0;
+    }
+  }
+  const float minAlpha = raster::MinAlpha<float>();
+  const float stopT = static_cast<float>(raster::TransmittanceStop);
+  const float maxAlpha = static_cast<float>(raster::MaxAlpha);
+  for (std::uint64_t k = bins.Offsets[tile], end = bins.Offsets[tile + 1]; k < end; ++k)
+  {
+    const std::uint32_t id = bins.Ids[k];
+    const auto& g = proj.Gaussians[id];
+    V16 wmax = V16{};
+    I16 anyAlive = I16{};
+    for (int q = 0; q < blocks; ++q)
+    {
+      // Exactly KernelPower / KernelAlpha of RasterKernel.h, lane by lane.
+      const V16 dx = g.U - px[q];
+      const V16 dy = g.V - py[q];
+      const V16 power = -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+      const I16 valid = power <= 0.0f;
+      const V16 a = g.Opacity * VectorKernelExp(valid ? power : V16{});
+      const V16 alpha = a < maxAlpha ? a : V16{} + maxAlpha;
+      const I16 ok = alive[q] & valid & (alpha >= minAlpha);
+      const V16 Tn = T[q] * (1.0f - alpha);
+      const I16 stop = ok & (Tn < stopT);
+      const I16 blend = ok & ~stop;
+      const V16 w = alpha * T[q];
+      const V16 wb = blend ? w : V16{};
+      wmax = wb > wmax ? wb : wmax;
+      T[q] = blend ? Tn : T[q];
+      alive[q] = alive[q] & ~stop;
+      anyAlive |= alive[q];
+    }
+    float mx = 0.0f;
+    bool live = false;
+    for (int l = 0; l < 16; ++l)
+    {
+      mx = wmax[l] > mx ? wmax[l] : mx;
+      live = live || anyAlive[l] != 0;
+    }
+    if (mx > 0.0f)
+    {
+      AtomicMax(&best[id], mx);
+    }
+    if (!live)
+    {
+      break;
+    }
+  }
+}
+
+__attribute__((target("avx2"))) void ProcessGroupAvx2(const GroupContext& ctx, std::int64_t gi)
+{
+  ProcessGroup(ctx, gi);
+}
+
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void ProcessGroupAvx512(
+  const GroupContext& ctx,
+  std::int64_t gi)
+{
+  ProcessGroup(ctx, gi);
+}
+
+void ProcessGroupBaseline(const GroupContext& ctx, std::int64_t gi)
+{
+  ProcessGroup(ctx, gi);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
+  const std::vector<std::array<int, 2>>& pixels,
+  int threads)
+{
+  const auto& proj = view.Projection;
+  const auto& bins = view.Bins;
+  if (bins.TilesX != proj.TilesX || bins.TilesY != proj.TilesY ||
+    bins.Offsets.size() != bins.TileCount() + 1)
+  {
+    throw std::invalid_argument(
+      "MaxWeightsOverPixels: the tile bins do not belong to the projection");
+  }
+  // Unique in-image pixels, grouped by tile (key = tile * 256 + position in the tile).
+  const int ts = raster::TileSize;
+  std::vector<std::uint64_t> keys;
+  keys.reserve(pixels.size());
+  for (const auto& p : pixels)
+  {
+    if (p[0] < 0 || p[1] < 0 || p[0] >= proj.Width || p[1] >= proj.Height)
+    {
+      continue;
+    }
+    const std::uint64_t tile =
+      static_cast<std::uint64_t>(p[1] / ts) * proj.TilesX + static_cast<std::uint64_t>(p[0] / ts);
+    keys.push_back(tile * 256 + static_cast<std::uint64_t>((p[1] % ts) * ts + p[0] % ts));
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<std::size_t> starts;
+  for (std::size_t k = 0; k < keys.size(); ++k)
+  {
+    if (k == 0 || keys[k] / 256 != keys[k - 1] / 256)
+    {
+      starts.push_back(k);
+    }
+  }
+  starts.push_back(keys.size());
+
+  std::vector<std::uint32_t> best(proj.Gaussians.size(), 0u);
+  const GroupContext ctx{ &proj, &bins, &keys, &starts, best.data() };
+  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  void (*process)(const GroupContext&, std::int64_t) = has512 ? ProcessGroupAvx512
+    : __builtin_cpu_supports("avx2")                          ? ProcessGroupAvx2
+                                                              : ProcessGroupBaseline;
+  const std::int64_t groups = static_cast<std::int64_t>(starts.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(threads))
+  for (std::int64_t gi = 0; gi < groups; ++gi)
+  {
+    process(ctx, gi);
+  }
+  std::vector<float> out(best.size());
+  if (!best.empty())
+  {
+    std::memcpy(out.data(), best.data(), best.size() * sizeof(float));
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::array<int, 2>> BrushPixels(const std::vector<std::array<double, 2>>& stroke,
+  double radius,
+  int width,
+  int height)
+{
+  std::vector<std::array<int, 2>> out;
+  if (stroke.empty() || !(radius >= 0) || width <= 0 || height <= 0)
+  {
+    return out;
+  }
+  double lo[2] = { stroke[0][0], stroke[0][1] }, hi[2] = { lo[0], lo[1] };
+  for (const auto& p : stroke)
+  {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
+    {
+      throw std::invalid_argument("BrushPixels: non-finite stroke point");
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  const int x0 = std::max(0, static_cast<int>(std::floor(lo[0] - radius)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(lo[1] - radius)));
+  const int x1 = std::min(width - 1, static_cast<int>(std::ceil(hi[0] + radius)));
+  const int y1 = std::min(height - 1, static_cast<int>(std::ceil(hi[1] + radius)));
+  const double r2 = radius * radius;
+  for (int y = y0; y <= y1; ++y)
+  {
+    for (int x = x0; x <= x1; ++x)
+    {
+      bool inside = false;
+      for (std::size_t s = 0; s < stroke.size() && !inside; ++s)
+      {
+        const auto& a = stroke[s];
+        const auto& b = s + 1 < stroke.size() ? stroke[s + 1] : stroke[s];
+        const double ux = b[0] - a[0], uy = b[1] - a[1];
+        const double l2 = ux * ux + uy * uy;
+        double t = l2 > 0 ? ((x - a[0]) * ux + (y - a[1]) * uy) / l2 : 0.0;
+        t = std::min(1.0, std::max(0.0, t));
+        const double dx = x - (a[0] + t * ux), dy = y - (a[1] + t * uy);
+        inside = dx * dx + dy * dy <= r2;
+      }
+      if (inside)
+      {
+        out.push_back({ x, y });
+      }
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
+  const std::vector<std::array<int, 2>>& pixels,
+  double threshold,
+  int threads)
+{
+  if (!(threshold > 0))
+  {
+    throw std::invalid_argument("SelectBrush: the weight threshold must be positive");
+  }
+  const auto w = MaxWeightsOverPixels(view, pixels, threads);
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < w.size(); ++i)
+  {
+    if (static_cast<double>(w[i]) >= threshold)
+    {
+      out.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options)
+{
+  const auto& proj = view.Projection;
+  if (x0 > x1)
+  {
+    std::swap(x0, x1);
+  }
+  if (y0 > y1)
+  {
+    std::swap(y0, y1);
+  }
+  x0 = std::max(0, x0);
+  y0 = std::max(0, y0);
+  x1 = std::min(proj.Width - 1, x1);
+  y1 = std::min(proj.Height - 1, y1);
+  std::vector<std::uint32_t> candidates;
+  if (x0 > x1 || y0 > y1)
+  {
+    return candidates;
+  }
+  const float ulo = x0 - 0.5f, uhi = x1 + 0.5f, vlo = y0 - 0.5f, vhi = y1 + 0.5f;
+  for (std::size_t i = 0; i < proj.Gaussians.size(); ++i)
+  {
+    const auto& g = proj.Gaussians[i];
+    if (g.IsVisible() && g.U >= ulo && g.U < uhi && g.V >= vlo && g.V < vhi)
+    {
+      candidates.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  if (options.IncludeOccluded || candidates.empty())
+  {
+    return candidates;
+  }
+  if (!(options.WeightThreshold > 0))
+  {
+    throw std::invalid_argument("SelectFrame: the weight threshold must be positive");
+  }
+  std::vector<std::array<int, 2>> pixels;
+  pixels.reserve(static_cast<std::size_t>(x1 - x0 + 1) * (y1 - y0 + 1));
+  // Tile by tile keeps each thread on one tile list.
+  const int ts = raster::TileSize;
+  for (int ty = y0 / ts; ty <= y1 / ts; ++ty)
+  {
+    for (int tx = x0 / ts; tx <= x1 / ts; ++tx)
+    {
+      for (int y = std::max(y0, ty * ts); y <= std::min(y1, ty * ts + ts - 1); ++y)
+      {
+        for (int x = std::max(x0, tx * ts); x <= std::min(x1, tx * ts + ts - 1); ++x)
+        {
+          pixels.push_back({ x, y });
+        }
+      }
+    }
+  }
+  const auto w = MaxWeightsOverPixels(view, pixels, options.Threads);
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i : candidates)
+  {
+    if (static_cast<double>(w[i]) >= options.WeightThreshold)
+    {
+      out.push_back(i);
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+RayQuery PixelRay(const Camera& camera, double x, double y, double sigmas)
+{
+  if (camera.Width <= 0 || camera.Height <= 0 || !(camera.Fx > 0) || !(camera.Fy > 0))
+  {
+    throw std::invalid_argument("PixelRay: camera '" + camera.Name + "' has no valid intrinsics");
+  }
+  const auto& m = camera.WorldToCamera;
+  const double c[3] = {
+    (x - (camera.Width - 1) / 2.0) / camera.Fx, (y - (camera.Height - 1) / 2.0) / camera.Fy, 1.0
+  };
+  RayQuery ray;
+  ray.Origin = camera.Center();
+  double n = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    ray.Direction[k] = m[k] * c[0] + m[4 + k] * c[1] + m[8 + k] * c[2];
+    n += ray.Direction[k] * ray.Direction[k];
+  }
+  n = std::sqrt(n);
+  for (auto& v : ray.Direction)
+  {
+    v /= n;
+  }
+  ray.Sigmas = sigmas;
+  ray.TMin = 0;
+  return ray;
+}
+
+//------------------------------------------------------------------------------
+std::array<std::array<double, 3>, 5> CameraFrustum(const Camera& camera, double depth)
+{
+  if (camera.Width <= 0 || camera.Height <= 0 || !(camera.Fx > 0) || !(camera.Fy > 0))
+  {
+    throw std::invalid_argument(
+      "CameraFrustum: camera '" + camera.Name + "' has no valid intrinsics");
+  }
+  const auto& m = camera.WorldToCamera;
+  std::array<std::array<double, 3>, 5> out;
+  out[0] = camera.Center();
+  const double W = camera.Width, H = camera.Height;
+  const double corners[4][2] = {
+    { -0.5, -0.5 }, { W - 0.5, -0.5 }, { W - 0.5, H - 0.5 }, { -0.5, H - 0.5 }
+  };
+  for (int k = 0; k < 4; ++k)
+  {
+    const double c[3] = { (corners[k][0] - (W - 1) / 2.0) / camera.Fx * depth,
+      (corners[k][1] - (H - 1) / 2.0) / camera.Fy * depth,
+      depth };
+    // X = R^T (c - t)
+    const double d[3] = { c[0] - m[3], c[1] - m[7], c[2] - m[11] };
+    for (int r = 0; r < 3; ++r)
+    {
+      out[k + 1][r] = m[r] * d[0] + m[4 + r] * d[1] + m[8 + r] * d[2];
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> CountVisibleInViews(const GaussianCloud& cloud,
+  const std::vector<std::uint32_t>& indices,
+  const std::vector<Camera>& cameras,
+  int threads)
+{
+  GaussianCloud subset;
+  subset.Count = indices.size();
+  subset.ShDegree = 0;
+  subset.Positions.resize(3 * indices.size());
+  subset.LogScales.resize(3 * indices.size());
+  subset.Rotations.resize(4 * indices.size());
+  subset.OpacityLogits.resize(indices.size());
+  for (std::size_t k = 0; k < indices.size(); ++k)
+  {
+    const std::size_t i = indices[k];
+    if (i >= cloud.Count)
+    {
+      throw std::invalid_argument("CountVisibleInViews: index " + std::to_string(i) +
+        " is outside the cloud of " + std::to_string(cloud.Count));
+    }
+    std::copy_n(&cloud.Positions[3 * i], 3, &subset.Positions[3 * k]);
+    std::copy_n(&cloud.LogScales[3 * i], 3, &subset.LogScales[3 * k]);
+    std::copy_n(&cloud.Rotations[4 * i], 4, &subset.Rotations[4 * k]);
+    subset.OpacityLogits[k] = cloud.OpacityLogits[i];
+  }
+  std::vector<std::uint32_t> counts(cameras.size(), 0);
+  if (indices.empty())
+  {
+    return counts;
+  }
+  RasterSettings settings;
+  settings.ComputeColors = false;
+  settings.Threads = threads;
+  FootprintOptions fo;
+  fo.Threads = threads;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    const auto proj = ProjectGaussians<float>(subset, cameras[v], settings);
+    const auto fp = ComputeFootprints<float>(proj, fo);
+    for (std::uint32_t c : fp.PixelCount)
+    {
+      counts[v] += c > 0 ? 1 : 0;
+    }
+  }
+  return counts;
+}
+
+} // namespace vis4gs

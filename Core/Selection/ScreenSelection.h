@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file ScreenSelection.h
+ * @brief Screen-space selection modes on the exact CPU rasteriser (Core/Render): Single,
+ * Brush and Frame, plus the pixel ray of the Ray mode and the camera frustums of the
+ * training views with the number of selected Gaussians each one sees.
+ *
+ * Pixels are in the rasteriser's convention: (x, y) with row 0 at the TOP, pixel (x, y)
+ * sampled at integer coordinates. A Gaussian's blending weight at a pixel is
+ * w = alpha * T, exactly as CompositeTiles()/AttributePixels() blend it (same float
+ * arithmetic, same early stop at T < 1e-4).
+ *
+ *  - Single: the Gaussian with the largest weight at the clicked pixel (ties: front first).
+ *  - Brush: the Gaussians whose largest weight over the brushed pixels is >= a threshold.
+ *  - Frame: the Gaussians whose projected centre (U, V) lies in the rectangle of pixels
+ *    [x0, x1] x [y0, y1] (i.e. x0 - 0.5 <= U < x1 + 0.5) and that are visible there: their
+ *    largest weight over the rectangle's pixels is >= a threshold; with IncludeOccluded every
+ *    projected (not culled) Gaussian with its centre inside is taken.
+ *
+ * PrepareSelectionView() projects and bins the scene once per camera (the costly part); the
+ * selections then reuse it.
+ */
+#ifndef vis4gs_ScreenSelection_h
+#define vis4gs_ScreenSelection_h
+
+#include "Camera.h"
+#include "GaussianCloud.h"
+#include "GaussianOctree.h"
+#include "Rasterizer.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vis4gs
+{
+
+/// The scene projected and binned for one camera.
+struct SelectionView
+{
+  ViewProjection<float> Projection;
+  TileBins Bins;
+  RasterSettings Settings;
+};
+
+/// Projects (without colours) and bins @p cloud for @p camera. Throws like ProjectGaussians().
+SelectionView PrepareSelectionView(const GaussianCloud& cloud,
+  const Camera& camera,
+  int threads = 0);
+
+/// Index of the Gaussian with the largest weight at pixel (x, y), or -1 when none blends there.
+std::int64_t SelectSingle(const SelectionView& view, int x, int y);
+
+/**
+ * Largest weight of every Gaussian over @p pixels (out-of-image pixels ignored): a dense
+ * array, one float per Gaussian, 0 where it does not blend. Parallel over pixels.
+ */
+std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
+  const std::vector<std::array<int, 2>>& pixels,
+  int threads = 0);
+
+/// The pixels of the image within @p radius (Euclidean, pixel centres) of the polyline
+/// @p stroke (a single point is a disk), each once, in row-major order.
+std::vector<std::array<int, 2>> BrushPixels(const std::vector<std::array<double, 2>>& stroke,
+  double radius,
+  int width,
+  int height);
+
+/// Indices (ascending) whose largest weight over @p pixels is >= @p threshold (> 0).
+std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
+  const std::vector<std::array<int, 2>>& pixels,
+  double threshold,
+  int threads = 0);
+
+struct FrameOptions
+{
+  /// Minimum of the largest weight over the rectangle for a Gaussian to count as visible.
+  double WeightThreshold = 0.01;
+  /// Take every projected Gaussian with its centre inside, visible or not.
+  bool IncludeOccluded = false;
+  int Threads = 0;
+};
+
+/// Indices (ascending) selected by the rectangle [x0, x1] x [y0, y1] (corners in any order,
+/// clipped to the image).
+std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options = {});
+
+/// The viewing ray through pixel (x, y) (fractional pixels allowed): origin at the camera
+/// centre, unit direction R^T ((x - (W-1)/2)/fx, (y - (H-1)/2)/fy, 1) normalised; TMin = 0.
+RayQuery PixelRay(const Camera& camera, double x, double y, double sigmas = 3.0);
+
+/**
+ * Apex and the four image corners (pixel corners (-0.5, -0.5), (W-0.5, -0.5),
+ * (W-0.5, H-0.5), (-0.5, H-0.5), in that order) of @p camera's frustum at view depth
+ * @p depth, in world coordinates.
+ */
+std::array<std::array<double, 3>, 5> CameraFrustum(const Camera& camera, double depth);
+
+/**
+ * For each camera, the number of Gaussians among @p indices that are visible in it: a
+ * non-empty footprint |Omega(g, v)| >= 1 (DESIGN §4, Footprint.h, exact rasteriser mode),
+ * whether occluded or not. Only the listed Gaussians are projected.
+ */
+std::vector<std::uint32_t> CountVisibleInViews(const GaussianCloud& cloud,
+  const std::vector<std::uint32_t>& indices,
+  const std::vector<Camera>& cameras,
+  int threads = 0);
+
+} // namespace vis4gs
+
+#endif

@@ -1,0 +1,329 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ScreenSelection.h"
+
+#include "Footprint.h"
+#include "RasterKernel.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace vis4gs
+{
+namespace
+{
+Camera TestCamera()
+{
+  Camera c;
+  c.Name = "test";
+  c.Width = 96;
+  c.Height = 64;
+  c.Fx = c.Fy = 80;
+  const double a = 0.2;
+  c.WorldToCamera = {
+    std::cos(a), 0, std::sin(a), 0.1, 0, 1, 0, -0.1, -std::sin(a), 0, std::cos(a), 6.0, 0, 0, 0, 1
+  };
+  return c;
+}
+
+GaussianCloud TestCloud(std::size_t n, unsigned seed)
+{
+  GaussianCloud c;
+  c.Resize(n, 0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      c.Positions[3 * i + k] = 2.5f * u(rng);
+      c.LogScales[3 * i + k] = -3.0f + 0.8f * u(rng);
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      c.Rotations[4 * i + k] = u(rng);
+    }
+    c.OpacityLogits[i] = 1.0f + 3.0f * u(rng);
+  }
+  return c;
+}
+
+// Independent replay without tile bins: every visible Gaussian whose tile rectangle holds the
+// pixel's tile, sorted by (depth, index), blended with the reference rule.
+std::vector<float> NaiveMaxWeights(const SelectionView& v,
+  const std::vector<std::array<int, 2>>& px)
+{
+  const auto& p = v.Projection;
+  std::vector<float> best(p.Gaussians.size(), 0.0f);
+  for (const auto& q : px)
+  {
+    if (q[0] < 0 || q[1] < 0 || q[0] >= p.Width || q[1] >= p.Height)
+    {
+      continue;
+    }
+    const int tx = q[0] / 16, ty = q[1] / 16;
+    std::vector<std::uint32_t> list;
+    for (std::uint32_t i = 0; i < p.Gaussians.size(); ++i)
+    {
+      const auto& g = p.Gaussians[i];
+      if (g.IsVisible() && tx >= g.TileRect[0] && tx < g.TileRect[2] && ty >= g.TileRect[1] &&
+        ty < g.TileRect[3])
+      {
+        list.push_back(i);
+      }
+    }
+    std::stable_sort(list.begin(),
+      list.end(),
+      [&p](std::uint32_t a, std::uint32_t b)
+      { return p.Gaussians[a].Depth < p.Gaussians[b].Depth; });
+    float T = 1.0f;
+    for (std::uint32_t i : list)
+    {
+      const auto& g = p.Gaussians[i];
+      const float dx = g.U - static_cast<float>(q[0]), dy = g.V - static_cast<float>(q[1]);
+      const float power = -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+      if (power > 0.0f)
+      {
+        continue;
+      }
+      const float alpha = std::min(0.99f, g.Opacity * raster::KernelExp(power));
+      if (alpha < 1.0f / 255.0f)
+      {
+        continue;
+      }
+      const float Tn = T * (1.0f - alpha);
+      if (Tn < 0.0001f)
+      {
+        break;
+      }
+      best[i] = std::max(best[i], alpha * T);
+      T = Tn;
+    }
+  }
+  return best;
+}
+}
+
+TEST(ScreenSelection, MaxWeightsAgreeWithAttributionAndNaiveReplay)
+{
+  const auto cloud = TestCloud(1500, 5);
+  const auto view = PrepareSelectionView(cloud, TestCamera(), 2);
+  std::vector<std::array<int, 2>> pixels;
+  for (int y = 10; y < 50; y += 3)
+  {
+    for (int x = 5; x < 90; x += 4)
+    {
+      pixels.push_back({ x, y });
+    }
+  }
+  pixels.push_back({ -1, 3 }); // outside: ignored
+  const auto w = MaxWeightsOverPixels(view, pixels, 2);
+  const auto naive = NaiveMaxWeights(view, pixels);
+  const auto ranked =
+    RankContributors(AttributePixels<float>(view.Projection, view.Bins, view.Settings, pixels));
+  std::vector<double> fromAttribution(cloud.Count, 0.0);
+  for (const auto& c : ranked)
+  {
+    fromAttribution[c.Gaussian] = c.MaxWeight;
+  }
+  std::size_t nonzero = 0;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    ASSERT_EQ(static_cast<double>(w[i]), fromAttribution[i]) << i;
+    ASSERT_EQ(w[i], naive[i]) << i;
+    nonzero += w[i] > 0 ? 1 : 0;
+  }
+  EXPECT_GT(nonzero, 100u);
+}
+
+TEST(ScreenSelection, SingleBrushFrameAgainstBruteForce)
+{
+  const auto cloud = TestCloud(1500, 9);
+  const Camera cam = TestCamera();
+  const auto view = PrepareSelectionView(cloud, cam, 2);
+  // Single: the largest naive weight at the pixel.
+  int singles = 0;
+  for (int y = 4; y < 64; y += 9)
+  {
+    for (int x = 3; x < 96; x += 11)
+    {
+      const auto w = NaiveMaxWeights(view, { { x, y } });
+      const auto it = std::max_element(w.begin(), w.end());
+      const std::int64_t expected = *it > 0 ? it - w.begin() : -1;
+      ASSERT_EQ(SelectSingle(view, x, y), expected) << x << "," << y;
+      singles += expected >= 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(singles, 20);
+  EXPECT_EQ(SelectSingle(view, -5, 3), -1);
+  EXPECT_EQ(SelectSingle(view, 96, 3), -1);
+
+  // Brush: a stroke across the image.
+  const auto pixels = BrushPixels({ { 10.0, 20.0 }, { 60.0, 40.0 } }, 3.0, cam.Width, cam.Height);
+  for (double threshold : { 0.01, 0.2 })
+  {
+    const auto got = SelectBrush(view, pixels, threshold, 2);
+    const auto w = NaiveMaxWeights(view, pixels);
+    std::vector<std::uint32_t> expected;
+    for (std::uint32_t i = 0; i < w.size(); ++i)
+    {
+      if (w[i] >= threshold)
+      {
+        expected.push_back(i);
+      }
+    }
+    EXPECT_EQ(got, expected);
+    EXPECT_FALSE(got.empty());
+  }
+  EXPECT_THROW(SelectBrush(view, pixels, 0.0), std::invalid_argument);
+
+  // Frame: corners in any order, clipped to the image.
+  FrameOptions fo;
+  fo.Threads = 2;
+  const auto frame = SelectFrame(view, 70, 50, 20, 8, fo);
+  std::vector<std::array<int, 2>> rect;
+  for (int y = 8; y <= 50; ++y)
+  {
+    for (int x = 20; x <= 70; ++x)
+    {
+      rect.push_back({ x, y });
+    }
+  }
+  const auto w = NaiveMaxWeights(view, rect);
+  std::vector<std::uint32_t> expected, occluded;
+  for (std::uint32_t i = 0; i < cloud.Count; ++i)
+  {
+    const auto& g = view.Projection.Gaussians[i];
+    const bool inside = g.IsVisible() && g.U >= 19.5f && g.U < 70.5f && g.V >= 7.5f && g.V < 50.5f;
+    if (inside)
+    {
+      occluded.push_back(i);
+      if (w[i] >= 0.01f)
+      {
+        expected.push_back(i);
+      }
+    }
+  }
+  EXPECT_EQ(frame, expected);
+  fo.IncludeOccluded = true;
+  EXPECT_EQ(SelectFrame(view, 20, 8, 70, 50, fo), occluded);
+  EXPECT_GT(occluded.size(), expected.size()); // some centres are hidden
+  EXPECT_GT(expected.size(), 10u);
+  EXPECT_TRUE(SelectFrame(view, 200, 200, 300, 300, fo).empty());
+  const auto whole = SelectFrame(view, -100, -100, 1000, 1000, fo);
+  EXPECT_GE(whole.size(), occluded.size());
+}
+
+TEST(ScreenSelection, BrushPixels)
+{
+  auto disk = BrushPixels({ { 10.0, 10.0 } }, 2.0, 100, 100);
+  EXPECT_EQ(disk.size(), 13u); // |dx|^2 + |dy|^2 <= 4
+  auto clipped = BrushPixels({ { 0.0, 0.0 } }, 2.0, 100, 100);
+  EXPECT_EQ(clipped.size(), 6u);
+  auto line = BrushPixels({ { 10.0, 10.0 }, { 20.0, 10.0 } }, 0.0, 100, 100);
+  EXPECT_EQ(line.size(), 11u);
+  EXPECT_TRUE(BrushPixels({}, 3.0, 100, 100).empty());
+  EXPECT_THROW(BrushPixels({ { std::nan(""), 1.0 } }, 3.0, 100, 100), std::invalid_argument);
+}
+
+TEST(ScreenSelection, PixelRayAndFrustum)
+{
+  const Camera cam = TestCamera();
+  const auto& m = cam.WorldToCamera;
+  auto project = [&m, &cam](const std::array<double, 3>& p)
+  {
+    double t[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      t[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+    }
+    return std::array<double, 3>{ cam.Fx * t[0] / t[2] + (cam.Width - 1) / 2.0,
+      cam.Fy * t[1] / t[2] + (cam.Height - 1) / 2.0,
+      t[2] };
+  };
+  const auto ray = PixelRay(cam, 17.25, 40.5, 2.0);
+  EXPECT_EQ(ray.Sigmas, 2.0);
+  for (double t : { 1.0, 7.0 })
+  {
+    const std::array<double, 3> p{ ray.Origin[0] + t * ray.Direction[0],
+      ray.Origin[1] + t * ray.Direction[1],
+      ray.Origin[2] + t * ray.Direction[2] };
+    const auto uv = project(p);
+    EXPECT_NEAR(uv[0], 17.25, 1e-9);
+    EXPECT_NEAR(uv[1], 40.5, 1e-9);
+    EXPECT_GT(uv[2], 0);
+  }
+  const auto f = CameraFrustum(cam, 2.0);
+  const auto c = cam.Center();
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(f[0][k], c[k], 1e-12);
+  }
+  const double corners[4][2] = { { -0.5, -0.5 }, { 95.5, -0.5 }, { 95.5, 63.5 }, { -0.5, 63.5 } };
+  for (int k = 0; k < 4; ++k)
+  {
+    const auto uv = project(f[k + 1]);
+    EXPECT_NEAR(uv[0], corners[k][0], 1e-9);
+    EXPECT_NEAR(uv[1], corners[k][1], 1e-9);
+    EXPECT_NEAR(uv[2], 2.0, 1e-12);
+  }
+}
+
+TEST(ScreenSelection, VisibleCountsPerView)
+{
+  const auto cloud = TestCloud(800, 17);
+  std::vector<Camera> cams;
+  for (int v = 0; v < 4; ++v)
+  {
+    Camera c = TestCamera();
+    const double a = -0.6 + 0.4 * v;
+    c.WorldToCamera = { std::cos(a),
+      0,
+      std::sin(a),
+      1.5 * v - 2.0,
+      0,
+      1,
+      0,
+      0,
+      -std::sin(a),
+      0,
+      std::cos(a),
+      5.0,
+      0,
+      0,
+      0,
+      1 };
+    cams.push_back(c);
+  }
+  std::vector<std::uint32_t> selected;
+  for (std::uint32_t i = 0; i < cloud.Count; i += 3)
+  {
+    selected.push_back(i);
+  }
+  const auto counts = CountVisibleInViews(cloud, selected, cams, 2);
+  ASSERT_EQ(counts.size(), cams.size());
+  bool differ = false;
+  for (std::size_t v = 0; v < cams.size(); ++v)
+  {
+    // Brute force on the full cloud.
+    RasterSettings s;
+    s.ComputeColors = false;
+    FootprintOptions fo;
+    fo.BruteForce = true;
+    const auto fp = ComputeFootprints<float>(ProjectGaussians<float>(cloud, cams[v], s), fo);
+    std::uint32_t expected = 0;
+    for (std::uint32_t i : selected)
+    {
+      expected += fp.PixelCount[i] > 0 ? 1 : 0;
+    }
+    EXPECT_EQ(counts[v], expected) << v;
+    differ = differ || counts[v] != counts[0];
+  }
+  EXPECT_TRUE(differ);
+  EXPECT_EQ(CountVisibleInViews(cloud, {}, cams), std::vector<std::uint32_t>(4, 0));
+  EXPECT_THROW(CountVisibleInViews(cloud, { 5000 }, cams), std::invalid_argument);
+}
+
+} // namespace vis4gs

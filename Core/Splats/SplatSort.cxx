@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SplatSort.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace vis4gs
+{
+namespace
+{
+int ThreadCount(int requested)
+{
+  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
+}
+
+std::uint32_t FloatBits(float f)
+{
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof(u));
+  return u;
+}
+
+void CheckCount(std::size_t n)
+{
+  if (n > std::numeric_limits<std::uint32_t>::max())
+  {
+    throw std::invalid_argument(
+      "SortBackToFront: " + std::to_string(n) + " Gaussians exceed the limit of 2^32-1");
+  }
+}
+
+bool Drawable(float depth, std::size_t i, const SplatSortOptions& options)
+{
+  // !(depth <= near) would keep NaN; finite and strictly beyond the near plane only.
+  return depth > options.NearPlane && std::isfinite(depth) &&
+    (options.Keep == nullptr || options.Keep[i] != 0);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void ComputeViewDepths(const float* positions,
+  std::size_t count,
+  const std::array<double, 16>& worldToCamera,
+  std::vector<float>& depths,
+  int threads)
+{
+  depths.resize(count);
+  const float r0 = static_cast<float>(worldToCamera[8]);
+  const float r1 = static_cast<float>(worldToCamera[9]);
+  const float r2 = static_cast<float>(worldToCamera[10]);
+  const float t = static_cast<float>(worldToCamera[11]);
+  const std::int64_t n = static_cast<std::int64_t>(count);
+  float* out = depths.data();
+#pragma omp parallel for num_threads(ThreadCount(threads)) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    const float* p = positions + 3 * i;
+    out[i] = r0 * p[0] + r1 * p[1] + r2 * p[2] + t;
+  }
+}
+
+//------------------------------------------------------------------------------
+void SortBackToFront(const std::vector<float>& depths,
+  std::vector<std::uint32_t>& order,
+  const SplatSortOptions& options)
+{
+  const std::size_t n = depths.size();
+  CheckCount(n);
+  const int threads =
+    static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(ThreadCount(options.Threads)),
+      std::max<std::size_t>(1, n / 4096 + 1)));
+
+  // 1. Compaction of the drawable Gaussians into (key, index), in index order.
+  std::vector<std::size_t> kept(static_cast<std::size_t>(threads) + 1, 0);
+  std::vector<std::uint32_t> keys[2], ids[2];
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const std::size_t b = n * t / threads, e = n * (t + 1) / threads;
+    std::size_t c = 0;
+    for (std::size_t i = b; i < e; ++i)
+    {
+      c += Drawable(depths[i], i, options) ? 1 : 0;
+    }
+    kept[t + 1] = c;
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int k = 0; k < threads; ++k)
+      {
+        kept[k + 1] += kept[k];
+      }
+      for (int k = 0; k < 2; ++k)
+      {
+        keys[k].resize(kept[threads]);
+        ids[k].resize(kept[threads]);
+      }
+    }
+    std::size_t o = kept[t];
+    for (std::size_t i = b; i < e; ++i)
+    {
+      if (Drawable(depths[i], i, options))
+      {
+        keys[0][o] = FloatBits(depths[i]);
+        ids[0][o] = static_cast<std::uint32_t>(i);
+        ++o;
+      }
+    }
+  }
+  const std::size_t m = kept[threads];
+
+  // 2. Stable LSD radix sort, 8-bit digits: ascending depth, ties in index order.
+  std::vector<std::size_t> hist(static_cast<std::size_t>(threads) * 256);
+  int src = 0;
+  for (int shift = 0; shift < 32; shift += 8)
+  {
+    std::fill(hist.begin(), hist.end(), 0);
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      const std::size_t b = m * t / threads, e = m * (t + 1) / threads;
+      std::size_t* h = &hist[static_cast<std::size_t>(t) * 256];
+      const std::uint32_t* k = keys[src].data();
+      for (std::size_t i = b; i < e; ++i)
+      {
+        ++h[(k[i] >> shift) & 0xFFu];
+      }
+    }
+    // Skip a pass whose digit is the same for every key (common for the exponent byte).
+    bool constant = false;
+    for (int d = 0; d < 256 && !constant; ++d)
+    {
+      std::size_t s = 0;
+      for (int t = 0; t < threads; ++t)
+      {
+        s += hist[static_cast<std::size_t>(t) * 256 + d];
+      }
+      constant = (s == m);
+    }
+    if (constant || m == 0)
+    {
+      continue;
+    }
+    // Offsets: digit-major, thread-minor keeps the sort stable.
+    std::size_t running = 0;
+    for (int d = 0; d < 256; ++d)
+    {
+      for (int t = 0; t < threads; ++t)
+      {
+        std::size_t& h = hist[static_cast<std::size_t>(t) * 256 + d];
+        const std::size_t c = h;
+        h = running;
+        running += c;
+      }
+    }
+    const int dst = 1 - src;
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      const std::size_t b = m * t / threads, e = m * (t + 1) / threads;
+      std::size_t* h = &hist[static_cast<std::size_t>(t) * 256];
+      const std::uint32_t* ks = keys[src].data();
+      const std::uint32_t* is = ids[src].data();
+      std::uint32_t* kd = keys[dst].data();
+      std::uint32_t* id = ids[dst].data();
+      for (std::size_t i = b; i < e; ++i)
+      {
+        const std::size_t o = h[(ks[i] >> shift) & 0xFFu]++;
+        kd[o] = ks[i];
+        id[o] = is[i];
+      }
+    }
+    src = dst;
+  }
+
+  // 3. Back to front is the exact reverse.
+  order.resize(m);
+  const std::uint32_t* sorted = ids[src].data();
+  const std::int64_t mm = static_cast<std::int64_t>(m);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < mm; ++i)
+  {
+    order[i] = sorted[mm - 1 - i];
+  }
+}
+
+//------------------------------------------------------------------------------
+void SortBackToFrontStd(const std::vector<float>& depths,
+  std::vector<std::uint32_t>& order,
+  const SplatSortOptions& options)
+{
+  const std::size_t n = depths.size();
+  CheckCount(n);
+  std::vector<std::pair<float, std::uint32_t>> pairs;
+  pairs.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (Drawable(depths[i], i, options))
+    {
+      pairs.emplace_back(depths[i], static_cast<std::uint32_t>(i));
+    }
+  }
+  std::sort(pairs.begin(),
+    pairs.end(),
+    [](const std::pair<float, std::uint32_t>& a, const std::pair<float, std::uint32_t>& b)
+    { return a.first > b.first || (a.first == b.first && a.second > b.second); });
+  order.resize(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+  {
+    order[i] = pairs[i].second;
+  }
+}
+
+} // namespace vis4gs

@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Camera frustums of several views around the donut, coloured by how many of the selected
+// Gaussians each one sees; counts against Core; regression image with the highlighted
+// selection.
+#include "SplatTestHelpers.h"
+
+#include "ScreenSelection.h"
+#include "Vis4GSDataModel.h"
+#include "vtkGaussianCameraFrustums.h"
+#include "vtkGaussianCameraUtilities.h"
+#include "vtkGaussianSplatMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
+#include "vtkLookupTable.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTable.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+int TestGaussianCameraFrustums(int argc, char* argv[])
+{
+  int fail = 0;
+  vis4gs::GaussianCloud cloud = splattest::LoadScene(false);
+  // Views around the donut, each aimed off-centre with a narrow field of view, so that they
+  // see different parts of it.
+  std::vector<vis4gs::Camera> cams;
+  for (int v = 0; v < 6; ++v)
+  {
+    vis4gs::Camera c = splattest::FrameScene(cloud, 160, 120, v * 1.0472, 2.4, 14.0 + 4.0 * v);
+    c.Name = "view" + std::to_string(v);
+    c.Split = v == 5 ? vis4gs::CameraSplit::Test : vis4gs::CameraSplit::Train;
+    cams.push_back(c);
+  }
+  // Selection: the Gaussians whose centre is left of the donut's median x.
+  std::vector<float> xs;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    xs.push_back(cloud.Positions[3 * i]);
+  }
+  std::nth_element(xs.begin(), xs.begin() + xs.size() / 5, xs.end());
+  const float cut = xs[xs.size() / 5];
+  vtkNew<vtkIdTypeArray> selected;
+  std::vector<std::uint32_t> indices;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    if (cloud.Positions[3 * i] < cut)
+    {
+      selected->InsertNextValue(static_cast<vtkIdType>(i)); // no Ids: GaussianId = index
+      indices.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+
+  vtkNew<vtkPolyData> scene;
+  vis4gs::GaussianCloudToPolyData(cloud, scene);
+  vtkNew<vtkTable> table;
+  vis4gs::CamerasToTable(cams, table);
+  vtkNew<vtkGaussianCameraFrustums> frustums;
+  frustums->SetInputData(0, table);
+  frustums->SetInputData(1, scene);
+  frustums->SetSelectedIds(selected);
+  frustums->Update();
+  vtkPolyData* out = frustums->GetOutput();
+  const auto expected = vis4gs::CountVisibleInViews(cloud, indices, cams, 2);
+  auto* counts = vtkIntArray::SafeDownCast(out->GetCellData()->GetArray("VisibleSelectedCount"));
+  if (out->GetNumberOfPoints() != 30 || out->GetNumberOfLines() != 48 || !counts)
+  {
+    std::printf("FAILED: expected 30 points and 48 lines with counts, got %lld, %lld\n",
+      static_cast<long long>(out->GetNumberOfPoints()),
+      static_cast<long long>(out->GetNumberOfLines()));
+    return 1;
+  }
+  int maxCount = 0, minCount = 1 << 30;
+  for (int v = 0; v < 6; ++v)
+  {
+    const int got = counts->GetValue(8 * v);
+    std::printf("view %d sees %d of %zu selected Gaussians\n", v, got, indices.size());
+    if (got != static_cast<int>(expected[v]))
+    {
+      std::printf("FAILED: view %d count %d, Core says %u\n", v, got, expected[v]);
+      fail = 1;
+    }
+    maxCount = std::max(maxCount, got);
+    minCount = std::min(minCount, got);
+    double apex[3];
+    out->GetPoint(5 * v, apex);
+    const auto c = cams[v].Center();
+    if (std::abs(apex[0] - c[0]) + std::abs(apex[1] - c[1]) + std::abs(apex[2] - c[2]) > 1e-9)
+    {
+      std::printf("FAILED: apex of view %d is not the camera centre\n", v);
+      fail = 1;
+    }
+  }
+  if (!(maxCount > minCount) || maxCount == 0)
+  {
+    std::printf("FAILED: the counts do not discriminate the views (%d..%d)\n", minCount, maxCount);
+    fail = 1;
+  }
+  // Training views only.
+  frustums->TrainingViewsOnlyOn();
+  frustums->Update();
+  if (frustums->GetOutput()->GetNumberOfLines() != 40)
+  {
+    std::printf("FAILED: TrainingViewsOnly kept %lld lines\n",
+      static_cast<long long>(frustums->GetOutput()->GetNumberOfLines()));
+    fail = 1;
+  }
+  frustums->TrainingViewsOnlyOff();
+  frustums->Update();
+
+  // Picture: frustums coloured by count (dark blue = none, red = most), selection highlighted.
+  vtkNew<vtkLookupTable> lut;
+  lut->SetHueRange(0.66, 0.0);
+  lut->SetTableRange(0, maxCount);
+  lut->Build();
+  vtkNew<vtkPolyDataMapper> lineMapper;
+  lineMapper->SetInputConnection(frustums->GetOutputPort());
+  lineMapper->SetLookupTable(lut);
+  lineMapper->SetScalarModeToUseCellData();
+  lineMapper->SetScalarRange(0, maxCount);
+  vtkNew<vtkActor> lineActor;
+  lineActor->SetMapper(lineMapper);
+  lineActor->GetProperty()->SetLineWidth(2);
+  lineActor->GetProperty()->LightingOff();
+  vtkNew<vtkGaussianSplatMapper> splats;
+  splats->SetInputData(scene);
+  splats->SetSelectedIds(selected);
+  vtkNew<vtkActor> splatActor;
+  splatActor->SetMapper(splats);
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(0.1, 0.1, 0.12);
+  ren->AddActor(lineActor); // opaque lines first, splats composited over them
+  ren->AddActor(splatActor);
+  vtkNew<vtkRenderWindow> win;
+  win->SetOffScreenRendering(1);
+  win->SetMultiSamples(0);
+  win->SetSize(300, 300);
+  win->AddRenderer(ren);
+  ren->ResetCamera();
+  ren->GetActiveCamera()->Elevation(35);
+  ren->GetActiveCamera()->Zoom(1.3);
+  ren->ResetCameraClippingRange();
+  win->Render();
+  const int retVal = vtkRegressionTestImage(win);
+  return fail || !retVal;
+}

@@ -1,0 +1,261 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianCameraFrustums.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianCameraFrustums.h"
+
+#include "ScreenSelection.h"
+#include "Vis4GSDataModel.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+#include "vtkTable.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <unordered_map>
+#include <vector>
+
+vtkStandardNewMacro(vtkGaussianCameraFrustums);
+vtkCxxSetObjectMacro(vtkGaussianCameraFrustums, SelectedIds, vtkIdTypeArray);
+
+//------------------------------------------------------------------------------
+vtkGaussianCameraFrustums::vtkGaussianCameraFrustums()
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianCameraFrustums::~vtkGaussianCameraFrustums()
+{
+  this->SetSelectedIds(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkGaussianCameraFrustums::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->SelectedIds)
+  {
+    t = std::max(t, this->SelectedIds->GetMTime());
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianCameraFrustums::SetSelection(vtkSelection* selection)
+{
+  for (unsigned int n = 0; selection && n < selection->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = selection->GetNode(n);
+    auto* list = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    if (list &&
+      (node->GetContentType() == vtkSelectionNode::PEDIGREEIDS ||
+        node->GetContentType() == vtkSelectionNode::INDICES))
+    {
+      vtkNew<vtkIdTypeArray> copy;
+      copy->DeepCopy(list);
+      this->SetSelectedIds(copy);
+      return;
+    }
+  }
+  this->SetSelectedIds(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianCameraFrustums::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkTable");
+  }
+  else
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkTable* table = vtkTable::GetData(inputVector[0]);
+  vtkPolyData* scene = inputVector[1]->GetNumberOfInformationObjects() > 0
+    ? vtkPolyData::GetData(inputVector[1])
+    : nullptr;
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  std::vector<vis4gs::Camera> all;
+  std::string error;
+  if (!table || !vis4gs::TableToCameras(table, all, &error))
+  {
+    vtkErrorMacro(
+      "vtkGaussianCameraFrustums: " << (table ? error : std::string("no camera table")));
+    return 0;
+  }
+  std::vector<vis4gs::Camera> cams;
+  std::vector<int> rows;
+  for (std::size_t r = 0; r < all.size(); ++r)
+  {
+    if (!this->TrainingViewsOnly || all[r].Split == vis4gs::CameraSplit::Train)
+    {
+      cams.push_back(all[r]);
+      rows.push_back(static_cast<int>(r));
+    }
+  }
+
+  // Counts of visible selected Gaussians.
+  std::vector<std::uint32_t> counts(cams.size(), 0);
+  if (scene && this->SelectedIds && this->SelectedIds->GetNumberOfTuples() > 0 && !cams.empty())
+  {
+    vis4gs::GaussianCloud cloud;
+    if (!vis4gs::PolyDataToGaussianCloud(scene, cloud, &error))
+    {
+      vtkErrorMacro("vtkGaussianCameraFrustums: " << error);
+      return 0;
+    }
+    const std::size_t n = cloud.Count;
+    std::unordered_map<vtkIdType, std::vector<std::uint32_t>> byId;
+    vtkDataArray* ids = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+    const bool haveIds = ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n);
+    if (haveIds)
+    {
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        byId[static_cast<vtkIdType>(ids->GetComponent(static_cast<vtkIdType>(i), 0))].push_back(
+          static_cast<std::uint32_t>(i));
+      }
+    }
+    std::vector<std::uint32_t> indices;
+    for (vtkIdType k = 0; k < this->SelectedIds->GetNumberOfTuples(); ++k)
+    {
+      const vtkIdType id = this->SelectedIds->GetValue(k);
+      if (haveIds)
+      {
+        auto it = byId.find(id);
+        if (it != byId.end())
+        {
+          indices.insert(indices.end(), it->second.begin(), it->second.end());
+        }
+      }
+      else if (id >= 0 && id < static_cast<vtkIdType>(n))
+      {
+        indices.push_back(static_cast<std::uint32_t>(id));
+      }
+    }
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    try
+    {
+      counts = vis4gs::CountVisibleInViews(cloud, indices, cams);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianCameraFrustums: " << e.what());
+      return 0;
+    }
+  }
+
+  // Depth of the drawn rectangle.
+  double depth = this->FrustumDepth;
+  if (!(depth > 0))
+  {
+    double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+    double hi[3] = { VTK_DOUBLE_MIN, VTK_DOUBLE_MIN, VTK_DOUBLE_MIN };
+    for (const auto& c : cams)
+    {
+      const auto p = c.Center();
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    }
+    double d2 = 0;
+    for (int k = 0; k < 3 && !cams.empty(); ++k)
+    {
+      d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    depth = d2 > 0 ? 0.1 * std::sqrt(d2) : 1.0;
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkIntArray> pointCount, cellCount, pointCamera, cellCamera;
+  for (auto* a : { pointCount.Get(), cellCount.Get() })
+  {
+    a->SetName("VisibleSelectedCount");
+  }
+  for (auto* a : { pointCamera.Get(), cellCamera.Get() })
+  {
+    a->SetName("CameraIndex");
+  }
+  for (std::size_t v = 0; v < cams.size(); ++v)
+  {
+    std::array<std::array<double, 3>, 5> f;
+    try
+    {
+      f = vis4gs::CameraFrustum(cams[v], depth);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianCameraFrustums: " << e.what());
+      return 0;
+    }
+    const vtkIdType base = points->GetNumberOfPoints();
+    for (const auto& p : f)
+    {
+      points->InsertNextPoint(p.data());
+      pointCount->InsertNextValue(static_cast<int>(counts[v]));
+      pointCamera->InsertNextValue(rows[v]);
+    }
+    const vtkIdType edges[8][2] = {
+      { 0, 1 }, { 0, 2 }, { 0, 3 }, { 0, 4 }, { 1, 2 }, { 2, 3 }, { 3, 4 }, { 4, 1 }
+    };
+    for (const auto& e : edges)
+    {
+      const vtkIdType ids[2] = { base + e[0], base + e[1] };
+      lines->InsertNextCell(2, ids);
+      cellCount->InsertNextValue(static_cast<int>(counts[v]));
+      cellCamera->InsertNextValue(rows[v]);
+    }
+  }
+  output->SetPoints(points);
+  output->SetLines(lines);
+  output->GetPointData()->SetScalars(pointCount);
+  output->GetPointData()->AddArray(pointCamera);
+  output->GetCellData()->SetScalars(cellCount);
+  output->GetCellData()->AddArray(cellCamera);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianCameraFrustums::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SelectedIds: " << this->SelectedIds << "\n";
+  os << indent << "FrustumDepth: " << this->FrustumDepth << "\n";
+  os << indent << "TrainingViewsOnly: " << this->TrainingViewsOnly << "\n";
+}

@@ -1,0 +1,397 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianSelector.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianSelector.h"
+
+#include "GaussianOctree.h"
+#include "ScreenSelection.h"
+#include "SelectionSet.h"
+#include "Vis4GSDataModel.h"
+#include "vtkGaussianCameraUtilities.h"
+
+#include "vtkAnnotationLink.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <vector>
+
+namespace
+{
+double MsSince(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}
+
+//------------------------------------------------------------------------------
+struct vtkGaussianSelector::vtkInternals
+{
+  vis4gs::GaussianCloud Cloud;
+  std::vector<std::int64_t> Ids; // GaussianId of each point
+  vtkMTimeType SceneTime = 0;
+  vtkPolyData* SceneSeen = nullptr;
+  bool SceneValid = false;
+  vis4gs::Camera ViewCamera;
+  bool ViewValid = false;
+  vis4gs::SelectionView View;
+  vis4gs::GaussianOctree Octree;
+  bool OctreeValid = false;
+  std::vector<std::int64_t> Current;
+  vtkNew<vtkSelection> Selection;
+  vtkNew<vtkIdTypeArray> SelectedIds;
+  vtkNew<vtkIdTypeArray> RayIds;
+  vtkNew<vtkDoubleArray> RayDistances;
+  int Width = 0, Height = 0, OriginX = 0, OriginY = 0;
+};
+
+vtkStandardNewMacro(vtkGaussianSelector);
+vtkCxxSetObjectMacro(vtkGaussianSelector, Scene, vtkPolyData);
+vtkCxxSetObjectMacro(vtkGaussianSelector, Renderer, vtkRenderer);
+vtkCxxSetObjectMacro(vtkGaussianSelector, AnnotationLink, vtkAnnotationLink);
+
+//------------------------------------------------------------------------------
+vtkGaussianSelector::vtkGaussianSelector()
+  : Internals(new vtkInternals)
+{
+  this->Internals->SelectedIds->SetName(vis4gs::arrays::GaussianId);
+  this->Internals->RayIds->SetName(vis4gs::arrays::GaussianId);
+  this->Internals->RayDistances->SetName("Sigmas");
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSelector::~vtkGaussianSelector()
+{
+  this->SetScene(nullptr);
+  this->SetRenderer(nullptr);
+  this->SetAnnotationLink(nullptr);
+}
+
+//------------------------------------------------------------------------------
+// Scene and view preparation shared by every mode; false (with an error) when impossible.
+bool vtkGaussianSelector::PrepareView(bool needView)
+{
+  vtkGaussianSelector* self = this;
+  vtkInternals& in = *this->Internals;
+  vtkPolyData* scene = this->Scene;
+  vtkRenderer* renderer = this->Renderer;
+  const int threads = this->NumberOfThreads;
+  double& prepareMs = this->LastPrepareTime;
+  prepareMs = 0;
+  if (!scene || !renderer)
+  {
+    vtkErrorWithObjectMacro(self, "vtkGaussianSelector: set a scene and a renderer first");
+    return false;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  if (scene != in.SceneSeen || scene->GetMTime() != in.SceneTime)
+  {
+    in.SceneSeen = scene;
+    in.SceneTime = scene->GetMTime();
+    in.ViewValid = false;
+    in.OctreeValid = false;
+    in.Cloud = vis4gs::GaussianCloud();
+    std::string error;
+    in.SceneValid = vis4gs::PolyDataToGaussianCloud(scene, in.Cloud, &error);
+    const std::size_t n = in.Cloud.Count;
+    if (in.SceneValid &&
+      (in.Cloud.LogScales.size() != 3 * n || in.Cloud.Rotations.size() != 4 * n ||
+        in.Cloud.OpacityLogits.size() != n))
+    {
+      in.SceneValid = false;
+      error = "the scene lacks LogScale, Rotation or OpacityLogit point arrays";
+    }
+    if (!in.SceneValid)
+    {
+      vtkErrorWithObjectMacro(self, "vtkGaussianSelector: " << error);
+      return false;
+    }
+    in.Ids.resize(n);
+    vtkDataArray* ids = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      in.Ids[i] = (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
+        ? static_cast<std::int64_t>(ids->GetComponent(static_cast<vtkIdType>(i), 0))
+        : static_cast<std::int64_t>(i);
+    }
+  }
+  if (!in.SceneValid)
+  {
+    vtkErrorWithObjectMacro(self, "vtkGaussianSelector: the scene is not a Gaussian scene");
+    return false;
+  }
+  const int* size = renderer->GetSize();
+  const int* origin = renderer->GetOrigin();
+  in.Width = size[0];
+  in.Height = size[1];
+  in.OriginX = origin[0];
+  in.OriginY = origin[1];
+  try
+  {
+    const vis4gs::Camera cam =
+      vtkGaussianCameraUtilities::FromVTKCamera(renderer->GetActiveCamera(), size[0], size[1]);
+    const bool same = in.ViewValid && cam.WorldToCamera == in.ViewCamera.WorldToCamera &&
+      cam.Fx == in.ViewCamera.Fx && cam.Fy == in.ViewCamera.Fy &&
+      cam.Width == in.ViewCamera.Width && cam.Height == in.ViewCamera.Height;
+    in.ViewCamera = cam;
+    if (needView && !same)
+    {
+      in.View = vis4gs::PrepareSelectionView(in.Cloud, cam, threads);
+      in.ViewValid = true;
+    }
+    else if (!same)
+    {
+      in.ViewValid = false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, "vtkGaussianSelector: " << e.what());
+    in.ViewValid = false;
+    return false;
+  }
+  prepareMs = MsSince(t0);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelector::ClearSelection()
+{
+  this->Internals->Current.clear();
+  this->GetSelection();
+  if (this->AnnotationLink)
+  {
+    this->AnnotationLink->SetCurrentSelection(this->Internals->Selection);
+    this->AnnotationLink->InvokeEvent(
+      vtkCommand::AnnotationChangedEvent, this->Internals->Selection);
+  }
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkSelection* vtkGaussianSelector::GetSelection()
+{
+  vtkInternals& in = *this->Internals;
+  in.SelectedIds->SetNumberOfTuples(static_cast<vtkIdType>(in.Current.size()));
+  for (std::size_t k = 0; k < in.Current.size(); ++k)
+  {
+    in.SelectedIds->SetValue(static_cast<vtkIdType>(k), static_cast<vtkIdType>(in.Current[k]));
+  }
+  in.SelectedIds->Modified();
+  in.Selection->RemoveAllNodes();
+  vtkNew<vtkSelectionNode> node;
+  node->SetContentType(vtkSelectionNode::PEDIGREEIDS);
+  node->SetFieldType(vtkSelectionNode::POINT);
+  vtkNew<vtkIdTypeArray> list;
+  list->DeepCopy(in.SelectedIds);
+  list->SetName(vis4gs::arrays::GaussianId);
+  node->SetSelectionList(list);
+  in.Selection->AddNode(node);
+  return in.Selection;
+}
+
+//------------------------------------------------------------------------------
+vtkIdTypeArray* vtkGaussianSelector::GetSelectedIds()
+{
+  this->GetSelection();
+  return this->Internals->SelectedIds;
+}
+
+//------------------------------------------------------------------------------
+vtkIdTypeArray* vtkGaussianSelector::GetRayHitIds()
+{
+  return this->Internals->RayIds;
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* vtkGaussianSelector::GetRayHitDistances()
+{
+  return this->Internals->RayDistances;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indices)
+{
+  vtkInternals& in = *this->Internals;
+  const int modifier = this->Modifier;
+  vtkAnnotationLink* link = this->AnnotationLink;
+  vtkGaussianSelector* self = this;
+  std::vector<std::int64_t> ids;
+  ids.reserve(indices.size());
+  for (std::uint32_t i : indices)
+  {
+    ids.push_back(in.Ids[i]);
+  }
+  in.Current = vis4gs::CombineSelection(
+    in.Current, std::move(ids), static_cast<vis4gs::SelectionModifier>(modifier));
+  vtkSelection* sel = self->GetSelection();
+  if (link)
+  {
+    link->SetCurrentSelection(sel);
+    link->InvokeEvent(vtkCommand::AnnotationChangedEvent, sel);
+  }
+  self->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSelector::SelectSingle(double x, double y)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  vtkInternals& in = *this->Internals;
+  if (!this->PrepareView(true))
+  {
+    return -1;
+  }
+  const int px = static_cast<int>(std::floor(x)) - in.OriginX;
+  const int py = in.Height - 1 - (static_cast<int>(std::floor(y)) - in.OriginY);
+  const std::int64_t g = vis4gs::SelectSingle(in.View, px, py);
+  std::vector<std::uint32_t> picked;
+  if (g >= 0)
+  {
+    picked.push_back(static_cast<std::uint32_t>(g));
+  }
+  this->PublishIndices(picked);
+  this->LastSelectionTime = MsSince(t0);
+  return static_cast<vtkIdType>(picked.size());
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSelector::SelectBrush(vtkPoints* stroke)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  vtkInternals& in = *this->Internals;
+  if (!this->PrepareView(true))
+  {
+    return -1;
+  }
+  std::vector<std::array<double, 2>> pts;
+  for (vtkIdType k = 0; stroke && k < stroke->GetNumberOfPoints(); ++k)
+  {
+    double p[3];
+    stroke->GetPoint(k, p);
+    pts.push_back(
+      { std::floor(p[0]) - in.OriginX, in.Height - 1 - (std::floor(p[1]) - in.OriginY) });
+  }
+  std::vector<std::uint32_t> picked;
+  try
+  {
+    const auto pixels = vis4gs::BrushPixels(pts, this->BrushRadius, in.Width, in.Height);
+    picked = vis4gs::SelectBrush(in.View, pixels, this->WeightThreshold, this->NumberOfThreads);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("vtkGaussianSelector: " << e.what());
+    return -1;
+  }
+  this->PublishIndices(picked);
+  this->LastSelectionTime = MsSince(t0);
+  return static_cast<vtkIdType>(picked.size());
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSelector::SelectFrame(double x0, double y0, double x1, double y1)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  vtkInternals& in = *this->Internals;
+  if (!this->PrepareView(true))
+  {
+    return -1;
+  }
+  vis4gs::FrameOptions fo;
+  fo.WeightThreshold = this->WeightThreshold;
+  fo.IncludeOccluded = this->IncludeOccluded;
+  fo.Threads = this->NumberOfThreads;
+  const int ax = static_cast<int>(std::floor(x0)) - in.OriginX;
+  const int bx = static_cast<int>(std::floor(x1)) - in.OriginX;
+  const int ay = in.Height - 1 - (static_cast<int>(std::floor(y0)) - in.OriginY);
+  const int by = in.Height - 1 - (static_cast<int>(std::floor(y1)) - in.OriginY);
+  const auto picked = vis4gs::SelectFrame(in.View, ax, ay, bx, by, fo);
+  this->PublishIndices(picked);
+  this->LastSelectionTime = MsSince(t0);
+  return static_cast<vtkIdType>(picked.size());
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSelector::SelectRay(double x, double y)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  vtkInternals& in = *this->Internals;
+  if (!this->PrepareView(false))
+  {
+    return -1;
+  }
+  std::vector<vis4gs::RayHit> hits;
+  try
+  {
+    if (!in.OctreeValid || in.Octree.GetBoundSigmas() < this->RaySigmas)
+    {
+      const auto tb = std::chrono::steady_clock::now();
+      vis4gs::GaussianOctree::Options o;
+      o.BoundSigmas = std::max(3.0, this->RaySigmas);
+      in.Octree.Build(in.Cloud, o);
+      in.OctreeValid = true;
+      this->LastPrepareTime += MsSince(tb);
+    }
+    const double px = std::floor(x) - in.OriginX;
+    const double py = in.Height - 1 - (std::floor(y) - in.OriginY);
+    hits = in.Octree.IntersectRay(vis4gs::PixelRay(in.ViewCamera, px, py, this->RaySigmas));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("vtkGaussianSelector: " << e.what());
+    return -1;
+  }
+  in.RayIds->SetNumberOfTuples(static_cast<vtkIdType>(hits.size()));
+  in.RayDistances->SetNumberOfTuples(static_cast<vtkIdType>(hits.size()));
+  std::vector<std::uint32_t> picked;
+  for (std::size_t k = 0; k < hits.size(); ++k)
+  {
+    in.RayIds->SetValue(
+      static_cast<vtkIdType>(k), static_cast<vtkIdType>(in.Ids[hits[k].Gaussian]));
+    in.RayDistances->SetValue(static_cast<vtkIdType>(k), hits[k].Distance);
+    picked.push_back(hits[k].Gaussian);
+  }
+  in.RayIds->Modified();
+  in.RayDistances->Modified();
+  this->PublishIndices(picked);
+  this->LastSelectionTime = MsSince(t0);
+  return static_cast<vtkIdType>(picked.size());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelector::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Scene: " << this->Scene << "\n";
+  os << indent << "Renderer: " << this->Renderer << "\n";
+  os << indent << "AnnotationLink: " << this->AnnotationLink << "\n";
+  os << indent << "Modifier: " << this->Modifier << "\n";
+  os << indent << "WeightThreshold: " << this->WeightThreshold << "\n";
+  os << indent << "BrushRadius: " << this->BrushRadius << "\n";
+  os << indent << "IncludeOccluded: " << this->IncludeOccluded << "\n";
+  os << indent << "RaySigmas: " << this->RaySigmas << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "LastSelectionTime: " << this->LastSelectionTime << "\n";
+  os << indent << "LastPrepareTime: " << this->LastPrepareTime << "\n";
+  os << indent << "Selected: " << this->Internals->Current.size() << "\n";
+}

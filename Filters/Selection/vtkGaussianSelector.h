@@ -1,0 +1,207 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianSelector.h
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+/**
+ * @class   vtkGaussianSelector
+ * @brief   Selects Gaussians of a scene in the view of a renderer: Single, Brush, Frame, Ray.
+ *
+ * The four selection modes of the Gaussian analysis view (DESIGN, view A), computed by Core
+ * (Core/Selection) on the exact CPU rasteriser for the renderer's current camera and size:
+ *
+ *  - Single: the Gaussian with the largest blending weight alpha*T at the clicked pixel.
+ *  - Brush: every Gaussian whose largest weight over the brushed pixels (within BrushRadius
+ *    of the stroke) is >= WeightThreshold.
+ *  - Frame: every Gaussian whose centre projects into the rectangle and whose largest weight
+ *    over the rectangle is >= WeightThreshold; with IncludeOccluded, every projected one
+ *    whose centre is inside.
+ *  - Ray: every Gaussian that the viewing ray through the pixel passes within RaySigmas
+ *    standard deviations of (Mahalanobis distance), in depth order (GetRayHitIds()), found
+ *    through an octree over the Gaussians' bounding boxes (built once per scene).
+ *
+ * Coordinates are VTK display coordinates of the renderer's window (x right, y up, as the
+ * interactor reports them). Each selection combines with the current one by Modifier
+ * (REPLACE, ADD, SUBTRACT, TOGGLE). The result is a vtkSelection with one node of
+ * PEDIGREEIDS on POINT data whose list is the GaussianId values (point indices when the scene
+ * has no GaussianId array); when an AnnotationLink is set it is published there (the
+ * selection hub's link) and the link's AnnotationChangedEvent is fired.
+ *
+ * The projection and binning of the scene are cached per camera (the first selection after
+ * the camera moved pays for them: GetLastPrepareTime()); the octree per scene.
+ */
+#ifndef vtkGaussianSelector_h
+#define vtkGaussianSelector_h
+
+#include "vis4gsFiltersSelectionModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <memory> // For std::unique_ptr
+#include <vector> // For std::vector
+
+class vtkAnnotationLink;
+class vtkDoubleArray;
+class vtkIdTypeArray;
+class vtkPoints;
+class vtkPolyData;
+class vtkRenderer;
+class vtkSelection;
+
+class VIS4GSFILTERSSELECTION_EXPORT vtkGaussianSelector : public vtkObject
+{
+public:
+  static vtkGaussianSelector* New();
+  vtkTypeMacro(vtkGaussianSelector, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Modifiers
+  {
+    REPLACE = 0,
+    ADD = 1,
+    SUBTRACT = 2,
+    TOGGLE = 3
+  };
+
+  ///@{
+  /**
+   * The Gaussian scene (DESIGN §2 polydata). Default none.
+   */
+  void SetScene(vtkPolyData* scene);
+  vtkGetObjectMacro(Scene, vtkPolyData);
+  ///@}
+
+  ///@{
+  /**
+   * The renderer whose active camera and size define the view. Default none.
+   */
+  void SetRenderer(vtkRenderer* renderer);
+  vtkGetObjectMacro(Renderer, vtkRenderer);
+  ///@}
+
+  ///@{
+  /**
+   * How a new selection combines with the current one. Default REPLACE.
+   */
+  vtkSetClampMacro(Modifier, int, REPLACE, TOGGLE);
+  vtkGetMacro(Modifier, int);
+  ///@}
+
+  ///@{
+  /**
+   * Minimum blending weight for Brush and Frame. Default 0.01.
+   */
+  vtkSetClampMacro(WeightThreshold, double, 1e-12, 1.0);
+  vtkGetMacro(WeightThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Brush radius in pixels. Default 8.
+   */
+  vtkSetClampMacro(BrushRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(BrushRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Frame: also take Gaussians whose centre is inside but that are not visible. Default off.
+   */
+  vtkSetMacro(IncludeOccluded, bool);
+  vtkGetMacro(IncludeOccluded, bool);
+  vtkBooleanMacro(IncludeOccluded, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Ray: k of the k-sigma test. Default 3 (the octree is rebuilt when a larger k is asked).
+   */
+  vtkSetClampMacro(RaySigmas, double, 0.0, 100.0);
+  vtkGetMacro(RaySigmas, double);
+  ///@}
+
+  ///@{
+  /**
+   * Threads of the selection passes; 0 (default) uses OpenMP's default.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * When set, every selection is published as the link's current selection. Default none.
+   */
+  void SetAnnotationLink(vtkAnnotationLink* link);
+  vtkGetObjectMacro(AnnotationLink, vtkAnnotationLink);
+  ///@}
+
+  ///@{
+  /**
+   * The selection modes. Return the number of Gaussians the mode picked (before the
+   * modifier), or -1 on error (no scene, no renderer, invalid scene).
+   */
+  vtkIdType SelectSingle(double x, double y);
+  vtkIdType SelectBrush(vtkPoints* stroke);
+  vtkIdType SelectFrame(double x0, double y0, double x1, double y1);
+  vtkIdType SelectRay(double x, double y);
+  ///@}
+
+  /// Clears the current selection (and publishes the empty selection).
+  void ClearSelection();
+
+  /// The current selection (PEDIGREEIDS of GaussianId on POINT data).
+  vtkSelection* GetSelection();
+
+  /// The current selection's GaussianId values, ascending.
+  vtkIdTypeArray* GetSelectedIds();
+
+  ///@{
+  /**
+   * The last Ray selection: GaussianIds in depth order and their distances in sigmas.
+   */
+  vtkIdTypeArray* GetRayHitIds();
+  vtkDoubleArray* GetRayHitDistances();
+  ///@}
+
+  ///@{
+  /**
+   * Milliseconds of the last selection call, and of the projection/binning (or octree build)
+   * it had to do first (0 when cached).
+   */
+  vtkGetMacro(LastSelectionTime, double);
+  vtkGetMacro(LastPrepareTime, double);
+  ///@}
+
+protected:
+  vtkGaussianSelector();
+  ~vtkGaussianSelector() override;
+
+  vtkPolyData* Scene = nullptr;
+  vtkRenderer* Renderer = nullptr;
+  vtkAnnotationLink* AnnotationLink = nullptr;
+  int Modifier = REPLACE;
+  double WeightThreshold = 0.01;
+  double BrushRadius = 8.0;
+  bool IncludeOccluded = false;
+  double RaySigmas = 3.0;
+  int NumberOfThreads = 0;
+  double LastSelectionTime = 0.0;
+  double LastPrepareTime = 0.0;
+
+private:
+  vtkGaussianSelector(const vtkGaussianSelector&) = delete;
+  void operator=(const vtkGaussianSelector&) = delete;
+
+  bool PrepareView(bool needView);
+  void PublishIndices(const std::vector<unsigned int>& indices);
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,885 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianSplatMapper.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianSplatMapper.h"
+
+#include "SplatAttributes.h"
+#include "SplatCamera.h"
+#include "SplatSort.h"
+#include "Vis4GSDataModel.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkLookupTable.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+// One point per Gaussian (gl_VertexID = draw position); everything is fetched from texture
+// buffers. Mirrors the reference's preprocessCUDA in float (reference §2.3).
+const char* SplatVS = R"(//VTK::System::Dec
+uniform samplerBuffer splatGeometry; // 3 RGBA texels per Gaussian
+uniform samplerBuffer splatColor;    // rgb, opacity scale
+uniform usamplerBuffer splatOrder;   // draw position -> Gaussian index
+uniform vec4 viewRow0;
+uniform vec4 viewRow1;
+uniform vec4 viewRow2;
+uniform vec2 focal;
+uniform vec2 tanFov;
+uniform vec2 imageSize;
+uniform vec2 depthCoeffs;
+flat out vec4 gConic;  // A, B, C, opacity
+flat out vec3 gColor;
+flat out vec2 gCenter; // reference pixel coordinates
+flat out vec4 gRect;   // pixel rows/columns x0, y0, x1, y1 (inclusive), reference convention
+flat out float gDepth; // NDC z
+flat out int gValid;
+void main()
+{
+  gValid = 0;
+  gConic = vec4(0.0);
+  gColor = vec3(0.0);
+  gCenter = vec2(0.0);
+  gRect = vec4(0.0);
+  gDepth = 0.0;
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  int idx = int(texelFetch(splatOrder, gl_VertexID).r);
+  vec4 t0 = texelFetch(splatGeometry, 3 * idx);
+  vec4 t1 = texelFetch(splatGeometry, 3 * idx + 1);
+  vec4 t2 = texelFetch(splatGeometry, 3 * idx + 2);
+  if (t2.z < 0.5) { return; }
+  vec3 mu = t0.xyz;
+  vec4 col = texelFetch(splatColor, idx);
+  float opacity = t0.w * col.w;
+  vec3 t = vec3(dot(viewRow0.xyz, mu) + viewRow0.w, dot(viewRow1.xyz, mu) + viewRow1.w,
+    dot(viewRow2.xyz, mu) + viewRow2.w);
+  if (!(t.z > 0.2)) { return; }
+  mat3 Sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
+  float limx = 1.3 * tanFov.x;
+  float limy = 1.3 * tanFov.y;
+  float tx = clamp(t.x / t.z, -limx, limx) * t.z;
+  float ty = clamp(t.y / t.z, -limy, limy) * t.z;
+  float J00 = focal.x / t.z;
+  float J02 = -(focal.x * tx) / (t.z * t.z);
+  float J11 = focal.y / t.z;
+  float J12 = -(focal.y * ty) / (t.z * t.z);
+  vec3 T0 = J00 * viewRow0.xyz + J02 * viewRow2.xyz;
+  vec3 T1 = J11 * viewRow1.xyz + J12 * viewRow2.xyz;
+  vec3 S0 = Sigma * T0;
+  vec3 S1 = Sigma * T1;
+  float a = dot(T0, S0) + 0.3;
+  float b = dot(T0, S1);
+  float c = dot(T1, S1) + 0.3;
+  float det = a * c - b * b;
+  if (det == 0.0 || isnan(det) || isinf(det) || isinf(a) || isinf(c) || isnan(b)) { return; }
+  float A = c / det;
+  float B = -b / det;
+  float C = a / det;
+  float mid = 0.5 * (a + c);
+  float root = sqrt(max(0.1, mid * mid - det));
+  float radius = ceil(3.0 * sqrt(max(mid + root, mid - root)));
+  // ndc2Pix of the reference: ndc = x / (tan * (z + 1e-7)).
+  float ndcX = (t.x / tanFov.x) * (1.0 / (t.z + 0.0000001));
+  float ndcY = (t.y / tanFov.y) * (1.0 / (t.z + 0.0000001));
+  float u = ((ndcX + 1.0) * imageSize.x - 1.0) * 0.5;
+  float v = ((ndcY + 1.0) * imageSize.y - 1.0) * 0.5;
+  if (isinf(radius) || isnan(u) || isnan(v) || isinf(u) || isinf(v)) { return; }
+  // Tile rectangle (reference getRect), in tiles, max exclusive.
+  vec2 grid = ceil(imageSize / 16.0);
+  float rx0 = clamp(float(int((u - radius) / 16.0)), 0.0, grid.x);
+  float ry0 = clamp(float(int((v - radius) / 16.0)), 0.0, grid.y);
+  float rx1 = clamp(float(int((u + radius + 15.0) / 16.0)), 0.0, grid.x);
+  float ry1 = clamp(float(int((v + radius + 15.0) / 16.0)), 0.0, grid.y);
+  if ((rx1 - rx0) * (ry1 - ry0) == 0.0) { return; }
+  // Where alpha can reach 1/255: o e^power >= 1/255 <=> r^2 <= 2 ln(255 o).
+  float omax = min(opacity, 1.0);
+  if (!(255.0 * omax >= 1.0)) { return; }
+  float r2 = 2.0 * log(255.0 * omax);
+  float hx = sqrt(r2 * a) + 1.0;
+  float hy = sqrt(r2 * c) + 1.0;
+  float x0 = max(rx0 * 16.0, floor(u - hx));
+  float y0 = max(ry0 * 16.0, floor(v - hy));
+  float x1 = min(min(rx1 * 16.0, imageSize.x) - 1.0, ceil(u + hx));
+  float y1 = min(min(ry1 * 16.0, imageSize.y) - 1.0, ceil(v + hy));
+  if (x1 < x0 || y1 < y0) { return; }
+  gConic = vec4(A, B, C, opacity);
+  gColor = col.rgb;
+  gCenter = vec2(u, v);
+  gRect = vec4(x0, y0, x1, y1);
+  float zc = (depthCoeffs.x * (-t.z) + depthCoeffs.y) / t.z;
+  gDepth = clamp(zc, -0.999999, 0.999999);
+  gValid = 1;
+}
+)";
+
+// The same projection, one instance per Gaussian and a 4-vertex strip per instance (no
+// geometry shader): each of the 4 vertices repeats the projection.
+const char* SplatInstancedVS = R"(//VTK::System::Dec
+uniform samplerBuffer splatGeometry; // 3 RGBA texels per Gaussian
+uniform samplerBuffer splatColor;    // rgb, opacity scale
+uniform usamplerBuffer splatOrder;   // draw position -> Gaussian index
+uniform vec4 viewRow0;
+uniform vec4 viewRow1;
+uniform vec4 viewRow2;
+uniform vec2 focal;
+uniform vec2 tanFov;
+uniform vec2 imageSize;
+uniform vec2 depthCoeffs;
+flat out vec4 fConic; // A, B, C, opacity
+flat out vec3 fColor;
+flat out vec2 fCenter; // reference pixel coordinates
+void main()
+{
+  fConic = vec4(0.0);
+  fColor = vec3(0.0);
+  fCenter = vec2(0.0);
+  gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: culled
+  int idx = int(texelFetch(splatOrder, gl_InstanceID).r);
+  vec4 t0 = texelFetch(splatGeometry, 3 * idx);
+  vec4 t1 = texelFetch(splatGeometry, 3 * idx + 1);
+  vec4 t2 = texelFetch(splatGeometry, 3 * idx + 2);
+  if (t2.z < 0.5) { return; }
+  vec3 mu = t0.xyz;
+  vec4 col = texelFetch(splatColor, idx);
+  float opacity = t0.w * col.w;
+  vec3 t = vec3(dot(viewRow0.xyz, mu) + viewRow0.w, dot(viewRow1.xyz, mu) + viewRow1.w,
+    dot(viewRow2.xyz, mu) + viewRow2.w);
+  if (!(t.z > 0.2)) { return; }
+  mat3 Sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
+  float limx = 1.3 * tanFov.x;
+  float limy = 1.3 * tanFov.y;
+  float tx = clamp(t.x / t.z, -limx, limx) * t.z;
+  float ty = clamp(t.y / t.z, -limy, limy) * t.z;
+  float J00 = focal.x / t.z;
+  float J02 = -(focal.x * tx) / (t.z * t.z);
+  float J11 = focal.y / t.z;
+  float J12 = -(focal.y * ty) / (t.z * t.z);
+  vec3 T0 = J00 * viewRow0.xyz + J02 * viewRow2.xyz;
+  vec3 T1 = J11 * viewRow1.xyz + J12 * viewRow2.xyz;
+  vec3 S0 = Sigma * T0;
+  vec3 S1 = Sigma * T1;
+  float a = dot(T0, S0) + 0.3;
+  float b = dot(T0, S1);
+  float c = dot(T1, S1) + 0.3;
+  float det = a * c - b * b;
+  if (det == 0.0 || isnan(det) || isinf(det) || isinf(a) || isinf(c) || isnan(b)) { return; }
+  float A = c / det;
+  float B = -b / det;
+  float C = a / det;
+  float mid = 0.5 * (a + c);
+  float root = sqrt(max(0.1, mid * mid - det));
+  float radius = ceil(3.0 * sqrt(max(mid + root, mid - root)));
+  // ndc2Pix of the reference: ndc = x / (tan * (z + 1e-7)).
+  float ndcX = (t.x / tanFov.x) * (1.0 / (t.z + 0.0000001));
+  float ndcY = (t.y / tanFov.y) * (1.0 / (t.z + 0.0000001));
+  float u = ((ndcX + 1.0) * imageSize.x - 1.0) * 0.5;
+  float v = ((ndcY + 1.0) * imageSize.y - 1.0) * 0.5;
+  if (isinf(radius) || isnan(u) || isnan(v) || isinf(u) || isinf(v)) { return; }
+  // Tile rectangle (reference getRect), in tiles, max exclusive.
+  vec2 grid = ceil(imageSize / 16.0);
+  float rx0 = clamp(float(int((u - radius) / 16.0)), 0.0, grid.x);
+  float ry0 = clamp(float(int((v - radius) / 16.0)), 0.0, grid.y);
+  float rx1 = clamp(float(int((u + radius + 15.0) / 16.0)), 0.0, grid.x);
+  float ry1 = clamp(float(int((v + radius + 15.0) / 16.0)), 0.0, grid.y);
+  if ((rx1 - rx0) * (ry1 - ry0) == 0.0) { return; }
+  // Where alpha can reach 1/255: o e^power >= 1/255 <=> r^2 <= 2 ln(255 o).
+  float omax = min(opacity, 1.0);
+  if (!(255.0 * omax >= 1.0)) { return; }
+  float r2 = 2.0 * log(255.0 * omax);
+  float hx = sqrt(r2 * a) + 1.0;
+  float hy = sqrt(r2 * c) + 1.0;
+  float x0 = max(rx0 * 16.0, floor(u - hx));
+  float y0 = max(ry0 * 16.0, floor(v - hy));
+  float x1 = min(min(rx1 * 16.0, imageSize.x) - 1.0, ceil(u + hx));
+  float y1 = min(min(ry1 * 16.0, imageSize.y) - 1.0, ceil(v + hy));
+  if (x1 < x0 || y1 < y0) { return; }
+  fConic = vec4(A, B, C, opacity);
+  fColor = col.rgb;
+  fCenter = vec2(u, v);
+  float zc = (depthCoeffs.x * (-t.z) + depthCoeffs.y) / t.z;
+  // Corner gl_VertexID of the triangle strip: bit 0 picks the column edge, bit 1 the row edge.
+  float px = (gl_VertexID & 1) == 0 ? x0 : x1 + 1.0;
+  float py = (gl_VertexID & 2) == 0 ? y0 : y1 + 1.0;
+  gl_Position = vec4(2.0 * px / imageSize.x - 1.0, 1.0 - 2.0 * py / imageSize.y,
+    clamp(zc, -0.999999, 0.999999), 1.0);
+}
+)";
+
+const char* SplatGS = R"(//VTK::System::Dec
+layout(points) in;
+layout(triangle_strip, max_vertices = 4) out;
+uniform vec2 imageSize;
+flat in vec4 gConic[];
+flat in vec3 gColor[];
+flat in vec2 gCenter[];
+flat in vec4 gRect[];
+flat in float gDepth[];
+flat in int gValid[];
+flat out vec4 fConic;
+flat out vec3 fColor;
+flat out vec2 fCenter;
+void corner(float px, float py)
+{
+  // Reference pixel (column px, row py from the top) edge -> OpenGL NDC.
+  fConic = gConic[0];
+  fColor = gColor[0];
+  fCenter = gCenter[0];
+  gl_Position = vec4(2.0 * px / imageSize.x - 1.0, 1.0 - 2.0 * py / imageSize.y, gDepth[0], 1.0);
+  EmitVertex();
+}
+void main()
+{
+  if (gValid[0] == 0) { return; }
+  vec4 r = gRect[0];
+  corner(r.x, r.y);
+  corner(r.z + 1.0, r.y);
+  corner(r.x, r.w + 1.0);
+  corner(r.z + 1.0, r.w + 1.0);
+  EndPrimitive();
+}
+)";
+
+const char* SplatFS = R"(//VTK::System::Dec
+//VTK::Output::Dec
+uniform vec4 viewportRect; // x, y origin and width, height of the renderer in the window
+flat in vec4 fConic;
+flat in vec3 fColor;
+flat in vec2 fCenter;
+void main()
+{
+  float px = gl_FragCoord.x - 0.5 - viewportRect.x;
+  float py = viewportRect.w - 0.5 - (gl_FragCoord.y - viewportRect.y);
+  float dx = fCenter.x - px;
+  float dy = fCenter.y - py;
+  float power = -0.5 * (fConic.x * dx * dx + fConic.z * dy * dy) - fConic.y * dx * dy;
+  if (power > 0.0) { discard; }
+  float alpha = min(0.99, fConic.w * exp(power));
+  if (alpha < 1.0 / 255.0) { discard; }
+  gl_FragData[0] = vec4(fColor * alpha, alpha);
+}
+)";
+
+double MsSince(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+struct vtkGaussianSplatMapper::vtkInternals
+{
+  // CPU side.
+  vis4gs::GaussianCloud Cloud;
+  bool HasSH = false;
+  std::vector<float> Geometry;    // packed, 12 per Gaussian
+  std::vector<float> TrueColors;  // 3 per Gaussian
+  std::vector<float> Display;     // 4 per Gaussian
+  std::vector<std::uint8_t> Keep; // 1 per Gaussian
+  std::vector<std::uint8_t> Selected;
+  std::vector<double> Scores;
+  std::vector<std::pair<vtkIdType, vtkIdType>> IdToIndex; // sorted (GaussianId, index)
+  std::vector<float> Depths;
+  std::vector<std::uint32_t> Order;
+  vtkMTimeType InputTime = 0;
+  vtkMTimeType DisplayTime = 0;
+  std::array<double, 16> SortedWorldToCamera{};
+  vtkIdType SortedBudget = 0;
+  std::array<double, 3> ColoredCenter{ { std::nan(""), 0, 0 } };
+  int ColoredDegree = -2;
+  bool OrderDirty = true;
+  bool ColorsDirty = true;
+  bool GeometryDirty = true;
+  double AutoRange[2] = { 0.0, 1.0 };
+  bool ReportedParallel = false;
+  double PackedScale = std::nan("");
+
+  // GPU side.
+  vtkOpenGLRenderWindow* Window = nullptr;
+  vtkShaderProgram* Program = nullptr;
+  vtkShaderProgram* InstancedProgram = nullptr;
+  vtkNew<vtkOpenGLVertexArrayObject> VAO;
+  vtkNew<vtkOpenGLBufferObject> GeometryBuffer;
+  vtkNew<vtkOpenGLBufferObject> ColorBuffer;
+  vtkNew<vtkOpenGLBufferObject> OrderBuffer;
+  vtkNew<vtkTextureObject> GeometryTexture;
+  vtkNew<vtkTextureObject> ColorTexture;
+  vtkNew<vtkTextureObject> OrderTexture;
+  bool GeometryOnGPU = false;
+  bool ColorsOnGPU = false;
+  bool OrderOnGPU = false;
+
+  void Release(vtkWindow* w)
+  {
+    if (w)
+    {
+      this->VAO->ReleaseGraphicsResources();
+      this->GeometryTexture->ReleaseGraphicsResources(w);
+      this->ColorTexture->ReleaseGraphicsResources(w);
+      this->OrderTexture->ReleaseGraphicsResources(w);
+      this->GeometryBuffer->ReleaseGraphicsResources();
+      this->ColorBuffer->ReleaseGraphicsResources();
+      this->OrderBuffer->ReleaseGraphicsResources();
+    }
+    this->Program = nullptr;
+    this->InstancedProgram = nullptr;
+    this->Window = nullptr;
+    this->GeometryOnGPU = this->ColorsOnGPU = this->OrderOnGPU = false;
+    this->GeometryDirty = this->ColorsDirty = this->OrderDirty = true;
+  }
+};
+
+vtkStandardNewMacro(vtkGaussianSplatMapper);
+vtkCxxSetObjectMacro(vtkGaussianSplatMapper, SelectedIds, vtkIdTypeArray);
+
+//------------------------------------------------------------------------------
+vtkGaussianSplatMapper::vtkGaussianSplatMapper()
+  : Internals(new vtkInternals)
+{
+  this->ScalarVisibilityOff();
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSplatMapper::~vtkGaussianSplatMapper()
+{
+  this->SetScoreArrayName(nullptr);
+  this->SetSelectedIds(nullptr);
+  if (this->ScoreLookupTable)
+  {
+    this->ScoreLookupTable->Delete();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::SetScoreRange(double lo, double hi)
+{
+  if (this->ScoreRange[0] != lo || this->ScoreRange[1] != hi || this->AutoScoreRange)
+  {
+    this->ScoreRange[0] = lo;
+    this->ScoreRange[1] = hi;
+    this->AutoScoreRange = false;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::SetSelection(vtkSelection* selection)
+{
+  vtkIdTypeArray* found = nullptr;
+  for (unsigned int n = 0; selection && n < selection->GetNumberOfNodes() && !found; ++n)
+  {
+    vtkSelectionNode* node = selection->GetNode(n);
+    if (node->GetContentType() == vtkSelectionNode::PEDIGREEIDS ||
+      node->GetContentType() == vtkSelectionNode::INDICES)
+    {
+      found = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    }
+  }
+  if (found)
+  {
+    vtkNew<vtkIdTypeArray> copy;
+    copy->DeepCopy(found);
+    this->SetSelectedIds(copy);
+  }
+  else
+  {
+    this->SetSelectedIds(nullptr);
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkLookupTable* vtkGaussianSplatMapper::GetScoreLookupTable()
+{
+  if (!this->ScoreLookupTable)
+  {
+    this->ScoreLookupTable = vtkLookupTable::New();
+    this->ScoreLookupTable->SetNumberOfTableValues(256);
+    for (int i = 0; i < 256; ++i)
+    {
+      const auto c = vis4gs::Viridis(i / 255.0);
+      this->ScoreLookupTable->SetTableValue(i, c[0], c[1], c[2], 1.0);
+    }
+    this->ScoreLookupTable->SetNanColor(0.5, 0.5, 0.5, 1.0);
+  }
+  double range[2] = { this->ScoreRange[0], this->ScoreRange[1] };
+  if (this->AutoScoreRange)
+  {
+    vtkPolyData* input = this->GetInput();
+    vtkDataArray* arr = (input && this->ScoreArrayName)
+      ? input->GetPointData()->GetArray(this->ScoreArrayName)
+      : nullptr;
+    if (arr)
+    {
+      arr->GetRange(range, 0);
+    }
+  }
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  this->ScoreLookupTable->SetTableRange(range);
+  return this->ScoreLookupTable;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Release(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
+{
+  vtkInternals& in = *this->Internals;
+  this->LastDrawnCount = 0;
+  this->LastSortTime = this->LastColorTime = this->LastUploadTime = 0.0;
+  vtkPolyData* input = this->GetInput();
+  if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector())
+  {
+    return;
+  }
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    vtkErrorMacro("vtkGaussianSplatMapper needs an OpenGL render window");
+    return;
+  }
+  if (in.Window != renWin)
+  {
+    in.Release(in.Window);
+    in.Window = renWin;
+  }
+  vtkCamera* cam = ren->GetActiveCamera();
+  if (cam->GetParallelProjection())
+  {
+    if (!in.ReportedParallel)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: parallel projection is not supported");
+      in.ReportedParallel = true;
+    }
+    return;
+  }
+  const int threads = this->NumberOfThreads;
+
+  // 1. Input -> Core cloud and packed geometry (only when the input changed).
+  if (input->GetMTime() != in.InputTime || in.GeometryDirty ||
+    in.PackedScale != this->ScaleModifier)
+  {
+    if (input->GetMTime() != in.InputTime)
+    {
+      std::string error;
+      in.Cloud = vis4gs::GaussianCloud();
+      if (!vis4gs::PolyDataToGaussianCloud(input, in.Cloud, &error))
+      {
+        vtkErrorMacro("vtkGaussianSplatMapper: " << error);
+        in.Cloud = vis4gs::GaussianCloud();
+        in.InputTime = input->GetMTime();
+        return;
+      }
+      const std::size_t n = in.Cloud.Count;
+      if (in.Cloud.LogScales.size() != 3 * n || in.Cloud.Rotations.size() != 4 * n ||
+        in.Cloud.OpacityLogits.size() != n)
+      {
+        vtkErrorMacro("vtkGaussianSplatMapper: the input lacks LogScale, Rotation or "
+                      "OpacityLogit point arrays");
+        in.Cloud = vis4gs::GaussianCloud();
+        in.InputTime = input->GetMTime();
+        return;
+      }
+      in.HasSH =
+        in.Cloud.SH.size() == 3 * n * static_cast<std::size_t>(in.Cloud.ShCoefficientCount());
+      in.IdToIndex.clear();
+      vtkDataArray* ids = input->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+      if (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
+      {
+        in.IdToIndex.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          in.IdToIndex[i] = { static_cast<vtkIdType>(
+                                ids->GetComponent(static_cast<vtkIdType>(i), 0)),
+            static_cast<vtkIdType>(i) };
+        }
+        std::sort(in.IdToIndex.begin(), in.IdToIndex.end());
+      }
+      in.InputTime = input->GetMTime();
+      in.ColoredDegree = -2; // force new colours
+      in.DisplayTime = 0;
+    }
+    try
+    {
+      vis4gs::PackSplatGeometry(in.Cloud, this->ScaleModifier, in.Geometry, threads);
+      in.PackedScale = this->ScaleModifier;
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
+      return;
+    }
+    in.GeometryDirty = true;
+    in.OrderDirty = true;
+  }
+  const std::size_t n = in.Cloud.Count;
+  if (n == 0)
+  {
+    return;
+  }
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max() / 3))
+  {
+    vtkErrorMacro("vtkGaussianSplatMapper: too many Gaussians (" << n << ")");
+    return;
+  }
+
+  // 2. Camera: world (actor's model frame) to OpenCV camera, focal lengths from the projection.
+  int width = 0, height = 0, ox = 0, oy = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &ox, &oy);
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+  vtkNew<vtkMatrix4x4> modelView;
+  vtkMatrix4x4::Multiply4x4(cam->GetModelViewTransformMatrix(), actor->GetMatrix(), modelView);
+  std::array<double, 16> view{};
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view[4 * r + c] = modelView->GetElement(r, c);
+    }
+  }
+  const std::array<double, 16> w2c = vis4gs::GLViewToWorldToCamera(view);
+  vtkMatrix4x4* proj =
+    cam->GetProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0);
+  const double fx = proj->GetElement(0, 0) * width / 2.0;
+  const double fy = proj->GetElement(1, 1) * height / 2.0;
+  vtkNew<vtkMatrix4x4> inverse;
+  vtkMatrix4x4::Invert(modelView, inverse);
+  // Camera centre in the model frame: the inverse maps the eye origin back.
+  const std::array<double, 3> center{
+    inverse->GetElement(0, 3), inverse->GetElement(1, 3), inverse->GetElement(2, 3)
+  };
+
+  // 3. Colours: SH for the camera centre (only when it moved and the degree needs it).
+  const auto tc = std::chrono::steady_clock::now();
+  const int degree = in.HasSH
+    ? (this->ShDegree < 0 ? in.Cloud.ShDegree : std::min(this->ShDegree, in.Cloud.ShDegree))
+    : -1;
+  bool colorsChanged = false;
+  if (degree != in.ColoredDegree || (degree > 0 && center != in.ColoredCenter))
+  {
+    if (in.HasSH)
+    {
+      vis4gs::EvaluateSplatColors(in.Cloud, center, degree, in.TrueColors, threads);
+    }
+    else
+    {
+      in.TrueColors.assign(3 * n, 0.7f); // no SH: light grey
+    }
+    in.ColoredDegree = degree;
+    in.ColoredCenter = center;
+    colorsChanged = true;
+  }
+  // Display colours: overlay, hiding, highlight, dimming.
+  const vtkMTimeType displayTime =
+    std::max(this->GetMTime(), this->SelectedIds ? this->SelectedIds->GetMTime() : vtkMTimeType(0));
+  if (colorsChanged || displayTime != in.DisplayTime)
+  {
+    vis4gs::SplatDisplayOptions opt;
+    in.Scores.clear();
+    const bool needScores = this->SplatColoring == SCORE || this->HideOutsideRange;
+    if (needScores)
+    {
+      vtkDataArray* arr =
+        this->ScoreArrayName ? input->GetPointData()->GetArray(this->ScoreArrayName) : nullptr;
+      if (!arr || arr->GetNumberOfTuples() != static_cast<vtkIdType>(n))
+      {
+        vtkErrorMacro("vtkGaussianSplatMapper: score array '"
+          << (this->ScoreArrayName ? this->ScoreArrayName : "(none)")
+          << "' is missing from the input point data");
+        return;
+      }
+      in.Scores.resize(n);
+      double lo = VTK_DOUBLE_MAX, hi = VTK_DOUBLE_MIN;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double s = arr->GetComponent(static_cast<vtkIdType>(i), 0);
+        in.Scores[i] = s;
+        if (std::isfinite(s))
+        {
+          lo = std::min(lo, s);
+          hi = std::max(hi, s);
+        }
+      }
+      in.AutoRange[0] = lo <= hi ? lo : 0.0;
+      in.AutoRange[1] = lo <= hi ? hi : 1.0;
+      opt.Scores = in.Scores.data();
+    }
+    opt.ScoreColoring = this->SplatColoring == SCORE;
+    opt.ColorRange = this->AutoScoreRange
+      ? std::array<double, 2>{ in.AutoRange[0], in.AutoRange[1] }
+      : std::array<double, 2>{ this->ScoreRange[0], this->ScoreRange[1] };
+    opt.HideOutsideRange = this->HideOutsideRange;
+    opt.VisibleRange = { this->VisibleRange[0], this->VisibleRange[1] };
+    in.Selected.clear();
+    if (this->SelectedIds && this->SelectedIds->GetNumberOfTuples() > 0)
+    {
+      in.Selected.assign(n, 0);
+      for (vtkIdType k = 0; k < this->SelectedIds->GetNumberOfTuples(); ++k)
+      {
+        const vtkIdType id = this->SelectedIds->GetValue(k);
+        if (in.IdToIndex.empty())
+        {
+          if (id >= 0 && id < static_cast<vtkIdType>(n))
+          {
+            in.Selected[id] = 1;
+          }
+          continue;
+        }
+        auto it = std::lower_bound(in.IdToIndex.begin(),
+          in.IdToIndex.end(),
+          std::make_pair(id, vtkIdType(std::numeric_limits<vtkIdType>::min())));
+        for (; it != in.IdToIndex.end() && it->first == id; ++it)
+        {
+          in.Selected[it->second] = 1;
+        }
+      }
+      opt.Selected = in.Selected.data();
+    }
+    opt.Highlight = this->HighlightSelected;
+    opt.HighlightColor = { static_cast<float>(this->HighlightColor[0]),
+      static_cast<float>(this->HighlightColor[1]),
+      static_cast<float>(this->HighlightColor[2]) };
+    opt.HighlightMix = static_cast<float>(this->HighlightMix);
+    opt.DimUnselected = this->DimUnselected && opt.Selected != nullptr;
+    opt.DimOpacity = static_cast<float>(this->DimOpacity);
+    const std::vector<std::uint8_t> oldKeep = in.Keep;
+    vis4gs::ComputeSplatDisplay(in.TrueColors.data(), n, opt, in.Display, in.Keep, threads);
+    if (in.Keep != oldKeep)
+    {
+      in.OrderDirty = true;
+    }
+    in.ColorsDirty = true;
+    in.DisplayTime = displayTime;
+  }
+  this->LastColorTime = MsSince(tc);
+
+  // 4. Back-to-front order (when the view or the kept set changed).
+  if (in.OrderDirty || w2c != in.SortedWorldToCamera ||
+    this->MaximumNumberOfSplats != in.SortedBudget)
+  {
+    const auto ts = std::chrono::steady_clock::now();
+    vis4gs::ComputeViewDepths(in.Cloud.Positions.data(), n, w2c, in.Depths, threads);
+    vis4gs::SplatSortOptions so;
+    so.Keep = in.Keep.data();
+    so.Threads = threads;
+    vis4gs::SortBackToFront(in.Depths, in.Order, so);
+    const std::size_t budget = static_cast<std::size_t>(this->MaximumNumberOfSplats);
+    if (budget > 0 && in.Order.size() > budget)
+    {
+      const std::size_t k = (in.Order.size() + budget - 1) / budget;
+      std::size_t m = 0;
+      for (std::size_t i = 0; i < in.Order.size(); i += k)
+      {
+        in.Order[m++] = in.Order[i];
+      }
+      in.Order.resize(m);
+    }
+    in.SortedWorldToCamera = w2c;
+    in.SortedBudget = this->MaximumNumberOfSplats;
+    in.OrderDirty = false;
+    in.OrderOnGPU = false;
+    this->LastSortTime = MsSince(ts);
+  }
+
+  // 5. Uploads.
+  const auto tu = std::chrono::steady_clock::now();
+  if (in.GeometryDirty || !in.GeometryOnGPU)
+  {
+    GLint maxTexels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    if (static_cast<double>(3 * n) > static_cast<double>(maxTexels))
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << n << " Gaussians need " << 3 * n
+                                               << " texels; the GL texture buffer limit is "
+                                               << maxTexels);
+      return;
+    }
+    in.GeometryBuffer->Upload(
+      in.Geometry.data(), in.Geometry.size(), vtkOpenGLBufferObject::TextureBuffer);
+    in.GeometryTexture->SetContext(renWin);
+    in.GeometryTexture->CreateTextureBuffer(
+      static_cast<unsigned int>(3 * n), 4, VTK_FLOAT, in.GeometryBuffer);
+    in.GeometryOnGPU = true;
+    in.GeometryDirty = false;
+  }
+  if (in.ColorsDirty || !in.ColorsOnGPU)
+  {
+    in.ColorBuffer->Upload(
+      in.Display.data(), in.Display.size(), vtkOpenGLBufferObject::TextureBuffer);
+    in.ColorTexture->SetContext(renWin);
+    in.ColorTexture->CreateTextureBuffer(
+      static_cast<unsigned int>(n), 4, VTK_FLOAT, in.ColorBuffer);
+    in.ColorsOnGPU = true;
+    in.ColorsDirty = false;
+  }
+  if (!in.OrderOnGPU)
+  {
+    if (!in.Order.empty())
+    {
+      in.OrderBuffer->Upload(
+        in.Order.data(), in.Order.size(), vtkOpenGLBufferObject::TextureBuffer);
+      in.OrderTexture->SetContext(renWin);
+      in.OrderTexture->SetInternalFormat(GL_R32UI);
+      in.OrderTexture->CreateTextureBuffer(
+        static_cast<unsigned int>(in.Order.size()), 1, VTK_UNSIGNED_INT, in.OrderBuffer);
+    }
+    in.OrderOnGPU = true;
+  }
+  this->LastUploadTime = MsSince(tu);
+  if (in.Order.empty())
+  {
+    return;
+  }
+
+  // 6. Draw.
+  const bool instanced = this->GeometryPath == INSTANCED_QUADS;
+  vtkShaderProgram*& cached = instanced ? in.InstancedProgram : in.Program;
+  if (!cached)
+  {
+    cached = instanced ? renWin->GetShaderCache()->ReadyShaderProgram(SplatInstancedVS, SplatFS, "")
+                       : renWin->GetShaderCache()->ReadyShaderProgram(SplatVS, SplatFS, SplatGS);
+    if (!cached)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: the splat shaders failed to compile");
+      return;
+    }
+  }
+  else
+  {
+    renWin->GetShaderCache()->ReadyShaderProgram(cached);
+  }
+  vtkShaderProgram* prog = cached;
+  in.VAO->Bind();
+  in.GeometryTexture->Activate();
+  in.ColorTexture->Activate();
+  in.OrderTexture->Activate();
+  prog->SetUniformi("splatGeometry", in.GeometryTexture->GetTextureUnit());
+  prog->SetUniformi("splatColor", in.ColorTexture->GetTextureUnit());
+  prog->SetUniformi("splatOrder", in.OrderTexture->GetTextureUnit());
+  for (int r = 0; r < 3; ++r)
+  {
+    const float row[4] = { static_cast<float>(w2c[4 * r]),
+      static_cast<float>(w2c[4 * r + 1]),
+      static_cast<float>(w2c[4 * r + 2]),
+      static_cast<float>(w2c[4 * r + 3]) };
+    const std::string name = "viewRow" + std::to_string(r);
+    prog->SetUniform4f(name.c_str(), row);
+  }
+  // The reference passes tan(fov/2) in float and recomputes the focal lengths from it.
+  const float tanFov[2] = { static_cast<float>(width / (2.0 * fx)),
+    static_cast<float>(height / (2.0 * fy)) };
+  const float focal[2] = { static_cast<float>(width) / (2.0f * tanFov[0]),
+    static_cast<float>(height) / (2.0f * tanFov[1]) };
+  const float imageSize[2] = { static_cast<float>(width), static_cast<float>(height) };
+  const float depthCoeffs[2] = { static_cast<float>(proj->GetElement(2, 2)),
+    static_cast<float>(proj->GetElement(2, 3)) };
+  const float viewportRect[4] = { static_cast<float>(ox),
+    static_cast<float>(oy),
+    static_cast<float>(width),
+    static_cast<float>(height) };
+  prog->SetUniform2f("focal", focal);
+  prog->SetUniform2f("tanFov", tanFov);
+  prog->SetUniform2f("imageSize", imageSize);
+  prog->SetUniform2f("depthCoeffs", depthCoeffs);
+  prog->SetUniform4f("viewportRect", viewportRect);
+
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDepthMask(GL_FALSE);
+  if (instanced)
+  {
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(in.Order.size()));
+  }
+  else
+  {
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(in.Order.size()));
+  }
+  in.OrderTexture->Deactivate();
+  in.ColorTexture->Deactivate();
+  in.GeometryTexture->Deactivate();
+  in.VAO->Release();
+  this->LastDrawnCount = static_cast<vtkIdType>(in.Order.size());
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SplatColoring: " << (this->SplatColoring == SCORE ? "Score" : "TrueColor")
+     << "\n";
+  os << indent << "ScoreArrayName: " << (this->ScoreArrayName ? this->ScoreArrayName : "(none)")
+     << "\n";
+  os << indent << "ScoreRange: " << this->ScoreRange[0] << ", " << this->ScoreRange[1] << "\n";
+  os << indent << "AutoScoreRange: " << this->AutoScoreRange << "\n";
+  os << indent << "HideOutsideRange: " << this->HideOutsideRange << "\n";
+  os << indent << "VisibleRange: " << this->VisibleRange[0] << ", " << this->VisibleRange[1]
+     << "\n";
+  os << indent << "SelectedIds: " << this->SelectedIds << "\n";
+  os << indent << "HighlightSelected: " << this->HighlightSelected << "\n";
+  os << indent << "HighlightColor: " << this->HighlightColor[0] << ", " << this->HighlightColor[1]
+     << ", " << this->HighlightColor[2] << "\n";
+  os << indent << "HighlightMix: " << this->HighlightMix << "\n";
+  os << indent << "DimUnselected: " << this->DimUnselected << "\n";
+  os << indent << "DimOpacity: " << this->DimOpacity << "\n";
+  os << indent << "ShDegree: " << this->ShDegree << "\n";
+  os << indent << "ScaleModifier: " << this->ScaleModifier << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "MaximumNumberOfSplats: " << this->MaximumNumberOfSplats << "\n";
+  os << indent << "GeometryPath: "
+     << (this->GeometryPath == INSTANCED_QUADS ? "InstancedQuads" : "GeometryShader") << "\n";
+  os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";
+  os << indent << "LastDrawnCount: " << this->LastDrawnCount << "\n";
+  os << indent << "LastSortTime: " << this->LastSortTime << "\n";
+  os << indent << "LastColorTime: " << this->LastColorTime << "\n";
+  os << indent << "LastUploadTime: " << this->LastUploadTime << "\n";
+}

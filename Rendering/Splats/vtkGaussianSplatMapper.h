@@ -1,0 +1,282 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianSplatMapper.h
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+/**
+ * @class   vtkGaussianSplatMapper
+ * @brief   Draws a 3D Gaussian Splatting scene as anisotropic, depth-sorted splats (OpenGL2).
+ *
+ * The input is a Gaussian scene vtkPolyData (DESIGN §2: points = means, LogScale, Rotation,
+ * OpacityLogit, SH, GaussianId point arrays). Each Gaussian is drawn the way the reference
+ * rasteriser blends it (reference §2.3-§2.6):
+ *
+ *  - each Gaussian becomes a screen-space rectangle (an instanced 4-vertex strip, or a point
+ *    expanded by a geometry shader, see GeometryPath); the vertex shader does the EWA projection of
+ * the 3D covariance (Jacobian clamped at 1.3 tan(fov/2), +0.3 pixel^2 dilation, det == 0 cull, near
+ * cull at view z <= 0.2) and the reference's 3-sigma radius and 16x16 tile rectangle; the rectangle
+ * drawn is the tile rectangle intersected with the box of the ellipse where alpha can reach 1/255,
+ * so the same pixels are evaluated as in the reference;
+ *  - the fragment shader evaluates the conic, alpha = min(0.99, o e^power), discards
+ *    alpha < 1/255 and writes premultiplied colour;
+ *  - splats are blended back to front (dst = src + (1 - alpha_src) dst) in the order of the
+ *    view-space depth of their centres, ties by index reversed: the exact reverse of the
+ *    reference's per-tile order. The sort is a parallel radix sort on the CPU, redone when
+ *    the camera moves (Core/Splats/SplatSort.h);
+ *  - colours come from the SH coefficients for the direction camera -> mean (all degrees the
+ *    input holds, or ShDegree), evaluated on the CPU when the camera centre moves.
+ *
+ * Known difference from the CPU rasteriser: the reference stops a pixel once the
+ * transmittance would fall below 1e-4 (the Gaussian that would cross it is not blended).
+ * Back-to-front blending cannot know the transmittance in front of a splat, so every
+ * splat is blended; in pixels that saturate, the result differs by at most about 1e-4 of the
+ * colour range (plus 8-bit rounding of each blend in the window's framebuffer).
+ *
+ * Modes (each a property, combinable):
+ *  - SplatColoring TRUE_COLOR (default) or SCORE: a point-data score array
+ *    (ScoreArrayName, e.g. ViewCoverage, BlurScore, NeedleScore, NeedleShape) through the
+ *    viridis colour map over ScoreRange (automatic from the data unless set); the same map is
+ *    available as a vtkLookupTable for a vtkScalarBarActor legend (GetScoreLookupTable()).
+ *  - HideOutsideRange: only Gaussians whose score lies in VisibleRange are drawn.
+ *  - SelectedIds (GaussianId values, e.g. from a PEDIGREEIDS vtkSelection via SetSelection()):
+ *    highlighted (mixed towards HighlightColor); DimUnselected dims every other Gaussian.
+ *
+ * The mapper draws in the opaque pass (HasOpaqueGeometry) with its own blending (VTK 9.1's
+ * translucent pass would apply order-independent transparency): add the splat actor after the
+ * opaque actors it should be composited over (e.g. camera frustums). Splats are depth-tested
+ * against what is already drawn and do not write depth. A parallel projection is not supported
+ * (error).
+ *
+ * Set the renderer's camera from a vis4gs::Camera with vtkGaussianCameraUtilities.
+ */
+#ifndef vtkGaussianSplatMapper_h
+#define vtkGaussianSplatMapper_h
+
+#include "vis4gsRenderingSplatsModule.h" // For export macro
+#include "vtkPolyDataMapper.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkIdTypeArray;
+class vtkLookupTable;
+class vtkSelection;
+
+class VIS4GSRENDERINGSPLATS_EXPORT vtkGaussianSplatMapper : public vtkPolyDataMapper
+{
+public:
+  static vtkGaussianSplatMapper* New();
+  vtkTypeMacro(vtkGaussianSplatMapper, vtkPolyDataMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum SplatColoringModes
+  {
+    TRUE_COLOR = 0,
+    SCORE = 1
+  };
+
+  ///@{
+  /**
+   * TRUE_COLOR (SH colours, default) or SCORE (ScoreArrayName through viridis).
+   */
+  vtkSetClampMacro(SplatColoring, int, TRUE_COLOR, SCORE);
+  vtkGetMacro(SplatColoring, int);
+  void SetSplatColoringToTrueColor() { this->SetSplatColoring(TRUE_COLOR); }
+  void SetSplatColoringToScore() { this->SetSplatColoring(SCORE); }
+  ///@}
+
+  ///@{
+  /**
+   * Name of the point-data array (1 component) used by SCORE colouring and by
+   * HideOutsideRange. Default none.
+   */
+  vtkSetStringMacro(ScoreArrayName);
+  vtkGetStringMacro(ScoreArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Score mapped to the ends of the colour map. Used when AutoScoreRange is off; setting it
+   * turns AutoScoreRange off. Default [0, 1].
+   */
+  void SetScoreRange(double lo, double hi);
+  vtkGetVector2Macro(ScoreRange, double);
+  ///@}
+
+  ///@{
+  /**
+   * Take the colour-map range from the finite values of the score array. Default on.
+   */
+  vtkSetMacro(AutoScoreRange, bool);
+  vtkGetMacro(AutoScoreRange, bool);
+  vtkBooleanMacro(AutoScoreRange, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Draw only the Gaussians whose score is inside VisibleRange (inclusive; NaN is outside).
+   * Works in both colourings. Default off, range [-inf, +inf].
+   */
+  vtkSetMacro(HideOutsideRange, bool);
+  vtkGetMacro(HideOutsideRange, bool);
+  vtkBooleanMacro(HideOutsideRange, bool);
+  vtkSetVector2Macro(VisibleRange, double);
+  vtkGetVector2Macro(VisibleRange, double);
+  ///@}
+
+  ///@{
+  /**
+   * GaussianId values of the selected Gaussians (ids not in the input are ignored). When the
+   * input has no GaussianId array, the values are point indices. Default none.
+   */
+  void SetSelectedIds(vtkIdTypeArray* ids);
+  vtkGetObjectMacro(SelectedIds, vtkIdTypeArray);
+  ///@}
+
+  /**
+   * Takes the selected ids from the first node of @p selection that holds PEDIGREEIDS (or
+   * INDICES, treated as point indices); nullptr or an empty selection clears it.
+   */
+  void SetSelection(vtkSelection* selection);
+
+  ///@{
+  /**
+   * Mix selected Gaussians' colour towards HighlightColor by HighlightMix. Default on,
+   * orange (1, 0.35, 0), 0.7.
+   */
+  vtkSetMacro(HighlightSelected, bool);
+  vtkGetMacro(HighlightSelected, bool);
+  vtkBooleanMacro(HighlightSelected, bool);
+  vtkSetVector3Macro(HighlightColor, double);
+  vtkGetVector3Macro(HighlightColor, double);
+  vtkSetClampMacro(HighlightMix, double, 0.0, 1.0);
+  vtkGetMacro(HighlightMix, double);
+  ///@}
+
+  ///@{
+  /**
+   * Dim every unselected Gaussian (opacity times DimOpacity, colour desaturated) when a
+   * selection is set. Default off, 0.15.
+   */
+  vtkSetMacro(DimUnselected, bool);
+  vtkGetMacro(DimUnselected, bool);
+  vtkBooleanMacro(DimUnselected, bool);
+  vtkSetClampMacro(DimOpacity, double, 0.0, 1.0);
+  vtkGetMacro(DimOpacity, double);
+  ///@}
+
+  ///@{
+  /**
+   * SH degree used for the colours; -1 (default) uses every degree the input holds.
+   */
+  vtkSetClampMacro(ShDegree, int, -1, 3);
+  vtkGetMacro(ShDegree, int);
+  ///@}
+
+  ///@{
+  /**
+   * Multiplies every scale (the reference's scale_modifier). Default 1.
+   */
+  vtkSetClampMacro(ScaleModifier, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ScaleModifier, double);
+  ///@}
+
+  enum GeometryPaths
+  {
+    INSTANCED_QUADS = 0,
+    GEOMETRY_SHADER = 1
+  };
+
+  ///@{
+  /**
+   * How splats become screen-space quads: GEOMETRY_SHADER (default; one point per Gaussian
+   * expanded by a geometry shader, the projection done once) or INSTANCED_QUADS (one instance
+   * of a 4-vertex strip per Gaussian, the projection repeated per vertex). Same pixels either
+   * way; which is faster depends on the OpenGL implementation (on Mesa llvmpipe the geometry
+   * shader path is about 1.7x faster, see Documentation/performance.md).
+   */
+  vtkSetClampMacro(GeometryPath, int, INSTANCED_QUADS, GEOMETRY_SHADER);
+  vtkGetMacro(GeometryPath, int);
+  ///@}
+
+  ///@{
+  /**
+   * Level-of-detail budget: when more Gaussians would be drawn, only every k-th of the
+   * back-to-front order is drawn (k = ceil(drawn / budget)), keeping the order. An
+   * approximation for interaction on software OpenGL (selection stays exact). 0 (default)
+   * draws every Gaussian.
+   */
+  vtkSetClampMacro(MaximumNumberOfSplats, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfSplats, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * CPU threads for sorting and colours; 0 (default) uses OpenMP's default.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  /**
+   * The viridis lookup table over the current colour-map range (for a vtkScalarBarActor).
+   * The range is the automatic one of the current input when AutoScoreRange is on.
+   */
+  vtkLookupTable* GetScoreLookupTable();
+
+  ///@{
+  /**
+   * Figures of the last render: splats drawn (after culls and hiding), milliseconds spent
+   * sorting (0 when the camera did not move), on colours/display updates, and uploading.
+   */
+  vtkGetMacro(LastDrawnCount, vtkIdType);
+  vtkGetMacro(LastSortTime, double);
+  vtkGetMacro(LastColorTime, double);
+  vtkGetMacro(LastUploadTime, double);
+  ///@}
+
+  void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+  bool HasOpaqueGeometry() override { return true; }
+  bool HasTranslucentPolygonalGeometry() override { return false; }
+
+protected:
+  vtkGaussianSplatMapper();
+  ~vtkGaussianSplatMapper() override;
+
+  int SplatColoring = TRUE_COLOR;
+  char* ScoreArrayName = nullptr;
+  double ScoreRange[2] = { 0.0, 1.0 };
+  bool AutoScoreRange = true;
+  bool HideOutsideRange = false;
+  double VisibleRange[2] = { VTK_DOUBLE_MIN, VTK_DOUBLE_MAX };
+  vtkIdTypeArray* SelectedIds = nullptr;
+  bool HighlightSelected = true;
+  double HighlightColor[3] = { 1.0, 0.35, 0.0 };
+  double HighlightMix = 0.7;
+  bool DimUnselected = false;
+  double DimOpacity = 0.15;
+  int ShDegree = -1;
+  double ScaleModifier = 1.0;
+  int NumberOfThreads = 0;
+  int GeometryPath = GEOMETRY_SHADER;
+  vtkIdType MaximumNumberOfSplats = 0;
+  vtkLookupTable* ScoreLookupTable = nullptr;
+  vtkIdType LastDrawnCount = 0;
+  double LastSortTime = 0.0;
+  double LastColorTime = 0.0;
+  double LastUploadTime = 0.0;
+
+private:
+  vtkGaussianSplatMapper(const vtkGaussianSplatMapper&) = delete;
+  void operator=(const vtkGaussianSplatMapper&) = delete;
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif
