@@ -1,106 +1,242 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// `vis4gs demo`: the embedded default scene end to end. Until the embedded training log of
-// the built-in trainer exists (issue 7), it runs the diagnosis steps that are built on a
-// small deterministic scene: the Gaussian data model and the needle-shape score.
+// `vis4gs demo`: the embedded default scene end to end (DESIGN §5). The embedded scene is a
+// training log of the built-in trainer (Data/Demo/vis4gs-demo.h5, see its README). With a
+// display, the demo opens it in the application; without one (or with --no-gui) it runs the
+// whole diagnosis in batch: every score through `vis4gs analyze` (report, tables, overlays),
+// then the paper's case study — the most suspicious floater traced back through the
+// densification tree to its root, with the View Coverage of each ancestor at the snapshot
+// nearest its birth.
 #include "Vis4GSCommand.h"
 
-#include "Vis4GSDataModel.h"
-#include "vtkGaussianNeedleShapeFilter.h"
-
-#include "vtkDataArray.h"
-#include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "ArtifactScores.h"
+#include "Genealogy.h"
+#include "TrainingLogReader.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
-#include <numeric>
-#include <random>
+#include <limits>
+#include <map>
+#include <sstream>
 #include <stdexcept>
 
 namespace
 {
-void Define(Vis4GSArguments& args)
+namespace fs = std::filesystem;
+
+const char* KindName(vis4gs::BirthKind kind)
 {
-  args.AddOption("output", "DIR", "vis4gs-demo", "Folder the demo writes its results to.");
-  args.AddOption("top", "K", "10", "Number of most suspicious Gaussians listed per score.");
+  switch (kind)
+  {
+    case vis4gs::BirthKind::Root:
+      return "root";
+    case vis4gs::BirthKind::Clone:
+      return "clone";
+    case vis4gs::BirthKind::Split:
+      return "split";
+    case vis4gs::BirthKind::CloneSplit:
+      return "clone-split";
+  }
+  return "?";
 }
 
-// A small scene with a known mix of shapes: spheres, disks and needles around a torus.
-vis4gs::GaussianCloud MakeScene()
+void Define(Vis4GSArguments& args)
 {
-  vis4gs::GaussianCloud cloud;
-  const std::size_t n = 2000;
-  cloud.Resize(n, 0);
-  std::mt19937 rng(7);
-  std::normal_distribution<float> noise(0.0f, 0.05f);
-  for (std::size_t i = 0; i < n; ++i)
+  args.AddOption("log",
+    "FILE",
+    VIS4GS_DATA_DIR "/Demo/vis4gs-demo.h5",
+    "Training log to run the demo on (the embedded demo log).");
+  args.AddOption("output", "DIR", "vis4gs-demo", "Folder the batch diagnosis writes to.");
+  args.AddOption("top", "K", "10", "Number of most suspicious Gaussians listed per score.");
+  args.AddFlag("gui",
+    true,
+    "Open the application when a display is present ($DISPLAY set); --no-gui always runs the "
+    "batch diagnosis.");
+  args.AddOption("min-opacity",
+    "O",
+    "0.1",
+    "Case study: only Gaussians at least this opaque count as visible floaters.");
+}
+
+// Runs another registered subcommand with @p words as its command line.
+int RunCommand(const std::string& name, const std::vector<std::string>& words)
+{
+  for (const auto& command : Vis4GSRegisteredCommands())
   {
-    const float t = 6.2831853f * static_cast<float>(i) / n;
-    cloud.Positions[3 * i + 0] = std::cos(t) + noise(rng);
-    cloud.Positions[3 * i + 1] = std::sin(t) + noise(rng);
-    cloud.Positions[3 * i + 2] = noise(rng);
-    const float base = -3.5f + noise(rng);
-    const int kind = static_cast<int>(i % 20);
-    cloud.LogScales[3 * i + 0] = base + (kind == 0 ? 3.0f : 0.0f);
-    cloud.LogScales[3 * i + 1] = base + (kind == 1 ? 2.0f : 0.0f);
-    cloud.LogScales[3 * i + 2] = base - (kind == 1 ? 2.0f : 0.0f);
-    cloud.Rotations[4 * i] = 1.0f;
-    cloud.OpacityLogits[i] = 2.0f;
+    if (name == command.Name)
+    {
+      Vis4GSArguments args(command.Name, command.Summary);
+      args.AddOption("threads", "N", "0", "Number of threads; 0 uses every core.");
+      args.AddFlag("verbose", false, "Print details of each step.");
+      command.Define(args);
+      if (args.Parse(words, std::cerr) != Vis4GSArguments::Result::Ok)
+      {
+        throw std::logic_error("vis4gs demo built a bad command line for " + name);
+      }
+      return command.Run(args);
+    }
   }
-  return cloud;
+  throw std::runtime_error("this vis4gs was built without the '" + name + "' command");
+}
+
+// View Coverage of every Gaussian of every snapshot: coverage needs only the Gaussians and
+// the cameras (no rendering), so the whole history costs a few seconds on the demo.
+std::map<std::int32_t, std::map<std::int64_t, double>> CoverageHistory(
+  const vis4gs::TrainingLogReader& log,
+  const std::vector<vis4gs::Camera>& cameras)
+{
+  vis4gs::ScoreSettings settings;
+  settings.Request = {};
+  settings.Request.ViewCoverage = true;
+  settings.Request.Blur = false;
+  settings.Request.Needle = false;
+  settings.Request.NeedleShape = false;
+  vis4gs::SnapshotReadOptions options;
+  options.Arrays = vis4gs::SnapshotParameters;
+  std::map<std::int32_t, std::map<std::int64_t, double>> history;
+  for (int iteration : log.GetSnapshotIterations())
+  {
+    const vis4gs::GaussianCloud cloud = log.ReadSnapshot(iteration, options);
+    const vis4gs::GaussianScores scores = vis4gs::ComputeGaussianScores(cloud, cameras, settings);
+    auto& values = history[iteration];
+    for (std::size_t i = 0; i < cloud.Count; ++i)
+    {
+      values[cloud.GetId(i)] = scores.ViewCoverage[i];
+    }
+  }
+  return history;
+}
+
+int CaseStudy(const std::string& logPath, const fs::path& output, double minOpacity)
+{
+  const vis4gs::TrainingLogReader log(logPath);
+  const std::vector<int>& snapshots = log.GetSnapshotIterations();
+  if (snapshots.empty() || !log.HasCameras() || !log.HasEvents())
+  {
+    std::cout << "vis4gs demo: " << logPath
+              << " lacks snapshots, cameras or events; no root-cause trace\n";
+    return 0;
+  }
+  const std::vector<vis4gs::Camera> cameras = log.ReadCameras();
+  const auto coverage = CoverageHistory(log, cameras);
+
+  // The floater: the visible Gaussian of the last snapshot that the fewest training views see.
+  vis4gs::SnapshotReadOptions options;
+  options.Arrays = vis4gs::SnapshotParameters;
+  const vis4gs::GaussianCloud last = log.ReadSnapshot(snapshots.back(), options);
+  const auto& lastCoverage = coverage.at(snapshots.back());
+  std::int64_t floater = -1;
+  double best = 2;
+  for (std::size_t i = 0; i < last.Count; ++i)
+  {
+    const double opacity = 1 / (1 + std::exp(-static_cast<double>(last.OpacityLogits[i])));
+    const double c = lastCoverage.at(last.GetId(i));
+    if (opacity >= minOpacity && c > 0 && c < best)
+    {
+      best = c;
+      floater = last.GetId(i);
+    }
+  }
+  if (floater < 0)
+  {
+    std::cout << "vis4gs demo: no visible Gaussian with partial coverage; no root-cause trace\n";
+    return 0;
+  }
+
+  // DESIGN §3: the initial Gaussians are 0..N0-1 and every new one gets the next unused id,
+  // so N0 is the first child id of the events (or one past the largest id without births).
+  const vis4gs::EventTable events = log.ReadEvents();
+  std::int64_t roots = std::numeric_limits<std::int64_t>::max();
+  for (std::size_t e = 0; e < events.Size(); ++e)
+  {
+    if (events.Child[e] >= 0)
+    {
+      roots = std::min(roots, events.Child[e]);
+    }
+  }
+  if (roots == std::numeric_limits<std::int64_t>::max())
+  {
+    roots = last.Count ? *std::max_element(last.Ids.begin(), last.Ids.end()) + 1 : 0;
+  }
+  const vis4gs::Genealogy tree = vis4gs::Genealogy::Build(roots, events, snapshots.back());
+  const std::int64_t node = tree.FindNode(floater);
+  const std::vector<std::int32_t> snapshotIterations(snapshots.begin(), snapshots.end());
+  const auto trace = tree.TraceToRoot(node,
+    snapshotIterations,
+    [&](std::int32_t s, std::int64_t id)
+    {
+      const auto it = coverage.find(s);
+      if (it == coverage.end())
+      {
+        return std::nan("");
+      }
+      const auto v = it->second.find(id);
+      return v == it->second.end() ? std::nan("") : v->second;
+    });
+
+  std::ostringstream text;
+  text << "Root-cause trace of Gaussian " << floater << ", a visible floater (View Coverage "
+       << best << " = " << static_cast<int>(std::lround(best * cameras.size()))
+       << " training views; lowest among Gaussians with opacity >= " << minOpacity
+       << " at iteration " << snapshots.back() << "):\n"
+       << "  GaussianId  born   kind         died   coverage at snapshot\n";
+  for (const vis4gs::TraceStep& step : trace)
+  {
+    text << "  " << std::setw(10) << step.GaussianId << "  " << std::setw(5) << step.BirthIteration
+         << "  " << std::left << std::setw(11) << KindName(step.Kind) << std::right << "  "
+         << std::setw(5)
+         << (step.DeathIteration < 0 ? std::string("alive") : std::to_string(step.DeathIteration))
+         << "  ";
+    if (step.SnapshotIteration < 0)
+    {
+      text << "(in no snapshot)\n";
+    }
+    else
+    {
+      text << std::fixed << std::setprecision(3) << step.Value << std::defaultfloat << " at "
+           << step.SnapshotIteration << "\n";
+    }
+  }
+  std::cout << text.str();
+  std::ofstream file(output / "root-cause.txt");
+  file << text.str();
+  if (!file)
+  {
+    throw std::runtime_error((output / "root-cause.txt").string() + ": could not be written");
+  }
+  std::cout << "vis4gs demo: wrote " << (output / "root-cause.txt").string() << "\n";
+  return 0;
 }
 
 int Run(const Vis4GSArguments& args)
 {
-  const std::filesystem::path output = args.Get("output");
-  const int top = args.GetInt("top");
-  std::filesystem::create_directories(output);
-
-  vtkNew<vtkPolyData> scene;
-  vis4gs::GaussianCloudToPolyData(MakeScene(), scene);
-  vtkNew<vtkGaussianNeedleShapeFilter> needle;
-  needle->SetInputData(scene);
-  needle->ComputeEffectiveRankOn();
-  needle->Update();
-  vtkDataArray* s = needle->GetOutput()->GetPointData()->GetArray("NeedleShape");
-  vtkDataArray* ids = needle->GetOutput()->GetPointData()->GetArray("GaussianId");
-  if (!s || !ids)
+  const std::string log = args.Get("log");
+  if (!fs::is_regular_file(log))
   {
-    throw std::runtime_error("the needle-shape filter produced no NeedleShape array");
+    throw std::runtime_error(log + ": the demo training log does not exist");
   }
-  std::vector<vtkIdType> order(static_cast<std::size_t>(s->GetNumberOfTuples()));
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(),
-    order.end(),
-    [&](vtkIdType a, vtkIdType b) { return s->GetTuple1(a) > s->GetTuple1(b); });
-
-  const auto csv = output / "needle-shape.csv";
-  std::ofstream out(csv);
-  out << "GaussianId,NeedleShape\n";
-  for (vtkIdType i : order)
+  const char* display = std::getenv("DISPLAY");
+  if (args.GetFlag("gui") && display && *display)
   {
-    out << static_cast<long long>(ids->GetTuple1(i)) << "," << s->GetTuple1(i) << "\n";
+    std::cout << "vis4gs demo: opening " << log << " (use --no-gui for the batch report)\n";
+    return RunCommand("view", { log });
   }
-  if (!out)
+  const fs::path output = args.Get("output");
+  const int analyzed = RunCommand("analyze",
+    { log, "--output=" + output.string(), "--top=" + args.Get("top"), "--overlay-views=3" });
+  if (analyzed != 0)
   {
-    throw std::runtime_error(csv.string() + ": could not be written");
+    return analyzed;
   }
-  std::cout << "vis4gs demo: " << scene->GetNumberOfPoints() << " Gaussians; most needle-like:\n";
-  for (int k = 0; k < top && k < static_cast<int>(order.size()); ++k)
-  {
-    std::cout << "  Gaussian " << static_cast<long long>(ids->GetTuple1(order[k]))
-              << "  NeedleShape " << s->GetTuple1(order[k]) << "\n";
-  }
-  std::cout << "vis4gs demo: wrote " << csv.string() << "\n";
-  return 0;
+  return CaseStudy(log, output, args.GetDouble("min-opacity"));
 }
 }
 
 VIS4GS_REGISTER_COMMAND("demo",
-  "Run the diagnosis end to end on the embedded default scene.",
+  "Run the diagnosis end to end on the embedded demo training log.",
   Define,
   Run)

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <exception>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
@@ -27,7 +29,27 @@ float Hash(std::int64_t id, int salt)
 }
 }
 
+namespace
+{
+int MakeLog(int argc, char* argv[]);
+}
+
 int main(int argc, char* argv[])
+{
+  try
+  {
+    return MakeLog(argc, argv);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "vis4gsMakeTestLog: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+namespace
+{
+int MakeLog(int argc, char* argv[])
 {
   if (argc < 2)
   {
@@ -35,6 +57,11 @@ int main(int argc, char* argv[])
     return 1;
   }
   const auto start = std::chrono::steady_clock::now();
+  const std::filesystem::path parent = std::filesystem::path(argv[1]).parent_path();
+  if (!parent.empty())
+  {
+    std::filesystem::create_directories(parent);
+  }
   const std::int64_t final = argc > 2 ? std::atoll(argv[2]) : 400;
   const int snapshots = argc > 3 ? std::atoi(argv[3]) : 4;
   vis4gs::SyntheticLogParameters p;
@@ -129,4 +156,5 @@ int main(int argc, char* argv[])
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s\n";
   return 0;
+}
 }

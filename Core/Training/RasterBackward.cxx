@@ -1,0 +1,744 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "RasterBackward.h"
+
+#include "GaussianMath.h"
+#include "RasterBounds.h"
+#include "RasterKernel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace vis4gs
+{
+namespace
+{
+
+int ThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+//------------------------------------------------------------------------------
+// SH basis values Y_k(d) for k < 16 (reference §2.4).
+template <typename T>
+void ShBasis(const T d[3], int degree, T Y[16])
+{
+  const T x = d[0], y = d[1], z = d[2];
+  Y[0] = T(sh::C0);
+  if (degree < 1)
+  {
+    return;
+  }
+  Y[1] = -T(sh::C1) * y;
+  Y[2] = T(sh::C1) * z;
+  Y[3] = -T(sh::C1) * x;
+  if (degree < 2)
+  {
+    return;
+  }
+  const T xx = x * x, yy = y * y, zz = z * z;
+  Y[4] = T(sh::C2[0]) * x * y;
+  Y[5] = T(sh::C2[1]) * y * z;
+  Y[6] = T(sh::C2[2]) * (T(2) * zz - xx - yy);
+  Y[7] = T(sh::C2[3]) * x * z;
+  Y[8] = T(sh::C2[4]) * (xx - yy);
+  if (degree < 3)
+  {
+    return;
+  }
+  Y[9] = T(sh::C3[0]) * y * (T(3) * xx - yy);
+  Y[10] = T(sh::C3[1]) * x * y * z;
+  Y[11] = T(sh::C3[2]) * y * (T(4) * zz - xx - yy);
+  Y[12] = T(sh::C3[3]) * z * (T(2) * zz - T(3) * xx - T(3) * yy);
+  Y[13] = T(sh::C3[4]) * x * (T(4) * zz - xx - yy);
+  Y[14] = T(sh::C3[5]) * z * (xx - yy);
+  Y[15] = T(sh::C3[6]) * x * (xx - T(3) * yy);
+}
+
+// Gradients of the basis, x, y, z treated as independent (reference §5.7 table).
+template <typename T>
+void ShBasisGradient(const T d[3], int degree, T dY[16][3])
+{
+  const T x = d[0], y = d[1], z = d[2];
+  for (int k = 0; k < 16; ++k)
+  {
+    dY[k][0] = dY[k][1] = dY[k][2] = T(0);
+  }
+  if (degree < 1)
+  {
+    return;
+  }
+  const T C1 = T(sh::C1);
+  dY[1][1] = -C1;
+  dY[2][2] = C1;
+  dY[3][0] = -C1;
+  if (degree < 2)
+  {
+    return;
+  }
+  const T xx = x * x, yy = y * y, zz = z * z;
+  auto set = [&](int k, T c, T gx, T gy, T gz)
+  {
+    dY[k][0] = c * gx;
+    dY[k][1] = c * gy;
+    dY[k][2] = c * gz;
+  };
+  set(4, T(sh::C2[0]), y, x, T(0));
+  set(5, T(sh::C2[1]), T(0), z, y);
+  set(6, T(sh::C2[2]), T(-2) * x, T(-2) * y, T(4) * z);
+  set(7, T(sh::C2[3]), z, T(0), x);
+  set(8, T(sh::C2[4]), T(2) * x, T(-2) * y, T(0));
+  if (degree < 3)
+  {
+    return;
+  }
+  set(9, T(sh::C3[0]), T(6) * x * y, T(3) * xx - T(3) * yy, T(0));
+  set(10, T(sh::C3[1]), y * z, x * z, x * y);
+  set(11, T(sh::C3[2]), T(-2) * x * y, T(4) * zz - xx - T(3) * yy, T(8) * y * z);
+  set(12, T(sh::C3[3]), T(-6) * x * z, T(-6) * y * z, T(6) * zz - T(3) * xx - T(3) * yy);
+  set(13, T(sh::C3[4]), T(4) * zz - T(3) * xx - yy, T(-2) * x * y, T(8) * x * z);
+  set(14, T(sh::C3[5]), T(2) * x * z, T(-2) * y * z, xx - yy);
+  set(15, T(sh::C3[6]), T(3) * xx - T(3) * yy, T(-6) * x * y, T(0));
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+template <typename T>
+void GaussianGradients<T>::Reset(std::size_t count, int shCoefficients)
+{
+  this->Count = count;
+  this->ShCoefficients = shCoefficients;
+  this->Positions.assign(3 * count, T(0));
+  this->LogScales.assign(3 * count, T(0));
+  this->Rotations.assign(4 * count, T(0));
+  this->OpacityLogits.assign(count, T(0));
+  this->SH.assign(3 * static_cast<std::size_t>(shCoefficients) * count, T(0));
+  this->ViewspaceGradients.assign(2 * count, T(0));
+  this->Visible.assign(count, 0);
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+T GaussianGradients<T>::ViewspaceNorm(std::size_t i) const
+{
+  const T x = this->ViewspaceGradients[2 * i], y = this->ViewspaceGradients[2 * i + 1];
+  return std::sqrt(x * x + y * y);
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void CompositeBackward(const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  const RasterImage<T>& image,
+  const T* dLdImage,
+  ProjectedGradients<T>& gradients,
+  const BackwardSettings& options)
+{
+  constexpr int S = ProjectedGradients<T>::Stride;
+  const std::size_t n = projection.Gaussians.size();
+  const int W = projection.Width, H = projection.Height;
+  if (image.Width != W || image.Height != H ||
+    image.Transmittance.size() != static_cast<std::size_t>(W) * H ||
+    image.Contributors.size() != static_cast<std::size_t>(W) * H)
+  {
+    throw std::invalid_argument("CompositeBackward: the image does not match the projection (" +
+      std::to_string(image.Width) + "x" + std::to_string(image.Height) + " vs " +
+      std::to_string(W) + "x" + std::to_string(H) + ")");
+  }
+  if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
+    bins.Offsets.size() != bins.TileCount() + 1)
+  {
+    throw std::invalid_argument("CompositeBackward: the tile bins do not match the projection");
+  }
+  gradients.Values.assign(n * S, T(0));
+  const T bg[3] = { static_cast<T>(settings.Background[0]),
+    static_cast<T>(settings.Background[1]),
+    static_cast<T>(settings.Background[2]) };
+  const int threads = ThreadCount(options.Threads);
+  const T minAlpha = raster::MinAlpha<T>();
+  const T maxAlpha = T(raster::MaxAlpha);
+  // Fixed partitions of the image (bands of tile rows), independent of the thread count:
+  // each partition accumulates into its own per-Gaussian array, its tiles in order, and the
+  // partitions are summed in order. Memory is bounded to ~256 MB of partition arrays.
+  const std::size_t perPartition = std::max<std::size_t>(1, n * S * sizeof(T));
+  const int P = static_cast<int>(std::max<std::size_t>(1,
+    std::min<std::size_t>({ 16,
+      static_cast<std::size_t>(std::max(1, bins.TilesY)),
+      (std::size_t(1) << 28) / perPartition })));
+  BackwardWorkspace<T>& ws = gradients.Workspace;
+  if (ws.Accumulators.size() < static_cast<std::size_t>(P) * n * S)
+  {
+    ws.Accumulators.resize(static_cast<std::size_t>(P) * n * S);
+  }
+  ws.Marks.assign(static_cast<std::size_t>(P) * n, 0);
+  ws.Touched.resize(static_cast<std::size_t>(P));
+
+  // Per Gaussian: the pixels where o e^power >= 1/255 is possible lie inside these
+  // conservative spans (Render's RasterBounds.h, as the forward uses them); pixels outside
+  // are provably skipped by the exact kernel, so the spans never change a result.
+  std::vector<raster::detail::SpanBounds>& spans = ws.Spans;
+  spans.resize(n);
+  {
+    const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t ii = 0; ii < count; ++ii)
+    {
+      const ProjectedGaussian<T>& g = projection.Gaussians[static_cast<std::size_t>(ii)];
+      if (g.IsVisible())
+      {
+        const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
+        spans[static_cast<std::size_t>(ii)] = raster::detail::MakeSpanBounds<T>(
+          g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
+      }
+    }
+  }
+  constexpr int TS = raster::TileSize;
+
+#pragma omp parallel num_threads(threads)
+  {
+    // Tile-local copies of the Gaussians' 2D data (structure of arrays) and gradients.
+    std::vector<T> lu, lv, la, lb, lc, lo, lcol, lmin, local;
+    // Per-pixel state of the back-to-front walk (TS x TS pixels of the tile).
+    T pT[TS * TS], pFinal[TS * TS], pBg[TS * TS], pAcc[TS * TS][3], pLastA[TS * TS],
+      pLastC[TS * TS][3], pG[TS * TS][3];
+    std::uint32_t pLast[TS * TS];
+#pragma omp for schedule(dynamic, 1)
+    for (int part = 0; part < P; ++part)
+    {
+      T* accBase = ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S;
+      std::uint8_t* marks = ws.Marks.data() + static_cast<std::size_t>(part) * n;
+      std::vector<std::uint32_t>& touched = ws.Touched[part];
+      touched.clear();
+      const int ty0 = static_cast<int>(static_cast<long long>(bins.TilesY) * part / P);
+      const int ty1 = static_cast<int>(static_cast<long long>(bins.TilesY) * (part + 1) / P);
+      for (int ty = ty0; ty < ty1; ++ty)
+      {
+        for (int tx = 0; tx < bins.TilesX; ++tx)
+        {
+          const std::size_t t = static_cast<std::size_t>(ty) * bins.TilesX + tx;
+          const std::size_t begin = bins.Offsets[t], end = bins.Offsets[t + 1];
+          const std::size_t m = end - begin;
+          if (m == 0)
+          {
+            continue;
+          }
+          lu.resize(m);
+          lv.resize(m);
+          la.resize(m);
+          lb.resize(m);
+          lc.resize(m);
+          lo.resize(m);
+          lcol.resize(3 * m);
+          lmin.resize(m);
+          local.assign(m * S, T(0));
+          for (std::size_t j = 0; j < m; ++j)
+          {
+            const ProjectedGaussian<T>& g = projection.Gaussians[bins.Ids[begin + j]];
+            lu[j] = g.U;
+            lv[j] = g.V;
+            la[j] = g.ConicA;
+            lb[j] = g.ConicB;
+            lc[j] = g.ConicC;
+            lo[j] = g.Opacity;
+            lcol[3 * j] = g.Color[0];
+            lcol[3 * j + 1] = g.Color[1];
+            lcol[3 * j + 2] = g.Color[2];
+            // Below this power, o e^power < 1/255 for certain (a margin of 1e-3 covers the
+            // rounding of KernelExp and of this logarithm): the pair is skipped without exp().
+            lmin[j] =
+              static_cast<T>(std::log(1.0 / (255.0 * static_cast<double>(g.Opacity))) - 1e-3);
+          }
+          const int x0 = tx * TS, y0 = ty * TS;
+          const int x1 = std::min(W, x0 + TS), y1 = std::min(H, y0 + TS);
+          std::uint32_t maxLast = 0;
+          for (int py = y0; py < y1; ++py)
+          {
+            for (int px = x0; px < x1; ++px)
+            {
+              const std::size_t pix = static_cast<std::size_t>(py) * W + px;
+              const int q = (py - y0) * TS + (px - x0);
+              pLast[q] =
+                static_cast<std::uint32_t>(std::min<std::size_t>(image.Contributors[pix], m));
+              maxLast = std::max(maxLast, pLast[q]);
+              pFinal[q] = image.Transmittance[pix];
+              pT[q] = pFinal[q];
+              for (int ch = 0; ch < 3; ++ch)
+              {
+                pG[q][ch] = dLdImage[3 * pix + ch];
+                pAcc[q][ch] = 0;
+                pLastC[q][ch] = 0;
+              }
+              pBg[q] = bg[0] * pG[q][0] + bg[1] * pG[q][1] + bg[2] * pG[q][2];
+              pLastA[q] = 0;
+            }
+          }
+          // Gaussian-major walk, back to front: every pixel still sees its Gaussians in
+          // decreasing list order (the exact sequence of renderCUDA's backward), and each
+          // Gaussian's gradients are summed over its pixels in row-major order.
+          for (std::size_t jj = maxLast; jj-- > 0;)
+          {
+            const raster::detail::SpanBounds& sb = spans[bins.Ids[begin + jj]];
+            int r0 = y0, r1 = y1 - 1;
+            if (sb.Bounded)
+            {
+              r0 = std::max(r0, sb.RowMin);
+              r1 = std::min(r1, sb.RowMax);
+            }
+            T* r = local.data() + jj * S;
+            const T u = lu[jj], v = lv[jj], ca = la[jj], cb = lb[jj], cc = lc[jj], op = lo[jj];
+            const T pmin = lmin[jj];
+            for (int py = r0; py <= r1; ++py)
+            {
+              int c0 = x0, c1 = x1 - 1;
+              if (sb.Bounded)
+              {
+                int xa, xb;
+                if (!sb.Columns(py, xa, xb))
+                {
+                  continue;
+                }
+                c0 = std::max(c0, xa);
+                c1 = std::min(c1, xb);
+              }
+              const T fy = static_cast<T>(py);
+              for (int px = c0; px <= c1; ++px)
+              {
+                const int q = (py - y0) * TS + (px - x0);
+                if (jj >= pLast[q])
+                {
+                  continue;
+                }
+                const T fx = static_cast<T>(px);
+                const T power = raster::KernelPower(u, v, ca, cb, cc, fx, fy);
+                if (power < pmin || !(power <= T(0)))
+                {
+                  continue;
+                }
+                const T G = raster::KernelExp(power);
+                const T a = op * G;
+                const T alpha = a < maxAlpha ? a : maxAlpha;
+                if (!(alpha >= minAlpha))
+                {
+                  continue;
+                }
+                const T Tc = pT[q] / (T(1) - alpha);
+                pT[q] = Tc;
+                const T w = alpha * Tc;
+                const T lastAlpha = pLastA[q];
+                T dLdAlpha = 0;
+                for (int ch = 0; ch < 3; ++ch)
+                {
+                  const T col = lcol[3 * jj + ch];
+                  pAcc[q][ch] = lastAlpha * pLastC[q][ch] + (T(1) - lastAlpha) * pAcc[q][ch];
+                  pLastC[q][ch] = col;
+                  dLdAlpha += (col - pAcc[q][ch]) * pG[q][ch];
+                  r[6 + ch] += w * pG[q][ch];
+                }
+                dLdAlpha *= Tc;
+                pLastA[q] = alpha;
+                dLdAlpha += (-pFinal[q] / (T(1) - alpha)) * pBg[q];
+                const T dLdG = op * dLdAlpha;
+                const T dx = u - fx, dy = v - fy;
+                const T gdx = G * dx, gdy = G * dy;
+                r[0] += dLdG * (-gdx * ca - gdy * cb);
+                r[1] += dLdG * (-gdy * cc - gdx * cb);
+                r[2] += T(-0.5) * gdx * dx * dLdG;
+                r[3] += -gdx * dy * dLdG;
+                r[4] += T(-0.5) * gdy * dy * dLdG;
+                r[5] += G * dLdAlpha;
+              }
+            }
+          }
+          const T* acc = local.data();
+          // Into the partition's per-Gaussian accumulators, in list order.
+          for (std::size_t j = 0; j < m; ++j)
+          {
+            const std::uint32_t g = bins.Ids[begin + j];
+            T* o = accBase + static_cast<std::size_t>(g) * S;
+            if (!marks[g])
+            {
+              marks[g] = 1;
+              touched.push_back(g);
+              for (int k = 0; k < S; ++k)
+              {
+                o[k] = T(0);
+              }
+            }
+            const T* rr = acc + j * S;
+            for (int k = 0; k < S; ++k)
+            {
+              o[k] += rr[k];
+            }
+          }
+        }
+      }
+    }
+  }
+  // Fixed-order reduction over the partitions.
+  T* out = gradients.Values.data();
+  for (int part = 0; part < P; ++part)
+  {
+    const T* accBase = ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S;
+    for (std::uint32_t g : ws.Touched[part])
+    {
+      T* o = out + static_cast<std::size_t>(g) * S;
+      const T* r = accBase + static_cast<std::size_t>(g) * S;
+      for (int k = 0; k < S; ++k)
+      {
+        o[k] += r[k];
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void ProjectBackward(const GaussianCloud& cloud,
+  const ViewProjection<T>& projection,
+  const RasterSettings& settings,
+  const ProjectedGradients<T>& projected,
+  GaussianGradients<T>& gradients,
+  const BackwardSettings& options)
+{
+  constexpr int S = ProjectedGradients<T>::Stride;
+  const std::size_t n = cloud.Count;
+  if (projection.Gaussians.size() != n || projected.Values.size() != n * S)
+  {
+    throw std::invalid_argument("ProjectBackward: the projection (" +
+      std::to_string(projection.Gaussians.size()) + " Gaussians) or its gradients do not match " +
+      "the cloud (" + std::to_string(n) + " Gaussians)");
+  }
+  const int K = cloud.ShCoefficientCount();
+  gradients.Reset(n, K);
+  const int degree = projection.ShDegree;
+  const int used = (degree + 1) * (degree + 1);
+  const T W = static_cast<T>(projection.Width), H = static_cast<T>(projection.Height);
+  const T fx = projection.Fx, fy = projection.Fy;
+  const T limx = T(raster::JacobianClamp) * projection.TanFovX;
+  const T limy = T(raster::JacobianClamp) * projection.TanFovY;
+  const auto& Vm = projection.ViewMatrix;
+  const auto& F = projection.FullProjection;
+  const T Rv[3][3] = { { Vm[0], Vm[1], Vm[2] }, { Vm[4], Vm[5], Vm[6] }, { Vm[8], Vm[9], Vm[10] } };
+  const auto campos = projection.CameraCenter;
+  const T mod = static_cast<T>(settings.ScaleModifier);
+  const bool exactClamp = options.ExactJacobianClamp;
+  const bool colors = settings.ComputeColors;
+  const std::int64_t count = static_cast<std::int64_t>(n);
+  const int threads = ThreadCount(options.Threads);
+
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const ProjectedGaussian<T>& pg = projection.Gaussians[i];
+    if (!pg.IsVisible())
+    {
+      continue;
+    }
+    gradients.Visible[i] = 1;
+    const T* pgrad = projected.Values.data() + i * S;
+    const T gu = pgrad[0], gv = pgrad[1], gA = pgrad[2], gB = pgrad[3], gC = pgrad[4];
+    const T gO = pgrad[5];
+    // View-space (NDC) gradient: d ndc2pix / d ndc = size/2.
+    const T gndcx = gu * W * T(0.5), gndcy = gv * H * T(0.5);
+    gradients.ViewspaceGradients[2 * i] = gndcx;
+    gradients.ViewspaceGradients[2 * i + 1] = gndcy;
+    // Opacity through the sigmoid.
+    gradients.OpacityLogits[i] = gO * pg.Opacity * (T(1) - pg.Opacity);
+
+    // §5.3 conic -> dilated 2D covariance (a, b, c).
+    const T a = pg.Cov2D[0], b = pg.Cov2D[1], c = pg.Cov2D[2];
+    const T D = a * c - b * b;
+    const T inv = T(1) / (D * D);
+    const T ga = (-c * c * gA + b * c * gB - b * b * gC) * inv;
+    const T gc = (-b * b * gA + a * b * gB - a * a * gC) * inv;
+    const T gb = (T(2) * b * c * gA - (D + T(2) * b * b) * gB + T(2) * a * b * gC) * inv;
+    const T Gp[2][2] = { { ga, gb * T(0.5) }, { gb * T(0.5), gc } };
+
+    // Recompute the 3D covariance and the Jacobian as the forward does.
+    const float* pos = &cloud.Positions[3 * i];
+    const float* ls = &cloud.LogScales[3 * i];
+    const float* rot = &cloud.Rotations[4 * i];
+    const T s[3] = { mod * std::exp(static_cast<T>(ls[0])),
+      mod * std::exp(static_cast<T>(ls[1])),
+      mod * std::exp(static_cast<T>(ls[2])) };
+    const T qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
+    const T qn =
+      std::sqrt(qraw[0] * qraw[0] + qraw[1] * qraw[1] + qraw[2] * qraw[2] + qraw[3] * qraw[3]);
+    const std::array<T, 4> q = NormalizeQuaternion<T>(qraw);
+    const std::array<T, 9> R = QuaternionToMatrix<T>(q);
+    T Sig[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        Sig[r][cc] = R[3 * r] * s[0] * s[0] * R[3 * cc] +
+          R[3 * r + 1] * s[1] * s[1] * R[3 * cc + 1] + R[3 * r + 2] * s[2] * s[2] * R[3 * cc + 2];
+      }
+    }
+    const T t0 = pg.ViewPosition[0], t1 = pg.ViewPosition[1], t2 = pg.ViewPosition[2];
+    const T txtz = t0 / t2, tytz = t1 / t2;
+    const bool clampX = txtz < -limx || txtz > limx;
+    const bool clampY = tytz < -limy || tytz > limy;
+    const T tx = std::min(limx, std::max(-limx, txtz)) * t2;
+    const T ty = std::min(limy, std::max(-limy, tytz)) * t2;
+    const T tz2 = t2 * t2, tz3 = tz2 * t2;
+    const T J[2][3] = { { fx / t2, T(0), -(fx * tx) / tz2 }, { T(0), fy / t2, -(fy * ty) / tz2 } };
+    // Tm = J Rv (2x3).
+    T Tm[2][3];
+    for (int r = 0; r < 2; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        Tm[r][cc] = J[r][0] * Rv[0][cc] + J[r][1] * Rv[1][cc] + J[r][2] * Rv[2][cc];
+      }
+    }
+    // §5.4: dL/dSigma = Tm^T G' Tm.
+    T GpT[2][3];
+    for (int r = 0; r < 2; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        GpT[r][cc] = Gp[r][0] * Tm[0][cc] + Gp[r][1] * Tm[1][cc];
+      }
+    }
+    T GS[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        GS[r][cc] = Tm[0][r] * GpT[0][cc] + Tm[1][r] * GpT[1][cc];
+      }
+    }
+    // V = Rv Sigma Rv^T; dL/dJ = 2 G' J V.
+    T RS[3][3], Vv[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        RS[r][cc] = Rv[r][0] * Sig[0][cc] + Rv[r][1] * Sig[1][cc] + Rv[r][2] * Sig[2][cc];
+      }
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        Vv[r][cc] = RS[r][0] * Rv[cc][0] + RS[r][1] * Rv[cc][1] + RS[r][2] * Rv[cc][2];
+      }
+    }
+    T GJ[2][3];
+    for (int r = 0; r < 2; ++r)
+    {
+      T JV[3];
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        JV[cc] = T(0);
+      }
+      for (int k = 0; k < 2; ++k)
+      {
+        for (int cc = 0; cc < 3; ++cc)
+        {
+          JV[cc] += Gp[r][k] * (J[k][0] * Vv[0][cc] + J[k][1] * Vv[1][cc] + J[k][2] * Vv[2][cc]);
+        }
+      }
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        GJ[r][cc] = T(2) * JV[cc];
+      }
+    }
+    const T kx = (exactClamp && clampX) ? T(1) : T(2);
+    const T ky = (exactClamp && clampY) ? T(1) : T(2);
+    T gt[3];
+    gt[0] = clampX ? T(0) : (-fx / tz2) * GJ[0][2];
+    gt[1] = clampY ? T(0) : (-fy / tz2) * GJ[1][2];
+    gt[2] = -(fx / tz2) * GJ[0][0] - (fy / tz2) * GJ[1][1] + (kx * fx * tx / tz3) * GJ[0][2] +
+      (ky * fy * ty / tz3) * GJ[1][2];
+    T gmu[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      gmu[k] = Rv[0][k] * gt[0] + Rv[1][k] * gt[1] + Rv[2][k] * gt[2];
+    }
+    // §5.5 mean projection.
+    const T x = pos[0], y = pos[1], z = pos[2];
+    const T hx = F[0] * x + F[1] * y + F[2] * z + F[3];
+    const T hy = F[4] * x + F[5] * y + F[6] * z + F[7];
+    const T hw = F[12] * x + F[13] * y + F[14] * z + F[15];
+    const T wp = hw + T(0.0000001);
+    const T wp2 = wp * wp;
+    for (int k = 0; k < 3; ++k)
+    {
+      gmu[k] +=
+        (F[k] / wp - F[12 + k] * hx / wp2) * gndcx + (F[4 + k] / wp - F[12 + k] * hy / wp2) * gndcy;
+    }
+    // §5.6 scales and rotation.
+    for (int k = 0; k < 3; ++k)
+    {
+      T rGr = T(0);
+      for (int r = 0; r < 3; ++r)
+      {
+        rGr += R[3 * r + k] * (GS[r][0] * R[k] + GS[r][1] * R[3 + k] + GS[r][2] * R[6 + k]);
+      }
+      gradients.LogScales[3 * i + k] = T(2) * s[k] * s[k] * rGr;
+    }
+    T gR[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int cc = 0; cc < 3; ++cc)
+      {
+        gR[r][cc] =
+          T(2) * (GS[r][0] * R[cc] + GS[r][1] * R[3 + cc] + GS[r][2] * R[6 + cc]) * s[cc] * s[cc];
+      }
+    }
+    const T w = q[0], qx = q[1], qy = q[2], qz = q[3];
+    const T gw = T(2) *
+      (gR[0][1] * -qz + gR[0][2] * qy + gR[1][0] * qz + gR[1][2] * -qx + gR[2][0] * -qy +
+        gR[2][1] * qx);
+    const T gx = T(2) *
+      (gR[0][1] * qy + gR[0][2] * qz + gR[1][0] * qy + gR[1][1] * (T(-2) * qx) + gR[1][2] * -w +
+        gR[2][0] * qz + gR[2][1] * w + gR[2][2] * (T(-2) * qx));
+    const T gy = T(2) *
+      (gR[0][0] * (T(-2) * qy) + gR[0][1] * qx + gR[0][2] * w + gR[1][0] * qx + gR[1][2] * qz +
+        gR[2][0] * -w + gR[2][1] * qz + gR[2][2] * (T(-2) * qy));
+    const T gz = T(2) *
+      (gR[0][0] * (T(-2) * qz) + gR[0][1] * -w + gR[0][2] * qx + gR[1][0] * w +
+        gR[1][1] * (T(-2) * qz) + gR[1][2] * qy + gR[2][0] * qx + gR[2][1] * qy);
+    const T gqh[4] = { gw, gx, gy, gz };
+    const T norm = qn > T(1e-12) ? qn : T(1e-12);
+    if (qn > T(1e-12))
+    {
+      const T dot = q[0] * gqh[0] + q[1] * gqh[1] + q[2] * gqh[2] + q[3] * gqh[3];
+      for (int k = 0; k < 4; ++k)
+      {
+        gradients.Rotations[4 * i + k] = (gqh[k] - q[k] * dot) / norm;
+      }
+    }
+    else
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        gradients.Rotations[4 * i + k] = gqh[k] / norm;
+      }
+    }
+    // §5.7 SH colour and its view-direction path.
+    if (colors)
+    {
+      T gcol[3];
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        gcol[ch] = (pg.ClampedChannels & (1u << ch)) ? T(0) : pgrad[6 + ch];
+      }
+      const T v3[3] = { x - campos[0], y - campos[1], z - campos[2] };
+      const T len = std::sqrt(v3[0] * v3[0] + v3[1] * v3[1] + v3[2] * v3[2]);
+      const T d[3] = { v3[0] / len, v3[1] / len, v3[2] / len };
+      T Y[16];
+      ShBasis<T>(d, degree, Y);
+      T* gsh = gradients.SH.data() + i * 3 * static_cast<std::size_t>(K);
+      for (int k = 0; k < used; ++k)
+      {
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          gsh[3 * k + ch] = Y[k] * gcol[ch];
+        }
+      }
+      if (degree > 0)
+      {
+        T dY[16][3];
+        ShBasisGradient<T>(d, degree, dY);
+        const float* f = &cloud.SH[i * 3 * static_cast<std::size_t>(K)];
+        T gd[3] = { 0, 0, 0 };
+        for (int k = 1; k < used; ++k)
+        {
+          const T fg = static_cast<T>(f[3 * k]) * gcol[0] + static_cast<T>(f[3 * k + 1]) * gcol[1] +
+            static_cast<T>(f[3 * k + 2]) * gcol[2];
+          gd[0] += dY[k][0] * fg;
+          gd[1] += dY[k][1] * fg;
+          gd[2] += dY[k][2] * fg;
+        }
+        const T dd = d[0] * gd[0] + d[1] * gd[1] + d[2] * gd[2];
+        for (int k = 0; k < 3; ++k)
+        {
+          gmu[k] += (gd[k] - d[k] * dd) / len;
+        }
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      gradients.Positions[3 * i + k] = gmu[k];
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void RasterBackward(const GaussianCloud& cloud,
+  const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  const RasterImage<T>& image,
+  const T* dLdImage,
+  GaussianGradients<T>& gradients,
+  const BackwardSettings& options)
+{
+  CompositeBackward(projection, bins, settings, image, dLdImage, gradients.Projected, options);
+  ProjectBackward(cloud, projection, settings, gradients.Projected, gradients, options);
+}
+
+template struct GaussianGradients<float>;
+template struct GaussianGradients<double>;
+template void CompositeBackward<float>(const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  const RasterImage<float>&,
+  const float*,
+  ProjectedGradients<float>&,
+  const BackwardSettings&);
+template void CompositeBackward<double>(const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  const RasterImage<double>&,
+  const double*,
+  ProjectedGradients<double>&,
+  const BackwardSettings&);
+template void ProjectBackward<float>(const GaussianCloud&,
+  const ViewProjection<float>&,
+  const RasterSettings&,
+  const ProjectedGradients<float>&,
+  GaussianGradients<float>&,
+  const BackwardSettings&);
+template void ProjectBackward<double>(const GaussianCloud&,
+  const ViewProjection<double>&,
+  const RasterSettings&,
+  const ProjectedGradients<double>&,
+  GaussianGradients<double>&,
+  const BackwardSettings&);
+template void RasterBackward<float>(const GaussianCloud&,
+  const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  const RasterImage<float>&,
+  const float*,
+  GaussianGradients<float>&,
+  const BackwardSettings&);
+template void RasterBackward<double>(const GaussianCloud&,
+  const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  const RasterImage<double>&,
+  const double*,
+  GaussianGradients<double>&,
+  const BackwardSettings&);
+
+} // namespace vis4gs
