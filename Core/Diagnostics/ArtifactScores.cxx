@@ -229,6 +229,7 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   footprint.Accumulation = settings.Accumulation;
   footprint.BruteForce = settings.BruteForceFootprints;
   footprint.Threads = settings.Threads;
+  footprint.KernelIsa = settings.KernelIsa;
 
   const bool occlusion = settings.OcclusionThreshold > 0;
   // The score pass provides the coverage of the views it scores when both passes run at the
@@ -370,8 +371,9 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
         pending.push_back(ViewAt(cameras[vi], settings.CoverageResolution));
       }
     }
-    // Batches of views: the cloud is read once per batch, progress is reported per batch.
-    constexpr std::size_t batch = 16;
+    // Batches of views: the cloud is read (and its view-independent part prepared) once per
+    // batch, progress is reported per batch.
+    constexpr std::size_t batch = 64;
     for (std::size_t first = 0; first < pending.size(); first += batch)
     {
       const std::size_t last = std::min(pending.size(), first + batch);
@@ -382,7 +384,8 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
         settings.Footprint,
         out.CoverageViews,
         settings.Threads,
-        settings.Raster.ScaleModifier);
+        settings.Raster.ScaleModifier,
+        settings.KernelIsa);
       out.Timings.Footprints += Seconds(t0);
       for (std::size_t k = first; k < last; ++k)
       {

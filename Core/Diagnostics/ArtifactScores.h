@@ -87,6 +87,10 @@ struct ScoreSettings
   /// Footprints by brute force over the tile rectangle (the straightforward implementation,
   /// for benchmarks and tests). Default off.
   bool BruteForceFootprints = false;
+  /// Instruction set of the footprint and coverage kernels: 0 = best available (default),
+  /// 1 = scalar only (the previous implementation, for benchmarks), 2 = AVX2. Results are
+  /// bit-identical on every path.
+  int KernelIsa = 0;
   /// Rasteriser options for the renders (background, SH degree). Threads are overridden.
   RasterSettings Raster;
   /// OpenMP threads; 0 uses OpenMP's default.

@@ -17,7 +17,16 @@
  *    analytic span bounds of Render/RasterBounds.h (conservative; every candidate pixel is
  *    evaluated with the exact kernel), or every pixel of the rectangle when no bound exists;
  *  - the loop runs over blocks of Gaussians outside and views inside, so the cloud is read
- *    once whatever the number of views.
+ *    once whatever the number of views;
+ *  - with AVX-512 or AVX2 (chosen at run time, exact mode), 16 or 8 Gaussians are projected
+ *    at once: each
+ *    lane repeats the scalar float operations in the same order (no contraction, correctly
+ *    rounded division and square root, the reference's double ndc2Pix), so its culls, conic
+ *    and tile rectangle are bit-identical, then evaluates the exact kernel at the pixel of
+ *    its clamped tile rectangle nearest the mean. That decides almost every Gaussian (culled,
+ *    or visible at that pixel); the rest are re-tested by the scalar search. The counts equal
+ *    the scalar path's (kernelIsa = 1) Gaussian by Gaussian, and do not depend on the thread
+ *    count (each Gaussian's counter is written by the thread that owns its block).
  * Both footprint modes are supported (alpha footprint; 3-sigma ellipse).
  */
 #ifndef vis4gs_FastCoverage_h
@@ -38,14 +47,17 @@ namespace vis4gs
  * Adds 1 to @p visibleViews[g] for every view of @p cameras in which Gaussian g has a
  * non-empty footprint (mode @p mode). @p visibleViews is resized to cloud.Count if needed.
  * @p scaleModifier is the rasteriser's scale modifier (1 for the scores). Throws like
- * ProjectGaussians for unusable cameras or clouds.
+ * ProjectGaussians for unusable cameras or clouds. @p kernelIsa: 0 = best available
+ * (default), 1 = scalar only, 2 = AVX2, 3 = AVX-512 (each falls back to what the machine
+ * has); the counts are identical on every path (a knob for tests and benchmarks).
  */
 void CountVisibleViews(const GaussianCloud& cloud,
   const std::vector<Camera>& cameras,
   FootprintMode mode,
   std::vector<std::uint32_t>& visibleViews,
   int threads = 0,
-  double scaleModifier = 1.0);
+  double scaleModifier = 1.0,
+  int kernelIsa = 0);
 
 /**
  * Visibility of every Gaussian in one view (1 when |Omega| >= 1), for the tests and for
@@ -55,7 +67,8 @@ std::vector<std::uint8_t> VisibleInView(const GaussianCloud& cloud,
   const Camera& camera,
   FootprintMode mode,
   int threads = 0,
-  double scaleModifier = 1.0);
+  double scaleModifier = 1.0,
+  int kernelIsa = 0);
 
 } // namespace vis4gs
 

@@ -3,16 +3,272 @@
 
 #include "RasterBounds.h"
 
+#include <immintrin.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
 
 namespace vis4gs
 {
 
 namespace
 {
+
+//------------------------------------------------------------------------------
+// Vectorised footprint of one float Gaussian (AVX2, 8 pixels of a row at a time). Each lane
+// computes KernelPower / KernelAlpha (RasterKernel.h) with the same float operations in the
+// same order as the scalar loop (the library is built with -ffp-contract=off), so every pixel
+// decision is bit-identical; the pixels found are then visited in ascending x, so the map sum
+// is accumulated in the same order (row by row, left to right) as the scalar and brute-force
+// paths and is bit-identical too.
+typedef float F8 __attribute__((vector_size(32)));
+typedef std::int32_t I8 __attribute__((vector_size(32)));
+
+#define VIS4GS_FP_AVX2 __attribute__((target("avx2"), always_inline)) inline
+
+VIS4GS_FP_AVX2 F8 FootprintExp8(F8 x)
+{
+  const I8 inRange = x >= -87.33654f;
+  x = inRange ? x : F8{};
+  const F8 t = x * 1.44269504088896341f;
+  const F8 n = (t + 12582912.0f) - 12582912.0f;
+  F8 r = x - n * 0.693359375f;
+  r = r - n * -2.12194440e-4f;
+  const F8 r2 = r * r;
+  F8 p = F8{} + 1.9875691500E-4f;
+  p = p * r + 1.3981999507E-3f;
+  p = p * r + 8.3334519073E-3f;
+  p = p * r + 4.1665795894E-2f;
+  p = p * r + 1.6666665459E-1f;
+  p = p * r + 5.0000001201E-1f;
+  p = p * r2 + r + 1.0f;
+  const I8 bits = (__builtin_convertvector(n, I8) + 127) << 23;
+  const F8 res = p * reinterpret_cast<F8>(bits);
+  return inRange ? res : F8{};
+}
+
+// The alpha test of KernelAlpha for 8 pixels given their powers. Most lanes are decided
+// without the exponential: alpha = min(0.99, o e^power) >= 1/255 holds exactly when
+// power >= ln(1/(255 o)) = level, and the computed alpha (KernelExp within 2 ulp, one
+// rounded product) can only disagree with that within about 1e-6 of the level. Lanes with
+// power <= 0 and power >= level + 1e-4 are therefore in Omega, lanes with power > 0 or
+// power <= level - 1e-4 are not; when a lane falls in the band between (or is NaN) the
+// whole group is evaluated with the exact kernel arithmetic.
+VIS4GS_FP_AVX2 I8 AlphaTest8(F8 power, float opacity, float inside, float outside)
+{
+  const I8 nonPositive = power <= 0.0f;
+  const I8 surelyIn = nonPositive & (power >= inside);
+  const I8 surelyOut = (power > 0.0f) | (power <= outside);
+  if (_mm256_movemask_ps(reinterpret_cast<__m256>(~(surelyIn | surelyOut))) == 0)
+  {
+    return surelyIn;
+  }
+  const F8 e = FootprintExp8(nonPositive ? power : F8{});
+  const F8 a = opacity * e;
+  const F8 alpha = a < float(raster::MaxAlpha) ? a : F8{} + float(raster::MaxAlpha);
+  return nonPositive & (alpha >= raster::MinAlpha<float>());
+}
+
+// Pixels [xa, xb] of row y: counts those in Omega and adds their map values, left to right.
+template <typename Acc>
+__attribute__((target("avx2"))) void FootprintRowAvx2(const ProjectedGaussian<float>& g,
+  bool rasterMode,
+  float inside,
+  float outside,
+  int y,
+  int xa,
+  int xb,
+  int W,
+  const float* map,
+  std::uint32_t& count,
+  Acc& sum)
+{
+  const F8 lane = { 0, 1, 2, 3, 4, 5, 6, 7 };
+  const float dy = g.V - static_cast<float>(y);
+  const float cdd = g.ConicC * dy * dy;
+  const float* row = map ? map + static_cast<std::size_t>(y) * W : nullptr;
+  for (int x0 = xa; x0 <= xb; x0 += 8)
+  {
+    const F8 px = static_cast<float>(x0) + lane;
+    const F8 dx = g.U - px;
+    const F8 power = -0.5f * (g.ConicA * dx * dx + cdd) - g.ConicB * dx * dy;
+    I8 in;
+    if (rasterMode)
+    {
+      in = AlphaTest8(power, g.Opacity, inside, outside);
+    }
+    else
+    {
+      in = power >= -4.5f;
+    }
+    unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(in)));
+    const int valid = xb - x0 + 1;
+    if (valid < 8)
+    {
+      bits &= (1u << valid) - 1u;
+    }
+    count += static_cast<std::uint32_t>(__builtin_popcount(bits));
+    if (row)
+    {
+      while (bits != 0)
+      {
+        const int l = __builtin_ctz(bits);
+        bits &= bits - 1;
+        sum += static_cast<Acc>(row[x0 + l]);
+      }
+    }
+  }
+}
+
+// Lane j of a packed box of width w (1..8) is pixel (j % w, j / w): rows are packed
+// back to back, so a small box costs ceil(w h / 8) evaluations and lane order is row-major.
+struct BoxLanes
+{
+  std::int32_t Col[8][72];
+  std::int32_t Row[8][72];
+  BoxLanes()
+  {
+    for (int w = 1; w <= 8; ++w)
+    {
+      for (int j = 0; j < 72; ++j)
+      {
+        this->Col[w - 1][j] = j % w;
+        this->Row[w - 1][j] = j / w;
+      }
+    }
+  }
+};
+const BoxLanes PackedLanes;
+
+// Pixels [xa, xa + w) x [ya, ya + h) (w <= 8, w h <= 64, inside the image), packed 8 at a
+// time. Counts the pixels in Omega and adds their map values in row-major order (lanes
+// outside Omega add +0.0, which leaves a sum that starts at +0.0 unchanged, NaN and Inf
+// included, so the sum is bit-identical to visiting only the footprint's pixels).
+template <typename Acc>
+__attribute__((target("avx2"))) void FootprintBoxAvx2(const ProjectedGaussian<float>& g,
+  bool rasterMode,
+  float inside,
+  float outside,
+  int xa,
+  int ya,
+  int w,
+  int h,
+  int W,
+  const float* map,
+  std::uint32_t& count,
+  Acc& sum)
+{
+  const int lanes = w * h;
+  const std::int32_t* colLut = PackedLanes.Col[w - 1];
+  const std::int32_t* rowLut = PackedLanes.Row[w - 1];
+  const I8 laneIndex = { 0, 1, 2, 3, 4, 5, 6, 7 };
+  for (int j0 = 0; j0 < lanes; j0 += 8)
+  {
+    I8 col, row;
+    std::memcpy(&col, colLut + j0, sizeof(col));
+    std::memcpy(&row, rowLut + j0, sizeof(row));
+    const F8 px = __builtin_convertvector(col + xa, F8);
+    const F8 py = __builtin_convertvector(row + ya, F8);
+    const F8 dx = g.U - px;
+    const F8 dy = g.V - py;
+    const F8 power = -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+    I8 in;
+    if (rasterMode)
+    {
+      in = AlphaTest8(power, g.Opacity, inside, outside);
+    }
+    else
+    {
+      in = power >= -4.5f;
+    }
+    in &= (laneIndex + j0) < lanes;
+    const unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(in)));
+    count += static_cast<std::uint32_t>(__builtin_popcount(bits));
+    if (map && bits != 0)
+    {
+      const I8 index = (row + ya) * W + col + xa;
+      const F8 values = reinterpret_cast<F8>(_mm256_mask_i32gather_ps(_mm256_setzero_ps(),
+        map,
+        reinterpret_cast<__m256i>(index),
+        reinterpret_cast<__m256>(in),
+        4));
+      for (int l = 0; l < 8; ++l)
+      {
+        sum += in[l] ? static_cast<Acc>(values[l]) : Acc(0);
+      }
+    }
+  }
+}
+
+bool HasAvx2()
+{
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+}
+
+template <typename T>
+constexpr bool IsFloat()
+{
+  return std::is_same<T, float>::value;
+}
+
+// The float Gaussian of the vector path (which runs only for float projections).
+inline const ProjectedGaussian<float>& FloatGaussian(const ProjectedGaussian<float>& g)
+{
+  return g;
+}
+inline const ProjectedGaussian<float>& FloatGaussian(const ProjectedGaussian<double>&)
+{
+  throw std::logic_error("the footprint vector path is float only");
+}
+
+// Bounding box of the conservative ellipse of RasterBounds.h MakeSpanBounds (the same
+// shrunken conic and lowered level, hence the same proof: outside it the computed power
+// stays below the level), computed directly: x within U +- xE, y within V +- yE, widened by
+// 0.01 pixel for the rounding of this double computation (errors of order 1e-12 pixel).
+// False wherever MakeSpanBounds reports no bound, or when the box is large (the caller then
+// takes the per-row spans).
+template <typename T>
+bool EllipseBox(T u, T v, T a, T b, T c, double level, int& xMin, int& xMax, int& yMin, int& yMax)
+{
+  const double U = u, V = v, ad = a, bd = b, cd = c;
+  if (!(std::abs(U) < 1e8 && std::abs(V) < 1e8) || !(level <= 0) || !std::isfinite(ad) ||
+    !std::isfinite(bd) || !std::isfinite(cd))
+  {
+    return false;
+  }
+  const double eta = 4.0 * std::numeric_limits<T>::epsilon();
+  const double k = ad + cd + 2.0 * std::abs(bd);
+  const double A = ad - 2.0 * eta * k;
+  const double C = cd - 2.0 * eta * k;
+  if (!(A > 1e-14 && C > 1e-14))
+  {
+    return false;
+  }
+  const double det = A * C - bd * bd;
+  if (!(det > 1e-9 * A * C))
+  {
+    return false;
+  }
+  const double q = -2.0 * (level - 1e-5) / det;
+  const double xE = std::sqrt(q * C);
+  const double yE = std::sqrt(q * A);
+  if (!(xE < 8.0 && yE < 64.0))
+  {
+    return false;
+  }
+  constexpr double margin = 0.01;
+  xMin = static_cast<int>(std::floor(U - xE - margin));
+  xMax = static_cast<int>(std::ceil(U + xE + margin));
+  yMin = static_cast<int>(std::floor(V - yE - margin));
+  yMax = static_cast<int>(std::ceil(V + yE + margin));
+  return true;
+}
 
 //------------------------------------------------------------------------------
 template <typename T, typename Acc>
@@ -26,6 +282,7 @@ void FootprintPass(const ViewProjection<T>& proj,
   const std::int64_t n = static_cast<std::int64_t>(proj.Gaussians.size());
   std::uint64_t total = 0, evaluated = 0;
   const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
+  const bool vector = IsFloat<T>() && !opt.BruteForce && opt.KernelIsa != 1 && HasAvx2();
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
   for (std::int64_t ii = 0; ii < n; ++ii)
   {
@@ -62,8 +319,36 @@ void FootprintPass(const ViewProjection<T>& proj,
       yHi = H - 1;
       level = -4.5;
     }
+    std::uint32_t cnt = 0;
+    Acc sum = 0;
+    std::uint64_t evals = 0;
+    const T minEllipse = T(-4.5);
+    // Power band of the exact alpha test (AlphaTest8); unused in the ellipse mode.
+    const float inside = static_cast<float>(level + 1e-4);
+    const float outside = static_cast<float>(level - 1e-4);
+    bool done = false;
+    int bx0, bx1, by0, by1;
+    if (vector && EllipseBox<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level, bx0, bx1, by0, by1))
+    {
+      // Small ellipse (the common case at low resolution): its bounding box, clipped to the
+      // tile rectangle and the image, is evaluated in packed lanes without per-row work.
+      const int xa = std::max(xLo, bx0), xb = std::min(xHi, bx1);
+      const int ya = std::max(yLo, by0), yb = std::min(yHi, by1);
+      const int bw = xb - xa + 1, bh = yb - ya + 1;
+      if (bw <= 0 || bh <= 0)
+      {
+        done = true; // empty
+      }
+      else if (bw <= 8 && bw * bh <= 64)
+      {
+        FootprintBoxAvx2<Acc>(
+          FloatGaussian(g), rasterMode, inside, outside, xa, ya, bw, bh, W, map, cnt, sum);
+        evals += static_cast<std::uint64_t>((bw * bh + 7) / 8 * 8);
+        done = true;
+      }
+    }
     raster::detail::SpanBounds sb;
-    if (!opt.BruteForce)
+    if (!opt.BruteForce && !done)
     {
       sb = raster::detail::MakeSpanBounds<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level);
     }
@@ -81,10 +366,10 @@ void FootprintPass(const ViewProjection<T>& proj,
       yLo = std::max(yLo, sb.RowMin);
       yHi = std::min(yHi, sb.RowMax);
     }
-    std::uint32_t cnt = 0;
-    Acc sum = 0;
-    std::uint64_t evals = 0;
-    const T minEllipse = T(-4.5);
+    if (done)
+    {
+      yHi = yLo - 1;
+    }
     for (int y = yLo; y <= yHi; ++y)
     {
       int xa = xLo, xb = xHi;
@@ -97,6 +382,16 @@ void FootprintPass(const ViewProjection<T>& proj,
         }
         xa = std::max(xa, ca);
         xb = std::min(xb, cb);
+      }
+      if (vector)
+      {
+        if (xa <= xb)
+        {
+          FootprintRowAvx2<Acc>(
+            FloatGaussian(g), rasterMode, inside, outside, y, xa, xb, W, map, cnt, sum);
+        }
+        evals += static_cast<std::uint64_t>(std::max(0, xb - xa + 1));
+        continue;
       }
       const T py = static_cast<T>(y);
       for (int x = xa; x <= xb; ++x)

@@ -18,10 +18,14 @@
 #include "BenchmarkSceneUtils.h"
 #include "CameraJson.h"
 #include "ColmapDataset.h"
+#include "FastCoverage.h"
 #include "GaussianIO.h"
 #include "ImageIO.h"
 
 #include <omp.h>
+#include <sys/resource.h>
+
+#include <cstdlib>
 
 #include <algorithm>
 #include <chrono>
@@ -49,11 +53,27 @@ double Since(Clock::time_point t)
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// Process CPU time (all threads). On a shared, overloaded machine wall time says little;
-// CPU time / threads is what the same run takes on idle cores (when it scales).
+// Process CPU time (all threads, user + system, getrusage). On a shared, overloaded machine
+// wall time says little; CPU time / threads is what the same run takes on idle cores (when
+// it scales).
 double CpuSeconds()
 {
-  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+    1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+std::string LoadAverage()
+{
+  double l[3] = { 0, 0, 0 };
+  if (getloadavg(l, 3) != 3)
+  {
+    return "n/a";
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2f %.2f %.2f", l[0], l[1], l[2]);
+  return buf;
 }
 
 struct Timer
@@ -170,15 +190,110 @@ int Perf(const std::map<std::string, std::string>& args)
     height);
   const GaussianCloud cloud = bench::ShellScene(n, 1, -5.8);
   const std::vector<Camera> cameras = bench::RingCameras(views, 3.0, width, height);
+  // --only=coverage|blur: time one task's fast path alone (for profiling).
+  const std::string only = args.count("only") ? args.at("only") : std::string();
+  if (only == "footprint")
+  {
+    // Footprint pass alone on one view at 1/4 resolution: vector vs scalar, map vs counts.
+    const Camera view = cameras[0].Resized(LossMapSize(width, 4), LossMapSize(height, 4));
+    RasterSettings rs;
+    rs.ComputeColors = false;
+    const ViewProjection<float> proj = ProjectGaussians<float>(cloud, view, rs);
+    std::vector<float> map(static_cast<std::size_t>(view.Width) * view.Height);
+    for (std::size_t i = 0; i < map.size(); ++i)
+    {
+      map[i] = static_cast<float>((i * 7919) % 1000) / 1000.0f;
+    }
+    FootprintStats ref;
+    const long onlyIsa = Get(args, "isa", -1);
+    for (int isa : { 1, 0 })
+    {
+      if (onlyIsa >= 0 && isa != onlyIsa)
+      {
+        continue;
+      }
+      for (bool withMap : { false, true })
+      {
+        FootprintOptions fo;
+        fo.KernelIsa = isa;
+        Timer t;
+        FootprintStats st;
+        for (int rep = 0; rep < 5; ++rep)
+        {
+          st = ComputeFootprints(proj, fo, withMap ? map.data() : nullptr);
+        }
+        std::printf("footprints %s, %s: per view %s; |Omega| %llu, evaluated %llu\n",
+          isa == 1 ? "scalar" : "vector",
+          withMap ? "map sums" : "counts  ",
+          t.Describe(threads * 5).c_str(),
+          static_cast<unsigned long long>(st.TotalPixels),
+          static_cast<unsigned long long>(st.EvaluatedPixels));
+        if (withMap && isa == 1)
+        {
+          ref = st;
+        }
+        if (withMap && isa == 0)
+        {
+          std::printf("vector == scalar: counts %s, sums %s\n",
+            st.PixelCount == ref.PixelCount ? "yes" : "NO",
+            st.MapSum == ref.MapSum ? "yes" : "NO");
+        }
+      }
+    }
+    return 0;
+  }
+  if (!only.empty())
+  {
+    ScoreSettings settings;
+    settings.Request = { only == "coverage", only == "blur", only == "blur", false };
+    settings.LossResolution = only == "blur" ? 4 : 1;
+    settings.KernelIsa = static_cast<int>(Get(args, "isa", 0));
+    Timer t;
+    const GaussianScores s = only == "blur"
+      ? ComputeGaussianScores(cloud, cameras, settings, PatternImages())
+      : ComputeGaussianScores(cloud, cameras, settings);
+    const auto& tm = s.Timings;
+    std::printf("%s, %d views: %s (wall: images %.2f, projection %.2f, rendering %.2f, loss "
+                "maps %.2f, footprints %.2f, sums %.2f)\n",
+      only.c_str(),
+      views,
+      t.Describe(threads).c_str(),
+      tm.Images,
+      tm.Projection,
+      tm.Rendering,
+      tm.LossMaps,
+      tm.Footprints,
+      tm.Accumulation);
+    return 0;
+  }
   std::vector<Camera> few(cameras.begin(), cameras.begin() + std::min(views, straight));
   const double scale = static_cast<double>(views) / few.size();
 
   ScoreSettings coverage;
   coverage.Request = { true, false, false, false };
+  std::printf("load average before: %s\n", LoadAverage().c_str());
   Timer t;
   const GaussianScores fast = ComputeGaussianScores(cloud, cameras, coverage);
-  std::printf(
-    "coverage, fused early-exit (exact), %d views: %s\n", views, t.Describe(threads).c_str());
+  std::printf("coverage, NEW: vectorised fused early-exit (exact), %d views: %s [load %s]\n",
+    views,
+    t.Describe(threads).c_str(),
+    LoadAverage().c_str());
+  // The previous implementation: the scalar fused early-exit test (KernelIsa 1), in
+  // batches of 16 views as ComputeGaussianScores called it.
+  t = Timer();
+  std::vector<std::uint32_t> previous(n, 0);
+  for (std::size_t first = 0; first < cameras.size(); first += 16)
+  {
+    const std::vector<Camera> batch(
+      cameras.begin() + first, cameras.begin() + std::min(cameras.size(), first + 16));
+    CountVisibleViews(cloud, batch, FootprintMode::Rasterizer, previous, 0, 1.0, 1);
+  }
+  std::printf("coverage, BEFORE: scalar fused early-exit, batches of 16 views, %d views: %s "
+              "[load %s]; same counts: %s\n",
+    views,
+    t.Describe(threads).c_str(),
+    LoadAverage().c_str(),
+    previous == fast.CoverageViews ? "yes" : "NO");
 
   // Straightforward: ProjectGaussians + brute-force footprint counts of every tile rectangle.
   ScoreSettings brute = coverage;
@@ -223,21 +338,38 @@ int Perf(const std::map<std::string, std::string>& args)
   ScoreSettings scores;
   scores.Request = { false, true, true, false };
   scores.LossResolution = 4;
-  t = Timer();
-  const GaussianScores s = ComputeGaussianScores(cloud, cameras, scores, PatternImages());
-  const auto& tm = s.Timings;
-  std::printf("blur+needle at 1/4 (%dx%d), span footprints, %d views: %s (wall: images %.2f, "
-              "projection %.2f, rendering %.2f, loss maps %.2f, footprints %.2f, sums %.2f)\n",
-    LossMapSize(width, 4),
-    LossMapSize(height, 4),
-    views,
-    t.Describe(threads).c_str(),
-    tm.Images,
-    tm.Projection,
-    tm.Rendering,
-    tm.LossMaps,
-    tm.Footprints,
-    tm.Accumulation);
+  GaussianScores s;
+  for (int isa : { 0, 1 })
+  {
+    scores.KernelIsa = isa;
+    t = Timer();
+    GaussianScores r = ComputeGaussianScores(cloud, cameras, scores, PatternImages());
+    const auto& tm = r.Timings;
+    std::printf("blur+needle at 1/4 (%dx%d), %s, %d views: %s [load %s] (wall: images "
+                "%.2f, projection %.2f, rendering %.2f, loss maps %.2f, footprints %.2f, sums "
+                "%.2f)\n",
+      LossMapSize(width, 4),
+      LossMapSize(height, 4),
+      isa == 0 ? "NEW: vectorised footprints" : "BEFORE: scalar span footprints",
+      views,
+      t.Describe(threads).c_str(),
+      LoadAverage().c_str(),
+      tm.Images,
+      tm.Projection,
+      tm.Rendering,
+      tm.LossMaps,
+      tm.Footprints,
+      tm.Accumulation);
+    if (isa == 0)
+    {
+      s = std::move(r);
+    }
+    else
+    {
+      std::printf("blur/needle scores identical (bitwise) before and after: %s\n",
+        r.BlurScore == s.BlurScore && r.NeedleScore == s.NeedleScore ? "yes" : "NO");
+    }
+  }
   ScoreSettings scoresBrute = scores;
   scoresBrute.BruteForceFootprints = true;
   t = Timer();
