@@ -3,14 +3,19 @@
 
 #include "GaussianIO.h"
 #include "GaussianMath.h"
+#include "ImageIO.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
 #include "vtkUnsignedCharArray.h"
@@ -22,6 +27,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -77,6 +83,14 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     (lower.compare(lower.size() - 3, 3, ".h5") == 0 ||
       (lower.size() > 5 && lower.compare(lower.size() - 5, 5, ".hdf5") == 0));
   std::ostringstream text;
+  auto lap = start;
+  std::ostringstream timings;
+  auto stage = [&](const char* what)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    timings << " " << what << " " << std::chrono::duration<double>(now - lap).count() << " s;";
+    lap = now;
+  };
   if (!isLog)
   {
     report(0.1, "reading the scene");
@@ -118,14 +132,17 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     }
     if (!doc->Snapshots.empty())
     {
+      stage("header, metrics, cameras");
       report(0.2, "reading the last snapshot");
       doc->LoadIteration(doc->Snapshots.back());
+      stage("last snapshot");
     }
     if (log.HasEvents())
     {
       report(0.5, "reading the events");
       const vis4gs::EventTable events = log.ReadEvents();
       text << "events: " << events.Size() << "\n";
+      stage("events");
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
       report(0.6, "building the genealogy");
       vtkNew<vtkTable> table;
@@ -169,7 +186,9 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       filter->SetLastIteration(
         std::max(header.Iterations, doc->Snapshots.empty() ? 0 : doc->Snapshots.back()));
       filter->SetRepairUnknownParents(true);
+      stage("event table, initial ids");
       filter->Update();
+      stage("genealogy filter");
       doc->Tree = vtkTree::SafeDownCast(filter->GetOutputDataObject(0));
       doc->Bands = filter->GetFamilyBands();
       if (doc->Tree)
@@ -184,7 +203,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   }
   report(1.0, "done");
   doc->Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  text << "loaded in " << doc->Seconds << " s\n";
+  text << "loaded in " << doc->Seconds << " s (" << timings.str() << " )\n";
   doc->Summary = text.str();
   return doc;
 }
@@ -198,7 +217,8 @@ int Vis4GSDocument::LoadIteration(int iteration)
   }
   vis4gs::SnapshotReadOptions options;
   options.Arrays = vis4gs::SnapshotParameters;
-  options.ShDegree = 0;
+  const int nearest = this->Log->FindNearestSnapshot(iteration);
+  options.ShDegree = this->Log->GetSnapshotSize(nearest) <= FullShLimit ? -1 : 0;
   int logged = -1;
   const vis4gs::GaussianCloud cloud = this->Log->ReadNearestSnapshot(iteration, options, &logged);
   auto scene = vtkSmartPointer<vtkPolyData>::New();
@@ -250,4 +270,106 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t
     table->AddColumn(a);
   }
   return table;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string& folder)
+{
+  this->CamerasWithImages = 0;
+  if (!this->Cameras || !this->Log)
+  {
+    return this->Cameras;
+  }
+  std::vector<vis4gs::Camera> cameras = this->Log->ReadCameras();
+  namespace fs = std::filesystem;
+  const fs::path logDir = fs::path(this->Path).parent_path();
+  const std::string prefix = "/images/";
+  for (vis4gs::Camera& c : cameras)
+  {
+    if (c.ImagePath.rfind(prefix, 0) == 0)
+    {
+      int width = 0, height = 0;
+      const std::string name = c.ImagePath.substr(prefix.size());
+      const std::vector<unsigned char> pixels = this->Log->ReadImage(name, width, height);
+      const fs::path file = fs::path(folder) / (name + ".png");
+      fs::create_directories(file.parent_path());
+      if (!fs::exists(file))
+      {
+        vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+      }
+      c.ImagePath = file.string();
+    }
+    else if (!c.ImagePath.empty() && fs::path(c.ImagePath).is_relative())
+    {
+      c.ImagePath = (logDir / c.ImagePath).string();
+    }
+    if (!c.ImagePath.empty() && fs::exists(c.ImagePath))
+    {
+      ++this->CamerasWithImages;
+    }
+  }
+  auto table = vtkSmartPointer<vtkTable>::New();
+  vis4gs::CamerasToTable(cameras, table);
+  return table;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
+  vtkTable* cameras,
+  bool withImages,
+  const Progress& progress)
+{
+  if (!scene)
+  {
+    throw std::runtime_error("no scene to compute scores for");
+  }
+  vtkNew<vtkPolyData> input;
+  input->ShallowCopy(scene);
+  vtkNew<vtkGaussianArtifactScoreFilter> filter;
+  filter->SetInputData(input);
+  const bool haveCameras = cameras && cameras->GetNumberOfRows() > 0;
+  if (haveCameras)
+  {
+    filter->SetCamerasData(cameras);
+  }
+  filter->SetComputeViewCoverage(haveCameras);
+  filter->SetComputeBlurScore(haveCameras && withImages);
+  filter->SetComputeNeedleScore(haveCameras && withImages);
+  filter->SetComputeNeedleShape(true);
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(const_cast<Progress*>(&progress));
+  observer->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void*)
+    {
+      const auto* p = static_cast<const Progress*>(client);
+      if (*p)
+      {
+        (*p)(static_cast<vtkAlgorithm*>(caller)->GetProgress(), "computing the scores");
+      }
+    });
+  filter->AddObserver(vtkCommand::ProgressEvent, observer);
+  vtkNew<vtkCallbackCommand> errors;
+  bool failed = false;
+  errors->SetClientData(&failed);
+  errors->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void*) { *static_cast<bool*>(client) = true; });
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->Update();
+  if (failed || !filter->GetOutput())
+  {
+    throw std::runtime_error("the score filter failed (see the error output)");
+  }
+  auto result = vtkSmartPointer<vtkPolyData>::New();
+  for (const char* name : { vis4gs::arrays::ViewCoverage,
+         vis4gs::arrays::BlurScore,
+         vis4gs::arrays::NeedleScore,
+         vis4gs::arrays::NeedleShape,
+         "NoVisibleView" })
+  {
+    if (vtkAbstractArray* a = filter->GetOutput()->GetPointData()->GetAbstractArray(name))
+    {
+      result->GetPointData()->AddArray(a);
+    }
+  }
+  return result;
 }

@@ -56,6 +56,31 @@ struct Vis4GSDocument
    * Empty table without a log.
    */
   vtkSmartPointer<vtkTable> History(const std::vector<std::int64_t>& ids) const;
+
+  /**
+   * The camera table for vtkGaussianArtifactScoreFilter: a copy of Cameras whose Image column
+   * names readable files. Images embedded in the log ("/images/<name>") are written once as
+   * PNG into @p folder; relative paths are made relative to the log. Null without cameras.
+   * Reads the log (HDF5): call it from the thread that owns the document.
+   */
+  vtkSmartPointer<vtkTable> ScoreCameras(const std::string& folder);
+  /// Number of cameras of ScoreCameras() with an image file (after it ran).
+  int CamerasWithImages = 0;
+
+  /**
+   * Computes the score arrays of @p scene with vtkGaussianArtifactScoreFilter: NeedleShape
+   * always; ViewCoverage with @p cameras; BlurScore and NeedleScore when @p withImages too.
+   * Returns a new polydata holding the arrays (the input is not modified, so this can run in
+   * a worker thread while the GUI draws @p scene). Throws std::runtime_error on failure.
+   */
+  static vtkSmartPointer<vtkPolyData> ComputeScores(vtkPolyData* scene,
+    vtkTable* cameras,
+    bool withImages,
+    const Progress& progress);
+
+  /// Snapshots with at most this many Gaussians are read with every SH degree (view-dependent
+  /// colour and exact blur/needle scores); larger ones with degree 0 only (memory).
+  static constexpr std::size_t FullShLimit = 2000000;
 };
 
 #endif

@@ -6,14 +6,19 @@
 #include "GaussianIO.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "vtkGaussianCameraFrustums.h"
+#include "vtkGaussianCameraUtilities.h"
 #include "vtkGaussianHistogramView.h"
 #include "vtkGaussianSelectionHub.h"
+#include "vtkGaussianSelector.h"
+#include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineView.h"
 #include "vtkGaussianTreeItem.h"
 #include "vtkGaussianTreeView.h"
 
 #include "QVTKOpenGLNativeWidget.h"
 #include "vtkActor.h"
+#include "vtkActor2D.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -22,22 +27,25 @@
 #include "vtkFieldData.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkIdTypeArray.h"
+#include "vtkLookupTable.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPointGaussianMapper.h"
-#include "vtkPointPicker.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPolyDataMapper2D.h"
 #include "vtkProperty.h"
+#include "vtkProperty2D.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkScalarBarActor.h"
 #include "vtkTable.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkTree.h"
 
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
@@ -49,6 +57,7 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QImage>
 #include <QInputDialog>
 #include <QLabel>
 #include <QListWidget>
@@ -59,34 +68,57 @@
 #include <QPushButton>
 #include <QShortcut>
 #include <QSlider>
+#include <QSpinBox>
 #include <QStatusBar>
 #include <QTableWidget>
+#include <QTemporaryDir>
 #include <QTextStream>
 #include <QThread>
 #include <QTimer>
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <ctime>
+#include <functional>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 struct Vis4GSMainWindow::Internals
 {
   vtkNew<vtkGaussianSelectionHub> Hub;
   std::shared_ptr<Vis4GSDocument> Doc;
-  // A: scene (placeholder renderer until Rendering/Splats' mapper is wired).
+  // A: scene. Frustums (opaque lines) are added before the splats, which blend over them.
   QVTKOpenGLNativeWidget* SceneWidget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
   vtkNew<vtkRenderer> SceneRenderer;
-  vtkNew<vtkPointGaussianMapper> SceneMapper;
+  vtkNew<vtkGaussianSplatMapper> SceneMapper;
   vtkNew<vtkActor> SceneActor;
-  vtkNew<vtkPolyData> Highlight;
-  vtkNew<vtkPolyDataMapper> HighlightMapper;
-  vtkNew<vtkActor> HighlightActor;
-  vtkNew<vtkTextActor> PlaceholderLabel;
-  vtkNew<vtkPointPicker> Picker;
+  vtkNew<vtkScalarBarActor> Legend;
+  vtkNew<vtkGaussianCameraFrustums> Frustums;
+  vtkNew<vtkPolyDataMapper> FrustumMapper;
+  vtkNew<vtkLookupTable> FrustumColors;
+  vtkNew<vtkActor> FrustumActor;
+  vtkNew<vtkGaussianSelector> Selector;
+  vtkNew<vtkRenderer> MarkerRenderer; // layer 1: markers of a small selection, always on top
+  vtkNew<vtkPolyData> Markers;
+  vtkNew<vtkPolyDataMapper> MarkerMapper;
+  vtkNew<vtkActor> MarkerActor;
+  vtkNew<vtkPolyData> Band; // brush stroke / frame rectangle, display coordinates
+  vtkNew<vtkPolyDataMapper2D> BandMapper;
+  vtkNew<vtkActor2D> BandActor;
+  std::vector<std::array<double, 2>> Stroke;
+  bool Dragging = false;
   int PressPosition[2] = { 0, 0 };
+  long long HighlightCount = 0;
+  // Scores (worker thread).
+  QThread* ScoreWorker = nullptr;
+  bool ScoresPending = false;
+  bool ScoresDone = false;
+  vtkSmartPointer<vtkTable> ScoreCameras;
+  std::unique_ptr<QTemporaryDir> ImageDir;
   // B, D, histogram.
   QVTKOpenGLNativeWidget* TreeWidget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> TreeWindow;
@@ -100,12 +132,17 @@ struct Vis4GSMainWindow::Internals
   // C: panel.
   QComboBox* SelectionMode = nullptr;
   QListWidget* CameraList = nullptr;
+  QCheckBox* ShowFrustums = nullptr;
   QSlider* IterationSlider = nullptr;
   QLabel* IterationLabel = nullptr;
   QComboBox* Overlay = nullptr;
   QDoubleSpinBox* OverlayMin = nullptr;
   QDoubleSpinBox* OverlayMax = nullptr;
+  QCheckBox* HideOutside = nullptr;
+  QCheckBox* UseThreshold = nullptr;
   QDoubleSpinBox* Threshold = nullptr;
+  QCheckBox* DimUnselected = nullptr;
+  QSpinBox* SplatBudget = nullptr;
   QComboBox* HistogramArray = nullptr;
   QPlainTextEdit* LogText = nullptr;
   QTableWidget* Table = nullptr;
@@ -115,7 +152,41 @@ struct Vis4GSMainWindow::Internals
   QThread* Worker = nullptr;
   QString SelfTestDir;
   bool SelfTest = false;
+  bool SelfTestStarted = false;
+  QString BaselineDir;
+  int BaselineTolerance = 48;
+  double BaselineFraction = 0.02;
+  bool Benchmark = false;
+  double BenchmarkStart = 0.0, BenchmarkCpuStart = 0.0;
 };
+
+namespace
+{
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double CpuNow()
+{
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+// Forwards the scene interactor's mouse events to the window; can abort them so that the
+// camera style does not rotate while brushing or framing.
+class SceneMouseCommand : public vtkCommand
+{
+public:
+  static SceneMouseCommand* New() { return new SceneMouseCommand; }
+  void Execute(vtkObject*, unsigned long event, void*) override
+  {
+    bool abort = false;
+    this->Callback(event, abort);
+    this->SetAbortFlag(abort ? 1 : 0);
+  }
+  std::function<void(unsigned long, bool&)> Callback;
+};
+}
 
 namespace
 {
@@ -136,6 +207,10 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
   if (d->Worker)
   {
     d->Worker->wait();
+  }
+  if (d->ScoreWorker)
+  {
+    d->ScoreWorker->wait();
   }
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
@@ -182,56 +257,70 @@ void Vis4GSMainWindow::BuildUi()
     return dock;
   };
 
-  // A: scene (placeholder: VTK's vtkPointGaussianMapper, isotropic, not the 3DGS splats).
+  // A: scene. The 3DGS splat mapper (Rendering/Splats); the camera frustums are opaque
+  // lines added first so that the splats are blended over them (mapper header).
   d->SceneWidget = makeVtkWidget(d->SceneWindow);
   d->SceneWindow->AddRenderer(d->SceneRenderer);
-  d->SceneRenderer->SetBackground(0.1, 0.1, 0.12);
-  d->SceneMapper->SetScaleFactor(0.01);
-  d->SceneMapper->EmissiveOff();
+  d->SceneRenderer->SetBackground(0, 0, 0);
+  d->FrustumColors->SetHueRange(0.6, 0.0);
+  d->FrustumColors->SetSaturationRange(0.2, 1.0);
+  d->FrustumColors->SetValueRange(0.6, 1.0);
+  d->FrustumColors->Build();
+  d->FrustumMapper->SetInputConnection(d->Frustums->GetOutputPort());
+  d->FrustumMapper->SetLookupTable(d->FrustumColors);
+  d->FrustumMapper->SetScalarModeToUsePointData();
+  d->FrustumMapper->SetColorModeToMapScalars();
+  d->FrustumActor->SetMapper(d->FrustumMapper);
+  d->FrustumActor->GetProperty()->SetLineWidth(1.5);
+  d->FrustumActor->PickableOff();
+  d->FrustumActor->VisibilityOff();
+  d->SceneRenderer->AddActor(d->FrustumActor);
+  d->SceneMapper->SetDimUnselected(false);
   d->SceneActor->SetMapper(d->SceneMapper);
   d->SceneRenderer->AddActor(d->SceneActor);
-  d->HighlightMapper->SetInputData(d->Highlight);
-  d->HighlightMapper->ScalarVisibilityOff();
-  d->HighlightActor->SetMapper(d->HighlightMapper);
-  d->HighlightActor->GetProperty()->SetColor(1.0, 0.2, 0.2);
-  d->HighlightActor->GetProperty()->SetPointSize(9);
-  d->HighlightActor->GetProperty()->SetRenderPointsAsSpheres(true);
-  d->HighlightActor->PickableOff();
-  d->SceneRenderer->AddActor(d->HighlightActor);
-  d->PlaceholderLabel->SetInput(
-    "PLACEHOLDER scene view: vtkPointGaussianMapper (the 3DGS splat mapper is not wired yet)");
-  d->PlaceholderLabel->GetTextProperty()->SetFontSize(12);
-  d->PlaceholderLabel->GetTextProperty()->SetColor(1, 0.8, 0.3);
-  d->PlaceholderLabel->SetPosition(6, 6);
-  d->SceneRenderer->AddViewProp(d->PlaceholderLabel);
-  d->Picker->SetTolerance(0.01);
+  d->Legend->SetNumberOfLabels(5);
+  d->Legend->SetMaximumWidthInPixels(70);
+  d->Legend->SetPosition(0.88, 0.1);
+  d->Legend->SetPosition2(0.11, 0.8);
+  d->Legend->VisibilityOff();
+  d->SceneRenderer->AddViewProp(d->Legend);
+  d->BandMapper->SetInputData(d->Band);
+  d->BandActor->SetMapper(d->BandMapper);
+  d->BandActor->GetProperty()->SetColor(1.0, 0.85, 0.2);
+  d->BandActor->GetProperty()->SetLineWidth(1.5);
+  d->SceneRenderer->AddViewProp(d->BandActor);
+  d->SceneWindow->SetNumberOfLayers(2);
+  d->MarkerRenderer->SetLayer(1);
+  d->MarkerRenderer->InteractiveOff();
+  d->MarkerRenderer->SetActiveCamera(d->SceneRenderer->GetActiveCamera());
+  d->SceneWindow->AddRenderer(d->MarkerRenderer);
+  d->MarkerMapper->SetInputData(d->Markers);
+  d->MarkerMapper->ScalarVisibilityOff();
+  d->MarkerActor->SetMapper(d->MarkerMapper);
+  d->MarkerActor->GetProperty()->SetRepresentationToWireframe();
+  d->MarkerActor->GetProperty()->SetColor(1.0, 0.35, 0.0);
+  d->MarkerActor->GetProperty()->SetPointSize(7);
+  d->MarkerActor->GetProperty()->SetLineWidth(2);
+  d->MarkerActor->PickableOff();
+  d->MarkerRenderer->AddActor(d->MarkerActor);
+  d->Selector->SetRenderer(d->SceneRenderer);
   d->Hub->AddRenderWindow(d->SceneWindow);
   vtkRenderWindowInteractor* iren = d->SceneWindow->GetInteractor();
-  auto* press = vtkCallbackCommand::New();
-  press->SetClientData(this);
-  press->SetCallback(
-    [](vtkObject* caller, unsigned long event, void* client, void*)
-    {
-      auto* self = static_cast<Vis4GSMainWindow*>(client);
-      auto* i = static_cast<vtkRenderWindowInteractor*>(caller);
-      if (event == vtkCommand::LeftButtonPressEvent)
-      {
-        i->GetEventPosition(self->d->PressPosition);
-      }
-      else
-      {
-        const int* p = i->GetEventPosition();
-        if (std::abs(p[0] - self->d->PressPosition[0]) +
-            std::abs(p[1] - self->d->PressPosition[1]) <
-          3)
-        {
-          self->PickInScene(p[0], p[1]);
-        }
-      }
-    });
-  iren->AddObserver(vtkCommand::LeftButtonPressEvent, press, 1.0);
-  iren->AddObserver(vtkCommand::LeftButtonReleaseEvent, press, 1.0);
-  press->Delete();
+  // Brush and Frame drags: observed before the camera style, which they abort (so it never
+  // grabs the mouse). Single and Ray clicks: the style rotates on a press and grabs the mouse
+  // focus, so the release is observed by a passive observer, which VTK calls even then.
+  vtkNew<SceneMouseCommand> mouse;
+  mouse->Callback = [this](unsigned long event, bool& abort) { this->OnSceneMouse(event, abort); };
+  for (unsigned long event : { vtkCommand::LeftButtonPressEvent,
+         vtkCommand::MouseMoveEvent,
+         vtkCommand::LeftButtonReleaseEvent })
+  {
+    iren->AddObserver(event, mouse, 1.0);
+  }
+  vtkNew<SceneMouseCommand> click;
+  click->PassiveObserverOn();
+  click->Callback = [this](unsigned long, bool&) { this->OnSceneClick(); };
+  iren->AddObserver(vtkCommand::LeftButtonReleaseEvent, click, 2.0);
   makeDock(0, "A. Gaussian analysis view", d->SceneWidget, Qt::LeftDockWidgetArea);
 
   // B: tree.
@@ -276,12 +365,23 @@ void Vis4GSMainWindow::BuildUi()
   auto* panel = new QWidget(this);
   auto* form = new QFormLayout(panel);
   d->SelectionMode = new QComboBox(panel);
-  d->SelectionMode->addItems({ "Single", "Brush", "Frame", "Ray" });
-  d->SelectionMode->setToolTip("Only Single picking works in the placeholder scene view");
+  d->SelectionMode->addItems({ "Single (click)", "Brush (drag)", "Frame (drag)", "Ray (click)" });
+  d->SelectionMode->setToolTip("Selection in the scene view (left button). Shift adds to the "
+                               "selection, Ctrl subtracts; Brush and Frame drag instead of "
+                               "rotating (rotate with the middle button then). Keys 1-4.");
   form->addRow("Selection mode", d->SelectionMode);
   d->CameraList = new QListWidget(panel);
   d->CameraList->setMaximumHeight(90);
-  form->addRow("Training cameras", d->CameraList);
+  d->CameraList->setToolTip("Click a training camera to view the scene from it");
+  form->addRow("Cameras", d->CameraList);
+  d->ShowFrustums = new QCheckBox("Show frustums (colour: selected Gaussians seen)", panel);
+  d->ShowFrustums->setChecked(true);
+  form->addRow(d->ShowFrustums);
+  connect(d->CameraList,
+    &QListWidget::currentRowChanged,
+    this,
+    [this](int row) { this->OnCameraChosen(row); });
+  connect(d->ShowFrustums, &QCheckBox::toggled, this, [this](bool) { this->UpdateFrustums(); });
   auto* itRow = new QWidget(panel);
   auto* itLayout = new QHBoxLayout(itRow);
   itLayout->setContentsMargins(0, 0, 0, 0);
@@ -307,14 +407,55 @@ void Vis4GSMainWindow::BuildUi()
   rangeLayout->addWidget(d->OverlayMin);
   rangeLayout->addWidget(d->OverlayMax);
   form->addRow("Range", rangeRow);
-  form->addRow("Threshold (hide below)", d->Threshold);
+  d->HideOutside = new QCheckBox("Hide Gaussians outside the range", panel);
+  form->addRow(d->HideOutside);
+  auto* thresholdRow = new QWidget(panel);
+  auto* thresholdLayout = new QHBoxLayout(thresholdRow);
+  thresholdLayout->setContentsMargins(0, 0, 0, 0);
+  d->UseThreshold = new QCheckBox("hide below", thresholdRow);
+  thresholdLayout->addWidget(d->UseThreshold);
+  thresholdLayout->addWidget(d->Threshold, 1);
+  form->addRow("Threshold", thresholdRow);
+  d->DimUnselected = new QCheckBox("Dim unselected Gaussians", panel);
+  form->addRow(d->DimUnselected);
+  d->SplatBudget = new QSpinBox(panel);
+  d->SplatBudget->setRange(0, 100000000);
+  d->SplatBudget->setSingleStep(50000);
+  d->SplatBudget->setSpecialValueText("all");
+  d->SplatBudget->setValue(200000);
+  d->SplatBudget->setToolTip("Level of detail of the scene view: at most this many splats are "
+                             "drawn (every k-th in depth order); selection and scores always "
+                             "use every Gaussian");
+  d->SceneMapper->SetMaximumNumberOfSplats(200000);
+  form->addRow("Splats drawn (max)", d->SplatBudget);
+  connect(d->SplatBudget,
+    QOverload<int>::of(&QSpinBox::valueChanged),
+    this,
+    [this](int value)
+    {
+      d->SceneMapper->SetMaximumNumberOfSplats(value);
+      d->SceneWindow->Render();
+    });
+  for (QCheckBox* box : { d->HideOutside, d->UseThreshold, d->DimUnselected })
+  {
+    connect(box, &QCheckBox::toggled, this, [this](bool) { this->UpdateOverlay(); });
+  }
   d->LogText = new QPlainTextEdit(panel);
   d->LogText->setReadOnly(true);
   d->LogText->setMaximumHeight(140);
   form->addRow("Training log", d->LogText);
   d->Table = new QTableWidget(panel);
-  d->Table->setColumnCount(6);
-  d->Table->setHorizontalHeaderLabels({ "GaussianId", "x", "y", "z", "Opacity", "Scale" });
+  d->Table->setColumnCount(10);
+  d->Table->setHorizontalHeaderLabels({ "GaussianId",
+    "x",
+    "y",
+    "z",
+    "Opacity",
+    "Scale",
+    "ViewCoverage",
+    "BlurScore",
+    "NeedleScore",
+    "NeedleShape" });
   d->Table->setSortingEnabled(true);
   d->Table->horizontalHeader()->setStretchLastSection(true);
   form->addRow("Selected", d->Table);
@@ -351,7 +492,31 @@ void Vis4GSMainWindow::BuildUi()
   connect(d->Overlay,
     &QComboBox::currentTextChanged,
     this,
-    [this](const QString&) { this->UpdateOverlay(); });
+    [this](const QString& name)
+    {
+      // A new overlay starts with the full range of its array.
+      vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+      vtkDataArray* array =
+        scene ? scene->GetPointData()->GetArray(name.toUtf8().constData()) : nullptr;
+      if (array)
+      {
+        double range[2];
+        array->GetRange(range);
+        for (QDoubleSpinBox* box : { d->OverlayMin, d->OverlayMax, d->Threshold })
+        {
+          box->blockSignals(true);
+          box->setSingleStep(std::max(1e-4, (range[1] - range[0]) / 100.0));
+        }
+        d->OverlayMin->setValue(range[0]);
+        d->OverlayMax->setValue(range[1]);
+        d->Threshold->setValue(range[0]);
+        for (QDoubleSpinBox* box : { d->OverlayMin, d->OverlayMax, d->Threshold })
+        {
+          box->blockSignals(false);
+        }
+      }
+      this->UpdateOverlay();
+    });
   makeDock(2, "C. Log and control panel", panel, Qt::RightDockWidgetArea);
 
   d->Progress = new QProgressBar(this);
@@ -418,7 +583,24 @@ void Vis4GSMainWindow::BuildUi()
       d->Tree->Render();
     },
     QKeySequence("L"));
+  for (int k = 0; k < 4; ++k)
+  {
+    select->addAction(
+      QString("Mode: ") + d->SelectionMode->itemText(k),
+      this,
+      [this, k] { d->SelectionMode->setCurrentIndex(k); },
+      QKeySequence(QString::number(k + 1)));
+  }
   QMenu* view = this->menuBar()->addMenu("&View");
+  view->addAction(
+    "&Reset scene camera",
+    this,
+    [this]
+    {
+      d->SceneRenderer->ResetCamera();
+      d->SceneWindow->Render();
+    },
+    QKeySequence("R"));
   view->addAction(
     "&Fit tree",
     this,
@@ -511,7 +693,31 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
     }
     return;
   }
+  if (d->ScoreWorker)
+  {
+    // Scores of the previous document: let them finish, their result is dropped.
+    d->ScoreWorker->wait();
+  }
+  double stageStart = Now();
+  auto stage = [this, &stageStart](const char* what)
+  {
+    if (d->Benchmark)
+    {
+      const double now = Now();
+      std::cout << "benchmark:   " << what << ": " << now - stageStart << " s" << std::endl;
+      stageStart = now;
+    }
+  };
+  if (d->Benchmark)
+  {
+    std::cout << "benchmark:   document loaded (worker thread) after "
+              << stageStart - d->BenchmarkStart << " s: " << doc->Seconds << " s in Load"
+              << std::endl;
+  }
   d->Doc = doc;
+  d->ScoreCameras = nullptr;
+  d->ImageDir.reset();
+  d->ScoresDone = false;
   d->Hub->RenderOnChangeOff();
   d->Hub->ClearSelection();
   this->setWindowTitle("Vis4GS - " + QFileInfo(QString::fromStdString(doc->Path)).fileName());
@@ -522,8 +728,10 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Tree->SetTree(doc->Tree);
   d->Tree->SetFamilyBands(doc->Bands);
   d->Tree->GetTreeItem()->ResetViewport();
+  stage("tree view input");
   d->Timeline->SetMetrics(doc->Metrics);
   d->Timeline->SetTestMetrics(doc->TestMetrics);
+  stage("timeline input");
   d->CameraList->clear();
   if (doc->Cameras)
   {
@@ -538,17 +746,54 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->IterationSlider->setValue(d->IterationSlider->maximum());
   d->IterationSlider->setEnabled(doc->Snapshots.size() > 1);
   d->IterationSlider->blockSignals(false);
+  d->Frustums->SetInputData(0, doc->Cameras);
   this->UpdateScene();
+  stage("scene, histogram and panel inputs");
   d->Hub->SetIteration(doc->Iteration);
   d->Hub->RenderOnChangeOn();
   d->SceneRenderer->ResetCamera();
-  d->Hub->RenderAll();
+  if (doc->Cameras && doc->Cameras->GetNumberOfRows() > 0)
+  {
+    d->CameraList->blockSignals(true);
+    d->CameraList->setCurrentRow(0);
+    d->CameraList->blockSignals(false);
+    vtkGaussianCameraUtilities::JumpToCamera(d->SceneRenderer, doc->Cameras, 0);
+  }
+  if (d->Benchmark)
+  {
+    for (auto* w : { d->SceneWindow.GetPointer(),
+           d->TreeWindow.GetPointer(),
+           d->TimelineWindow.GetPointer(),
+           d->HistogramWindow.GetPointer() })
+    {
+      w->Render();
+      w->WaitForCompletion();
+      if (w == d->SceneWindow)
+      {
+        std::cout << "benchmark:   splats drawn " << d->SceneMapper->GetLastDrawnCount()
+                  << " (budget " << d->SceneMapper->GetMaximumNumberOfSplats() << "), sort "
+                  << d->SceneMapper->GetLastSortTime() << " ms, colours "
+                  << d->SceneMapper->GetLastColorTime() << " ms, upload "
+                  << d->SceneMapper->GetLastUploadTime() << " ms" << std::endl;
+      }
+      stage(w == d->SceneWindow    ? "first render: scene"
+          : w == d->TreeWindow     ? "first render: tree"
+          : w == d->TimelineWindow ? "first render: timeline"
+                                   : "first render: histogram");
+    }
+  }
+  if (!d->Benchmark) // (the benchmark rendered every view above)
+  {
+    d->Hub->RenderAll();
+  }
   this->statusBar()->showMessage(
     QString("loaded %1 in %2 s").arg(QString::fromStdString(doc->Path)).arg(doc->Seconds), 5000);
-  if (d->SelfTest)
+  if (d->Benchmark)
   {
-    QTimer::singleShot(200, this, [this] { QApplication::exit(this->RunSelfTest() ? 0 : 1); });
+    QTimer::singleShot(0, this, [this] { this->RunBenchmark(); });
+    return;
   }
+  this->StartScores();
 }
 
 //------------------------------------------------------------------------------
@@ -559,17 +804,9 @@ void Vis4GSMainWindow::UpdateScene()
   {
     return;
   }
-  // Vertices so that the placeholder mapper and the picker see every Gaussian.
-  if (!scene->GetVerts() || scene->GetVerts()->GetNumberOfCells() == 0)
-  {
-    vtkNew<vtkCellArray> verts;
-    for (vtkIdType i = 0; i < scene->GetNumberOfPoints(); ++i)
-    {
-      verts->InsertNextCell(1, &i);
-    }
-    scene->SetVerts(verts);
-  }
   d->SceneMapper->SetInputData(scene);
+  d->Selector->SetScene(scene);
+  d->Frustums->SetInputData(1, scene);
   d->Histogram->SetInputData(scene);
   const QString overlay = d->Overlay->currentText();
   const QString hist = d->HistogramArray->currentText();
@@ -606,55 +843,380 @@ void Vis4GSMainWindow::UpdateScene()
 void Vis4GSMainWindow::UpdateOverlay()
 {
   const QString name = d->Overlay->currentText();
+  const std::string array = name.toStdString();
   vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-  if (!scene || name == "True colour" ||
-    !scene->GetPointData()->GetArray(name.toUtf8().constData()))
+  const bool score =
+    scene && name != "True colour" && scene->GetPointData()->GetArray(array.c_str());
+  for (QWidget* w : { static_cast<QWidget*>(d->OverlayMin),
+         static_cast<QWidget*>(d->OverlayMax),
+         static_cast<QWidget*>(d->HideOutside),
+         static_cast<QWidget*>(d->UseThreshold),
+         static_cast<QWidget*>(d->Threshold) })
   {
-    d->SceneMapper->ScalarVisibilityOff();
-    d->SceneActor->GetProperty()->SetColor(0.8, 0.8, 0.85);
+    w->setEnabled(score);
+  }
+  d->SceneMapper->SetDimUnselected(d->DimUnselected->isChecked());
+  if (!score)
+  {
+    d->SceneMapper->SetSplatColoringToTrueColor();
+    d->SceneMapper->HideOutsideRangeOff();
+    d->Legend->VisibilityOff();
   }
   else
   {
-    d->SceneMapper->ScalarVisibilityOn();
-    d->SceneMapper->SetScalarModeToUsePointFieldData();
-    d->SceneMapper->SelectColorArray(name.toUtf8().constData());
-    double lo = d->OverlayMin->value(), hi = d->OverlayMax->value();
-    if (!(hi > lo))
+    d->SceneMapper->SetSplatColoringToScore();
+    d->SceneMapper->SetScoreArrayName(array.c_str());
+    const double lo = d->OverlayMin->value(), hi = d->OverlayMax->value();
+    if (hi > lo)
     {
-      double range[2];
-      scene->GetPointData()->GetArray(name.toUtf8().constData())->GetRange(range);
-      lo = range[0];
-      hi = range[1];
+      d->SceneMapper->SetScoreRange(lo, hi);
     }
-    d->SceneMapper->SetScalarRange(std::max(lo, d->Threshold->value()), hi);
+    else
+    {
+      d->SceneMapper->AutoScoreRangeOn();
+    }
+    const bool hide = d->HideOutside->isChecked(), threshold = d->UseThreshold->isChecked();
+    d->SceneMapper->SetHideOutsideRange(hide || threshold);
+    double visible[2] = { VTK_DOUBLE_MIN, VTK_DOUBLE_MAX };
+    if (hide)
+    {
+      visible[0] = lo;
+      visible[1] = hi;
+    }
+    if (threshold)
+    {
+      visible[0] = std::max(visible[0], d->Threshold->value());
+    }
+    d->SceneMapper->SetVisibleRange(visible);
+    d->Legend->SetLookupTable(d->SceneMapper->GetScoreLookupTable());
+    d->Legend->SetTitle(array.c_str());
+    d->Legend->VisibilityOn();
   }
   d->SceneWindow->Render();
 }
 
 //------------------------------------------------------------------------------
-long long Vis4GSMainWindow::PickInScene(int x, int y)
+void Vis4GSMainWindow::StartScores()
 {
   vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
   if (!scene)
   {
+    return;
+  }
+  if (d->ScoreWorker)
+  {
+    d->ScoresPending = true; // restarted for the new snapshot when this one is done
+    return;
+  }
+  d->ScoresDone = false;
+  if (d->Doc->Cameras && !d->ScoreCameras)
+  {
+    // Embedded training images are written once per document to a temporary folder (in the
+    // GUI thread: the log's HDF5 file is only read here).
+    try
+    {
+      d->ImageDir = std::make_unique<QTemporaryDir>();
+      d->ScoreCameras = d->Doc->ScoreCameras(d->ImageDir->path().toStdString());
+    }
+    catch (const std::exception& e)
+    {
+      this->statusBar()->showMessage(QString("training images: ") + e.what(), 5000);
+      d->ScoreCameras = d->Doc->Cameras;
+    }
+  }
+  vtkSmartPointer<vtkPolyData> input = scene;
+  vtkSmartPointer<vtkTable> cameras = d->ScoreCameras;
+  const bool images = d->Doc->CamerasWithImages > 0;
+  d->Progress->setValue(0);
+  d->Progress->show();
+  this->statusBar()->showMessage(cameras
+      ? (images ? "computing View Coverage, Blur, Needle scores and needle shape"
+                : "computing View Coverage and needle shape (the log has no training images)")
+      : "computing the needle shape (no cameras: no View Coverage, Blur or Needle score)");
+  d->ScoreWorker = QThread::create(
+    [this, input, cameras, images]
+    {
+      vtkSmartPointer<vtkPolyData> scores;
+      QString error;
+      try
+      {
+        scores = Vis4GSDocument::ComputeScores(input,
+          cameras,
+          images,
+          [this](double f, const std::string& m)
+          {
+            const QString message = QString::fromStdString(m);
+            QMetaObject::invokeMethod(
+              this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
+          });
+      }
+      catch (const std::exception& e)
+      {
+        error = QString::fromStdString(e.what());
+      }
+      QMetaObject::invokeMethod(
+        this,
+        [this, input, scores, error]
+        {
+          d->ScoreWorker->wait();
+          d->ScoreWorker->deleteLater();
+          d->ScoreWorker = nullptr;
+          d->Progress->hide();
+          vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+          if (!scores)
+          {
+            this->statusBar()->showMessage("scores: " + error, 5000);
+            std::cerr << "vis4gs view: scores: " << error.toStdString() << "\n";
+          }
+          else if (current == input.GetPointer())
+          {
+            for (int a = 0; a < scores->GetPointData()->GetNumberOfArrays(); ++a)
+            {
+              current->GetPointData()->AddArray(scores->GetPointData()->GetAbstractArray(a));
+            }
+            current->Modified();
+            this->statusBar()->showMessage("scores computed", 3000);
+            this->UpdateScene(); // overlay and histogram lists
+          }
+          if (d->ScoresPending)
+          {
+            d->ScoresPending = false;
+            this->StartScores();
+            return;
+          }
+          d->ScoresDone = true;
+          if (d->SelfTest && !d->SelfTestStarted)
+          {
+            d->SelfTestStarted = true;
+            QTimer::singleShot(
+              200, this, [this] { QApplication::exit(this->RunSelfTest() ? 0 : 1); });
+          }
+        },
+        Qt::QueuedConnection);
+    });
+  d->ScoreWorker->start();
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::UpdateFrustums()
+{
+  const bool show = d->Doc && d->Doc->Cameras && d->ShowFrustums->isChecked();
+  d->FrustumActor->SetVisibility(show);
+  if (show)
+  {
+    vtkNew<vtkIdTypeArray> ids;
+    d->Hub->GetSelectedIds(ids);
+    d->Frustums->SetSelectedIds(ids);
+    d->Frustums->Update();
+    double range[2] = { 0, 1 };
+    if (vtkDataArray* counts =
+          d->Frustums->GetOutput()->GetPointData()->GetArray("VisibleSelectedCount"))
+    {
+      counts->GetRange(range);
+    }
+    d->FrustumMapper->SetScalarRange(0, std::max(1.0, range[1]));
+  }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::OnCameraChosen(int row)
+{
+  if (!d->Doc || !d->Doc->Cameras || row < 0)
+  {
+    return;
+  }
+  if (vtkGaussianCameraUtilities::JumpToCamera(d->SceneRenderer, d->Doc->Cameras, row))
+  {
+    d->SceneWindow->Render();
+  }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::OnSceneMouse(unsigned long event, bool& abort)
+{
+  vtkRenderWindowInteractor* i = d->SceneWindow->GetInteractor();
+  const int mode = d->SelectionMode->currentIndex();
+  const int* p = i->GetEventPosition();
+  const int combine = i->GetShiftKey() ? vtkGaussianSelectionHub::ADD
+    : i->GetControlKey()               ? vtkGaussianSelectionHub::SUBTRACT
+                                       : vtkGaussianSelectionHub::REPLACE;
+  const bool drag = mode == BRUSH || mode == FRAME;
+  auto drawBand = [this, mode]()
+  {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> lines;
+    std::vector<std::array<double, 2>> corners = d->Stroke;
+    if (mode == FRAME && d->Stroke.size() >= 2)
+    {
+      const auto a = d->Stroke.front(), b = d->Stroke.back();
+      corners = { a, { b[0], a[1] }, b, { a[0], b[1] }, a };
+    }
+    std::vector<vtkIdType> ids;
+    for (const auto& c : corners)
+    {
+      ids.push_back(points->InsertNextPoint(c[0], c[1], 0.0));
+    }
+    if (ids.size() >= 2)
+    {
+      lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    }
+    d->Band->SetPoints(points);
+    d->Band->SetLines(lines);
+    d->Band->Modified();
+    d->SceneWindow->Render();
+  };
+  if (event == vtkCommand::LeftButtonPressEvent)
+  {
+    d->PressPosition[0] = p[0];
+    d->PressPosition[1] = p[1];
+    if (drag)
+    {
+      d->Dragging = true;
+      d->Stroke.assign(1, { static_cast<double>(p[0]), static_cast<double>(p[1]) });
+      abort = true;
+    }
+  }
+  else if (event == vtkCommand::MouseMoveEvent)
+  {
+    if (d->Dragging)
+    {
+      if (mode == FRAME && d->Stroke.size() > 1)
+      {
+        d->Stroke.back() = { static_cast<double>(p[0]), static_cast<double>(p[1]) };
+      }
+      else
+      {
+        d->Stroke.push_back({ static_cast<double>(p[0]), static_cast<double>(p[1]) });
+      }
+      drawBand();
+      abort = true;
+    }
+  }
+  else if (event == vtkCommand::LeftButtonReleaseEvent)
+  {
+    if (d->Dragging)
+    {
+      d->Dragging = false;
+      abort = true;
+      std::vector<std::array<double, 2>> points = d->Stroke;
+      if (mode == FRAME)
+      {
+        points = { d->Stroke.front(), { static_cast<double>(p[0]), static_cast<double>(p[1]) } };
+      }
+      d->Stroke.clear();
+      drawBand();
+      this->SelectInScene(mode, points, combine);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::OnSceneClick()
+{
+  vtkRenderWindowInteractor* i = d->SceneWindow->GetInteractor();
+  const int mode = d->SelectionMode->currentIndex();
+  const int* p = i->GetEventPosition();
+  if ((mode == SINGLE || mode == RAY) &&
+    std::abs(p[0] - d->PressPosition[0]) + std::abs(p[1] - d->PressPosition[1]) < 3)
+  {
+    const int combine = i->GetShiftKey() ? vtkGaussianSelectionHub::ADD
+      : i->GetControlKey()               ? vtkGaussianSelectionHub::SUBTRACT
+                                         : vtkGaussianSelectionHub::REPLACE;
+    this->SelectInScene(
+      mode, { { static_cast<double>(p[0]), static_cast<double>(p[1]) } }, combine);
+  }
+}
+
+//------------------------------------------------------------------------------
+long long Vis4GSMainWindow::SelectInScene(int mode,
+  const std::vector<std::array<double, 2>>& points,
+  int combine)
+{
+  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+  if (!scene || points.empty())
+  {
     return -1;
   }
-  if (!d->Picker->Pick(x, y, 0, d->SceneRenderer) || d->Picker->GetPointId() < 0)
+  // The selector computes this mode's pick (REPLACE in its own state); the hub, which also
+  // holds selections made in the other views, combines it with the current selection.
+  d->Selector->SetScene(scene);
+  d->Selector->SetModifier(vtkGaussianSelector::REPLACE);
+  vtkIdType count = -1;
+  switch (mode)
+  {
+    case SINGLE:
+      count = d->Selector->SelectSingle(points[0][0], points[0][1]);
+      break;
+    case RAY:
+      count = d->Selector->SelectRay(points[0][0], points[0][1]);
+      break;
+    case FRAME:
+    {
+      const auto b = points.size() > 1 ? points[1] : points[0];
+      count = d->Selector->SelectFrame(points[0][0], points[0][1], b[0], b[1]);
+      break;
+    }
+    case BRUSH:
+    {
+      vtkNew<vtkPoints> stroke;
+      for (const auto& q : points)
+      {
+        stroke->InsertNextPoint(q[0], q[1], 0.0);
+      }
+      count = d->Selector->SelectBrush(stroke);
+      break;
+    }
+    default:
+      return -1;
+  }
+  if (count < 0)
+  {
+    return -1;
+  }
+  vtkIdTypeArray* ids = d->Selector->GetSelectedIds();
+  if (count == 0 && combine == vtkGaussianSelectionHub::REPLACE)
   {
     d->Hub->ClearSelection();
-    return -1;
   }
-  vtkDataArray* ids = scene->GetPointData()->GetArray("GaussianId");
-  const vtkIdType id = ids ? static_cast<vtkIdType>(ids->GetComponent(d->Picker->GetPointId(), 0))
-                           : d->Picker->GetPointId();
-  d->Hub->SelectIds(&id, 1);
-  return id;
+  else if (ids && ids->GetNumberOfTuples() > 0)
+  {
+    d->Hub->SelectIds(ids, combine);
+  }
+  const char* names[] = { "Single", "Brush", "Frame", "Ray" };
+  this->statusBar()->showMessage(QString("%1: %2 Gaussians picked in %3 ms")
+                                   .arg(names[mode])
+                                   .arg(count)
+                                   .arg(d->Selector->GetLastSelectionTime(), 0, 'f', 1),
+    5000);
+  return count;
+}
+
+//------------------------------------------------------------------------------
+std::vector<long long> Vis4GSMainWindow::GetLastRayHits() const
+{
+  std::vector<long long> hits;
+  vtkIdTypeArray* ids = d->Selector->GetRayHitIds();
+  for (vtkIdType k = 0; ids && k < ids->GetNumberOfTuples(); ++k)
+  {
+    hits.push_back(ids->GetValue(k));
+  }
+  return hits;
+}
+
+//------------------------------------------------------------------------------
+long long Vis4GSMainWindow::PickInScene(int x, int y)
+{
+  const long long n = this->SelectInScene(SINGLE,
+    { { static_cast<double>(x), static_cast<double>(y) } },
+    vtkGaussianSelectionHub::REPLACE);
+  vtkIdTypeArray* ids = d->Selector->GetSelectedIds();
+  return n == 1 && ids && ids->GetNumberOfTuples() == 1 ? ids->GetValue(0) : -1;
 }
 
 //------------------------------------------------------------------------------
 long long Vis4GSMainWindow::GetSceneHighlightCount() const
 {
-  return d->Highlight->GetNumberOfPoints();
+  return d->HighlightCount;
 }
 
 //------------------------------------------------------------------------------
@@ -662,10 +1224,9 @@ void Vis4GSMainWindow::OnSelectionChanged()
 {
   vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
   const auto& selected = d->Hub->GetSelectedIdVector();
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> verts;
   d->Table->setSortingEnabled(false);
   d->Table->setRowCount(0);
+  d->HighlightCount = 0;
   if (scene)
   {
     vtkNew<vtkIdTypeArray> rows;
@@ -673,47 +1234,78 @@ void Vis4GSMainWindow::OnSelectionChanged()
       static_cast<vtkIdType>(selected.size()),
       scene->GetPointData()->GetArray("GaussianId"),
       rows);
-    vtkDataArray* opacity = scene->GetPointData()->GetArray("Opacity");
-    vtkDataArray* scale = scene->GetPointData()->GetArray("Scale");
-    vtkDataArray* ids = scene->GetPointData()->GetArray("GaussianId");
+    d->HighlightCount = rows->GetNumberOfTuples();
+    vtkPointData* pd = scene->GetPointData();
+    vtkDataArray* columns[] = { pd->GetArray("GaussianId"),
+      nullptr,
+      nullptr,
+      nullptr,
+      pd->GetArray("Opacity"),
+      pd->GetArray("Scale"),
+      pd->GetArray(vis4gs::arrays::ViewCoverage),
+      pd->GetArray(vis4gs::arrays::BlurScore),
+      pd->GetArray(vis4gs::arrays::NeedleScore),
+      pd->GetArray(vis4gs::arrays::NeedleShape) };
     const int shown = static_cast<int>(std::min<vtkIdType>(rows->GetNumberOfTuples(), 1000));
     d->Table->setRowCount(shown);
-    for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
+    for (int k = 0; k < shown; ++k)
     {
       const vtkIdType r = rows->GetValue(k);
       double p[3];
       scene->GetPoint(r, p);
-      const vtkIdType v = points->InsertNextPoint(p);
-      verts->InsertNextCell(1, &v);
-      if (k < shown)
+      auto number = [](double value)
       {
-        auto number = [](double value)
+        auto* item = new QTableWidgetItem;
+        item->setData(Qt::DisplayRole, value);
+        return item;
+      };
+      for (int c = 0; c < 10; ++c)
+      {
+        double value = NAN;
+        if (c >= 1 && c <= 3)
         {
-          auto* item = new QTableWidgetItem;
-          item->setData(Qt::DisplayRole, value);
-          return item;
-        };
-        const int row = static_cast<int>(k);
-        d->Table->setItem(row, 0, number(ids->GetComponent(r, 0)));
-        for (int c = 0; c < 3; ++c)
-        {
-          d->Table->setItem(row, 1 + c, number(p[c]));
+          value = p[c - 1];
         }
-        d->Table->setItem(row, 4, number(opacity ? opacity->GetComponent(r, 0) : NAN));
-        double s = NAN;
-        if (scale)
+        else if (c == 5 && columns[5])
         {
-          s = std::max(
-            { scale->GetComponent(r, 0), scale->GetComponent(r, 1), scale->GetComponent(r, 2) });
+          value = std::max({ columns[5]->GetComponent(r, 0),
+            columns[5]->GetComponent(r, 1),
+            columns[5]->GetComponent(r, 2) });
         }
-        d->Table->setItem(row, 5, number(s));
+        else if (columns[c])
+        {
+          value = columns[c]->GetComponent(r, 0);
+        }
+        d->Table->setItem(k, c, number(value));
       }
     }
   }
   d->Table->setSortingEnabled(true);
-  d->Highlight->SetPoints(points);
-  d->Highlight->SetVerts(verts);
-  d->Highlight->Modified();
+  // Markers (a point at the centre) for small selections, drawn over the splats.
+  {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> verts;
+    if (scene && d->HighlightCount <= 200)
+    {
+      vtkNew<vtkIdTypeArray> rows;
+      vtkGaussianSelectionHub::IdsToIndices(selected.data(),
+        static_cast<vtkIdType>(selected.size()),
+        scene->GetPointData()->GetArray("GaussianId"),
+        rows);
+      for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
+      {
+        const vtkIdType v = points->InsertNextPoint(scene->GetPoint(rows->GetValue(k)));
+        verts->InsertNextCell(1, &v);
+      }
+    }
+    d->Markers->SetPoints(points);
+    d->Markers->SetVerts(verts);
+    d->Markers->Modified();
+  }
+  vtkNew<vtkIdTypeArray> selectedIds;
+  d->Hub->GetSelectedIds(selectedIds);
+  d->SceneMapper->SetSelectedIds(selectedIds);
+  this->UpdateFrustums();
   // History of the selection (first 16) for the timeline.
   if (d->Doc && d->Doc->Log)
   {
@@ -753,6 +1345,10 @@ void Vis4GSMainWindow::OnIterationChanged(int iteration)
     {
       d->Doc->LoadIteration(iteration);
       this->UpdateScene();
+      if (!d->Benchmark)
+      {
+        this->StartScores();
+      }
     }
     catch (const std::exception& e)
     {
@@ -899,6 +1495,29 @@ void Vis4GSMainWindow::SetSelfTest(const QString& directory)
 }
 
 //------------------------------------------------------------------------------
+void Vis4GSMainWindow::SetSplatBudget(long long splats)
+{
+  d->SplatBudget->setValue(static_cast<int>(std::min<long long>(splats, 100000000)));
+  d->SceneMapper->SetMaximumNumberOfSplats(static_cast<vtkIdType>(splats));
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::SetBaseline(const QString& directory, int tolerance, double fraction)
+{
+  d->BaselineDir = directory;
+  d->BaselineTolerance = tolerance;
+  d->BaselineFraction = fraction;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::SetBenchmark(double startSeconds, double startCpuSeconds)
+{
+  d->Benchmark = true;
+  d->BenchmarkStart = startSeconds;
+  d->BenchmarkCpuStart = startCpuSeconds;
+}
+
+//------------------------------------------------------------------------------
 bool Vis4GSMainWindow::RunSelfTest()
 {
   bool ok = true;
@@ -916,26 +1535,143 @@ bool Vis4GSMainWindow::RunSelfTest()
   }
   QApplication::processEvents();
   d->Hub->RenderAll();
-  // 1. Select a Gaussian in the scene: the newest one (it has the longest lineage), picked at
-  //    the pixel where its centre projects.
-  vtkDataArray* ids = scene->GetPointData()->GetArray("GaussianId");
-  vtkIdType target = 0;
-  for (vtkIdType i = 1; i < scene->GetNumberOfPoints(); ++i)
+  vtkTable* cameras = d->Doc->Cameras;
+  vtkPointData* pd = scene->GetPointData();
+  vtkDataArray* ids = pd->GetArray("GaussianId");
+  vtkDataArray* coverage = pd->GetArray(vis4gs::arrays::ViewCoverage);
+  vtkDataArray* opacity = pd->GetArray("Opacity");
+  check(pd->GetArray(vis4gs::arrays::NeedleShape) != nullptr, "the needle shape was computed");
+  if (cameras)
   {
-    if (ids->GetComponent(i, 0) > ids->GetComponent(target, 0))
+    check(coverage != nullptr, "View Coverage was computed (the log has cameras)");
+  }
+  if (d->Doc->CamerasWithImages > 0)
+  {
+    check(pd->GetArray(vis4gs::arrays::BlurScore) && pd->GetArray(vis4gs::arrays::NeedleScore),
+      "Blur and Needle scores were computed (the log has training images)");
+  }
+
+  // 1. Select a floater in the scene with the Single mode, at the pixel where its centre
+  //    projects: the visible Gaussians (opacity >= 0.1) of lowest View Coverage first (the
+  //    demo's root-cause criterion), seen from the training cameras in turn; without scores,
+  //    the newest Gaussians (longest lineages).
+  std::vector<vtkIdType> candidates(scene->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < scene->GetNumberOfPoints(); ++i)
+  {
+    candidates[i] = i;
+  }
+  if (coverage && opacity)
+  {
+    candidates.erase(std::remove_if(candidates.begin(),
+                       candidates.end(),
+                       [&](vtkIdType i) {
+                         return !(opacity->GetComponent(i, 0) >= 0.1) ||
+                           !std::isfinite(coverage->GetComponent(i, 0));
+                       }),
+      candidates.end());
+    std::stable_sort(candidates.begin(),
+      candidates.end(),
+      [&](vtkIdType a, vtkIdType b)
+      { return coverage->GetComponent(a, 0) < coverage->GetComponent(b, 0); });
+  }
+  else
+  {
+    std::stable_sort(candidates.begin(),
+      candidates.end(),
+      [&](vtkIdType a, vtkIdType b) { return ids->GetComponent(a, 0) > ids->GetComponent(b, 0); });
+  }
+  candidates.resize(std::min<std::size_t>(candidates.size(), 40));
+  const vtkIdType views = cameras ? cameras->GetNumberOfRows() : 0;
+  // Training cameras (Split 0) first, then the others.
+  std::vector<vtkIdType> order;
+  vtkAbstractArray* split =
+    cameras ? cameras->GetColumnByName(vis4gs::arrays::CameraSplit) : nullptr;
+  int trainingViews = 0;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    for (vtkIdType v = 0; v < views; ++v)
     {
-      target = i;
+      const bool training = !split || split->GetVariantValue(v).ToInt() == 0;
+      trainingViews += pass == 0 && training ? 1 : 0;
+      if (training == (pass == 0))
+      {
+        order.push_back(v);
+      }
     }
   }
-  double p[3];
-  scene->GetPoint(target, p);
-  d->SceneRenderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
-  d->SceneRenderer->WorldToDisplay();
-  double display[3];
-  d->SceneRenderer->GetDisplayPoint(display);
-  const long long picked = this->PickInScene(
-    static_cast<int>(std::lround(display[0])), static_cast<int>(std::lround(display[1])));
-  check(picked >= 0, "a Gaussian was picked in the scene (id " + std::to_string(picked) + ")");
+  if (order.empty())
+  {
+    order.push_back(-1); // the current view
+  }
+  int width = d->SceneWindow->GetSize()[0], height = d->SceneWindow->GetSize()[1];
+  vtkIdType target = -1, targetId = -1, view = -1;
+  double display[3] = { 0, 0, 0 };
+  d->Selector->SetScene(scene);
+  for (vtkIdType c : candidates)
+  {
+    const vtkIdType id = static_cast<vtkIdType>(ids->GetComponent(c, 0));
+    for (vtkIdType v : order)
+    {
+      if (target >= 0)
+      {
+        break;
+      }
+      if (v >= 0)
+      {
+        vtkGaussianCameraUtilities::JumpToCamera(d->SceneRenderer, cameras, v);
+      }
+      double p[3];
+      scene->GetPoint(c, p);
+      d->SceneRenderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
+      d->SceneRenderer->WorldToDisplay();
+      d->SceneRenderer->GetDisplayPoint(display);
+      display[0] = std::round(display[0]);
+      display[1] = std::round(display[1]);
+      if (display[0] < 1 || display[1] < 1 || display[0] > width - 2 || display[1] > height - 2 ||
+        display[2] <= 0 || display[2] >= 1)
+      {
+        continue;
+      }
+      d->Selector->SetModifier(vtkGaussianSelector::REPLACE);
+      vtkIdTypeArray* picked = d->Selector->GetSelectedIds();
+      if (d->Selector->SelectSingle(display[0], display[1]) == 1 &&
+        picked->GetNumberOfTuples() == 1 && picked->GetValue(0) == id)
+      {
+        target = c;
+        targetId = id;
+        view = v;
+      }
+    }
+    if (target >= 0)
+    {
+      break;
+    }
+  }
+  check(target >= 0, "a floater candidate is the front-most Gaussian at its projected pixel");
+  if (target < 0)
+  {
+    return false;
+  }
+  if (view >= 0)
+  {
+    d->CameraList->blockSignals(true);
+    d->CameraList->setCurrentRow(static_cast<int>(view));
+    d->CameraList->blockSignals(false);
+  }
+  const int x = static_cast<int>(display[0]), y = static_cast<int>(display[1]);
+  const long long picked = this->PickInScene(x, y);
+  std::ostringstream what;
+  what << "Single mode picked Gaussian " << picked << " at pixel (" << x << ", " << y << ")";
+  if (view >= 0)
+  {
+    what << " of training camera "
+         << cameras->GetColumnByName(vis4gs::arrays::CameraName)->GetVariantValue(view).ToString();
+  }
+  if (coverage)
+  {
+    what << ", View Coverage " << coverage->GetComponent(target, 0);
+  }
+  check(picked == targetId, what.str());
   check(d->Hub->GetNumberOfSelectedIds() == 1, "the hub holds one selected Gaussian");
   check(this->GetSceneHighlightCount() == 1, "the scene highlights it");
   vtkGaussianTreeItem* item = d->Tree->GetTreeItem();
@@ -944,8 +1680,24 @@ bool Vis4GSMainWindow::RunSelfTest()
   {
     item->UpdateLevelOfDetail();
     item->GetLineageVertices(lineage);
-    check(lineage->GetNumberOfTuples() >= 1,
-      "the tree shows its lineage (" + std::to_string(lineage->GetNumberOfTuples()) + " nodes)");
+    vtkDataArray* treeIds = d->Doc->Tree->GetVertexData()->GetArray("GaussianId");
+    vtkDataArray* born = d->Doc->Tree->GetVertexData()->GetArray("LayoutX");
+    std::ostringstream chain;
+    bool containsTarget = false;
+    for (vtkIdType k = 0; k < lineage->GetNumberOfTuples(); ++k)
+    {
+      const vtkIdType v = lineage->GetValue(k);
+      const vtkIdType gid = static_cast<vtkIdType>(treeIds->GetComponent(v, 0));
+      containsTarget = containsTarget || gid == targetId;
+      chain << (k ? ", " : "") << gid;
+      if (born)
+      {
+        chain << " (born " << born->GetComponent(v, 0) << ")";
+      }
+    }
+    check(containsTarget && lineage->GetNumberOfTuples() >= 1,
+      "the tree shows its lineage (" + std::to_string(lineage->GetNumberOfTuples()) +
+        " nodes: " + chain.str() + ")");
     item->GetVisibleVertices(history);
     std::set<vtkIdType> visible(
       history->GetPointer(0), history->GetPointer(0) + history->GetNumberOfTuples());
@@ -954,12 +1706,48 @@ bool Vis4GSMainWindow::RunSelfTest()
     {
       allShown = allShown && visible.count(lineage->GetValue(k));
     }
+    check(allShown, "the whole lineage is drawn at the overview zoom");
     item->ZoomToSelection();
-    check(allShown || lineage->GetNumberOfTuples() > 0, "the lineage is drawn whatever the zoom");
   }
   if (d->Doc->Log)
   {
     check(d->Timeline->GetNumberOfHistoryLines() == 1, "the timeline shows its history");
+    vtkSmartPointer<vtkTable> h = d->Doc->History({ static_cast<std::int64_t>(targetId) });
+    std::cout << "info: Gaussian " << targetId << " over the snapshots (iteration: opacity, "
+              << "largest scale):";
+    for (vtkIdType r = 0; r < h->GetNumberOfRows(); ++r)
+    {
+      std::cout << " " << h->GetValueByName(r, "Iteration").ToInt() << ": "
+                << h->GetValueByName(r, "Opacity").ToDouble() << ", "
+                << h->GetValueByName(r, "Scale").ToDouble() << ";";
+    }
+    std::cout << std::endl;
+  }
+  if (cameras)
+  {
+    vtkDataArray* counts =
+      d->Frustums->GetOutput()->GetPointData()->GetArray("VisibleSelectedCount");
+    vtkDataArray* index = d->Frustums->GetOutput()->GetPointData()->GetArray("CameraIndex");
+    int seeing = 0, trainingSeeing = 0;
+    for (vtkIdType k = 0; counts && index && k < counts->GetNumberOfTuples(); k += 5)
+    {
+      const vtkIdType row = static_cast<vtkIdType>(index->GetComponent(k, 0));
+      const bool seen = counts->GetComponent(k, 0) > 0;
+      seeing += seen ? 1 : 0;
+      trainingSeeing += seen && (!split || split->GetVariantValue(row).ToInt() == 0) ? 1 : 0;
+    }
+    check(seeing >= 1,
+      "the frustums of " + std::to_string(seeing) + " of " + std::to_string(views) +
+        " cameras are coloured as seeing the selected Gaussian");
+    if (coverage)
+    {
+      // Independent paths: the frustum counts (CountVisibleInViews on the selection) and
+      // View Coverage (the score filter) use the same footprint definition (DESIGN §4).
+      const double expected = coverage->GetComponent(target, 0) * trainingViews;
+      check(std::abs(trainingSeeing - expected) < 1e-6,
+        "training frustums seeing it (" + std::to_string(trainingSeeing) +
+          ") = View Coverage x training views (" + std::to_string(expected) + ")");
+    }
   }
   d->Hub->RenderAll();
   QApplication::processEvents();
@@ -967,7 +1755,81 @@ bool Vis4GSMainWindow::RunSelfTest()
   {
     this->SaveScreenshot(name, d->SelfTestDir + "/selected-in-scene-" + name + ".png");
   }
-  // 2. Select a node in the tree (click on a visible node alive in the scene).
+  this->SaveScreenshot("window", d->SelfTestDir + "/selected-in-scene-window.png");
+  if (coverage)
+  {
+    // The same view coloured by View Coverage (viridis, legend), the floater highlighted.
+    d->Overlay->setCurrentText(vis4gs::arrays::ViewCoverage);
+    check(d->SceneMapper->GetSplatColoring() == vtkGaussianSplatMapper::SCORE,
+      "the View Coverage overlay is shown");
+    d->SceneWindow->Render();
+    QApplication::processEvents();
+    this->SaveScreenshot("scene", d->SelfTestDir + "/overlay-coverage-scene.png");
+    d->HideOutside->setChecked(true);
+    d->OverlayMax->setValue(0.3);
+    check(d->SceneMapper->GetHideOutsideRange(), "hide-outside-range is on");
+    d->SceneWindow->Render();
+    QApplication::processEvents();
+    this->SaveScreenshot("scene", d->SelfTestDir + "/overlay-coverage-low-scene.png");
+    d->HideOutside->setChecked(false);
+    d->Overlay->setCurrentText("True colour");
+  }
+
+  // 2. The other scene modes at the same pixel, with the hub's modifiers.
+  const double px = x, py = y;
+  this->SelectInScene(RAY, { { px, py } }, vtkGaussianSelectionHub::REPLACE);
+  const std::vector<long long> hits = this->GetLastRayHits();
+  check(std::find(hits.begin(), hits.end(), targetId) != hits.end() && d->Hub->IsSelected(targetId),
+    "Ray through the pixel hits it (" + std::to_string(hits.size()) + " Gaussians on the ray)");
+  this->SelectInScene(
+    FRAME, { { px - 12, py - 12 }, { px + 12, py + 12 } }, vtkGaussianSelectionHub::REPLACE);
+  const vtkIdType framed = d->Hub->GetNumberOfSelectedIds();
+  check(framed >= 1 && d->Hub->IsSelected(targetId),
+    "Frame around it selects it (" + std::to_string(framed) + " Gaussians)");
+  this->SelectInScene(
+    BRUSH, { { px - 3, py }, { px, py }, { px + 3, py } }, vtkGaussianSelectionHub::SUBTRACT);
+  check(!d->Hub->IsSelected(targetId) && d->Hub->GetNumberOfSelectedIds() < framed,
+    "Brush over it with Ctrl (subtract) removes it");
+  this->SelectInScene(SINGLE, { { px, py } }, vtkGaussianSelectionHub::ADD);
+  check(d->Hub->IsSelected(targetId), "Single with Shift (add) adds it back");
+
+  // The same through the scene's interactor, as the mouse does it: a Frame drag selects and
+  // does not rotate the camera; a Ctrl+click in Single mode subtracts; a Brush drag with Shift
+  // adds.
+  {
+    vtkRenderWindowInteractor* iren = d->SceneWindow->GetInteractor();
+    auto send = [iren](unsigned long event, double ex, double ey, bool shift, bool control)
+    {
+      iren->SetEventInformation(static_cast<int>(ex), static_cast<int>(ey), control, shift);
+      iren->InvokeEvent(event);
+    };
+    double before[3], after[3];
+    d->SceneRenderer->GetActiveCamera()->GetPosition(before);
+    d->Hub->ClearSelection();
+    d->SelectionMode->setCurrentIndex(FRAME);
+    send(vtkCommand::LeftButtonPressEvent, px - 12, py - 12, false, false);
+    send(vtkCommand::MouseMoveEvent, px, py, false, false);
+    send(vtkCommand::MouseMoveEvent, px + 12, py + 12, false, false);
+    send(vtkCommand::LeftButtonReleaseEvent, px + 12, py + 12, false, false);
+    d->SceneRenderer->GetActiveCamera()->GetPosition(after);
+    check(d->Hub->GetNumberOfSelectedIds() == framed && d->Hub->IsSelected(targetId) &&
+        std::equal(before, before + 3, after),
+      "a Frame drag with the mouse selects the same " + std::to_string(framed) +
+        " Gaussians and leaves the camera alone");
+    d->SelectionMode->setCurrentIndex(SINGLE);
+    send(vtkCommand::LeftButtonPressEvent, px, py, false, true);
+    send(vtkCommand::LeftButtonReleaseEvent, px, py, false, true);
+    check(!d->Hub->IsSelected(targetId) && d->Hub->GetNumberOfSelectedIds() == framed - 1,
+      "a Ctrl+click in Single mode subtracts it");
+    d->SelectionMode->setCurrentIndex(BRUSH);
+    send(vtkCommand::LeftButtonPressEvent, px - 3, py, true, false);
+    send(vtkCommand::MouseMoveEvent, px, py, true, false);
+    send(vtkCommand::LeftButtonReleaseEvent, px + 3, py, true, false);
+    check(d->Hub->IsSelected(targetId), "a Brush drag with Shift adds it back");
+    d->SelectionMode->setCurrentIndex(SINGLE);
+  }
+
+  // 3. Select a node in the tree (click on a visible node alive in the scene).
   if (d->Doc->Tree)
   {
     item->ResetViewport();
@@ -1005,6 +1867,9 @@ bool Vis4GSMainWindow::RunSelfTest()
       check(d->Hub->GetNumberOfSelectedIds() == 1 && d->Hub->IsSelected(expected),
         "the tree click selected Gaussian " + std::to_string(expected));
       check(this->GetSceneHighlightCount() == 1, "the scene highlights the tree's selection");
+      vtkIdTypeArray* mapperIds = d->SceneMapper->GetSelectedIds();
+      check(mapperIds && mapperIds->GetNumberOfTuples() == 1 && mapperIds->GetValue(0) == expected,
+        "the splat mapper highlights Gaussian " + std::to_string(expected));
     }
   }
   d->Hub->RenderAll();
@@ -1014,6 +1879,167 @@ bool Vis4GSMainWindow::RunSelfTest()
     this->SaveScreenshot(name, d->SelfTestDir + "/selected-in-tree-" + name + ".png");
   }
   this->SaveScreenshot("window", d->SelfTestDir + "/window.png");
+  if (!d->BaselineDir.isEmpty())
+  {
+    ok = this->CompareBaselines() && ok;
+  }
+  // 4. The iteration slider loads another snapshot into the scene (and back). The pointers
+  //    into the old scene above are not used after this.
+  if (d->Doc->Log && d->Doc->Snapshots.size() > 1)
+  {
+    const int last = d->Doc->Iteration;
+    const int previous = d->Doc->Snapshots[d->Doc->Snapshots.size() - 2];
+    d->IterationSlider->setValue(d->IterationSlider->maximum() - 1);
+    vtkPolyData* shown = d->Doc->Scene;
+    check(d->Hub->GetIteration() == previous && d->Doc->Iteration == previous && shown &&
+        d->SceneMapper->GetInput() == shown &&
+        static_cast<std::size_t>(shown->GetNumberOfPoints()) ==
+          d->Doc->Log->GetSnapshotSize(previous),
+      "the iteration slider loads the snapshot of iteration " + std::to_string(previous) +
+        " into the scene (" + std::to_string(shown ? shown->GetNumberOfPoints() : 0) +
+        " Gaussians)");
+    d->IterationSlider->setValue(d->IterationSlider->maximum());
+    check(d->Doc->Iteration == last && d->SceneMapper->GetInput() == d->Doc->Scene.GetPointer(),
+      "and back to iteration " + std::to_string(last));
+  }
   std::cout << (ok ? "self-test passed" : "self-test FAILED") << std::endl;
   return ok;
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSMainWindow::CompareBaselines()
+{
+  bool ok = true;
+  for (const QString name : { "selected-in-scene-scene", "selected-in-scene-tree" })
+  {
+    const QString baselinePath = d->BaselineDir + "/" + name + ".png";
+    const QString testPath = d->SelfTestDir + "/" + name + ".png";
+    QImage baseline(baselinePath), test(testPath);
+    if (baseline.isNull())
+    {
+      std::cout << "FAILED: baseline " << baselinePath.toStdString()
+                << " is missing or unreadable (copy " << testPath.toStdString()
+                << " there after checking it)" << std::endl;
+      ok = false;
+      continue;
+    }
+    if (test.isNull() || test.size() != baseline.size())
+    {
+      std::cout << "FAILED: " << testPath.toStdString() << " is missing or its size differs from "
+                << baselinePath.toStdString() << std::endl;
+      ok = false;
+      continue;
+    }
+    baseline = baseline.convertToFormat(QImage::Format_RGB32);
+    test = test.convertToFormat(QImage::Format_RGB32);
+    QImage diff(test.size(), QImage::Format_RGB32);
+    long long bad = 0;
+    double sum = 0;
+    for (int r = 0; r < test.height(); ++r)
+    {
+      const auto* a = reinterpret_cast<const QRgb*>(baseline.constScanLine(r));
+      const auto* b = reinterpret_cast<const QRgb*>(test.constScanLine(r));
+      auto* o = reinterpret_cast<QRgb*>(diff.scanLine(r));
+      for (int c = 0; c < test.width(); ++c)
+      {
+        const int e = std::max({ std::abs(qRed(a[c]) - qRed(b[c])),
+          std::abs(qGreen(a[c]) - qGreen(b[c])),
+          std::abs(qBlue(a[c]) - qBlue(b[c])) });
+        sum += e;
+        bad += e > d->BaselineTolerance ? 1 : 0;
+        o[c] = qRgb(e, e, e);
+      }
+    }
+    const double pixels = static_cast<double>(test.width()) * test.height();
+    const bool same = bad <= d->BaselineFraction * pixels;
+    std::cout << (same ? "ok: " : "FAILED: ") << name.toStdString() << " matches its baseline ("
+              << bad << " of " << static_cast<long long>(pixels) << " pixels differ by more than "
+              << d->BaselineTolerance << ", mean difference " << sum / pixels << ")" << std::endl;
+    if (!same)
+    {
+      diff.save(d->SelfTestDir + "/" + name + "-diff.png");
+    }
+    ok = ok && same;
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::RunBenchmark()
+{
+  QApplication::processEvents(); // the docks paint what was rendered
+  d->TreeWindow->WaitForCompletion();
+  d->SceneWindow->WaitForCompletion();
+  const double wall = Now() - d->BenchmarkStart, cpu = CpuNow() - d->BenchmarkCpuStart;
+  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+  std::cout << "benchmark: " << (scene ? scene->GetNumberOfPoints() : 0)
+            << " Gaussians in the last snapshot, "
+            << (d->Doc->Tree ? d->Doc->Tree->GetNumberOfVertices() - 1 : 0) << " in the genealogy\n"
+            << "benchmark: start to all views ready: " << wall << " s wall, " << cpu
+            << " s CPU (document load " << d->Doc->Seconds << " s wall)" << std::endl;
+  {
+    const std::string& summary = d->Doc->Summary;
+    const std::size_t at = summary.rfind("loaded in");
+    std::cout << "benchmark:   document " << summary.substr(at == std::string::npos ? 0 : at);
+  }
+  vtkGaussianTreeItem* item = d->Tree->GetTreeItem();
+  auto measure = [&](const char* label, int frames)
+  {
+    double viewport[4];
+    const double w0 = Now(), c0 = CpuNow();
+    for (int k = 0; k < frames; ++k)
+    {
+      item->GetViewport(viewport);
+      if (k % 2 == 0)
+      {
+        item->Pan(0.02 * (viewport[1] - viewport[0]) * (k % 4 == 0 ? 1 : -1),
+          0.02 * (viewport[3] - viewport[2]));
+      }
+      else
+      {
+        item->ZoomRows(k % 4 == 1 ? 1.1 : 1 / 1.1, 0.5 * (viewport[2] + viewport[3]));
+      }
+      d->Tree->Render();
+    }
+    d->TreeWindow->WaitForCompletion();
+    const double w = Now() - w0, c = CpuNow() - c0;
+    // The level-of-detail query alone (the part of a frame that depends on the tree size).
+    const double l0 = Now();
+    for (int k = 0; k < frames; ++k)
+    {
+      item->UpdateLevelOfDetail();
+    }
+    const double lod = (Now() - l0) / frames;
+    std::cout << "benchmark: tree pan/zoom " << label << ": " << frames / w << " frames/s wall ("
+              << 1000 * w / frames << " ms/frame), " << 1000 * c / frames << " ms CPU/frame, "
+              << item->GetNumberOfVisibleVertices() << " nodes drawn, level-of-detail query "
+              << 1000 * lod << " ms (" << item->GetLastLevelOfDetailWork()
+              << " node records visited)" << std::endl;
+  };
+  item->ResetViewport();
+  item->MergeLinesPerPixelRowOff();
+  d->Tree->Render();
+  measure("at the overview, every line drawn (straightforward)", 30);
+  item->ResetViewport();
+  item->MergeLinesPerPixelRowOn();
+  d->Tree->Render();
+  measure("at the overview", 60);
+  // Zoomed in on the lineage of one Gaussian of the last snapshot (the selection is always
+  // drawn), as after a selection in the scene.
+  vtkPolyData* last = d->Doc->Scene;
+  vtkDataArray* ids = last ? last->GetPointData()->GetArray("GaussianId") : nullptr;
+  if (ids && last->GetNumberOfPoints() > 0)
+  {
+    const vtkIdType id =
+      static_cast<vtkIdType>(ids->GetComponent(last->GetNumberOfPoints() / 2, 0));
+    d->Hub->RenderOnChangeOff();
+    d->Hub->SelectIds(&id, 1);
+    d->Hub->RenderOnChangeOn();
+    item->ZoomToSelection();
+  }
+  d->Tree->Render();
+  std::ostringstream label;
+  label << "zoomed to a selected lineage (z = " << item->GetZoom() << ")";
+  measure(label.str().c_str(), 60);
+  QApplication::exit(0);
 }

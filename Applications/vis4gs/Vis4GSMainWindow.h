@@ -14,10 +14,14 @@
 
 #include <QMainWindow>
 
+#include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
+class QCheckBox;
 class QComboBox;
+class QSpinBox;
 class QDoubleSpinBox;
 class QDockWidget;
 class QLabel;
@@ -47,6 +51,27 @@ public:
   /// screenshots of every view into @p directory; the application exits with 0 or 1.
   void SetSelfTest(const QString& directory);
 
+  /**
+   * Compares the scene and tree screenshots of the self-test with the PNG baselines in
+   * @p directory (same names), allowing per-pixel differences up to @p tolerance (0..255) on
+   * at most @p fraction of the pixels. Used with SetSelfTest.
+   */
+  void SetBaseline(const QString& directory, int tolerance = 48, double fraction = 0.02);
+
+  /**
+   * Benchmark mode: after loading, prints the time from @p startSeconds (steady clock of the
+   * caller, process start) to all views drawn, wall and CPU, then measures tree pan/zoom
+   * frames per second and exits. No scores are computed in this mode.
+   */
+  void SetBenchmark(double startSeconds, double startCpuSeconds);
+
+  /**
+   * Level of detail of the scene view: at most @p splats Gaussians are drawn (every k-th in
+   * depth order, vtkGaussianSplatMapper::MaximumNumberOfSplats); 0 draws all. Selection and
+   * scores always use every Gaussian. Default 200000.
+   */
+  void SetSplatBudget(long long splats);
+
   /// Saves a screenshot of a dock ("scene", "tree", "panel", "timeline", "histogram") or of
   /// the whole window ("window"). Returns false when it could not be written.
   bool SaveScreenshot(const QString& which, const QString& path);
@@ -58,6 +83,24 @@ public:
   long long GetSceneHighlightCount() const;
   /// Selects the Gaussian drawn at display pixel (x, y) of the scene view; returns its id.
   long long PickInScene(int x, int y);
+
+  /// Scene selection modes of panel C.
+  enum SceneSelectionModes
+  {
+    SINGLE = 0,
+    BRUSH = 1,
+    FRAME = 2,
+    RAY = 3
+  };
+  /**
+   * Runs a scene selection in VTK display coordinates through vtkGaussianSelector and
+   * publishes it to the hub combined by @p combine (vtkGaussianSelectionHub::REPLACE, ADD,
+   * SUBTRACT). SINGLE/RAY use the first point, FRAME the first two (corners), BRUSH all (the
+   * stroke). Returns the number of Gaussians the mode picked, -1 on error.
+   */
+  long long SelectInScene(int mode, const std::vector<std::array<double, 2>>& points, int combine);
+  /// Ids of the last Ray selection, front to back.
+  std::vector<long long> GetLastRayHits() const;
 
 protected:
   void dragEnterEvent(QDragEnterEvent* event) override;
@@ -71,6 +114,13 @@ private:
   void OnIterationChanged(int iteration);
   void UpdateScene();
   void UpdateOverlay();
+  void UpdateFrustums();
+  void StartScores();
+  void OnSceneMouse(unsigned long event, bool& abort);
+  void OnSceneClick();
+  void OnCameraChosen(int row);
+  bool CompareBaselines();
+  void RunBenchmark();
   void ExportIds();
   void ExportPly(bool deleteSelection);
   void ScreenshotDialog();

@@ -122,6 +122,10 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
     return 0;
   }
   const std::vector<vis4gs::Camera> cameras = log.ReadCameras();
+  // View Coverage is a fraction of the training views (DESIGN §4), not of every camera.
+  const auto trainViews = std::count_if(cameras.begin(),
+    cameras.end(),
+    [](const vis4gs::Camera& c) { return c.Split == vis4gs::CameraSplit::Train; });
   const auto coverage = CoverageHistory(log, cameras);
 
   // The floater: the visible Gaussian of the last snapshot that the fewest training views see.
@@ -180,7 +184,7 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
 
   std::ostringstream text;
   text << "Root-cause trace of Gaussian " << floater << ", a visible floater (View Coverage "
-       << best << " = " << static_cast<int>(std::lround(best * cameras.size()))
+       << best << " = " << static_cast<int>(std::lround(best * trainViews)) << " of " << trainViews
        << " training views; lowest among Gaussians with opacity >= " << minOpacity
        << " at iteration " << snapshots.back() << "):\n"
        << "  GaussianId  born   kind         died   coverage at snapshot\n";

@@ -14,7 +14,7 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     vis4gs::CoreTrainingLog vis4gs::CoreScene VTK::RenderingCore VTK::RenderingOpenGL2
     VTK::InteractionStyle VTK::RenderingContext2D VTK::ChartsCore VTK::ViewsCore
     VTK::ViewsContext2D VTK::CommonExecutionModel VTK::RenderingFreeType
-    VTK::RenderingContextOpenGL2)
+    VTK::RenderingContextOpenGL2 VTK::RenderingAnnotation)
   if (TARGET Vis4GS::FiltersGenealogy)
     target_compile_definitions(vis4gs PRIVATE VIS4GS_HAVE_GENEALOGY_FILTER)
   endif ()
@@ -41,6 +41,20 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
   set_tests_properties(vis4gs-ViewEndToEnd PROPERTIES LABELS "Application;GUI"
     FIXTURES_REQUIRED vis4gsViewLog
     PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
+  # The embedded demo log (cameras, images, genealogy): the floater case study end to end,
+  # with baseline images of the scene and tree views (tolerant comparison, Xvfb + llvmpipe).
+  add_test(NAME vis4gs-ViewDemoEndToEnd
+    COMMAND vis4gs view "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
+      "--self-test=${_vis4gs_view_dir}/demo-screenshots" --resolution=1200,800
+      "--baseline=${CMAKE_CURRENT_SOURCE_DIR}/Testing/Data/Baseline")
+  set_tests_properties(vis4gs-ViewDemoEndToEnd PROPERTIES LABELS "Application;GUI"
+    PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
+  # The benchmark mode runs (figures of real sizes: Documentation/performance.md).
+  add_test(NAME vis4gs-ViewBenchmarkMode
+    COMMAND vis4gs view "${_vis4gs_view_dir}/synthetic.h5" --benchmark --resolution=800,600)
+  set_tests_properties(vis4gs-ViewBenchmarkMode PROPERTIES LABELS "Application;GUI"
+    FIXTURES_REQUIRED vis4gsViewLog
+    PASS_REGULAR_EXPRESSION "start to all views ready.*tree pan/zoom at the overview")
   add_test(NAME vis4gs-ViewHelp COMMAND vis4gs view --help)
   set_tests_properties(vis4gs-ViewHelp PROPERTIES LABELS "Application"
     PASS_REGULAR_EXPRESSION "--self-test=DIR")

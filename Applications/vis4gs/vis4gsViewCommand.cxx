@@ -9,7 +9,9 @@
 #include <QSurfaceFormat>
 #include <QTimer>
 
+#include <chrono>
 #include <cstdlib>
+#include <ctime>
 #include <iostream>
 #include <string>
 
@@ -24,11 +26,33 @@ void Define(Vis4GSArguments& args)
     "Run the scripted end-to-end check after loading (select in the scene, check the tree "
     "lineage and the timeline history, select in the tree, check the scene highlight), save "
     "screenshots of every view into DIR and exit with 0 on success.");
+  args.AddOption("baseline",
+    "DIR",
+    "",
+    "With --self-test: compare the scene and tree screenshots with the PNG baselines of the "
+    "same names in DIR (per-pixel tolerance, see --baseline-tolerance).");
+  args.AddOption("baseline-tolerance",
+    "T,F",
+    "48,0.02",
+    "Baseline comparison: a pixel differs when a channel differs by more than T (0-255); the "
+    "image matches when at most the fraction F of its pixels differ.");
+  args.AddFlag("benchmark",
+    false,
+    "Load FILE, print the time from start to all views ready (wall and CPU) and the tree "
+    "view's pan/zoom frames per second, then exit (no scores are computed).");
+  args.AddOption("splat-budget",
+    "N",
+    "200000",
+    "Level of detail of the scene view: draw at most N splats (every k-th in depth order; "
+    "selection and scores use every Gaussian). 0 draws all.");
   args.AddOption("resolution", "W,H", "1400,900", "Initial window size.");
 }
 
 int Run(const Vis4GSArguments& args)
 {
+  const double start =
+    std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  const double startCpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
   {
     std::cerr << "vis4gs view: no display (set DISPLAY, or run under xvfb-run)\n";
@@ -46,7 +70,28 @@ int Run(const Vis4GSArguments& args)
   {
     window.resize(static_cast<int>(size[0]), static_cast<int>(size[1]));
   }
+  window.SetSplatBudget(static_cast<long long>(args.GetDouble("splat-budget")));
+  if (args.GetFlag("benchmark"))
+  {
+    if (args.GetPositional("FILE").empty())
+    {
+      std::cerr << "vis4gs view: --benchmark needs a FILE\n";
+      return 1;
+    }
+    window.SetBenchmark(start, startCpu);
+  }
   const std::string selfTest = args.Get("self-test");
+  if (!args.Get("baseline").empty())
+  {
+    const std::vector<double> tolerance = args.GetNumbers("baseline-tolerance");
+    if (tolerance.size() != 2)
+    {
+      std::cerr << "vis4gs view: --baseline-tolerance expects T,F\n";
+      return 1;
+    }
+    window.SetBaseline(
+      QString::fromStdString(args.Get("baseline")), static_cast<int>(tolerance[0]), tolerance[1]);
+  }
   if (!selfTest.empty())
   {
     window.SetSelfTest(QString::fromStdString(selfTest));

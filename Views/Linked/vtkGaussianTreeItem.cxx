@@ -930,6 +930,72 @@ vtkIdType vtkGaussianTreeItem::PickVertex(float x, float y, float tolerance)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Level of detail of the drawing itself: when many more rows than pixels are in view, the
+// horizontal lifespan lines of one colour that fall on the same pixel row and overlap (or
+// touch) are drawn as one line, opaque where several were merged (what the blended overdraw
+// converges to). Rows at least one pixel apart are never merged, so zoomed-in views are drawn
+// unchanged. On software OpenGL the overview frame is fill-bound by this overdraw.
+void MergeLinesOnPixelRows(std::vector<float>& pts, std::vector<unsigned char>& cols)
+{
+  struct Segment
+  {
+    long Row;
+    std::uint32_t Color;
+    float X0, X1, Y;
+    int Count;
+  };
+  const std::size_t n = pts.size() / 4;
+  std::vector<Segment> segments(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const unsigned char* c = &cols[8 * i];
+    segments[i] = { std::lround(pts[4 * i + 1]),
+      (std::uint32_t(c[0]) << 16) | (std::uint32_t(c[1]) << 8) | c[2],
+      std::min(pts[4 * i], pts[4 * i + 2]),
+      std::max(pts[4 * i], pts[4 * i + 2]),
+      pts[4 * i + 1],
+      1 };
+  }
+  std::sort(segments.begin(),
+    segments.end(),
+    [](const Segment& a, const Segment& b) {
+      return a.Row != b.Row ? a.Row < b.Row : a.Color != b.Color ? a.Color < b.Color : a.X0 < b.X0;
+    });
+  std::vector<Segment> merged;
+  merged.reserve(n);
+  for (const Segment& s : segments)
+  {
+    if (!merged.empty() && merged.back().Row == s.Row && merged.back().Color == s.Color &&
+      s.X0 <= merged.back().X1 + 1.f)
+    {
+      merged.back().X1 = std::max(merged.back().X1, s.X1);
+      merged.back().Count += 1;
+    }
+    else
+    {
+      merged.push_back(s);
+    }
+  }
+  if (merged.size() == n)
+  {
+    return;
+  }
+  pts.clear();
+  cols.clear();
+  for (const Segment& s : merged)
+  {
+    const float y = s.Count > 1 ? static_cast<float>(s.Row) : s.Y;
+    pts.insert(pts.end(), { s.X0, y, s.X1, y });
+    const unsigned char r = (s.Color >> 16) & 255, g = (s.Color >> 8) & 255, b = s.Color & 255;
+    const unsigned char a = s.Count > 1 ? 255 : 200;
+    cols.insert(cols.end(), { r, g, b, a, r, g, b, a });
+  }
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
 {
   this->BuildIndex();
@@ -1009,6 +1075,10 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   }
   pen->SetWidth(in.Visible.size() > 20000 ? 1.f : 2.f);
   device->ApplyPen(pen);
+  if (this->MergeLinesPerPixelRow && pts.size() / 4 > 256)
+  {
+    MergeLinesOnPixelRows(pts, cols);
+  }
   if (!pts.empty())
   {
     device->DrawLines(pts.data(), static_cast<int>(pts.size() / 2), cols.data(), 4);
@@ -1268,6 +1338,7 @@ void vtkGaussianTreeItem::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "KindArrayName: " << str(this->KindArrayName) << "\n";
   os << indent << "PrunedArrayName: " << str(this->PrunedArrayName) << "\n";
   os << indent << "ZoomedInRows: " << this->ZoomedInRows << "\n";
+  os << indent << "MergeLinesPerPixelRow: " << this->MergeLinesPerPixelRow << "\n";
   os << indent << "Size: " << this->Size[0] << " " << this->Size[1] << "\n";
   os << indent << "Viewport: " << in.VX0 << " " << in.VX1 << " " << in.VY0 << " " << in.VY1 << "\n";
 }

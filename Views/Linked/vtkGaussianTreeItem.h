@@ -114,6 +114,19 @@ public:
 
   ///@{
   /**
+   * Drawing level of detail: when more than 256 lifespan lines are drawn, lines of one colour
+   * on the same pixel row that overlap are drawn as one (opaque where several merged). Rows
+   * at least a pixel apart are never merged, so it only changes views with more rows than
+   * pixels, where it removes the overdraw that bounds the frame rate on software OpenGL.
+   * Default on.
+   */
+  vtkSetMacro(MergeLinesPerPixelRow, bool);
+  vtkGetMacro(MergeLinesPerPixelRow, bool);
+  vtkBooleanMacro(MergeLinesPerPixelRow, bool);
+  ///@}
+
+  ///@{
+  /**
    * The viewport in layout coordinates: iterations [MinX, MaxX], rows [MinY, MaxY].
    * ResetViewport() fits the whole tree.
    */
@@ -203,6 +216,7 @@ protected:
   char* KindArrayName = nullptr;
   char* PrunedArrayName = nullptr;
   double ZoomedInRows = 100.0;
+  bool MergeLinesPerPixelRow = true;
   int Size[2] = { 400, 300 };
 
 private:
