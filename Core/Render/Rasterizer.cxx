@@ -5,14 +5,19 @@
 #include "RasterBounds.h"
 
 #include <omp.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace vis4gs
@@ -25,6 +30,42 @@ namespace
 int ThreadCount(int requested)
 {
   return requested > 0 ? requested : omp_get_max_threads();
+}
+
+//------------------------------------------------------------------------------
+// Asks Linux for transparent huge pages on a large buffer before it is first touched: the
+// multi-megabyte buffers of projection and binning otherwise cost one page fault per 4 KiB
+// (serial when a std::vector value-initialises them) and a TLB miss on most scattered writes.
+// Advisory only: ignored where unsupported, never changes a value.
+void AdviseHugePages(const void* data, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::uintptr_t huge = std::uintptr_t(2) << 20;
+  if (data == nullptr || bytes < 2 * huge)
+  {
+    return;
+  }
+  const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t b = (a + huge - 1) & ~(huge - 1), e = (a + bytes) & ~(huge - 1);
+  if (e > b)
+  {
+    madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
+
+//------------------------------------------------------------------------------
+// Uninitialised buffer of a trivial type (first touched by the parallel loops that fill it).
+template <typename U>
+std::unique_ptr<U[]> RawBuffer(std::size_t n)
+{
+  static_assert(std::is_trivial<U>::value, "RawBuffer holds trivial types only");
+  std::unique_ptr<U[]> buffer(new U[n > 0 ? n : 1]);
+  AdviseHugePages(buffer.get(), n * sizeof(U));
+  return buffer;
 }
 
 //------------------------------------------------------------------------------
@@ -231,6 +272,8 @@ ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
   }
 
   const std::size_t n = cloud.Count;
+  p.Gaussians.reserve(n);
+  AdviseHugePages(p.Gaussians.data(), n * sizeof(ProjectedGaussian<T>));
   p.Gaussians.assign(n, ProjectedGaussian<T>());
   const int shDegree = p.ShDegree;
   const int shStride = 3 * cloud.ShCoefficientCount();
@@ -443,6 +486,82 @@ ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+
+// Stable parallel LSD radix sort of the n 64-bit keys at @p keys on bits [lo, hi) (the other
+// bits are equal in every key or irrelevant), in chunks of contiguous keys: per chunk and pass
+// a histogram, then bucket-major chunk-minor offsets, then each chunk scatters its keys in
+// order. @p tmp holds n keys; returns the buffer holding the sorted keys (keys or tmp).
+std::uint64_t* RadixSortKeys(std::uint64_t* keys,
+  std::uint64_t* tmp,
+  std::int64_t n,
+  int lo,
+  int hi,
+  int chunks)
+{
+  const int bits = hi - lo;
+  if (bits <= 0 || n < 2)
+  {
+    return keys;
+  }
+  const int passes = (bits + 10) / 11;
+  const int width = (bits + passes - 1) / passes;
+  const std::size_t buckets = std::size_t(1) << width;
+  const std::uint64_t mask = buckets - 1;
+  std::vector<std::uint64_t> hist(static_cast<std::size_t>(chunks) * buckets);
+  std::uint64_t* from = keys;
+  std::uint64_t* to = tmp;
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    const int shift = lo + pass * width;
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+    for (int c = 0; c < chunks; ++c)
+    {
+      std::uint64_t* h = &hist[static_cast<std::size_t>(c) * buckets];
+      std::fill(h, h + buckets, 0);
+      const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        ++h[(from[k] >> shift) & mask];
+      }
+    }
+    std::uint64_t running = 0;
+    for (std::size_t d = 0; d < buckets; ++d)
+    {
+      for (int c = 0; c < chunks; ++c)
+      {
+        std::uint64_t& h = hist[static_cast<std::size_t>(c) * buckets + d];
+        const std::uint64_t k = h;
+        h = running;
+        running += k;
+      }
+    }
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+    for (int c = 0; c < chunks; ++c)
+    {
+      std::uint64_t* h = &hist[static_cast<std::size_t>(c) * buckets];
+      const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        const std::uint64_t key = from[k];
+        to[h[(key >> shift) & mask]++] = key;
+      }
+    }
+    std::swap(from, to);
+  }
+  return from;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+// Binning: (1) compact the visible Gaussians in index order; (2) sort them once, globally,
+// by (depth, index); (3) a stable counting scatter of that sequence into the tiles (per
+// chunk of the sorted sequence: tile counts from a 2D difference array of the tile
+// rectangles, tile-major chunk-minor offsets, scatter in order). Every tile's run is then a
+// subsequence of the global order: sorted by (depth, index) with no per-tile sort, exactly
+// the order of the reference's stable radix sort on (tile, depth) keys.
 template <typename T>
 TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
 {
@@ -453,169 +572,181 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
   const auto& gs = projection.Gaussians;
   const std::int64_t n = static_cast<std::int64_t>(gs.size());
   const int chunks = ThreadCount(threads);
-  const int gx = projection.TilesX;
+  const std::size_t gx = static_cast<std::size_t>(projection.TilesX);
+  const std::size_t gy = static_cast<std::size_t>(projection.TilesY);
 
-  // Counting pass: per chunk of Gaussians (contiguous, in index order), per tile.
-  std::vector<std::uint64_t> hist(static_cast<std::size_t>(chunks) * tiles, 0);
-  auto chunkRange = [&](int c)
-  {
-    const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
-    return std::make_pair(b, e);
-  };
+  // (1) Visible Gaussians, compacted in index order: ids, tile rectangles, sort keys. The
+  // compact position is monotonic in the index, so it breaks depth ties like the index.
+  std::vector<std::uint64_t> before(static_cast<std::size_t>(chunks) + 1, 0);
 #pragma omp parallel for schedule(static, 1) num_threads(chunks)
   for (int c = 0; c < chunks; ++c)
   {
-    std::uint64_t* h = &hist[static_cast<std::size_t>(c) * tiles];
-    const auto range = chunkRange(c);
-    for (std::int64_t i = range.first; i < range.second; ++i)
+    const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+    std::uint64_t k = 0;
+    for (std::int64_t i = b; i < e; ++i)
+    {
+      k += gs[static_cast<std::size_t>(i)].IsVisible() ? 1 : 0;
+    }
+    before[static_cast<std::size_t>(c) + 1] = k;
+  }
+  for (int c = 0; c < chunks; ++c)
+  {
+    before[static_cast<std::size_t>(c) + 1] += before[static_cast<std::size_t>(c)];
+  }
+  const std::size_t visible = static_cast<std::size_t>(before[static_cast<std::size_t>(chunks)]);
+  const std::int64_t nv = static_cast<std::int64_t>(visible);
+  using Rect = std::array<int, 4>;
+  auto visIds = RawBuffer<std::uint32_t>(visible);
+  auto visRects = RawBuffer<Rect>(visible);
+  constexpr bool isFloat = std::is_same<T, float>::value;
+  // float: depth bits above the compact position (and room for the radix sort's buffer)
+  auto keys = RawBuffer<std::uint64_t>(isFloat ? 2 * visible : 0);
+  std::vector<std::pair<T, std::uint32_t>> pairs(isFloat ? 0 : visible); // double
+  std::uint32_t depthOr = 0, depthAnd = ~0u;
+#pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+    std::size_t k = static_cast<std::size_t>(before[static_cast<std::size_t>(c)]);
+    for (std::int64_t i = b; i < e; ++i)
     {
       const auto& g = gs[static_cast<std::size_t>(i)];
       if (!g.IsVisible())
       {
         continue;
       }
-      for (int ty = g.TileRect[1]; ty < g.TileRect[3]; ++ty)
+      visIds[k] = static_cast<std::uint32_t>(i);
+      visRects[k] = { g.TileRect[0], g.TileRect[1], g.TileRect[2], g.TileRect[3] };
+      if constexpr (std::is_same<T, float>::value)
       {
-        for (int tx = g.TileRect[0]; tx < g.TileRect[2]; ++tx)
-        {
-          ++h[static_cast<std::size_t>(ty) * gx + tx];
-        }
-      }
-    }
-  }
-  // Offsets: tile-major, chunk-minor, so each tile's run is in Gaussian index order.
-  bins.Offsets.assign(tiles + 1, 0);
-  std::uint64_t running = 0;
-  for (std::size_t t = 0; t < tiles; ++t)
-  {
-    bins.Offsets[t] = running;
-    for (int c = 0; c < chunks; ++c)
-    {
-      const std::uint64_t k = hist[static_cast<std::size_t>(c) * tiles + t];
-      hist[static_cast<std::size_t>(c) * tiles + t] = running;
-      running += k;
-    }
-  }
-  bins.Offsets[tiles] = running;
-  // Fill pass: each chunk writes its Gaussians' sort keys in index order. float: depth bits
-  // (depth > 0.2, so the bits order like the values) above the index in one 64-bit key;
-  // double: (depth, index) pairs.
-  const std::int64_t tileCount = static_cast<std::int64_t>(tiles);
-  bins.Ids.resize(running);
-  if constexpr (std::is_same<T, float>::value)
-  {
-    std::vector<std::uint64_t> keys(running);
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-    for (int c = 0; c < chunks; ++c)
-    {
-      std::uint64_t* cursor = &hist[static_cast<std::size_t>(c) * tiles];
-      const auto range = chunkRange(c);
-      for (std::int64_t i = range.first; i < range.second; ++i)
-      {
-        const auto& g = gs[static_cast<std::size_t>(i)];
-        if (!g.IsVisible())
-        {
-          continue;
-        }
+        // depth > 0.2, so the bits order like the values.
         std::uint32_t bits;
         std::memcpy(&bits, &g.Depth, sizeof(bits));
-        const std::uint64_t key =
-          (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(i);
-        for (int ty = g.TileRect[1]; ty < g.TileRect[3]; ++ty)
-        {
-          std::uint64_t* row = cursor + static_cast<std::size_t>(ty) * gx;
-          for (int tx = g.TileRect[0]; tx < g.TileRect[2]; ++tx)
-          {
-            keys[row[tx]++] = key;
-          }
-        }
+        depthOr |= bits;
+        depthAnd &= bits;
+        keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
       }
-    }
-#pragma omp parallel num_threads(chunks)
-    {
-      std::vector<std::uint64_t> tmp;
-      std::vector<std::uint32_t> count(2048);
-#pragma omp for schedule(dynamic, 8)
-      for (std::int64_t t = 0; t < tileCount; ++t)
+      else
       {
-        const std::uint64_t b = bins.Offsets[t], e = bins.Offsets[t + 1];
-        const std::size_t len = static_cast<std::size_t>(e - b);
-        std::uint64_t* src = keys.data() + b;
-        if (len < 512)
-        {
-          std::sort(src, src + len); // keys are unique: (depth bits, index)
-          for (std::size_t k = 0; k < len; ++k)
-          {
-            bins.Ids[b + k] = static_cast<std::uint32_t>(src[k]);
-          }
-          continue;
-        }
-        // Stable LSD radix sort on the 32 depth bits (3 passes of 11 bits); the keys arrive
-        // in index order, so equal depths stay in index order.
-        tmp.resize(len);
-        std::uint64_t* from = src;
-        std::uint64_t* to = tmp.data();
-        for (int shift = 32; shift < 64; shift += 11)
-        {
-          std::fill(count.begin(), count.end(), 0u);
-          for (std::size_t k = 0; k < len; ++k)
-          {
-            ++count[(from[k] >> shift) & 2047u];
-          }
-          std::uint32_t sum = 0;
-          for (auto& c : count)
-          {
-            const std::uint32_t v = c;
-            c = sum;
-            sum += v;
-          }
-          for (std::size_t k = 0; k < len; ++k)
-          {
-            to[count[(from[k] >> shift) & 2047u]++] = from[k];
-          }
-          std::swap(from, to);
-        }
-        for (std::size_t k = 0; k < len; ++k)
-        {
-          bins.Ids[b + k] = static_cast<std::uint32_t>(from[k]);
-        }
+        pairs[k] = { g.Depth, static_cast<std::uint32_t>(k) };
       }
+      ++k;
+    }
+  }
+
+  // (2) Global order by (depth, index). Float: stable radix sort on the depth bits that
+  // differ between Gaussians (the keys arrive in index order, so ties stay in index order).
+  auto order = RawBuffer<std::uint32_t>(visible);
+  auto rects = RawBuffer<Rect>(visible);
+  if constexpr (std::is_same<T, float>::value)
+  {
+    const std::uint32_t differ = depthOr & ~depthAnd;
+    int hi = 0;
+    while (hi < 32 && (differ >> hi) != 0)
+    {
+      ++hi;
+    }
+    const std::uint64_t* sorted =
+      RadixSortKeys(keys.get(), keys.get() + visible, nv, 32, 32 + hi, chunks);
+#pragma omp parallel for schedule(static) num_threads(chunks)
+    for (std::int64_t k = 0; k < nv; ++k)
+    {
+      const std::uint32_t pos = static_cast<std::uint32_t>(sorted[k]);
+      order[static_cast<std::size_t>(k)] = visIds[pos];
+      rects[static_cast<std::size_t>(k)] = visRects[pos];
     }
   }
   else
   {
-    std::vector<std::pair<T, std::uint32_t>> keys(running);
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-    for (int c = 0; c < chunks; ++c)
+    std::sort(pairs.begin(), pairs.end());
+#pragma omp parallel for schedule(static) num_threads(chunks)
+    for (std::int64_t k = 0; k < nv; ++k)
     {
-      std::uint64_t* cursor = &hist[static_cast<std::size_t>(c) * tiles];
-      const auto range = chunkRange(c);
-      for (std::int64_t i = range.first; i < range.second; ++i)
+      const std::uint32_t pos = pairs[static_cast<std::size_t>(k)].second;
+      order[static_cast<std::size_t>(k)] = visIds[pos];
+      rects[static_cast<std::size_t>(k)] = visRects[pos];
+    }
+  }
+  visIds.reset();
+  visRects.reset();
+  keys.reset();
+  std::vector<std::pair<T, std::uint32_t>>().swap(pairs);
+
+  // (3) Per chunk of the sorted sequence, per tile counts: a 2D difference array of the
+  // rectangles ((gx+1) x (gy+1)), integrated by rows then columns.
+  const std::size_t dx = gx + 1;
+  const std::size_t diffSize = dx * (gy + 1);
+  std::vector<std::int64_t> diff(static_cast<std::size_t>(chunks) * diffSize, 0);
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* d = &diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
+      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
+      ++d[y0 * dx + x0];
+      --d[y0 * dx + x1];
+      --d[y1 * dx + x0];
+      ++d[y1 * dx + x1];
+    }
+    for (std::size_t y = 0; y < gy; ++y)
+    {
+      std::int64_t* row = d + y * dx;
+      for (std::size_t x = 1; x < gx; ++x)
       {
-        const auto& g = gs[static_cast<std::size_t>(i)];
-        if (!g.IsVisible())
+        row[x] += row[x - 1];
+      }
+      if (y > 0)
+      {
+        const std::int64_t* up = row - dx;
+        for (std::size_t x = 0; x < gx; ++x)
         {
-          continue;
-        }
-        for (int ty = g.TileRect[1]; ty < g.TileRect[3]; ++ty)
-        {
-          for (int tx = g.TileRect[0]; tx < g.TileRect[2]; ++tx)
-          {
-            keys[cursor[static_cast<std::size_t>(ty) * gx + tx]++] = { g.Depth,
-              static_cast<std::uint32_t>(i) };
-          }
+          row[x] += up[x];
         }
       }
     }
-#pragma omp parallel for schedule(dynamic, 8) num_threads(chunks)
-    for (std::int64_t t = 0; t < tileCount; ++t)
+  }
+  // Offsets: tile-major, chunk-minor; the counts become each chunk's write cursors.
+  bins.Offsets.assign(tiles + 1, 0);
+  std::uint64_t running = 0;
+  for (std::size_t ty = 0; ty < gy; ++ty)
+  {
+    for (std::size_t tx = 0; tx < gx; ++tx)
     {
-      const std::uint64_t b = bins.Offsets[t], e = bins.Offsets[t + 1];
-      std::sort(keys.begin() + static_cast<std::ptrdiff_t>(b),
-        keys.begin() + static_cast<std::ptrdiff_t>(e));
-      for (std::uint64_t k = b; k < e; ++k)
+      bins.Offsets[ty * gx + tx] = running;
+      for (int c = 0; c < chunks; ++c)
       {
-        bins.Ids[k] = keys[k].second;
+        std::int64_t& h = diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
+        const std::uint64_t k = static_cast<std::uint64_t>(h);
+        h = static_cast<std::int64_t>(running);
+        running += k;
+      }
+    }
+  }
+  bins.Offsets[tiles] = running;
+  bins.Ids.reserve(running);
+  AdviseHugePages(bins.Ids.data(), running * sizeof(std::uint32_t));
+  bins.Ids.resize(running);
+  std::uint32_t* ids = bins.Ids.data();
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* cursor = &diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::uint32_t id = order[static_cast<std::size_t>(k)];
+      for (int ty = r[1]; ty < r[3]; ++ty)
+      {
+        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
+        for (int tx = r[0]; tx < r[2]; ++tx)
+        {
+          ids[row[tx]++] = id;
+        }
       }
     }
   }
@@ -961,8 +1092,14 @@ void CompositeTiles(const ViewProjection<T>& projection,
   image.Contributors.resize(pixels);
 
   // Compact per-Gaussian kernel data and conservative spans (only for binned Gaussians).
-  std::vector<KernelGaussian<T>> kernels(n);
-  std::vector<raster::detail::SpanBounds> bounds(n);
+  std::vector<KernelGaussian<T>> kernels;
+  std::vector<raster::detail::SpanBounds> bounds;
+  kernels.reserve(n);
+  bounds.reserve(n);
+  AdviseHugePages(kernels.data(), n * sizeof(KernelGaussian<T>));
+  AdviseHugePages(bounds.data(), n * sizeof(raster::detail::SpanBounds));
+  kernels.resize(n);
+  bounds.resize(n);
   const std::int64_t count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t ii = 0; ii < count; ++ii)

@@ -150,8 +150,8 @@ struct TileBins
   std::size_t TileCount() const { return static_cast<std::size_t>(this->TilesX) * this->TilesY; }
 };
 
-/// Builds the per-tile lists of the visible Gaussians (counting pass, then a parallel
-/// per-tile sort on (depth, index)).
+/// Builds the per-tile lists of the visible Gaussians: one global stable sort by (depth, index),
+/// then a stable counting scatter into the tiles, so every tile's list comes out sorted.
 template <typename T>
 TileBins BinGaussians(const ViewProjection<T>& projection, int threads = 0);
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -304,6 +305,92 @@ TEST(Rasterizer, ShuffleGivesIdenticalImage)
   const auto ad = Rasterize<double>(cloud, cam, s);
   const auto bd = Rasterize<double>(shuffled, cam, s);
   EXPECT_EQ(ad.Color, bd.Color);
+}
+
+//------------------------------------------------------------------------------
+// BinGaussians against a naive binning (every tile tests every visible Gaussian's tile
+// rectangle, std::sort on (depth, index)), with many exact depth ties (identity camera: view
+// z = world z, quantised to 5 values), culled Gaussians interleaved, several thread counts,
+// float and double; plus the empty and single-Gaussian cases.
+template <typename T>
+void CheckBinsAgainstNaive(const ViewProjection<T>& proj, int threads)
+{
+  const TileBins bins = BinGaussians(proj, threads);
+  ASSERT_EQ(bins.Offsets.size(), bins.TileCount() + 1);
+  ASSERT_EQ(bins.Offsets.back(), bins.Ids.size());
+  for (int ty = 0; ty < proj.TilesY; ++ty)
+  {
+    for (int tx = 0; tx < proj.TilesX; ++tx)
+    {
+      std::vector<std::pair<T, std::uint32_t>> expected;
+      for (std::size_t i = 0; i < proj.Gaussians.size(); ++i)
+      {
+        const auto& g = proj.Gaussians[i];
+        if (g.IsVisible() && tx >= g.TileRect[0] && tx < g.TileRect[2] && ty >= g.TileRect[1] &&
+          ty < g.TileRect[3])
+        {
+          expected.emplace_back(g.Depth, static_cast<std::uint32_t>(i));
+        }
+      }
+      std::sort(expected.begin(), expected.end());
+      const std::size_t t = static_cast<std::size_t>(ty) * proj.TilesX + tx;
+      const std::vector<std::uint32_t> got(
+        bins.Ids.begin() + bins.Offsets[t], bins.Ids.begin() + bins.Offsets[t + 1]);
+      std::vector<std::uint32_t> want;
+      for (const auto& e : expected)
+      {
+        want.push_back(e.second);
+      }
+      ASSERT_EQ(got, want) << "tile " << tx << "," << ty << " threads " << threads;
+    }
+  }
+}
+
+TEST(Rasterizer, BinsMatchNaiveOrderWithTies)
+{
+  auto cloud = RandomScene(2500, 0, 13u, 2.0f, 8.0f, -4.0f, -1.5f);
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    cloud.Positions[3 * i + 2] = 2.0f + static_cast<float>(i % 5) * 1.5f;
+    if (i % 7 == 3)
+    {
+      cloud.Positions[3 * i + 2] = -1.0f; // behind the camera
+    }
+    if (i % 11 == 5)
+    {
+      cloud.OpacityLogits[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  const Camera cam = AxisCamera(200, 120, 150, 150);
+  const auto projF = ProjectGaussians<float>(cloud, cam);
+  const auto projD = ProjectGaussians<double>(cloud, cam);
+  ASSERT_GT(projF.Counts.Visible, 1500u);
+  ASSERT_LT(projF.Counts.Visible, cloud.Count);
+  std::size_t ties = 0; // visible Gaussians at depth exactly 2
+  for (const auto& g : projF.Gaussians)
+  {
+    ties += (g.IsVisible() && g.Depth == 2.0f) ? 1 : 0;
+  }
+  ASSERT_GT(ties, 100u);
+  for (int threads : { 1, 2, 3, 5 })
+  {
+    CheckBinsAgainstNaive(projF, threads);
+    CheckBinsAgainstNaive(projD, threads);
+  }
+  // Only culled Gaussians: empty bins; a single visible one: in every tile of its rectangle.
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    cloud.Positions[3 * i + 2] = -1.0f;
+  }
+  auto none = ProjectGaussians<float>(cloud, cam);
+  EXPECT_EQ(none.Counts.Visible, 0u);
+  CheckBinsAgainstNaive(none, 2);
+  EXPECT_TRUE(BinGaussians(none, 2).Ids.empty());
+  cloud.Positions[3 * 4 + 2] = 3.0f;
+  cloud.OpacityLogits[4] = 0.0f;
+  auto one = ProjectGaussians<float>(cloud, cam);
+  EXPECT_EQ(one.Counts.Visible, 1u);
+  CheckBinsAgainstNaive(one, 3);
 }
 
 //------------------------------------------------------------------------------
