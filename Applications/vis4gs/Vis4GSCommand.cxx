@@ -46,3 +46,24 @@ std::vector<Vis4GSCommand> Vis4GSRegisteredCommands()
     });
   return commands;
 }
+
+//------------------------------------------------------------------------------
+const Vis4GSCommand* Vis4GSFindCommand(const std::string& name)
+{
+  for (const Vis4GSCommand& command : Registry())
+  {
+    if (name == command.Name)
+    {
+      return &command;
+    }
+  }
+  return nullptr;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSDefineArguments(const Vis4GSCommand& command, Vis4GSArguments& args)
+{
+  args.AddOption("threads", "N", "0", "Number of threads; 0 uses every core.");
+  args.AddFlag("verbose", false, "Print details of each step.");
+  command.Define(args);
+}

@@ -31,6 +31,13 @@ bool Vis4GSRegisterCommand(const Vis4GSCommand& command);
 /// Registered commands in the order of DESIGN §5 (then any other, by name).
 std::vector<Vis4GSCommand> Vis4GSRegisteredCommands();
 
+/// The registered command named @p name, or nullptr.
+const Vis4GSCommand* Vis4GSFindCommand(const std::string& name);
+
+/// Declares @p command's arguments: the options every command takes (--threads, --verbose,
+/// --help) and the command's own.
+void Vis4GSDefineArguments(const Vis4GSCommand& command, Vis4GSArguments& args);
+
 #define VIS4GS_REGISTER_COMMAND(name, summary, define, run)                                        \
   namespace                                                                                        \
   {                                                                                                \

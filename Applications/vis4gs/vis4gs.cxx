@@ -45,9 +45,7 @@ int main(int argc, char* argv[])
       continue;
     }
     Vis4GSArguments args(command.Name, command.Summary);
-    args.AddOption("threads", "N", "0", "Number of threads; 0 uses every core.");
-    args.AddFlag("verbose", false, "Print details of each step.");
-    command.Define(args);
+    Vis4GSDefineArguments(command, args);
     const std::vector<std::string> rest(argv + 2, argv + argc);
     switch (args.Parse(rest, std::cerr))
     {

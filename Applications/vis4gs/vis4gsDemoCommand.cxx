@@ -65,22 +65,18 @@ void Define(Vis4GSArguments& args)
 // Runs another registered subcommand with @p words as its command line.
 int RunCommand(const std::string& name, const std::vector<std::string>& words)
 {
-  for (const auto& command : Vis4GSRegisteredCommands())
+  const Vis4GSCommand* command = Vis4GSFindCommand(name);
+  if (!command)
   {
-    if (name == command.Name)
-    {
-      Vis4GSArguments args(command.Name, command.Summary);
-      args.AddOption("threads", "N", "0", "Number of threads; 0 uses every core.");
-      args.AddFlag("verbose", false, "Print details of each step.");
-      command.Define(args);
-      if (args.Parse(words, std::cerr) != Vis4GSArguments::Result::Ok)
-      {
-        throw std::logic_error("vis4gs demo built a bad command line for " + name);
-      }
-      return command.Run(args);
-    }
+    throw std::runtime_error("this vis4gs was built without the '" + name + "' command");
   }
-  throw std::runtime_error("this vis4gs was built without the '" + name + "' command");
+  Vis4GSArguments args(command->Name, command->Summary);
+  Vis4GSDefineArguments(*command, args);
+  if (args.Parse(words, std::cerr) != Vis4GSArguments::Result::Ok)
+  {
+    throw std::logic_error("vis4gs demo built a bad command line for " + name);
+  }
+  return command->Run(args);
 }
 
 // View Coverage of every Gaussian of every snapshot: coverage needs only the Gaussians and
