@@ -3,6 +3,8 @@
 
 #include "TrainingLogHDF5.h"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -301,6 +303,215 @@ bool FastReadRows(hid_t dset, hid_t memType, const std::vector<hsize_t>& rows, v
           dst + i * rowBytes, plain.data() + (rows[i] - u.Offset[0]) * rowBytes, rowBytes);
       }
     });
+}
+
+//------------------------------------------------------------------------------
+bool DirectRows::Open(hid_t dset, hid_t memType)
+{
+  Layout l;
+  if (!Inspect(dset, memType, l) || l.Shuffle || l.Deflate)
+  {
+    return false;
+  }
+  ErrorSilencer silence;
+  Handle file(H5Iget_file_id(dset));
+  Handle fapl(file.Valid() ? H5Fget_access_plist(file) : -1);
+  if (!fapl.Valid() || H5Pget_driver(fapl) != H5FD_SEC2)
+  {
+    return false;
+  }
+  // HDF5 addresses are relative to the base address, which a user block moves.
+  Handle fcpl(H5Fget_create_plist(file));
+  hsize_t userBlock = 1;
+  if (!fcpl.Valid() || H5Pget_userblock(fcpl, &userBlock) < 0 || userBlock != 0)
+  {
+    return false;
+  }
+  void* handle = nullptr;
+  if (H5Fget_vfd_handle(file, fapl, &handle) < 0 || !handle)
+  {
+    H5Eclear2(H5E_DEFAULT);
+    return false;
+  }
+  this->Dataset = dset;
+  this->Descriptor = *static_cast<int*>(handle);
+  this->Rows = l.Dims[0];
+  this->ChunkRows = l.ChunkRows;
+  this->RowBytes = l.RowWidth * l.ElementSize;
+  this->ChunkBytes = static_cast<std::size_t>(l.ChunkRows) * this->RowBytes;
+  this->Addresses.assign(static_cast<std::size_t>((this->Rows + l.ChunkRows - 1) / l.ChunkRows), 0);
+  return this->Descriptor >= 0;
+}
+
+//------------------------------------------------------------------------------
+bool DirectRows::ChunkAddress(hsize_t chunk, haddr_t& address)
+{
+  if (chunk >= this->Addresses.size())
+  {
+    return false;
+  }
+  haddr_t& cached = this->Addresses[static_cast<std::size_t>(chunk)];
+  if (cached == 0)
+  {
+    // Looked up lazily; HDF5 is not thread-safe, so threads that each use their own
+    // DirectRows take turns here (the reads themselves need no lock).
+    bool ok = false;
+#pragma omp critical(vis4gs_training_log_hdf5)
+    {
+      ErrorSilencer silence;
+      hsize_t offset[3] = { chunk * this->ChunkRows, 0, 0 };
+      unsigned mask = 0;
+      haddr_t a = HADDR_UNDEF;
+      hsize_t size = 0;
+      ok = H5Dget_chunk_info_by_coord(this->Dataset, offset, &mask, &a, &size) >= 0 &&
+        a != HADDR_UNDEF && a != 0 && size == this->ChunkBytes;
+      H5Eclear2(H5E_DEFAULT);
+      if (ok)
+      {
+        cached = a;
+      }
+    }
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  address = cached;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool DirectRows::Read(hsize_t first, hsize_t count, void* out)
+{
+  if (this->Descriptor < 0 || first > this->Rows || count > this->Rows - first)
+  {
+    return false;
+  }
+  unsigned char* dst = static_cast<unsigned char*>(out);
+  while (count > 0)
+  {
+    const hsize_t chunk = first / this->ChunkRows;
+    const hsize_t inChunk = first - chunk * this->ChunkRows;
+    const hsize_t take = std::min(count, this->ChunkRows - inChunk);
+    haddr_t address = 0;
+    if (!this->ChunkAddress(chunk, address))
+    {
+      return false;
+    }
+    const std::size_t bytes = static_cast<std::size_t>(take) * this->RowBytes;
+    const off_t at = static_cast<off_t>(address + inChunk * this->RowBytes);
+    std::size_t done = 0;
+    while (done < bytes)
+    {
+      const ssize_t got =
+        pread(this->Descriptor, dst + done, bytes - done, at + static_cast<off_t>(done));
+      if (got <= 0)
+      {
+        return false;
+      }
+      done += static_cast<std::size_t>(got);
+    }
+    dst += bytes;
+    first += take;
+    count -= take;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool DirectRows::ReadRows(const std::vector<hsize_t>& rows, void* out)
+{
+  unsigned char* dst = static_cast<unsigned char*>(out);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+  {
+    if (!this->Read(rows[i], 1, dst + i * this->RowBytes))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void DirectRows::Prefetch(const std::vector<hsize_t>& rows)
+{
+  if (this->Descriptor < 0)
+  {
+    return;
+  }
+  const off_t page = 4096;
+  off_t pending = -1; // last page advised, to skip repeats
+  for (hsize_t row : rows)
+  {
+    haddr_t address = 0;
+    if (row >= this->Rows || !this->ChunkAddress(row / this->ChunkRows, address))
+    {
+      continue;
+    }
+    const off_t at =
+      static_cast<off_t>(address + (row % this->ChunkRows) * this->RowBytes) / page * page;
+    if (at != pending)
+    {
+      posix_fadvise(this->Descriptor,
+        static_cast<off_t>(address + (row % this->ChunkRows) * this->RowBytes),
+        static_cast<off_t>(this->RowBytes),
+        POSIX_FADV_WILLNEED);
+      pending = at;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+bool DirectRows::Resolve(const std::vector<hsize_t>& rows)
+{
+  if (this->Descriptor < 0)
+  {
+    return false;
+  }
+  haddr_t address = 0;
+  if (rows.empty())
+  {
+    for (hsize_t c = 0; c < this->Addresses.size(); ++c)
+    {
+      if (!this->ChunkAddress(c, address))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  for (hsize_t row : rows)
+  {
+    if (row >= this->Rows || !this->ChunkAddress(row / this->ChunkRows, address))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+RandomAccessHint::RandomAccessHint(hid_t file)
+{
+  ErrorSilencer silence;
+  Handle fapl(H5Fget_access_plist(file));
+  void* handle = nullptr;
+  if (fapl.Valid() && H5Pget_driver(fapl) == H5FD_SEC2 &&
+    H5Fget_vfd_handle(file, fapl, &handle) >= 0 && handle)
+  {
+    this->Descriptor = *static_cast<int*>(handle);
+    posix_fadvise(this->Descriptor, 0, 0, POSIX_FADV_RANDOM);
+  }
+  H5Eclear2(H5E_DEFAULT);
+}
+
+//------------------------------------------------------------------------------
+RandomAccessHint::~RandomAccessHint()
+{
+  if (this->Descriptor >= 0)
+  {
+    posix_fadvise(this->Descriptor, 0, 0, POSIX_FADV_NORMAL);
+  }
 }
 
 } // namespace h5

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -65,8 +66,16 @@ public:
     : Dataset(dset)
     , Size(size)
     , BlockRows(std::max<hsize_t>(1, blockRows))
+    , FileBlockRows(std::max<hsize_t>(1, blockRows))
     , File(file)
   {
+    // Unfiltered ids (the default since snapshots are written uncompressed): read small
+    // blocks of exactly the probed bytes rather than whole chunks.
+    if (this->Direct.Open(dset, H5T_NATIVE_INT64))
+    {
+      this->UseDirect = true;
+      this->BlockRows = std::min<hsize_t>(this->BlockRows, 64);
+    }
   }
 
   std::int64_t At(hsize_t row)
@@ -78,6 +87,20 @@ public:
       const hsize_t start = block * this->BlockRows;
       const hsize_t count = std::min(this->BlockRows, this->Size - start);
       std::vector<std::int64_t> values(count);
+      if (this->UseDirect && this->Direct.Read(start, count, values.data()))
+      {
+        it = this->Blocks.emplace(block, std::move(values)).first;
+        ++this->BlocksRead;
+        return it->second[row - block * this->BlockRows];
+      }
+      this->UseDirect = false;
+      if (this->BlockRows != this->FileBlockRows)
+      {
+        // Direct reads failed: fall back to whole-chunk blocks (drop the small ones).
+        this->BlockRows = this->FileBlockRows;
+        this->Blocks.clear();
+        return this->At(row);
+      }
       h5::Handle fileSpace(H5Dget_space(this->Dataset));
       H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
       h5::Handle memSpace(H5Screate_simple(1, &count, nullptr));
@@ -97,8 +120,11 @@ private:
   hid_t Dataset;
   hsize_t Size;
   hsize_t BlockRows;
+  hsize_t FileBlockRows;
   std::string File;
   std::map<hsize_t, std::vector<std::int64_t>> Blocks;
+  h5::DirectRows Direct;
+  bool UseDirect = false;
 };
 
 /// Rows per chunk of a dataset (0 when not chunked).
@@ -1132,12 +1158,161 @@ EventTable TrainingLogReader::ReadEvents() const
   return out;
 }
 
+namespace
+{
+/// Minimal id column over unfiltered ids, read with pread only (safe on several threads
+/// once the chunk addresses are resolved); sets Failed instead of throwing.
+class DirectIdColumn
+{
+public:
+  explicit DirectIdColumn(h5::DirectRows& direct)
+    : Direct(direct)
+  {
+  }
+
+  std::int64_t At(hsize_t row)
+  {
+    const hsize_t block = row / BlockRows;
+    auto it = this->Blocks.find(block);
+    if (it == this->Blocks.end())
+    {
+      const hsize_t start = block * BlockRows;
+      const hsize_t count = std::min(BlockRows, this->Direct.Size() - start);
+      std::vector<std::int64_t> values(count, 0);
+      if (!this->Direct.Read(start, count, values.data()))
+      {
+        this->Failed = true;
+      }
+      it = this->Blocks.emplace(block, std::move(values)).first;
+    }
+    return it->second[row - block * BlockRows];
+  }
+
+  bool Failed = false;
+
+private:
+  static constexpr hsize_t BlockRows = 64;
+  h5::DirectRows& Direct;
+  std::map<hsize_t, std::vector<std::int64_t>> Blocks;
+};
+
+/**
+ * Finds the rows of the sorted, unique @p ids in the strictly increasing id column @p column
+ * of @p n > 0 rows by interpolation search; false when the column turns out not to be sorted.
+ */
+template <typename Column>
+bool SearchSortedIds(Column& column,
+  hsize_t n,
+  const std::vector<std::int64_t>& ids,
+  std::vector<hsize_t>& rows,
+  std::vector<std::size_t>& which)
+{
+  bool unsorted = false;
+  hsize_t lo = 0;
+  const std::int64_t last = column.At(n - 1);
+  for (std::size_t q = 0; q < ids.size() && !unsorted; ++q)
+  {
+    const std::int64_t x = ids[q];
+    if (lo >= n || x > last)
+    {
+      break;
+    }
+    std::int64_t vlo = column.At(lo);
+    if (x < vlo)
+    {
+      continue;
+    }
+    hsize_t a = lo, b = n - 1;
+    std::int64_t va = vlo, vb = last;
+    if (va > vb)
+    {
+      unsorted = true;
+      break;
+    }
+    // Interpolation search, guarded by bisection to bound the probes.
+    bool bisect = false;
+    while (va < x && x < vb && b - a > 1)
+    {
+      const hsize_t width = b - a;
+      hsize_t m;
+      if (bisect)
+      {
+        m = a + (b - a) / 2;
+      }
+      else
+      {
+        const long double f = static_cast<long double>(x - va) / static_cast<long double>(vb - va);
+        m = a + static_cast<hsize_t>(f * static_cast<long double>(b - a));
+        m = std::min(std::max(m, a + 1), b - 1);
+      }
+      const std::int64_t vm = column.At(m);
+      if (vm < va || vm > vb)
+      {
+        unsorted = true;
+        break;
+      }
+      if (vm == x)
+      {
+        a = b = m;
+        va = vb = vm;
+        break;
+      }
+      if (vm < x)
+      {
+        a = m;
+        va = vm;
+      }
+      else
+      {
+        b = m;
+        vb = vm;
+      }
+      // Keep interpolating while that at least halves the bracket, else bisect once: at
+      // most two probes per halving, and one or two probes for evenly spread ids.
+      bisect = !bisect && b - a > width / 2;
+    }
+    if (unsorted)
+    {
+      break;
+    }
+    // The rows next to a hit must bracket it (cheap: they share its cached block).
+    const hsize_t hitRow = va == x ? a : b;
+    if ((va == x || vb == x) &&
+      ((hitRow > 0 && column.At(hitRow - 1) >= x) ||
+        (hitRow + 1 < n && column.At(hitRow + 1) <= x)))
+    {
+      unsorted = true;
+      break;
+    }
+    if (va == x)
+    {
+      rows.push_back(a);
+      which.push_back(q);
+      lo = a + 1;
+    }
+    else if (vb == x)
+    {
+      rows.push_back(b);
+      which.push_back(q);
+      lo = b + 1;
+    }
+    else
+    {
+      lo = a + 1 <= b ? a + 1 : b;
+    }
+  }
+  return !unsorted;
+}
+
+} // namespace
+
 //------------------------------------------------------------------------------
 PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::int64_t>& requested,
   unsigned arrays) const
 {
   const Internals& d = *this->Impl;
   h5::ErrorSilencer silence;
+  h5::RandomAccessHint randomAccess(d.File);
   std::vector<std::int64_t> ids = requested;
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
@@ -1157,6 +1332,68 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
   };
   std::vector<Found> found(d.Snapshots.size());
 
+  // Uncompressed id columns (the default) are searched with pread only, on several threads
+  // at once: on a cold file each probe waits for the device, and concurrent probes overlap.
+  // (The few HDF5 calls, chunk address look-ups, are serialised by DirectRows.)
+  const std::size_t snapshotCount = d.Snapshots.size();
+  struct Search
+  {
+    bool Done = false;
+    bool Sorted = true;
+    std::vector<hsize_t> Rows;
+    std::vector<std::size_t> Which;
+  };
+  std::vector<Search> searches(snapshotCount);
+  {
+    std::vector<h5::DirectRows> direct(snapshotCount);
+    std::vector<h5::Handle> idSets(snapshotCount); // open while the searches run
+    std::vector<long long> todo;
+    for (std::size_t s = 0; s < snapshotCount && !ids.empty(); ++s)
+    {
+      const std::string path = d.Snapshots[s].Group + "/id";
+      if (!h5::IsDataset(d.File, path))
+      {
+        continue; // reported by the serial pass below
+      }
+      idSets[s] = d.OpenDataset(d.File, path);
+      const std::vector<hsize_t> dims = h5::Dims(idSets[s]);
+      // Few chunks: look them all up now (no locking during the search); many (a snapshot
+      // of 5M Gaussians has 1221 id chunks, of which 100 ids touch at most a few hundred):
+      // as the search needs them, under a lock.
+      if (dims.size() == 1 && dims[0] > 0 && direct[s].Open(idSets[s], H5T_NATIVE_INT64) &&
+        (direct[s].ChunkCount() > 256 || direct[s].Resolve({})))
+      {
+        todo.push_back(static_cast<long long>(s));
+      }
+    }
+    const long long count = static_cast<long long>(todo.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(16) if (count > 1)
+    for (long long i = 0; i < count; ++i)
+    {
+      const std::size_t s = static_cast<std::size_t>(todo[static_cast<std::size_t>(i)]);
+      Search& search = searches[s];
+      DirectIdColumn column(direct[s]);
+      const bool sorted = SearchSortedIds(column, direct[s].Size(), ids, search.Rows, search.Which);
+      if (!column.Failed)
+      {
+        search.Done = true;
+        search.Sorted = sorted;
+      }
+    }
+  }
+
+  // Value reads that can run on threads (pread of unfiltered rows), done after the loop.
+  struct ValueJob
+  {
+    std::size_t Snapshot;
+    int Array;
+    std::string Path;
+    std::unique_ptr<h5::DirectRows> Direct;
+    bool Ok = false;
+  };
+  std::vector<ValueJob> jobs;
+  std::vector<std::vector<hsize_t>> snapshotRows(snapshotCount);
+
   for (std::size_t s = 0; s < d.Snapshots.size() && !ids.empty(); ++s)
   {
     const SnapshotEntry& e = d.Snapshots[s];
@@ -1171,104 +1408,26 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
     {
       continue;
     }
-    hsize_t blockRows = ChunkRows(idSet);
-    if (blockRows == 0)
-    {
-      blockRows = 4096;
-    }
-    IdBlocks column(idSet, n, blockRows, d.Path);
-    std::vector<hsize_t> rows;
+    std::vector<hsize_t>& rows = snapshotRows[s];
     std::vector<std::size_t> which;
     bool unsorted = false;
-    hsize_t lo = 0;
-    const std::int64_t last = column.At(n - 1);
-    for (std::size_t q = 0; q < ids.size() && !unsorted; ++q)
+    if (searches[s].Done)
     {
-      const std::int64_t x = ids[q];
-      if (lo >= n || x > last)
+      rows.swap(searches[s].Rows);
+      which.swap(searches[s].Which);
+      unsorted = !searches[s].Sorted;
+    }
+    else
+    {
+      hsize_t blockRows = ChunkRows(idSet);
+      if (blockRows == 0)
       {
-        break;
+        blockRows = 4096;
       }
-      std::int64_t vlo = column.At(lo);
-      if (x < vlo)
-      {
-        continue;
-      }
-      hsize_t a = lo, b = n - 1;
-      std::int64_t va = vlo, vb = last;
-      if (va > vb)
+      IdBlocks column(idSet, n, blockRows, d.Path);
+      if (!SearchSortedIds(column, n, ids, rows, which))
       {
         unsorted = true;
-        break;
-      }
-      // Interpolation search, alternating with bisection to bound the probes.
-      bool bisect = false;
-      while (va < x && x < vb && b - a > 1)
-      {
-        hsize_t m;
-        if (bisect)
-        {
-          m = a + (b - a) / 2;
-        }
-        else
-        {
-          const long double f =
-            static_cast<long double>(x - va) / static_cast<long double>(vb - va);
-          m = a + static_cast<hsize_t>(f * static_cast<long double>(b - a));
-          m = std::min(std::max(m, a + 1), b - 1);
-        }
-        bisect = !bisect;
-        const std::int64_t vm = column.At(m);
-        if (vm < va || vm > vb)
-        {
-          unsorted = true;
-          break;
-        }
-        if (vm == x)
-        {
-          a = b = m;
-          va = vb = vm;
-          break;
-        }
-        if (vm < x)
-        {
-          a = m;
-          va = vm;
-        }
-        else
-        {
-          b = m;
-          vb = vm;
-        }
-      }
-      if (unsorted)
-      {
-        break;
-      }
-      // The rows next to a hit must bracket it (cheap: they share its cached block).
-      const hsize_t hitRow = va == x ? a : b;
-      if ((va == x || vb == x) &&
-        ((hitRow > 0 && column.At(hitRow - 1) >= x) ||
-          (hitRow + 1 < n && column.At(hitRow + 1) <= x)))
-      {
-        unsorted = true;
-        break;
-      }
-      if (va == x)
-      {
-        rows.push_back(a);
-        which.push_back(q);
-        lo = a + 1;
-      }
-      else if (vb == x)
-      {
-        rows.push_back(b);
-        which.push_back(q);
-        lo = b + 1;
-      }
-      else
-      {
-        lo = a + 1 <= b ? a + 1 : b;
       }
     }
     if (unsorted)
@@ -1332,6 +1491,15 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
       }
       std::vector<float>& values = found[s].Values[a];
       values.resize(rows.size() * static_cast<std::size_t>(width));
+      // Uncompressed chunks: read just the bytes of the rows (later, on threads); compressed:
+      // inflate only the chunks holding them; anything else: an HDF5 point selection.
+      auto direct = std::make_unique<h5::DirectRows>();
+      if (direct->Open(set, H5T_NATIVE_FLOAT) && direct->Resolve(rows))
+      {
+        direct->Prefetch(rows);
+        jobs.push_back({ s, a, path, std::move(direct), false });
+        continue;
+      }
       if (h5::FastReadRows(set, H5T_NATIVE_FLOAT, rows, values.data()))
       {
         found[s].Has[a] = true;
@@ -1371,6 +1539,56 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
     {
       hits.push_back({ which[r], s, r });
     }
+  }
+  {
+    const long long count = static_cast<long long>(jobs.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(16) if (count > 1)
+    for (long long i = 0; i < count; ++i)
+    {
+      ValueJob& job = jobs[static_cast<std::size_t>(i)];
+      job.Ok = job.Direct->ReadRows(
+        snapshotRows[job.Snapshot], found[job.Snapshot].Values[job.Array].data());
+    }
+  }
+  for (ValueJob& job : jobs)
+  {
+    if (!job.Ok)
+    {
+      // A direct read failed (e.g. a short file): let HDF5 read the rows and report.
+      const std::vector<hsize_t>& rows = snapshotRows[job.Snapshot];
+      std::vector<float>& values = found[job.Snapshot].Values[job.Array];
+      const int width =
+        FloatArrays[job.Array].Flag == SnapshotSH ? 3 : FloatArrays[job.Array].Width;
+      h5::Handle set = d.OpenDataset(d.File, job.Path);
+      const int rank = static_cast<int>(h5::Dims(set).size());
+      std::vector<hsize_t> coords;
+      for (hsize_t r : rows)
+      {
+        for (int c = 0; c < width; ++c)
+        {
+          coords.push_back(r);
+          if (rank >= 2)
+          {
+            coords.push_back(rank == 3 ? 0 : static_cast<hsize_t>(c));
+          }
+          if (rank == 3)
+          {
+            coords.push_back(static_cast<hsize_t>(c));
+          }
+        }
+      }
+      const hsize_t npoints = rows.size() * static_cast<std::size_t>(width);
+      h5::Handle fileSpace(H5Dget_space(set));
+      h5::CheckStatus(H5Sselect_elements(fileSpace, H5S_SELECT_SET, npoints, coords.data()),
+        d.Path,
+        "cannot select rows of " + job.Path);
+      h5::Handle memSpace(H5Screate_simple(1, &npoints, nullptr));
+      h5::CheckStatus(
+        H5Dread(set, H5T_NATIVE_FLOAT, memSpace, fileSpace, H5P_DEFAULT, values.data()),
+        d.Path,
+        "cannot read rows of " + job.Path);
+    }
+    found[job.Snapshot].Has[job.Array] = true;
   }
 
   std::stable_sort(hits.begin(),

@@ -6,8 +6,10 @@
  * Opening reads only the root attributes and the list of groups and snapshots. Each table
  * and snapshot is read when asked for, and only the arrays asked for: a snapshot read
  * without SH rest reads the k = 0 hyperslab of `sh`; the property history of a few ids
- * reads, per snapshot, the id chunks its search touches and then the selected rows, never
- * whole snapshots.
+ * reads, per snapshot, only what its search touches and then the selected rows, never
+ * whole snapshots: on uncompressed snapshots (the writers' default) exactly the bytes of
+ * the probed and selected rows (pread at the chunk addresses, several snapshots at once),
+ * on compressed ones the chunks holding them.
  *
  * Validation: a file that is not a training log, or of another format version, throws.
  * Missing optional groups are reported by GetLacks() as sentences a user can read. Broken
@@ -105,7 +107,8 @@ public:
   /**
    * History of @p ids across all snapshots: one row per (id, snapshot holding it), ordered
    * by id then iteration, with the arrays named by @p arrays (SnapshotSH means the DC term).
-   * Reads only the id chunks the search touches and the selected rows of each dataset.
+   * Reads only the ids the search probes and the selected rows of each dataset (whole
+   * chunks of them when the snapshot is compressed).
    */
   PropertyHistory ReadPropertyHistory(const std::vector<std::int64_t>& ids,
     unsigned arrays = SnapshotPositions | SnapshotLogScales | SnapshotRotations |

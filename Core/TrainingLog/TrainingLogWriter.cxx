@@ -187,7 +187,8 @@ TrainingLogWriter::TrainingLogWriter(const std::string& path,
   d.Path = path;
   d.Options = options;
   d.WritePath = options.WriteToTemporary ? path + ".tmp" : path;
-  if (options.DeflateLevel < 0 || options.DeflateLevel > 9)
+  if (options.DeflateLevel < 0 || options.DeflateLevel > 9 || options.SnapshotDeflateLevel < 0 ||
+    options.SnapshotDeflateLevel > 9)
   {
     throw std::runtime_error(path + ": deflate level must be 0..9");
   }
@@ -507,7 +508,7 @@ void TrainingLogWriter::WriteSnapshot(int iteration,
   h5::WriteIntAttribute(group, "iteration", iteration);
   const hsize_t rows = n;
   const hsize_t c = std::max<hsize_t>(1, std::min<hsize_t>(d.Options.SnapshotChunkRows, 1u << 30));
-  const int level = d.Options.DeflateLevel;
+  const int level = d.Options.SnapshotDeflateLevel;
   const std::string& f = d.WritePath;
   h5::CreateAndWrite(
     group, "id", H5T_STD_I64LE, H5T_NATIVE_INT64, { rows }, { c }, level, idData, f);

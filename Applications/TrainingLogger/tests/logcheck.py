@@ -44,7 +44,10 @@ def check_format(path):
             assert g["rotation"].shape == (n, 4)
             assert g["opacity_logit"].shape == (n,)
             assert g["sh"].ndim == 3 and g["sh"].shape[0] == n and g["sh"].shape[2] == 3
-            assert g["position"].compression == "gzip" and g["position"].chunks is not None
+            # Chunked; uncompressed by default (snapshot_deflate=0), gzip when asked.
+            assert g["position"].chunks is not None
+            assert g["position"].compression in (None, "gzip")
+        assert e["parent"].compression == "gzip"
 
 
 def dump(path, *args):

@@ -41,6 +41,31 @@ def test_format_and_sorting(tmp_path):
         w.flush()
 
 
+
+@pytest.mark.parametrize("snapshot_deflate", [None, 2])
+def test_snapshot_compression_default(tmp_path, snapshot_deflate):
+    # Snapshots uncompressed by default (as the C++ writer: fast history queries), tables
+    # deflated; snapshot_deflate=N compresses the snapshots too.
+    path = str(tmp_path / "c.h5")
+    kwargs = {} if snapshot_deflate is None else dict(snapshot_deflate=snapshot_deflate)
+    with TrainingLogWriter(path, sh_degree=0, iterations=10, **kwargs) as w:
+        w.append_events(1, 1, [0], [3])
+        n = 50
+        w.write_snapshot(5, np.arange(n), np.ones((n, 3)), np.zeros((n, 3)), np.ones((n, 4)),
+                         np.zeros(n), np.zeros((n, 1, 3)))
+    check_format(path)
+    with h5py.File(path, "r") as f:
+        for name in ("id", "position", "sh"):
+            d = f["snapshots/000005/" + name]
+            if snapshot_deflate is None:
+                assert d.compression is None and not d.shuffle, name
+            else:
+                assert d.compression == "gzip" and d.compression_opts == 2 and d.shuffle, name
+        assert f["events/parent"].compression == "gzip"
+        assert f["metrics/loss"].compression == "gzip"
+        np.testing.assert_array_equal(f["snapshots/000005/id"][:], np.arange(50))
+
+
 WRITER = textwrap.dedent("""
     import sys, numpy as np
     sys.path.insert(0, {pkg!r})

@@ -23,16 +23,19 @@ class TrainingLogger:
     each iteration (it writes a snapshot every ``snapshot_interval`` iterations). Metric
     values may be python floats or one-element tensors; values not measured are None
     (stored as NaN). ``elapsed_s`` defaults to the wall time since the logger was created.
+    ``deflate``, ``snapshot_deflate`` (default 0: snapshots uncompressed), ``chunk_rows``
+    and ``flush_every_s`` are passed to TrainingLogWriter.
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000,
                  snapshot_interval=DEFAULT_SNAPSHOT_INTERVAL, snapshot_sh_rest=True,
                  snapshot_statistics=True, deflate=1, chunk_rows=4096, producer=None,
-                 flush_every_s=300.0):
+                 flush_every_s=300.0, snapshot_deflate=0):
         self.writer = TrainingLogWriter(path, scene=scene, sh_degree=sh_degree,
                                         iterations=iterations, producer=producer,
                                         deflate=deflate, chunk_rows=chunk_rows,
-                                        flush_every_s=flush_every_s)
+                                        flush_every_s=flush_every_s,
+                                        snapshot_deflate=snapshot_deflate)
         self.path = self.writer.path
         self.snapshot_interval = int(snapshot_interval) if snapshot_interval else 0
         self.snapshot_sh_rest = snapshot_sh_rest

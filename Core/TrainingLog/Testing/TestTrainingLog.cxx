@@ -6,6 +6,7 @@
 #include "TrainingLogWriter.h"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <cstring>
@@ -82,11 +83,12 @@ struct WrittenLog
   std::vector<unsigned char> Image;
 };
 
-WrittenLog WriteSample(const std::string& tag, std::size_t chunkRows)
+WrittenLog WriteSample(const std::string& tag, std::size_t chunkRows, int snapshotDeflate = 0)
 {
   WrittenLog log;
   log.Path = TempLogPath(tag);
   TrainingLogWriterOptions options;
+  options.SnapshotDeflateLevel = snapshotDeflate;
   options.Producer = "unit-test";
   options.Scene = "synthetic";
   options.ShDegree = 3;
@@ -347,71 +349,108 @@ TEST(TrainingLog, ReadOptionsLoadOnlyWhatIsAsked)
 //------------------------------------------------------------------------------
 TEST(TrainingLog, PropertyHistoryMatchesFullReads)
 {
-  // Small chunks so that the searches cross many blocks.
-  for (std::size_t chunk : { std::size_t(7), std::size_t(64), std::size_t(100000) })
-  {
-    WrittenLog log = WriteSample("history" + std::to_string(chunk), chunk);
-    TrainingLogReader reader(log.Path);
-    std::mt19937 rng(3);
-    std::vector<std::int64_t> query;
-    std::uniform_int_distribution<std::int64_t> pick(-5, 1400);
-    for (int i = 0; i < 150; ++i)
+  // Small chunks so that the searches cross many blocks (3 rows: the later snapshots have
+  // more than 256 id chunks, whose addresses are then looked up lazily, under a lock, by
+  // the threaded search); uncompressed snapshots (the default: rows read by pread) and
+  // deflated ones (chunks inflated by our code).
+  for (int level : { 0, 1 })
+    for (std::size_t chunk : { std::size_t(3), std::size_t(64), std::size_t(100000) })
     {
-      query.push_back(pick(rng));
-    }
-    query.push_back(0);
-    query.push_back(log.Snapshots[2500].Ids.back()); // the last row
-    query.push_back(log.Snapshots[2500].Ids.back() + 1);
-    query.push_back(query[3]); // duplicates are merged
-    PropertyHistory h = reader.ReadPropertyHistory(query, SnapshotAll);
-
-    // Reference: full reads of every snapshot.
-    std::vector<std::int64_t> ids = query;
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    std::size_t row = 0;
-    for (std::int64_t id : ids)
-    {
-      for (const auto& entry : log.Snapshots)
+      SCOPED_TRACE("deflate " + std::to_string(level) + ", chunk " + std::to_string(chunk));
+      WrittenLog log =
+        WriteSample("history" + std::to_string(chunk) + "_" + std::to_string(level), chunk, level);
+      TrainingLogReader reader(log.Path);
+      std::mt19937 rng(3);
+      std::vector<std::int64_t> query;
+      std::uniform_int_distribution<std::int64_t> pick(-5, 1400);
+      for (int i = 0; i < 150; ++i)
       {
-        const GaussianCloud& c = entry.second;
-        auto it = std::lower_bound(c.Ids.begin(), c.Ids.end(), id);
-        if (it == c.Ids.end() || *it != id)
-        {
-          continue;
-        }
-        const std::size_t i = static_cast<std::size_t>(it - c.Ids.begin());
-        ASSERT_LT(row, h.Size());
-        EXPECT_EQ(h.Id[row], id);
-        EXPECT_EQ(h.Iteration[row], entry.first);
-        for (int j = 0; j < 3; ++j)
-        {
-          EXPECT_EQ(h.Positions[3 * row + j], c.Positions[3 * i + j]);
-          EXPECT_EQ(h.LogScales[3 * row + j], c.LogScales[3 * i + j]);
-          EXPECT_EQ(h.SHDC[3 * row + j], c.SH[i * 3 * c.ShCoefficientCount() + j]);
-        }
-        for (int j = 0; j < 4; ++j)
-        {
-          EXPECT_EQ(h.Rotations[4 * row + j], c.Rotations[4 * i + j]);
-        }
-        EXPECT_EQ(h.OpacityLogits[row], c.OpacityLogits[i]);
-        const SnapshotStatistics& s = log.Stats[entry.first];
-        if (s.GradAccum.empty())
-        {
-          EXPECT_TRUE(std::isnan(h.GradAccum[row]));
-          EXPECT_TRUE(std::isnan(h.Denom[row]));
-        }
-        else
-        {
-          EXPECT_EQ(h.GradAccum[row], s.GradAccum[i]);
-          EXPECT_EQ(h.Denom[row], s.Denom[i]);
-        }
-        ++row;
+        query.push_back(pick(rng));
       }
+      query.push_back(0);
+      query.push_back(log.Snapshots[2500].Ids.back()); // the last row
+      query.push_back(log.Snapshots[2500].Ids.back() + 1);
+      query.push_back(query[3]); // duplicates are merged
+      PropertyHistory h = reader.ReadPropertyHistory(query, SnapshotAll);
+
+      // Reference: full reads of every snapshot.
+      std::vector<std::int64_t> ids = query;
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      std::size_t row = 0;
+      for (std::int64_t id : ids)
+      {
+        for (const auto& entry : log.Snapshots)
+        {
+          const GaussianCloud& c = entry.second;
+          auto it = std::lower_bound(c.Ids.begin(), c.Ids.end(), id);
+          if (it == c.Ids.end() || *it != id)
+          {
+            continue;
+          }
+          const std::size_t i = static_cast<std::size_t>(it - c.Ids.begin());
+          ASSERT_LT(row, h.Size());
+          EXPECT_EQ(h.Id[row], id);
+          EXPECT_EQ(h.Iteration[row], entry.first);
+          for (int j = 0; j < 3; ++j)
+          {
+            EXPECT_EQ(h.Positions[3 * row + j], c.Positions[3 * i + j]);
+            EXPECT_EQ(h.LogScales[3 * row + j], c.LogScales[3 * i + j]);
+            EXPECT_EQ(h.SHDC[3 * row + j], c.SH[i * 3 * c.ShCoefficientCount() + j]);
+          }
+          for (int j = 0; j < 4; ++j)
+          {
+            EXPECT_EQ(h.Rotations[4 * row + j], c.Rotations[4 * i + j]);
+          }
+          EXPECT_EQ(h.OpacityLogits[row], c.OpacityLogits[i]);
+          const SnapshotStatistics& s = log.Stats[entry.first];
+          if (s.GradAccum.empty())
+          {
+            EXPECT_TRUE(std::isnan(h.GradAccum[row]));
+            EXPECT_TRUE(std::isnan(h.Denom[row]));
+          }
+          else
+          {
+            EXPECT_EQ(h.GradAccum[row], s.GradAccum[i]);
+            EXPECT_EQ(h.Denom[row], s.Denom[i]);
+          }
+          ++row;
+        }
+      }
+      EXPECT_EQ(row, h.Size()) << "chunk " << chunk;
+      EXPECT_GT(row, 100u);
     }
-    EXPECT_EQ(row, h.Size()) << "chunk " << chunk;
-    EXPECT_GT(row, 100u);
+}
+
+//------------------------------------------------------------------------------
+TEST(TrainingLog, SnapshotsUncompressedByDefaultTablesDeflated)
+{
+  for (int level : { 0, 3 })
+  {
+    WrittenLog log = WriteSample("filters" + std::to_string(level), 64, level);
+    hid_t file = H5Fopen(log.Path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    auto filters = [&](const char* path)
+    {
+      hid_t set = H5Dopen2(file, path, H5P_DEFAULT);
+      EXPECT_GE(set, 0) << path;
+      hid_t plist = H5Dget_create_plist(set);
+      const int n = H5Pget_nfilters(plist);
+      H5Pclose(plist);
+      H5Dclose(set);
+      return n;
+    };
+    const int snapshotFilters = level > 0 ? 2 : 0; // shuffle + deflate
+    EXPECT_EQ(filters("/snapshots/000500/id"), snapshotFilters);
+    EXPECT_EQ(filters("/snapshots/000500/position"), snapshotFilters);
+    EXPECT_EQ(filters("/snapshots/000500/sh"), snapshotFilters);
+    EXPECT_EQ(filters("/events/parent"), 2);
+    EXPECT_EQ(filters("/metrics/loss"), 2);
+    H5Fclose(file);
   }
+  TrainingLogWriterOptions bad;
+  bad.SnapshotDeflateLevel = 10;
+  EXPECT_THROW(TrainingLogWriter(TempLogPath("badlevel"), bad), std::runtime_error);
 }
 
 //------------------------------------------------------------------------------
