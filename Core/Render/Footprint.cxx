@@ -33,23 +33,7 @@ typedef std::int32_t I8 __attribute__((vector_size(32)));
 
 VIS4GS_FP_AVX2 F8 FootprintExp8(F8 x)
 {
-  const I8 inRange = x >= -87.33654f;
-  x = inRange ? x : F8{};
-  const F8 t = x * 1.44269504088896341f;
-  const F8 n = (t + 12582912.0f) - 12582912.0f;
-  F8 r = x - n * 0.693359375f;
-  r = r - n * -2.12194440e-4f;
-  const F8 r2 = r * r;
-  F8 p = F8{} + 1.9875691500E-4f;
-  p = p * r + 1.3981999507E-3f;
-  p = p * r + 8.3334519073E-3f;
-  p = p * r + 4.1665795894E-2f;
-  p = p * r + 1.6666665459E-1f;
-  p = p * r + 5.0000001201E-1f;
-  p = p * r2 + r + 1.0f;
-  const I8 bits = (__builtin_convertvector(n, I8) + 127) << 23;
-  const F8 res = p * reinterpret_cast<F8>(bits);
-  return inRange ? res : F8{};
+  return raster::KernelExpLanes<F8, I8>(x);
 }
 
 // The alpha test of KernelAlpha for 8 pixels given their powers. Most lanes are decided

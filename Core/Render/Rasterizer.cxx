@@ -811,25 +811,7 @@ VIS4GS_ALWAYS_INLINE bool AnyLane(I m)
 
 VIS4GS_ALWAYS_INLINE Lanes<float>::V VectorExp(Lanes<float>::V x)
 {
-  typedef Lanes<float>::V V;
-  typedef Lanes<float>::I I;
-  const I inRange = x >= -87.33654f;
-  x = inRange ? x : V{};
-  const V t = x * 1.44269504088896341f;
-  const V n = (t + 12582912.0f) - 12582912.0f;
-  V r = x - n * 0.693359375f;
-  r = r - n * -2.12194440e-4f;
-  const V r2 = r * r;
-  V p = V{} + 1.9875691500E-4f;
-  p = p * r + 1.3981999507E-3f;
-  p = p * r + 8.3334519073E-3f;
-  p = p * r + 4.1665795894E-2f;
-  p = p * r + 1.6666665459E-1f;
-  p = p * r + 5.0000001201E-1f;
-  p = p * r2 + r + 1.0f;
-  const I bits = (__builtin_convertvector(n, I) + 127) << 23;
-  const V res = p * (V)bits;
-  return inRange ? res : V{};
+  return raster::KernelExpLanes<Lanes<float>::V, Lanes<float>::I>(x);
 }
 
 VIS4GS_ALWAYS_INLINE Lanes<double>::V VectorExp(Lanes<double>::V x)

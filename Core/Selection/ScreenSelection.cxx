@@ -26,23 +26,7 @@ typedef std::int32_t I16 __attribute__((vector_size(64)));
 // raster::KernelExp(float) on 16 lanes with the same operations (bit-identical per lane).
 inline __attribute__((always_inline)) V16 VectorKernelExp(V16 x)
 {
-  const I16 inRange = x >= -87.33654f;
-  x = inRange ? x : V16{};
-  const V16 t = x * 1.44269504088896341f;
-  const V16 n = (t + 12582912.0f) - 12582912.0f;
-  V16 r = x - n * 0.693359375f;
-  r = r - n * -2.12194440e-4f;
-  const V16 r2 = r * r;
-  V16 p = V16{} + 1.9875691500E-4f;
-  p = p * r + 1.3981999507E-3f;
-  p = p * r + 8.3334519073E-3f;
-  p = p * r + 4.1665795894E-2f;
-  p = p * r + 1.6666665459E-1f;
-  p = p * r + 5.0000001201E-1f;
-  p = p * r2 + r + 1.0f;
-  const I16 bits = (__builtin_convertvector(n, I16) + 127) << 23;
-  const V16 res = p * (V16)bits;
-  return inRange ? res : V16{};
+  return raster::KernelExpLanes<V16, I16>(x);
 }
 
 void AtomicMax(std::uint32_t* slot, float value)
