@@ -15,6 +15,7 @@
 #ifndef vis4gs_Adam_h
 #define vis4gs_Adam_h
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -70,17 +71,43 @@ inline void AdamStep(AdamState& state,
   const float eps = static_cast<float>(AdamState::Epsilon);
   float* m = state.M.data();
   float* v = state.V.data();
-  const std::int64_t count = static_cast<std::int64_t>(n);
-#pragma omp parallel for num_threads(threads) schedule(static) if (count > 65536)
-  for (std::int64_t i = 0; i < count; ++i)
+  // One contiguous run [begin, end) with one step size: a plain loop the compiler
+  // vectorises (sqrt and division are correctly rounded, so every lane gives the scalar
+  // result bit for bit).
+  auto run = [=](std::size_t begin, std::size_t end, float sz)
   {
-    const float g = grad[i];
-    m[i] = m[i] + (g - m[i]) * oneMinusB1;
-    v[i] = v[i] * b2 + oneMinusB2 * g * g;
-    const float denom = std::sqrt(v[i]) / bc2Sqrt + eps;
-    const float sz =
-      (period > 0 && static_cast<std::size_t>(i) % period < firstCount) ? firstStepSize : stepSize;
-    param[i] = param[i] - sz * (m[i] / denom);
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const float g = grad[i];
+      const float mi = m[i] + (g - m[i]) * oneMinusB1;
+      const float vi = v[i] * b2 + oneMinusB2 * g * g;
+      m[i] = mi;
+      v[i] = vi;
+      const float denom = std::sqrt(vi) / bc2Sqrt + eps;
+      param[i] = param[i] - sz * (mi / denom);
+    }
+  };
+  if (period == 0 || firstCount == 0)
+  {
+    constexpr std::int64_t block = 4096;
+    const std::int64_t blocks = (static_cast<std::int64_t>(n) + block - 1) / block;
+#pragma omp parallel for num_threads(threads) schedule(static) if (n > 65536)
+    for (std::int64_t b = 0; b < blocks; ++b)
+    {
+      const std::size_t begin = static_cast<std::size_t>(b * block);
+      run(begin, std::min(n, begin + static_cast<std::size_t>(block)), stepSize);
+    }
+    return;
+  }
+  // Rows of `period` values: the first `firstCount` with the first step size.
+  const std::int64_t rows = static_cast<std::int64_t>((n + period - 1) / period);
+#pragma omp parallel for num_threads(threads) schedule(static) if (n > 65536)
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    const std::size_t begin = static_cast<std::size_t>(r) * period;
+    const std::size_t split = std::min(n, begin + firstCount);
+    run(begin, split, firstStepSize);
+    run(split, std::min(n, begin + period), stepSize);
   }
 }
 

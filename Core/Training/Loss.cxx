@@ -60,12 +60,15 @@ void Blur(const T* in, T* out, T* tmp, int W, int H)
   {
     w[k] = static_cast<T>(wd[k]);
   }
-  // Horizontal.
+  // Horizontal. Interior columns (the whole window inside the row) tap by tap across the
+  // row, which vectorises; each output still sums its taps from k = 0 up, starting at 0,
+  // exactly as the per-pixel loop used for the border columns.
+  const int xi0 = std::min(Radius, W), xi1 = std::max(xi0, W - Radius);
   for (int y = 0; y < H; ++y)
   {
     const T* row = in + static_cast<std::size_t>(y) * W;
     T* o = tmp + static_cast<std::size_t>(y) * W;
-    for (int x = 0; x < W; ++x)
+    auto border = [&](int x)
     {
       T s = 0;
       const int k0 = std::max(0, Radius - x), k1 = std::min(2 * Radius, W - 1 - x + Radius);
@@ -74,6 +77,27 @@ void Blur(const T* in, T* out, T* tmp, int W, int H)
         s += w[k] * row[x + k - Radius];
       }
       o[x] = s;
+    };
+    for (int x = 0; x < xi0; ++x)
+    {
+      border(x);
+    }
+    for (int x = xi1; x < W; ++x)
+    {
+      border(x);
+    }
+    for (int x = xi0; x < xi1; ++x)
+    {
+      o[x] = 0;
+    }
+    for (int k = 0; k <= 2 * Radius; ++k)
+    {
+      const T wk = w[k];
+      const T* r = row + k - Radius;
+      for (int x = xi0; x < xi1; ++x)
+      {
+        o[x] += wk * r[x];
+      }
     }
   }
   // Vertical.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -112,6 +113,371 @@ void ShBasisGradient(const T d[3], int degree, T dY[16][3])
   set(15, T(sh::C3[6]), T(3) * xx - T(3) * yy, T(-6) * x * y, T(0));
 }
 
+//------------------------------------------------------------------------------
+// Compositing backward, per tile. Two implementations of the same per-pixel arithmetic:
+//
+//  - TileBackwardScalar(): the reference, pixel by pixel (each Gaussian's gradients summed
+//    over its pixels in row-major order);
+//  - TileBackwardLanes(): 16 lanes = one tile row, with GCC vector extensions, compiled for
+//    baseline x86-64, AVX2 and AVX-512 and selected at run time like the forward's
+//    compositing (Core/Render/Rasterizer.cxx). Every lane performs exactly the scalar
+//    operations (the library is built with -ffp-contract=off; KernelExpLanes equals
+//    KernelExp bit for bit), so each pixel's contribution is bit-identical to the scalar
+//    path's; only the order of the per-Gaussian sums differs: per lane over the rows, then a
+//    fixed tree over the 16 lanes. That order is the same on every instruction set and for
+//    every thread count.
+
+template <typename T>
+using BackwardKernel = detail::CompositeKernel<T>;
+
+/// Per Gaussian: compact 2D data, and the conservative spans of the pixels where
+/// o e^power >= 1/255 is possible (Render's RasterBounds.h, as the forward makes them);
+/// pixels outside are provably skipped by the exact kernel, so the spans never change a
+/// result.
+template <typename T>
+void PrepareKernels(const ViewProjection<T>& projection,
+  int threads,
+  std::vector<BackwardKernel<T>>& kernels,
+  std::vector<raster::detail::SpanBounds>& spans)
+{
+  const std::size_t n = projection.Gaussians.size();
+  spans.resize(n);
+  kernels.resize(n);
+  const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const ProjectedGaussian<T>& g = projection.Gaussians[static_cast<std::size_t>(ii)];
+    BackwardKernel<T>& k = kernels[static_cast<std::size_t>(ii)];
+    // Below PMin, o e^power < 1/255 for certain (a margin of 1e-3 covers the rounding of
+    // KernelExp and of this logarithm): the scalar path skips the pair without exp().
+    k = { g.U,
+      g.V,
+      g.ConicA,
+      g.ConicB,
+      g.ConicC,
+      g.Opacity,
+      g.Color[0],
+      g.Color[1],
+      g.Color[2],
+      static_cast<T>(std::log(1.0 / (255.0 * static_cast<double>(g.Opacity))) - 1e-3) };
+    raster::detail::SpanBounds& sb = spans[static_cast<std::size_t>(ii)];
+    sb = raster::detail::SpanBounds();
+    if (g.IsVisible())
+    {
+      const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
+      sb = raster::detail::MakeSpanBounds<T>(
+        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
+    }
+  }
+}
+
+template <typename T>
+struct ForwardContext
+{
+  const TileBins* Bins;
+  const BackwardKernel<T>* Kernels;
+  const raster::detail::SpanBounds* Spans;
+  RasterImage<T>* Image;
+  T Background[3];
+  int Width, Height;
+};
+
+template <typename T>
+struct BackwardContext
+{
+  const TileBins* Bins;
+  const BackwardKernel<T>* Kernels;
+  const raster::detail::SpanBounds* Spans;
+  const RasterImage<T>* Image;
+  const T* dLdImage;
+  T Background[3];
+  int Width, Height;
+};
+
+/// A partition's per-Gaussian accumulators: a Gaussian's row is zeroed and recorded on
+/// first use; each tile then adds its one sum per Gaussian, tiles in order.
+template <typename T>
+struct PartitionSink
+{
+  T* Accumulators;
+  std::uint8_t* Marks;
+  std::vector<std::uint32_t>* Touched;
+  std::vector<T>* Local; ///< scratch of the scalar path
+
+  T* Row(std::uint32_t g)
+  {
+    constexpr int S = ProjectedGradients<T>::Stride;
+    T* o = this->Accumulators + static_cast<std::size_t>(g) * S;
+    if (!this->Marks[g])
+    {
+      this->Marks[g] = 1;
+      this->Touched->push_back(g);
+      for (int k = 0; k < S; ++k)
+      {
+        o[k] = T(0);
+      }
+    }
+    return o;
+  }
+};
+
+template <typename T>
+void TileBackwardScalar(const BackwardContext<T>& ctx, std::size_t t, PartitionSink<T>& sink)
+{
+  constexpr int S = ProjectedGradients<T>::Stride;
+  constexpr int TS = raster::TileSize;
+  const TileBins& bins = *ctx.Bins;
+  const RasterImage<T>& image = *ctx.Image;
+  const int W = ctx.Width, H = ctx.Height;
+  const T minAlpha = raster::MinAlpha<T>();
+  const T maxAlpha = T(raster::MaxAlpha);
+  const std::size_t begin = bins.Offsets[t], end = bins.Offsets[t + 1];
+  const std::size_t m = end - begin;
+  const int tx = static_cast<int>(t % static_cast<std::size_t>(bins.TilesX));
+  const int ty = static_cast<int>(t / static_cast<std::size_t>(bins.TilesX));
+  // Per-pixel state of the back-to-front walk (TS x TS pixels of the tile).
+  T pT[TS * TS], pFinal[TS * TS], pBg[TS * TS], pAcc[TS * TS][3], pLastA[TS * TS],
+    pLastC[TS * TS][3], pG[TS * TS][3];
+  std::uint32_t pLast[TS * TS];
+  sink.Local->assign(m * S, T(0));
+  T* local = sink.Local->data(); // the tile's Gaussians' gradients, in list order
+  const int x0 = tx * TS, y0 = ty * TS;
+  const int x1 = std::min(W, x0 + TS), y1 = std::min(H, y0 + TS);
+  std::uint32_t maxLast = 0;
+  for (int py = y0; py < y1; ++py)
+  {
+    for (int px = x0; px < x1; ++px)
+    {
+      const std::size_t pix = static_cast<std::size_t>(py) * W + px;
+      const int q = (py - y0) * TS + (px - x0);
+      pLast[q] = static_cast<std::uint32_t>(std::min<std::size_t>(image.Contributors[pix], m));
+      maxLast = std::max(maxLast, pLast[q]);
+      pFinal[q] = image.Transmittance[pix];
+      pT[q] = pFinal[q];
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        pG[q][ch] = ctx.dLdImage[3 * pix + ch];
+        pAcc[q][ch] = 0;
+        pLastC[q][ch] = 0;
+      }
+      pBg[q] =
+        ctx.Background[0] * pG[q][0] + ctx.Background[1] * pG[q][1] + ctx.Background[2] * pG[q][2];
+      pLastA[q] = 0;
+    }
+  }
+  // Gaussian-major walk, back to front: every pixel still sees its Gaussians in decreasing
+  // list order (the exact sequence of renderCUDA's backward), and each Gaussian's gradients
+  // are summed over its pixels in row-major order.
+  for (std::size_t jj = maxLast; jj-- > 0;)
+  {
+    const std::uint32_t id = bins.Ids[begin + jj];
+    const raster::detail::SpanBounds& sb = ctx.Spans[id];
+    const BackwardKernel<T>& g = ctx.Kernels[id];
+    int r0 = y0, r1 = y1 - 1;
+    if (sb.Bounded)
+    {
+      r0 = std::max(r0, sb.RowMin);
+      r1 = std::min(r1, sb.RowMax);
+    }
+    T* r = local + jj * S;
+    const T u = g.U, v = g.V, ca = g.A, cb = g.B, cc = g.C, op = g.O;
+    const T col[3] = { g.R, g.G, g.Bl };
+    const T pmin = g.PMin;
+    for (int py = r0; py <= r1; ++py)
+    {
+      int c0 = x0, c1 = x1 - 1;
+      if (sb.Bounded)
+      {
+        int xa, xb;
+        if (!sb.Columns(py, xa, xb))
+        {
+          continue;
+        }
+        c0 = std::max(c0, xa);
+        c1 = std::min(c1, xb);
+      }
+      const T fy = static_cast<T>(py);
+      for (int px = c0; px <= c1; ++px)
+      {
+        const int q = (py - y0) * TS + (px - x0);
+        if (jj >= pLast[q])
+        {
+          continue;
+        }
+        const T fx = static_cast<T>(px);
+        const T power = raster::KernelPower(u, v, ca, cb, cc, fx, fy);
+        if (power < pmin || !(power <= T(0)))
+        {
+          continue;
+        }
+        const T G = raster::KernelExp(power);
+        const T a = op * G;
+        const T alpha = a < maxAlpha ? a : maxAlpha;
+        if (!(alpha >= minAlpha))
+        {
+          continue;
+        }
+        const T Tc = pT[q] / (T(1) - alpha);
+        pT[q] = Tc;
+        const T w = alpha * Tc;
+        const T lastAlpha = pLastA[q];
+        T dLdAlpha = 0;
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          pAcc[q][ch] = lastAlpha * pLastC[q][ch] + (T(1) - lastAlpha) * pAcc[q][ch];
+          pLastC[q][ch] = col[ch];
+          dLdAlpha += (col[ch] - pAcc[q][ch]) * pG[q][ch];
+          r[6 + ch] += w * pG[q][ch];
+        }
+        dLdAlpha *= Tc;
+        pLastA[q] = alpha;
+        dLdAlpha += (-pFinal[q] / (T(1) - alpha)) * pBg[q];
+        const T dLdG = op * dLdAlpha;
+        const T dx = u - fx, dy = v - fy;
+        const T gdx = G * dx, gdy = G * dy;
+        r[0] += dLdG * (-gdx * ca - gdy * cb);
+        r[1] += dLdG * (-gdy * cc - gdx * cb);
+        r[2] += T(-0.5) * gdx * dx * dLdG;
+        r[3] += -gdx * dy * dLdG;
+        r[4] += T(-0.5) * gdy * dy * dLdG;
+        r[5] += G * dLdAlpha;
+      }
+    }
+  }
+  // Into the partition's accumulators, in list order.
+  for (std::size_t j = 0; j < m; ++j)
+  {
+    T* o = sink.Row(bins.Ids[begin + j]);
+    for (int k = 0; k < S; ++k)
+    {
+      o[k] += local[j * S + k];
+    }
+  }
+}
+
+#define VIS4GS_BACKWARD_INLINE inline __attribute__((always_inline))
+
+template <typename T>
+struct BackwardLanes;
+template <>
+struct BackwardLanes<float>
+{
+  typedef float V __attribute__((vector_size(64)));
+  typedef std::int32_t I __attribute__((vector_size(64)));
+};
+template <>
+struct BackwardLanes<double>
+{
+  typedef double V __attribute__((vector_size(128)));
+  typedef std::int64_t I __attribute__((vector_size(128)));
+};
+
+#define VIS4GS_LANES_NAMESPACE lanes_baseline
+#define VIS4GS_LANES_TARGET
+#include "RasterBackwardLanes.inc"
+#undef VIS4GS_LANES_NAMESPACE
+#undef VIS4GS_LANES_TARGET
+#define VIS4GS_LANES_NAMESPACE lanes_avx2
+#define VIS4GS_LANES_TARGET __attribute__((target("avx2")))
+#include "RasterBackwardLanes.inc"
+#undef VIS4GS_LANES_NAMESPACE
+#undef VIS4GS_LANES_TARGET
+#define VIS4GS_LANES_NAMESPACE lanes_avx512
+#define VIS4GS_LANES_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#include "RasterBackwardLanes.inc"
+#undef VIS4GS_LANES_NAMESPACE
+#undef VIS4GS_LANES_TARGET
+
+template <typename T>
+using BackwardTileFunction = void (*)(const BackwardContext<T>&, std::size_t, PartitionSink<T>&);
+
+template <typename T>
+void TileLanesBaseline(const BackwardContext<T>& ctx, std::size_t t, PartitionSink<T>& sink)
+{
+  lanes_baseline::TileBackwardLanes<T>(ctx, t, sink);
+}
+template <typename T>
+__attribute__((target("avx2"))) void TileLanesAvx2(const BackwardContext<T>& ctx,
+  std::size_t t,
+  PartitionSink<T>& sink)
+{
+  lanes_avx2::TileBackwardLanes<T>(ctx, t, sink);
+}
+template <typename T>
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void TileLanesAvx512(
+  const BackwardContext<T>& ctx,
+  std::size_t t,
+  PartitionSink<T>& sink)
+{
+  lanes_avx512::TileBackwardLanes<T>(ctx, t, sink);
+}
+
+template <typename T>
+BackwardTileFunction<T> SelectBackwardTile(int isa)
+{
+  if (isa < 0)
+  {
+    return &TileBackwardScalar<T>;
+  }
+  __builtin_cpu_init();
+  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  const bool has2 = __builtin_cpu_supports("avx2");
+  if ((isa == 0 || isa >= 3) && has512)
+  {
+    return &TileLanesAvx512<T>;
+  }
+  if ((isa == 0 || isa >= 2) && has2)
+  {
+    return &TileLanesAvx2<T>;
+  }
+  return &TileLanesBaseline<T>;
+}
+
+template <typename T>
+using ForwardTileFunction = void (*)(const ForwardContext<T>&, std::size_t);
+
+template <typename T>
+void ForwardLanesBaseline(const ForwardContext<T>& ctx, std::size_t t)
+{
+  lanes_baseline::TileForwardLanes<T>(ctx, t);
+}
+template <typename T>
+__attribute__((target("avx2"))) void ForwardLanesAvx2(const ForwardContext<T>& ctx, std::size_t t)
+{
+  lanes_avx2::TileForwardLanes<T>(ctx, t);
+}
+template <typename T>
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void ForwardLanesAvx512(
+  const ForwardContext<T>& ctx,
+  std::size_t t)
+{
+  lanes_avx512::TileForwardLanes<T>(ctx, t);
+}
+
+template <typename T>
+ForwardTileFunction<T> SelectForwardTile(int isa)
+{
+  __builtin_cpu_init();
+  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  const bool has2 = __builtin_cpu_supports("avx2");
+  if (isa == 1)
+  {
+    return &ForwardLanesBaseline<T>;
+  }
+  if ((isa <= 0 || isa >= 3) && has512)
+  {
+    return &ForwardLanesAvx512<T>;
+  }
+  if ((isa <= 0 || isa >= 2) && has2)
+  {
+    return &ForwardLanesAvx2<T>;
+  }
+  return &ForwardLanesBaseline<T>;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -164,12 +530,7 @@ void CompositeBackward(const ViewProjection<T>& projection,
     throw std::invalid_argument("CompositeBackward: the tile bins do not match the projection");
   }
   gradients.Values.assign(n * S, T(0));
-  const T bg[3] = { static_cast<T>(settings.Background[0]),
-    static_cast<T>(settings.Background[1]),
-    static_cast<T>(settings.Background[2]) };
   const int threads = ThreadCount(options.Threads);
-  const T minAlpha = raster::MinAlpha<T>();
-  const T maxAlpha = T(raster::MaxAlpha);
   // Fixed partitions of the image (bands of tile rows), independent of the thread count:
   // each partition accumulates into its own per-Gaussian array, its tiles in order, and the
   // partitions are summed in order. Memory is bounded to ~256 MB of partition arrays.
@@ -186,42 +547,39 @@ void CompositeBackward(const ViewProjection<T>& projection,
   ws.Marks.assign(static_cast<std::size_t>(P) * n, 0);
   ws.Touched.resize(static_cast<std::size_t>(P));
 
-  // Per Gaussian: the pixels where o e^power >= 1/255 is possible lie inside these
-  // conservative spans (Render's RasterBounds.h, as the forward uses them); pixels outside
-  // are provably skipped by the exact kernel, so the spans never change a result.
   std::vector<raster::detail::SpanBounds>& spans = ws.Spans;
-  spans.resize(n);
+  std::vector<BackwardKernel<T>>& kernels = ws.Kernels;
+  if (!(ws.PreparedFor == static_cast<const void*>(projection.Gaussians.data()) &&
+        ws.PreparedCount == n && spans.size() == n && kernels.size() == n))
   {
-    const std::int64_t count = static_cast<std::int64_t>(n);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t ii = 0; ii < count; ++ii)
-    {
-      const ProjectedGaussian<T>& g = projection.Gaussians[static_cast<std::size_t>(ii)];
-      if (g.IsVisible())
-      {
-        const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
-        spans[static_cast<std::size_t>(ii)] = raster::detail::MakeSpanBounds<T>(
-          g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
-      }
-    }
+    PrepareKernels(projection, threads, kernels, spans);
   }
-  constexpr int TS = raster::TileSize;
+  ws.PreparedFor = nullptr;
+  ws.PreparedCount = 0;
+  const BackwardContext<T> ctx{ &bins,
+    kernels.data(),
+    spans.data(),
+    &image,
+    dLdImage,
+    { static_cast<T>(settings.Background[0]),
+      static_cast<T>(settings.Background[1]),
+      static_cast<T>(settings.Background[2]) },
+    W,
+    H };
+  const BackwardTileFunction<T> tileFunction = SelectBackwardTile<T>(options.KernelIsa);
 
 #pragma omp parallel num_threads(threads)
   {
-    // Tile-local copies of the Gaussians' 2D data (structure of arrays) and gradients.
-    std::vector<T> lu, lv, la, lb, lc, lo, lcol, lmin, local;
-    // Per-pixel state of the back-to-front walk (TS x TS pixels of the tile).
-    T pT[TS * TS], pFinal[TS * TS], pBg[TS * TS], pAcc[TS * TS][3], pLastA[TS * TS],
-      pLastC[TS * TS][3], pG[TS * TS][3];
-    std::uint32_t pLast[TS * TS];
+    std::vector<T> local;
 #pragma omp for schedule(dynamic, 1)
     for (int part = 0; part < P; ++part)
     {
-      T* accBase = ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S;
-      std::uint8_t* marks = ws.Marks.data() + static_cast<std::size_t>(part) * n;
       std::vector<std::uint32_t>& touched = ws.Touched[part];
       touched.clear();
+      PartitionSink<T> sink{ ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S,
+        ws.Marks.data() + static_cast<std::size_t>(part) * n,
+        &touched,
+        &local };
       const int ty0 = static_cast<int>(static_cast<long long>(bins.TilesY) * part / P);
       const int ty1 = static_cast<int>(static_cast<long long>(bins.TilesY) * (part + 1) / P);
       for (int ty = ty0; ty < ty1; ++ty)
@@ -229,159 +587,9 @@ void CompositeBackward(const ViewProjection<T>& projection,
         for (int tx = 0; tx < bins.TilesX; ++tx)
         {
           const std::size_t t = static_cast<std::size_t>(ty) * bins.TilesX + tx;
-          const std::size_t begin = bins.Offsets[t], end = bins.Offsets[t + 1];
-          const std::size_t m = end - begin;
-          if (m == 0)
+          if (bins.Offsets[t + 1] > bins.Offsets[t])
           {
-            continue;
-          }
-          lu.resize(m);
-          lv.resize(m);
-          la.resize(m);
-          lb.resize(m);
-          lc.resize(m);
-          lo.resize(m);
-          lcol.resize(3 * m);
-          lmin.resize(m);
-          local.assign(m * S, T(0));
-          for (std::size_t j = 0; j < m; ++j)
-          {
-            const ProjectedGaussian<T>& g = projection.Gaussians[bins.Ids[begin + j]];
-            lu[j] = g.U;
-            lv[j] = g.V;
-            la[j] = g.ConicA;
-            lb[j] = g.ConicB;
-            lc[j] = g.ConicC;
-            lo[j] = g.Opacity;
-            lcol[3 * j] = g.Color[0];
-            lcol[3 * j + 1] = g.Color[1];
-            lcol[3 * j + 2] = g.Color[2];
-            // Below this power, o e^power < 1/255 for certain (a margin of 1e-3 covers the
-            // rounding of KernelExp and of this logarithm): the pair is skipped without exp().
-            lmin[j] =
-              static_cast<T>(std::log(1.0 / (255.0 * static_cast<double>(g.Opacity))) - 1e-3);
-          }
-          const int x0 = tx * TS, y0 = ty * TS;
-          const int x1 = std::min(W, x0 + TS), y1 = std::min(H, y0 + TS);
-          std::uint32_t maxLast = 0;
-          for (int py = y0; py < y1; ++py)
-          {
-            for (int px = x0; px < x1; ++px)
-            {
-              const std::size_t pix = static_cast<std::size_t>(py) * W + px;
-              const int q = (py - y0) * TS + (px - x0);
-              pLast[q] =
-                static_cast<std::uint32_t>(std::min<std::size_t>(image.Contributors[pix], m));
-              maxLast = std::max(maxLast, pLast[q]);
-              pFinal[q] = image.Transmittance[pix];
-              pT[q] = pFinal[q];
-              for (int ch = 0; ch < 3; ++ch)
-              {
-                pG[q][ch] = dLdImage[3 * pix + ch];
-                pAcc[q][ch] = 0;
-                pLastC[q][ch] = 0;
-              }
-              pBg[q] = bg[0] * pG[q][0] + bg[1] * pG[q][1] + bg[2] * pG[q][2];
-              pLastA[q] = 0;
-            }
-          }
-          // Gaussian-major walk, back to front: every pixel still sees its Gaussians in
-          // decreasing list order (the exact sequence of renderCUDA's backward), and each
-          // Gaussian's gradients are summed over its pixels in row-major order.
-          for (std::size_t jj = maxLast; jj-- > 0;)
-          {
-            const raster::detail::SpanBounds& sb = spans[bins.Ids[begin + jj]];
-            int r0 = y0, r1 = y1 - 1;
-            if (sb.Bounded)
-            {
-              r0 = std::max(r0, sb.RowMin);
-              r1 = std::min(r1, sb.RowMax);
-            }
-            T* r = local.data() + jj * S;
-            const T u = lu[jj], v = lv[jj], ca = la[jj], cb = lb[jj], cc = lc[jj], op = lo[jj];
-            const T pmin = lmin[jj];
-            for (int py = r0; py <= r1; ++py)
-            {
-              int c0 = x0, c1 = x1 - 1;
-              if (sb.Bounded)
-              {
-                int xa, xb;
-                if (!sb.Columns(py, xa, xb))
-                {
-                  continue;
-                }
-                c0 = std::max(c0, xa);
-                c1 = std::min(c1, xb);
-              }
-              const T fy = static_cast<T>(py);
-              for (int px = c0; px <= c1; ++px)
-              {
-                const int q = (py - y0) * TS + (px - x0);
-                if (jj >= pLast[q])
-                {
-                  continue;
-                }
-                const T fx = static_cast<T>(px);
-                const T power = raster::KernelPower(u, v, ca, cb, cc, fx, fy);
-                if (power < pmin || !(power <= T(0)))
-                {
-                  continue;
-                }
-                const T G = raster::KernelExp(power);
-                const T a = op * G;
-                const T alpha = a < maxAlpha ? a : maxAlpha;
-                if (!(alpha >= minAlpha))
-                {
-                  continue;
-                }
-                const T Tc = pT[q] / (T(1) - alpha);
-                pT[q] = Tc;
-                const T w = alpha * Tc;
-                const T lastAlpha = pLastA[q];
-                T dLdAlpha = 0;
-                for (int ch = 0; ch < 3; ++ch)
-                {
-                  const T col = lcol[3 * jj + ch];
-                  pAcc[q][ch] = lastAlpha * pLastC[q][ch] + (T(1) - lastAlpha) * pAcc[q][ch];
-                  pLastC[q][ch] = col;
-                  dLdAlpha += (col - pAcc[q][ch]) * pG[q][ch];
-                  r[6 + ch] += w * pG[q][ch];
-                }
-                dLdAlpha *= Tc;
-                pLastA[q] = alpha;
-                dLdAlpha += (-pFinal[q] / (T(1) - alpha)) * pBg[q];
-                const T dLdG = op * dLdAlpha;
-                const T dx = u - fx, dy = v - fy;
-                const T gdx = G * dx, gdy = G * dy;
-                r[0] += dLdG * (-gdx * ca - gdy * cb);
-                r[1] += dLdG * (-gdy * cc - gdx * cb);
-                r[2] += T(-0.5) * gdx * dx * dLdG;
-                r[3] += -gdx * dy * dLdG;
-                r[4] += T(-0.5) * gdy * dy * dLdG;
-                r[5] += G * dLdAlpha;
-              }
-            }
-          }
-          const T* acc = local.data();
-          // Into the partition's per-Gaussian accumulators, in list order.
-          for (std::size_t j = 0; j < m; ++j)
-          {
-            const std::uint32_t g = bins.Ids[begin + j];
-            T* o = accBase + static_cast<std::size_t>(g) * S;
-            if (!marks[g])
-            {
-              marks[g] = 1;
-              touched.push_back(g);
-              for (int k = 0; k < S; ++k)
-              {
-                o[k] = T(0);
-              }
-            }
-            const T* rr = acc + j * S;
-            for (int k = 0; k < S; ++k)
-            {
-              o[k] += rr[k];
-            }
+            tileFunction(ctx, t, sink);
           }
         }
       }
@@ -401,6 +609,58 @@ void CompositeBackward(const ViewProjection<T>& projection,
         o[k] += r[k];
       }
     }
+  }
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void CompositeForward(const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  RasterImage<T>& image,
+  const BackwardSettings& options,
+  BackwardWorkspace<T>* workspace)
+{
+  if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
+    bins.Offsets.size() != bins.TileCount() + 1)
+  {
+    throw std::invalid_argument("CompositeForward: the tile bins do not match the projection");
+  }
+  const int threads = ThreadCount(options.Threads);
+  const std::size_t n = projection.Gaussians.size();
+  const std::size_t pixels = static_cast<std::size_t>(projection.Width) * projection.Height;
+  image.Width = projection.Width;
+  image.Height = projection.Height;
+  image.Color.resize(3 * pixels);
+  image.Alpha.resize(pixels);
+  image.Transmittance.resize(pixels);
+  image.Depth.clear();
+  image.Contributors.resize(pixels);
+  std::vector<BackwardKernel<T>> ownKernels;
+  std::vector<raster::detail::SpanBounds> ownSpans;
+  std::vector<BackwardKernel<T>>& kernels = workspace ? workspace->Kernels : ownKernels;
+  std::vector<raster::detail::SpanBounds>& spans = workspace ? workspace->Spans : ownSpans;
+  PrepareKernels(projection, threads, kernels, spans);
+  if (workspace)
+  {
+    workspace->PreparedFor = projection.Gaussians.data();
+    workspace->PreparedCount = n;
+  }
+  const ForwardContext<T> ctx{ &bins,
+    kernels.data(),
+    spans.data(),
+    &image,
+    { static_cast<T>(settings.Background[0]),
+      static_cast<T>(settings.Background[1]),
+      static_cast<T>(settings.Background[2]) },
+    projection.Width,
+    projection.Height };
+  const ForwardTileFunction<T> fn = SelectForwardTile<T>(options.KernelIsa);
+  const std::int64_t tiles = static_cast<std::int64_t>(bins.TileCount());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (std::int64_t t = 0; t < tiles; ++t)
+  {
+    fn(ctx, static_cast<std::size_t>(t));
   }
 }
 
@@ -712,6 +972,18 @@ template void CompositeBackward<double>(const ViewProjection<double>&,
   const double*,
   ProjectedGradients<double>&,
   const BackwardSettings&);
+template void CompositeForward<float>(const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<float>&,
+  const BackwardSettings&,
+  BackwardWorkspace<float>*);
+template void CompositeForward<double>(const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<double>&,
+  const BackwardSettings&,
+  BackwardWorkspace<double>*);
 template void ProjectBackward<float>(const GaussianCloud&,
   const ViewProjection<float>&,
   const RasterSettings&,

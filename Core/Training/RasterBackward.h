@@ -12,6 +12,11 @@
  *     the pixel's n_contrib, recovering T_i = T_{i+1}/(1 - alpha_i) from the final
  *     transmittance and re-applying the forward's skips (power > 0, alpha < 1/255) with the
  *     same inline kernel functions (RasterKernel.h), exactly as [DGR] renderCUDA's backward.
+ *     The default implementation walks the tile's Gaussians back to front and evaluates one
+ *     tile row (16 pixels) at a time in 16 lanes (GCC vector extensions, AVX-512 / AVX2 /
+ *     SSE2 chosen at run time as in the forward, bit-identical on all three); each
+ *     Gaussian's per-tile sums run per lane over the rows, then over the lanes in a fixed
+ *     tree. BackwardSettings::KernelIsa = -1 selects the scalar pixel-by-pixel reference.
  *     Produces per-Gaussian gradients of the 2D quantities: dL/du, dL/dv (pixels), the
  *     true scalar derivatives dL/dA, dL/dB, dL/dC of the conic (A, B, C), dL/d(opacity) and
  *     dL/d(colour). Each tile accumulates its Gaussians' gradients locally; tiles are
@@ -63,9 +68,27 @@ struct BackwardSettings
   bool ExactJacobianClamp = false;
   /// OpenMP threads; 0 (default) uses OpenMP's default. Results do not depend on it.
   int Threads = 0;
+  /// Compositing backward: 0 = 16-lane path on the best instruction set (default), 1 =
+  /// 16-lane path on baseline x86-64 (SSE2), 2 = AVX2, 3 = AVX-512 (the lane paths give
+  /// bit-identical results on every instruction set), -1 = the scalar reference, pixel by
+  /// pixel (the same per-pixel arithmetic; its per-Gaussian sums run in row-major pixel
+  /// order instead of per lane then across lanes, so it agrees to rounding, not bit for bit).
+  int KernelIsa = 0;
 };
 
-/// Scratch memory of CompositeBackward(), kept between calls to avoid reallocations.
+namespace detail
+{
+/// Per-Gaussian 2D data read by the compositing loops of training.
+template <typename T>
+struct CompositeKernel
+{
+  T U, V, A, B, C, O, R, G, Bl;
+  T PMin; ///< below this power, o e^power < 1/255 for certain (the scalar path's early skip)
+};
+} // namespace detail
+
+/// Scratch memory of CompositeForward() and CompositeBackward(), kept between calls to
+/// avoid reallocations.
 template <typename T>
 struct BackwardWorkspace
 {
@@ -73,6 +96,12 @@ struct BackwardWorkspace
   std::vector<std::uint8_t> Marks;                 ///< per partition, per Gaussian: touched
   std::vector<std::vector<std::uint32_t>> Touched; ///< per partition: Gaussians touched
   std::vector<raster::detail::SpanBounds> Spans;   ///< per Gaussian: pixel bounds
+  std::vector<detail::CompositeKernel<T>> Kernels; ///< per Gaussian: 2D data
+  /// Set by CompositeForward(): the projection Spans and Kernels were made from (its
+  /// Gaussians' address and count). CompositeBackward() on the same, unmodified projection
+  /// reuses them and clears the stamp; anything else recomputes them.
+  const void* PreparedFor = nullptr;
+  std::size_t PreparedCount = 0;
 };
 
 /// Per-Gaussian gradients of the 2D (projected) quantities, from CompositeBackward().
@@ -127,6 +156,24 @@ void CompositeBackward(const ViewProjection<T>& projection,
   const BackwardSettings& options = {});
 
 /**
+ * The forward compositing of training: the outputs of Render's CompositeTiles() that
+ * training reads, bit for bit (Color, Alpha, Transmittance and Contributors; the same
+ * operations in the same order, 16 lanes per tile row on the best instruction set, or the
+ * one @p options.KernelIsa names: 1 baseline, 2 AVX2, 3 AVX-512). Depth is not computed
+ * (left empty). With @p workspace (the ProjectedGradients::Workspace later passed to
+ * CompositeBackward() for the same projection), the per-Gaussian spans and 2D data are
+ * kept for the backward instead of being recomputed; the projection must not change in
+ * between.
+ */
+template <typename T>
+void CompositeForward(const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  RasterImage<T>& image,
+  const BackwardSettings& options = {},
+  BackwardWorkspace<T>* workspace = nullptr);
+
+/**
  * Stage 2: from the 2D gradients to the raw parameters of @p cloud (which must be the
  * cloud @p projection was made from, with the same settings). Fills every array of
  * @p gradients (resized), including the view-space statistic.
@@ -167,6 +214,18 @@ extern template void CompositeBackward<double>(const ViewProjection<double>&,
   const double*,
   ProjectedGradients<double>&,
   const BackwardSettings&);
+extern template void CompositeForward<float>(const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<float>&,
+  const BackwardSettings&,
+  BackwardWorkspace<float>*);
+extern template void CompositeForward<double>(const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<double>&,
+  const BackwardSettings&,
+  BackwardWorkspace<double>*);
 extern template void ProjectBackward<float>(const GaussianCloud&,
   const ViewProjection<float>&,
   const RasterSettings&,

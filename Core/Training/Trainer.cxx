@@ -618,8 +618,21 @@ double Trainer::Step()
   settings.Threads = threads;
   const ViewProjection<float> proj = ProjectGaussians<float>(this->Cloud, cam, settings);
   const TileBins bins = BinGaussians(proj, threads);
+  GaussianGradients<float>& grads = this->Gradients;
+  BackwardSettings bopt;
+  bopt.Threads = threads;
+  bopt.KernelIsa = o.KernelIsa;
   RasterImage<float> image;
-  CompositeTiles(proj, bins, settings, image);
+  if (o.KernelIsa < 0)
+  {
+    CompositeTiles(proj, bins, settings, image);
+  }
+  else
+  {
+    // CompositeTiles' outputs bit for bit (without depth), keeping the per-Gaussian spans
+    // and 2D data in the backward's workspace for RasterBackward() below.
+    CompositeForward(proj, bins, settings, image, bopt, &grads.Projected.Workspace);
+  }
   const auto t1 = Clock::now();
 
   const LossValues loss = TrainingLoss(image.Color.data(),
@@ -631,9 +644,6 @@ double Trainer::Step()
     threads);
   const auto t2 = Clock::now();
 
-  GaussianGradients<float>& grads = this->Gradients;
-  BackwardSettings bopt;
-  bopt.Threads = threads;
   RasterBackward(
     this->Cloud, proj, bins, settings, image, this->GradientScratch.data(), grads, bopt);
   const auto t3 = Clock::now();

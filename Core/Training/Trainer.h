@@ -96,6 +96,12 @@ struct TrainerOptions
   bool WhiteBackground = false; ///< adds the reference's extra opacity reset at DensifyFromIter
   std::uint64_t Seed = 0;
   int Threads = 0; ///< OpenMP threads; 0 = OpenMP's default
+  /// Compositing loops (BackwardSettings::KernelIsa): 0 = 16 lanes on the best instruction
+  /// set (default); 1, 2, 3 = baseline, AVX2, AVX-512 lanes (same results); -1 = the
+  /// straightforward pair: Render's CompositeTiles forward and the scalar pixel-by-pixel
+  /// backward (same per-pixel arithmetic; gradient sums rounded in another order). For
+  /// benchmarks and tests.
+  int KernelIsa = 0;
 
   // Logging.
   int SnapshotInterval = 1000;  ///< also snapshots iteration 0 and the last iteration

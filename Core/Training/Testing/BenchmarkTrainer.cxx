@@ -5,7 +5,17 @@
 // densify-and-prune and of writing one snapshot of that size.
 //
 //   BenchmarkTrainer [--gaussians=50000] [--size=256] [--iterations=60] [--threads=2]
-//                    [--sh-degree=3]
+//                    [--sh-degree=3] [--warmup-train=0] [--kernel-isa=0]
+//
+// --kernel-isa=-1 runs the straightforward pair instead of the 16-lane loops: Render's
+// CompositeTiles forward and the scalar pixel-by-pixel compositing backward.
+//
+// The headline configuration keeps the freshly initialised cloud (opacity 0.1 everywhere,
+// the worst case for compositing: no pixel saturates). With --warmup-train=N > 0 a second
+// configuration is reported as well: the same scene trained with the reference schedule
+// (densification from iteration 500 every 100, SH degree +1 every 1000, opacity reset every
+// 3000) for N untimed iterations, then the next --iterations iterations timed as they come
+// (densification included when one falls inside), i.e. the rate through a real run.
 #include "Trainer.h"
 #include "TrainingLogWriter.h"
 
@@ -50,6 +60,9 @@ int main(int argc, char** argv)
   const int iterations = Arg(argc, argv, "iterations", 60);
   const int threads = Arg(argc, argv, "threads", 2);
   const int degree = Arg(argc, argv, "sh-degree", 3);
+  const int warmupTrain = Arg(argc, argv, "warmup-train", 0);
+  // -1: the straightforward pair (Render's CompositeTiles forward, scalar backward).
+  const int kernelIsa = Arg(argc, argv, "kernel-isa", 0);
   const std::string scene = R"({
     "name": "bench", "seed": 1, "width": )" +
     std::to_string(size) + R"(, "height": )" + std::to_string(size) + R"(,
@@ -78,6 +91,7 @@ int main(int argc, char** argv)
   TrainerOptions o;
   o.Iterations = iterations + 10;
   o.Threads = threads;
+  o.KernelIsa = kernelIsa;
   o.ShDegree = degree;
   o.ShIncreaseInterval = 1;    // every SH degree active from iteration `degree` on (worst case)
   o.DensifyFromIter = 1 << 30; // fixed Gaussian count
@@ -96,13 +110,15 @@ int main(int argc, char** argv)
   const double cpu = CpuSeconds() - cpu0;
   const TrainerTimings& T = t.GetTimings();
   const double total = T.Total - warm.Total;
-  std::printf("BenchmarkTrainer: %zu Gaussians, %dx%d, SH degree %d, %d threads, %d iterations\n",
+  std::printf("BenchmarkTrainer: %zu Gaussians, %dx%d, SH degree %d, %d threads, %d iterations, "
+              "kernel-isa %d\n",
     t.GetCloud().Count,
     size,
     size,
     degree,
     threads,
-    iterations);
+    iterations,
+    kernelIsa);
   std::printf("  wall: %.2f it/s (%.1f ms/it); process CPU time %.1f ms/it, i.e. %.2f it/s with %d "
               "cores to itself\n",
     iterations / total,
@@ -118,6 +134,53 @@ int main(int argc, char** argv)
     1000 * (T.Backward - warm.Backward) / iterations,
     1000 * (T.Optimizer - warm.Optimizer) / iterations,
     1000 * (T.Densify - warm.Densify) / iterations);
+
+  if (warmupTrain > 0)
+  {
+    TrainerOptions r;
+    r.Threads = threads;
+    r.KernelIsa = kernelIsa;
+    r.ShDegree = degree;
+    r.Iterations = 30000; // the reference schedule
+    Trainer real(data, r);
+    const std::size_t start = real.GetCloud().Count;
+    for (int i = 0; i < warmupTrain; ++i)
+    {
+      real.Step();
+    }
+    const TrainerTimings w0 = real.GetTimings();
+    const std::size_t before = real.GetCloud().Count;
+    const double c0 = CpuSeconds();
+    for (int i = 0; i < iterations; ++i)
+    {
+      real.Step();
+    }
+    const double c = CpuSeconds() - c0;
+    const TrainerTimings& R = real.GetTimings();
+    const double tt = R.Total - w0.Total;
+    std::printf("After %d iterations of real training (reference schedule, %zu -> %zu Gaussians, "
+                "%zu after the timed ones), %d iterations:\n",
+      warmupTrain,
+      start,
+      before,
+      real.GetCloud().Count,
+      iterations);
+    std::printf("  wall: %.2f it/s (%.1f ms/it); process CPU time %.1f ms/it, i.e. %.2f it/s "
+                "with %d cores to itself\n",
+      iterations / tt,
+      1000 * tt / iterations,
+      1000 * c / iterations,
+      iterations / c * threads,
+      threads);
+    std::printf(
+      "  per iteration: forward %.1f ms, loss %.1f ms, backward %.1f ms, optimizer %.1f ms, "
+      "statistics and densification %.1f ms\n",
+      1000 * (R.Forward - w0.Forward) / iterations,
+      1000 * (R.Loss - w0.Loss) / iterations,
+      1000 * (R.Backward - w0.Backward) / iterations,
+      1000 * (R.Optimizer - w0.Optimizer) / iterations,
+      1000 * (R.Densify - w0.Densify) / iterations);
+  }
 
   // One densify-and-prune of this cloud with every Gaussian above the threshold.
   const std::size_t n = t.GetCloud().Count;
