@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -264,6 +265,16 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   if (scores)
   {
     const std::int64_t sn = static_cast<std::int64_t>(n);
+    const bool wantWeights = occlusion && shareCoverage;
+    std::unique_ptr<MultiViewRenderer> multi;
+    if (settings.SharedProjection && !wantWeights && !settings.BruteForceFootprints)
+    {
+      const auto t0 = Clock::now();
+      multi.reset(new MultiViewRenderer(cloud, raster));
+      out.Timings.Projection += Seconds(t0);
+    }
+    FootprintStats stats;
+    RasterImage<float> render;
     for (std::size_t vi : out.ViewIndices)
     {
       const Camera& full = cameras[vi];
@@ -292,16 +303,27 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
       }
       out.Timings.Images += Seconds(t0);
 
-      t0 = Clock::now();
-      const ViewProjection<float> projection = ProjectGaussians<float>(cloud, view, raster);
-      out.Timings.Projection += Seconds(t0);
-      t0 = Clock::now();
-      const TileBins bins = BinGaussians(projection, settings.Threads);
-      RasterImage<float> render;
+      ViewProjection<float> projection;
       GaussianWeightStats weights;
-      const bool wantWeights = occlusion && shareCoverage;
-      CompositeTiles(projection, bins, raster, render, wantWeights ? &weights : nullptr);
-      out.Timings.Rendering += Seconds(t0);
+      if (multi)
+      {
+        t0 = Clock::now();
+        multi->Project(view);
+        out.Timings.Projection += Seconds(t0);
+        t0 = Clock::now();
+        multi->Composite(render);
+        out.Timings.Rendering += Seconds(t0);
+      }
+      else
+      {
+        t0 = Clock::now();
+        projection = ProjectGaussians<float>(cloud, view, raster);
+        out.Timings.Projection += Seconds(t0);
+        t0 = Clock::now();
+        const TileBins bins = BinGaussians(projection, settings.Threads);
+        CompositeTiles(projection, bins, raster, render, wantWeights ? &weights : nullptr);
+        out.Timings.Rendering += Seconds(t0);
+      }
 
       t0 = Clock::now();
       const double area = (static_cast<double>(full.Width) * full.Height) /
@@ -315,7 +337,14 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
       out.Timings.LossMaps += Seconds(t0);
 
       t0 = Clock::now();
-      const FootprintStats stats = ComputeFootprints(projection, footprint, loss.data());
+      if (multi)
+      {
+        multi->Footprints(footprint, loss.data(), stats);
+      }
+      else
+      {
+        stats = ComputeFootprints(projection, footprint, loss.data());
+      }
       out.Timings.Footprints += Seconds(t0);
 
       t0 = Clock::now();

@@ -43,6 +43,7 @@
 #include "Footprint.h"
 #include "GaussianCloud.h"
 #include "LossMap.h"
+#include "MultiViewRenderer.h"
 #include "Rasterizer.h"
 
 #include <cstddef>
@@ -91,6 +92,13 @@ struct ScoreSettings
   /// 1 = scalar only (the previous implementation, for benchmarks), 2 = AVX2. Results are
   /// bit-identical on every path.
   int KernelIsa = 0;
+  /// Blur/needle views rendered with Render/MultiViewRenderer.h: the view-independent part
+  /// of the projection computed once for all views, a vectorised per-view projection shared
+  /// by compositing and the footprint pass, no per-view allocations. Bit-identical results.
+  /// false: ProjectGaussians + BinGaussians + CompositeTiles + ComputeFootprints per view
+  /// (the previous implementation, kept for benchmarks and tests). Default true. The
+  /// occlusion-aware variant and brute-force footprints always take the per-view path.
+  bool SharedProjection = true;
   /// Rasteriser options for the renders (background, SH degree). Threads are overridden.
   RasterSettings Raster;
   /// OpenMP threads; 0 uses OpenMP's default.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Footprint.h"
 
+#include "MultiViewData.h"
 #include "RasterBounds.h"
 
 #include <immintrin.h>
@@ -130,9 +131,8 @@ struct BoxLanes
 const BoxLanes PackedLanes;
 
 // Pixels [xa, xa + w) x [ya, ya + h) (w <= 8, w h <= 64, inside the image), packed 8 at a
-// time. Counts the pixels in Omega and adds their map values in row-major order (lanes
-// outside Omega add +0.0, which leaves a sum that starts at +0.0 unchanged, NaN and Inf
-// included, so the sum is bit-identical to visiting only the footprint's pixels).
+// time. Counts the pixels in Omega and adds their map values in row-major order, visiting
+// only the footprint's pixels, as the scalar path does.
 template <typename Acc>
 __attribute__((target("avx2"))) void FootprintBoxAvx2(const ProjectedGaussian<float>& g,
   bool rasterMode,
@@ -181,9 +181,14 @@ __attribute__((target("avx2"))) void FootprintBoxAvx2(const ProjectedGaussian<fl
         reinterpret_cast<__m256i>(index),
         reinterpret_cast<__m256>(in),
         4));
-      for (int l = 0; l < 8; ++l)
+      // Only the lanes in Omega: the skipped lanes would add +0.0, which leaves the sum
+      // unchanged (it starts at +0.0 and can never become -0.0 in round-to-nearest).
+      unsigned set = bits;
+      while (set != 0)
       {
-        sum += in[l] ? static_cast<Acc>(values[l]) : Acc(0);
+        const int l = __builtin_ctz(set);
+        set &= set - 1;
+        sum += static_cast<Acc>(values[l]);
       }
     }
   }
@@ -255,6 +260,152 @@ bool EllipseBox(T u, T v, T a, T b, T c, double level, int& xMin, int& xMax, int
 }
 
 //------------------------------------------------------------------------------
+// Footprint of one visible Gaussian: |Omega| into @p cnt, the map sum into @p sum (row by
+// row, left to right), kernels evaluated into @p evals. @p givenLevel, when not null, is the
+// Gaussian's alpha level min(0, ln(1/(255 o))) already computed (rasteriser mode, o >= 1/255).
+template <typename T, typename Acc>
+inline void FootprintOne(const ProjectedGaussian<T>& g,
+  const FootprintOptions& opt,
+  bool vector,
+  int W,
+  int H,
+  const float* map,
+  const double* givenLevel,
+  std::uint32_t& cnt,
+  Acc& sum,
+  std::uint64_t& evals)
+{
+  const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
+  cnt = 0;
+  sum = 0;
+  evals = 0;
+  int xLo, xHi, yLo, yHi;
+  double level;
+  if (rasterMode)
+  {
+    if (!(g.Opacity >= raster::MinAlpha<T>()))
+    {
+      return; // alpha <= o < 1/255 everywhere
+    }
+    xLo = g.TileRect[0] * raster::TileSize;
+    yLo = g.TileRect[1] * raster::TileSize;
+    xHi = std::min(g.TileRect[2] * raster::TileSize, W) - 1;
+    yHi = std::min(g.TileRect[3] * raster::TileSize, H) - 1;
+    level = givenLevel
+      ? *givenLevel
+      : std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity)));
+  }
+  else
+  {
+    const double A = g.ConicA, B = g.ConicB, C = g.ConicC;
+    if (!(A > 0 && C > 0 && A * C - B * B > 0))
+    {
+      return; // no ellipse
+    }
+    xLo = 0;
+    yLo = 0;
+    xHi = W - 1;
+    yHi = H - 1;
+    level = -4.5;
+  }
+  const T minEllipse = T(-4.5);
+  // Power band of the exact alpha test (AlphaTest8); unused in the ellipse mode.
+  const float inside = static_cast<float>(level + 1e-4);
+  const float outside = static_cast<float>(level - 1e-4);
+  bool done = false;
+  int bx0, bx1, by0, by1;
+  if (vector && EllipseBox<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level, bx0, bx1, by0, by1))
+  {
+    // Small ellipse (the common case at low resolution): its bounding box, clipped to the
+    // tile rectangle and the image, is evaluated in packed lanes without per-row work.
+    const int xa = std::max(xLo, bx0), xb = std::min(xHi, bx1);
+    const int ya = std::max(yLo, by0), yb = std::min(yHi, by1);
+    const int bw = xb - xa + 1, bh = yb - ya + 1;
+    if (bw <= 0 || bh <= 0)
+    {
+      done = true; // empty
+    }
+    else if (bw <= 8 && bw * bh <= 64)
+    {
+      FootprintBoxAvx2<Acc>(
+        FloatGaussian(g), rasterMode, inside, outside, xa, ya, bw, bh, W, map, cnt, sum);
+      evals += static_cast<std::uint64_t>((bw * bh + 7) / 8 * 8);
+      done = true;
+    }
+  }
+  if (done)
+  {
+    return;
+  }
+  raster::detail::SpanBounds sb;
+  if (!opt.BruteForce)
+  {
+    sb = raster::detail::MakeSpanBounds<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level);
+  }
+  if (!sb.Bounded && !rasterMode && !opt.BruteForce)
+  {
+    // Unbounded ellipse mode: restrict to the 3-sigma radius box (the ellipse lies inside).
+    const double r = g.Radius + 1.0;
+    xLo = std::max(xLo, static_cast<int>(std::floor(std::max(-1e9, g.U - r))));
+    xHi = std::min(xHi, static_cast<int>(std::ceil(std::min(1e9, g.U + r))));
+    yLo = std::max(yLo, static_cast<int>(std::floor(std::max(-1e9, g.V - r))));
+    yHi = std::min(yHi, static_cast<int>(std::ceil(std::min(1e9, g.V + r))));
+  }
+  if (sb.Bounded)
+  {
+    yLo = std::max(yLo, sb.RowMin);
+    yHi = std::min(yHi, sb.RowMax);
+  }
+  for (int y = yLo; y <= yHi; ++y)
+  {
+    int xa = xLo, xb = xHi;
+    if (sb.Bounded)
+    {
+      int ca, cb;
+      if (!sb.Columns(y, ca, cb))
+      {
+        continue;
+      }
+      xa = std::max(xa, ca);
+      xb = std::min(xb, cb);
+    }
+    if (vector)
+    {
+      if (xa <= xb)
+      {
+        FootprintRowAvx2<Acc>(
+          FloatGaussian(g), rasterMode, inside, outside, y, xa, xb, W, map, cnt, sum);
+      }
+      evals += static_cast<std::uint64_t>(std::max(0, xb - xa + 1));
+      continue;
+    }
+    const T py = static_cast<T>(y);
+    for (int x = xa; x <= xb; ++x)
+    {
+      const T power =
+        raster::KernelPower<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, static_cast<T>(x), py);
+      const bool in =
+        rasterMode ? raster::KernelAlpha<T>(g.Opacity, power) >= T(0) : power >= minEllipse;
+      if (in)
+      {
+        ++cnt;
+        if (map)
+        {
+          sum += static_cast<Acc>(map[static_cast<std::size_t>(y) * W + x]);
+        }
+      }
+    }
+    evals += static_cast<std::uint64_t>(std::max(0, xb - xa + 1));
+  }
+}
+
+template <typename T>
+bool UseVectorPath(const FootprintOptions& opt)
+{
+  return IsFloat<T>() && !opt.BruteForce && opt.KernelIsa != 1 && HasAvx2();
+}
+
+//------------------------------------------------------------------------------
 template <typename T, typename Acc>
 void FootprintPass(const ViewProjection<T>& proj,
   const FootprintOptions& opt,
@@ -262,11 +413,10 @@ void FootprintPass(const ViewProjection<T>& proj,
   FootprintStats& stats)
 {
   const int W = proj.Width, H = proj.Height;
-  const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
   const std::int64_t n = static_cast<std::int64_t>(proj.Gaussians.size());
   std::uint64_t total = 0, evaluated = 0;
   const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
-  const bool vector = IsFloat<T>() && !opt.BruteForce && opt.KernelIsa != 1 && HasAvx2();
+  const bool vector = UseVectorPath<T>(opt);
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
   for (std::int64_t ii = 0; ii < n; ++ii)
   {
@@ -276,129 +426,67 @@ void FootprintPass(const ViewProjection<T>& proj,
     {
       continue;
     }
-    int xLo, xHi, yLo, yHi;
-    double level;
-    if (rasterMode)
-    {
-      if (!(g.Opacity >= raster::MinAlpha<T>()))
-      {
-        continue; // alpha <= o < 1/255 everywhere
-      }
-      xLo = g.TileRect[0] * raster::TileSize;
-      yLo = g.TileRect[1] * raster::TileSize;
-      xHi = std::min(g.TileRect[2] * raster::TileSize, W) - 1;
-      yHi = std::min(g.TileRect[3] * raster::TileSize, H) - 1;
-      level = std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity)));
-    }
-    else
-    {
-      const double A = g.ConicA, B = g.ConicB, C = g.ConicC;
-      if (!(A > 0 && C > 0 && A * C - B * B > 0))
-      {
-        continue; // no ellipse
-      }
-      xLo = 0;
-      yLo = 0;
-      xHi = W - 1;
-      yHi = H - 1;
-      level = -4.5;
-    }
-    std::uint32_t cnt = 0;
-    Acc sum = 0;
-    std::uint64_t evals = 0;
-    const T minEllipse = T(-4.5);
-    // Power band of the exact alpha test (AlphaTest8); unused in the ellipse mode.
-    const float inside = static_cast<float>(level + 1e-4);
-    const float outside = static_cast<float>(level - 1e-4);
-    bool done = false;
-    int bx0, bx1, by0, by1;
-    if (vector && EllipseBox<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level, bx0, bx1, by0, by1))
-    {
-      // Small ellipse (the common case at low resolution): its bounding box, clipped to the
-      // tile rectangle and the image, is evaluated in packed lanes without per-row work.
-      const int xa = std::max(xLo, bx0), xb = std::min(xHi, bx1);
-      const int ya = std::max(yLo, by0), yb = std::min(yHi, by1);
-      const int bw = xb - xa + 1, bh = yb - ya + 1;
-      if (bw <= 0 || bh <= 0)
-      {
-        done = true; // empty
-      }
-      else if (bw <= 8 && bw * bh <= 64)
-      {
-        FootprintBoxAvx2<Acc>(
-          FloatGaussian(g), rasterMode, inside, outside, xa, ya, bw, bh, W, map, cnt, sum);
-        evals += static_cast<std::uint64_t>((bw * bh + 7) / 8 * 8);
-        done = true;
-      }
-    }
-    raster::detail::SpanBounds sb;
-    if (!opt.BruteForce && !done)
-    {
-      sb = raster::detail::MakeSpanBounds<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level);
-    }
-    if (!sb.Bounded && !rasterMode && !opt.BruteForce)
-    {
-      // Unbounded ellipse mode: restrict to the 3-sigma radius box (the ellipse lies inside).
-      const double r = g.Radius + 1.0;
-      xLo = std::max(xLo, static_cast<int>(std::floor(std::max(-1e9, g.U - r))));
-      xHi = std::min(xHi, static_cast<int>(std::ceil(std::min(1e9, g.U + r))));
-      yLo = std::max(yLo, static_cast<int>(std::floor(std::max(-1e9, g.V - r))));
-      yHi = std::min(yHi, static_cast<int>(std::ceil(std::min(1e9, g.V + r))));
-    }
-    if (sb.Bounded)
-    {
-      yLo = std::max(yLo, sb.RowMin);
-      yHi = std::min(yHi, sb.RowMax);
-    }
-    if (done)
-    {
-      yHi = yLo - 1;
-    }
-    for (int y = yLo; y <= yHi; ++y)
-    {
-      int xa = xLo, xb = xHi;
-      if (sb.Bounded)
-      {
-        int ca, cb;
-        if (!sb.Columns(y, ca, cb))
-        {
-          continue;
-        }
-        xa = std::max(xa, ca);
-        xb = std::min(xb, cb);
-      }
-      if (vector)
-      {
-        if (xa <= xb)
-        {
-          FootprintRowAvx2<Acc>(
-            FloatGaussian(g), rasterMode, inside, outside, y, xa, xb, W, map, cnt, sum);
-        }
-        evals += static_cast<std::uint64_t>(std::max(0, xb - xa + 1));
-        continue;
-      }
-      const T py = static_cast<T>(y);
-      for (int x = xa; x <= xb; ++x)
-      {
-        const T power =
-          raster::KernelPower<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, static_cast<T>(x), py);
-        const bool in =
-          rasterMode ? raster::KernelAlpha<T>(g.Opacity, power) >= T(0) : power >= minEllipse;
-        if (in)
-        {
-          ++cnt;
-          if (map)
-          {
-            sum += static_cast<Acc>(map[static_cast<std::size_t>(y) * W + x]);
-          }
-        }
-      }
-      evals += static_cast<std::uint64_t>(std::max(0, xb - xa + 1));
-    }
+    std::uint32_t cnt;
+    Acc sum;
+    std::uint64_t evals;
+    FootprintOne<T, Acc>(g, opt, vector, W, H, map, nullptr, cnt, sum, evals);
     stats.PixelCount[i] = cnt;
     if (map)
     {
       stats.MapSum[i] = static_cast<double>(sum);
+    }
+    total += cnt;
+    evaluated += evals;
+  }
+  stats.TotalPixels = total;
+  stats.EvaluatedPixels = evaluated;
+}
+
+//------------------------------------------------------------------------------
+// The same pass over a MultiViewRenderer's visible Gaussians (the per-Gaussian result does
+// not depend on the order in which Gaussians are visited).
+template <typename Acc>
+void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
+  const FootprintOptions& opt,
+  const float* map,
+  FootprintStats& stats)
+{
+  const int W = d.Camera.W, H = d.Camera.H;
+  const std::int64_t nv = static_cast<std::int64_t>(d.Records.size());
+  std::uint64_t total = 0, evaluated = 0;
+  const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
+  const bool vector = UseVectorPath<float>(opt);
+  const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
+  for (std::int64_t ss = 0; ss < nv; ++ss)
+  {
+    // Compact index order: records, levels and the outputs are all walked forwards.
+    const std::size_t s = static_cast<std::size_t>(ss);
+    const auto& rec = d.Records[s];
+    const auto& k = rec.Kernel;
+    ProjectedGaussian<float> g;
+    g.U = k.U;
+    g.V = k.V;
+    g.ConicA = k.A;
+    g.ConicB = k.B;
+    g.ConicC = k.C;
+    g.Opacity = k.O;
+    g.Radius = rec.Radius;
+    for (int c = 0; c < 4; ++c)
+    {
+      g.TileRect[c] = rec.Rect[c];
+    }
+    g.Status = ProjectionStatus::Visible;
+    std::uint32_t cnt;
+    Acc sum;
+    std::uint64_t evals;
+    FootprintOne<float, Acc>(
+      g, opt, vector, W, H, map, rasterMode ? &d.CompactLevels[s] : nullptr, cnt, sum, evals);
+    const std::uint32_t id = rec.Id;
+    stats.PixelCount[id] = cnt;
+    if (map)
+    {
+      stats.MapSum[id] = static_cast<double>(sum);
     }
     total += cnt;
     evaluated += evals;
@@ -431,6 +519,35 @@ FootprintStats ComputeFootprints(const ViewProjection<T>& projection,
     FootprintPass<T, double>(projection, options, map, stats);
   }
   return stats;
+}
+
+//------------------------------------------------------------------------------
+void MultiViewRenderer::Footprints(const FootprintOptions& options,
+  const float* map,
+  FootprintStats& stats)
+{
+  const Data& d = *this->Impl;
+  if (!d.HasView)
+  {
+    throw std::logic_error("MultiViewRenderer::Footprints: no view was projected");
+  }
+  stats.PixelCount.assign(d.Count, 0);
+  if (map)
+  {
+    stats.MapSum.assign(d.Count, 0.0);
+  }
+  else
+  {
+    stats.MapSum.clear();
+  }
+  if (options.Accumulation == FootprintAccumulation::Float)
+  {
+    MultiViewFootprintPass<float>(d, options, map, stats);
+  }
+  else
+  {
+    MultiViewFootprintPass<double>(d, options, map, stats);
+  }
 }
 
 template FootprintStats ComputeFootprints<float>(const ViewProjection<float>&,

@@ -2,7 +2,7 @@
 // Benchmark of the diagnostic scores (issue 5).
 //
 //   BenchmarkArtifactScores perf [--gaussians=N] [--views=V] [--width=W] [--height=H]
-//       [--straight-views=K]
+//       [--straight-views=K] [--only=coverage|blur|footprint [--isa=I] [--shared=0|1]]
 //     Coverage and blur+needle (loss maps at 1/4) of N synthetic Gaussians in V views, timed,
 //     next to a straightforward implementation (projection + brute-force footprint scan of
 //     every tile rectangle) measured on K views in the same run and extrapolated to V.
@@ -248,16 +248,21 @@ int Perf(const std::map<std::string, std::string>& args)
     settings.Request = { only == "coverage", only == "blur", only == "blur", false };
     settings.LossResolution = only == "blur" ? 4 : 1;
     settings.KernelIsa = static_cast<int>(Get(args, "isa", 0));
+    settings.SharedProjection = Get(args, "shared", 1) != 0;
+    std::printf("load average before: %s\n", LoadAverage().c_str());
     Timer t;
     const GaussianScores s = only == "blur"
       ? ComputeGaussianScores(cloud, cameras, settings, PatternImages())
       : ComputeGaussianScores(cloud, cameras, settings);
     const auto& tm = s.Timings;
-    std::printf("%s, %d views: %s (wall: images %.2f, projection %.2f, rendering %.2f, loss "
-                "maps %.2f, footprints %.2f, sums %.2f)\n",
+    std::printf("%s%s, %d views: %s [load %s] (wall: images %.2f, projection %.2f, rendering "
+                "%.2f, loss maps %.2f, footprints %.2f, sums %.2f)\n",
       only.c_str(),
+      only == "blur" ? (settings.SharedProjection ? " (shared projection)" : " (per-view path)")
+                     : "",
       views,
       t.Describe(threads).c_str(),
+      LoadAverage().c_str(),
       tm.Images,
       tm.Projection,
       tm.Rendering,
@@ -339,9 +344,12 @@ int Perf(const std::map<std::string, std::string>& args)
   scores.Request = { false, true, true, false };
   scores.LossResolution = 4;
   GaussianScores s;
+  // NEW: MultiViewRenderer (shared, vectorised projection; sorted per-Gaussian data).
+  // BEFORE: the per-view ProjectGaussians + BinGaussians + CompositeTiles + ComputeFootprints
+  // path of the previous implementation (same footprint kernels).
   for (int isa : { 0, 1 })
   {
-    scores.KernelIsa = isa;
+    scores.SharedProjection = isa == 0;
     t = Timer();
     GaussianScores r = ComputeGaussianScores(cloud, cameras, scores, PatternImages());
     const auto& tm = r.Timings;
@@ -350,7 +358,7 @@ int Perf(const std::map<std::string, std::string>& args)
                 "%.2f)\n",
       LossMapSize(width, 4),
       LossMapSize(height, 4),
-      isa == 0 ? "NEW: vectorised footprints" : "BEFORE: scalar span footprints",
+      isa == 0 ? "NEW: shared multi-view projection" : "BEFORE: per-view projection",
       views,
       t.Describe(threads).c_str(),
       LoadAverage().c_str(),

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MultiViewData.h
+ * @brief Internal to Core/Render: the buffers of MultiViewRenderer, shared by its projection
+ * and compositing (Rasterizer.cxx) and its footprint pass (Footprint.cxx). Not installed.
+ */
+#ifndef vis4gs_MultiViewData_h
+#define vis4gs_MultiViewData_h
+
+#include "MultiViewRenderer.h"
+#include "RasterBounds.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vis4gs
+{
+namespace raster
+{
+namespace detail
+{
+
+/// Compact per-Gaussian data of the compositing loop.
+template <typename T>
+struct KernelGaussian
+{
+  T U, V, A, B, C, O, R, G, Bl, Z;
+};
+
+} // namespace detail
+} // namespace raster
+
+/// View-independent part of ProjectGaussians<float>, structure of arrays padded to 16.
+struct MultiViewPrepared
+{
+  std::vector<float> X, Y, Z, S00, S01, S02, S11, S12, S22, Opacity;
+  std::vector<float> Color; ///< 3 per Gaussian when the colour is view-independent (degree 0)
+  std::vector<std::int32_t> Valid; ///< -1 finite parameters, 0 not (or padding)
+};
+
+/// The rasteriser's float parameters of a view.
+struct MultiViewCamera
+{
+  int W, H, Gx, Gy;
+  float V[12];
+  float F0[4], F1[4], F3[4];
+  float LimX, LimY, FocalX, FocalY;
+  float Center[3];
+};
+
+/// Per-Gaussian projection of one view (index order, padded to 16).
+struct MultiViewProjected
+{
+  std::vector<std::int32_t> Status;
+  std::vector<float> U, V, A, B, C, Depth;
+  std::vector<std::int32_t> Radius, X0, Y0, X1, Y1;
+};
+
+struct MultiViewRenderer::Data
+{
+  const GaussianCloud* Cloud = nullptr;
+  RasterSettings Settings;
+  std::size_t Count = 0;
+  std::size_t Padded = 0;
+  int ShDegree = 0;
+  int Threads = 1;
+  bool Colors = true;
+  bool ViewIndependentColor = true;
+  MultiViewPrepared Prepared;
+  MultiViewCamera Camera{};
+  ViewProjection<float> Frame; ///< the view's parameters (no Gaussians)
+  MultiViewProjected Projected;
+  ProjectionCounts Counts;
+  bool HasView = false;
+
+  // Visible Gaussians in (depth, index) order: position s holds Gaussian Sorted[s].
+  std::vector<std::uint32_t> Sorted;
+  std::vector<raster::detail::KernelGaussian<float>> Kernels;
+  std::vector<raster::detail::SpanBounds> Bounds; ///< alpha-level spans (compositing)
+  std::vector<std::array<int, 4>> Rects;
+  std::vector<std::int32_t> Radius;
+  TileBins Bins; ///< Ids are sorted positions s (ascending within every tile)
+
+  // Scratch kept between views.
+  /// A visible Gaussian's data, one cache line, compacted in index order before the sort.
+  struct alignas(64) VisibleRecord
+  {
+    raster::detail::KernelGaussian<float> Kernel;
+    std::int32_t Rect[4];
+    std::int32_t Radius;
+    std::uint32_t Id;
+  };
+  std::vector<VisibleRecord> Records; ///< compact index order
+  std::vector<double> CompactLevels;  ///< alpha level of Records[k] (0 when o < 1/255)
+  std::vector<std::uint64_t> Keys;
+  std::vector<std::uint64_t> ChunkVisible;
+  std::vector<std::int64_t> Diff;
+};
+
+} // namespace vis4gs
+
+#endif

@@ -1,0 +1,281 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MultiViewRenderer: one prepared cloud rendered into many views must give, view by view, the
+// same bits as ProjectGaussians<float> + BinGaussians + CompositeTiles (images, alpha, depth,
+// transmittance, n_contrib, status counts) and as ComputeFootprints (counts and map sums), on
+// every instruction set and thread count, for random, stiff and real scenes.
+#include "RasterTestUtils.h"
+
+#include "Footprint.h"
+#include "GaussianIO.h"
+#include "MultiViewRenderer.h"
+#include "Rasterizer.h"
+#include "Vis4GSTestData.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+using namespace vis4gs;
+using namespace vis4gs::rastertest;
+
+namespace
+{
+
+template <typename U>
+bool SameBits(const std::vector<U>& a, const std::vector<U>& b)
+{
+  return a.size() == b.size() &&
+    (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(U)) == 0);
+}
+
+bool SameCounts(const ProjectionCounts& a, const ProjectionCounts& b)
+{
+  return a.Visible == b.Visible && a.InvalidParameters == b.InvalidParameters &&
+    a.NearPlane == b.NearPlane && a.Degenerate == b.Degenerate && a.NonFinite == b.NonFinite &&
+    a.OffScreen == b.OffScreen;
+}
+
+std::vector<float> OddMap(int w, int h, unsigned seed)
+{
+  std::vector<float> map(static_cast<std::size_t>(w) * h);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 2);
+  for (std::size_t i = 0; i < map.size(); ++i)
+  {
+    map[i] = u(rng) * (i % 5 == 0 ? 1e-9f : 1.0f);
+  }
+  map[map.size() / 3] = std::numeric_limits<float>::quiet_NaN();
+  map[map.size() / 2] = std::numeric_limits<float>::infinity();
+  map[map.size() - 1] = -0.0f;
+  return map;
+}
+
+// Stiff members: NaN/Inf parameters, behind the camera, near plane, needles, disks, huge,
+// tiny, opacity logits of +-1000 and near 1/255, zero quaternions, far off-screen.
+GaussianCloud StiffScene(int degree)
+{
+  GaussianCloud cloud = RandomScene(4000, degree, 41u, 0.5f, 12.0f, -7.0f, 0.5f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < cloud.Count; i += 7)
+  {
+    cloud.LogScales[3 * i + (i % 3)] = -18.0f;
+    if (i % 2)
+    {
+      cloud.LogScales[3 * i + ((i + 1) % 3)] = -18.0f;
+    }
+  }
+  for (std::size_t i = 3; i < cloud.Count; i += 97)
+  {
+    cloud.LogScales[3 * i] = cloud.LogScales[3 * i + 1] = cloud.LogScales[3 * i + 2] = 3.0f;
+  }
+  for (std::size_t i = 5; i < cloud.Count; i += 53)
+  {
+    cloud.OpacityLogits[i] = -5.54f;
+  }
+  cloud.Positions[3 * 10 + 0] = nan;
+  cloud.LogScales[3 * 11 + 1] = inf;
+  cloud.Rotations[4 * 12 + 2] = nan;
+  cloud.OpacityLogits[13] = -inf;
+  cloud.SH[3 * cloud.ShCoefficientCount() * 14 + 1] = nan;
+  cloud.Positions[3 * 15 + 2] = -3.0f; // behind
+  cloud.Positions[3 * 16 + 2] = 0.2f;  // on the near plane
+  cloud.Positions[3 * 17 + 0] = 1e30f; // far off-screen
+  cloud.OpacityLogits[18] = 1000.0f;
+  cloud.OpacityLogits[19] = -1000.0f;
+  for (int k = 0; k < 4; ++k)
+  {
+    cloud.Rotations[4 * 20 + k] = 0.0f;
+  }
+  cloud.LogScales[3 * 21] = cloud.LogScales[3 * 21 + 1] = cloud.LogScales[3 * 21 + 2] = 40.0f;
+  cloud.LogScales[3 * 22] = cloud.LogScales[3 * 22 + 1] = cloud.LogScales[3 * 22 + 2] = -40.0f;
+  return cloud;
+}
+
+// One view through both paths: images and footprints bit-identical.
+void CheckView(MultiViewRenderer& mv,
+  const GaussianCloud& cloud,
+  const Camera& cam,
+  const RasterSettings& rs,
+  bool footprints)
+{
+  const ViewProjection<float> proj = ProjectGaussians<float>(cloud, cam, rs);
+  const TileBins bins = BinGaussians(proj, rs.Threads);
+  RasterImage<float> ref;
+  CompositeTiles(proj, bins, rs, ref);
+  RasterImage<float> img;
+  mv.Render(cam, img);
+  ASSERT_TRUE(SameCounts(mv.Counts(), proj.Counts));
+  ASSERT_EQ(mv.SortedIds().size(), proj.Counts.Visible);
+  EXPECT_EQ(img.Width, ref.Width);
+  EXPECT_EQ(img.Height, ref.Height);
+  EXPECT_TRUE(SameBits(img.Color, ref.Color));
+  EXPECT_TRUE(SameBits(img.Alpha, ref.Alpha));
+  EXPECT_TRUE(SameBits(img.Transmittance, ref.Transmittance));
+  EXPECT_TRUE(SameBits(img.Depth, ref.Depth));
+  EXPECT_TRUE(SameBits(img.Contributors, ref.Contributors));
+  if (!footprints)
+  {
+    return;
+  }
+  const std::vector<float> map = OddMap(cam.Width, cam.Height, 11u + cam.Width);
+  for (auto mode : { FootprintMode::Rasterizer, FootprintMode::Ellipse3Sigma })
+  {
+    for (auto acc : { FootprintAccumulation::Double, FootprintAccumulation::Float })
+    {
+      for (int isa : { 0, 1 })
+      {
+        FootprintOptions fo;
+        fo.Mode = mode;
+        fo.Accumulation = acc;
+        fo.KernelIsa = isa;
+        fo.Threads = rs.Threads;
+        const FootprintStats a = ComputeFootprints(proj, fo, map.data());
+        FootprintStats b;
+        mv.Footprints(fo, map.data(), b);
+        ASSERT_EQ(a.PixelCount, b.PixelCount) << int(mode) << " " << isa;
+        EXPECT_TRUE(SameBits(a.MapSum, b.MapSum)) << int(mode) << " " << isa;
+        EXPECT_EQ(a.TotalPixels, b.TotalPixels);
+        EXPECT_EQ(a.EvaluatedPixels, b.EvaluatedPixels);
+      }
+    }
+  }
+  FootprintOptions brute;
+  brute.BruteForce = true;
+  const FootprintStats a = ComputeFootprints(proj, brute, nullptr);
+  FootprintStats b;
+  mv.Footprints(brute, nullptr, b);
+  EXPECT_EQ(a.PixelCount, b.PixelCount);
+  EXPECT_TRUE(b.MapSum.empty());
+}
+
+std::vector<Camera> Views(int w, int h)
+{
+  std::vector<Camera> cams;
+  cams.push_back(LookAt(w, h, 0.56 * w, 0.56 * w, { 0.2, -0.1, -0.3 }, { 0, 0, 5 }));
+  cams.push_back(LookAt(w, h, 0.9 * w, 0.7 * w, { 3.0, 1.0, 1.0 }, { 0, 0, 6 }));
+  cams.push_back(LookAt(w, h, 0.5 * w, 0.5 * w, { 0.0, 0.0, 14.0 }, { 0, 0, 5 }));
+  cams.push_back(AxisCamera(w, h, 0.6 * w, 0.6 * w));
+  return cams;
+}
+
+} // namespace
+
+TEST(MultiViewRenderer, BitIdenticalToRasterizerOnRandomScenes)
+{
+  for (int degree : { 0, 3 })
+  {
+    const GaussianCloud cloud = RandomScene(3000, degree, 17u + degree, 1.0f, 10.0f);
+    for (int isa : { 0, 1, 2, 3 })
+    {
+      for (int threads : { 1, 3 })
+      {
+        RasterSettings rs;
+        rs.KernelIsa = isa;
+        rs.Threads = threads;
+        rs.Background = { 0.1, 0.5, 0.9 };
+        MultiViewRenderer mv(cloud, rs);
+        for (int scale : { 1, 4 })
+        {
+          for (const Camera& cam : Views(160 / scale, 120 / scale))
+          {
+            SCOPED_TRACE(::testing::Message() << "degree " << degree << " isa " << isa
+                                              << " threads " << threads << " scale " << scale);
+            CheckView(mv, cloud, cam, rs, isa == 0 && threads == 3);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(MultiViewRenderer, BitIdenticalOnStiffScene)
+{
+  for (int degree : { 0, 2 })
+  {
+    const GaussianCloud cloud = StiffScene(degree);
+    for (int isa : { 1, 2, 3 })
+    {
+      RasterSettings rs;
+      rs.KernelIsa = isa;
+      rs.Threads = 2;
+      rs.ScaleModifier = isa == 2 ? 1.7 : 1.0;
+      rs.ShDegree = degree == 2 ? 1 : -1;
+      MultiViewRenderer mv(cloud, rs);
+      for (const Camera& cam : Views(96, 64))
+      {
+        SCOPED_TRACE(::testing::Message() << "degree " << degree << " isa " << isa);
+        CheckView(mv, cloud, cam, rs, isa == 3);
+      }
+      EXPECT_GT(mv.Counts().InvalidParameters, 0u);
+    }
+  }
+  // Without colours (footprint-only use).
+  const GaussianCloud cloud = StiffScene(1);
+  RasterSettings rs;
+  rs.ComputeColors = false;
+  MultiViewRenderer mv(cloud, rs);
+  for (const Camera& cam : Views(80, 60))
+  {
+    CheckView(mv, cloud, cam, rs, true);
+  }
+}
+
+TEST(MultiViewRenderer, BitIdenticalOnRealScene)
+{
+  const GaussianCloud cloud = ReadGaussianPly(vis4gs::testing::SharedDataPath(
+    "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"));
+  ASSERT_GT(cloud.Count, 1000u);
+  std::array<double, 3> c{ 0, 0, 0 };
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      c[k] += cloud.Positions[3 * i + k] / static_cast<double>(cloud.Count);
+    }
+  }
+  RasterSettings rs;
+  rs.Threads = 2;
+  MultiViewRenderer mv(cloud, rs);
+  for (int w : { 320, 80 })
+  {
+    const int h = w * 3 / 4;
+    for (double a : { 0.0, 2.0 })
+    {
+      const Camera cam = LookAt(w,
+        h,
+        0.8 * w,
+        0.8 * w,
+        { c[0] + 4.0 * std::sin(a), c[1], c[2] - 4.0 * std::cos(a) },
+        { c[0], c[1], c[2] });
+      CheckView(mv, cloud, cam, rs, true);
+    }
+  }
+}
+
+TEST(MultiViewRenderer, ErrorsLikeTheRasterizer)
+{
+  GaussianCloud bad = RandomScene(10, 0, 1u);
+  bad.Rotations.pop_back();
+  EXPECT_THROW(MultiViewRenderer(bad, RasterSettings{}), std::invalid_argument);
+  const GaussianCloud cloud = RandomScene(10, 0, 1u);
+  MultiViewRenderer mv(cloud);
+  FootprintStats st;
+  EXPECT_THROW(mv.Footprints(FootprintOptions{}, nullptr, st), std::logic_error);
+  Camera cam = AxisCamera(0, 10, 10, 10);
+  RasterImage<float> img;
+  EXPECT_THROW(mv.Render(cam, img), std::invalid_argument);
+  // An empty cloud renders the background.
+  GaussianCloud empty;
+  RasterSettings rs;
+  rs.Background = { 0.25, 0.5, 0.75 };
+  MultiViewRenderer mve(empty, rs);
+  mve.Render(AxisCamera(20, 10, 10, 10), img);
+  ASSERT_EQ(img.Color.size(), 600u);
+  EXPECT_EQ(img.Color[0], 0.25f);
+  EXPECT_EQ(img.Color[599], 0.75f);
+}
