@@ -13,6 +13,7 @@
 #include "GaussianMath.h"
 #include "ImageIO.h"
 #include "Rasterizer.h"
+#include "SplatAttributes.h" // vis4gs::Viridis, the colour map the splat mapper uses
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianArtifactScoreFilter.h"
@@ -198,27 +199,6 @@ void AttachImagesByName(std::vector<vis4gs::Camera>& cameras, const std::string&
   }
 }
 
-// Viridis, 9 control points (matplotlib's), linearly interpolated.
-std::array<float, 3> Viridis(double t)
-{
-  static const float c[9][3] = { { 0.267f, 0.005f, 0.329f },
-    { 0.278f, 0.175f, 0.483f },
-    { 0.230f, 0.322f, 0.546f },
-    { 0.173f, 0.449f, 0.558f },
-    { 0.128f, 0.567f, 0.551f },
-    { 0.153f, 0.680f, 0.504f },
-    { 0.369f, 0.789f, 0.383f },
-    { 0.678f, 0.864f, 0.190f },
-    { 0.993f, 0.906f, 0.144f } };
-  t = std::isfinite(t) ? std::min(1.0, std::max(0.0, t)) : 0.0;
-  const double x = t * 8;
-  const int i = std::min(7, static_cast<int>(x));
-  const float f = static_cast<float>(x - i);
-  return { c[i][0] + f * (c[i + 1][0] - c[i][0]),
-    c[i][1] + f * (c[i + 1][1] - c[i][1]),
-    c[i][2] + f * (c[i + 1][2] - c[i][2]) };
-}
-
 std::string Base64(const std::vector<unsigned char>& bytes)
 {
   static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -283,7 +263,7 @@ std::string Histogram(const std::vector<double>& v, const std::string& title)
   for (int b = 0; b < bins; ++b)
   {
     const double h = 130.0 * count[b] / peak;
-    const auto col = Viridis((b + 0.5) / bins);
+    const auto col = vis4gs::Viridis((b + 0.5) / bins);
     s << "<rect x=\"" << 10 + b * 10 << "\" y=\"" << 140 - h << "\" width=\"9\" height=\"" << h
       << "\" fill=\"rgb(" << int(col[0] * 255) << "," << int(col[1] * 255) << ","
       << int(col[2] * 255) << ")\"><title>" << count[b] << "</title></rect>";
@@ -565,7 +545,7 @@ int Run(const Vis4GSArguments& args)
       colored.SH.assign(3 * cloud.Count, 0.0f);
       for (std::size_t i = 0; i < cloud.Count; ++i)
       {
-        const auto c = Viridis(values[i] / hi);
+        const auto c = vis4gs::Viridis(values[i] / hi);
         for (int k = 0; k < 3; ++k)
         {
           colored.SH[3 * i + k] = static_cast<float>((c[k] - 0.5) / vis4gs::sh::C0);

@@ -54,6 +54,53 @@ SelectionView PrepareSelectionView(const GaussianCloud& cloud, const Camera& cam
 }
 
 //------------------------------------------------------------------------------
+void ComputeViewMaxWeights(SelectionView& view)
+{
+  RasterImage<float> image;
+  GaussianWeightStats stats;
+  CompositeTiles<float>(view.Projection, view.Bins, view.Settings, image, &stats);
+  view.ViewMaxWeights = std::move(stats.MaxWeight);
+  view.ViewMaxWeights.resize(view.Projection.Gaussians.size(), 0.0f);
+}
+
+//------------------------------------------------------------------------------
+std::array<int, 4> BlendBox(const ViewProjection<float>& projection, std::size_t index)
+{
+  const auto& g = projection.Gaussians.at(index);
+  if (!g.IsVisible())
+  {
+    return { 0, 0, -1, -1 };
+  }
+  const int ts = raster::TileSize;
+  int x0 = std::max(0, g.TileRect[0] * ts);
+  int y0 = std::max(0, g.TileRect[1] * ts);
+  int x1 = std::min(projection.Width, g.TileRect[2] * ts) - 1;
+  int y1 = std::min(projection.Height, g.TileRect[3] * ts) - 1;
+  const double a = g.Cov2D[0], b = g.Cov2D[1], c = g.Cov2D[2];
+  const double o = std::min(1.0, static_cast<double>(g.Opacity));
+  if (std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && a > 0 && c > 0 &&
+    a * c - b * b > 0 && std::isfinite(static_cast<double>(g.U)) &&
+    std::isfinite(static_cast<double>(g.V)))
+  {
+    if (!(255.0 * o >= 1.0))
+    {
+      return { 0, 0, -1, -1 }; // alpha never reaches 1/255
+    }
+    // o e^power >= 1/255 <=> d^T Sigma^-1 d <= r2: |dx| <= sqrt(r2 a), |dy| <= sqrt(r2 c).
+    const double r2 = 2.0 * std::log(255.0 * o) * 1.001 + 1e-3;
+    const double hx = std::sqrt(r2 * a) + 1.0, hy = std::sqrt(r2 * c) + 1.0;
+    // Clamped to [-1, size] before the conversion to int.
+    auto clampTo = [](double v, int size)
+    { return static_cast<int>(std::min(static_cast<double>(size), std::max(-1.0, v))); };
+    x0 = std::max(x0, clampTo(std::floor(g.U - hx), projection.Width));
+    y0 = std::max(y0, clampTo(std::floor(g.V - hy), projection.Height));
+    x1 = std::min(x1, clampTo(std::ceil(g.U + hx), projection.Width));
+    y1 = std::min(y1, clampTo(std::ceil(g.V + hy), projection.Height));
+  }
+  return { x0, y0, x1, y1 };
+}
+
+//------------------------------------------------------------------------------
 std::int64_t SelectSingle(const SelectionView& view, int x, int y)
 {
   const auto att = AttributePixels<float>(view.Projection, view.Bins, view.Settings, { { x, y } });
@@ -73,6 +120,7 @@ struct GroupContext
   const std::vector<std::uint64_t>* Keys;
   const std::vector<std::size_t>* Starts;
   std::uint32_t* Best;
+  const std::uint8_t* Targets; // nullptr: every Gaussian
 };
 
 // One tile's pixels walk the tile's list together, 16 pixels per vector, until every pixel
@@ -110,7 +158,19 @@ inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx,
   const float minAlpha = raster::MinAlpha<float>();
   const float stopT = static_cast<float>(raster::TransmittanceStop);
   const float maxAlpha = static_cast<float>(raster::MaxAlpha);
-  for (std::uint64_t k = bins.Offsets[tile], end = bins.Offsets[tile + 1]; k < end; ++k)
+  // With targets, the walk ends after the tile's last target (later entries cannot change a
+  // target's weight).
+  std::uint64_t end = bins.Offsets[tile + 1];
+  if (ctx.Targets)
+  {
+    std::uint64_t last = bins.Offsets[tile];
+    for (std::uint64_t k = bins.Offsets[tile]; k < end; ++k)
+    {
+      last = ctx.Targets[bins.Ids[k]] ? k + 1 : last;
+    }
+    end = last;
+  }
+  for (std::uint64_t k = bins.Offsets[tile]; k < end; ++k)
   {
     const std::uint32_t id = bins.Ids[k];
     const auto& g = proj.Gaussians[id];
@@ -175,7 +235,8 @@ void ProcessGroupBaseline(const GroupContext& ctx, std::int64_t gi)
 //------------------------------------------------------------------------------
 std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
   const std::vector<std::array<int, 2>>& pixels,
-  int threads)
+  int threads,
+  const std::vector<std::uint8_t>* targets)
 {
   const auto& proj = view.Projection;
   const auto& bins = view.Bins;
@@ -212,7 +273,13 @@ std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
   starts.push_back(keys.size());
 
   std::vector<std::uint32_t> best(proj.Gaussians.size(), 0u);
-  const GroupContext ctx{ &proj, &bins, &keys, &starts, best.data() };
+  if (targets && targets->size() != proj.Gaussians.size())
+  {
+    throw std::invalid_argument("MaxWeightsOverPixels: one target flag per Gaussian expected");
+  }
+  const GroupContext ctx{
+    &proj, &bins, &keys, &starts, best.data(), targets ? targets->data() : nullptr
+  };
   const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
     __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
   void (*process)(const GroupContext&, std::int64_t) = has512 ? ProcessGroupAvx512
@@ -350,6 +417,86 @@ std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
   if (!(options.WeightThreshold > 0))
   {
     throw std::invalid_argument("SelectFrame: the weight threshold must be positive");
+  }
+  const int rw = x1 - x0 + 1;
+  if (view.ViewMaxWeights.size() == proj.Gaussians.size())
+  {
+    // Decide from the largest weights over the view; replay only pixels of the rectangle for
+    // the candidates whose blend box crosses the rectangle's border: first the pixel nearest
+    // each one's centre (where an unoccluded Gaussian weighs most), then, for those still
+    // undecided, every pixel of the rectangle inside their boxes.
+    std::vector<std::uint32_t> out, ambiguous;
+    for (std::uint32_t i : candidates)
+    {
+      if (!(static_cast<double>(view.ViewMaxWeights[i]) >= options.WeightThreshold))
+      {
+        continue;
+      }
+      const auto box = BlendBox(proj, i);
+      if (box[0] >= x0 && box[1] >= y0 && box[2] <= x1 && box[3] <= y1)
+      {
+        out.push_back(i);
+      }
+      else
+      {
+        ambiguous.push_back(i);
+      }
+    }
+    std::vector<std::uint8_t> targets(proj.Gaussians.size(), 0);
+    for (int round = 0; round < 2 && !ambiguous.empty(); ++round)
+    {
+      for (std::uint32_t i : ambiguous)
+      {
+        targets[i] = static_cast<std::uint8_t>(round + 1);
+      }
+      std::vector<std::uint8_t> mark(static_cast<std::size_t>(rw) * (y1 - y0 + 1), 0);
+      for (std::uint32_t i : ambiguous)
+      {
+        std::array<int, 4> box = BlendBox(proj, i);
+        if (round == 0)
+        {
+          const auto& g = proj.Gaussians[i];
+          const int cx = std::min(x1, std::max(x0, static_cast<int>(std::lround(g.U))));
+          const int cy = std::min(y1, std::max(y0, static_cast<int>(std::lround(g.V))));
+          box = { cx, cy, cx, cy };
+        }
+        const int bx0 = std::max(x0, box[0]), bx1 = std::min(x1, box[2]);
+        for (int y = std::max(y0, box[1]); y <= std::min(y1, box[3]) && bx0 <= bx1; ++y)
+        {
+          std::fill_n(&mark[static_cast<std::size_t>(y - y0) * rw + (bx0 - x0)],
+            bx1 - bx0 + 1,
+            std::uint8_t(1));
+        }
+      }
+      std::vector<std::array<int, 2>> pixels;
+      for (int y = y0; y <= y1; ++y)
+      {
+        for (int x = x0; x <= x1; ++x)
+        {
+          if (mark[static_cast<std::size_t>(y - y0) * rw + (x - x0)])
+          {
+            pixels.push_back({ x, y });
+          }
+        }
+      }
+      const auto w = MaxWeightsOverPixels(view, pixels, options.Threads, &targets);
+      std::vector<std::uint32_t> undecided;
+      for (std::uint32_t i : ambiguous)
+      {
+        if (static_cast<double>(w[i]) >= options.WeightThreshold)
+        {
+          out.push_back(i);
+        }
+        else if (round == 0)
+        {
+          undecided.push_back(i);
+        }
+        targets[i] = 0;
+      }
+      ambiguous.swap(undecided);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
   }
   std::vector<std::array<int, 2>> pixels;
   pixels.reserve(static_cast<std::size_t>(x1 - x0 + 1) * (y1 - y0 + 1));

@@ -14,11 +14,14 @@
  *  - Brush: the Gaussians whose largest weight over the brushed pixels is >= a threshold.
  *  - Frame: the Gaussians whose projected centre (U, V) lies in the rectangle of pixels
  *    [x0, x1] x [y0, y1] (i.e. x0 - 0.5 <= U < x1 + 0.5) and that are visible there: their
- *    largest weight over the rectangle's pixels is >= a threshold; with IncludeOccluded every
- *    projected (not culled) Gaussian with its centre inside is taken.
+ *    largest weight over the rectangle's pixels is >= a threshold (visible INSIDE the
+ *    rectangle, not merely somewhere in the view); with IncludeOccluded every projected (not
+ *    culled) Gaussian with its centre inside is taken.
  *
  * PrepareSelectionView() projects and bins the scene once per camera (the costly part); the
- * selections then reuse it.
+ * selections then reuse it. ComputeViewMaxWeights() adds, once per camera, every Gaussian's
+ * largest weight over the whole image (one exact compositing pass); SelectFrame then decides
+ * most candidates from it without replaying pixels (same result, see SelectFrame()).
  */
 #ifndef vis4gs_ScreenSelection_h
 #define vis4gs_ScreenSelection_h
@@ -41,7 +44,26 @@ struct SelectionView
   ViewProjection<float> Projection;
   TileBins Bins;
   RasterSettings Settings;
+  /// Largest blending weight w = alpha*T of each Gaussian over every pixel of the image, 0
+  /// where it does not blend (ComputeViewMaxWeights()); empty until computed.
+  std::vector<float> ViewMaxWeights;
 };
+
+/**
+ * Fills view.ViewMaxWeights with one exact compositing pass over the whole image
+ * (CompositeTiles' per-Gaussian MaxWeight: the same float arithmetic and early stop as
+ * MaxWeightsOverPixels() over all pixels). Threads: view.Settings.Threads.
+ */
+void ComputeViewMaxWeights(SelectionView& view);
+
+/**
+ * Inclusive pixel box [x0, x1] x [y0, y1] (clipped to the image) outside which Gaussian
+ * @p index cannot blend: its tile rectangle intersected with the box of the ellipse where
+ * o e^power >= 1/255, widened by a safety margin for float rounding (1 pixel and 0.1 %);
+ * the tile rectangle alone when the 2D covariance is not positive definite. Empty (x0 > x1)
+ * for a culled Gaussian.
+ */
+std::array<int, 4> BlendBox(const ViewProjection<float>& projection, std::size_t index);
 
 /// Projects (without colours) and bins @p cloud for @p camera. Throws like ProjectGaussians().
 SelectionView PrepareSelectionView(const GaussianCloud& cloud,
@@ -53,11 +75,15 @@ std::int64_t SelectSingle(const SelectionView& view, int x, int y);
 
 /**
  * Largest weight of every Gaussian over @p pixels (out-of-image pixels ignored): a dense
- * array, one float per Gaussian, 0 where it does not blend. Parallel over pixels.
+ * array, one float per Gaussian, 0 where it does not blend. Parallel over pixels. With
+ * @p targets (one flag per Gaussian), only the flagged Gaussians' weights are wanted: each
+ * tile's list is walked only up to its last flagged entry (the flagged weights are the same,
+ * the others may be too small).
  */
 std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
   const std::vector<std::array<int, 2>>& pixels,
-  int threads = 0);
+  int threads = 0,
+  const std::vector<std::uint8_t>* targets = nullptr);
 
 /// The pixels of the image within @p radius (Euclidean, pixel centres) of the polyline
 /// @p stroke (a single point is a disk), each once, in row-major order.
@@ -81,8 +107,16 @@ struct FrameOptions
   int Threads = 0;
 };
 
-/// Indices (ascending) selected by the rectangle [x0, x1] x [y0, y1] (corners in any order,
-/// clipped to the image).
+/**
+ * Indices (ascending) selected by the rectangle [x0, x1] x [y0, y1] (corners in any order,
+ * clipped to the image). Visible-only selection without view.ViewMaxWeights replays the
+ * compositing of every pixel of the rectangle. With them, a candidate (centre inside) is
+ * rejected when its largest weight over the view is below the threshold (its largest weight
+ * over the rectangle can only be smaller), accepted when its BlendBox() lies inside the
+ * rectangle (the largest weight over the view is then reached inside), and only the remaining
+ * candidates, near the rectangle's border, are decided by replaying the rectangle's pixels
+ * inside their blend boxes: the same selection as the full replay, at a fraction of its cost.
+ */
 std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
   int x0,
   int y0,

@@ -19,8 +19,12 @@
  *  - Brush: every Gaussian whose largest weight over the brushed pixels (within BrushRadius
  *    of the stroke) is >= WeightThreshold.
  *  - Frame: every Gaussian whose centre projects into the rectangle and whose largest weight
- *    over the rectangle is >= WeightThreshold; with IncludeOccluded, every projected one
- *    whose centre is inside.
+ *    over the rectangle is >= WeightThreshold (visible inside the rectangle); with
+ *    IncludeOccluded, every projected one whose centre is inside. The second visible-only
+ *    frame with the same camera (or the first, when it covers a quarter of the view) also
+ *    computes every Gaussian's largest weight over the view (one compositing pass, cached with
+ *    the projection); frames then replay only pixels near the rectangle's border (the same
+ *    result as replaying every pixel of the rectangle, as the first frame does).
  *  - Ray: every Gaussian that the viewing ray through the pixel passes within RaySigmas
  *    standard deviations of (Mahalanobis distance), in depth order (GetRayHitIds()), found
  *    through an octree over the Gaussians' bounding boxes (built once per scene).

@@ -80,19 +80,34 @@ vis4gs::Camera vtkGaussianCameraUtilities::FromVTKCamera(vtkCamera* camera, int 
   }
   vtkMatrix4x4* p =
     camera->GetProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0);
-  vis4gs::Camera c;
+  vis4gs::Camera c = PinholeCamera(width,
+    height,
+    p->GetElement(0, 0) * width / 2.0,
+    p->GetElement(1, 1) * height / 2.0,
+    vis4gs::GLViewToWorldToCamera(view));
   c.Name = "view";
-  c.Width = width;
-  c.Height = height;
-  c.Fx = p->GetElement(0, 0) * width / 2.0;
-  c.Fy = p->GetElement(1, 1) * height / 2.0;
-  c.Cx = width / 2.0;
-  c.Cy = height / 2.0;
-  c.WorldToCamera = vis4gs::GLViewToWorldToCamera(view);
   if (!(c.Fx > 0) || !(c.Fy > 0) || !std::isfinite(c.Fx) || !std::isfinite(c.Fy))
   {
     throw std::invalid_argument("FromVTKCamera: degenerate projection");
   }
+  return c;
+}
+
+//------------------------------------------------------------------------------
+vis4gs::Camera vtkGaussianCameraUtilities::PinholeCamera(int width,
+  int height,
+  double fx,
+  double fy,
+  const std::array<double, 16>& worldToCamera)
+{
+  vis4gs::Camera c;
+  c.Width = width;
+  c.Height = height;
+  c.Fx = fx;
+  c.Fy = fy;
+  c.Cx = width / 2.0;
+  c.Cy = height / 2.0;
+  c.WorldToCamera = worldToCamera;
   return c;
 }
 
@@ -109,20 +124,15 @@ bool vtkGaussianCameraUtilities::SetCamera(vtkCamera* camera,
     vtkGenericWarningMacro("SetCamera: no camera or no world-to-camera matrix");
     return false;
   }
-  vis4gs::Camera c;
-  c.Width = width;
-  c.Height = height;
-  c.Fx = fx;
-  c.Fy = fy;
-  c.Cx = width / 2.0;
-  c.Cy = height / 2.0;
+  std::array<double, 16> w2c{};
   for (int r = 0; r < 4; ++r)
   {
     for (int k = 0; k < 4; ++k)
     {
-      c.WorldToCamera[4 * r + k] = worldToCamera->GetElement(r, k);
+      w2c[4 * r + k] = worldToCamera->GetElement(r, k);
     }
   }
+  const vis4gs::Camera c = PinholeCamera(width, height, fx, fy, w2c);
   try
   {
     ApplyCamera(c, camera);

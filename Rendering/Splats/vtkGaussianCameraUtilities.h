@@ -31,6 +31,7 @@
 
 #ifndef __VTK_WRAP__
 #include "Camera.h" // For vis4gs::Camera
+#include <array>    // For std::array
 #endif
 
 class vtkCamera;
@@ -82,6 +83,14 @@ public:
    * Throws std::invalid_argument for a parallel projection or a degenerate camera.
    */
   static vis4gs::Camera FromVTKCamera(vtkCamera* camera, int width, int height);
+
+  /// A pinhole vis4gs::Camera of @p width x @p height with focal lengths @p fx, @p fy, the
+  /// principal point at the image centre and the row-major @p worldToCamera (not checked).
+  static vis4gs::Camera PinholeCamera(int width,
+    int height,
+    double fx,
+    double fy,
+    const std::array<double, 16>& worldToCamera);
 #endif
 
 protected:

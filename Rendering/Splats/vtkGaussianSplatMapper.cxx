@@ -9,7 +9,9 @@
 
 =========================================================================*/
 #include "vtkGaussianSplatMapper.h"
+#include "vtkGaussianCameraUtilities.h"
 
+#include "Rasterizer.h"
 #include "SplatAttributes.h"
 #include "SplatCamera.h"
 #include "SplatSort.h"
@@ -25,6 +27,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -50,9 +53,10 @@
 
 namespace
 {
-// One point per Gaussian (gl_VertexID = draw position); everything is fetched from texture
-// buffers. Mirrors the reference's preprocessCUDA in float (reference §2.3).
-const char* SplatVS = R"(//VTK::System::Dec
+// The per-Gaussian projection both OpenGL paths share: everything is fetched from texture
+// buffers; mirrors the reference's preprocessCUDA in float (reference §2.3). Returns false for
+// a culled Gaussian.
+const char* SplatProjectionGLSL = R"(
 uniform samplerBuffer splatGeometry; // 3 RGBA texels per Gaussian
 uniform samplerBuffer splatColor;    // rgb, opacity scale
 uniform usamplerBuffer splatOrder;   // draw position -> Gaussian index
@@ -63,32 +67,27 @@ uniform vec2 focal;
 uniform vec2 tanFov;
 uniform vec2 imageSize;
 uniform vec2 depthCoeffs;
-flat out vec4 gConic;  // A, B, C, opacity
-flat out vec3 gColor;
-flat out vec2 gCenter; // reference pixel coordinates
-flat out vec4 gRect;   // pixel rows/columns x0, y0, x1, y1 (inclusive), reference convention
-flat out float gDepth; // NDC z
-flat out int gValid;
-void main()
+// conic: A, B, C, opacity; center: reference pixel coordinates; rect: pixel columns/rows
+// x0, y0, x1, y1 (inclusive), reference convention; depth: NDC z.
+bool projectSplat(int drawIndex, out vec4 conic, out vec3 color, out vec2 center, out vec4 rect,
+  out float depth)
 {
-  gValid = 0;
-  gConic = vec4(0.0);
-  gColor = vec3(0.0);
-  gCenter = vec2(0.0);
-  gRect = vec4(0.0);
-  gDepth = 0.0;
-  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-  int idx = int(texelFetch(splatOrder, gl_VertexID).r);
+  conic = vec4(0.0);
+  color = vec3(0.0);
+  center = vec2(0.0);
+  rect = vec4(0.0);
+  depth = 0.0;
+  int idx = int(texelFetch(splatOrder, drawIndex).r);
   vec4 t0 = texelFetch(splatGeometry, 3 * idx);
   vec4 t1 = texelFetch(splatGeometry, 3 * idx + 1);
   vec4 t2 = texelFetch(splatGeometry, 3 * idx + 2);
-  if (t2.z < 0.5) { return; }
+  if (t2.z < 0.5) { return false; }
   vec3 mu = t0.xyz;
   vec4 col = texelFetch(splatColor, idx);
   float opacity = t0.w * col.w;
   vec3 t = vec3(dot(viewRow0.xyz, mu) + viewRow0.w, dot(viewRow1.xyz, mu) + viewRow1.w,
     dot(viewRow2.xyz, mu) + viewRow2.w);
-  if (!(t.z > 0.2)) { return; }
+  if (!(t.z > 0.2)) { return false; }
   mat3 Sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
   float limx = 1.3 * tanFov.x;
   float limy = 1.3 * tanFov.y;
@@ -106,7 +105,7 @@ void main()
   float b = dot(T0, S1);
   float c = dot(T1, S1) + 0.3;
   float det = a * c - b * b;
-  if (det == 0.0 || isnan(det) || isinf(det) || isinf(a) || isinf(c) || isnan(b)) { return; }
+  if (det == 0.0 || isnan(det) || isinf(det) || isinf(a) || isinf(c) || isnan(b)) { return false; }
   float A = c / det;
   float B = -b / det;
   float C = a / det;
@@ -118,17 +117,17 @@ void main()
   float ndcY = (t.y / tanFov.y) * (1.0 / (t.z + 0.0000001));
   float u = ((ndcX + 1.0) * imageSize.x - 1.0) * 0.5;
   float v = ((ndcY + 1.0) * imageSize.y - 1.0) * 0.5;
-  if (isinf(radius) || isnan(u) || isnan(v) || isinf(u) || isinf(v)) { return; }
+  if (isinf(radius) || isnan(u) || isnan(v) || isinf(u) || isinf(v)) { return false; }
   // Tile rectangle (reference getRect), in tiles, max exclusive.
   vec2 grid = ceil(imageSize / 16.0);
   float rx0 = clamp(float(int((u - radius) / 16.0)), 0.0, grid.x);
   float ry0 = clamp(float(int((v - radius) / 16.0)), 0.0, grid.y);
   float rx1 = clamp(float(int((u + radius + 15.0) / 16.0)), 0.0, grid.x);
   float ry1 = clamp(float(int((v + radius + 15.0) / 16.0)), 0.0, grid.y);
-  if ((rx1 - rx0) * (ry1 - ry0) == 0.0) { return; }
+  if ((rx1 - rx0) * (ry1 - ry0) == 0.0) { return false; }
   // Where alpha can reach 1/255: o e^power >= 1/255 <=> r^2 <= 2 ln(255 o).
   float omax = min(opacity, 1.0);
-  if (!(255.0 * omax >= 1.0)) { return; }
+  if (!(255.0 * omax >= 1.0)) { return false; }
   float r2 = 2.0 * log(255.0 * omax);
   float hx = sqrt(r2 * a) + 1.0;
   float hy = sqrt(r2 * c) + 1.0;
@@ -136,107 +135,85 @@ void main()
   float y0 = max(ry0 * 16.0, floor(v - hy));
   float x1 = min(min(rx1 * 16.0, imageSize.x) - 1.0, ceil(u + hx));
   float y1 = min(min(ry1 * 16.0, imageSize.y) - 1.0, ceil(v + hy));
-  if (x1 < x0 || y1 < y0) { return; }
-  gConic = vec4(A, B, C, opacity);
-  gColor = col.rgb;
-  gCenter = vec2(u, v);
-  gRect = vec4(x0, y0, x1, y1);
+  if (x1 < x0 || y1 < y0) { return false; }
+  conic = vec4(A, B, C, opacity);
+  color = col.rgb;
+  center = vec2(u, v);
+  rect = vec4(x0, y0, x1, y1);
   float zc = (depthCoeffs.x * (-t.z) + depthCoeffs.y) / t.z;
-  gDepth = clamp(zc, -0.999999, 0.999999);
-  gValid = 1;
+  depth = clamp(zc, -0.999999, 0.999999);
+  return true;
 }
 )";
 
-// The same projection, one instance per Gaussian and a 4-vertex strip per instance (no
-// geometry shader): each of the 4 vertices repeats the projection.
-const char* SplatInstancedVS = R"(//VTK::System::Dec
-uniform samplerBuffer splatGeometry; // 3 RGBA texels per Gaussian
-uniform samplerBuffer splatColor;    // rgb, opacity scale
-uniform usamplerBuffer splatOrder;   // draw position -> Gaussian index
-uniform vec4 viewRow0;
-uniform vec4 viewRow1;
-uniform vec4 viewRow2;
-uniform vec2 focal;
-uniform vec2 tanFov;
-uniform vec2 imageSize;
-uniform vec2 depthCoeffs;
-flat out vec4 fConic; // A, B, C, opacity
-flat out vec3 fColor;
-flat out vec2 fCenter; // reference pixel coordinates
+// Geometry-shader path: one point per Gaussian (gl_VertexID = draw position), expanded by
+// SplatGS.
+const char* SplatPointMain = R"(
+flat out vec4 gConic;
+flat out vec3 gColor;
+flat out vec2 gCenter;
+flat out vec4 gRect;
+flat out float gDepth;
+flat out int gValid;
 void main()
 {
-  fConic = vec4(0.0);
-  fColor = vec3(0.0);
-  fCenter = vec2(0.0);
+  vec4 conic; vec3 color; vec2 center; vec4 rect; float depth;
+  gValid = projectSplat(gl_VertexID, conic, color, center, rect, depth) ? 1 : 0;
+  gConic = conic;
+  gColor = color;
+  gCenter = center;
+  gRect = rect;
+  gDepth = depth;
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+}
+)";
+
+// Instanced path: one instance per Gaussian and a 4-vertex strip per instance (no geometry
+// shader): each of the 4 vertices repeats the projection.
+const char* SplatInstancedMain = R"(
+flat out vec4 fConic;
+flat out vec3 fColor;
+flat out vec2 fCenter;
+void main()
+{
+  vec4 conic; vec3 color; vec2 center; vec4 rect; float depth;
+  bool valid = projectSplat(gl_InstanceID, conic, color, center, rect, depth);
+  fConic = conic;
+  fColor = color;
+  fCenter = center;
   gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: culled
-  int idx = int(texelFetch(splatOrder, gl_InstanceID).r);
-  vec4 t0 = texelFetch(splatGeometry, 3 * idx);
-  vec4 t1 = texelFetch(splatGeometry, 3 * idx + 1);
-  vec4 t2 = texelFetch(splatGeometry, 3 * idx + 2);
-  if (t2.z < 0.5) { return; }
-  vec3 mu = t0.xyz;
-  vec4 col = texelFetch(splatColor, idx);
-  float opacity = t0.w * col.w;
-  vec3 t = vec3(dot(viewRow0.xyz, mu) + viewRow0.w, dot(viewRow1.xyz, mu) + viewRow1.w,
-    dot(viewRow2.xyz, mu) + viewRow2.w);
-  if (!(t.z > 0.2)) { return; }
-  mat3 Sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
-  float limx = 1.3 * tanFov.x;
-  float limy = 1.3 * tanFov.y;
-  float tx = clamp(t.x / t.z, -limx, limx) * t.z;
-  float ty = clamp(t.y / t.z, -limy, limy) * t.z;
-  float J00 = focal.x / t.z;
-  float J02 = -(focal.x * tx) / (t.z * t.z);
-  float J11 = focal.y / t.z;
-  float J12 = -(focal.y * ty) / (t.z * t.z);
-  vec3 T0 = J00 * viewRow0.xyz + J02 * viewRow2.xyz;
-  vec3 T1 = J11 * viewRow1.xyz + J12 * viewRow2.xyz;
-  vec3 S0 = Sigma * T0;
-  vec3 S1 = Sigma * T1;
-  float a = dot(T0, S0) + 0.3;
-  float b = dot(T0, S1);
-  float c = dot(T1, S1) + 0.3;
-  float det = a * c - b * b;
-  if (det == 0.0 || isnan(det) || isinf(det) || isinf(a) || isinf(c) || isnan(b)) { return; }
-  float A = c / det;
-  float B = -b / det;
-  float C = a / det;
-  float mid = 0.5 * (a + c);
-  float root = sqrt(max(0.1, mid * mid - det));
-  float radius = ceil(3.0 * sqrt(max(mid + root, mid - root)));
-  // ndc2Pix of the reference: ndc = x / (tan * (z + 1e-7)).
-  float ndcX = (t.x / tanFov.x) * (1.0 / (t.z + 0.0000001));
-  float ndcY = (t.y / tanFov.y) * (1.0 / (t.z + 0.0000001));
-  float u = ((ndcX + 1.0) * imageSize.x - 1.0) * 0.5;
-  float v = ((ndcY + 1.0) * imageSize.y - 1.0) * 0.5;
-  if (isinf(radius) || isnan(u) || isnan(v) || isinf(u) || isinf(v)) { return; }
-  // Tile rectangle (reference getRect), in tiles, max exclusive.
-  vec2 grid = ceil(imageSize / 16.0);
-  float rx0 = clamp(float(int((u - radius) / 16.0)), 0.0, grid.x);
-  float ry0 = clamp(float(int((v - radius) / 16.0)), 0.0, grid.y);
-  float rx1 = clamp(float(int((u + radius + 15.0) / 16.0)), 0.0, grid.x);
-  float ry1 = clamp(float(int((v + radius + 15.0) / 16.0)), 0.0, grid.y);
-  if ((rx1 - rx0) * (ry1 - ry0) == 0.0) { return; }
-  // Where alpha can reach 1/255: o e^power >= 1/255 <=> r^2 <= 2 ln(255 o).
-  float omax = min(opacity, 1.0);
-  if (!(255.0 * omax >= 1.0)) { return; }
-  float r2 = 2.0 * log(255.0 * omax);
-  float hx = sqrt(r2 * a) + 1.0;
-  float hy = sqrt(r2 * c) + 1.0;
-  float x0 = max(rx0 * 16.0, floor(u - hx));
-  float y0 = max(ry0 * 16.0, floor(v - hy));
-  float x1 = min(min(rx1 * 16.0, imageSize.x) - 1.0, ceil(u + hx));
-  float y1 = min(min(ry1 * 16.0, imageSize.y) - 1.0, ceil(v + hy));
-  if (x1 < x0 || y1 < y0) { return; }
-  fConic = vec4(A, B, C, opacity);
-  fColor = col.rgb;
-  fCenter = vec2(u, v);
-  float zc = (depthCoeffs.x * (-t.z) + depthCoeffs.y) / t.z;
+  if (!valid) { return; }
   // Corner gl_VertexID of the triangle strip: bit 0 picks the column edge, bit 1 the row edge.
-  float px = (gl_VertexID & 1) == 0 ? x0 : x1 + 1.0;
-  float py = (gl_VertexID & 2) == 0 ? y0 : y1 + 1.0;
-  gl_Position = vec4(2.0 * px / imageSize.x - 1.0, 1.0 - 2.0 * py / imageSize.y,
-    clamp(zc, -0.999999, 0.999999), 1.0);
+  float px = (gl_VertexID & 1) == 0 ? rect.x : rect.z + 1.0;
+  float py = (gl_VertexID & 2) == 0 ? rect.y : rect.w + 1.0;
+  gl_Position = vec4(2.0 * px / imageSize.x - 1.0, 1.0 - 2.0 * py / imageSize.y, depth, 1.0);
+}
+)";
+
+std::string SplatVertexShader(bool instanced)
+{
+  return std::string("//VTK::System::Dec\n") + SplatProjectionGLSL +
+    (instanced ? SplatInstancedMain : SplatPointMain);
+}
+
+// CPU-rasteriser path: the rasterised image (premultiplied RGB, alpha; row 0 at the bottom)
+// and the expected view depth per pixel, drawn over the viewport. depthPass 0 blends the
+// colour depth-tested at the expected depth; depthPass 1 writes that depth where alpha >= 0.5.
+const char* RasterImageFS = R"(//VTK::System::Dec
+//VTK::Output::Dec
+in vec2 texCoord;
+uniform sampler2D splatImage;
+uniform sampler2D splatDepth;
+uniform vec2 depthCoeffs;
+uniform int depthPass;
+void main()
+{
+  vec4 c = texture(splatImage, texCoord);
+  float z = texture(splatDepth, texCoord).r;
+  float zc = (depthCoeffs.x * (-z) + depthCoeffs.y) / z;
+  gl_FragDepth = clamp(0.5 * zc + 0.5, 0.0, 1.0);
+  if (c.a <= 0.0 || (depthPass == 1 && c.a < 0.5)) { discard; }
+  gl_FragData[0] = c;
 }
 )";
 
@@ -321,12 +298,23 @@ struct vtkGaussianSplatMapper::vtkInternals
   vtkIdType SortedBudget = 0;
   std::array<double, 3> ColoredCenter{ { std::nan(""), 0, 0 } };
   int ColoredDegree = -2;
+  bool PackDirty = true;
   bool OrderDirty = true;
   bool ColorsDirty = true;
   bool GeometryDirty = true;
   double AutoRange[2] = { 0.0, 1.0 };
   bool ReportedParallel = false;
   double PackedScale = std::nan("");
+  int SoftwareGL = -1; // -1 not yet known
+
+  // CPU rasteriser path: the last image and what it was rendered for.
+  vis4gs::RasterImage<float> Image;
+  std::vector<float> Texels;      // RGBA per pixel, row 0 at the bottom
+  std::vector<float> DepthTexels; // expected view depth per pixel, row 0 at the bottom
+  std::array<double, 24> RasterKey{};
+  bool RasterValid = false;
+  double AdaptiveDistance = 0.0; // interactive sample distance (auto-adjusted); 0 = not set
+  std::size_t RasterDrawn = 0;
 
   // GPU side.
   vtkOpenGLRenderWindow* Window = nullptr;
@@ -339,6 +327,9 @@ struct vtkGaussianSplatMapper::vtkInternals
   vtkNew<vtkTextureObject> GeometryTexture;
   vtkNew<vtkTextureObject> ColorTexture;
   vtkNew<vtkTextureObject> OrderTexture;
+  vtkNew<vtkTextureObject> ImageTexture;
+  vtkNew<vtkTextureObject> DepthTexture;
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   bool GeometryOnGPU = false;
   bool ColorsOnGPU = false;
   bool OrderOnGPU = false;
@@ -351,15 +342,100 @@ struct vtkGaussianSplatMapper::vtkInternals
       this->GeometryTexture->ReleaseGraphicsResources(w);
       this->ColorTexture->ReleaseGraphicsResources(w);
       this->OrderTexture->ReleaseGraphicsResources(w);
+      this->ImageTexture->ReleaseGraphicsResources(w);
+      this->DepthTexture->ReleaseGraphicsResources(w);
       this->GeometryBuffer->ReleaseGraphicsResources();
       this->ColorBuffer->ReleaseGraphicsResources();
       this->OrderBuffer->ReleaseGraphicsResources();
     }
+    this->Quad.reset();
     this->Program = nullptr;
     this->InstancedProgram = nullptr;
     this->Window = nullptr;
+    this->SoftwareGL = -1;
+    this->RasterValid = false;
     this->GeometryOnGPU = this->ColorsOnGPU = this->OrderOnGPU = false;
     this->GeometryDirty = this->ColorsDirty = this->OrderDirty = true;
+  }
+
+  // The overlay, hiding, highlight and dimming options of @p self for the current input
+  // (fills Scores, AutoRange and Selected); false (error reported) when the score array is
+  // missing.
+  bool FillDisplayOptions(vtkGaussianSplatMapper* self,
+    vtkPolyData* input,
+    vis4gs::SplatDisplayOptions& opt)
+  {
+    const std::size_t n = this->Cloud.Count;
+    this->Scores.clear();
+    const bool needScores = self->SplatColoring == SCORE || self->HideOutsideRange;
+    if (needScores)
+    {
+      vtkDataArray* arr =
+        self->ScoreArrayName ? input->GetPointData()->GetArray(self->ScoreArrayName) : nullptr;
+      if (!arr || arr->GetNumberOfTuples() != static_cast<vtkIdType>(n))
+      {
+        vtkErrorWithObjectMacro(self,
+          "vtkGaussianSplatMapper: score array '"
+            << (self->ScoreArrayName ? self->ScoreArrayName : "(none)")
+            << "' is missing from the input point data");
+        return false;
+      }
+      this->Scores.resize(n);
+      double lo = VTK_DOUBLE_MAX, hi = VTK_DOUBLE_MIN;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double s = arr->GetComponent(static_cast<vtkIdType>(i), 0);
+        this->Scores[i] = s;
+        if (std::isfinite(s))
+        {
+          lo = std::min(lo, s);
+          hi = std::max(hi, s);
+        }
+      }
+      this->AutoRange[0] = lo <= hi ? lo : 0.0;
+      this->AutoRange[1] = lo <= hi ? hi : 1.0;
+      opt.Scores = this->Scores.data();
+    }
+    opt.ScoreColoring = self->SplatColoring == SCORE;
+    opt.ColorRange = self->AutoScoreRange
+      ? std::array<double, 2>{ this->AutoRange[0], this->AutoRange[1] }
+      : std::array<double, 2>{ self->ScoreRange[0], self->ScoreRange[1] };
+    opt.HideOutsideRange = self->HideOutsideRange;
+    opt.VisibleRange = { self->VisibleRange[0], self->VisibleRange[1] };
+    this->Selected.clear();
+    vtkIdTypeArray* ids = self->SelectedIds;
+    if (ids && ids->GetNumberOfTuples() > 0)
+    {
+      this->Selected.assign(n, 0);
+      for (vtkIdType k = 0; k < ids->GetNumberOfTuples(); ++k)
+      {
+        const vtkIdType id = ids->GetValue(k);
+        if (this->IdToIndex.empty())
+        {
+          if (id >= 0 && id < static_cast<vtkIdType>(n))
+          {
+            this->Selected[id] = 1;
+          }
+          continue;
+        }
+        auto it = std::lower_bound(this->IdToIndex.begin(),
+          this->IdToIndex.end(),
+          std::make_pair(id, vtkIdType(std::numeric_limits<vtkIdType>::min())));
+        for (; it != this->IdToIndex.end() && it->first == id; ++it)
+        {
+          this->Selected[it->second] = 1;
+        }
+      }
+      opt.Selected = this->Selected.data();
+    }
+    opt.Highlight = self->HighlightSelected;
+    opt.HighlightColor = { static_cast<float>(self->HighlightColor[0]),
+      static_cast<float>(self->HighlightColor[1]),
+      static_cast<float>(self->HighlightColor[2]) };
+    opt.HighlightMix = static_cast<float>(self->HighlightMix);
+    opt.DimUnselected = self->DimUnselected && opt.Selected != nullptr;
+    opt.DimOpacity = static_cast<float>(self->DimOpacity);
+    return true;
   }
 };
 
@@ -467,7 +543,7 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 {
   vtkInternals& in = *this->Internals;
   this->LastDrawnCount = 0;
-  this->LastSortTime = this->LastColorTime = this->LastUploadTime = 0.0;
+  this->LastSortTime = this->LastColorTime = this->LastUploadTime = this->LastRasterTime = 0.0;
   vtkPolyData* input = this->GetInput();
   if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector())
   {
@@ -494,64 +570,63 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     }
     return;
   }
-  const int threads = this->NumberOfThreads;
 
-  // 1. Input -> Core cloud and packed geometry (only when the input changed).
-  if (input->GetMTime() != in.InputTime || in.GeometryDirty ||
-    in.PackedScale != this->ScaleModifier)
+  // 0. Drawing path: the CPU rasteriser on a software OpenGL.
+  if (in.SoftwareGL < 0)
   {
-    if (input->GetMTime() != in.InputTime)
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string renderer = name ? name : "";
+    in.SoftwareGL = (renderer.find("llvmpipe") != std::string::npos ||
+                      renderer.find("softpipe") != std::string::npos ||
+                      renderer.find("SWR") != std::string::npos ||
+                      renderer.find("Software Rasterizer") != std::string::npos)
+      ? 1
+      : 0;
+  }
+  const int method = this->DrawMethod != AUTOMATIC ? this->DrawMethod
+    : in.SoftwareGL == 1                           ? CPU_RASTERIZER
+                                                   : OPENGL_SPLATS;
+  this->LastDrawMethod = method;
+
+  // 1. Input -> Core cloud (only when the input changed).
+  if (input->GetMTime() != in.InputTime)
+  {
+    std::string error;
+    in.Cloud = vis4gs::GaussianCloud();
+    in.InputTime = input->GetMTime();
+    in.RasterValid = false;
+    if (!vis4gs::PolyDataToGaussianCloud(input, in.Cloud, &error))
     {
-      std::string error;
+      vtkErrorMacro("vtkGaussianSplatMapper: " << error);
       in.Cloud = vis4gs::GaussianCloud();
-      if (!vis4gs::PolyDataToGaussianCloud(input, in.Cloud, &error))
-      {
-        vtkErrorMacro("vtkGaussianSplatMapper: " << error);
-        in.Cloud = vis4gs::GaussianCloud();
-        in.InputTime = input->GetMTime();
-        return;
-      }
-      const std::size_t n = in.Cloud.Count;
-      if (in.Cloud.LogScales.size() != 3 * n || in.Cloud.Rotations.size() != 4 * n ||
-        in.Cloud.OpacityLogits.size() != n)
-      {
-        vtkErrorMacro("vtkGaussianSplatMapper: the input lacks LogScale, Rotation or "
-                      "OpacityLogit point arrays");
-        in.Cloud = vis4gs::GaussianCloud();
-        in.InputTime = input->GetMTime();
-        return;
-      }
-      in.HasSH =
-        in.Cloud.SH.size() == 3 * n * static_cast<std::size_t>(in.Cloud.ShCoefficientCount());
-      in.IdToIndex.clear();
-      vtkDataArray* ids = input->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
-      if (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
-      {
-        in.IdToIndex.resize(n);
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          in.IdToIndex[i] = { static_cast<vtkIdType>(
-                                ids->GetComponent(static_cast<vtkIdType>(i), 0)),
-            static_cast<vtkIdType>(i) };
-        }
-        std::sort(in.IdToIndex.begin(), in.IdToIndex.end());
-      }
-      in.InputTime = input->GetMTime();
-      in.ColoredDegree = -2; // force new colours
-      in.DisplayTime = 0;
-    }
-    try
-    {
-      vis4gs::PackSplatGeometry(in.Cloud, this->ScaleModifier, in.Geometry, threads);
-      in.PackedScale = this->ScaleModifier;
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
       return;
     }
-    in.GeometryDirty = true;
-    in.OrderDirty = true;
+    const std::size_t n = in.Cloud.Count;
+    if (in.Cloud.LogScales.size() != 3 * n || in.Cloud.Rotations.size() != 4 * n ||
+      in.Cloud.OpacityLogits.size() != n)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: the input lacks LogScale, Rotation or "
+                    "OpacityLogit point arrays");
+      in.Cloud = vis4gs::GaussianCloud();
+      return;
+    }
+    in.HasSH =
+      in.Cloud.SH.size() == 3 * n * static_cast<std::size_t>(in.Cloud.ShCoefficientCount());
+    in.IdToIndex.clear();
+    vtkDataArray* ids = input->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+    if (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
+    {
+      in.IdToIndex.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        in.IdToIndex[i] = { static_cast<vtkIdType>(ids->GetComponent(static_cast<vtkIdType>(i), 0)),
+          static_cast<vtkIdType>(i) };
+      }
+      std::sort(in.IdToIndex.begin(), in.IdToIndex.end());
+    }
+    in.ColoredDegree = -2; // force new colours
+    in.DisplayTime = 0;
+    in.PackDirty = true;
   }
   const std::size_t n = in.Cloud.Count;
   if (n == 0)
@@ -586,14 +661,300 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     cam->GetProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0);
   const double fx = proj->GetElement(0, 0) * width / 2.0;
   const double fy = proj->GetElement(1, 1) * height / 2.0;
+  const double depthCoeffs[2] = { proj->GetElement(2, 2), proj->GetElement(2, 3) };
   vtkNew<vtkMatrix4x4> inverse;
   vtkMatrix4x4::Invert(modelView, inverse);
   // Camera centre in the model frame: the inverse maps the eye origin back.
-  const std::array<double, 3> center{
+  const double center[3] = {
     inverse->GetElement(0, 3), inverse->GetElement(1, 3), inverse->GetElement(2, 3)
   };
 
-  // 3. Colours: SH for the camera centre (only when it moved and the degree needs it).
+  if (method == CPU_RASTERIZER)
+  {
+    this->RenderRasterized(ren, input, width, height, w2c.data(), fx, fy, depthCoeffs);
+  }
+  else
+  {
+    this->RenderOpenGLSplats(
+      ren, input, width, height, ox, oy, w2c.data(), fx, fy, center, depthCoeffs);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
+  vtkPolyData* input,
+  int width,
+  int height,
+  const double worldToCamera[16],
+  double fx,
+  double fy,
+  const double depthCoeffs[2])
+{
+  vtkInternals& in = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = in.Window;
+  const std::size_t n = in.Cloud.Count;
+  const int threads = this->NumberOfThreads;
+
+  // Resolution: reduced while interacting (VTK's desired update rate), full for still frames.
+  const double rate = ren->GetRenderWindow()->GetDesiredUpdateRate();
+  const bool interactive = this->InteractiveUpdateRate > 0 && rate >= this->InteractiveUpdateRate;
+  double distance = this->ImageSampleDistance;
+  if (interactive)
+  {
+    if (!this->AutoAdjustImageSampleDistances)
+    {
+      distance = this->InteractiveImageSampleDistance;
+    }
+    else
+    {
+      if (!(in.AdaptiveDistance >= 1.0))
+      {
+        in.AdaptiveDistance = this->InteractiveImageSampleDistance;
+      }
+      in.AdaptiveDistance = std::min(in.AdaptiveDistance, this->MaximumImageSampleDistance);
+      distance = in.AdaptiveDistance;
+    }
+  }
+  const int w = std::max(1, static_cast<int>(std::lround(width / distance)));
+  const int h = std::max(1, static_cast<int>(std::lround(height / distance)));
+  this->LastImageSampleDistance = distance;
+
+  // Re-render only when something that changes the picture changed.
+  const vtkMTimeType displayTime =
+    std::max(this->GetMTime(), this->SelectedIds ? this->SelectedIds->GetMTime() : vtkMTimeType(0));
+  std::array<double, 24> key{};
+  std::copy(worldToCamera, worldToCamera + 16, key.begin());
+  key[16] = fx;
+  key[17] = fy;
+  key[18] = width;
+  key[19] = height;
+  key[20] = w;
+  key[21] = h;
+  key[22] = static_cast<double>(displayTime);
+  key[23] = static_cast<double>(in.InputTime);
+  // The focal lengths come out of vtkCamera's projection matrix with a few ulps of noise
+  // between renders of the same view (e.g. vtkWindowToImageFilter's): compare them to 1e-7.
+  bool same = in.RasterValid;
+  for (int q = 0; q < 24 && same; ++q)
+  {
+    same = (q == 16 || q == 17)
+      ? std::abs(key[q] - in.RasterKey[q]) <= 1e-7 * std::abs(in.RasterKey[q])
+      : key[q] == in.RasterKey[q];
+  }
+  if (!same)
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::array<double, 16> w2c{};
+    std::copy(worldToCamera, worldToCamera + 16, w2c.begin());
+    vis4gs::Camera camera = vtkGaussianCameraUtilities::PinholeCamera(width, height, fx, fy, w2c);
+    if (w != width || h != height)
+    {
+      camera = camera.Resized(w, h);
+    }
+    vis4gs::RasterSettings settings;
+    settings.ShDegree = this->ShDegree;
+    settings.ScaleModifier = this->ScaleModifier;
+    settings.Threads = threads;
+    std::size_t drawn = 0;
+    try
+    {
+      vis4gs::ViewProjection<float> projection =
+        vis4gs::ProjectGaussians<float>(in.Cloud, camera, settings);
+      drawn = projection.Counts.Visible;
+      vis4gs::SplatDisplayOptions opt;
+      if (!in.FillDisplayOptions(this, input, opt))
+      {
+        return;
+      }
+      if (opt.ScoreColoring || opt.HideOutsideRange || opt.Selected)
+      {
+        // Overlay colours, hiding, highlight and dimming replace the projected colours and
+        // scale the opacities; hidden Gaussians are left out of the tile lists.
+        in.TrueColors.resize(3 * n);
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          std::copy_n(projection.Gaussians[i].Color, 3, &in.TrueColors[3 * i]);
+        }
+        vis4gs::ComputeSplatDisplay(in.TrueColors.data(), n, opt, in.Display, in.Keep, threads);
+        in.ColoredDegree = -2; // TrueColors no longer hold the OpenGL path's colours
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          auto& g = projection.Gaussians[i];
+          if (!g.IsVisible())
+          {
+            continue;
+          }
+          if (!in.Keep[i])
+          {
+            g.Status = vis4gs::ProjectionStatus::OffScreen;
+            --drawn;
+            continue;
+          }
+          std::copy_n(&in.Display[4 * i], 3, g.Color);
+          g.Opacity *= in.Display[4 * i + 3];
+        }
+      }
+      const vis4gs::TileBins bins = vis4gs::BinGaussians<float>(projection, threads);
+      vis4gs::CompositeTiles<float>(projection, bins, settings, in.Image);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
+      in.RasterValid = false;
+      return;
+    }
+    // Premultiplied RGBA and expected depth, flipped to OpenGL's bottom-up rows.
+    const std::size_t pixels = static_cast<std::size_t>(w) * h;
+    in.Texels.resize(4 * pixels);
+    in.DepthTexels.resize(pixels);
+    for (int y = 0; y < h; ++y)
+    {
+      const std::size_t src = static_cast<std::size_t>(y) * w;
+      const std::size_t dst = static_cast<std::size_t>(h - 1 - y) * w;
+      for (int x = 0; x < w; ++x)
+      {
+        const std::size_t s = src + x, d = dst + x;
+        const float a = in.Image.Alpha[s];
+        in.Texels[4 * d] = in.Image.Color[3 * s];
+        in.Texels[4 * d + 1] = in.Image.Color[3 * s + 1];
+        in.Texels[4 * d + 2] = in.Image.Color[3 * s + 2];
+        in.Texels[4 * d + 3] = a;
+        in.DepthTexels[d] = a > 0.0f ? in.Image.Depth[s] / a : 1.0e30f;
+      }
+    }
+    const bool magnified = w != width || h != height;
+    in.ImageTexture->SetContext(renWin);
+    in.ImageTexture->SetMinificationFilter(
+      magnified ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+    in.ImageTexture->SetMagnificationFilter(
+      magnified ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
+    in.ImageTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.ImageTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.DepthTexture->SetContext(renWin);
+    in.DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    in.DepthTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.DepthTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+    if (!in.ImageTexture->Create2DFromRaw(static_cast<unsigned int>(w),
+          static_cast<unsigned int>(h),
+          4,
+          VTK_FLOAT,
+          in.Texels.data()) ||
+      !in.DepthTexture->Create2DFromRaw(static_cast<unsigned int>(w),
+        static_cast<unsigned int>(h),
+        1,
+        VTK_FLOAT,
+        in.DepthTexels.data()))
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: could not upload the rasterised image");
+      in.RasterValid = false;
+      return;
+    }
+    in.RasterKey = key;
+    in.RasterValid = true;
+    in.RasterDrawn = drawn;
+    this->LastRasterTime = MsSince(t0);
+    if (interactive && this->AutoAdjustImageSampleDistances && rate > 0)
+    {
+      // Aim at 1 / DesiredUpdateRate: the work shrinks roughly with the pixel count.
+      const double ratio = this->LastRasterTime / (1000.0 / rate);
+      if (ratio > 1.2 || ratio < 0.6)
+      {
+        in.AdaptiveDistance = std::min(this->MaximumImageSampleDistance,
+          std::max(1.0, distance * std::sqrt(std::min(4.0, std::max(0.25, ratio)))));
+      }
+    }
+  }
+  this->LastDrawnCount = static_cast<vtkIdType>(in.RasterDrawn);
+
+  // Draw: blend the image depth-tested at the expected depth, then write that depth.
+  if (!in.Quad)
+  {
+    in.Quad.reset(new vtkOpenGLQuadHelper(renWin, nullptr, RasterImageFS, ""));
+    if (!in.Quad->Program)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: the image shaders failed to compile");
+      in.Quad.reset();
+      return;
+    }
+  }
+  else
+  {
+    renWin->GetShaderCache()->ReadyShaderProgram(in.Quad->Program);
+  }
+  vtkShaderProgram* prog = in.Quad->Program;
+  in.ImageTexture->Activate();
+  in.DepthTexture->Activate();
+  prog->SetUniformi("splatImage", in.ImageTexture->GetTextureUnit());
+  prog->SetUniformi("splatDepth", in.DepthTexture->GetTextureUnit());
+  const float coeffs[2] = { static_cast<float>(depthCoeffs[0]),
+    static_cast<float>(depthCoeffs[1]) };
+  prog->SetUniform2f("depthCoeffs", coeffs);
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  vtkOpenGLState::ScopedglColorMask colorMaskSaver(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_LEQUAL);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->vtkglDepthMask(GL_FALSE);
+  prog->SetUniformi("depthPass", 0);
+  in.Quad->Render();
+  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  state->vtkglDepthMask(GL_TRUE);
+  prog->SetUniformi("depthPass", 1);
+  in.Quad->Render();
+  in.DepthTexture->Deactivate();
+  in.ImageTexture->Deactivate();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
+  vtkPolyData* input,
+  int width,
+  int height,
+  int ox,
+  int oy,
+  const double worldToCamera[16],
+  double fx,
+  double fy,
+  const double cameraCenter[3],
+  const double depthCoeffsIn[2])
+{
+  vtkInternals& in = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = in.Window;
+  (void)ren;
+  const std::size_t n = in.Cloud.Count;
+  const int threads = this->NumberOfThreads;
+  std::array<double, 16> w2c{};
+  std::copy(worldToCamera, worldToCamera + 16, w2c.begin());
+  const std::array<double, 3> center{ cameraCenter[0], cameraCenter[1], cameraCenter[2] };
+
+  // 1. Packed geometry (when the input or the scale modifier changed).
+  if (in.PackDirty || in.PackedScale != this->ScaleModifier)
+  {
+    try
+    {
+      vis4gs::PackSplatGeometry(in.Cloud, this->ScaleModifier, in.Geometry, threads);
+      in.PackedScale = this->ScaleModifier;
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
+      return;
+    }
+    in.PackDirty = false;
+    in.GeometryDirty = true;
+    in.OrderDirty = true;
+  }
+
+  // 2. Colours: SH for the camera centre (only when it moved and the degree needs it).
   const auto tc = std::chrono::steady_clock::now();
   const int degree = in.HasSH
     ? (this->ShDegree < 0 ? in.Cloud.ShDegree : std::min(this->ShDegree, in.Cloud.ShDegree))
@@ -619,73 +980,10 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   if (colorsChanged || displayTime != in.DisplayTime)
   {
     vis4gs::SplatDisplayOptions opt;
-    in.Scores.clear();
-    const bool needScores = this->SplatColoring == SCORE || this->HideOutsideRange;
-    if (needScores)
+    if (!in.FillDisplayOptions(this, input, opt))
     {
-      vtkDataArray* arr =
-        this->ScoreArrayName ? input->GetPointData()->GetArray(this->ScoreArrayName) : nullptr;
-      if (!arr || arr->GetNumberOfTuples() != static_cast<vtkIdType>(n))
-      {
-        vtkErrorMacro("vtkGaussianSplatMapper: score array '"
-          << (this->ScoreArrayName ? this->ScoreArrayName : "(none)")
-          << "' is missing from the input point data");
-        return;
-      }
-      in.Scores.resize(n);
-      double lo = VTK_DOUBLE_MAX, hi = VTK_DOUBLE_MIN;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double s = arr->GetComponent(static_cast<vtkIdType>(i), 0);
-        in.Scores[i] = s;
-        if (std::isfinite(s))
-        {
-          lo = std::min(lo, s);
-          hi = std::max(hi, s);
-        }
-      }
-      in.AutoRange[0] = lo <= hi ? lo : 0.0;
-      in.AutoRange[1] = lo <= hi ? hi : 1.0;
-      opt.Scores = in.Scores.data();
+      return;
     }
-    opt.ScoreColoring = this->SplatColoring == SCORE;
-    opt.ColorRange = this->AutoScoreRange
-      ? std::array<double, 2>{ in.AutoRange[0], in.AutoRange[1] }
-      : std::array<double, 2>{ this->ScoreRange[0], this->ScoreRange[1] };
-    opt.HideOutsideRange = this->HideOutsideRange;
-    opt.VisibleRange = { this->VisibleRange[0], this->VisibleRange[1] };
-    in.Selected.clear();
-    if (this->SelectedIds && this->SelectedIds->GetNumberOfTuples() > 0)
-    {
-      in.Selected.assign(n, 0);
-      for (vtkIdType k = 0; k < this->SelectedIds->GetNumberOfTuples(); ++k)
-      {
-        const vtkIdType id = this->SelectedIds->GetValue(k);
-        if (in.IdToIndex.empty())
-        {
-          if (id >= 0 && id < static_cast<vtkIdType>(n))
-          {
-            in.Selected[id] = 1;
-          }
-          continue;
-        }
-        auto it = std::lower_bound(in.IdToIndex.begin(),
-          in.IdToIndex.end(),
-          std::make_pair(id, vtkIdType(std::numeric_limits<vtkIdType>::min())));
-        for (; it != in.IdToIndex.end() && it->first == id; ++it)
-        {
-          in.Selected[it->second] = 1;
-        }
-      }
-      opt.Selected = in.Selected.data();
-    }
-    opt.Highlight = this->HighlightSelected;
-    opt.HighlightColor = { static_cast<float>(this->HighlightColor[0]),
-      static_cast<float>(this->HighlightColor[1]),
-      static_cast<float>(this->HighlightColor[2]) };
-    opt.HighlightMix = static_cast<float>(this->HighlightMix);
-    opt.DimUnselected = this->DimUnselected && opt.Selected != nullptr;
-    opt.DimOpacity = static_cast<float>(this->DimOpacity);
     const std::vector<std::uint8_t> oldKeep = in.Keep;
     vis4gs::ComputeSplatDisplay(in.TrueColors.data(), n, opt, in.Display, in.Keep, threads);
     if (in.Keep != oldKeep)
@@ -697,7 +995,7 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   }
   this->LastColorTime = MsSince(tc);
 
-  // 4. Back-to-front order (when the view or the kept set changed).
+  // 3. Back-to-front order (when the view or the kept set changed).
   if (in.OrderDirty || w2c != in.SortedWorldToCamera ||
     this->MaximumNumberOfSplats != in.SortedBudget)
   {
@@ -725,7 +1023,7 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     this->LastSortTime = MsSince(ts);
   }
 
-  // 5. Uploads.
+  // 4. Uploads.
   const auto tu = std::chrono::steady_clock::now();
   if (in.GeometryDirty || !in.GeometryOnGPU)
   {
@@ -775,13 +1073,14 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     return;
   }
 
-  // 6. Draw.
+  // 5. Draw.
   const bool instanced = this->GeometryPath == INSTANCED_QUADS;
   vtkShaderProgram*& cached = instanced ? in.InstancedProgram : in.Program;
   if (!cached)
   {
-    cached = instanced ? renWin->GetShaderCache()->ReadyShaderProgram(SplatInstancedVS, SplatFS, "")
-                       : renWin->GetShaderCache()->ReadyShaderProgram(SplatVS, SplatFS, SplatGS);
+    const std::string vs = SplatVertexShader(instanced);
+    cached =
+      renWin->GetShaderCache()->ReadyShaderProgram(vs.c_str(), SplatFS, instanced ? "" : SplatGS);
     if (!cached)
     {
       vtkErrorMacro("vtkGaussianSplatMapper: the splat shaders failed to compile");
@@ -815,8 +1114,8 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   const float focal[2] = { static_cast<float>(width) / (2.0f * tanFov[0]),
     static_cast<float>(height) / (2.0f * tanFov[1]) };
   const float imageSize[2] = { static_cast<float>(width), static_cast<float>(height) };
-  const float depthCoeffs[2] = { static_cast<float>(proj->GetElement(2, 2)),
-    static_cast<float>(proj->GetElement(2, 3)) };
+  const float depthCoeffs[2] = { static_cast<float>(depthCoeffsIn[0]),
+    static_cast<float>(depthCoeffsIn[1]) };
   const float viewportRect[4] = { static_cast<float>(ox),
     static_cast<float>(oy),
     static_cast<float>(width),
@@ -877,6 +1176,21 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSplats: " << this->MaximumNumberOfSplats << "\n";
   os << indent << "GeometryPath: "
      << (this->GeometryPath == INSTANCED_QUADS ? "InstancedQuads" : "GeometryShader") << "\n";
+  os << indent << "DrawMethod: "
+     << (this->DrawMethod == AUTOMATIC           ? "Automatic"
+            : this->DrawMethod == CPU_RASTERIZER ? "CPURasterizer"
+                                                 : "OpenGLSplats")
+     << "\n";
+  os << indent << "LastDrawMethod: " << this->LastDrawMethod << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
+  os << indent << "InteractiveImageSampleDistance: " << this->InteractiveImageSampleDistance
+     << "\n";
+  os << indent << "AutoAdjustImageSampleDistances: " << this->AutoAdjustImageSampleDistances
+     << "\n";
+  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
+  os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
+  os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";
   os << indent << "LastDrawnCount: " << this->LastDrawnCount << "\n";
   os << indent << "LastSortTime: " << this->LastSortTime << "\n";

@@ -49,8 +49,28 @@
  * The mapper draws in the opaque pass (HasOpaqueGeometry) with its own blending (VTK 9.1's
  * translucent pass would apply order-independent transparency): add the splat actor after the
  * opaque actors it should be composited over (e.g. camera frustums). Splats are depth-tested
- * against what is already drawn and do not write depth. A parallel projection is not supported
- * (error).
+ * against what is already drawn; the OpenGL splats do not write depth (the CPU-rasteriser path
+ * below does). A parallel projection is not supported (error).
+ *
+ * Drawing methods (DrawMethod): the OpenGL splat path above, or the exact CPU rasteriser
+ * (Core/Render, the same code as the training render) drawn as a full-viewport textured quad.
+ * AUTOMATIC (default) takes the CPU rasteriser on a software OpenGL (GL_RENDERER naming
+ * llvmpipe, softpipe, SWR or a software rasteriser), where it is several times faster, and
+ * the OpenGL splats elsewhere. The CPU path:
+ *  - renders colour, accumulated alpha and the expected depth (sum w z / alpha) with
+ *    Core's ProjectGaussians/BinGaussians/CompositeTiles, front to back with the reference's
+ *    early stop: at full resolution the picture is the CPU rasteriser's, bit for bit before
+ *    the framebuffer's 8-bit rounding;
+ *  - composites the image over what is drawn (premultiplied), depth-tested per pixel at the
+ *    expected depth, and writes that depth where the accumulated alpha is >= 0.5, so other
+ *    props (camera frustums, axes) composite correctly in front of and behind the splats;
+ *  - follows VTK's interactive/still mechanism: while the render window's DesiredUpdateRate is
+ *    at least InteractiveUpdateRate (a vtkRenderWindowInteractor sets it during interaction),
+ *    the image is rendered at 1/InteractiveImageSampleDistance of the resolution (adapted to the
+ *    desired rate when AutoAdjustImageSampleDistances is on) and magnified linearly; still
+ *    frames are rendered at 1/ImageSampleDistance (default full resolution);
+ *  - re-renders only when the camera, the viewport, the input or a display property changed.
+ * MaximumNumberOfSplats and GeometryPath apply to the OpenGL path only.
  *
  * Set the renderer's camera from a vis4gs::Camera with vtkGaussianCameraUtilities.
  */
@@ -214,6 +234,82 @@ public:
   vtkGetMacro(MaximumNumberOfSplats, vtkIdType);
   ///@}
 
+  enum DrawMethods
+  {
+    AUTOMATIC = 0,
+    OPENGL_SPLATS = 1,
+    CPU_RASTERIZER = 2
+  };
+
+  ///@{
+  /**
+   * AUTOMATIC (default): CPU_RASTERIZER on a software OpenGL implementation, OPENGL_SPLATS
+   * otherwise. OPENGL_SPLATS / CPU_RASTERIZER force a path.
+   */
+  vtkSetClampMacro(DrawMethod, int, AUTOMATIC, CPU_RASTERIZER);
+  vtkGetMacro(DrawMethod, int);
+  void SetDrawMethodToAutomatic() { this->SetDrawMethod(AUTOMATIC); }
+  void SetDrawMethodToOpenGLSplats() { this->SetDrawMethod(OPENGL_SPLATS); }
+  void SetDrawMethodToCPURasterizer() { this->SetDrawMethod(CPU_RASTERIZER); }
+  ///@}
+
+  /**
+   * The path the last render took (OPENGL_SPLATS or CPU_RASTERIZER; AUTOMATIC before the
+   * first render).
+   */
+  vtkGetMacro(LastDrawMethod, int);
+
+  ///@{
+  /**
+   * CPU path: image sample distance of still frames (1 = one rasteriser pixel per screen
+   * pixel). Default 1.
+   */
+  vtkSetClampMacro(ImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(ImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: image sample distance of interactive frames (see InteractiveUpdateRate), the
+   * starting value when AutoAdjustImageSampleDistances is on. Default 2 (a quarter of the
+   * pixels).
+   */
+  vtkSetClampMacro(InteractiveImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(InteractiveImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: adapt the interactive sample distance after each interactive frame so that a
+   * frame takes about 1 / DesiredUpdateRate, within [1, MaximumImageSampleDistance].
+   * Default on, maximum 4.
+   */
+  vtkSetMacro(AutoAdjustImageSampleDistances, bool);
+  vtkGetMacro(AutoAdjustImageSampleDistances, bool);
+  vtkBooleanMacro(AutoAdjustImageSampleDistances, bool);
+  vtkSetClampMacro(MaximumImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(MaximumImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: a frame is interactive when the render window's DesiredUpdateRate is >= this
+   * (a vtkRenderWindowInteractor sets 15 while interacting and 0.0001 for still frames).
+   * Default 1.
+   */
+  vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(InteractiveUpdateRate, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: the image sample distance of the last frame and the milliseconds its CPU
+   * rasterisation took (0 when the cached image was reused).
+   */
+  vtkGetMacro(LastImageSampleDistance, double);
+  vtkGetMacro(LastRasterTime, double);
+  ///@}
+
   ///@{
   /**
    * CPU threads for sorting and colours; 0 (default) uses OpenMP's default.
@@ -265,6 +361,15 @@ protected:
   int NumberOfThreads = 0;
   int GeometryPath = GEOMETRY_SHADER;
   vtkIdType MaximumNumberOfSplats = 0;
+  int DrawMethod = AUTOMATIC;
+  int LastDrawMethod = AUTOMATIC;
+  double ImageSampleDistance = 1.0;
+  double InteractiveImageSampleDistance = 2.0;
+  bool AutoAdjustImageSampleDistances = true;
+  double MaximumImageSampleDistance = 4.0;
+  double InteractiveUpdateRate = 1.0;
+  double LastImageSampleDistance = 1.0;
+  double LastRasterTime = 0.0;
   vtkLookupTable* ScoreLookupTable = nullptr;
   vtkIdType LastDrawnCount = 0;
   double LastSortTime = 0.0;
@@ -277,6 +382,26 @@ private:
 
   struct vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
+
+  void RenderOpenGLSplats(vtkRenderer* ren,
+    vtkPolyData* input,
+    int width,
+    int height,
+    int ox,
+    int oy,
+    const double worldToCamera[16],
+    double fx,
+    double fy,
+    const double center[3],
+    const double depthCoeffs[2]);
+  void RenderRasterized(vtkRenderer* ren,
+    vtkPolyData* input,
+    int width,
+    int height,
+    const double worldToCamera[16],
+    double fx,
+    double fy,
+    const double depthCoeffs[2]);
 };
 
 #endif

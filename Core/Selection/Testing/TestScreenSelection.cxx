@@ -216,6 +216,130 @@ TEST(ScreenSelection, SingleBrushFrameAgainstBruteForce)
   EXPECT_GE(whole.size(), occluded.size());
 }
 
+TEST(ScreenSelection, FrameFromViewMaxWeightsEqualsReplay)
+{
+  // Small and large Gaussians, plus needles and disks whose blend boxes are long and thin.
+  auto cloud = TestCloud(2500, 11);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < cloud.Count; i += 10)
+  {
+    cloud.LogScales[3 * i] = -1.2f + 0.3f * u(rng);
+    if (i % 20 == 0)
+    {
+      cloud.LogScales[3 * i + 1] = -7.0f;
+      cloud.OpacityLogits[i] = 6.0f; // opacity ~1
+    }
+  }
+  const Camera cam = TestCamera();
+  const SelectionView replay = PrepareSelectionView(cloud, cam, 2);
+  SelectionView cached = replay;
+  ComputeViewMaxWeights(cached);
+  ASSERT_EQ(cached.ViewMaxWeights.size(), cloud.Count);
+
+  // 1. The view-wide maxima equal an independent replay of every pixel.
+  std::vector<std::array<int, 2>> all;
+  for (int y = 0; y < cam.Height; ++y)
+  {
+    for (int x = 0; x < cam.Width; ++x)
+    {
+      all.push_back({ x, y });
+    }
+  }
+  const auto naive = NaiveMaxWeights(replay, all);
+  std::size_t blended = 0;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    ASSERT_EQ(cached.ViewMaxWeights[i], naive[i]) << i;
+    blended += naive[i] > 0 ? 1 : 0;
+  }
+  EXPECT_GT(blended, 500u);
+
+  // 2. No Gaussian passes the kernel test (power <= 0, alpha >= 1/255) at a pixel of its tile
+  // rectangle outside its BlendBox.
+  std::size_t outsideChecks = 0, partial = 0;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    const auto& g = replay.Projection.Gaussians[i];
+    const auto box = BlendBox(replay.Projection, i);
+    if (!g.IsVisible())
+    {
+      EXPECT_GT(box[0], box[2]);
+      continue;
+    }
+    partial += (box[2] - box[0] + 1) * (box[3] - box[1] + 1) < 16 * 16 ? 0 : 1;
+    for (const auto& q : all)
+    {
+      if (q[0] >= box[0] && q[0] <= box[2] && q[1] >= box[1] && q[1] <= box[3])
+      {
+        continue;
+      }
+      if (q[0] / 16 < g.TileRect[0] || q[0] / 16 >= g.TileRect[2] || q[1] / 16 < g.TileRect[1] ||
+        q[1] / 16 >= g.TileRect[3])
+      {
+        continue; // outside the tile rectangle: never in the pixel's list
+      }
+      const float dx = g.U - static_cast<float>(q[0]), dy = g.V - static_cast<float>(q[1]);
+      const float power = -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+      const float alpha = std::min(0.99f, g.Opacity * raster::KernelExp(power));
+      ASSERT_FALSE(power <= 0.0f && alpha >= 1.0f / 255.0f)
+        << "Gaussian " << i << " blends at " << q[0] << "," << q[1] << " outside its box " << box[0]
+        << "," << box[1] << "-" << box[2] << "," << box[3] << " tiles " << g.TileRect[0] << ","
+        << g.TileRect[1] << "-" << g.TileRect[2] << "," << g.TileRect[3] << " centre " << g.U << ","
+        << g.V << " cov " << g.Cov2D[0] << " " << g.Cov2D[1] << " " << g.Cov2D[2] << " opacity "
+        << g.Opacity;
+      ++outsideChecks;
+    }
+  }
+  EXPECT_GT(outsideChecks, 100000u);
+  EXPECT_GT(partial, 10u);
+
+  // 3. Visible-only Frame selections: identical with and without the cached maxima, and equal
+  // to the brute-force definition (largest naive weight over the rectangle).
+  std::uniform_int_distribution<int> px(-20, 110), py(-20, 80);
+  int nonEmpty = 0;
+  for (int r = 0; r < 40; ++r)
+  {
+    const int x0 = px(rng), x1 = px(rng), y0 = py(rng), y1 = py(rng);
+    for (double threshold : { 0.01, 0.3 })
+    {
+      FrameOptions fo;
+      fo.Threads = 2;
+      fo.WeightThreshold = threshold;
+      const auto fast = SelectFrame(cached, x0, y0, x1, y1, fo);
+      ASSERT_EQ(fast, SelectFrame(replay, x0, y0, x1, y1, fo))
+        << x0 << "," << y0 << " " << x1 << "," << y1 << " threshold " << threshold;
+      nonEmpty += fast.empty() ? 0 : 1;
+      if (r % 8 == 0)
+      {
+        std::vector<std::array<int, 2>> rect;
+        const int ax = std::max(0, std::min(x0, x1)), bx = std::min(95, std::max(x0, x1));
+        const int ay = std::max(0, std::min(y0, y1)), by = std::min(63, std::max(y0, y1));
+        for (int y = ay; y <= by; ++y)
+        {
+          for (int x = ax; x <= bx; ++x)
+          {
+            rect.push_back({ x, y });
+          }
+        }
+        const auto w = NaiveMaxWeights(replay, rect);
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t i = 0; i < cloud.Count; ++i)
+        {
+          const auto& g = replay.Projection.Gaussians[i];
+          if (g.IsVisible() && g.U >= ax - 0.5f && g.U < bx + 0.5f && g.V >= ay - 0.5f &&
+            g.V < by + 0.5f && static_cast<double>(w[i]) >= threshold)
+          {
+            expected.push_back(i);
+          }
+        }
+        ASSERT_EQ(fast, expected);
+      }
+    }
+  }
+  EXPECT_GT(nonEmpty, 30);
+}
+
 TEST(ScreenSelection, BrushPixels)
 {
   auto disk = BrushPixels({ { 10.0, 10.0 } }, 2.0, 100, 100);

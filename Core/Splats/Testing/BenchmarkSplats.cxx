@@ -2,46 +2,19 @@
 // Per-frame CPU work of the GPU splat renderer at N Gaussians: view depths, back-to-front
 // sort (parallel radix vs std::sort), SH colours per degree, geometry packing, display colours.
 // Usage: BenchmarkSplats [count=1000000] [threads=2] [repeats=5]
+#include "BenchmarkTiming.h"
 #include "SplatAttributes.h"
 #include "SplatSort.h"
 #include "SyntheticScene.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
-#include <functional>
 #include <vector>
-
-namespace
-{
-
-// Median CPU time (all threads) of the last TimeMs() call: on 2 otherwise idle cores a run
-// takes at least half of it, whatever else the machine is doing.
-double LastCpuMs = 0;
-
-double TimeMs(int repeats, const std::function<void()>& f)
-{
-  std::vector<double> t, c;
-  for (int r = 0; r < repeats; ++r)
-  {
-    const std::clock_t c0 = std::clock();
-    const auto a = std::chrono::steady_clock::now();
-    f();
-    const auto b = std::chrono::steady_clock::now();
-    c.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-    t.push_back(std::chrono::duration<double, std::milli>(b - a).count());
-  }
-  std::sort(t.begin(), t.end());
-  std::sort(c.begin(), c.end());
-  LastCpuMs = c[c.size() / 2];
-  return t[t.size() / 2];
-}
-}
 
 int main(int argc, char* argv[])
 {
+  vis4gs::BenchmarkTimer timer;
   const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int repeats = argc > 3 ? std::atoi(argv[3]) : 5;
@@ -52,30 +25,31 @@ int main(int argc, char* argv[])
   std::vector<float> depths, packed, rgb, rgba;
   std::vector<std::uint8_t> keep;
   std::vector<std::uint32_t> order;
-  double t = TimeMs(repeats,
+  double t = timer.TimeMs(repeats,
     [&]
     { vis4gs::ComputeViewDepths(cloud.Positions.data(), n, cam.WorldToCamera, depths, threads); });
-  std::printf("  view depths              %8.2f ms (CPU %7.1f ms)\n", t, LastCpuMs);
+  std::printf("  view depths              %8.2f ms (CPU %7.1f ms)\n", t, timer.LastCpuMs);
   vis4gs::SplatSortOptions o;
   o.Threads = threads;
-  t = TimeMs(repeats, [&] { vis4gs::SortBackToFront(depths, order, o); });
+  t = timer.TimeMs(repeats, [&] { vis4gs::SortBackToFront(depths, order, o); });
   std::printf("  radix sort (%d threads)   %8.2f ms (CPU %7.1f ms)  (%zu drawn)\n",
     threads,
     t,
-    LastCpuMs,
+    timer.LastCpuMs,
     order.size());
   o.Threads = 1;
-  t = TimeMs(repeats, [&] { vis4gs::SortBackToFront(depths, order, o); });
-  std::printf("  radix sort (1 thread)    %8.2f ms (CPU %7.1f ms)\n", t, LastCpuMs);
-  t = TimeMs(repeats, [&] { vis4gs::SortBackToFrontStd(depths, order); });
-  std::printf("  std::sort baseline       %8.2f ms (CPU %7.1f ms)\n", t, LastCpuMs);
+  t = timer.TimeMs(repeats, [&] { vis4gs::SortBackToFront(depths, order, o); });
+  std::printf("  radix sort (1 thread)    %8.2f ms (CPU %7.1f ms)\n", t, timer.LastCpuMs);
+  t = timer.TimeMs(repeats, [&] { vis4gs::SortBackToFrontStd(depths, order); });
+  std::printf("  std::sort baseline       %8.2f ms (CPU %7.1f ms)\n", t, timer.LastCpuMs);
   for (int d = 0; d <= 3; ++d)
   {
-    t = TimeMs(repeats, [&] { vis4gs::EvaluateSplatColors(cloud, cam.Center(), d, rgb, threads); });
-    std::printf("  SH colours degree %d      %8.2f ms (CPU %7.1f ms)\n", d, t, LastCpuMs);
+    t = timer.TimeMs(
+      repeats, [&] { vis4gs::EvaluateSplatColors(cloud, cam.Center(), d, rgb, threads); });
+    std::printf("  SH colours degree %d      %8.2f ms (CPU %7.1f ms)\n", d, t, timer.LastCpuMs);
   }
-  t = TimeMs(repeats, [&] { vis4gs::PackSplatGeometry(cloud, 1.0, packed, threads); });
-  std::printf("  pack geometry (once)     %8.2f ms (CPU %7.1f ms)\n", t, LastCpuMs);
+  t = timer.TimeMs(repeats, [&] { vis4gs::PackSplatGeometry(cloud, 1.0, packed, threads); });
+  std::printf("  pack geometry (once)     %8.2f ms (CPU %7.1f ms)\n", t, timer.LastCpuMs);
   std::vector<double> scores(n);
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -84,8 +58,8 @@ int main(int argc, char* argv[])
   vis4gs::SplatDisplayOptions disp;
   disp.ScoreColoring = true;
   disp.Scores = scores.data();
-  t =
-    TimeMs(repeats, [&] { vis4gs::ComputeSplatDisplay(rgb.data(), n, disp, rgba, keep, threads); });
-  std::printf("  display colours (score)  %8.2f ms (CPU %7.1f ms)\n", t, LastCpuMs);
+  t = timer.TimeMs(
+    repeats, [&] { vis4gs::ComputeSplatDisplay(rgb.data(), n, disp, rgba, keep, threads); });
+  std::printf("  display colours (score)  %8.2f ms (CPU %7.1f ms)\n", t, timer.LastCpuMs);
   return 0;
 }

@@ -185,6 +185,8 @@ int TestGaussianSelector(int, char*[])
   // Modifiers as set algebra.
   sel->SetModifier(vtkGaussianSelector::REPLACE);
   sel->SelectFrame(60, 40, 140, 110);
+  Check(Ids(sel->GetSelectedIds()) == frame,
+    "the second visible frame (view maxima cached) equals the first (full replay)");
   sel->SetModifier(vtkGaussianSelector::ADD);
   sel->SelectBrush(stroke);
   std::vector<vtkIdType> expected;

@@ -3,7 +3,8 @@
 // orbiting camera (every frame re-sorts) and with a still camera, off screen.
 // Usage: BenchmarkGaussianSplatMapper [count=1000000] [width=1280] [height=720] [frames=10]
 //        [shDegree=0] [threads=2] [path=1 geometry shader | 0 instanced quads]
-//        [budget=0 (all)]
+//        [budget=0 (all)] [method=0 automatic | 1 OpenGL splats | 2 CPU rasteriser]
+//        [interactive sample distance=2 (CPU rasteriser path; 0 = auto-adjusted)]
 #include "SyntheticScene.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraUtilities.h"
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -33,6 +35,8 @@ int main(int argc, char* argv[])
   const int threads = argc > 6 ? std::atoi(argv[6]) : 2;
   const int path = argc > 7 ? std::atoi(argv[7]) : 1;
   const long long budget = argc > 8 ? std::atoll(argv[8]) : 0;
+  const int method = argc > 9 ? std::atoi(argv[9]) : 0;
+  const double sampleDistance = argc > 10 ? std::atof(argv[10]) : 2.0;
   const auto cloud = vis4gs::MakeSyntheticScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
@@ -41,6 +45,7 @@ int main(int argc, char* argv[])
   mapper->SetNumberOfThreads(threads);
   mapper->SetGeometryPath(path);
   mapper->SetMaximumNumberOfSplats(budget);
+  mapper->SetDrawMethod(method);
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   vtkNew<vtkRenderer> ren;
@@ -65,6 +70,9 @@ int main(int argc, char* argv[])
     H,
     threads,
     path == 0 ? "instanced quads" : "geometry shader");
+  std::printf("  drawing path: %s\n",
+    mapper->GetLastDrawMethod() == vtkGaussianSplatMapper::CPU_RASTERIZER ? "CPU rasteriser"
+                                                                          : "OpenGL splats");
   std::printf("  first frame (pack, upload, compile)  %9.1f ms, %lld drawn\n",
     first,
     static_cast<long long>(mapper->GetLastDrawnCount()));
@@ -112,5 +120,56 @@ int main(int argc, char* argv[])
     median(still),
     1000.0 / median(still),
     median(stillCpu));
+  if (mapper->GetLastDrawMethod() == vtkGaussianSplatMapper::CPU_RASTERIZER)
+  {
+    // Interactive frames (the window's DesiredUpdateRate as a vtkRenderWindowInteractor sets
+    // it while interacting), orbiting camera, and their PSNR against the full-quality frame.
+    if (sampleDistance > 0)
+    {
+      mapper->AutoAdjustImageSampleDistancesOff();
+      mapper->SetInteractiveImageSampleDistance(sampleDistance);
+    }
+    std::vector<double> inter, interCpu, psnr, dist;
+    auto grab = [&]()
+    {
+      unsigned char* px = win->GetPixelData(0, 0, W - 1, H - 1, 0);
+      std::vector<unsigned char> v(px, px + 3 * static_cast<std::size_t>(W) * H);
+      delete[] px;
+      return v;
+    };
+    for (int f = 0; f < frames; ++f)
+    {
+      vtkGaussianCameraUtilities::ApplyCamera(
+        vis4gs::MakeSyntheticCamera(W, H, 0.05 * (f + 1) + 0.025), ren->GetActiveCamera());
+      win->SetDesiredUpdateRate(15.0);
+      const auto a = now();
+      const std::clock_t c = std::clock();
+      win->Render();
+      win->WaitForCompletion();
+      inter.push_back(ms(a, now()));
+      interCpu.push_back(1000.0 * static_cast<double>(std::clock() - c) / CLOCKS_PER_SEC);
+      dist.push_back(mapper->GetLastImageSampleDistance());
+      const auto low = grab();
+      win->SetDesiredUpdateRate(0.0001);
+      win->Render();
+      const auto full = grab();
+      double mse = 0;
+      for (std::size_t i = 0; i < low.size(); ++i)
+      {
+        const double d = (static_cast<double>(low[i]) - full[i]) / 255.0;
+        mse += d * d;
+      }
+      mse /= static_cast<double>(low.size());
+      psnr.push_back(mse > 0 ? 10.0 * std::log10(1.0 / mse) : 200.0);
+    }
+    std::printf("  interactive (sample distance %.2f): %9.1f ms/frame = %6.2f fps, CPU %.1f "
+                "ms/frame, PSNR against the full-quality frame %.2f dB (min %.2f)\n",
+      median(dist),
+      median(inter),
+      1000.0 / median(inter),
+      median(interCpu),
+      median(psnr),
+      *std::min_element(psnr.begin(), psnr.end()));
+  }
   return 0;
 }

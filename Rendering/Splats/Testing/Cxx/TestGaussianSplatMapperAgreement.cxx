@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The VTK splat mapper against the exact CPU rasteriser (Core/Render) on real scenes, same
-// camera: PSNR >= 30 dB, and the pictures are not empty.
+// The VTK splat mapper's OpenGL splat path (forced, whatever the OpenGL implementation) against
+// the exact CPU rasteriser (Core/Render) on real scenes, same camera: PSNR >= 30 dB, and the
+// pictures are not empty. The CPU-rasteriser path is tested in TestGaussianSplatMapperRasterized.
 #include "SplatTestHelpers.h"
 
 #include "Rasterizer.h"
@@ -30,6 +31,7 @@ int CheckScene(bool inria, int width, int height, double azimuth, int path = 1)
   vtkNew<vtkGaussianSplatMapper> mapper;
   mapper->SetInputData(scene);
   mapper->SetGeometryPath(path);
+  mapper->SetDrawMethodToOpenGLSplats();
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   vtkNew<vtkRenderer> ren;
@@ -71,6 +73,11 @@ int CheckScene(bool inria, int width, int height, double azimuth, int path = 1)
     meanGL,
     coverage);
   int fail = 0;
+  if (mapper->GetLastDrawMethod() != vtkGaussianSplatMapper::OPENGL_SPLATS)
+  {
+    std::printf("FAILED: the OpenGL splat path was not taken\n");
+    fail = 1;
+  }
   if (!(psnr >= 30.0))
   {
     std::printf("FAILED: PSNR %.2f dB < 30 dB\n", psnr);
