@@ -18,6 +18,9 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkTypeUInt8Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
@@ -27,9 +30,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
+#include <exception>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace
 {
@@ -61,6 +67,84 @@ vtkSmartPointer<vtkTable> MetricsToTable(const vis4gs::MetricsTable& m)
   add("lpips", m.Lpips);
   return table;
 }
+
+double WallNow()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double CpuClock(clockid_t clock)
+{
+  timespec t{};
+  clock_gettime(clock, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+double ProcessCpuNow()
+{
+  return CpuClock(CLOCK_PROCESS_CPUTIME_ID);
+}
+double ThreadCpuNow()
+{
+  return CpuClock(CLOCK_THREAD_CPUTIME_ID);
+}
+
+#ifdef VIS4GS_HAVE_GENEALOGY_FILTER
+/// Wraps a std::vector's memory in a VTK array without copying (the vector must outlive it).
+template <typename ArrayT, typename T>
+vtkSmartPointer<ArrayT> WrapColumn(const char* name, const std::vector<T>& values)
+{
+  static_assert(sizeof(typename ArrayT::ValueType) == sizeof(T), "same value size");
+  auto a = vtkSmartPointer<ArrayT>::New();
+  a->SetName(name);
+  // save = 1: VTK never frees (nor writes) this memory.
+  a->SetArray(reinterpret_cast<typename ArrayT::ValueType*>(const_cast<T*>(values.data())),
+    static_cast<vtkIdType>(values.size()),
+    1);
+  return a;
+}
+
+/// The genealogy filter on Core events (no copy into VTK arrays: the table wraps them).
+void BuildGenealogy(const vis4gs::EventTable& events,
+  const std::vector<std::int64_t>& initialIds,
+  int lastIteration,
+  vtkSmartPointer<vtkTree>& tree,
+  vtkSmartPointer<vtkTable>& bands)
+{
+  vtkNew<vtkTable> table;
+  table->AddColumn(WrapColumn<vtkTypeInt32Array>("Iteration", events.Iteration));
+  table->AddColumn(WrapColumn<vtkTypeUInt8Array>("Kind", events.Kind));
+  table->AddColumn(WrapColumn<vtkTypeInt64Array>("Parent", events.Parent));
+  table->AddColumn(WrapColumn<vtkTypeInt64Array>("Child", events.Child));
+  vtkNew<vtkGaussianGenealogyTreeFilter> filter;
+  filter->SetInputData(table);
+  if (!initialIds.empty())
+  {
+    vtkNew<vtkIdTypeArray> initial;
+    initial->SetNumberOfTuples(static_cast<vtkIdType>(initialIds.size()));
+    std::copy(initialIds.begin(), initialIds.end(), initial->GetPointer(0));
+    filter->SetInitialIds(initial);
+  }
+  else
+  {
+    filter->SetNumberOfInitialGaussians(0);
+  }
+  filter->SetLastIteration(lastIteration);
+  filter->SetRepairUnknownParents(true);
+  vtkNew<vtkCallbackCommand> errors;
+  bool failed = false;
+  errors->SetClientData(&failed);
+  errors->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void*) { *static_cast<bool*>(client) = true; });
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->Update();
+  if (failed)
+  {
+    throw std::runtime_error("vtkGaussianGenealogyTreeFilter failed (see the error output)");
+  }
+  tree = vtkTree::SafeDownCast(filter->GetOutputDataObject(0));
+  bands = filter->GetFamilyBands();
+}
+#endif
 }
 
 //------------------------------------------------------------------------------
@@ -84,12 +168,17 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       (lower.size() > 5 && lower.compare(lower.size() - 5, 5, ".hdf5") == 0));
   std::ostringstream text;
   auto lap = start;
+  double lapCpu = ProcessCpuNow();
   std::ostringstream timings;
+  timings.precision(3);
   auto stage = [&](const char* what)
   {
     const auto now = std::chrono::steady_clock::now();
-    timings << " " << what << " " << std::chrono::duration<double>(now - lap).count() << " s;";
+    const double cpu = ProcessCpuNow();
+    timings << " " << what << " " << std::chrono::duration<double>(now - lap).count() << " s ("
+            << cpu - lapCpu << " s CPU);";
     lap = now;
+    lapCpu = cpu;
   };
   if (!isLog)
   {
@@ -130,75 +219,111 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       vis4gs::CamerasToTable(log.ReadCameras(), doc->Cameras);
       text << "cameras: " << doc->Cameras->GetNumberOfRows() << "\n";
     }
-    if (!doc->Snapshots.empty())
-    {
-      stage("header, metrics, cameras");
-      report(0.2, "reading the last snapshot");
-      doc->LoadIteration(doc->Snapshots.back());
-      stage("last snapshot");
-    }
+    stage("header, metrics, cameras");
+    // The genealogy (events, initial ids, then vtkGaussianGenealogyTreeFilter) is built in a
+    // second thread while this one reads the last snapshot, so the two largest steps overlap
+    // on two cores. Both threads read the log: the reader's const methods keep no shared
+    // state, and the HDF5 library is built thread-safe (it serialises its own calls; the
+    // chunk decoding of the reader runs outside it).
+    std::thread genealogyThread;
+    std::string genealogyError, genealogyTimes;
+    std::exception_ptr readError;
+    std::size_t eventCount = 0;
     if (log.HasEvents())
     {
-      report(0.5, "reading the events");
-      const vis4gs::EventTable events = log.ReadEvents();
-      text << "events: " << events.Size() << "\n";
-      stage("events");
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
-      report(0.6, "building the genealogy");
-      vtkNew<vtkTable> table;
-      vtkNew<vtkIntArray> it;
-      it->SetName("Iteration");
-      vtkNew<vtkUnsignedCharArray> kind;
-      kind->SetName("Kind");
-      vtkNew<vtkIdTypeArray> parent, child;
-      parent->SetName("Parent");
-      child->SetName("Child");
-      const std::size_t ne = events.Size();
-      it->SetNumberOfTuples(static_cast<vtkIdType>(ne));
-      kind->SetNumberOfTuples(static_cast<vtkIdType>(ne));
-      parent->SetNumberOfTuples(static_cast<vtkIdType>(ne));
-      child->SetNumberOfTuples(static_cast<vtkIdType>(ne));
-      for (std::size_t e = 0; e < ne; ++e)
-      {
-        it->SetValue(e, events.Iteration[e]);
-        kind->SetValue(e, static_cast<unsigned char>(events.Kind[e]));
-        parent->SetValue(e, events.Parent[e]);
-        child->SetValue(e, events.Child[e]);
-      }
-      table->AddColumn(it);
-      table->AddColumn(kind);
-      table->AddColumn(parent);
-      table->AddColumn(child);
-      vtkNew<vtkGaussianGenealogyTreeFilter> filter;
-      filter->SetInputData(table);
-      if (!doc->Snapshots.empty())
-      {
-        vis4gs::SnapshotReadOptions ids;
-        ids.Arrays = vis4gs::SnapshotIds;
-        const auto first = log.ReadSnapshot(doc->Snapshots.front(), ids);
-        vtkNew<vtkIdTypeArray> initial;
-        for (std::size_t i = 0; i < first.Count; ++i)
+      const int last =
+        std::max(header.Iterations, doc->Snapshots.empty() ? 0 : doc->Snapshots.back());
+      Vis4GSDocument* target = doc.get();
+      genealogyThread = std::thread(
+        [target, last, &genealogyError, &genealogyTimes, &readError, &eventCount]
         {
-          initial->InsertNextValue(first.GetId(i));
-        }
-        filter->SetInitialIds(initial);
+          const vis4gs::TrainingLogReader& reader = *target->Log;
+          vis4gs::EventTable events;
+          std::vector<std::int64_t> initial;
+          const double w0 = WallNow(), c0 = ThreadCpuNow();
+          try
+          {
+            events = reader.ReadEvents();
+            eventCount = events.Size();
+            if (!target->Snapshots.empty())
+            {
+              vis4gs::SnapshotReadOptions ids;
+              ids.Arrays = vis4gs::SnapshotIds;
+              const auto first = reader.ReadSnapshot(target->Snapshots.front(), ids);
+              initial.resize(first.Count);
+              for (std::size_t i = 0; i < first.Count; ++i)
+              {
+                initial[i] = first.GetId(i);
+              }
+            }
+          }
+          catch (...)
+          {
+            readError = std::current_exception();
+            return;
+          }
+          const double w1 = WallNow(), c1 = ThreadCpuNow();
+          std::ostringstream t;
+          t.precision(3);
+          t << " second thread: events and initial ids " << w1 - w0 << " s (" << c1 - c0
+            << " s CPU of that thread), " << events.Size() << " events;";
+          try
+          {
+            BuildGenealogy(events, initial, last, target->Tree, target->Bands);
+            t << " genealogy filter " << WallNow() - w1 << " s (" << ThreadCpuNow() - c1
+              << " s CPU of that thread);";
+          }
+          catch (const std::exception& e)
+          {
+            genealogyError = e.what();
+          }
+          genealogyTimes = t.str();
+        });
+#else
+      text << "genealogy: not available (built without Filters/Genealogy)\n";
+#endif
+    }
+    if (!doc->Snapshots.empty())
+    {
+      report(0.2, "reading the last snapshot and the events");
+      try
+      {
+        doc->LoadIteration(doc->Snapshots.back());
       }
-      filter->SetLastIteration(
-        std::max(header.Iterations, doc->Snapshots.empty() ? 0 : doc->Snapshots.back()));
-      filter->SetRepairUnknownParents(true);
-      stage("event table, initial ids");
-      filter->Update();
-      stage("genealogy filter");
-      doc->Tree = vtkTree::SafeDownCast(filter->GetOutputDataObject(0));
-      doc->Bands = filter->GetFamilyBands();
-      if (doc->Tree)
+      catch (...)
+      {
+        if (genealogyThread.joinable())
+        {
+          genealogyThread.join();
+        }
+        throw;
+      }
+      stage("last snapshot");
+    }
+    if (genealogyThread.joinable())
+    {
+      report(0.6, "building the genealogy");
+      genealogyThread.join();
+      stage("waiting for the genealogy");
+      timings << genealogyTimes;
+      if (readError)
+      {
+        std::rethrow_exception(readError);
+      }
+      text << "events: " << eventCount << "\n";
+      if (!genealogyError.empty())
+      {
+        // The views that need no genealogy stay usable.
+        doc->Tree = nullptr;
+        doc->Bands = nullptr;
+        text << "genealogy: could not be built: " << genealogyError << "\n";
+      }
+      else if (doc->Tree)
       {
         text << "genealogy: " << doc->Tree->GetNumberOfVertices() - 1 << " Gaussians ever born, "
              << (doc->Bands ? doc->Bands->GetNumberOfRows() : 0) << " families\n";
       }
-#else
-      text << "genealogy: not available (built without Filters/Genealogy)\n";
-#endif
     }
   }
   report(1.0, "done");

@@ -698,14 +698,16 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
     // Scores of the previous document: let them finish, their result is dropped.
     d->ScoreWorker->wait();
   }
-  double stageStart = Now();
-  auto stage = [this, &stageStart](const char* what)
+  double stageStart = Now(), stageCpu = CpuNow();
+  auto stage = [this, &stageStart, &stageCpu](const char* what)
   {
     if (d->Benchmark)
     {
-      const double now = Now();
-      std::cout << "benchmark:   " << what << ": " << now - stageStart << " s" << std::endl;
+      const double now = Now(), cpu = CpuNow();
+      std::cout << "benchmark:   " << what << ": " << now - stageStart << " s (" << cpu - stageCpu
+                << " s CPU)" << std::endl;
       stageStart = now;
+      stageCpu = cpu;
     }
   };
   if (d->Benchmark)
@@ -747,7 +749,7 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->IterationSlider->setEnabled(doc->Snapshots.size() > 1);
   d->IterationSlider->blockSignals(false);
   d->Frustums->SetInputData(0, doc->Cameras);
-  this->UpdateScene();
+  this->UpdateScene(false); // every view is rendered once below
   stage("scene, histogram and panel inputs");
   d->Hub->SetIteration(doc->Iteration);
   d->Hub->RenderOnChangeOn();
@@ -797,15 +799,28 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
 }
 
 //------------------------------------------------------------------------------
-void Vis4GSMainWindow::UpdateScene()
+void Vis4GSMainWindow::UpdateScene(bool render)
 {
   vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
   if (!scene)
   {
     return;
   }
+  double stageStart = Now(), stageCpu = CpuNow();
+  auto stage = [this, &stageStart, &stageCpu](const char* what)
+  {
+    if (d->Benchmark)
+    {
+      const double now = Now(), cpu = CpuNow();
+      std::cout << "benchmark:     " << what << ": " << now - stageStart << " s (" << cpu - stageCpu
+                << " s CPU)" << std::endl;
+      stageStart = now;
+      stageCpu = cpu;
+    }
+  };
   d->SceneMapper->SetInputData(scene);
   d->Selector->SetScene(scene);
+  stage("selector");
   d->Frustums->SetInputData(1, scene);
   d->Histogram->SetInputData(scene);
   const QString overlay = d->Overlay->currentText();
@@ -835,12 +850,15 @@ void Vis4GSMainWindow::UpdateScene()
   d->HistogramArray->blockSignals(false);
   d->Histogram->SetArrayName(d->HistogramArray->currentText().toUtf8().constData());
   d->Histogram->UpdateHistogram();
-  this->UpdateOverlay();
+  stage("histogram");
+  this->UpdateOverlay(render);
+  stage("overlay");
   this->OnSelectionChanged();
+  stage("selection views");
 }
 
 //------------------------------------------------------------------------------
-void Vis4GSMainWindow::UpdateOverlay()
+void Vis4GSMainWindow::UpdateOverlay(bool render)
 {
   const QString name = d->Overlay->currentText();
   const std::string array = name.toStdString();
@@ -892,7 +910,10 @@ void Vis4GSMainWindow::UpdateOverlay()
     d->Legend->SetTitle(array.c_str());
     d->Legend->VisibilityOn();
   }
-  d->SceneWindow->Render();
+  if (render)
+  {
+    d->SceneWindow->Render();
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -112,8 +112,9 @@ private:
   void OnLoaded(std::shared_ptr<Vis4GSDocument> document, const QString& error);
   void OnSelectionChanged();
   void OnIterationChanged(int iteration);
-  void UpdateScene();
-  void UpdateOverlay();
+  /// Hands the document's scene to the views; @p render: render the scene view afterwards.
+  void UpdateScene(bool render = true);
+  void UpdateOverlay(bool render = true);
   void UpdateFrustums();
   void StartScores();
   void OnSceneMouse(unsigned long event, bool& abort);

@@ -586,16 +586,20 @@ void GenealogyBuilder::Finish(Phase& phase)
     g.ChildOffsets[i + 1] += g.ChildOffsets[i];
   }
   g.ChildList.resize(static_cast<std::size_t>(g.ChildOffsets[un]));
+  // Fill with ChildOffsets[p] (the start of node p's list) as node p's cursor: it ends at the
+  // start of node p + 1's list; then shift the offsets up by one. No separate cursor array.
+  for (std::int64_t i = 0; i < n; ++i)
   {
-    std::vector<std::int64_t> cursor(g.ChildOffsets.begin(), g.ChildOffsets.end() - 1);
-    for (std::int64_t i = 0; i < n; ++i)
+    if (g.Parent[i] >= 0)
     {
-      if (g.Parent[i] >= 0)
-      {
-        g.ChildList[cursor[g.Parent[i]]++] = i;
-      }
+      g.ChildList[g.ChildOffsets[g.Parent[i]]++] = i;
     }
   }
+  for (std::size_t i = un; i > 0; --i)
+  {
+    g.ChildOffsets[i] = g.ChildOffsets[i - 1];
+  }
+  g.ChildOffsets[0] = 0;
 
   phase("children CSR");
   // Families (parents precede children).
@@ -620,12 +624,22 @@ void GenealogyBuilder::Finish(Phase& phase)
   phase("descendant counts");
   // Lifespans and family bands.
   g.Lifespan.resize(un);
+  {
+    const std::int32_t last = this->Last;
+    const std::int32_t* death = g.Death.data();
+    const std::int32_t* birth = g.Birth.data();
+    std::int32_t* lifespan = g.Lifespan.data();
+#pragma omp parallel for schedule(static) if (n > 65536)
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      lifespan[i] = (death[i] < 0 ? last : death[i]) - birth[i];
+    }
+  }
   g.Bands.assign(static_cast<std::size_t>(families), FamilyBand());
   std::int64_t nextRow = 0;
   for (std::int64_t i = 0; i < n; ++i)
   {
     const std::int32_t end = g.Death[i] < 0 ? this->Last : g.Death[i];
-    g.Lifespan[i] = end - g.Birth[i];
     FamilyBand& band = g.Bands[g.FamilyOf[i]];
     if (g.Parent[i] < 0)
     {
@@ -651,6 +665,7 @@ void GenealogyBuilder::Finish(Phase& phase)
   // Perception values (DESIGN §4).
   g.Perception.resize(un);
   const double alpha = this->Options.Alpha;
+#pragma omp parallel for schedule(static) if (n > 65536)
   for (std::int64_t i = 0; i < n; ++i)
   {
     const FamilyBand& band = g.Bands[g.FamilyOf[i]];
@@ -671,25 +686,40 @@ void GenealogyBuilder::Finish(Phase& phase)
   phase("perception values");
   // Rows: pre-order with children in creation order, without a stack: a child's row is its
   // parent's row + 1 + the sizes of its earlier-born siblings' subtrees.
+  // First each child's offset below its parent's row (independent per parent: parallel),
+  // then the rows in node order (parents precede children).
   g.Row.resize(un);
-  for (std::int64_t i = 0; i < n; ++i)
   {
-    if (g.Parent[i] < 0)
+    std::int64_t* row = g.Row.data();
+    const std::int64_t* offsets = g.ChildOffsets.data();
+    const std::int64_t* children = g.ChildList.data();
+    const std::int64_t* descendants = g.DescendantCount.data();
+#pragma omp parallel for schedule(dynamic, 16384) if (n > 65536)
+    for (std::int64_t i = 0; i < n; ++i)
     {
-      g.Row[i] = g.Bands[g.FamilyOf[i]].MinRow;
-    }
-    std::int64_t next = g.Row[i] + 1;
-    for (std::int64_t k = g.ChildOffsets[i]; k < g.ChildOffsets[i + 1]; ++k)
-    {
-      const std::int64_t c = g.ChildList[k];
-      g.Row[c] = next;
-      next += g.DescendantCount[c] + 1;
+      std::int64_t next = 1;
+      for (std::int64_t k = offsets[i]; k < offsets[i + 1]; ++k)
+      {
+        const std::int64_t c = children[k];
+        row[c] = next;
+        next += descendants[c] + 1;
+      }
     }
   }
-  g.NodeOfRow.resize(un);
   for (std::int64_t i = 0; i < n; ++i)
   {
-    g.NodeOfRow[g.Row[i]] = i;
+    g.Row[i] = g.Parent[i] < 0 ? g.Bands[g.FamilyOf[i]].MinRow : g.Row[g.Parent[i]] + g.Row[i];
+  }
+  g.NodeOfRow.resize(un);
+  {
+    // Rows are a permutation of 0..n-1: the threads write distinct entries.
+    const std::int64_t* row = g.Row.data();
+    std::int64_t* nodeOfRow = g.NodeOfRow.data();
+#pragma omp parallel for schedule(static) if (n > 65536)
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      nodeOfRow[row[i]] = i;
+    }
   }
   phase("layout rows");
 }

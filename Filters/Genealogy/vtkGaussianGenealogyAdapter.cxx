@@ -20,6 +20,7 @@
 #include "vtkIntArray.h"
 #include "vtkMutableDirectedGraph.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
 #include "vtkTable.h"
@@ -32,8 +33,24 @@
 #include <sstream>
 #include <stdexcept>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace
 {
+//------------------------------------------------------------------------------
+// o[i] = p[i] converted, in parallel.
+template <typename S, typename T>
+void ConvertValues(const S* p, T* o, vtkIdType n)
+{
+#pragma omp parallel for schedule(static) if (n > 65536)
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    o[i] = static_cast<T>(p[i]);
+  }
+}
+
 //------------------------------------------------------------------------------
 template <typename Out>
 void CopyColumn(vtkDataArray* a, std::vector<Out>& out)
@@ -44,14 +61,8 @@ void CopyColumn(vtkDataArray* a, std::vector<Out>& out)
   {
     switch (a->GetDataType())
     {
-      vtkTemplateMacro({
-        const VTK_TT* p = static_cast<const VTK_TT*>(a->GetVoidPointer(0));
-        for (vtkIdType i = 0; i < n; ++i)
-        {
-          out[i] = static_cast<Out>(p[i]);
-        }
-        return;
-      });
+      vtkTemplateMacro(
+        ConvertValues(static_cast<const VTK_TT*>(a->GetVoidPointer(0)), out.data(), n); return;);
     }
   }
   for (vtkIdType i = 0; i < n; ++i)
@@ -68,21 +79,220 @@ vtkDataArray* Column(vtkTable* t, const char* name, const char* lower)
 }
 
 //------------------------------------------------------------------------------
+// Vertex array of n + 1 values: the virtual root's value, then values[0..n) converted.
+// Filled in parallel (each thread writes, and so first touches, its own pages).
 template <typename ArrayT, typename In>
 vtkSmartPointer<ArrayT> VertexArray(const char* name,
   const std::vector<In>& values,
   typename ArrayT::ValueType rootValue)
 {
+  using Value = typename ArrayT::ValueType;
   auto a = vtkSmartPointer<ArrayT>::New();
   a->SetName(name);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()) + 1);
-  auto* p = a->GetPointer(0);
+  const vtkIdType n = static_cast<vtkIdType>(values.size());
+  a->SetNumberOfTuples(n + 1);
+  Value* p = a->GetPointer(0);
+  const In* in = values.data();
   p[0] = rootValue;
-  for (std::size_t i = 0; i < values.size(); ++i)
+#pragma omp parallel for schedule(static)
+  for (vtkIdType i = 0; i < n; ++i)
   {
-    p[i + 1] = static_cast<typename ArrayT::ValueType>(values[i]);
+    p[i + 1] = static_cast<Value>(in[i]);
   }
   return a;
+}
+
+//------------------------------------------------------------------------------
+/**
+ * A vtkTree whose root is set by its builder. Used only as the source of a ShallowCopy:
+ * vtkTree::IsStructureValid accepts another vtkTree as it is (it copies the root), so the
+ * O(n) connectivity walk is skipped. The builder must guarantee a valid tree (see
+ * FillStructure).
+ */
+class vtkGaussianTrustedTree : public vtkTree
+{
+public:
+  static vtkGaussianTrustedTree* New();
+  vtkTypeMacro(vtkGaussianTrustedTree, vtkTree);
+  void SetRootVertex(vtkIdType root) { this->Root = root; }
+
+protected:
+  vtkGaussianTrustedTree() = default;
+  ~vtkGaussianTrustedTree() override = default;
+
+private:
+  vtkGaussianTrustedTree(const vtkGaussianTrustedTree&) = delete;
+  void operator=(const vtkGaussianTrustedTree&) = delete;
+};
+vtkStandardNewMacro(vtkGaussianTrustedTree);
+
+//------------------------------------------------------------------------------
+/**
+ * Children of every node in CSR form: the children of node k are List[Offsets[k] ..
+ * Offsets[k + 1]) and the roots (parent -1) are Roots[0 .. NumberOfRoots), all as node
+ * indices in increasing order.
+ */
+struct ChildLists
+{
+  const std::int64_t* Offsets = nullptr;
+  const std::int64_t* List = nullptr;
+  vtkIdType ListSize = 0;
+  const std::int64_t* Roots = nullptr;
+  vtkIdType NumberOfRoots = 0;
+};
+
+//------------------------------------------------------------------------------
+/**
+ * Fills the adjacency lists of a graph's internals: vertex 0 is the virtual root over the
+ * roots, vertex k + 1 is node k with the in-edge k from parent[k] + 1, out-edges in child
+ * order. Every std::vector gets its exact size in one allocation; parallel over vertices
+ * (each vertex's lists are written by one thread only).
+ *
+ * On the way it checks that @p parent (n values) and @p lists describe the same forest and
+ * that every parent precedes its child (-1 <= parent[k] < k); returns false with @p error
+ * otherwise (the internals are then to be discarded). When it returns true, the graph "vertex
+ * 0 = virtual root, vertex k + 1 = node k, edge k from parent[k] + 1 to k + 1" is a tree
+ * rooted at vertex 0: every vertex but 0 has exactly one in-edge and vertex 0 none, there are
+ * n edges for n + 1 vertices, the out-edges are exactly the reversed in-edges (each listed
+ * child names its list's node as parent, lists are strictly increasing, and they hold n
+ * entries in all), and following parents strictly decreases the vertex index, so every
+ * vertex reaches vertex 0 (connected) and no cycle exists.
+ */
+template <typename P>
+bool FillAdjacency(vtkGraphInternals* internals,
+  vtkIdType n,
+  const P* parent,
+  const ChildLists& lists,
+  std::string& error)
+{
+  // The roots first (a few thousand, sequential).
+  for (vtkIdType r = 0; r < lists.NumberOfRoots; ++r)
+  {
+    const vtkIdType root = lists.Roots[r];
+    if (root < 0 || root >= n || parent[root] != -1 || (r > 0 && root <= lists.Roots[r - 1]))
+    {
+      std::ostringstream s;
+      s << "the list of roots does not match the parents (root " << root << ")";
+      error = s.str();
+      return false;
+    }
+  }
+  auto& adjacency = internals->Adjacency;
+  adjacency.clear();
+  adjacency.resize(static_cast<std::size_t>(n + 1));
+  vtkVertexAdjacencyList* adj = adjacency.data();
+  {
+    auto& out = adj[0].OutEdges;
+    out.reserve(static_cast<std::size_t>(lists.NumberOfRoots));
+    for (vtkIdType r = 0; r < lists.NumberOfRoots; ++r)
+    {
+      out.emplace_back(lists.Roots[r] + 1, lists.Roots[r]);
+    }
+  }
+  vtkIdType badParent = -1, badList = -1, listed = 0;
+#pragma omp parallel for schedule(dynamic, 8192) reduction(max : badParent, badList)             \
+  reduction(+ : listed)
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    const vtkIdType p = static_cast<vtkIdType>(parent[k]);
+    if (p < -1 || p >= k)
+    {
+      badParent = std::max(badParent, k);
+      continue;
+    }
+    vtkVertexAdjacencyList& a = adj[k + 1];
+    a.InEdges.assign(1, vtkInEdgeType(p + 1, k));
+    const vtkIdType b = lists.Offsets[k], e = lists.Offsets[k + 1];
+    if (b < 0 || e < b || e > lists.ListSize)
+    {
+      badList = std::max(badList, k);
+      continue;
+    }
+    if (e > b)
+    {
+      listed += e - b;
+      a.OutEdges.reserve(static_cast<std::size_t>(e - b));
+      vtkIdType previous = -1;
+      for (vtkIdType c = b; c < e; ++c)
+      {
+        const vtkIdType child = lists.List[c];
+        if (child <= previous || child >= n || static_cast<vtkIdType>(parent[child]) != k)
+        {
+          badList = std::max(badList, k);
+          break;
+        }
+        a.OutEdges.emplace_back(child + 1, child);
+        previous = child;
+      }
+    }
+  }
+  std::ostringstream s;
+  if (badParent >= 0)
+  {
+    s << "node " << badParent << " has parent " << static_cast<vtkIdType>(parent[badParent])
+      << ": parents must precede their children (-1 <= parent < node)";
+  }
+  else if (badList >= 0 || listed + lists.NumberOfRoots != n)
+  {
+    s << "the child lists do not match the parents (node " << badList << ")";
+  }
+  else
+  {
+    internals->NumberOfEdges = n;
+    return true;
+  }
+  error = s.str();
+  adjacency.clear();
+  return false;
+}
+
+//------------------------------------------------------------------------------
+/**
+ * The tree of @p parent / @p lists (checked by FillAdjacency) into @p tree with the vertex and
+ * edge attributes. With @p validate the structure goes through a vtkMutableDirectedGraph and
+ * vtkTree::CheckedShallowCopy (VTK's own O(n) walk); without, it is built in a vtkTree whose
+ * root is set directly (valid by construction, see FillAdjacency) and shallow-copied, which
+ * vtkTree accepts without a walk. Both give the same tree (TestGaussianGenealogyTreeFilter).
+ */
+template <typename P>
+bool MakeTree(vtkIdType n,
+  const P* parent,
+  const ChildLists& lists,
+  vtkTree* tree,
+  vtkDataSetAttributes* vertexData,
+  vtkDataSetAttributes* edgeData,
+  bool validate,
+  std::string& error)
+{
+  vtkSmartPointer<vtkGraph> graph;
+  if (validate)
+  {
+    graph = vtkSmartPointer<vtkMutableDirectedGraph>::New();
+  }
+  else
+  {
+    auto trusted = vtkSmartPointer<vtkGaussianTrustedTree>::New();
+    trusted->SetRootVertex(0);
+    graph = trusted;
+  }
+  if (!FillAdjacency(graph->GetGraphInternals(true), n, parent, lists, error))
+  {
+    return false;
+  }
+  if (vertexData)
+  {
+    graph->GetVertexData()->ShallowCopy(vertexData);
+  }
+  if (edgeData)
+  {
+    graph->GetEdgeData()->ShallowCopy(edgeData);
+  }
+  if (!tree->CheckedShallowCopy(graph))
+  {
+    error = "the genealogy does not form a valid tree (internal error)";
+    return false;
+  }
+  return true;
 }
 } // namespace
 
@@ -94,6 +304,13 @@ double vtkGaussianGenealogyAdapter::ThreadCpuSeconds()
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+//------------------------------------------------------------------------------
+double vtkGaussianGenealogyAdapter::ProcessCpuSeconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 //------------------------------------------------------------------------------
 bool vtkGaussianGenealogyAdapter::EventsFromTable(vtkTable* table,
   vis4gs::EventTable& events,
@@ -123,49 +340,53 @@ bool vtkGaussianGenealogyAdapter::BuildStructure(const std::vector<vtkIdType>& p
   vtkTree* tree,
   vtkDataSetAttributes* vertexData,
   vtkDataSetAttributes* edgeData,
-  std::string& error)
+  std::string& error,
+  bool validate)
 {
-  const std::size_t n = parents.size();
-  vtkNew<vtkMutableDirectedGraph> graph;
-  vtkGraphInternals* internals = graph->GetGraphInternals(true);
-  internals->Adjacency.resize(n + 1);
-  // Exact out-edge capacities first (one allocation per parent), then the edges in node
-  // order so that children keep their creation order.
-  std::vector<vtkIdType> outDegree(n + 1, 0);
-  for (std::size_t k = 0; k < n; ++k)
+  const vtkIdType n = static_cast<vtkIdType>(parents.size());
+  // Child lists by a counting sort over the parents (node order kept inside each list).
+  std::vector<std::int64_t> offsets(static_cast<std::size_t>(n + 2), 0), list, roots;
+  for (vtkIdType k = 0; k < n; ++k)
   {
-    ++outDegree[static_cast<std::size_t>(parents[k] + 1)];
-  }
-  for (std::size_t v = 0; v <= n; ++v)
-  {
-    if (outDegree[v] > 0)
+    const vtkIdType p = parents[k];
+    if (p < -1 || p >= k)
     {
-      internals->Adjacency[v].OutEdges.reserve(static_cast<std::size_t>(outDegree[v]));
+      std::ostringstream s;
+      s << "node " << k << " has parent " << p
+        << ": parents must precede their children (-1 <= parent < node)";
+      error = s.str();
+      return false;
+    }
+    if (p >= 0)
+    {
+      ++offsets[p + 2];
     }
   }
-  outDegree = std::vector<vtkIdType>();
-  for (std::size_t k = 0; k < n; ++k)
+  for (vtkIdType k = 0; k <= n; ++k)
   {
-    const vtkIdType source = parents[k] + 1;
-    const vtkIdType target = static_cast<vtkIdType>(k) + 1;
-    internals->Adjacency[source].OutEdges.emplace_back(target, static_cast<vtkIdType>(k));
-    internals->Adjacency[target].InEdges.emplace_back(source, static_cast<vtkIdType>(k));
+    offsets[k + 1] += offsets[k];
   }
-  internals->NumberOfEdges = static_cast<vtkIdType>(n);
-  if (vertexData)
+  list.resize(static_cast<std::size_t>(offsets[n + 1]));
+  roots.reserve(static_cast<std::size_t>(n - offsets[n + 1]));
+  for (vtkIdType k = 0; k < n; ++k)
   {
-    graph->GetVertexData()->ShallowCopy(vertexData);
+    if (parents[k] < 0)
+    {
+      roots.push_back(k);
+    }
+    else
+    {
+      list[offsets[parents[k] + 1]++] = k; // offsets[p + 1] walks node p's list
+    }
   }
-  if (edgeData)
-  {
-    graph->GetEdgeData()->ShallowCopy(edgeData);
-  }
-  if (!tree->CheckedShallowCopy(graph))
-  {
-    error = "the genealogy does not form a valid tree (internal error)";
-    return false;
-  }
-  return true;
+  offsets.pop_back(); // offsets[p] is now the start of node p's list, offsets[n] the end
+  ChildLists lists;
+  lists.Offsets = offsets.data();
+  lists.List = list.data();
+  lists.ListSize = static_cast<vtkIdType>(list.size());
+  lists.Roots = roots.data();
+  lists.NumberOfRoots = static_cast<vtkIdType>(roots.size());
+  return MakeTree(n, parents.data(), lists, tree, vertexData, edgeData, validate, error);
 }
 
 //------------------------------------------------------------------------------
@@ -173,7 +394,8 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vtkTree* tree,
   vtkTable* bands,
   bool naive,
-  std::string& error)
+  std::string& error,
+  bool validate)
 {
   const std::int64_t n = g.GetNumberOfNodes();
   vtkNew<vtkDataSetAttributes> vd;
@@ -187,14 +409,7 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   }
   vd->AddArray(VertexArray<vtkIntArray>("BirthIteration", g.GetBirthIterations(), firstBirth));
   vd->AddArray(VertexArray<vtkIntArray>("DeathIteration", g.GetDeathIterations(), -1));
-  {
-    std::vector<unsigned char> kinds(g.GetBirthKinds().size());
-    std::transform(g.GetBirthKinds().begin(),
-      g.GetBirthKinds().end(),
-      kinds.begin(),
-      [](vis4gs::BirthKind k) { return static_cast<unsigned char>(k); });
-    vd->AddArray(VertexArray<vtkUnsignedCharArray>("BirthKind", kinds, VirtualRootKind));
-  }
+  vd->AddArray(VertexArray<vtkUnsignedCharArray>("BirthKind", g.GetBirthKinds(), VirtualRootKind));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("Pruned", g.GetPruned(), 0));
   vd->AddArray(VertexArray<vtkIdTypeArray>("FamilyId", g.GetFamilyIds(), -1));
   vd->AddArray(VertexArray<vtkIdTypeArray>("DescendantCount", g.GetDescendantCounts(), n));
@@ -208,10 +423,15 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vtkNew<vtkUnsignedCharArray> edgeKind;
   edgeKind->SetName("EventKind");
   edgeKind->SetNumberOfTuples(n);
-  for (std::int64_t i = 0; i < n; ++i)
   {
-    edgeKind->SetValue(i,
-      g.GetParents()[i] < 0 ? VirtualRootKind : static_cast<unsigned char>(g.GetBirthKinds()[i]));
+    unsigned char* kind = edgeKind->GetPointer(0);
+    const std::int64_t* parent = g.GetParents().data();
+    const vis4gs::BirthKind* birthKind = g.GetBirthKinds().data();
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      kind[i] = parent[i] < 0 ? VirtualRootKind : static_cast<unsigned char>(birthKind[i]);
+    }
   }
   ed->AddArray(edgeKind);
 
@@ -233,8 +453,25 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   }
   else
   {
-    std::vector<vtkIdType> parents(g.GetParents().begin(), g.GetParents().end());
-    if (!BuildStructure(parents, tree, vd, ed, error))
+    // Core's child lists (CSR, creation order) and the family roots (in node order).
+    std::vector<std::int64_t> roots(g.GetFamilyBands().size());
+    for (std::size_t f = 0; f < roots.size(); ++f)
+    {
+      roots[f] = g.GetFamilyBands()[f].RootNode;
+    }
+    static const std::int64_t noChildren[1] = { 0 };
+    ChildLists lists;
+    lists.Offsets = n > 0 ? g.GetChildOffsets().data() : noChildren;
+    lists.List = g.GetChildren().data();
+    lists.ListSize = static_cast<vtkIdType>(g.GetChildren().size());
+    lists.Roots = roots.data();
+    lists.NumberOfRoots = static_cast<vtkIdType>(roots.size());
+    if (n > 0 && static_cast<std::int64_t>(g.GetChildOffsets().size()) != n + 1)
+    {
+      error = "the genealogy has no child lists (internal error)";
+      return false;
+    }
+    if (!MakeTree(n, g.GetParents().data(), lists, tree, vd, ed, validate, error))
     {
       return false;
     }

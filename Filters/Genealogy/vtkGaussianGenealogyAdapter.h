@@ -39,6 +39,8 @@ public:
 
   /// CPU time of the calling thread in seconds (benchmark figures on shared cores).
   static double ThreadCpuSeconds();
+  /// CPU time of the whole process (all threads) in seconds.
+  static double ProcessCpuSeconds();
 
   /// Events from a table (columns Iteration, Kind, Parent, Child; lower-case accepted).
   static bool EventsFromTable(vtkTable* table, vis4gs::EventTable& events, std::string& error);
@@ -46,21 +48,31 @@ public:
   /**
    * Fills @p tree (vertex and edge arrays, pedigree ids, field data LastIteration and
    * PerceptionAlpha) and @p bands from @p g. With @p naive the structure is built through
-   * vtkMutableDirectedGraph::AddChild one vertex at a time (for benchmarks).
+   * vtkMutableDirectedGraph::AddChild one vertex at a time (for benchmarks). Otherwise the
+   * adjacency lists are filled directly from Core's child lists (exact sizes, in parallel);
+   * with @p validate the result goes through vtkTree::CheckedShallowCopy's O(n) walk,
+   * without it the tree is valid by construction (parents precede children, checked in
+   * O(n)) and shallow-copied as a tree. Both give the same vtkTree.
    */
   static bool FillTree(const vis4gs::Genealogy& g,
     vtkTree* tree,
     vtkTable* bands,
     bool naive,
-    std::string& error);
+    std::string& error,
+    bool validate = false);
 
-  /// Builds the structure of a tree from parent indices (-1 = virtual root), fast path.
-  /// parents[k] < k for every k; vertex 0 is the virtual root, vertex k + 1 is node k.
+  /**
+   * Builds the structure of a tree from parent indices (-1 = virtual root), fast path.
+   * Requires -1 <= parents[k] < k for every k (else false with @p error); vertex 0 is the
+   * virtual root, vertex k + 1 is node k, edge k enters vertex k + 1, children in node order.
+   * @p validate as in FillTree.
+   */
   static bool BuildStructure(const std::vector<vtkIdType>& parents,
     vtkTree* tree,
     vtkDataSetAttributes* vertexData,
     vtkDataSetAttributes* edgeData,
-    std::string& error);
+    std::string& error,
+    bool validate = false);
 
   /// Core genealogy of a tree produced by vtkGaussianGenealogyTreeFilter.
   static std::shared_ptr<vis4gs::Genealogy> FromTree(vtkTree* tree, std::string& error);

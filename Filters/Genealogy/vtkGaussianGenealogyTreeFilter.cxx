@@ -150,7 +150,7 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
 
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
-  double cpu = vtkGaussianGenealogyAdapter::ThreadCpuSeconds();
+  double cpu = vtkGaussianGenealogyAdapter::ProcessCpuSeconds();
   vis4gs::Genealogy genealogy;
   try
   {
@@ -175,7 +175,7 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   }
   timer->StopTimer();
   this->GenealogySeconds = timer->GetElapsedTime();
-  this->GenealogyCPUSeconds = vtkGaussianGenealogyAdapter::ThreadCpuSeconds() - cpu;
+  this->GenealogyCPUSeconds = vtkGaussianGenealogyAdapter::ProcessCpuSeconds() - cpu;
   events = vis4gs::EventTable();
 
   std::ostringstream warnings;
@@ -190,16 +190,16 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   }
 
   timer->StartTimer();
-  cpu = vtkGaussianGenealogyAdapter::ThreadCpuSeconds();
+  cpu = vtkGaussianGenealogyAdapter::ProcessCpuSeconds();
   if (!vtkGaussianGenealogyAdapter::FillTree(
-        genealogy, output, bands, this->NaiveConstruction, error))
+        genealogy, output, bands, this->NaiveConstruction, error, this->ValidateStructure))
   {
     vtkErrorMacro("" << error);
     return 0;
   }
   timer->StopTimer();
   this->TreeSeconds = timer->GetElapsedTime();
-  this->TreeCPUSeconds = vtkGaussianGenealogyAdapter::ThreadCpuSeconds() - cpu;
+  this->TreeCPUSeconds = vtkGaussianGenealogyAdapter::ProcessCpuSeconds() - cpu;
   return 1;
 }
 
@@ -216,6 +216,7 @@ void vtkGaussianGenealogyTreeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepairDuplicateBirths: " << this->RepairDuplicateBirths << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "NaiveConstruction: " << this->NaiveConstruction << "\n";
+  os << indent << "ValidateStructure: " << this->ValidateStructure << "\n";
   os << indent << "GenealogySeconds: " << this->GenealogySeconds << "\n";
   os << indent << "TreeSeconds: " << this->TreeSeconds << "\n";
   os << indent << "GenealogyCPUSeconds: " << this->GenealogyCPUSeconds << "\n";

@@ -41,9 +41,10 @@
  * All the numerics are in Core/Genealogy/Genealogy.h (definitions, bad-input behaviour).
  * Bad input (unknown parents, Gaussians born twice, ...) is an error (vtkErrorMacro, empty
  * output) unless the matching Repair option is on; repairs and reordering are reported as
- * warnings. The tree is built directly in the graph's internal edge lists (one allocation
- * per vertex, no per-edge bookkeeping), which is much faster than AddChild per vertex (see
- * Documentation/performance.md).
+ * warnings. The tree is built directly in the graph's internal edge lists (exact sizes, filled
+ * in parallel from Core's child lists) and handed over as a tree that is valid by
+ * construction, which is much faster than AddChild per vertex and vtkTree's validation walk
+ * (see ValidateStructure and Documentation/performance.md).
  */
 #ifndef vtkGaussianGenealogyTreeFilter_h
 #define vtkGaussianGenealogyTreeFilter_h
@@ -145,8 +146,21 @@ public:
 
   ///@{
   /**
+   * Pass the fast path's tree through vtkTree::CheckedShallowCopy (VTK's O(n) connectivity
+   * walk) instead of handing it over as valid by construction (every parent precedes its
+   * child, checked in O(n); see vtkGaussianGenealogyAdapter). Same output, slower; for tests
+   * and comparisons. Default off.
+   */
+  vtkSetMacro(ValidateStructure, bool);
+  vtkGetMacro(ValidateStructure, bool);
+  vtkBooleanMacro(ValidateStructure, bool);
+  ///@}
+
+  ///@{
+  /**
    * Seconds spent in the last execution building the genealogy (Core) and the vtkTree:
-   * wall-clock, and CPU time of the executing thread (not inflated by other processes).
+   * wall-clock, and CPU time of the process during each step (all threads; not inflated by
+   * other processes, but including any other thread of the process running meanwhile).
    */
   vtkGetMacro(GenealogySeconds, double);
   vtkGetMacro(TreeSeconds, double);
@@ -183,6 +197,7 @@ protected:
   bool RepairDuplicateBirths = false;
   double Alpha = 0.4;
   bool NaiveConstruction = false;
+  bool ValidateStructure = false;
   double GenealogySeconds = 0.0;
   double TreeSeconds = 0.0;
   double GenealogyCPUSeconds = 0.0;
