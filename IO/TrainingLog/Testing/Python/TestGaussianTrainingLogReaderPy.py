@@ -2,8 +2,10 @@
 """A log written with plain h5py (the example of Documentation/file-formats.md) read by
 vtkGaussianTrainingLogReader from Python: time steps, snapshot arrays, history."""
 
+import atexit
 import math
 import os
+import shutil
 import sys
 import tempfile
 
@@ -15,7 +17,9 @@ from vtkmodules.vtkCommonCore import vtkIdTypeArray
 from vtkmodules.vtkCommonDataModel import vtkTable
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
-path = os.path.join(tempfile.mkdtemp(), "h5py_log.h5")
+workdir = tempfile.mkdtemp()
+atexit.register(shutil.rmtree, workdir, ignore_errors=True)
+path = os.path.join(workdir, "h5py_log.h5")
 gz = dict(compression="gzip", compression_opts=1, shuffle=True)
 with h5py.File(path, "w") as f:
     f.attrs["format"] = "vis4gs-training-log"
