@@ -114,13 +114,13 @@ __attribute__((target("avx2"))) void FootprintRowAvx2(const ProjectedGaussian<fl
 // back to back, so a small box costs ceil(w h / 8) evaluations and lane order is row-major.
 struct BoxLanes
 {
-  std::int32_t Col[8][72];
-  std::int32_t Row[8][72];
+  std::int32_t Col[8][80]; // 64 lanes at most, read 8 (AVX2) or 16 (AVX-512) at a time
+  std::int32_t Row[8][80];
   BoxLanes()
   {
     for (int w = 1; w <= 8; ++w)
     {
-      for (int j = 0; j < 72; ++j)
+      for (int j = 0; j < 80; ++j)
       {
         this->Col[w - 1][j] = j % w;
         this->Row[w - 1][j] = j / w;
@@ -192,6 +192,124 @@ __attribute__((target("avx2"))) void FootprintBoxAvx2(const ProjectedGaussian<fl
       }
     }
   }
+}
+
+//------------------------------------------------------------------------------
+// The packed box with AVX-512, 16 pixels per vector: the same lanes (pixel j of the box is
+// (j % w, j / w)), the same float operations per lane and the same alpha test as the AVX2
+// path, and the pixels found are summed in the same row-major order, so counts and sums are
+// bit-identical to it (and to the scalar and brute-force paths).
+#define VIS4GS_FP_AVX512_TARGET "avx512f,avx512vl,avx512bw,avx512dq"
+#define VIS4GS_FP_AVX512 __attribute__((target(VIS4GS_FP_AVX512_TARGET), always_inline)) inline
+typedef float F16 __attribute__((vector_size(64)));
+typedef std::int32_t I16 __attribute__((vector_size(64)));
+
+VIS4GS_FP_AVX512 unsigned LaneBits16(I16 m)
+{
+  return static_cast<unsigned>(_mm512_movepi32_mask(reinterpret_cast<__m512i>(m)));
+}
+
+VIS4GS_FP_AVX512 F16 SelectF16(I16 m, F16 a, F16 b)
+{
+  return reinterpret_cast<F16>((reinterpret_cast<I16>(a) & m) | (reinterpret_cast<I16>(b) & ~m));
+}
+
+VIS4GS_FP_AVX512 F16 FootprintExp16(F16 x)
+{
+  // raster::KernelExpLanes, spelled out here so that its comparisons carry the attribute.
+  const I16 inRange = x >= -87.33654f;
+  x = SelectF16(inRange, x, F16{});
+  const F16 t = x * 1.44269504088896341f;
+  const F16 n = (t + 12582912.0f) - 12582912.0f;
+  F16 r = x - n * 0.693359375f;
+  r = r - n * -2.12194440e-4f;
+  const F16 r2 = r * r;
+  F16 p = F16{} + 1.9875691500E-4f;
+  p = p * r + 1.3981999507E-3f;
+  p = p * r + 8.3334519073E-3f;
+  p = p * r + 4.1665795894E-2f;
+  p = p * r + 1.6666665459E-1f;
+  p = p * r + 5.0000001201E-1f;
+  p = p * r2 + r + 1.0f;
+  const I16 bits = (__builtin_convertvector(n, I16) + 127) << 23;
+  const F16 res = p * reinterpret_cast<F16>(bits);
+  return SelectF16(inRange, res, F16{});
+}
+
+// AlphaTest8 on 16 lanes (same decisions lane by lane), as a bit mask.
+VIS4GS_FP_AVX512 unsigned AlphaTest16(F16 power, float opacity, float inside, float outside)
+{
+  const I16 nonPositive = power <= 0.0f;
+  const I16 surelyIn = nonPositive & (power >= inside);
+  const I16 surelyOut = (power > 0.0f) | (power <= outside);
+  if (LaneBits16(~(surelyIn | surelyOut)) == 0)
+  {
+    return LaneBits16(surelyIn);
+  }
+  const F16 e = FootprintExp16(SelectF16(nonPositive, power, F16{}));
+  const F16 a = opacity * e;
+  const F16 alpha = SelectF16(a < float(raster::MaxAlpha), a, F16{} + float(raster::MaxAlpha));
+  return LaneBits16(nonPositive & (alpha >= raster::MinAlpha<float>()));
+}
+
+template <typename Acc>
+__attribute__((target(VIS4GS_FP_AVX512_TARGET))) void FootprintBoxAvx512(
+  const ProjectedGaussian<float>& g,
+  bool rasterMode,
+  float inside,
+  float outside,
+  int xa,
+  int ya,
+  int w,
+  int h,
+  int W,
+  const float* map,
+  std::uint32_t& count,
+  Acc& sum)
+{
+  const int lanes = w * h;
+  const std::int32_t* colLut = PackedLanes.Col[w - 1];
+  const std::int32_t* rowLut = PackedLanes.Row[w - 1];
+  const I16 laneIndex = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 };
+  for (int j0 = 0; j0 < lanes; j0 += 16)
+  {
+    I16 col, row;
+    std::memcpy(&col, colLut + j0, sizeof(col));
+    std::memcpy(&row, rowLut + j0, sizeof(row));
+    const F16 px = __builtin_convertvector(col + xa, F16);
+    const F16 py = __builtin_convertvector(row + ya, F16);
+    const F16 dx = g.U - px;
+    const F16 dy = g.V - py;
+    const F16 power = -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+    unsigned bits =
+      rasterMode ? AlphaTest16(power, g.Opacity, inside, outside) : LaneBits16(power >= -4.5f);
+    bits &= LaneBits16((laneIndex + j0) < lanes);
+    count += static_cast<std::uint32_t>(__builtin_popcount(bits));
+    if (map && bits != 0)
+    {
+      const I16 index = (row + ya) * W + col + xa;
+      const F16 values = reinterpret_cast<F16>(_mm512_mask_i32gather_ps(_mm512_setzero_ps(),
+        static_cast<__mmask16>(bits),
+        reinterpret_cast<__m512i>(index),
+        map,
+        4));
+      // Only the lanes in Omega, in ascending order (row-major), as the AVX2 path.
+      unsigned set = bits;
+      while (set != 0)
+      {
+        const int l = __builtin_ctz(set);
+        set &= set - 1;
+        sum += static_cast<Acc>(values[l]);
+      }
+    }
+  }
+}
+
+bool HasAvx512()
+{
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
 }
 
 bool HasAvx2()
@@ -266,7 +384,7 @@ bool EllipseBox(T u, T v, T a, T b, T c, double level, int& xMin, int& xMax, int
 template <typename T, typename Acc>
 inline void FootprintOne(const ProjectedGaussian<T>& g,
   const FootprintOptions& opt,
-  bool vector,
+  int vector,
   int W,
   int H,
   const float* map,
@@ -327,9 +445,18 @@ inline void FootprintOne(const ProjectedGaussian<T>& g,
     }
     else if (bw <= 8 && bw * bh <= 64)
     {
-      FootprintBoxAvx2<Acc>(
-        FloatGaussian(g), rasterMode, inside, outside, xa, ya, bw, bh, W, map, cnt, sum);
-      evals += static_cast<std::uint64_t>((bw * bh + 7) / 8 * 8);
+      if (vector >= 3)
+      {
+        FootprintBoxAvx512<Acc>(
+          FloatGaussian(g), rasterMode, inside, outside, xa, ya, bw, bh, W, map, cnt, sum);
+        evals += static_cast<std::uint64_t>((bw * bh + 15) / 16 * 16);
+      }
+      else
+      {
+        FootprintBoxAvx2<Acc>(
+          FloatGaussian(g), rasterMode, inside, outside, xa, ya, bw, bh, W, map, cnt, sum);
+        evals += static_cast<std::uint64_t>((bw * bh + 7) / 8 * 8);
+      }
       done = true;
     }
   }
@@ -399,10 +526,15 @@ inline void FootprintOne(const ProjectedGaussian<T>& g,
   }
 }
 
+// 0: scalar, 2: AVX2 (rows and boxes of 8), 3: AVX2 rows and AVX-512 boxes of 16.
 template <typename T>
-bool UseVectorPath(const FootprintOptions& opt)
+int VectorLevel(const FootprintOptions& opt)
 {
-  return IsFloat<T>() && !opt.BruteForce && opt.KernelIsa != 1 && HasAvx2();
+  if (!IsFloat<T>() || opt.BruteForce || opt.KernelIsa == 1 || !HasAvx2())
+  {
+    return 0;
+  }
+  return (opt.KernelIsa == 0 || opt.KernelIsa >= 3) && HasAvx512() ? 3 : 2;
 }
 
 //------------------------------------------------------------------------------
@@ -416,7 +548,7 @@ void FootprintPass(const ViewProjection<T>& proj,
   const std::int64_t n = static_cast<std::int64_t>(proj.Gaussians.size());
   std::uint64_t total = 0, evaluated = 0;
   const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
-  const bool vector = UseVectorPath<T>(opt);
+  const int vector = VectorLevel<T>(opt);
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
   for (std::int64_t ii = 0; ii < n; ++ii)
   {
@@ -455,7 +587,7 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
   const std::int64_t nv = static_cast<std::int64_t>(d.Records.size());
   std::uint64_t total = 0, evaluated = 0;
   const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
-  const bool vector = UseVectorPath<float>(opt);
+  const int vector = VectorLevel<float>(opt);
   const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
   for (std::int64_t ss = 0; ss < nv; ++ss)

@@ -66,8 +66,9 @@ struct FootprintOptions
   /// OpenMP threads; 0 uses OpenMP's default.
   int Threads = 0;
   /// Instruction set of the float fast path: 0 = best available (default), 1 = scalar only,
-  /// 2 = AVX2 (8 pixels at a time). Results are bit-identical on every path (counts, and
-  /// sums accumulated in the same pixel order); a knob for tests and benchmarks.
+  /// 2 = AVX2 (8 pixels at a time), 3 = AVX2 rows and AVX-512 packed boxes (16 pixels at a
+  /// time). Results are bit-identical on every path (counts, and sums accumulated in the
+  /// same pixel order); a knob for tests and benchmarks.
   int KernelIsa = 0;
 };
 

@@ -16,21 +16,6 @@
 
 namespace vis4gs
 {
-namespace raster
-{
-namespace detail
-{
-
-/// Compact per-Gaussian data of the compositing loop.
-template <typename T>
-struct KernelGaussian
-{
-  T U, V, A, B, C, O, R, G, Bl, Z;
-};
-
-} // namespace detail
-} // namespace raster
-
 /// View-independent part of ProjectGaussians<float>, structure of arrays padded to 16.
 struct MultiViewPrepared
 {
@@ -55,6 +40,11 @@ struct MultiViewProjected
   std::vector<std::int32_t> Status;
   std::vector<float> U, V, A, B, C, Depth;
   std::vector<std::int32_t> Radius, X0, Y0, X1, Y1;
+  /// Optional (written when T0 is not empty; ProjectGaussians<float>): view x and y, the
+  /// dilated 2D covariance, and -1 where the lane reached step 6 (finite, not culled before
+  /// the pixel-space mean), else 0.
+  std::vector<float> T0, T1, CovA, CovB, CovC;
+  std::vector<std::int32_t> Reached;
 };
 
 struct MultiViewRenderer::Data

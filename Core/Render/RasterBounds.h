@@ -26,6 +26,14 @@ namespace raster
 namespace detail
 {
 
+/// Compact per-Gaussian data of the compositing loops (forward and the trainer's backward):
+/// pixel-space mean (U, V), conic (A, B, C), opacity O, colour (R, G, Bl), view depth Z.
+template <typename T>
+struct KernelGaussian
+{
+  T U, V, A, B, C, O, R, G, Bl, Z;
+};
+
 struct SpanBounds
 {
   bool Bounded = false;

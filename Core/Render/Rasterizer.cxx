@@ -4,6 +4,7 @@
 #include "GaussianMath.h"
 #include "MultiViewData.h"
 #include "RasterBounds.h"
+#include "RasterInternal.h"
 
 #include <immintrin.h>
 
@@ -72,6 +73,8 @@ std::unique_ptr<U[]> RawBuffer(std::size_t n)
 }
 
 //------------------------------------------------------------------------------
+using raster::internal::ResizeKeep;
+
 template <typename T>
 bool AllFinite(const T* v, std::size_t n)
 {
@@ -223,6 +226,321 @@ void CheckCloud(const GaussianCloud& cloud, bool colors)
 } // namespace
 
 //------------------------------------------------------------------------------
+// The 16-lane per-view projection (ProjectionLanes.inc) of ProjectGaussians<float> and
+// MultiViewRenderer, and the view-independent preparation it reads.
+namespace
+{
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace mvgeneric
+{
+#define VIS4GS_LANES 16
+#define VIS4GS_TARGET "sse2"
+#define VIS4GS_GENERIC 1
+#include "ProjectionLanes.inc"
+#undef VIS4GS_GENERIC
+#undef VIS4GS_LANES
+#undef VIS4GS_TARGET
+} // namespace mvgeneric
+namespace mvavx2
+{
+#define VIS4GS_LANES 8
+#define VIS4GS_TARGET "avx2"
+#include "ProjectionLanes.inc"
+#undef VIS4GS_LANES
+#undef VIS4GS_TARGET
+} // namespace mvavx2
+namespace mvavx512
+{
+#define VIS4GS_LANES 16
+#define VIS4GS_TARGET "avx512f,avx512vl,avx512bw,avx512dq"
+#include "ProjectionLanes.inc"
+#undef VIS4GS_LANES
+#undef VIS4GS_TARGET
+} // namespace mvavx512
+#pragma GCC diagnostic pop
+
+using ProjectBlock = raster::internal::ProjectBlockFunction;
+
+void ProjectBlockGeneric(const MultiViewPrepared& g,
+  std::size_t first,
+  const MultiViewCamera& w,
+  MultiViewProjected& out)
+{
+  mvgeneric::ProjectLanes(g, first, w, out);
+}
+void ProjectBlockAvx2(const MultiViewPrepared& g,
+  std::size_t first,
+  const MultiViewCamera& w,
+  MultiViewProjected& out)
+{
+  mvavx2::ProjectLanes(g, first, w, out);
+  mvavx2::ProjectLanes(g, first + 8, w, out);
+}
+void ProjectBlockAvx512(const MultiViewPrepared& g,
+  std::size_t first,
+  const MultiViewCamera& w,
+  MultiViewProjected& out)
+{
+  mvavx512::ProjectLanes(g, first, w, out);
+}
+
+// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
+ProjectBlock SelectProjectBlock(int isa)
+{
+  __builtin_cpu_init();
+  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  const bool has2 = __builtin_cpu_supports("avx2");
+  if (isa == 1)
+  {
+    return &ProjectBlockGeneric;
+  }
+  if ((isa == 0 || isa >= 3) && has512)
+  {
+    return &ProjectBlockAvx512;
+  }
+  if (has2)
+  {
+    return &ProjectBlockAvx2;
+  }
+  return &ProjectBlockGeneric;
+}
+
+// View-independent part of ProjectGaussians<float> step 3 for Gaussian @p i (the same
+// operations in the same order) into slot @p k of @p p; Valid -1, or 0 (and zeros) when a
+// parameter it would use is not finite.
+inline void PrepareForLanes(const GaussianCloud& cloud,
+  std::size_t i,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  MultiViewPrepared& p,
+  std::size_t k)
+{
+  const float* pos = &cloud.Positions[3 * i];
+  const float* ls = &cloud.LogScales[3 * i];
+  const float* rot = &cloud.Rotations[4 * i];
+  const float logit = cloud.OpacityLogits[i];
+  const float* shf = colors ? &cloud.SH[i * shStride] : nullptr;
+  if (!AllFinite(pos, 3) || !AllFinite(ls, 3) || !AllFinite(rot, 4) || !std::isfinite(logit) ||
+    (colors && !AllFinite(shf, static_cast<std::size_t>(shUsed))))
+  {
+    p.X[k] = p.Y[k] = p.Z[k] = 0.0f;
+    p.S00[k] = p.S01[k] = p.S02[k] = p.S11[k] = p.S12[k] = p.S22[k] = 0.0f;
+    p.Opacity[k] = 0.0f;
+    p.Valid[k] = 0;
+    return;
+  }
+  const float s[3] = { mod * std::exp(static_cast<float>(ls[0])),
+    mod * std::exp(static_cast<float>(ls[1])),
+    mod * std::exp(static_cast<float>(ls[2])) };
+  const float qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
+  const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(qraw));
+  float M[3][3];
+  for (int q = 0; q < 3; ++q)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      M[q][r] = s[q] * R[3 * r + q];
+    }
+  }
+  auto sig = [&](int r, int c)
+  { return M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c]; };
+  p.X[k] = pos[0];
+  p.Y[k] = pos[1];
+  p.Z[k] = pos[2];
+  p.S00[k] = sig(0, 0);
+  p.S01[k] = sig(0, 1);
+  p.S02[k] = sig(0, 2);
+  p.S11[k] = sig(1, 1);
+  p.S12[k] = sig(1, 2);
+  p.S22[k] = sig(2, 2);
+  p.Opacity[k] = Sigmoid(static_cast<float>(logit));
+  p.Valid[k] = -1;
+}
+
+// The lane projection's view parameters from the rasteriser's float view.
+inline MultiViewCamera MakeLaneCamera(const ViewProjection<float>& f)
+{
+  MultiViewCamera w{};
+  w.W = f.Width;
+  w.H = f.Height;
+  w.Gx = f.TilesX;
+  w.Gy = f.TilesY;
+  for (int i = 0; i < 12; ++i)
+  {
+    w.V[i] = f.ViewMatrix[i];
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    w.F0[i] = f.FullProjection[i];
+    w.F1[i] = f.FullProjection[4 + i];
+    w.F3[i] = f.FullProjection[12 + i];
+  }
+  w.LimX = float(raster::JacobianClamp) * f.TanFovX;
+  w.LimY = float(raster::JacobianClamp) * f.TanFovY;
+  w.FocalX = f.Fx;
+  w.FocalY = f.Fy;
+  for (int i = 0; i < 3; ++i)
+  {
+    w.Center[i] = f.CameraCenter[i];
+  }
+  return w;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+namespace
+{
+// ProjectGaussians<float> steps 1-7 with the 16-lane projection (ProjectionLanes.inc, the
+// code MultiViewRenderer runs), blocks of 16 Gaussians: the view-independent preparation per
+// Gaussian, the projection per block, then every field of ProjectedGaussian written exactly
+// as the scalar code writes it for the lane's status (bit-identical, tested).
+void ProjectFloatLanes(const GaussianCloud& cloud,
+  const RasterSettings& settings,
+  int threads,
+  ViewProjection<float>& p)
+{
+  const std::size_t n = cloud.Count;
+  const MultiViewCamera w = MakeLaneCamera(p);
+  const ProjectBlock block = SelectProjectBlock(settings.KernelIsa);
+  const bool colors = settings.ComputeColors;
+  const int shDegree = p.ShDegree;
+  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
+  const int shUsed = 3 * (shDegree + 1) * (shDegree + 1);
+  const float mod = static_cast<float>(settings.ScaleModifier);
+  const auto campos = p.CameraCenter;
+  const std::int64_t blocks = static_cast<std::int64_t>((n + 15) / 16);
+  std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
+#pragma omp parallel num_threads(threads)
+  {
+    std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
+    MultiViewPrepared in;
+    for (auto* v :
+      { &in.X, &in.Y, &in.Z, &in.S00, &in.S01, &in.S02, &in.S11, &in.S12, &in.S22, &in.Opacity })
+    {
+      v->assign(16, 0.0f);
+    }
+    in.Valid.assign(16, 0);
+    MultiViewProjected out;
+    for (auto* v : { &out.U,
+           &out.V,
+           &out.A,
+           &out.B,
+           &out.C,
+           &out.Depth,
+           &out.T0,
+           &out.T1,
+           &out.CovA,
+           &out.CovB,
+           &out.CovC })
+    {
+      v->assign(16, 0.0f);
+    }
+    for (auto* v : { &out.Status, &out.Radius, &out.X0, &out.Y0, &out.X1, &out.Y1, &out.Reached })
+    {
+      v->assign(16, 0);
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t bb = 0; bb < blocks; ++bb)
+    {
+      const std::size_t first = static_cast<std::size_t>(bb) * 16;
+      const std::size_t count = std::min<std::size_t>(16, n - first);
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        PrepareForLanes(cloud, first + k, mod, shStride, shUsed, colors, in, k);
+      }
+      for (std::size_t k = count; k < 16; ++k)
+      {
+        in.Valid[k] = 0; // padding of the last block (zeros from the assign above)
+      }
+      block(in, 0, w, out);
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        ProjectedGaussian<float>& g = p.Gaussians[first + k];
+        const int status = out.Status[k];
+        ++local[status];
+        g.Status = static_cast<ProjectionStatus>(status);
+        if (g.Status == ProjectionStatus::InvalidParameters)
+        {
+          continue;
+        }
+        g.ViewPosition[0] = out.T0[k];
+        g.ViewPosition[1] = out.T1[k];
+        g.ViewPosition[2] = out.Depth[k];
+        g.Depth = out.Depth[k];
+        if (g.Status == ProjectionStatus::NearPlane)
+        {
+          continue;
+        }
+        g.Cov2D[0] = out.CovA[k];
+        g.Cov2D[1] = out.CovB[k];
+        g.Cov2D[2] = out.CovC[k];
+        if (out.Reached[k] == 0)
+        {
+          continue; // Degenerate, or NonFinite covariance or conic
+        }
+        g.U = out.U[k];
+        g.V = out.V[k];
+        g.ConicA = out.A[k];
+        g.ConicB = out.B[k];
+        g.ConicC = out.C[k];
+        g.TileRect[0] = out.X0[k];
+        g.TileRect[1] = out.Y0[k];
+        g.TileRect[2] = out.X1[k];
+        g.TileRect[3] = out.Y1[k];
+        g.Opacity = in.Opacity[k];
+        if (g.Status != ProjectionStatus::Visible)
+        {
+          continue; // NonFinite pixel mean or OffScreen: Radius stays 0
+        }
+        g.Radius = out.Radius[k];
+        if (colors)
+        {
+          const std::size_t i = first + k;
+          const float* pos = &cloud.Positions[3 * i];
+          const float x = pos[0], y = pos[1], z = pos[2];
+          float dir[3] = { x - campos[0], y - campos[1], z - campos[2] };
+          const float len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+          for (auto& d : dir)
+          {
+            d = d / len;
+          }
+          float col[3];
+          ShColor<float>(&cloud.SH[i * shStride], shDegree, dir, col);
+          std::uint8_t clamped = 0;
+          for (int ch = 0; ch < 3; ++ch)
+          {
+            if (col[ch] < 0.0f)
+            {
+              clamped = static_cast<std::uint8_t>(clamped | (1u << ch));
+            }
+            g.Color[ch] = std::max(col[ch], 0.0f);
+          }
+          g.ClampedChannels = clamped;
+        }
+      }
+    }
+#pragma omp critical(vis4gsProjectLaneCounts)
+    for (int k = 0; k < 6; ++k)
+    {
+      counts[k] += local[k];
+    }
+  }
+  p.Counts.Visible = counts[0];
+  p.Counts.InvalidParameters = counts[1];
+  p.Counts.NearPlane = counts[2];
+  p.Counts.Degenerate = counts[3];
+  p.Counts.NonFinite = counts[4];
+  p.Counts.OffScreen = counts[5];
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 template <typename T>
 ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
   const Camera& camera,
@@ -278,6 +596,14 @@ ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
   p.Gaussians.reserve(n);
   AdviseHugePages(p.Gaussians.data(), n * sizeof(ProjectedGaussian<T>));
   p.Gaussians.assign(n, ProjectedGaussian<T>());
+  if constexpr (std::is_same<T, float>::value)
+  {
+    if (settings.KernelIsa >= 0)
+    {
+      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p);
+      return p;
+    }
+  }
   const int shDegree = p.ShDegree;
   const int shStride = 3 * cloud.ShCoefficientCount();
   const int shUsed = 3 * (shDegree + 1) * (shDegree + 1);
@@ -760,9 +1086,8 @@ namespace
 {
 
 //------------------------------------------------------------------------------
-// Compositing: 16 lanes = one tile row, with GCC vector extensions. Every lane performs
-// exactly the scalar operations of RasterKernel.h (no contraction), so every instruction
-// set gives the same bits as AttributePixels() and the tests' scalar replays.
+// Compositing: 16 lanes = one tile row, with GCC vector extensions (CompositeLanes.inc,
+// compiled once per instruction set with every helper carrying the target attribute).
 template <typename T>
 struct Lanes;
 template <>
@@ -783,7 +1108,7 @@ using raster::detail::KernelGaussian;
 template <typename T>
 struct CompositeContext
 {
-  const ViewProjection<T>* Projection;
+  int Width, Height, TilesX;
   const TileBins* Bins;
   const KernelGaussian<T>* Kernels;
   const raster::detail::SpanBounds* Bounds;
@@ -794,240 +1119,32 @@ struct CompositeContext
   std::atomic<std::uint64_t>* ReferenceEvaluations;
 };
 
-#define VIS4GS_ALWAYS_INLINE inline __attribute__((always_inline))
-
-template <typename I>
-VIS4GS_ALWAYS_INLINE bool AnyLane(I m)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace composite_baseline
 {
-  // Tree reduction of a 16-lane mask.
-  auto h8 = __builtin_shufflevector(m, m, 0, 1, 2, 3, 4, 5, 6, 7) |
-    __builtin_shufflevector(m, m, 8, 9, 10, 11, 12, 13, 14, 15);
-  auto h4 =
-    __builtin_shufflevector(h8, h8, 0, 1, 2, 3) | __builtin_shufflevector(h8, h8, 4, 5, 6, 7);
-  auto h2 = __builtin_shufflevector(h4, h4, 0, 1) | __builtin_shufflevector(h4, h4, 2, 3);
-  return (h2[0] | h2[1]) != 0;
-}
-
-VIS4GS_ALWAYS_INLINE Lanes<float>::V VectorExp(Lanes<float>::V x)
+#define VIS4GS_COMPOSITE_TARGET
+#include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_TARGET
+} // namespace composite_baseline
+namespace composite_avx2
 {
-  return raster::KernelExpLanes<Lanes<float>::V, Lanes<float>::I>(x);
-}
-
-VIS4GS_ALWAYS_INLINE Lanes<double>::V VectorExp(Lanes<double>::V x)
+#define VIS4GS_COMPOSITE_TARGET __attribute__((target("avx2")))
+#include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_TARGET
+} // namespace composite_avx2
+namespace composite_avx512
 {
-  Lanes<double>::V r;
-  for (int l = 0; l < 16; ++l)
-  {
-    r[l] = std::exp(x[l]);
-  }
-  return r;
-}
-
-template <typename T, bool Stats, bool Work>
-VIS4GS_ALWAYS_INLINE void CompositeTile(const CompositeContext<T>& ctx, std::int64_t tile)
-{
-  typedef typename Lanes<T>::V V;
-  typedef typename Lanes<T>::I I;
-  typedef typename std::remove_reference<decltype(I{}[0])>::type IS;
-  const ViewProjection<T>& proj = *ctx.Projection;
-  const int W = proj.Width, H = proj.Height;
-  const int tx = static_cast<int>(tile % proj.TilesX), ty = static_cast<int>(tile / proj.TilesX);
-  const int X0 = tx * raster::TileSize, Y0 = ty * raster::TileSize;
-  V px;
-  I pxi;
-  for (int l = 0; l < 16; ++l)
-  {
-    px[l] = static_cast<T>(X0 + l);
-    pxi[l] = X0 + l;
-  }
-  V Tr[16], Cr[16], Cg[16], Cb[16], Dp[16];
-  I last[16], done[16], stopAt[16];
-  std::uint32_t rowAlive = 0;
-  for (int r = 0; r < 16; ++r)
-  {
-    Tr[r] = V{} + T(1);
-    Cr[r] = Cg[r] = Cb[r] = Dp[r] = V{};
-    last[r] = stopAt[r] = I{};
-    done[r] = (pxi >= W) | (I{} + ((Y0 + r >= H) ? -1 : 0));
-    if (AnyLane(~done[r]))
-    {
-      rowAlive |= 1u << r;
-    }
-  }
-  const std::uint64_t begin = ctx.Bins->Offsets[tile], end = ctx.Bins->Offsets[tile + 1];
-  const T minAlpha = raster::MinAlpha<T>();
-  const T maxAlpha = T(raster::MaxAlpha);
-  const T stop = T(raster::TransmittanceStop);
-  std::uint64_t evaluated = 0;
-  for (std::uint64_t k = begin; k < end && rowAlive != 0; ++k)
-  {
-    const std::uint32_t id = ctx.Bins->Ids[k];
-    if (k + 8 < end)
-    {
-      const std::uint32_t ahead = ctx.Bins->Ids[k + 8];
-      __builtin_prefetch(&ctx.Kernels[ahead]);
-      __builtin_prefetch(&ctx.Bounds[ahead]);
-    }
-    const KernelGaussian<T>& g = ctx.Kernels[id];
-    if (!(g.O >= minAlpha))
-    {
-      continue; // alpha <= o < 1/255 at every pixel: always skipped
-    }
-    const raster::detail::SpanBounds& sb = ctx.Bounds[id];
-    int r0 = 0, r1 = 15;
-    if (sb.Bounded)
-    {
-      r0 = std::max(r0, sb.RowMin - Y0);
-      r1 = std::min(r1, sb.RowMax - Y0);
-    }
-    const IS pos = static_cast<IS>(k - begin + 1);
-    float wMax = 0;
-    double wSum = 0;
-    std::uint32_t wCount = 0;
-    for (int r = r0; r <= r1; ++r)
-    {
-      if (!((rowAlive >> r) & 1u))
-      {
-        continue;
-      }
-      const int py = Y0 + r;
-      if (sb.Bounded)
-      {
-        int xa, xb;
-        if (!sb.Columns(py, xa, xb) || xb < X0 || xa > X0 + 15)
-        {
-          continue;
-        }
-      }
-      if (Work)
-      {
-        evaluated += 16;
-      }
-      const T dy = g.V - static_cast<T>(py);
-      const V dx = g.U - px;
-      const T cdd = g.C * dy * dy;
-      const V power = T(-0.5) * (g.A * dx * dx + cdd) - g.B * dx * dy;
-      I valid = power <= T(0);
-      const V e = VectorExp(valid ? power : V{});
-      const V a = g.O * e;
-      const V alpha = a < maxAlpha ? a : V{} + maxAlpha;
-      valid &= alpha >= minAlpha;
-      const I act = valid & ~done[r];
-      if (!AnyLane(act))
-      {
-        continue;
-      }
-      const V Tn = Tr[r] * (T(1) - alpha);
-      const I stopNow = act & (Tn < stop);
-      const I blend = act & ~stopNow;
-      const V aT = alpha * Tr[r];
-      Cr[r] = blend ? Cr[r] + g.R * alpha * Tr[r] : Cr[r];
-      Cg[r] = blend ? Cg[r] + g.G * alpha * Tr[r] : Cg[r];
-      Cb[r] = blend ? Cb[r] + g.Bl * alpha * Tr[r] : Cb[r];
-      Dp[r] = blend ? Dp[r] + g.Z * alpha * Tr[r] : Dp[r];
-      Tr[r] = blend ? Tn : Tr[r];
-      last[r] = blend ? I{} + pos : last[r];
-      if (Stats)
-      {
-        for (int l = 0; l < 16; ++l)
-        {
-          if (blend[l])
-          {
-            const float w = static_cast<float>(aT[l]);
-            wMax = std::max(wMax, w);
-            wSum += static_cast<double>(aT[l]);
-            ++wCount;
-          }
-        }
-      }
-      if (AnyLane(stopNow))
-      {
-        stopAt[r] = stopNow ? I{} + pos : stopAt[r];
-        done[r] |= stopNow;
-        if (!AnyLane(~done[r]))
-        {
-          rowAlive &= ~(1u << r);
-        }
-      }
-    }
-    if (Stats && wCount > 0)
-    {
-      GaussianWeightStats& ws = *ctx.Weights;
-#pragma omp atomic
-      ws.WeightSum[id] += wSum;
-#pragma omp atomic
-      ws.BlendedPixels[id] += wCount;
-      auto* maxBits = reinterpret_cast<std::uint32_t*>(&ws.MaxWeight[id]);
-      std::uint32_t cur = __atomic_load_n(maxBits, __ATOMIC_RELAXED);
-      std::uint32_t want;
-      std::memcpy(&want, &wMax, sizeof(want));
-      while (want > cur &&
-        !__atomic_compare_exchange_n(maxBits, &cur, want, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-      {
-      }
-    }
-  }
-  RasterImage<T>& img = *ctx.Image;
-  std::uint64_t refEvals = 0;
-  const std::uint64_t listLen = end - begin;
-  for (int r = 0; r < 16; ++r)
-  {
-    const int py = Y0 + r;
-    if (py >= H)
-    {
-      break;
-    }
-    for (int l = 0; l < 16; ++l)
-    {
-      const int x = X0 + l;
-      if (x >= W)
-      {
-        break;
-      }
-      const std::size_t pix = static_cast<std::size_t>(py) * W + x;
-      const T t = Tr[r][l];
-      img.Color[3 * pix + 0] = Cr[r][l] + t * ctx.Background[0];
-      img.Color[3 * pix + 1] = Cg[r][l] + t * ctx.Background[1];
-      img.Color[3 * pix + 2] = Cb[r][l] + t * ctx.Background[2];
-      img.Transmittance[pix] = t;
-      img.Alpha[pix] = T(1) - t;
-      img.Depth[pix] = Dp[r][l];
-      img.Contributors[pix] = static_cast<std::uint32_t>(last[r][l]);
-      if (Work)
-      {
-        refEvals += stopAt[r][l] != 0 ? static_cast<std::uint64_t>(stopAt[r][l]) : listLen;
-      }
-    }
-  }
-  if (Work)
-  {
-    ctx.KernelEvaluations->fetch_add(evaluated, std::memory_order_relaxed);
-    ctx.ReferenceEvaluations->fetch_add(refEvals, std::memory_order_relaxed);
-  }
-}
+#define VIS4GS_COMPOSITE_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_TARGET
+} // namespace composite_avx512
+#pragma GCC diagnostic pop
 
 template <typename T>
 using TileFunction = void (*)(const CompositeContext<T>&, std::int64_t);
 
-template <typename T, bool Stats, bool Work>
-void TileBaseline(const CompositeContext<T>& ctx, std::int64_t tile)
-{
-  CompositeTile<T, Stats, Work>(ctx, tile);
-}
-template <typename T, bool Stats, bool Work>
-__attribute__((target("avx2"))) void TileAvx2(const CompositeContext<T>& ctx, std::int64_t tile)
-{
-  CompositeTile<T, Stats, Work>(ctx, tile);
-}
-template <typename T, bool Stats, bool Work>
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void TileAvx512(
-  const CompositeContext<T>& ctx,
-  std::int64_t tile)
-{
-  CompositeTile<T, Stats, Work>(ctx, tile);
-}
-
-template <typename T, bool Stats, bool Work>
+template <typename T, bool Stats, bool Work, bool Depth>
 TileFunction<T> SelectTileFunction(int isa)
 {
   __builtin_cpu_init();
@@ -1036,16 +1153,67 @@ TileFunction<T> SelectTileFunction(int isa)
   const bool has2 = __builtin_cpu_supports("avx2");
   if ((isa == 0 || isa >= 3) && has512)
   {
-    return &TileAvx512<T, Stats, Work>;
+    return &composite_avx512::CompositeTile<T, Stats, Work, Depth>;
   }
   if ((isa == 0 || isa >= 2) && has2)
   {
-    return &TileAvx2<T, Stats, Work>;
+    return &composite_avx2::CompositeTile<T, Stats, Work, Depth>;
   }
-  return &TileBaseline<T, Stats, Work>;
+  return &composite_baseline::CompositeTile<T, Stats, Work, Depth>;
 }
 
 } // namespace
+
+//------------------------------------------------------------------------------
+namespace
+{
+// The per-Gaussian data of the compositing loop (CompositeData), every element written.
+template <typename T>
+void FillCompositeData(const ViewProjection<T>& projection,
+  int threads,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  using raster::detail::KernelGaussian;
+  const std::size_t n = projection.Gaussians.size();
+  const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const auto& g = projection.Gaussians[i];
+    if (!g.IsVisible())
+    {
+      kernels[i] = KernelGaussian<T>{};
+      bounds[i] = raster::detail::SpanBounds();
+      continue;
+    }
+    kernels[i] = {
+      g.U, g.V, g.ConicA, g.ConicB, g.ConicC, g.Opacity, g.Color[0], g.Color[1], g.Color[2], g.Depth
+    };
+    if (g.Opacity >= raster::MinAlpha<T>())
+    {
+      const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
+      bounds[i] = raster::detail::MakeSpanBounds<T>(
+        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
+    }
+    else
+    {
+      bounds[i] = raster::detail::SpanBounds();
+    }
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+template <typename T>
+void PrepareCompositeData(const ViewProjection<T>& projection, int threads, CompositeData<T>& data)
+{
+  const std::size_t n = projection.Gaussians.size();
+  ResizeKeep(data.Kernels, n);
+  ResizeKeep(data.Bounds, n);
+  FillCompositeData(projection, ThreadCount(threads), data.Kernels.data(), data.Bounds.data());
+}
 
 //------------------------------------------------------------------------------
 template <typename T>
@@ -1054,12 +1222,18 @@ void CompositeTiles(const ViewProjection<T>& projection,
   const RasterSettings& settings,
   RasterImage<T>& image,
   GaussianWeightStats* weights,
-  RasterWorkCounts* work)
+  RasterWorkCounts* work,
+  CompositeData<T>* keep,
+  bool depth)
 {
   if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
     bins.Offsets.size() != bins.TileCount() + 1)
   {
     throw std::invalid_argument("CompositeTiles: the tile bins do not belong to this projection");
+  }
+  if (!depth && (weights || work))
+  {
+    throw std::invalid_argument("CompositeTiles: weights and work counts need depth on");
   }
   const int threads = ThreadCount(settings.Threads);
   const std::size_t n = projection.Gaussians.size();
@@ -1069,38 +1243,39 @@ void CompositeTiles(const ViewProjection<T>& projection,
   image.Color.resize(3 * pixels);
   image.Alpha.resize(pixels);
   image.Transmittance.resize(pixels);
-  image.Depth.resize(pixels);
+  if (depth)
+  {
+    image.Depth.resize(pixels);
+  }
+  else
+  {
+    image.Depth.clear();
+  }
   image.Contributors.resize(pixels);
 
-  // Compact per-Gaussian kernel data and conservative spans (only for binned Gaussians).
-  std::vector<KernelGaussian<T>> kernels;
-  std::vector<raster::detail::SpanBounds> bounds;
-  kernels.reserve(n);
-  bounds.reserve(n);
-  AdviseHugePages(kernels.data(), n * sizeof(KernelGaussian<T>));
-  AdviseHugePages(bounds.data(), n * sizeof(raster::detail::SpanBounds));
-  kernels.resize(n);
-  bounds.resize(n);
-  const std::int64_t count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t ii = 0; ii < count; ++ii)
+  // Compact per-Gaussian kernel data and conservative spans (input order; culled Gaussians
+  // get zeros and no bound). Kept in *keep when given (its buffers are reused).
+  std::unique_ptr<KernelGaussian<T>[]> ownKernels;
+  std::unique_ptr<unsigned char[]> ownBounds; // raw storage of trivially copyable SpanBounds
+  KernelGaussian<T>* kernels;
+  raster::detail::SpanBounds* bounds;
+  if (keep)
   {
-    const auto& g = projection.Gaussians[static_cast<std::size_t>(ii)];
-    if (!g.IsVisible())
-    {
-      continue;
-    }
-    KernelGaussian<T>& k = kernels[static_cast<std::size_t>(ii)];
-    k = {
-      g.U, g.V, g.ConicA, g.ConicB, g.ConicC, g.Opacity, g.Color[0], g.Color[1], g.Color[2], g.Depth
-    };
-    if (g.Opacity >= raster::MinAlpha<T>())
-    {
-      const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
-      bounds[static_cast<std::size_t>(ii)] = raster::detail::MakeSpanBounds<T>(
-        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
-    }
+    ResizeKeep(keep->Kernels, n);
+    ResizeKeep(keep->Bounds, n);
+    kernels = keep->Kernels.data();
+    bounds = keep->Bounds.data();
   }
+  else
+  {
+    // Uninitialised: the loop below writes every element (first touch in parallel).
+    ownKernels = RawBuffer<KernelGaussian<T>>(n);
+    static_assert(std::is_trivially_copyable<raster::detail::SpanBounds>::value, "");
+    ownBounds = RawBuffer<unsigned char>((n > 0 ? n : 1) * sizeof(raster::detail::SpanBounds));
+    kernels = ownKernels.get();
+    bounds = reinterpret_cast<raster::detail::SpanBounds*>(ownBounds.get());
+  }
+  FillCompositeData(projection, threads, kernels, bounds);
   if (weights)
   {
     weights->MaxWeight.assign(n, 0.0f);
@@ -1108,10 +1283,12 @@ void CompositeTiles(const ViewProjection<T>& projection,
     weights->BlendedPixels.assign(n, 0);
   }
   std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
-  CompositeContext<T> ctx{ &projection,
+  CompositeContext<T> ctx{ projection.Width,
+    projection.Height,
+    projection.TilesX,
     &bins,
-    kernels.data(),
-    bounds.data(),
+    kernels,
+    bounds,
     &image,
     weights,
     { static_cast<T>(settings.Background[0]),
@@ -1120,15 +1297,20 @@ void CompositeTiles(const ViewProjection<T>& projection,
     &kernelEvals,
     &referenceEvals };
   TileFunction<T> fn;
-  if (weights)
+  const int isa = settings.KernelIsa;
+  if (!depth)
   {
-    fn = work ? SelectTileFunction<T, true, true>(settings.KernelIsa)
-              : SelectTileFunction<T, true, false>(settings.KernelIsa);
+    fn = SelectTileFunction<T, false, false, false>(isa);
+  }
+  else if (weights)
+  {
+    fn = work ? SelectTileFunction<T, true, true, true>(isa)
+              : SelectTileFunction<T, true, false, true>(isa);
   }
   else
   {
-    fn = work ? SelectTileFunction<T, false, true>(settings.KernelIsa)
-              : SelectTileFunction<T, false, false>(settings.KernelIsa);
+    fn = work ? SelectTileFunction<T, false, true, true>(isa)
+              : SelectTileFunction<T, false, false, true>(isa);
   }
   const std::int64_t tiles = static_cast<std::int64_t>(bins.TileCount());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
@@ -1276,575 +1458,97 @@ std::vector<GaussianContribution> RankContributors(
 }
 
 //------------------------------------------------------------------------------
-// MultiViewRenderer (MultiViewRenderer.h): preparation, projection, binning, compositing.
-// The footprint pass is in Footprint.cxx.
-namespace
+// Internals shared with MultiViewRenderer.cxx (RasterInternal.h).
+namespace raster
 {
-
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-namespace mvgeneric
+namespace internal
 {
-#define VIS4GS_LANES 16
-#define VIS4GS_TARGET "sse2"
-#define VIS4GS_GENERIC 1
-#include "ProjectionLanes.inc"
-#undef VIS4GS_GENERIC
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
-} // namespace mvgeneric
-namespace mvavx2
+int Threads(int requested)
 {
-#define VIS4GS_LANES 8
-#define VIS4GS_TARGET "avx2"
-#include "ProjectionLanes.inc"
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
-} // namespace mvavx2
-namespace mvavx512
-{
-#define VIS4GS_LANES 16
-#define VIS4GS_TARGET "avx512f,avx512vl,avx512bw,avx512dq"
-#include "ProjectionLanes.inc"
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
-} // namespace mvavx512
-#pragma GCC diagnostic pop
-
-using ProjectBlock = void (*)(const MultiViewPrepared&,
-  std::size_t,
-  const MultiViewCamera&,
-  MultiViewProjected&);
-
-void ProjectBlockGeneric(const MultiViewPrepared& g,
-  std::size_t first,
-  const MultiViewCamera& w,
-  MultiViewProjected& out)
-{
-  mvgeneric::ProjectLanes(g, first, w, out);
-}
-void ProjectBlockAvx2(const MultiViewPrepared& g,
-  std::size_t first,
-  const MultiViewCamera& w,
-  MultiViewProjected& out)
-{
-  mvavx2::ProjectLanes(g, first, w, out);
-  mvavx2::ProjectLanes(g, first + 8, w, out);
-}
-void ProjectBlockAvx512(const MultiViewPrepared& g,
-  std::size_t first,
-  const MultiViewCamera& w,
-  MultiViewProjected& out)
-{
-  mvavx512::ProjectLanes(g, first, w, out);
+  return ThreadCount(requested);
 }
 
-// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
-ProjectBlock SelectProjectBlock(int isa)
+void HugePages(const void* data, std::size_t bytes)
 {
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if (isa == 1)
-  {
-    return &ProjectBlockGeneric;
-  }
-  if ((isa == 0 || isa >= 3) && has512)
-  {
-    return &ProjectBlockAvx512;
-  }
-  if (has2)
-  {
-    return &ProjectBlockAvx2;
-  }
-  return &ProjectBlockGeneric;
+  AdviseHugePages(data, bytes);
 }
 
-template <typename U>
-void ResizeKeep(std::vector<U>& v, std::size_t n)
+void ValidateCloud(const GaussianCloud& cloud, bool colors)
 {
-  if (v.size() != n)
-  {
-    if (v.capacity() < n)
-    {
-      std::vector<U>().swap(v);
-      v.reserve(n);
-      AdviseHugePages(v.data(), n * sizeof(U));
-    }
-    v.resize(n);
-  }
+  CheckCloud(cloud, colors);
 }
 
-} // namespace
-
-//------------------------------------------------------------------------------
-MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSettings& settings)
-  : Impl(new Data)
+void ShColorFloat(const float* shf, int degree, const float dir[3], float out[3])
 {
-  CheckCloud(cloud, settings.ComputeColors);
-  Data& d = *this->Impl;
-  d.Cloud = &cloud;
-  d.Settings = settings;
-  d.Count = cloud.Count;
-  d.Padded = (cloud.Count + 15) / 16 * 16;
-  d.Colors = settings.ComputeColors;
-  d.ShDegree = settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree);
-  d.ShDegree = std::max(0, d.ShDegree);
-  d.ViewIndependentColor = d.ShDegree == 0;
-  d.Threads = ThreadCount(settings.Threads);
-  MultiViewPrepared& p = d.Prepared;
-  for (auto* v : { &p.X, &p.Y, &p.Z, &p.S00, &p.S01, &p.S02, &p.S11, &p.S12, &p.S22, &p.Opacity })
-  {
-    v->assign(d.Padded, 0.0f);
-  }
-  p.Valid.assign(d.Padded, 0);
-  if (d.Colors && d.ViewIndependentColor)
-  {
-    p.Color.assign(3 * d.Padded, 0.0f);
-  }
-  const int shStride = d.Colors ? 3 * cloud.ShCoefficientCount() : 0;
-  const int shUsed = 3 * (d.ShDegree + 1) * (d.ShDegree + 1);
-  const bool colors = d.Colors;
-  const bool viewIndependent = d.ViewIndependentColor;
-  const float mod = static_cast<float>(settings.ScaleModifier);
-  const std::int64_t count = static_cast<std::int64_t>(d.Count);
-#pragma omp parallel for schedule(static) num_threads(d.Threads)
-  for (std::int64_t ii = 0; ii < count; ++ii)
-  {
-    const std::size_t i = static_cast<std::size_t>(ii);
-    const float* pos = &cloud.Positions[3 * i];
-    const float* ls = &cloud.LogScales[3 * i];
-    const float* rot = &cloud.Rotations[4 * i];
-    const float logit = cloud.OpacityLogits[i];
-    const float* shf = colors ? &cloud.SH[i * shStride] : nullptr;
-    if (!AllFinite(pos, 3) || !AllFinite(ls, 3) || !AllFinite(rot, 4) || !std::isfinite(logit) ||
-      (colors && !AllFinite(shf, static_cast<std::size_t>(shUsed))))
-    {
-      continue;
-    }
-    // ProjectGaussians<float> step 3, same operations in the same order.
-    const float s[3] = { mod * std::exp(static_cast<float>(ls[0])),
-      mod * std::exp(static_cast<float>(ls[1])),
-      mod * std::exp(static_cast<float>(ls[2])) };
-    const float qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
-    const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(qraw));
-    float M[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int r = 0; r < 3; ++r)
-      {
-        M[k][r] = s[k] * R[3 * r + k];
-      }
-    }
-    auto sig = [&](int r, int c)
-    { return M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c]; };
-    p.X[i] = pos[0];
-    p.Y[i] = pos[1];
-    p.Z[i] = pos[2];
-    p.S00[i] = sig(0, 0);
-    p.S01[i] = sig(0, 1);
-    p.S02[i] = sig(0, 2);
-    p.S11[i] = sig(1, 1);
-    p.S12[i] = sig(1, 2);
-    p.S22[i] = sig(2, 2);
-    p.Opacity[i] = Sigmoid(static_cast<float>(logit));
-    if (colors && viewIndependent)
-    {
-      const float dir[3] = { 0, 0, 0 }; // unused at degree 0
-      float col[3];
-      ShColor<float>(shf, 0, dir, col);
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        p.Color[3 * i + ch] = std::max(col[ch], 0.0f);
-      }
-    }
-    p.Valid[i] = -1;
-  }
+  ShColor<float>(shf, degree, dir, out);
 }
 
-MultiViewRenderer::~MultiViewRenderer() = default;
-
-const ProjectionCounts& MultiViewRenderer::Counts() const
+void PrepareGaussianForLanes(const GaussianCloud& cloud,
+  std::size_t i,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  MultiViewPrepared& p,
+  std::size_t k)
 {
-  return this->Impl->Counts;
+  PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, p, k);
 }
 
-const std::vector<std::uint32_t>& MultiViewRenderer::SortedIds() const
+MultiViewCamera LaneCamera(const ViewProjection<float>& frame)
 {
-  return this->Impl->Sorted;
+  return MakeLaneCamera(frame);
 }
 
-//------------------------------------------------------------------------------
-void MultiViewRenderer::Project(const Camera& camera)
+ProjectBlockFunction SelectProjection(int isa)
 {
-  Data& d = *this->Impl;
-  const GaussianCloud& cloud = *d.Cloud;
-  {
-    // An empty cloud validates the camera and yields the rasteriser's own float matrices.
-    GaussianCloud empty;
-    RasterSettings rs;
-    rs.ComputeColors = false;
-    d.Frame = ProjectGaussians<float>(empty, camera, rs);
-  }
-  const ViewProjection<float>& f = d.Frame;
-  MultiViewCamera& w = d.Camera;
-  w.W = f.Width;
-  w.H = f.Height;
-  w.Gx = f.TilesX;
-  w.Gy = f.TilesY;
-  for (int i = 0; i < 12; ++i)
-  {
-    w.V[i] = f.ViewMatrix[i];
-  }
-  for (int i = 0; i < 4; ++i)
-  {
-    w.F0[i] = f.FullProjection[i];
-    w.F1[i] = f.FullProjection[4 + i];
-    w.F3[i] = f.FullProjection[12 + i];
-  }
-  w.LimX = float(raster::JacobianClamp) * f.TanFovX;
-  w.LimY = float(raster::JacobianClamp) * f.TanFovY;
-  w.FocalX = f.Fx;
-  w.FocalY = f.Fy;
-  for (int i = 0; i < 3; ++i)
-  {
-    w.Center[i] = f.CameraCenter[i];
-  }
-
-  MultiViewProjected& out = d.Projected;
-  for (auto* v : { &out.U, &out.V, &out.A, &out.B, &out.C, &out.Depth })
-  {
-    ResizeKeep(*v, d.Padded);
-  }
-  for (auto* v : { &out.Status, &out.Radius, &out.X0, &out.Y0, &out.X1, &out.Y1 })
-  {
-    ResizeKeep(*v, d.Padded);
-  }
-  const ProjectBlock block = SelectProjectBlock(d.Settings.KernelIsa);
-  const int chunks = d.Threads;
-  const std::int64_t blocks = static_cast<std::int64_t>(d.Padded / 16);
-  const std::size_t n = d.Count;
-  d.ChunkVisible.assign(static_cast<std::size_t>(chunks) + 1, 0);
-  std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
-  // (1) Projection, chunks of contiguous blocks.
-#pragma omp parallel num_threads(chunks)
-  {
-    std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
-#pragma omp for schedule(static, 1)
-    for (int c = 0; c < chunks; ++c)
-    {
-      const std::int64_t b = blocks * c / chunks, e = blocks * (c + 1) / chunks;
-      for (std::int64_t k = b; k < e; ++k)
-      {
-        const std::size_t first = static_cast<std::size_t>(k) * 16;
-        block(d.Prepared, first, w, out);
-        const std::size_t last = std::min(n, first + 16);
-        for (std::size_t i = first; i < last; ++i)
-        {
-          ++local[out.Status[i]];
-        }
-      }
-    }
-#pragma omp critical(vis4gsMultiViewCounts)
-    for (int k = 0; k < 6; ++k)
-    {
-      counts[k] += local[k];
-    }
-  }
-  d.Counts.Visible = counts[0];
-  d.Counts.InvalidParameters = counts[1];
-  d.Counts.NearPlane = counts[2];
-  d.Counts.Degenerate = counts[3];
-  d.Counts.NonFinite = counts[4];
-  d.Counts.OffScreen = counts[5];
-
-  // (2) Visible Gaussians in index order, with (depth bits, compact position) keys; chunks of
-  // Gaussian indices (a chunk's visible count first).
-  const std::int64_t sn = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    const std::int64_t b = sn * c / chunks, e = sn * (c + 1) / chunks;
-    std::uint64_t k = 0;
-    for (std::int64_t i = b; i < e; ++i)
-    {
-      k += out.Status[static_cast<std::size_t>(i)] == 0 ? 1 : 0;
-    }
-    d.ChunkVisible[static_cast<std::size_t>(c) + 1] = k;
-  }
-  for (int c = 0; c < chunks; ++c)
-  {
-    d.ChunkVisible[static_cast<std::size_t>(c) + 1] += d.ChunkVisible[static_cast<std::size_t>(c)];
-  }
-  const std::size_t visible =
-    static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(chunks)]);
-  const std::int64_t nv = static_cast<std::int64_t>(visible);
-  ResizeKeep(d.Keys, 2 * visible);
-  ResizeKeep(d.Records, visible);
-  ResizeKeep(d.CompactLevels, visible);
-  double* levels = d.CompactLevels.data();
-  std::uint64_t* keys = d.Keys.data();
-  Data::VisibleRecord* records = d.Records.data();
-  const MultiViewPrepared& prep = d.Prepared;
-  const bool colors = d.Colors;
-  const bool viewIndependent = d.ViewIndependentColor;
-  std::uint32_t depthOr = 0, depthAnd = ~0u;
-#pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
-  for (int c = 0; c < chunks; ++c)
-  {
-    const std::int64_t b = sn * c / chunks, e = sn * (c + 1) / chunks;
-    std::size_t k = static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(c)]);
-    for (std::int64_t ii = b; ii < e; ++ii)
-    {
-      const std::size_t i = static_cast<std::size_t>(ii);
-      if (out.Status[i] != 0)
-      {
-        continue;
-      }
-      Data::VisibleRecord& rec = records[k];
-      float col[3] = { 0, 0, 0 };
-      if (colors && viewIndependent)
-      {
-        col[0] = prep.Color[3 * i];
-        col[1] = prep.Color[3 * i + 1];
-        col[2] = prep.Color[3 * i + 2];
-      }
-      rec.Kernel = { out.U[i],
-        out.V[i],
-        out.A[i],
-        out.B[i],
-        out.C[i],
-        prep.Opacity[i],
-        col[0],
-        col[1],
-        col[2],
-        out.Depth[i] };
-      rec.Rect[0] = out.X0[i];
-      rec.Rect[1] = out.Y0[i];
-      rec.Rect[2] = out.X1[i];
-      rec.Rect[3] = out.Y1[i];
-      rec.Radius = out.Radius[i];
-      rec.Id = static_cast<std::uint32_t>(i);
-      const float o = prep.Opacity[i];
-      levels[k] = o >= raster::MinAlpha<float>()
-        ? std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(o)))
-        : 0.0;
-      std::uint32_t bits;
-      std::memcpy(&bits, &out.Depth[i], sizeof(bits));
-      depthOr |= bits;
-      depthAnd &= bits;
-      keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
-      ++k;
-    }
-  }
-  // (3) Global (depth, index) order: stable radix sort on the depth bits that differ (as
-  // BinGaussians<float>; depth > 0.2, so the bits order like the values).
-  const std::uint32_t differ = depthOr & ~depthAnd;
-  int hi = 0;
-  while (hi < 32 && (differ >> hi) != 0)
-  {
-    ++hi;
-  }
-  const std::uint64_t* sorted = RadixSortKeys(keys, keys + visible, nv, 32, 32 + hi, chunks);
-
-  // (4) Per-Gaussian data in sorted order: kernel, colour, tile rectangle, alpha level, spans.
-  ResizeKeep(d.Sorted, visible);
-  ResizeKeep(d.Kernels, visible);
-  ResizeKeep(d.Bounds, visible);
-  ResizeKeep(d.Rects, visible);
-  ResizeKeep(d.Radius, visible);
-  const int shDegree = d.ShDegree;
-  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
-#pragma omp parallel for schedule(static) num_threads(chunks)
-  for (std::int64_t ss = 0; ss < nv; ++ss)
-  {
-    const std::size_t s = static_cast<std::size_t>(ss);
-    if (ss + 16 < nv)
-    {
-      const std::uint32_t ahead = static_cast<std::uint32_t>(sorted[s + 16]);
-      __builtin_prefetch(&records[ahead]);
-      __builtin_prefetch(&levels[ahead]);
-    }
-    const std::uint32_t pos = static_cast<std::uint32_t>(sorted[s]);
-    const Data::VisibleRecord& rec = records[pos];
-    const std::uint32_t id = rec.Id;
-    d.Sorted[s] = id;
-    raster::detail::KernelGaussian<float> k = rec.Kernel;
-    if (colors && !viewIndependent)
-    {
-      const float* pos = &cloud.Positions[3 * static_cast<std::size_t>(id)];
-      float dir[3] = { pos[0] - w.Center[0], pos[1] - w.Center[1], pos[2] - w.Center[2] };
-      const float len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-      for (auto& v : dir)
-      {
-        v = v / len;
-      }
-      float c3[3];
-      ShColor<float>(&cloud.SH[id * static_cast<std::size_t>(shStride)], shDegree, dir, c3);
-      k.R = std::max(c3[0], 0.0f);
-      k.G = std::max(c3[1], 0.0f);
-      k.Bl = std::max(c3[2], 0.0f);
-    }
-    d.Kernels[s] = k;
-    d.Rects[s] = { rec.Rect[0], rec.Rect[1], rec.Rect[2], rec.Rect[3] };
-    d.Radius[s] = rec.Radius;
-    if (k.O >= raster::MinAlpha<float>())
-    {
-      raster::detail::SpanBounds sb =
-        raster::detail::MakeSpanBounds<float>(k.U, k.V, k.A, k.B, k.C, levels[pos]);
-      if (sb.Bounded)
-      {
-        // Tighter candidate rows from the same conservative ellipse: its exact half-height
-        // widened by 0.01 pixel instead of 1 (as Footprint.cxx's packed boxes, same proof;
-        // the double rounding errors here are of order 1e-12 pixel). Rows outside cannot
-        // reach the alpha level, so skipping them changes nothing.
-        const double yE = std::sqrt(sb.NegTwoL * sb.A / sb.Det);
-        if (std::abs(sb.V) < 1e8 && yE < 1e8)
-        {
-          sb.RowMin = std::max(sb.RowMin, static_cast<int>(std::floor(sb.V - yE - 0.01)));
-          sb.RowMax = std::min(sb.RowMax, static_cast<int>(std::ceil(sb.V + yE + 0.01)));
-        }
-      }
-      d.Bounds[s] = sb;
-    }
-    else
-    {
-      d.Bounds[s] = raster::detail::SpanBounds();
-    }
-  }
-  d.HasView = true;
+  return SelectProjectBlock(isa);
 }
 
-//------------------------------------------------------------------------------
-void MultiViewRenderer::Render(const Camera& camera, RasterImage<float>& image)
+const std::uint64_t* SortKeys(std::uint64_t* keys,
+  std::uint64_t* scratch,
+  std::int64_t n,
+  int lo,
+  int hi,
+  int chunks)
 {
-  this->Project(camera);
-  this->Composite(image);
+  return RadixSortKeys(keys, scratch, n, lo, hi, chunks);
 }
 
-//------------------------------------------------------------------------------
-void MultiViewRenderer::Composite(RasterImage<float>& image)
+void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
 {
-  Data& d = *this->Impl;
-  if (!d.HasView)
-  {
-    throw std::logic_error("MultiViewRenderer::Composite: no view was projected");
-  }
-  const int chunks = d.Threads;
-  const std::size_t gx = static_cast<std::size_t>(d.Camera.Gx);
-  const std::size_t gy = static_cast<std::size_t>(d.Camera.Gy);
-  const std::size_t tiles = gx * gy;
-  const std::int64_t nv = static_cast<std::int64_t>(d.Sorted.size());
-  // Binning, as BinGaussians() step 3 on the sorted sequence; the lists hold sorted positions.
-  TileBins& bins = d.Bins;
-  bins.TilesX = d.Camera.Gx;
-  bins.TilesY = d.Camera.Gy;
-  const std::size_t dx = gx + 1;
-  const std::size_t diffSize = dx * (gy + 1);
-  d.Diff.assign(static_cast<std::size_t>(chunks) * diffSize, 0);
-  using Rect = std::array<int, 4>;
-  const Rect* rects = d.Rects.data();
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    std::int64_t* df = &d.Diff[static_cast<std::size_t>(c) * diffSize];
-    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
-    for (std::int64_t k = b; k < e; ++k)
-    {
-      const Rect& r = rects[static_cast<std::size_t>(k)];
-      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
-      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
-      ++df[y0 * dx + x0];
-      --df[y0 * dx + x1];
-      --df[y1 * dx + x0];
-      ++df[y1 * dx + x1];
-    }
-    for (std::size_t y = 0; y < gy; ++y)
-    {
-      std::int64_t* row = df + y * dx;
-      for (std::size_t x = 1; x < gx; ++x)
-      {
-        row[x] += row[x - 1];
-      }
-      if (y > 0)
-      {
-        const std::int64_t* up = row - dx;
-        for (std::size_t x = 0; x < gx; ++x)
-        {
-          row[x] += up[x];
-        }
-      }
-    }
-  }
-  bins.Offsets.assign(tiles + 1, 0);
-  std::uint64_t running = 0;
-  for (std::size_t ty = 0; ty < gy; ++ty)
-  {
-    for (std::size_t tx = 0; tx < gx; ++tx)
-    {
-      bins.Offsets[ty * gx + tx] = running;
-      for (int c = 0; c < chunks; ++c)
-      {
-        std::int64_t& h = d.Diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
-        const std::uint64_t k = static_cast<std::uint64_t>(h);
-        h = static_cast<std::int64_t>(running);
-        running += k;
-      }
-    }
-  }
-  bins.Offsets[tiles] = running;
-  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
-  std::uint32_t* ids = bins.Ids.data();
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    std::int64_t* cursor = &d.Diff[static_cast<std::size_t>(c) * diffSize];
-    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
-    for (std::int64_t k = b; k < e; ++k)
-    {
-      const Rect& r = rects[static_cast<std::size_t>(k)];
-      for (int ty = r[1]; ty < r[3]; ++ty)
-      {
-        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
-        for (int tx = r[0]; tx < r[2]; ++tx)
-        {
-          ids[row[tx]++] = static_cast<std::uint32_t>(k);
-        }
-      }
-    }
-  }
-
-  // Compositing: the tile loop of CompositeTiles() on the sorted data.
-  const std::size_t pixels = static_cast<std::size_t>(d.Camera.W) * d.Camera.H;
-  image.Width = d.Camera.W;
-  image.Height = d.Camera.H;
+  const std::size_t pixels = static_cast<std::size_t>(in.Width) * in.Height;
+  image.Width = in.Width;
+  image.Height = in.Height;
   image.Color.resize(3 * pixels);
   image.Alpha.resize(pixels);
   image.Transmittance.resize(pixels);
   image.Depth.resize(pixels);
   image.Contributors.resize(pixels);
   std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
-  const RasterSettings& settings = d.Settings;
-  CompositeContext<float> ctx{ &d.Frame,
-    &bins,
-    d.Kernels.data(),
-    d.Bounds.data(),
+  CompositeContext<float> ctx{ in.Width,
+    in.Height,
+    in.Bins->TilesX,
+    in.Bins,
+    in.Kernels,
+    in.Bounds,
     &image,
     nullptr,
-    { static_cast<float>(settings.Background[0]),
-      static_cast<float>(settings.Background[1]),
-      static_cast<float>(settings.Background[2]) },
+    { static_cast<float>(in.Background[0]),
+      static_cast<float>(in.Background[1]),
+      static_cast<float>(in.Background[2]) },
     &kernelEvals,
     &referenceEvals };
-  const TileFunction<float> fn = SelectTileFunction<float, false, false>(settings.KernelIsa);
-  const std::int64_t tileCount = static_cast<std::int64_t>(tiles);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(chunks)
-  for (std::int64_t t = 0; t < tileCount; ++t)
+  const TileFunction<float> fn = SelectTileFunction<float, false, false, true>(in.KernelIsa);
+  const std::int64_t tiles = static_cast<std::int64_t>(in.Bins->TileCount());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(in.Threads)
+  for (std::int64_t t = 0; t < tiles; ++t)
   {
     fn(ctx, t);
   }
 }
+} // namespace internal
+} // namespace raster
 
 template ViewProjection<float> ProjectGaussians<float>(const GaussianCloud&,
   const Camera&,
@@ -1854,18 +1558,26 @@ template ViewProjection<double> ProjectGaussians<double>(const GaussianCloud&,
   const RasterSettings&);
 template TileBins BinGaussians<float>(const ViewProjection<float>&, int);
 template TileBins BinGaussians<double>(const ViewProjection<double>&, int);
+template void PrepareCompositeData<float>(const ViewProjection<float>&, int, CompositeData<float>&);
+template void PrepareCompositeData<double>(const ViewProjection<double>&,
+  int,
+  CompositeData<double>&);
 template void CompositeTiles<float>(const ViewProjection<float>&,
   const TileBins&,
   const RasterSettings&,
   RasterImage<float>&,
   GaussianWeightStats*,
-  RasterWorkCounts*);
+  RasterWorkCounts*,
+  CompositeData<float>*,
+  bool);
 template void CompositeTiles<double>(const ViewProjection<double>&,
   const TileBins&,
   const RasterSettings&,
   RasterImage<double>&,
   GaussianWeightStats*,
-  RasterWorkCounts*);
+  RasterWorkCounts*,
+  CompositeData<double>*,
+  bool);
 template RasterImage<float> Rasterize<float>(const GaussianCloud&,
   const Camera&,
   const RasterSettings&,

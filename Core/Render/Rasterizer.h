@@ -9,7 +9,8 @@
  *
  *  1. ProjectGaussians(): per-Gaussian preprocessing (§2.3, §2.4): world-to-view, near cull,
  *     EWA projection with the Jacobian clamp, +0.3 dilation, det == 0 cull, conic, 3-sigma
- *     radius, pixel-space mean, 16x16 tile rectangle, SH colour. Parallel over Gaussians.
+ *     radius, pixel-space mean, 16x16 tile rectangle, SH colour. Parallel over Gaussians; in
+ *     float, 16 Gaussians per vector (the projection code of MultiViewRenderer).
  *  2. BinGaussians(): per-tile lists sorted front to back by view z, ties by Gaussian index
  *     (the order of the reference's stable radix sort on (tile, depth) keys).
  *  3. CompositeTiles(): front-to-back blending per pixel (§2.6), parallel over tiles.
@@ -37,6 +38,7 @@
 
 #include "Camera.h"
 #include "GaussianCloud.h"
+#include "RasterBounds.h"
 #include "RasterKernel.h"
 
 #include <array>
@@ -60,9 +62,11 @@ struct RasterSettings
   bool ComputeColors = true;
   /// OpenMP threads; 0 (default) uses OpenMP's default.
   int Threads = 0;
-  /// Instruction set of the compositing loop: 0 = best available (default), 1 = baseline
-  /// x86-64 (SSE2), 2 = AVX2, 3 = AVX-512. Results are bit-identical on every path; this is
-  /// a knob for tests and benchmarks.
+  /// Instruction set of the projection (float) and compositing loops: 0 = best available
+  /// (default), 1 = baseline x86-64 (SSE2), 2 = AVX2, 3 = AVX-512; -1 = the scalar
+  /// per-Gaussian projection (the reference the 16-lane projection is tested against) and
+  /// baseline compositing. Results are bit-identical on every path; this is a knob for tests
+  /// and benchmarks.
   int KernelIsa = 0;
 };
 
@@ -191,9 +195,31 @@ struct RasterWorkCounts
 };
 
 /**
+ * Per-Gaussian data of the compositing loop, input order: the kernel (mean, conic, opacity,
+ * colour, depth) of every visible Gaussian and the conservative spans (RasterBounds.h) of the
+ * pixels where its alpha can reach 1/255 (unbounded when the opacity is below 1/255).
+ * Culled Gaussians hold zeros and no bound. CompositeTiles() fills it on request, so that a
+ * consumer replaying the blending (the trainer's backward) reads the very data the forward
+ * decided with instead of recomputing it.
+ */
+template <typename T>
+struct CompositeData
+{
+  std::vector<raster::detail::KernelGaussian<T>> Kernels;
+  std::vector<raster::detail::SpanBounds> Bounds;
+};
+
+/// Fills @p data for @p projection (what CompositeTiles() keeps), reusing its buffers.
+template <typename T>
+void PrepareCompositeData(const ViewProjection<T>& projection, int threads, CompositeData<T>& data);
+
+/**
  * Blends every pixel (reference §2.6) into @p image (resized as needed). When @p weights
  * is given, it is resized to the Gaussian count and filled. When @p work is given, the
- * counters are computed (slightly slower).
+ * counters are computed (slightly slower). When @p keep is given, the per-Gaussian kernel
+ * data and spans are left in it (its buffers are reused between calls). With @p depth
+ * false, RasterImage::Depth is not computed and left empty (every other output is
+ * unchanged, bit for bit); @p weights and @p work need @p depth (std::invalid_argument).
  */
 template <typename T>
 void CompositeTiles(const ViewProjection<T>& projection,
@@ -201,7 +227,9 @@ void CompositeTiles(const ViewProjection<T>& projection,
   const RasterSettings& settings,
   RasterImage<T>& image,
   GaussianWeightStats* weights = nullptr,
-  RasterWorkCounts* work = nullptr);
+  RasterWorkCounts* work = nullptr,
+  CompositeData<T>* keep = nullptr,
+  bool depth = true);
 
 /// Projection, binning and compositing in one call.
 template <typename T>
@@ -263,18 +291,28 @@ extern template ViewProjection<double> ProjectGaussians<double>(const GaussianCl
   const RasterSettings&);
 extern template TileBins BinGaussians<float>(const ViewProjection<float>&, int);
 extern template TileBins BinGaussians<double>(const ViewProjection<double>&, int);
+extern template void PrepareCompositeData<float>(const ViewProjection<float>&,
+  int,
+  CompositeData<float>&);
+extern template void PrepareCompositeData<double>(const ViewProjection<double>&,
+  int,
+  CompositeData<double>&);
 extern template void CompositeTiles<float>(const ViewProjection<float>&,
   const TileBins&,
   const RasterSettings&,
   RasterImage<float>&,
   GaussianWeightStats*,
-  RasterWorkCounts*);
+  RasterWorkCounts*,
+  CompositeData<float>*,
+  bool);
 extern template void CompositeTiles<double>(const ViewProjection<double>&,
   const TileBins&,
   const RasterSettings&,
   RasterImage<double>&,
   GaussianWeightStats*,
-  RasterWorkCounts*);
+  RasterWorkCounts*,
+  CompositeData<double>*,
+  bool);
 extern template RasterImage<float> Rasterize<float>(const GaussianCloud&,
   const Camera&,
   const RasterSettings&,

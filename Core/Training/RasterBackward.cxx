@@ -127,61 +127,12 @@ void ShBasisGradient(const T d[3], int degree, T dY[16][3])
 //    fixed tree over the 16 lanes. That order is the same on every instruction set and for
 //    every thread count.
 
-template <typename T>
-using BackwardKernel = detail::CompositeKernel<T>;
-
-/// Per Gaussian: compact 2D data, and the conservative spans of the pixels where
-/// o e^power >= 1/255 is possible (Render's RasterBounds.h, as the forward makes them);
+/// Per Gaussian: compact 2D data and the conservative spans of the pixels where
+/// o e^power >= 1/255 is possible (Render's CompositeData, as the forward makes them);
 /// pixels outside are provably skipped by the exact kernel, so the spans never change a
 /// result.
 template <typename T>
-void PrepareKernels(const ViewProjection<T>& projection,
-  int threads,
-  std::vector<BackwardKernel<T>>& kernels,
-  std::vector<raster::detail::SpanBounds>& spans)
-{
-  const std::size_t n = projection.Gaussians.size();
-  spans.resize(n);
-  kernels.resize(n);
-  const std::int64_t count = static_cast<std::int64_t>(n);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t ii = 0; ii < count; ++ii)
-  {
-    const ProjectedGaussian<T>& g = projection.Gaussians[static_cast<std::size_t>(ii)];
-    BackwardKernel<T>& k = kernels[static_cast<std::size_t>(ii)];
-    // Below PMin, o e^power < 1/255 for certain (a margin of 1e-3 covers the rounding of
-    // KernelExp and of this logarithm): the scalar path skips the pair without exp().
-    k = { g.U,
-      g.V,
-      g.ConicA,
-      g.ConicB,
-      g.ConicC,
-      g.Opacity,
-      g.Color[0],
-      g.Color[1],
-      g.Color[2],
-      static_cast<T>(std::log(1.0 / (255.0 * static_cast<double>(g.Opacity))) - 1e-3) };
-    raster::detail::SpanBounds& sb = spans[static_cast<std::size_t>(ii)];
-    sb = raster::detail::SpanBounds();
-    if (g.IsVisible())
-    {
-      const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
-      sb = raster::detail::MakeSpanBounds<T>(
-        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
-    }
-  }
-}
-
-template <typename T>
-struct ForwardContext
-{
-  const TileBins* Bins;
-  const BackwardKernel<T>* Kernels;
-  const raster::detail::SpanBounds* Spans;
-  RasterImage<T>* Image;
-  T Background[3];
-  int Width, Height;
-};
+using BackwardKernel = raster::detail::KernelGaussian<T>;
 
 template <typename T>
 struct BackwardContext
@@ -283,7 +234,9 @@ void TileBackwardScalar(const BackwardContext<T>& ctx, std::size_t t, PartitionS
     T* r = local + jj * S;
     const T u = g.U, v = g.V, ca = g.A, cb = g.B, cc = g.C, op = g.O;
     const T col[3] = { g.R, g.G, g.Bl };
-    const T pmin = g.PMin;
+    // Below pmin, o e^power < 1/255 for certain (a margin of 1e-3 covers the rounding of
+    // KernelExp and of this logarithm): the scalar path skips the pair without exp().
+    const T pmin = static_cast<T>(std::log(1.0 / (255.0 * static_cast<double>(g.O))) - 1e-3);
     for (int py = r0; py <= r1; ++py)
     {
       int c0 = x0, c1 = x1 - 1;
@@ -435,49 +388,6 @@ BackwardTileFunction<T> SelectBackwardTile(int isa)
   return &TileLanesBaseline<T>;
 }
 
-template <typename T>
-using ForwardTileFunction = void (*)(const ForwardContext<T>&, std::size_t);
-
-template <typename T>
-void ForwardLanesBaseline(const ForwardContext<T>& ctx, std::size_t t)
-{
-  lanes_baseline::TileForwardLanes<T>(ctx, t);
-}
-template <typename T>
-__attribute__((target("avx2"))) void ForwardLanesAvx2(const ForwardContext<T>& ctx, std::size_t t)
-{
-  lanes_avx2::TileForwardLanes<T>(ctx, t);
-}
-template <typename T>
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void ForwardLanesAvx512(
-  const ForwardContext<T>& ctx,
-  std::size_t t)
-{
-  lanes_avx512::TileForwardLanes<T>(ctx, t);
-}
-
-template <typename T>
-ForwardTileFunction<T> SelectForwardTile(int isa)
-{
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if (isa == 1)
-  {
-    return &ForwardLanesBaseline<T>;
-  }
-  if ((isa <= 0 || isa >= 3) && has512)
-  {
-    return &ForwardLanesAvx512<T>;
-  }
-  if ((isa <= 0 || isa >= 2) && has2)
-  {
-    return &ForwardLanesAvx2<T>;
-  }
-  return &ForwardLanesBaseline<T>;
-}
-
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -547,18 +457,17 @@ void CompositeBackward(const ViewProjection<T>& projection,
   ws.Marks.assign(static_cast<std::size_t>(P) * n, 0);
   ws.Touched.resize(static_cast<std::size_t>(P));
 
-  std::vector<raster::detail::SpanBounds>& spans = ws.Spans;
-  std::vector<BackwardKernel<T>>& kernels = ws.Kernels;
+  CompositeData<T>& data = ws.Composite;
   if (!(ws.PreparedFor == static_cast<const void*>(projection.Gaussians.data()) &&
-        ws.PreparedCount == n && spans.size() == n && kernels.size() == n))
+        ws.PreparedCount == n && data.Bounds.size() == n && data.Kernels.size() == n))
   {
-    PrepareKernels(projection, threads, kernels, spans);
+    PrepareCompositeData(projection, threads, data);
   }
   ws.PreparedFor = nullptr;
   ws.PreparedCount = 0;
   const BackwardContext<T> ctx{ &bins,
-    kernels.data(),
-    spans.data(),
+    data.Kernels.data(),
+    data.Bounds.data(),
     &image,
     dLdImage,
     { static_cast<T>(settings.Background[0]),
@@ -626,41 +535,21 @@ void CompositeForward(const ViewProjection<T>& projection,
   {
     throw std::invalid_argument("CompositeForward: the tile bins do not match the projection");
   }
-  const int threads = ThreadCount(options.Threads);
-  const std::size_t n = projection.Gaussians.size();
-  const std::size_t pixels = static_cast<std::size_t>(projection.Width) * projection.Height;
-  image.Width = projection.Width;
-  image.Height = projection.Height;
-  image.Color.resize(3 * pixels);
-  image.Alpha.resize(pixels);
-  image.Transmittance.resize(pixels);
-  image.Depth.clear();
-  image.Contributors.resize(pixels);
-  std::vector<BackwardKernel<T>> ownKernels;
-  std::vector<raster::detail::SpanBounds> ownSpans;
-  std::vector<BackwardKernel<T>>& kernels = workspace ? workspace->Kernels : ownKernels;
-  std::vector<raster::detail::SpanBounds>& spans = workspace ? workspace->Spans : ownSpans;
-  PrepareKernels(projection, threads, kernels, spans);
+  RasterSettings forward = settings;
+  forward.Threads = options.Threads;
+  forward.KernelIsa = std::max(0, options.KernelIsa);
+  CompositeTiles(projection,
+    bins,
+    forward,
+    image,
+    nullptr,
+    nullptr,
+    workspace ? &workspace->Composite : nullptr,
+    false);
   if (workspace)
   {
     workspace->PreparedFor = projection.Gaussians.data();
-    workspace->PreparedCount = n;
-  }
-  const ForwardContext<T> ctx{ &bins,
-    kernels.data(),
-    spans.data(),
-    &image,
-    { static_cast<T>(settings.Background[0]),
-      static_cast<T>(settings.Background[1]),
-      static_cast<T>(settings.Background[2]) },
-    projection.Width,
-    projection.Height };
-  const ForwardTileFunction<T> fn = SelectForwardTile<T>(options.KernelIsa);
-  const std::int64_t tiles = static_cast<std::int64_t>(bins.TileCount());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (std::int64_t t = 0; t < tiles; ++t)
-  {
-    fn(ctx, static_cast<std::size_t>(t));
+    workspace->PreparedCount = projection.Gaussians.size();
   }
 }
 

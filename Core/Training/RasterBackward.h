@@ -76,17 +76,6 @@ struct BackwardSettings
   int KernelIsa = 0;
 };
 
-namespace detail
-{
-/// Per-Gaussian 2D data read by the compositing loops of training.
-template <typename T>
-struct CompositeKernel
-{
-  T U, V, A, B, C, O, R, G, Bl;
-  T PMin; ///< below this power, o e^power < 1/255 for certain (the scalar path's early skip)
-};
-} // namespace detail
-
 /// Scratch memory of CompositeForward() and CompositeBackward(), kept between calls to
 /// avoid reallocations.
 template <typename T>
@@ -95,11 +84,12 @@ struct BackwardWorkspace
   std::vector<T> Accumulators;                     ///< per partition, per Gaussian
   std::vector<std::uint8_t> Marks;                 ///< per partition, per Gaussian: touched
   std::vector<std::vector<std::uint32_t>> Touched; ///< per partition: Gaussians touched
-  std::vector<raster::detail::SpanBounds> Spans;   ///< per Gaussian: pixel bounds
-  std::vector<detail::CompositeKernel<T>> Kernels; ///< per Gaussian: 2D data
-  /// Set by CompositeForward(): the projection Spans and Kernels were made from (its
-  /// Gaussians' address and count). CompositeBackward() on the same, unmodified projection
-  /// reuses them and clears the stamp; anything else recomputes them.
+  /// Per Gaussian: the compositing loop's 2D data and pixel spans (Render's CompositeData,
+  /// filled by the forward's CompositeTiles()).
+  CompositeData<T> Composite;
+  /// Set by CompositeForward(): the projection Composite was made from (its Gaussians'
+  /// address and count). CompositeBackward() on the same, unmodified projection reuses it
+  /// and clears the stamp; anything else recomputes it.
   const void* PreparedFor = nullptr;
   std::size_t PreparedCount = 0;
 };
@@ -156,14 +146,13 @@ void CompositeBackward(const ViewProjection<T>& projection,
   const BackwardSettings& options = {});
 
 /**
- * The forward compositing of training: the outputs of Render's CompositeTiles() that
- * training reads, bit for bit (Color, Alpha, Transmittance and Contributors; the same
- * operations in the same order, 16 lanes per tile row on the best instruction set, or the
- * one @p options.KernelIsa names: 1 baseline, 2 AVX2, 3 AVX-512). Depth is not computed
- * (left empty). With @p workspace (the ProjectedGradients::Workspace later passed to
- * CompositeBackward() for the same projection), the per-Gaussian spans and 2D data are
- * kept for the backward instead of being recomputed; the projection must not change in
- * between.
+ * The forward compositing of training: Render's CompositeTiles() itself (one compositing
+ * code), with depth off (RasterImage::Depth left empty; Color, Alpha, Transmittance and
+ * Contributors are CompositeTiles()'s bit for bit), on the best instruction set or the one
+ * @p options.KernelIsa names (1 baseline, 2 AVX2, 3 AVX-512), with @p options.Threads.
+ * With @p workspace (the ProjectedGradients::Workspace later passed to CompositeBackward()
+ * for the same projection), the per-Gaussian spans and 2D data of the forward are kept for
+ * the backward instead of being recomputed; the projection must not change in between.
  */
 template <typename T>
 void CompositeForward(const ViewProjection<T>& projection,

@@ -418,6 +418,97 @@ TEST(Rasterizer, ThreadsAndInstructionSetsBitIdentical)
 }
 
 //------------------------------------------------------------------------------
+// The trainer's forward is CompositeTiles() with depth off and the per-Gaussian data kept:
+// every other output must be bit-identical to the default pass on every instruction set
+// and thread count, double included, and the kept data must equal PrepareCompositeData()
+// (also when the buffers are reused for another view).
+namespace
+{
+template <typename T>
+void ExpectDepthOffAndKeptDataMatch(const GaussianCloud& cloud,
+  const Camera& cam,
+  CompositeData<T>& kept)
+{
+  RasterSettings s;
+  s.Threads = 1;
+  const auto proj = ProjectGaussians<T>(cloud, cam, s);
+  const auto bins = BinGaussians(proj, 1);
+  RasterImage<T> ref;
+  CompositeTiles(proj, bins, s, ref);
+  ASSERT_EQ(ref.Depth.size(), ref.Alpha.size());
+  CompositeData<T> expected;
+  PrepareCompositeData(proj, 1, expected);
+  std::size_t bounded = 0;
+  for (const auto& b : expected.Bounds)
+  {
+    bounded += b.Bounded ? 1 : 0;
+  }
+  EXPECT_GT(bounded, 0u);
+  for (int isa = 0; isa <= 3; ++isa)
+  {
+    for (int threads : { 1, 2, 3 })
+    {
+      s.KernelIsa = isa;
+      s.Threads = threads;
+      RasterImage<T> img;
+      CompositeTiles(proj, bins, s, img, nullptr, nullptr, &kept, false);
+      EXPECT_TRUE(img.Depth.empty());
+      const auto bytes = [](const std::vector<T>& v) { return v.size() * sizeof(T); };
+      ASSERT_EQ(img.Color.size(), ref.Color.size());
+      EXPECT_EQ(0, std::memcmp(ref.Color.data(), img.Color.data(), bytes(ref.Color)))
+        << "isa " << isa << " threads " << threads;
+      EXPECT_EQ(0, std::memcmp(ref.Alpha.data(), img.Alpha.data(), bytes(ref.Alpha)));
+      EXPECT_EQ(0,
+        std::memcmp(ref.Transmittance.data(), img.Transmittance.data(), bytes(ref.Transmittance)));
+      EXPECT_EQ(ref.Contributors, img.Contributors);
+      ASSERT_EQ(kept.Kernels.size(), expected.Kernels.size());
+      ASSERT_EQ(kept.Bounds.size(), expected.Bounds.size());
+      EXPECT_EQ(0,
+        std::memcmp(kept.Kernels.data(),
+          expected.Kernels.data(),
+          kept.Kernels.size() * sizeof(kept.Kernels[0])));
+      for (std::size_t i = 0; i < kept.Bounds.size(); ++i)
+      {
+        const auto& a = kept.Bounds[i];
+        const auto& b = expected.Bounds[i];
+        ASSERT_EQ(a.Bounded, b.Bounded) << i;
+        ASSERT_EQ(a.RowMin, b.RowMin) << i;
+        ASSERT_EQ(a.RowMax, b.RowMax) << i;
+        ASSERT_EQ(a.Det, b.Det) << i;
+      }
+    }
+  }
+  RasterImage<T> img;
+  RasterWorkCounts work;
+  EXPECT_THROW(
+    CompositeTiles(
+      proj, bins, s, img, nullptr, &work, static_cast<CompositeData<T>*>(nullptr), false),
+    std::invalid_argument);
+}
+} // namespace
+
+TEST(Rasterizer, DepthOffAndKeptDataBitIdentical)
+{
+  auto cloud = RandomScene(3000, 3, 21u, 1.0f, 10.0f, -5.0f, 0.0f);
+  for (std::size_t i = 0; i < cloud.Count; i += 7)
+  {
+    cloud.OpacityLogits[i] = 9.0f; // opaque: the transmittance stop is reached
+  }
+  for (std::size_t i = 3; i < cloud.Count; i += 11)
+  {
+    cloud.OpacityLogits[i] = -7.0f; // o < 1/255: never blended, no span
+  }
+  const Camera cam = LookAt(150, 100, 90, 90, { 0, 0, -0.5 }, { 0, 0, 5 });
+  CompositeData<float> keptFloat;
+  CompositeData<double> keptDouble;
+  ExpectDepthOffAndKeptDataMatch<float>(cloud, cam, keptFloat);
+  ExpectDepthOffAndKeptDataMatch<double>(cloud, cam, keptDouble);
+  // The kept buffers reused for another view that culls other Gaussians (none stale).
+  const Camera cam2 = LookAt(61, 47, 40, 40, { 1.5, 0, -0.5 }, { 0, 0, 5 });
+  ExpectDepthOffAndKeptDataMatch<float>(cloud, cam2, keptFloat);
+}
+
+//------------------------------------------------------------------------------
 TEST(Rasterizer, AttributionReproducesPixels)
 {
   const auto cloud = RandomScene(2500, 2, 9u);

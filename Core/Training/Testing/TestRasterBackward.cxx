@@ -696,9 +696,12 @@ TEST(RasterBackward, LanePathIsBitIdenticalOnEveryInstructionSet)
   }
 }
 
-// The trainer's forward compositing (CompositeForward) reproduces Render's CompositeTiles
-// bit for bit on every instruction set, including pixels that reach the 1e-4 transmittance
-// stop (opaque Gaussians) and partial edge tiles.
+// The trainer's forward compositing (CompositeForward: Render's CompositeTiles with depth
+// off and the per-Gaussian data kept for the backward) reproduces the default
+// CompositeTiles bit for bit on every instruction set (the trainer's options are mapped
+// onto RasterSettings), including pixels that reach the 1e-4 transmittance stop (opaque
+// Gaussians) and partial edge tiles; the backward reading the kept data equals the backward
+// that prepares it itself.
 namespace
 {
 template <typename T>

@@ -1,0 +1,413 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "MultiViewRenderer.h"
+
+#include "MultiViewData.h"
+#include "RasterInternal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+// MultiViewRenderer: the view-independent preparation, the per-view projection (16 lanes,
+// ProjectionLanes.inc through Rasterizer.cxx), the global (depth, index) sort, binning and
+// compositing (CompositeLanes.inc through Rasterizer.cxx). The footprint pass is in
+// Footprint.cxx.
+namespace vis4gs
+{
+
+using namespace raster::internal;
+
+//------------------------------------------------------------------------------
+MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSettings& settings)
+  : Impl(new Data)
+{
+  ValidateCloud(cloud, settings.ComputeColors);
+  Data& d = *this->Impl;
+  d.Cloud = &cloud;
+  d.Settings = settings;
+  d.Count = cloud.Count;
+  d.Padded = (cloud.Count + 15) / 16 * 16;
+  d.Colors = settings.ComputeColors;
+  d.ShDegree = settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree);
+  d.ShDegree = std::max(0, d.ShDegree);
+  d.ViewIndependentColor = d.ShDegree == 0;
+  d.Threads = Threads(settings.Threads);
+  MultiViewPrepared& p = d.Prepared;
+  for (auto* v : { &p.X, &p.Y, &p.Z, &p.S00, &p.S01, &p.S02, &p.S11, &p.S12, &p.S22, &p.Opacity })
+  {
+    v->assign(d.Padded, 0.0f);
+  }
+  p.Valid.assign(d.Padded, 0);
+  if (d.Colors && d.ViewIndependentColor)
+  {
+    p.Color.assign(3 * d.Padded, 0.0f);
+  }
+  const int shStride = d.Colors ? 3 * cloud.ShCoefficientCount() : 0;
+  const int shUsed = 3 * (d.ShDegree + 1) * (d.ShDegree + 1);
+  const bool colors = d.Colors;
+  const bool viewIndependent = d.ViewIndependentColor;
+  const float mod = static_cast<float>(settings.ScaleModifier);
+  const std::int64_t count = static_cast<std::int64_t>(d.Count);
+#pragma omp parallel for schedule(static) num_threads(d.Threads)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, p, i);
+    if (p.Valid[i] != 0 && colors && viewIndependent)
+    {
+      const float dir[3] = { 0, 0, 0 }; // unused at degree 0
+      float col[3];
+      ShColorFloat(&cloud.SH[i * shStride], 0, dir, col);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        p.Color[3 * i + ch] = std::max(col[ch], 0.0f);
+      }
+    }
+  }
+}
+
+MultiViewRenderer::~MultiViewRenderer() = default;
+
+const ProjectionCounts& MultiViewRenderer::Counts() const
+{
+  return this->Impl->Counts;
+}
+
+const std::vector<std::uint32_t>& MultiViewRenderer::SortedIds() const
+{
+  return this->Impl->Sorted;
+}
+
+//------------------------------------------------------------------------------
+void MultiViewRenderer::Project(const Camera& camera)
+{
+  Data& d = *this->Impl;
+  const GaussianCloud& cloud = *d.Cloud;
+  {
+    // An empty cloud validates the camera and yields the rasteriser's own float matrices.
+    GaussianCloud empty;
+    RasterSettings rs;
+    rs.ComputeColors = false;
+    d.Frame = ProjectGaussians<float>(empty, camera, rs);
+  }
+  d.Camera = LaneCamera(d.Frame);
+  const MultiViewCamera& w = d.Camera;
+
+  MultiViewProjected& out = d.Projected;
+  for (auto* v : { &out.U, &out.V, &out.A, &out.B, &out.C, &out.Depth })
+  {
+    ResizeKeep(*v, d.Padded);
+  }
+  for (auto* v : { &out.Status, &out.Radius, &out.X0, &out.Y0, &out.X1, &out.Y1 })
+  {
+    ResizeKeep(*v, d.Padded);
+  }
+  const ProjectBlockFunction block = SelectProjection(d.Settings.KernelIsa);
+  const int chunks = d.Threads;
+  const std::int64_t blocks = static_cast<std::int64_t>(d.Padded / 16);
+  const std::size_t n = d.Count;
+  d.ChunkVisible.assign(static_cast<std::size_t>(chunks) + 1, 0);
+  std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
+  // (1) Projection, chunks of contiguous blocks.
+#pragma omp parallel num_threads(chunks)
+  {
+    std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
+#pragma omp for schedule(static, 1)
+    for (int c = 0; c < chunks; ++c)
+    {
+      const std::int64_t b = blocks * c / chunks, e = blocks * (c + 1) / chunks;
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        const std::size_t first = static_cast<std::size_t>(k) * 16;
+        block(d.Prepared, first, w, out);
+        const std::size_t last = std::min(n, first + 16);
+        for (std::size_t i = first; i < last; ++i)
+        {
+          ++local[out.Status[i]];
+        }
+      }
+    }
+#pragma omp critical(vis4gsMultiViewCounts)
+    for (int k = 0; k < 6; ++k)
+    {
+      counts[k] += local[k];
+    }
+  }
+  d.Counts.Visible = counts[0];
+  d.Counts.InvalidParameters = counts[1];
+  d.Counts.NearPlane = counts[2];
+  d.Counts.Degenerate = counts[3];
+  d.Counts.NonFinite = counts[4];
+  d.Counts.OffScreen = counts[5];
+
+  // (2) Visible Gaussians in index order, with (depth bits, compact position) keys; chunks of
+  // Gaussian indices (a chunk's visible count first).
+  const std::int64_t sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::int64_t b = sn * c / chunks, e = sn * (c + 1) / chunks;
+    std::uint64_t k = 0;
+    for (std::int64_t i = b; i < e; ++i)
+    {
+      k += out.Status[static_cast<std::size_t>(i)] == 0 ? 1 : 0;
+    }
+    d.ChunkVisible[static_cast<std::size_t>(c) + 1] = k;
+  }
+  for (int c = 0; c < chunks; ++c)
+  {
+    d.ChunkVisible[static_cast<std::size_t>(c) + 1] += d.ChunkVisible[static_cast<std::size_t>(c)];
+  }
+  const std::size_t visible =
+    static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(chunks)]);
+  const std::int64_t nv = static_cast<std::int64_t>(visible);
+  ResizeKeep(d.Keys, 2 * visible);
+  ResizeKeep(d.Records, visible);
+  ResizeKeep(d.CompactLevels, visible);
+  double* levels = d.CompactLevels.data();
+  std::uint64_t* keys = d.Keys.data();
+  Data::VisibleRecord* records = d.Records.data();
+  const MultiViewPrepared& prep = d.Prepared;
+  const bool colors = d.Colors;
+  const bool viewIndependent = d.ViewIndependentColor;
+  std::uint32_t depthOr = 0, depthAnd = ~0u;
+#pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::int64_t b = sn * c / chunks, e = sn * (c + 1) / chunks;
+    std::size_t k = static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(c)]);
+    for (std::int64_t ii = b; ii < e; ++ii)
+    {
+      const std::size_t i = static_cast<std::size_t>(ii);
+      if (out.Status[i] != 0)
+      {
+        continue;
+      }
+      Data::VisibleRecord& rec = records[k];
+      float col[3] = { 0, 0, 0 };
+      if (colors && viewIndependent)
+      {
+        col[0] = prep.Color[3 * i];
+        col[1] = prep.Color[3 * i + 1];
+        col[2] = prep.Color[3 * i + 2];
+      }
+      rec.Kernel = { out.U[i],
+        out.V[i],
+        out.A[i],
+        out.B[i],
+        out.C[i],
+        prep.Opacity[i],
+        col[0],
+        col[1],
+        col[2],
+        out.Depth[i] };
+      rec.Rect[0] = out.X0[i];
+      rec.Rect[1] = out.Y0[i];
+      rec.Rect[2] = out.X1[i];
+      rec.Rect[3] = out.Y1[i];
+      rec.Radius = out.Radius[i];
+      rec.Id = static_cast<std::uint32_t>(i);
+      const float o = prep.Opacity[i];
+      levels[k] = o >= raster::MinAlpha<float>()
+        ? std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(o)))
+        : 0.0;
+      std::uint32_t bits;
+      std::memcpy(&bits, &out.Depth[i], sizeof(bits));
+      depthOr |= bits;
+      depthAnd &= bits;
+      keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
+      ++k;
+    }
+  }
+  // (3) Global (depth, index) order: stable radix sort on the depth bits that differ (as
+  // BinGaussians<float>; depth > 0.2, so the bits order like the values).
+  const std::uint32_t differ = depthOr & ~depthAnd;
+  int hi = 0;
+  while (hi < 32 && (differ >> hi) != 0)
+  {
+    ++hi;
+  }
+  const std::uint64_t* sorted = SortKeys(keys, keys + visible, nv, 32, 32 + hi, chunks);
+
+  // (4) Per-Gaussian data in sorted order: kernel, colour, tile rectangle, alpha level, spans.
+  ResizeKeep(d.Sorted, visible);
+  ResizeKeep(d.Kernels, visible);
+  ResizeKeep(d.Bounds, visible);
+  ResizeKeep(d.Rects, visible);
+  ResizeKeep(d.Radius, visible);
+  const int shDegree = d.ShDegree;
+  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
+#pragma omp parallel for schedule(static) num_threads(chunks)
+  for (std::int64_t ss = 0; ss < nv; ++ss)
+  {
+    const std::size_t s = static_cast<std::size_t>(ss);
+    if (ss + 16 < nv)
+    {
+      const std::uint32_t ahead = static_cast<std::uint32_t>(sorted[s + 16]);
+      __builtin_prefetch(&records[ahead]);
+      __builtin_prefetch(&levels[ahead]);
+    }
+    const std::uint32_t pos = static_cast<std::uint32_t>(sorted[s]);
+    const Data::VisibleRecord& rec = records[pos];
+    const std::uint32_t id = rec.Id;
+    d.Sorted[s] = id;
+    raster::detail::KernelGaussian<float> k = rec.Kernel;
+    if (colors && !viewIndependent)
+    {
+      const float* pos = &cloud.Positions[3 * static_cast<std::size_t>(id)];
+      float dir[3] = { pos[0] - w.Center[0], pos[1] - w.Center[1], pos[2] - w.Center[2] };
+      const float len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+      for (auto& v : dir)
+      {
+        v = v / len;
+      }
+      float c3[3];
+      ShColorFloat(&cloud.SH[id * static_cast<std::size_t>(shStride)], shDegree, dir, c3);
+      k.R = std::max(c3[0], 0.0f);
+      k.G = std::max(c3[1], 0.0f);
+      k.Bl = std::max(c3[2], 0.0f);
+    }
+    d.Kernels[s] = k;
+    d.Rects[s] = { rec.Rect[0], rec.Rect[1], rec.Rect[2], rec.Rect[3] };
+    d.Radius[s] = rec.Radius;
+    if (k.O >= raster::MinAlpha<float>())
+    {
+      raster::detail::SpanBounds sb =
+        raster::detail::MakeSpanBounds<float>(k.U, k.V, k.A, k.B, k.C, levels[pos]);
+      if (sb.Bounded)
+      {
+        // Tighter candidate rows from the same conservative ellipse: its exact half-height
+        // widened by 0.01 pixel instead of 1 (as Footprint.cxx's packed boxes, same proof;
+        // the double rounding errors here are of order 1e-12 pixel). Rows outside cannot
+        // reach the alpha level, so skipping them changes nothing.
+        const double yE = std::sqrt(sb.NegTwoL * sb.A / sb.Det);
+        if (std::abs(sb.V) < 1e8 && yE < 1e8)
+        {
+          sb.RowMin = std::max(sb.RowMin, static_cast<int>(std::floor(sb.V - yE - 0.01)));
+          sb.RowMax = std::min(sb.RowMax, static_cast<int>(std::ceil(sb.V + yE + 0.01)));
+        }
+      }
+      d.Bounds[s] = sb;
+    }
+    else
+    {
+      d.Bounds[s] = raster::detail::SpanBounds();
+    }
+  }
+  d.HasView = true;
+}
+
+//------------------------------------------------------------------------------
+void MultiViewRenderer::Render(const Camera& camera, RasterImage<float>& image)
+{
+  this->Project(camera);
+  this->Composite(image);
+}
+
+//------------------------------------------------------------------------------
+void MultiViewRenderer::Composite(RasterImage<float>& image)
+{
+  Data& d = *this->Impl;
+  if (!d.HasView)
+  {
+    throw std::logic_error("MultiViewRenderer::Composite: no view was projected");
+  }
+  const int chunks = d.Threads;
+  const std::size_t gx = static_cast<std::size_t>(d.Camera.Gx);
+  const std::size_t gy = static_cast<std::size_t>(d.Camera.Gy);
+  const std::size_t tiles = gx * gy;
+  const std::int64_t nv = static_cast<std::int64_t>(d.Sorted.size());
+  // Binning, as BinGaussians() step 3 on the sorted sequence; the lists hold sorted positions.
+  TileBins& bins = d.Bins;
+  bins.TilesX = d.Camera.Gx;
+  bins.TilesY = d.Camera.Gy;
+  const std::size_t dx = gx + 1;
+  const std::size_t diffSize = dx * (gy + 1);
+  d.Diff.assign(static_cast<std::size_t>(chunks) * diffSize, 0);
+  using Rect = std::array<int, 4>;
+  const Rect* rects = d.Rects.data();
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* df = &d.Diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
+      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
+      ++df[y0 * dx + x0];
+      --df[y0 * dx + x1];
+      --df[y1 * dx + x0];
+      ++df[y1 * dx + x1];
+    }
+    for (std::size_t y = 0; y < gy; ++y)
+    {
+      std::int64_t* row = df + y * dx;
+      for (std::size_t x = 1; x < gx; ++x)
+      {
+        row[x] += row[x - 1];
+      }
+      if (y > 0)
+      {
+        const std::int64_t* up = row - dx;
+        for (std::size_t x = 0; x < gx; ++x)
+        {
+          row[x] += up[x];
+        }
+      }
+    }
+  }
+  bins.Offsets.assign(tiles + 1, 0);
+  std::uint64_t running = 0;
+  for (std::size_t ty = 0; ty < gy; ++ty)
+  {
+    for (std::size_t tx = 0; tx < gx; ++tx)
+    {
+      bins.Offsets[ty * gx + tx] = running;
+      for (int c = 0; c < chunks; ++c)
+      {
+        std::int64_t& h = d.Diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
+        const std::uint64_t k = static_cast<std::uint64_t>(h);
+        h = static_cast<std::int64_t>(running);
+        running += k;
+      }
+    }
+  }
+  bins.Offsets[tiles] = running;
+  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
+  std::uint32_t* ids = bins.Ids.data();
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* cursor = &d.Diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      for (int ty = r[1]; ty < r[3]; ++ty)
+      {
+        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
+        for (int tx = r[0]; tx < r[2]; ++tx)
+        {
+          ids[row[tx]++] = static_cast<std::uint32_t>(k);
+        }
+      }
+    }
+  }
+
+  // Compositing: the tile loop of CompositeTiles() on the sorted data.
+  raster::internal::CompositeInput in;
+  in.Width = d.Camera.W;
+  in.Height = d.Camera.H;
+  in.Bins = &bins;
+  in.Kernels = d.Kernels.data();
+  in.Bounds = d.Bounds.data();
+  in.Background = d.Settings.Background;
+  in.KernelIsa = d.Settings.KernelIsa;
+  in.Threads = chunks;
+  raster::internal::CompositeSorted(in, image);
+}
+
+} // namespace vis4gs

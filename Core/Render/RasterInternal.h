@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file RasterInternal.h
+ * @brief Internal to Core/Render: the parts of Rasterizer.cxx that MultiViewRenderer.cxx
+ * runs too (one projection code, one compositing code), exported under
+ * vis4gs::raster::internal. Not installed; no other module includes it.
+ */
+#ifndef vis4gs_RasterInternal_h
+#define vis4gs_RasterInternal_h
+
+#include "MultiViewData.h"
+#include "RasterBounds.h"
+#include "Rasterizer.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace vis4gs
+{
+namespace raster
+{
+namespace internal
+{
+
+/// OpenMP threads: @p requested when positive, else OpenMP's default.
+int Threads(int requested);
+
+/// madvise(MADV_HUGEPAGE) on the whole 2 MiB pages of a large buffer (before first touch).
+void HugePages(const void* data, std::size_t bytes);
+
+/// Resizes @p v to @p n, keeping its memory when it is large enough (no clearing). A new
+/// allocation gets 1/8 of slack: per-view sizes (visible Gaussians, tile pairs) vary from
+/// view to view, and growing by a few elements must not re-allocate (and page-fault) the
+/// whole buffer for every new maximum.
+template <typename U>
+void ResizeKeep(std::vector<U>& v, std::size_t n)
+{
+  if (v.size() != n)
+  {
+    if (v.capacity() < n)
+    {
+      const std::size_t capacity = n + n / 8;
+      std::vector<U>().swap(v);
+      v.reserve(capacity);
+      HugePages(v.data(), capacity * sizeof(U));
+    }
+    v.resize(n);
+  }
+}
+
+/// ProjectGaussians()'s checks of the cloud's arrays (throws std::invalid_argument).
+void ValidateCloud(const GaussianCloud& cloud, bool colors);
+
+/// ProjectGaussians<float>'s SH colour (before the +0.5 clamp at 0 is applied by the caller).
+void ShColorFloat(const float* shf, int degree, const float dir[3], float out[3]);
+
+/// View-independent part of ProjectGaussians<float> step 3 for Gaussian @p i into slot @p k
+/// of @p p (Valid -1, or 0 and zeros when a parameter it would use is not finite).
+void PrepareGaussianForLanes(const GaussianCloud& cloud,
+  std::size_t i,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  MultiViewPrepared& p,
+  std::size_t k);
+
+/// The lane projection's view parameters from the rasteriser's float view.
+MultiViewCamera LaneCamera(const ViewProjection<float>& frame);
+
+/// Projects the 16 prepared Gaussians [first, first + 16) (ProjectionLanes.inc).
+using ProjectBlockFunction = void (*)(const MultiViewPrepared&,
+  std::size_t,
+  const MultiViewCamera&,
+  MultiViewProjected&);
+/// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
+ProjectBlockFunction SelectProjection(int isa);
+
+/// Stable parallel LSD radix sort of @p n 64-bit keys on bits [lo, hi); @p scratch holds n
+/// keys. Returns the buffer holding the sorted keys (@p keys or @p scratch).
+const std::uint64_t* SortKeys(std::uint64_t* keys,
+  std::uint64_t* scratch,
+  std::int64_t n,
+  int lo,
+  int hi,
+  int chunks);
+
+/// CompositeTiles()'s tile loop (CompositeLanes.inc, with depth) on per-Gaussian data indexed
+/// by the ids of @p Bins.
+struct CompositeInput
+{
+  int Width = 0, Height = 0;
+  const TileBins* Bins = nullptr;
+  const detail::KernelGaussian<float>* Kernels = nullptr;
+  const detail::SpanBounds* Bounds = nullptr;
+  std::array<double, 3> Background{ 0.0, 0.0, 0.0 };
+  int KernelIsa = 0;
+  int Threads = 1;
+};
+void CompositeSorted(const CompositeInput& in, RasterImage<float>& image);
+
+} // namespace internal
+} // namespace raster
+} // namespace vis4gs
+
+#endif
