@@ -157,7 +157,8 @@ int CheckScene(bool inria, int width, int height, double azimuth)
   {
     std::printf("FAILED: an unchanged still frame was re-rasterised (%.1f ms) or differs (%.2f "
                 "dB)\n",
-      mapper->GetLastRasterTime(), again);
+      mapper->GetLastRasterTime(),
+      again);
     fail = 1;
   }
 
