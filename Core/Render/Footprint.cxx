@@ -381,6 +381,13 @@ bool EllipseBox(T u, T v, T a, T b, T c, double level, int& xMin, int& xMax, int
 // Footprint of one visible Gaussian: |Omega| into @p cnt, the map sum into @p sum (row by
 // row, left to right), kernels evaluated into @p evals. @p givenLevel, when not null, is the
 // Gaussian's alpha level min(0, ln(1/(255 o))) already computed (rasteriser mode, o >= 1/255).
+// EllipseBox() computed ahead for a batch of Gaussians (the same call, so the same box).
+struct BoxHint
+{
+  bool Ok = false;
+  int X0 = 0, X1 = 0, Y0 = 0, Y1 = 0;
+};
+
 template <typename T, typename Acc>
 inline void FootprintOne(const ProjectedGaussian<T>& g,
   const FootprintOptions& opt,
@@ -391,7 +398,8 @@ inline void FootprintOne(const ProjectedGaussian<T>& g,
   const double* givenLevel,
   std::uint32_t& cnt,
   Acc& sum,
-  std::uint64_t& evals)
+  std::uint64_t& evals,
+  const BoxHint* hint = nullptr)
 {
   const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
   cnt = 0;
@@ -432,7 +440,20 @@ inline void FootprintOne(const ProjectedGaussian<T>& g,
   const float outside = static_cast<float>(level - 1e-4);
   bool done = false;
   int bx0, bx1, by0, by1;
-  if (vector && EllipseBox<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level, bx0, bx1, by0, by1))
+  bool boxed = false;
+  if (vector && hint)
+  {
+    boxed = hint->Ok;
+    bx0 = hint->X0;
+    bx1 = hint->X1;
+    by0 = hint->Y0;
+    by1 = hint->Y1;
+  }
+  else if (vector)
+  {
+    boxed = EllipseBox<T>(g.U, g.V, g.ConicA, g.ConicB, g.ConicC, level, bx0, bx1, by0, by1);
+  }
+  if (boxed)
   {
     // Small ellipse (the common case at low resolution): its bounding box, clipped to the
     // tile rectangle and the image, is evaluated in packed lanes without per-row work.
@@ -589,39 +610,72 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
   const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
   const int vector = VectorLevel<float>(opt);
   const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
-  for (std::int64_t ss = 0; ss < nv; ++ss)
+  // Batches of 16: the boxes (EllipseBox, a chain of a division and two square roots per
+  // Gaussian) are computed first in a tight loop, so that the chains of the batch overlap
+  // instead of each waiting behind the previous Gaussian's pixel work.
+  constexpr std::int64_t batch = 16;
+  const std::int64_t batches = (nv + batch - 1) / batch;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) reduction(+ : total, evaluated)
+  for (std::int64_t bb = 0; bb < batches; ++bb)
   {
-    // Compact index order: records, levels and the outputs are all walked forwards.
-    const std::size_t s = static_cast<std::size_t>(ss);
-    const auto& rec = d.Records[s];
-    const auto& k = rec.Kernel;
+    const std::int64_t first = bb * batch;
+    const std::int64_t last = std::min(nv, first + batch);
+    BoxHint hints[batch];
+    if (vector)
+    {
+      for (std::int64_t ss = first; ss < last; ++ss)
+      {
+        const std::size_t s = static_cast<std::size_t>(ss);
+        const auto& k = d.Records[s].Kernel;
+        BoxHint& h = hints[ss - first];
+        h.Ok = EllipseBox<float>(
+          k.U, k.V, k.A, k.B, k.C, rasterMode ? d.CompactLevels[s] : -4.5, h.X0, h.X1, h.Y0, h.Y1);
+      }
+    }
+    // Every field FootprintOne reads is set below for each Gaussian (the others keep their
+    // defaults): built once per batch instead of once per Gaussian.
     ProjectedGaussian<float> g;
-    g.U = k.U;
-    g.V = k.V;
-    g.ConicA = k.A;
-    g.ConicB = k.B;
-    g.ConicC = k.C;
-    g.Opacity = k.O;
-    g.Radius = rec.Radius;
-    for (int c = 0; c < 4; ++c)
+    for (std::int64_t ss = first; ss < last; ++ss)
     {
-      g.TileRect[c] = rec.Rect[c];
+      // Compact index order: records, levels and the outputs are all walked forwards.
+      const std::size_t s = static_cast<std::size_t>(ss);
+      const auto& rec = d.Records[s];
+      const auto& k = rec.Kernel;
+      g.U = k.U;
+      g.V = k.V;
+      g.ConicA = k.A;
+      g.ConicB = k.B;
+      g.ConicC = k.C;
+      g.Opacity = k.O;
+      g.Radius = rec.Radius;
+      for (int c = 0; c < 4; ++c)
+      {
+        g.TileRect[c] = rec.Rect[c];
+      }
+      g.Status = ProjectionStatus::Visible;
+      std::uint32_t cnt;
+      Acc sum;
+      std::uint64_t evals;
+      FootprintOne<float, Acc>(g,
+        opt,
+        vector,
+        W,
+        H,
+        map,
+        rasterMode ? &d.CompactLevels[s] : nullptr,
+        cnt,
+        sum,
+        evals,
+        vector ? &hints[ss - first] : nullptr);
+      const std::uint32_t id = rec.Id;
+      stats.PixelCount[id] = cnt;
+      if (map)
+      {
+        stats.MapSum[id] = static_cast<double>(sum);
+      }
+      total += cnt;
+      evaluated += evals;
     }
-    g.Status = ProjectionStatus::Visible;
-    std::uint32_t cnt;
-    Acc sum;
-    std::uint64_t evals;
-    FootprintOne<float, Acc>(
-      g, opt, vector, W, H, map, rasterMode ? &d.CompactLevels[s] : nullptr, cnt, sum, evals);
-    const std::uint32_t id = rec.Id;
-    stats.PixelCount[id] = cnt;
-    if (map)
-    {
-      stats.MapSum[id] = static_cast<double>(sum);
-    }
-    total += cnt;
-    evaluated += evals;
   }
   stats.TotalPixels = total;
   stats.EvaluatedPixels = evaluated;

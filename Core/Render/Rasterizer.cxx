@@ -403,7 +403,8 @@ namespace
 void ProjectFloatLanes(const GaussianCloud& cloud,
   const RasterSettings& settings,
   int threads,
-  ViewProjection<float>& p)
+  ViewProjection<float>& p,
+  bool reset)
 {
   const std::size_t n = cloud.Count;
   const MultiViewCamera w = MakeLaneCamera(p);
@@ -462,6 +463,10 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
       for (std::size_t k = 0; k < count; ++k)
       {
         ProjectedGaussian<float>& g = p.Gaussians[first + k];
+        if (reset)
+        {
+          g = ProjectedGaussian<float>();
+        }
         const int status = out.Status[k];
         ++local[status];
         g.Status = static_cast<ProjectionStatus>(status);
@@ -541,15 +546,23 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
 } // namespace
 
 //------------------------------------------------------------------------------
+namespace
+{
+// ProjectGaussians into @p p. With @p reuse and enough capacity in p.Gaussians, its memory is
+// kept and every element is reset to ProjectedGaussian<T>() by the (parallel) projection loop
+// right before it is written, so the result is the same as in a fresh projection, field by
+// field; otherwise a fresh buffer is value-initialised as before.
 template <typename T>
-ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
+void ProjectInto(const GaussianCloud& cloud,
   const Camera& camera,
-  const RasterSettings& settings)
+  const RasterSettings& settings,
+  ViewProjection<T>& p,
+  bool reuse)
 {
   CheckCamera(camera);
   CheckCloud(cloud, settings.ComputeColors);
 
-  ViewProjection<T> p;
+  p.Counts = ProjectionCounts();
   p.Width = camera.Width;
   p.Height = camera.Height;
   p.TilesX = (camera.Width + raster::TileSize - 1) / raster::TileSize;
@@ -593,15 +606,24 @@ ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
   }
 
   const std::size_t n = cloud.Count;
-  p.Gaussians.reserve(n);
-  AdviseHugePages(p.Gaussians.data(), n * sizeof(ProjectedGaussian<T>));
-  p.Gaussians.assign(n, ProjectedGaussian<T>());
+  const bool reset = reuse && p.Gaussians.capacity() >= n;
+  if (reset)
+  {
+    p.Gaussians.resize(n); // no reallocation; every element is reset below
+  }
+  else
+  {
+    std::vector<ProjectedGaussian<T>>().swap(p.Gaussians);
+    p.Gaussians.reserve(n);
+    AdviseHugePages(p.Gaussians.data(), n * sizeof(ProjectedGaussian<T>));
+    p.Gaussians.assign(n, ProjectedGaussian<T>());
+  }
   if constexpr (std::is_same<T, float>::value)
   {
     if (settings.KernelIsa >= 0)
     {
-      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p);
-      return p;
+      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p, reset);
+      return;
     }
   }
   const int shDegree = p.ShDegree;
@@ -628,6 +650,10 @@ ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
     {
       const std::size_t i = static_cast<std::size_t>(ii);
       ProjectedGaussian<T>& g = p.Gaussians[i];
+      if (reset)
+      {
+        g = ProjectedGaussian<T>();
+      }
       const float* pos = &cloud.Positions[3 * i];
       const float* ls = &cloud.LogScales[3 * i];
       const float* rot = &cloud.Rotations[4 * i];
@@ -811,7 +837,28 @@ ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
   p.Counts.Degenerate = counts[3];
   p.Counts.NonFinite = counts[4];
   p.Counts.OffScreen = counts[5];
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+template <typename T>
+ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings)
+{
+  ViewProjection<T> p;
+  ProjectInto(cloud, camera, settings, p, false);
   return p;
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<T>& projection)
+{
+  ProjectInto(cloud, camera, settings, projection, true);
 }
 
 //------------------------------------------------------------------------------
@@ -885,6 +932,66 @@ std::uint64_t* RadixSortKeys(std::uint64_t* keys,
 } // namespace
 
 //------------------------------------------------------------------------------
+// BinScratch: BinGaussians' intermediate buffers, uninitialised on growth (default-init
+// allocator: every element is written before it is read) and kept between calls.
+namespace
+{
+template <typename U>
+struct DefaultInitAllocator : std::allocator<U>
+{
+  template <typename V>
+  struct rebind
+  {
+    using other = DefaultInitAllocator<V>;
+  };
+  DefaultInitAllocator() = default;
+  template <typename V>
+  DefaultInitAllocator(const DefaultInitAllocator<V>&) noexcept
+  {
+  }
+  template <typename V>
+  void construct(V* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) V;
+  }
+  template <typename V, typename... A>
+  void construct(V* p, A&&... a)
+  {
+    ::new (static_cast<void*>(p)) V(std::forward<A>(a)...);
+  }
+};
+template <typename U>
+using RawVector = std::vector<U, DefaultInitAllocator<U>>;
+
+/// Resizes @p v to @p n without initialising; a new allocation gets 1/8 of slack and huge
+/// pages (as ResizeKeep). Returns the data pointer.
+template <typename U>
+U* GrowRaw(RawVector<U>& v, std::size_t n)
+{
+  if (v.capacity() < n)
+  {
+    RawVector<U>().swap(v);
+    v.reserve(n + n / 8);
+    AdviseHugePages(v.data(), (n + n / 8) * sizeof(U));
+  }
+  v.resize(n);
+  return v.data();
+}
+} // namespace
+
+struct BinScratch::Buffers
+{
+  RawVector<std::uint32_t> VisIds, Order;
+  RawVector<std::array<int, 4>> VisRects, Rects;
+  RawVector<std::uint64_t> Keys;
+};
+
+BinScratch::BinScratch() = default;
+BinScratch::~BinScratch() = default;
+BinScratch::BinScratch(BinScratch&&) noexcept = default;
+BinScratch& BinScratch::operator=(BinScratch&&) noexcept = default;
+
+//------------------------------------------------------------------------------
 // Binning: (1) compact the visible Gaussians in index order; (2) sort them once, globally,
 // by (depth, index); (3) a stable counting scatter of that sequence into the tiles (per
 // chunk of the sorted sequence: tile counts from a 2D difference array of the tile
@@ -892,9 +999,16 @@ std::uint64_t* RadixSortKeys(std::uint64_t* keys,
 // subsequence of the global order: sorted by (depth, index) with no per-tile sort, exactly
 // the order of the reference's stable radix sort on (tile, depth) keys.
 template <typename T>
-TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
+void BinGaussians(const ViewProjection<T>& projection,
+  int threads,
+  TileBins& bins,
+  BinScratch& scratch)
 {
-  TileBins bins;
+  if (!scratch.Impl)
+  {
+    scratch.Impl.reset(new BinScratch::Buffers);
+  }
+  BinScratch::Buffers& buf = *scratch.Impl;
   bins.TilesX = projection.TilesX;
   bins.TilesY = projection.TilesY;
   const std::size_t tiles = bins.TileCount();
@@ -925,11 +1039,11 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
   const std::size_t visible = static_cast<std::size_t>(before[static_cast<std::size_t>(chunks)]);
   const std::int64_t nv = static_cast<std::int64_t>(visible);
   using Rect = std::array<int, 4>;
-  auto visIds = RawBuffer<std::uint32_t>(visible);
-  auto visRects = RawBuffer<Rect>(visible);
+  std::uint32_t* visIds = GrowRaw(buf.VisIds, visible);
+  Rect* visRects = GrowRaw(buf.VisRects, visible);
   constexpr bool isFloat = std::is_same<T, float>::value;
   // float: depth bits above the compact position (and room for the radix sort's buffer)
-  auto keys = RawBuffer<std::uint64_t>(isFloat ? 2 * visible : 0);
+  std::uint64_t* keys = GrowRaw(buf.Keys, isFloat ? 2 * visible : 0);
   std::vector<std::pair<T, std::uint32_t>> pairs(isFloat ? 0 : visible); // double
   std::uint32_t depthOr = 0, depthAnd = ~0u;
 #pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
@@ -965,8 +1079,8 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
 
   // (2) Global order by (depth, index). Float: stable radix sort on the depth bits that
   // differ between Gaussians (the keys arrive in index order, so ties stay in index order).
-  auto order = RawBuffer<std::uint32_t>(visible);
-  auto rects = RawBuffer<Rect>(visible);
+  std::uint32_t* order = GrowRaw(buf.Order, visible);
+  Rect* rects = GrowRaw(buf.Rects, visible);
   if constexpr (std::is_same<T, float>::value)
   {
     const std::uint32_t differ = depthOr & ~depthAnd;
@@ -975,8 +1089,7 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
     {
       ++hi;
     }
-    const std::uint64_t* sorted =
-      RadixSortKeys(keys.get(), keys.get() + visible, nv, 32, 32 + hi, chunks);
+    const std::uint64_t* sorted = RadixSortKeys(keys, keys + visible, nv, 32, 32 + hi, chunks);
 #pragma omp parallel for schedule(static) num_threads(chunks)
     for (std::int64_t k = 0; k < nv; ++k)
     {
@@ -996,9 +1109,6 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
       rects[static_cast<std::size_t>(k)] = visRects[pos];
     }
   }
-  visIds.reset();
-  visRects.reset();
-  keys.reset();
   std::vector<std::pair<T, std::uint32_t>>().swap(pairs);
 
   // (3) Per chunk of the sorted sequence, per tile counts: a 2D difference array of the
@@ -1056,9 +1166,7 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
     }
   }
   bins.Offsets[tiles] = running;
-  bins.Ids.reserve(running);
-  AdviseHugePages(bins.Ids.data(), running * sizeof(std::uint32_t));
-  bins.Ids.resize(running);
+  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
   std::uint32_t* ids = bins.Ids.data();
 #pragma omp parallel for schedule(static, 1) num_threads(chunks)
   for (int c = 0; c < chunks; ++c)
@@ -1079,6 +1187,15 @@ TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
       }
     }
   }
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
+{
+  TileBins bins;
+  BinScratch scratch;
+  BinGaussians(projection, threads, bins, scratch);
   return bins;
 }
 
@@ -1346,6 +1463,24 @@ RasterImage<T> Rasterize(const GaussianCloud& cloud,
 
 //------------------------------------------------------------------------------
 template <typename T>
+void Rasterize(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  RasterWorkspace<T>& workspace)
+{
+  ProjectGaussians<T>(cloud, camera, settings, workspace.Projection);
+  BinGaussians(workspace.Projection, settings.Threads, workspace.Bins, workspace.Scratch);
+  CompositeTiles(workspace.Projection,
+    workspace.Bins,
+    settings,
+    workspace.Image,
+    nullptr,
+    nullptr,
+    &workspace.Composite);
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
 std::vector<PixelAttribution> AttributePixels(const ViewProjection<T>& projection,
   const TileBins& bins,
   const RasterSettings& settings,
@@ -1556,6 +1691,24 @@ template ViewProjection<float> ProjectGaussians<float>(const GaussianCloud&,
 template ViewProjection<double> ProjectGaussians<double>(const GaussianCloud&,
   const Camera&,
   const RasterSettings&);
+template void ProjectGaussians<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  ViewProjection<float>&);
+template void ProjectGaussians<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  ViewProjection<double>&);
+template void BinGaussians<float>(const ViewProjection<float>&, int, TileBins&, BinScratch&);
+template void BinGaussians<double>(const ViewProjection<double>&, int, TileBins&, BinScratch&);
+template void Rasterize<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  RasterWorkspace<float>&);
+template void Rasterize<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  RasterWorkspace<double>&);
 template TileBins BinGaussians<float>(const ViewProjection<float>&, int);
 template TileBins BinGaussians<double>(const ViewProjection<double>&, int);
 template void PrepareCompositeData<float>(const ViewProjection<float>&, int, CompositeData<float>&);

@@ -307,8 +307,11 @@ struct vtkGaussianSplatMapper::vtkInternals
   double PackedScale = std::nan("");
   int SoftwareGL = -1; // -1 not yet known
 
-  // CPU rasteriser path: the last image and what it was rendered for.
+  // CPU rasteriser path: the last image and what it was rendered for, and the rasteriser's
+  // per-frame buffers (projection, tile lists, compositing data), kept between frames so
+  // that a frame neither allocates nor page-faults them again.
   vis4gs::RasterImage<float> Image;
+  vis4gs::RasterWorkspace<float> Work;
   std::vector<float> Texels;      // RGBA per pixel, row 0 at the bottom
   std::vector<float> DepthTexels; // expected view depth per pixel, row 0 at the bottom
   std::array<double, 24> RasterKey{};
@@ -758,8 +761,8 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     std::size_t drawn = 0;
     try
     {
-      vis4gs::ViewProjection<float> projection =
-        vis4gs::ProjectGaussians<float>(in.Cloud, camera, settings);
+      vis4gs::ProjectGaussians<float>(in.Cloud, camera, settings, in.Work.Projection);
+      vis4gs::ViewProjection<float>& projection = in.Work.Projection;
       drawn = projection.Counts.Visible;
       vis4gs::SplatDisplayOptions opt;
       if (!in.FillDisplayOptions(this, input, opt))
@@ -794,8 +797,9 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
           g.Opacity *= in.Display[4 * i + 3];
         }
       }
-      const vis4gs::TileBins bins = vis4gs::BinGaussians<float>(projection, threads);
-      vis4gs::CompositeTiles<float>(projection, bins, settings, in.Image);
+      vis4gs::BinGaussians<float>(projection, threads, in.Work.Bins, in.Work.Scratch);
+      vis4gs::CompositeTiles<float>(
+        projection, in.Work.Bins, settings, in.Image, nullptr, nullptr, &in.Work.Composite);
     }
     catch (const std::exception& e)
     {
