@@ -423,9 +423,10 @@ void Vis4GSMainWindow::BuildUi()
   d->SplatBudget->setSingleStep(50000);
   d->SplatBudget->setSpecialValueText("all");
   d->SplatBudget->setValue(200000);
-  d->SplatBudget->setToolTip("Level of detail of the scene view: at most this many splats are "
-                             "drawn (every k-th in depth order); selection and scores always "
-                             "use every Gaussian");
+  d->SplatBudget->setToolTip("Level of detail of the scene view on a hardware OpenGL: at most "
+                             "this many splats are drawn (every k-th in depth order); software "
+                             "OpenGL draws every Gaussian with the CPU rasteriser. Selection "
+                             "and scores always use every Gaussian");
   d->SceneMapper->SetMaximumNumberOfSplats(200000);
   form->addRow("Splats drawn (max)", d->SplatBudget);
   connect(d->SplatBudget,

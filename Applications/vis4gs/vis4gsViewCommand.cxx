@@ -43,8 +43,9 @@ void Define(Vis4GSArguments& args)
   args.AddOption("splat-budget",
     "N",
     "200000",
-    "Level of detail of the scene view: draw at most N splats (every k-th in depth order; "
-    "selection and scores use every Gaussian). 0 draws all.");
+    "Level of detail of the scene view on a hardware OpenGL: draw at most N splats (every "
+    "k-th in depth order; selection and scores use every Gaussian). 0 draws all. Software "
+    "OpenGL draws every Gaussian with the exact CPU rasteriser instead.");
   args.AddOption("resolution", "W,H", "1400,900", "Initial window size.");
 }
 
