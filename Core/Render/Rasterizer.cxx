@@ -1241,19 +1241,25 @@ struct CompositeContext
 namespace composite_baseline
 {
 #define VIS4GS_COMPOSITE_TARGET
+#define VIS4GS_COMPOSITE_PACKED false
 #include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_PACKED
 #undef VIS4GS_COMPOSITE_TARGET
 } // namespace composite_baseline
 namespace composite_avx2
 {
 #define VIS4GS_COMPOSITE_TARGET __attribute__((target("avx2")))
+#define VIS4GS_COMPOSITE_PACKED false
 #include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_PACKED
 #undef VIS4GS_COMPOSITE_TARGET
 } // namespace composite_avx2
 namespace composite_avx512
 {
 #define VIS4GS_COMPOSITE_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#define VIS4GS_COMPOSITE_PACKED true
 #include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_PACKED
 #undef VIS4GS_COMPOSITE_TARGET
 } // namespace composite_avx512
 #pragma GCC diagnostic pop
