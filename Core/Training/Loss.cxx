@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -135,57 +136,129 @@ double SsimImpl(const T* x, const T* y, int W, int H, int threads, T* gradSsim)
   }
   const std::size_t P = static_cast<std::size_t>(W) * H;
   const double N = 3.0 * static_cast<double>(P);
-  double channelSum[3] = { 0, 0, 0 };
-  const int nthreads = std::min(3, ThreadCount(threads));
-#pragma omp parallel for num_threads(nthreads) schedule(static, 1)
-  for (int ch = 0; ch < 3; ++ch)
+  const int nthreads = ThreadCount(threads);
+  // Planes per channel: inputs x, y, xx, yy, xy (later reused as the three gradient maps),
+  // their blurs mu_x, mu_y, s_xx, s_yy, s_xy, and the SSIM map. Kept between calls (the
+  // trainer calls this every iteration; fresh pages cost more than the arithmetic), one set
+  // per calling thread. The 15 (and 9) blurs are independent: they are the parallel work,
+  // so every pixel sees the operations of the serial code and each channel's sum keeps its
+  // pixel order (results do not depend on the thread count).
+  enum
   {
-    std::vector<T> px(P), py(P), pxx(P), pyy(P), pxy(P), tmp(P);
-    for (std::size_t p = 0; p < P; ++p)
+    X,
+    Y,
+    XX,
+    YY,
+    XY,
+    MX,
+    MY,
+    SXX,
+    SYY,
+    SXY,
+    SMAP,
+    PlanesPerChannel
+  };
+  thread_local std::vector<T> planes;
+  planes.resize(static_cast<std::size_t>(3 * PlanesPerChannel + nthreads) * P);
+  // OpenMP workers must use the caller's buffer: a thread_local named inside the parallel
+  // regions would be each worker's own (empty) vector.
+  T* const base = planes.data();
+  auto plane = [base, P](int ch, int k) { return base + (ch * PlanesPerChannel + k) * P; };
+  auto scratch = [base, P](int t) { return base + (3 * PlanesPerChannel + t) * P; };
+  auto blurAll = [&](const int(*pairs)[2], int count)
+  {
+#pragma omp parallel for num_threads(nthreads) schedule(dynamic, 1)
+    for (int task = 0; task < 3 * count; ++task)
     {
-      const T a = x[3 * p + ch], b = y[3 * p + ch];
-      px[p] = a;
-      py[p] = b;
+#ifdef _OPENMP
+      const int t = omp_get_thread_num();
+#else
+      const int t = 0;
+#endif
+      const int ch = task / count, k = task % count;
+      Blur(plane(ch, pairs[k][0]), plane(ch, pairs[k][1]), scratch(t), W, H);
     }
-    std::vector<T> mx(P), my(P), sxx(P), syy(P), sxy(P);
-    for (std::size_t p = 0; p < P; ++p)
+  };
+  // Per-pixel passes in blocks of pixels, channel by channel inside a block, so that the
+  // inner loops run over contiguous planes and vectorise.
+  constexpr std::size_t Block = 4096;
+  const std::int64_t blocks = static_cast<std::int64_t>((P + Block - 1) / Block);
+#pragma omp parallel for num_threads(nthreads) schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    const std::size_t p0 = static_cast<std::size_t>(b) * Block, p1 = std::min(P, p0 + Block);
+    for (int ch = 0; ch < 3; ++ch)
     {
-      pxx[p] = px[p] * px[p];
-      pyy[p] = py[p] * py[p];
-      pxy[p] = px[p] * py[p];
-    }
-    Blur(px.data(), mx.data(), tmp.data(), W, H);
-    Blur(py.data(), my.data(), tmp.data(), W, H);
-    Blur(pxx.data(), sxx.data(), tmp.data(), W, H);
-    Blur(pyy.data(), syy.data(), tmp.data(), W, H);
-    Blur(pxy.data(), sxy.data(), tmp.data(), W, H);
-    double sum = 0;
-    // Reuse pxx, pyy, pxy as the three gradient maps g_mu, g_xx, g_xy.
-    for (std::size_t p = 0; p < P; ++p)
-    {
-      const T mux = mx[p], muy = my[p];
-      const T vx = sxx[p] - mux * mux, vy = syy[p] - muy * muy, cxy = sxy[p] - mux * muy;
-      const T A1 = T(2) * mux * muy + T(C1), A2 = T(2) * cxy + T(C2);
-      const T B1 = mux * mux + muy * muy + T(C1), B2 = vx + vy + T(C2);
-      const T S = (A1 * A2) / (B1 * B2);
-      sum += static_cast<double>(S);
-      if (gradSsim)
+      T *px = plane(ch, X), *py = plane(ch, Y), *pxx = plane(ch, XX), *pyy = plane(ch, YY),
+        *pxy = plane(ch, XY);
+      for (std::size_t p = p0; p < p1; ++p)
       {
-        pxx[p] = S * (T(2) * muy / A1 - T(2) * mux / B1 - T(2) * muy / A2 + T(2) * mux / B2);
-        pyy[p] = -S / B2;
-        pxy[p] = T(2) * S / A2;
+        const T a = x[3 * p + ch], c = y[3 * p + ch];
+        px[p] = a;
+        py[p] = c;
+        pxx[p] = a * a;
+        pyy[p] = c * c;
+        pxy[p] = a * c;
       }
     }
-    channelSum[ch] = sum;
-    if (gradSsim)
+  }
+  static const int forward[5][2] = { { X, MX }, { Y, MY }, { XX, SXX }, { YY, SYY }, { XY, SXY } };
+  blurAll(forward, 5);
+#pragma omp parallel for num_threads(nthreads) schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    const std::size_t p0 = static_cast<std::size_t>(b) * Block, p1 = std::min(P, p0 + Block);
+    for (int ch = 0; ch < 3; ++ch)
     {
-      Blur(pxx.data(), mx.data(), tmp.data(), W, H);
-      Blur(pyy.data(), my.data(), tmp.data(), W, H);
-      Blur(pxy.data(), sxx.data(), tmp.data(), W, H);
-      const T invN = static_cast<T>(1.0 / N);
-      for (std::size_t p = 0; p < P; ++p)
+      const T *mx = plane(ch, MX), *my = plane(ch, MY), *sxx = plane(ch, SXX),
+              *syy = plane(ch, SYY), *sxy = plane(ch, SXY);
+      T *smap = plane(ch, SMAP), *gmu = plane(ch, XX), *gxx = plane(ch, YY), *gxy = plane(ch, XY);
+      for (std::size_t p = p0; p < p1; ++p)
       {
-        gradSsim[3 * p + ch] = (mx[p] + T(2) * px[p] * my[p] + py[p] * sxx[p]) * invN;
+        const T mux = mx[p], muy = my[p];
+        const T vx = sxx[p] - mux * mux, vy = syy[p] - muy * muy, cxy = sxy[p] - mux * muy;
+        const T A1 = T(2) * mux * muy + T(C1), A2 = T(2) * cxy + T(C2);
+        const T B1 = mux * mux + muy * muy + T(C1), B2 = vx + vy + T(C2);
+        const T S = (A1 * A2) / (B1 * B2);
+        smap[p] = S;
+        if (gradSsim)
+        {
+          // The three gradient maps g_mu, g_xx, g_xy replace xx, yy, xy.
+          gmu[p] = S * (T(2) * muy / A1 - T(2) * mux / B1 - T(2) * muy / A2 + T(2) * mux / B2);
+          gxx[p] = -S / B2;
+          gxy[p] = T(2) * S / A2;
+        }
+      }
+    }
+  }
+  double channelSum[3] = { 0, 0, 0 };
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    const T* smap = plane(ch, SMAP);
+    double sum = 0;
+    for (std::size_t p = 0; p < P; ++p)
+    {
+      sum += static_cast<double>(smap[p]);
+    }
+    channelSum[ch] = sum;
+  }
+  if (gradSsim)
+  {
+    static const int backward[3][2] = { { XX, MX }, { YY, MY }, { XY, SXX } };
+    blurAll(backward, 3);
+    const T invN = static_cast<T>(1.0 / N);
+#pragma omp parallel for num_threads(nthreads) schedule(static)
+    for (std::int64_t b = 0; b < blocks; ++b)
+    {
+      const std::size_t p0 = static_cast<std::size_t>(b) * Block, p1 = std::min(P, p0 + Block);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        const T *bmu = plane(ch, MX), *bxx = plane(ch, MY), *bxy = plane(ch, SXX),
+                *px = plane(ch, X), *py = plane(ch, Y);
+        for (std::size_t p = p0; p < p1; ++p)
+        {
+          gradSsim[3 * p + ch] = (bmu[p] + T(2) * px[p] * bxx[p] + py[p] * bxy[p]) * invN;
+        }
       }
     }
   }

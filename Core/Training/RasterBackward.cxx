@@ -504,18 +504,24 @@ void CompositeBackward(const ViewProjection<T>& projection,
       }
     }
   }
-  // Fixed-order reduction over the partitions.
+  // Fixed-order reduction: each Gaussian adds the partitions that touched it in partition
+  // order, so the sums do not depend on how the Gaussians are split between threads.
   T* out = gradients.Values.data();
-  for (int part = 0; part < P; ++part)
+  const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t gi = 0; gi < count; ++gi)
   {
-    const T* accBase = ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S;
-    for (std::uint32_t g : ws.Touched[part])
+    const std::size_t g = static_cast<std::size_t>(gi);
+    T* o = out + g * S;
+    for (int part = 0; part < P; ++part)
     {
-      T* o = out + static_cast<std::size_t>(g) * S;
-      const T* r = accBase + static_cast<std::size_t>(g) * S;
-      for (int k = 0; k < S; ++k)
+      if (ws.Marks[static_cast<std::size_t>(part) * n + g])
       {
-        o[k] += r[k];
+        const T* r = ws.Accumulators.data() + (static_cast<std::size_t>(part) * n + g) * S;
+        for (int k = 0; k < S; ++k)
+        {
+          o[k] += r[k];
+        }
       }
     }
   }
