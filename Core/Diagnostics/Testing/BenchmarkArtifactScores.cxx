@@ -8,11 +8,12 @@
 //     every tile rectangle) measured on K views in the same run and extrapolated to V.
 //
 //   BenchmarkArtifactScores accuracy --output=FILE.md --plot=FILE.png [--colmap=DIR]
-//       [--scene=PLY --cameras=JSON --images=DIR] [--gaussians=N] [--views=V]
+//       [--scene=PLY --cameras=JSON --images=DIR] [--log=LOG.h5] [--gaussians=N] [--views=V]
 //     Sweeps every mode on (a) a synthetic scene whose images are rendered from a perturbed
 //     copy of it and (b) a real scene (a COLMAP dataset with Gaussians initialised from its
-//     points3D as the reference trainer does, or any PLY + cameras.json + images), and
-//     writes the accuracy-vs-runtime report (Markdown) and its plot (PNG).
+//     points3D as the reference trainer does, or any PLY + cameras.json + images) and (c) a
+//     training log (its last snapshot, training views and images; e.g. the embedded demo),
+//     and writes the accuracy-vs-runtime report (Markdown) and its plot (PNG).
 #include "ArtifactScores.h"
 #include "BenchmarkPlot.h"
 #include "BenchmarkSceneUtils.h"
@@ -21,6 +22,7 @@
 #include "FastCoverage.h"
 #include "GaussianIO.h"
 #include "ImageIO.h"
+#include "TrainingLogReader.h"
 
 #include <omp.h>
 #include <sys/resource.h>
@@ -32,6 +34,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -674,6 +677,68 @@ int Accuracy(const std::map<std::string, std::string>& args)
       provider));
   }
 
+  // (c) A training log: its last snapshot, its training views and their images (embedded in
+  // the log or files next to it), as `vis4gs analyze LOG.h5` diagnoses it.
+  if (args.count("log"))
+  {
+    const std::string path = args.at("log");
+    const TrainingLogReader log(path);
+    if (log.GetSnapshotIterations().empty() || !log.HasCameras())
+    {
+      throw std::runtime_error(path + ": the log needs a snapshot and /cameras");
+    }
+    SnapshotReadOptions options;
+    options.ShDegree = -1;
+    int iteration = 0;
+    const GaussianCloud cloud =
+      log.ReadNearestSnapshot(log.GetSnapshotIterations().back(), options, &iteration);
+    std::vector<Camera> cameras;
+    std::vector<Image> images;
+    for (const Camera& c : log.ReadCameras())
+    {
+      if (c.Split != CameraSplit::Train)
+      {
+        continue;
+      }
+      const std::string prefix = "/images/";
+      if (c.ImagePath.rfind(prefix, 0) == 0)
+      {
+        Image image;
+        const std::vector<unsigned char> pixels =
+          log.ReadImage(c.ImagePath.substr(prefix.size()), image.Width, image.Height);
+        image.Pixels.resize(pixels.size());
+        for (std::size_t i = 0; i < pixels.size(); ++i)
+        {
+          image.Pixels[i] = static_cast<float>(pixels[i]) / 255.0f;
+        }
+        images.push_back(std::move(image));
+      }
+      else
+      {
+        Camera located = c;
+        if (!c.ImagePath.empty() && std::filesystem::path(c.ImagePath).is_relative())
+        {
+          located.ImagePath = (std::filesystem::path(path).parent_path() / c.ImagePath).string();
+        }
+        images.push_back(LoadTrainingImage(located));
+      }
+      cameras.push_back(c);
+    }
+    auto provider = [&images](std::size_t index, const Camera&, Image& image)
+    {
+      image = images[index];
+      return true;
+    };
+    results.push_back(Sweep("(c) " + path,
+      "A training log of the built-in trainer: the Gaussians of its last snapshot (iteration " +
+        std::to_string(iteration) + ", " + std::to_string(cloud.Count) + " Gaussians, SH degree " +
+        std::to_string(cloud.ShDegree) + "), its " + std::to_string(cameras.size()) +
+        " training views and their images, as `vis4gs analyze` diagnoses it.",
+      cloud,
+      cameras,
+      provider));
+  }
+
   // Plot: run time (relative to exact) vs median relative error of the blur score.
   std::vector<bench::PlotPoint> points;
   for (std::size_t s = 0; s < results.size(); ++s)
@@ -698,8 +763,9 @@ int Accuracy(const std::map<std::string, std::string>& args)
         "this section. -->\n";
   md << "## Measured accuracy against run time\n\n";
   md << "Machine: " << omp_get_max_threads()
-     << " OpenMP threads (the shared 2-core development machine; other builds ran at the same "
-        "time, so times carry noise of tens of percent). Total sweep time "
+     << " OpenMP threads on the 2-core development machine, load average " << LoadAverage()
+     << " at the end of the sweep (small scenes: times of tens of milliseconds carry noise of "
+        "tens of percent). Total sweep time "
      << Fmt(Since(totalStart), 1) << " s.\n\n";
   md << "Errors are against mode 1 (exact), per Gaussian: relative error |a - e| / |e| over the "
         "Gaussians whose exact score is not 0 (median and maximum); *zero mismatches* counts "
@@ -715,7 +781,7 @@ int Accuracy(const std::map<std::string, std::string>& args)
   md << "![run time vs median relative blur error](accuracy-vs-runtime.png)\n\n"
      << "The plot: x = run time relative to exact mode (log), y = median relative error of the "
         "blur score (log; errors below 1e-9, exact results included, are drawn at 1e-9); blue = "
-        "scene (a), orange = scene (b); "
+        "scene (a), orange = scene (b), green = scene (c); "
         "the numbers are the mode numbers of the tables.\n";
   md << "<!-- END MEASURED -->\n";
   // Replace the measured section of an existing report (the hand-written text around it is
