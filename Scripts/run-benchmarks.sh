@@ -5,6 +5,9 @@
 #   bash Scripts/run-benchmarks.sh [build dir, default build] [log, default benchmarks.log]
 # Large temporary files go to ${VIS4GS_BENCH_DIR:-/tmp}; the whole run takes tens of minutes.
 set -uo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+# Spinning OpenMP workers only steal time from each other on 2 cores.
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 build="${1:-build}"
 log="${2:-benchmarks.log}"
 dir="${VIS4GS_BENCH_DIR:-/tmp}"
@@ -21,13 +24,26 @@ run() {
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)," \
   "$(free -g | awk '/Mem/ {print $2}') GiB" | tee -a "$log"
 run "$bin/BenchmarkGaussianPly" --gaussians=1000000,5000000 "--dir=$dir" --repeat=3
-run "$bin/BenchmarkRasterizer"
+run "$bin/BenchmarkRasterizer" 1000000
 run "$bin/BenchmarkRasterizer" --peak
 run "$bin/BenchmarkArtifactScores" perf
 run "$bin/BenchTrainingLog" "--dir=$dir"
+run "$bin/BenchTrainingLog" "--dir=$dir" --gaussians=0 --events=0 --history-snapshots=60 \
+  --history-gaussians=500000
 run "$bin/BenchmarkGenealogy"
 run "$bin/BenchmarkGenealogyTree"
-run "$bin/BenchmarkTrainer" --gaussians=50000 --size=256 --threads=2
-run "$bin/BenchmarkSplats"
-run "$bin/BenchmarkSelection"
-run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper"
+run "$bin/BenchmarkTrainer" --gaussians=50000 --size=256 --iterations=60 --threads=2
+run "$bin/BenchmarkSplats" 1000000 2 5
+run "$bin/BenchmarkSelection" 1000000 2 3
+# Scene view on software OpenGL: interactive frames at half resolution, then auto-adjusted.
+run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper" 1000000 1280 720 5 0 2 1 0 2 2
+run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper" 1000000 1280 720 5 0 2 1 0 2 0
+# Application start-up on SYNTHETIC logs of 1.06M and 4.89M final Gaussians.
+for n in 1060000 4890000; do
+  [ -f "$dir/vis4gs-bench-$n.h5" ] || "$build/bin/vis4gsMakeTestLog" "$dir/vis4gs-bench-$n.h5" "$n" 4
+  run xvfb-run -a "$build/bin/vis4gs" view "$dir/vis4gs-bench-$n.h5" --benchmark --resolution=1400,900
+done
+# The demo's training run (Data/Demo/README.md), into a temporary file.
+run "$build/bin/vis4gs" train "$root/Data/Scenes/demo.json" "--output=$dir/vis4gs-bench-demo.h5" \
+  --iterations=2000 --schedule-scale --snapshot-interval=200 --snapshot-sh-degree=0 \
+  --densify-grad-threshold=0.003 --embed-images --seed=0 --threads=2
