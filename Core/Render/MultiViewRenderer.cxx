@@ -314,88 +314,12 @@ void MultiViewRenderer::Composite(RasterImage<float>& image)
     throw std::logic_error("MultiViewRenderer::Composite: no view was projected");
   }
   const int chunks = d.Threads;
-  const std::size_t gx = static_cast<std::size_t>(d.Camera.Gx);
-  const std::size_t gy = static_cast<std::size_t>(d.Camera.Gy);
-  const std::size_t tiles = gx * gy;
   const std::int64_t nv = static_cast<std::int64_t>(d.Sorted.size());
   // Binning, as BinGaussians() step 3 on the sorted sequence; the lists hold sorted positions.
   TileBins& bins = d.Bins;
   bins.TilesX = d.Camera.Gx;
   bins.TilesY = d.Camera.Gy;
-  const std::size_t dx = gx + 1;
-  const std::size_t diffSize = dx * (gy + 1);
-  d.Diff.assign(static_cast<std::size_t>(chunks) * diffSize, 0);
-  using Rect = std::array<int, 4>;
-  const Rect* rects = d.Rects.data();
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    std::int64_t* df = &d.Diff[static_cast<std::size_t>(c) * diffSize];
-    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
-    for (std::int64_t k = b; k < e; ++k)
-    {
-      const Rect& r = rects[static_cast<std::size_t>(k)];
-      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
-      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
-      ++df[y0 * dx + x0];
-      --df[y0 * dx + x1];
-      --df[y1 * dx + x0];
-      ++df[y1 * dx + x1];
-    }
-    for (std::size_t y = 0; y < gy; ++y)
-    {
-      std::int64_t* row = df + y * dx;
-      for (std::size_t x = 1; x < gx; ++x)
-      {
-        row[x] += row[x - 1];
-      }
-      if (y > 0)
-      {
-        const std::int64_t* up = row - dx;
-        for (std::size_t x = 0; x < gx; ++x)
-        {
-          row[x] += up[x];
-        }
-      }
-    }
-  }
-  bins.Offsets.assign(tiles + 1, 0);
-  std::uint64_t running = 0;
-  for (std::size_t ty = 0; ty < gy; ++ty)
-  {
-    for (std::size_t tx = 0; tx < gx; ++tx)
-    {
-      bins.Offsets[ty * gx + tx] = running;
-      for (int c = 0; c < chunks; ++c)
-      {
-        std::int64_t& h = d.Diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
-        const std::uint64_t k = static_cast<std::uint64_t>(h);
-        h = static_cast<std::int64_t>(running);
-        running += k;
-      }
-    }
-  }
-  bins.Offsets[tiles] = running;
-  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
-  std::uint32_t* ids = bins.Ids.data();
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    std::int64_t* cursor = &d.Diff[static_cast<std::size_t>(c) * diffSize];
-    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
-    for (std::int64_t k = b; k < e; ++k)
-    {
-      const Rect& r = rects[static_cast<std::size_t>(k)];
-      for (int ty = r[1]; ty < r[3]; ++ty)
-      {
-        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
-        for (int tx = r[0]; tx < r[2]; ++tx)
-        {
-          ids[row[tx]++] = static_cast<std::uint32_t>(k);
-        }
-      }
-    }
-  }
+  BinSortedRects(d.Rects.data(), nullptr, nv, d.Camera.Gx, d.Camera.Gy, chunks, d.Diff, bins);
 
   // Compositing: the tile loop of CompositeTiles() on the sorted data.
   raster::internal::CompositeInput in;

@@ -87,6 +87,21 @@ const std::uint64_t* SortKeys(std::uint64_t* keys,
   int hi,
   int chunks);
 
+/// BinGaussians()'s step 3: the per-tile lists of @p count tile rectangles given in depth
+/// order (tile-major; depth order inside a tile). Each of @p chunks consecutive parts of the
+/// sequence counts its rectangles per tile with a 2D difference array ((gx+1) x (gy+1),
+/// kept in @p diff between calls) and scatters into its own range of every tile, so the
+/// lists do not depend on the number of chunks. The entries are @p ids[k], or the sorted
+/// positions k when @p ids is null.
+void BinSortedRects(const std::array<int, 4>* rects,
+  const std::uint32_t* ids,
+  std::int64_t count,
+  int gx,
+  int gy,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins);
+
 /// CompositeTiles()'s tile loop (CompositeLanes.inc, with depth) on per-Gaussian data indexed
 /// by the ids of @p Bins.
 struct CompositeInput

@@ -984,6 +984,7 @@ struct BinScratch::Buffers
   RawVector<std::uint32_t> VisIds, Order;
   RawVector<std::array<int, 4>> VisRects, Rects;
   RawVector<std::uint64_t> Keys;
+  std::vector<std::int64_t> Diff;
 };
 
 BinScratch::BinScratch() = default;
@@ -1011,7 +1012,6 @@ void BinGaussians(const ViewProjection<T>& projection,
   BinScratch::Buffers& buf = *scratch.Impl;
   bins.TilesX = projection.TilesX;
   bins.TilesY = projection.TilesY;
-  const std::size_t tiles = bins.TileCount();
   const auto& gs = projection.Gaussians;
   const std::int64_t n = static_cast<std::int64_t>(gs.size());
   const int chunks = ThreadCount(threads);
@@ -1111,82 +1111,9 @@ void BinGaussians(const ViewProjection<T>& projection,
   }
   std::vector<std::pair<T, std::uint32_t>>().swap(pairs);
 
-  // (3) Per chunk of the sorted sequence, per tile counts: a 2D difference array of the
-  // rectangles ((gx+1) x (gy+1)), integrated by rows then columns.
-  const std::size_t dx = gx + 1;
-  const std::size_t diffSize = dx * (gy + 1);
-  std::vector<std::int64_t> diff(static_cast<std::size_t>(chunks) * diffSize, 0);
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    std::int64_t* d = &diff[static_cast<std::size_t>(c) * diffSize];
-    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
-    for (std::int64_t k = b; k < e; ++k)
-    {
-      const Rect& r = rects[static_cast<std::size_t>(k)];
-      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
-      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
-      ++d[y0 * dx + x0];
-      --d[y0 * dx + x1];
-      --d[y1 * dx + x0];
-      ++d[y1 * dx + x1];
-    }
-    for (std::size_t y = 0; y < gy; ++y)
-    {
-      std::int64_t* row = d + y * dx;
-      for (std::size_t x = 1; x < gx; ++x)
-      {
-        row[x] += row[x - 1];
-      }
-      if (y > 0)
-      {
-        const std::int64_t* up = row - dx;
-        for (std::size_t x = 0; x < gx; ++x)
-        {
-          row[x] += up[x];
-        }
-      }
-    }
-  }
-  // Offsets: tile-major, chunk-minor; the counts become each chunk's write cursors.
-  bins.Offsets.assign(tiles + 1, 0);
-  std::uint64_t running = 0;
-  for (std::size_t ty = 0; ty < gy; ++ty)
-  {
-    for (std::size_t tx = 0; tx < gx; ++tx)
-    {
-      bins.Offsets[ty * gx + tx] = running;
-      for (int c = 0; c < chunks; ++c)
-      {
-        std::int64_t& h = diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
-        const std::uint64_t k = static_cast<std::uint64_t>(h);
-        h = static_cast<std::int64_t>(running);
-        running += k;
-      }
-    }
-  }
-  bins.Offsets[tiles] = running;
-  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
-  std::uint32_t* ids = bins.Ids.data();
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-  for (int c = 0; c < chunks; ++c)
-  {
-    std::int64_t* cursor = &diff[static_cast<std::size_t>(c) * diffSize];
-    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
-    for (std::int64_t k = b; k < e; ++k)
-    {
-      const Rect& r = rects[static_cast<std::size_t>(k)];
-      const std::uint32_t id = order[static_cast<std::size_t>(k)];
-      for (int ty = r[1]; ty < r[3]; ++ty)
-      {
-        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
-        for (int tx = r[0]; tx < r[2]; ++tx)
-        {
-          ids[row[tx]++] = id;
-        }
-      }
-    }
-  }
+  // (3) The per-tile lists.
+  raster::internal::BinSortedRects(
+    rects, order, nv, static_cast<int>(gx), static_cast<int>(gy), chunks, buf.Diff, bins);
 }
 
 //------------------------------------------------------------------------------
@@ -1604,6 +1531,98 @@ namespace raster
 {
 namespace internal
 {
+void BinSortedRects(const std::array<int, 4>* rects,
+  const std::uint32_t* ids,
+  std::int64_t count,
+  int gxi,
+  int gyi,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins)
+{
+  using Rect = std::array<int, 4>;
+  const std::size_t gx = static_cast<std::size_t>(gxi), gy = static_cast<std::size_t>(gyi);
+  const std::size_t tiles = gx * gy;
+  const std::int64_t nv = count;
+  // Per chunk of the sorted sequence, per tile counts: a 2D difference array of the
+  // rectangles ((gx+1) x (gy+1)), integrated by rows then columns.
+  const std::size_t dx = gx + 1;
+  const std::size_t diffSize = dx * (gy + 1);
+  diff.assign(static_cast<std::size_t>(chunks) * diffSize, 0);
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* d = &diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
+      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
+      ++d[y0 * dx + x0];
+      --d[y0 * dx + x1];
+      --d[y1 * dx + x0];
+      ++d[y1 * dx + x1];
+    }
+    for (std::size_t y = 0; y < gy; ++y)
+    {
+      std::int64_t* row = d + y * dx;
+      for (std::size_t x = 1; x < gx; ++x)
+      {
+        row[x] += row[x - 1];
+      }
+      if (y > 0)
+      {
+        const std::int64_t* up = row - dx;
+        for (std::size_t x = 0; x < gx; ++x)
+        {
+          row[x] += up[x];
+        }
+      }
+    }
+  }
+  // Offsets: tile-major, chunk-minor; the counts become each chunk's write cursors.
+  bins.Offsets.assign(tiles + 1, 0);
+  std::uint64_t running = 0;
+  for (std::size_t ty = 0; ty < gy; ++ty)
+  {
+    for (std::size_t tx = 0; tx < gx; ++tx)
+    {
+      bins.Offsets[ty * gx + tx] = running;
+      for (int c = 0; c < chunks; ++c)
+      {
+        std::int64_t& h = diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
+        const std::uint64_t k = static_cast<std::uint64_t>(h);
+        h = static_cast<std::int64_t>(running);
+        running += k;
+      }
+    }
+  }
+  bins.Offsets[tiles] = running;
+  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
+  std::uint32_t* out = bins.Ids.data();
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* cursor = &diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::uint32_t id =
+        ids ? ids[static_cast<std::size_t>(k)] : static_cast<std::uint32_t>(k);
+      for (int ty = r[1]; ty < r[3]; ++ty)
+      {
+        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
+        for (int tx = r[0]; tx < r[2]; ++tx)
+        {
+          out[row[tx]++] = id;
+        }
+      }
+    }
+  }
+}
+
 int Threads(int requested)
 {
   return ThreadCount(requested);
