@@ -30,6 +30,18 @@ namespace vis4gs
 namespace
 {
 
+/// The projections' per-status tallies (indexed Visible, InvalidParameters, NearPlane,
+/// Degenerate, NonFinite, OffScreen) into ProjectionCounts.
+void StoreCounts(const std::size_t (&counts)[6], ProjectionCounts& out)
+{
+  out.Visible = counts[0];
+  out.InvalidParameters = counts[1];
+  out.NearPlane = counts[2];
+  out.Degenerate = counts[3];
+  out.NonFinite = counts[4];
+  out.OffScreen = counts[5];
+}
+
 //------------------------------------------------------------------------------
 int ThreadCount(int requested)
 {
@@ -536,12 +548,7 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
       counts[k] += local[k];
     }
   }
-  p.Counts.Visible = counts[0];
-  p.Counts.InvalidParameters = counts[1];
-  p.Counts.NearPlane = counts[2];
-  p.Counts.Degenerate = counts[3];
-  p.Counts.NonFinite = counts[4];
-  p.Counts.OffScreen = counts[5];
+  StoreCounts(counts, p.Counts);
 }
 } // namespace
 
@@ -831,12 +838,7 @@ void ProjectInto(const GaussianCloud& cloud,
       counts[k] += local[k];
     }
   }
-  p.Counts.Visible = counts[0];
-  p.Counts.InvalidParameters = counts[1];
-  p.Counts.NearPlane = counts[2];
-  p.Counts.Degenerate = counts[3];
-  p.Counts.NonFinite = counts[4];
-  p.Counts.OffScreen = counts[5];
+  StoreCounts(counts, p.Counts);
 }
 } // namespace
 

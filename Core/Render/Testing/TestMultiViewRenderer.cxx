@@ -8,6 +8,7 @@
 #include "Footprint.h"
 #include "GaussianIO.h"
 #include "MultiViewRenderer.h"
+#include "RasterCompare.h"
 #include "Rasterizer.h"
 #include "Vis4GSTestData.h"
 
@@ -24,20 +25,6 @@ using namespace vis4gs::rastertest;
 
 namespace
 {
-
-template <typename U>
-bool SameBits(const std::vector<U>& a, const std::vector<U>& b)
-{
-  return a.size() == b.size() &&
-    (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(U)) == 0);
-}
-
-bool SameCounts(const ProjectionCounts& a, const ProjectionCounts& b)
-{
-  return a.Visible == b.Visible && a.InvalidParameters == b.InvalidParameters &&
-    a.NearPlane == b.NearPlane && a.Degenerate == b.Degenerate && a.NonFinite == b.NonFinite &&
-    a.OffScreen == b.OffScreen;
-}
 
 std::vector<float> OddMap(int w, int h, unsigned seed)
 {
@@ -261,47 +248,6 @@ TEST(MultiViewRenderer, BitIdenticalOnRealScene)
 // scalar per-Gaussian code (KernelIsa = -1) is the reference: every field of every Gaussian
 // (also of culled ones, whose fields the scalar code fills up to its cull) must be
 // bit-identical, on every instruction set and thread count, with and without colours.
-namespace
-{
-template <typename U>
-bool SameScalar(U a, U b)
-{
-  return std::memcmp(&a, &b, sizeof(U)) == 0;
-}
-
-void ExpectSameProjection(const ViewProjection<float>& ref, const ViewProjection<float>& got)
-{
-  ASSERT_EQ(ref.Gaussians.size(), got.Gaussians.size());
-  EXPECT_TRUE(SameCounts(ref.Counts, got.Counts));
-  std::size_t bad = 0;
-  for (std::size_t i = 0; i < ref.Gaussians.size() && bad < 5; ++i)
-  {
-    const auto& a = ref.Gaussians[i];
-    const auto& b = got.Gaussians[i];
-    bool same = a.Status == b.Status && a.ClampedChannels == b.ClampedChannels &&
-      a.Radius == b.Radius && SameScalar(a.U, b.U) && SameScalar(a.V, b.V) &&
-      SameScalar(a.ConicA, b.ConicA) && SameScalar(a.ConicB, b.ConicB) &&
-      SameScalar(a.ConicC, b.ConicC) && SameScalar(a.Opacity, b.Opacity) &&
-      SameScalar(a.Depth, b.Depth);
-    for (int k = 0; k < 3; ++k)
-    {
-      same = same && SameScalar(a.Color[k], b.Color[k]) && SameScalar(a.Cov2D[k], b.Cov2D[k]) &&
-        SameScalar(a.ViewPosition[k], b.ViewPosition[k]);
-    }
-    for (int k = 0; k < 4; ++k)
-    {
-      same = same && a.TileRect[k] == b.TileRect[k];
-    }
-    if (!same)
-    {
-      ++bad;
-      ADD_FAILURE() << "Gaussian " << i << " status " << int(a.Status) << " vs " << int(b.Status)
-                    << " u " << a.U << " vs " << b.U << " radius " << a.Radius << " vs "
-                    << b.Radius;
-    }
-  }
-}
-} // namespace
 
 TEST(MultiViewRenderer, ProjectGaussiansLanesEqualScalarEveryField)
 {
