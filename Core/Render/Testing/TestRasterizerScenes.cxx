@@ -68,11 +68,56 @@ const SceneCase kScenes[] = {
   { "gs_ply_sh0_variant_donut_v3dg/fused.ply", 45624, 0 },
 };
 
+/// @p p with every projected value converted to @p To (rounded once when narrowing).
+template <typename To, typename From>
+ViewProjection<To> ConvertProjection(const ViewProjection<From>& p)
+{
+  ViewProjection<To> q;
+  q.Width = p.Width;
+  q.Height = p.Height;
+  q.TilesX = p.TilesX;
+  q.TilesY = p.TilesY;
+  q.ShDegree = p.ShDegree;
+  q.Fx = static_cast<To>(p.Fx);
+  q.Fy = static_cast<To>(p.Fy);
+  q.TanFovX = static_cast<To>(p.TanFovX);
+  q.TanFovY = static_cast<To>(p.TanFovY);
+  std::copy(p.ViewMatrix.begin(), p.ViewMatrix.end(), q.ViewMatrix.begin());
+  std::copy(p.FullProjection.begin(), p.FullProjection.end(), q.FullProjection.begin());
+  std::copy(p.CameraCenter.begin(), p.CameraCenter.end(), q.CameraCenter.begin());
+  q.Counts = p.Counts;
+  q.Gaussians.resize(p.Gaussians.size());
+  for (std::size_t i = 0; i < p.Gaussians.size(); ++i)
+  {
+    const auto& a = p.Gaussians[i];
+    auto& b = q.Gaussians[i];
+    b.U = static_cast<To>(a.U);
+    b.V = static_cast<To>(a.V);
+    b.ConicA = static_cast<To>(a.ConicA);
+    b.ConicB = static_cast<To>(a.ConicB);
+    b.ConicC = static_cast<To>(a.ConicC);
+    b.Opacity = static_cast<To>(a.Opacity);
+    b.Depth = static_cast<To>(a.Depth);
+    for (int k = 0; k < 3; ++k)
+    {
+      b.Color[k] = static_cast<To>(a.Color[k]);
+      b.Cov2D[k] = static_cast<To>(a.Cov2D[k]);
+      b.ViewPosition[k] = static_cast<To>(a.ViewPosition[k]);
+    }
+    b.Radius = a.Radius;
+    std::copy(a.TileRect, a.TileRect + 4, b.TileRect);
+    b.Status = a.Status;
+    b.ClampedChannels = a.ClampedChannels;
+  }
+  return q;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
 TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
 {
+  double worstRoundedInputs = 0;
   for (const auto& sc : kScenes)
   {
     const GaussianCloud cloud = ReadGaussianPly(vis4gs::testing::SharedDataPath(sc.Path));
@@ -93,36 +138,37 @@ TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
       // (alpha vs 1/255, T vs 1e-4, tile-rectangle edge), which changes one Gaussian's
       // contribution by a whole alpha*T; such pixels must be rare.
       std::size_t over = 0, flips = 0;
-      double worstSmooth = 0;
       for (std::size_t i = 0; i < d.Transmittance.size(); ++i)
       {
-        const bool flip = f.Contributors[i] != d.Contributors[i];
-        flips += flip;
+        flips += f.Contributors[i] != d.Contributors[i];
         for (int c = 0; c < 3; ++c)
         {
-          const double diff = std::abs(f.Color[3 * i + c] - d.Color[3 * i + c]);
-          over += diff > 1e-5;
-          if (!flip)
-          {
-            worstSmooth = std::max(worstSmooth, diff);
-          }
+          over += std::abs(f.Color[3 * i + c] - d.Color[3 * i + c]) > 1e-5;
         }
       }
       const std::size_t values = d.Color.size();
-      std::printf("%s: %zu of %zu channel values differ by > 1e-5 (float vs double), %zu pixels "
-                  "with a different contributor count; max diff elsewhere %.3g\n",
-        sc.Path,
-        over,
-        values,
-        flips,
-        worstSmooth);
       EXPECT_LE(over, values / 1000) << sc.Path;
-      // Where both precisions blend the same set of Gaussians (attribution replays each pixel),
-      // the difference is float32 rounding alone: measured up to 5.1e-5 on these scenes (sums
-      // of up to hundreds of terms, colours above 1), so 1e-4 bounds it. Larger differences
-      // come only from decision flips (alpha vs 1/255, T vs 1e-4), counted above.
+
+      // Where the rest comes from. (1) What float arithmetic adds: the float projection
+      // composited in double must equal the float render within 1e-5 everywhere.
       const auto projF = ProjectGaussians<float>(cloud, cam, s);
       const auto projD = ProjectGaussians<double>(cloud, cam, s);
+      const auto projFUp = ConvertProjection<double>(projF);
+      RasterImage<double> floatInputs;
+      CompositeTiles(projFUp, BinGaussians(projFUp), s, floatInputs);
+      const double compositing = MaxAbsDiff(f.Color, floatInputs.Color);
+      EXPECT_LE(compositing, 1e-5) << sc.Path;
+      // (2) What storing the projected Gaussians in float32 costs, whoever computes them: the
+      // exact (double) projection rounded to float once and composited in float. This is the
+      // floor of any float32 rasteriser that keeps pixel-space means and conics in float, as
+      // the reference does: a mean at x = 200 px is known to 1.5e-5 px, which moves a steep
+      // kernel's power by ~5e-5 near the 1/255 cut.
+      const auto projDRounded = ConvertProjection<float>(projD);
+      RasterImage<float> roundedInputs;
+      CompositeTiles(projDRounded, BinGaussians(projDRounded), s, roundedInputs);
+
+      // Per pixel, compare only where both precisions blend the same set of Gaussians
+      // (attribution replays each pixel); elsewhere a threshold decision flipped.
       std::vector<std::array<int, 2>> pixels;
       for (int y = 0; y < cam.Height; ++y)
       {
@@ -133,6 +179,8 @@ TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
       }
       const auto attrF = AttributePixels<float>(projF, BinGaussians(projF), s, pixels);
       const auto attrD = AttributePixels<double>(projD, BinGaussians(projD), s, pixels);
+      const auto attrR =
+        AttributePixels<float>(projDRounded, BinGaussians(projDRounded), s, pixels);
       auto blended = [](const PixelAttribution& a)
       {
         std::vector<std::uint32_t> ids;
@@ -143,29 +191,46 @@ TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
         std::sort(ids.begin(), ids.end());
         return ids;
       };
-      std::size_t unexplained = 0, sameSetPixels = 0;
-      double worstSameSet = 0;
-      for (std::size_t i = 0; i < pixels.size(); ++i)
+      auto channelDiff = [&](const RasterImage<float>& a, std::size_t i)
       {
         double diff = 0;
         for (int c = 0; c < 3; ++c)
         {
-          diff = std::max(diff, std::abs(f.Color[3 * i + c] - d.Color[3 * i + c]));
+          diff = std::max(diff, std::abs(a.Color[3 * i + c] - d.Color[3 * i + c]));
         }
-        if (blended(attrF[i]) == blended(attrD[i]))
+        return diff;
+      };
+      std::size_t sameSetPixels = 0;
+      double worstSameSet = 0, roundedHere = 0;
+      for (std::size_t i = 0; i < pixels.size(); ++i)
+      {
+        const auto exact = blended(attrD[i]);
+        if (blended(attrF[i]) == exact)
         {
           ++sameSetPixels;
-          worstSameSet = std::max(worstSameSet, diff);
-          unexplained += diff > 1e-4;
+          worstSameSet = std::max(worstSameSet, channelDiff(f, i));
+        }
+        if (blended(attrR[i]) == exact)
+        {
+          roundedHere = std::max(roundedHere, channelDiff(roundedInputs, i));
         }
       }
-      std::printf("%s: %zu of %zu pixels blend the same Gaussians in float and double; there "
-                  "the largest channel difference is %.3g\n",
+      std::printf("%s: float vs double: %zu of %zu channel values differ by > 1e-5, %zu pixels "
+                  "with another contributor count; on the %zu of %zu pixels that blend the same "
+                  "Gaussians the largest difference is %.3g (the rounded exact projection alone: "
+                  "%.3g); float compositing adds %.3g\n",
         sc.Path,
+        over,
+        values,
+        flips,
         sameSetPixels,
         pixels.size(),
-        worstSameSet);
-      EXPECT_EQ(unexplained, 0u) << sc.Path;
+        worstSameSet,
+        roundedHere,
+        compositing);
+      worstRoundedInputs = std::max(worstRoundedInputs, roundedHere);
+      // Our float projection is no worse than a correctly rounded one, within a factor 2.
+      EXPECT_LE(worstSameSet, std::max(2 * roundedHere, 1e-5)) << sc.Path;
       EXPECT_LE(worstSameSet, 1e-4) << sc.Path;
       EXPECT_GE(sameSetPixels, pixels.size() * 99 / 100) << sc.Path;
       // Sanity: finite, non-negative, bounded by the brightest SH colour, coverage.
@@ -195,6 +260,9 @@ TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
         << sc.Path << ": the scene should fill the view";
     }
   }
+  // The claim of Core/Render/README.md: 1e-5 per channel is below the float32 floor on these
+  // scenes (a float32 copy of the exact projection already differs from double by more).
+  EXPECT_GT(worstRoundedInputs, 1e-5);
 }
 
 //------------------------------------------------------------------------------
