@@ -143,7 +143,13 @@ void Vis4GSArguments::PrintHelp(std::ostream& os) const
   {
     const std::string head =
       o.IsFlag ? "--" + o.Name + ", --no-" + o.Name : "--" + o.Name + "=" + o.Type;
-    os << "  " << std::left << std::setw(28) << head << o.Help;
+    os << "  " << std::left << std::setw(28) << head;
+    if (head.size() >= 28)
+    {
+      // A long flag pair gets its own line, so that it never runs into its description.
+      os << "\n" << std::string(30, ' ');
+    }
+    os << o.Help;
     if (!o.IsFlag && !o.Default.empty())
     {
       os << " (default: " << o.Default << ")";

@@ -57,6 +57,11 @@ void Define(Vis4GSArguments& args)
   args.AddFlag("eval", true, "COLMAP: hold out every 8th view as a test view.");
   args.AddFlag("white-background", false, "Train on a white background.");
   args.AddFlag("embed-images", false, "Embed the training images into the log (/images).");
+  args.AddOption("snapshot-deflate",
+    "L",
+    "0",
+    "Deflate level 0..9 of the snapshot datasets (0: uncompressed, the fastest history reads; "
+    "the tables and images are always deflated).");
 }
 
 int Run(const Vis4GSArguments& args)
@@ -67,6 +72,19 @@ int Run(const Vis4GSArguments& args)
   if (iterations <= 0)
   {
     throw std::runtime_error("--iterations must be positive");
+  }
+  if (args.GetInt("snapshot-deflate") < 0 || args.GetInt("snapshot-deflate") > 9)
+  {
+    throw std::runtime_error("--snapshot-deflate must be a level 0..9");
+  }
+  // Like `vis4gs demo --output=DIR`: a log in a folder that does not exist yet creates it.
+  const auto outputDir = std::filesystem::absolute(output).parent_path();
+  std::error_code mkdirError;
+  std::filesystem::create_directories(outputDir, mkdirError);
+  if (mkdirError)
+  {
+    throw std::runtime_error(
+      outputDir.string() + ": cannot create the output folder (" + mkdirError.message() + ")");
   }
   vis4gs::TrainerOptions options;
   options.Iterations = iterations;
@@ -135,6 +153,7 @@ int Run(const Vis4GSArguments& args)
   wo.Scene = trainer.GetData().Name;
   wo.ShDegree = o.ShDegree;
   wo.Iterations = o.Iterations;
+  wo.SnapshotDeflateLevel = args.GetInt("snapshot-deflate");
   vis4gs::TrainingLogWriter log(output, wo);
 
   StopRequested = false;
