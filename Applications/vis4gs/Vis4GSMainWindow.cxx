@@ -304,6 +304,7 @@ void Vis4GSMainWindow::BuildUi()
   d->MarkerActor->PickableOff();
   d->MarkerRenderer->AddActor(d->MarkerActor);
   d->Selector->SetRenderer(d->SceneRenderer);
+  d->Selector->SetSplatMapper(d->SceneMapper); // selections reuse the still frame's projection
   d->Hub->AddRenderWindow(d->SceneWindow);
   vtkRenderWindowInteractor* iren = d->SceneWindow->GetInteractor();
   // Brush and Frame drags: observed before the camera style, which they abort (so it never

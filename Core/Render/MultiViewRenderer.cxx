@@ -120,7 +120,7 @@ void MultiViewRenderer::Project(const Camera& camera)
       for (std::int64_t k = b; k < e; ++k)
       {
         const std::size_t first = static_cast<std::size_t>(k) * 16;
-        block(d.Prepared, first, w, out);
+        block(d.Prepared, first, w, out, first);
         const std::size_t last = std::min(n, first + 16);
         for (std::size_t i = first; i < last; ++i)
         {

@@ -70,11 +70,13 @@ void PrepareGaussianForLanes(const GaussianCloud& cloud,
 /// The lane projection's view parameters from the rasteriser's float view.
 MultiViewCamera LaneCamera(const ViewProjection<float>& frame);
 
-/// Projects the 16 prepared Gaussians [first, first + 16) (ProjectionLanes.inc).
+/// Projects the 16 prepared Gaussians [first, first + 16) into [at, at + 16) of the output
+/// (ProjectionLanes.inc).
 using ProjectBlockFunction = void (*)(const MultiViewPrepared&,
-  std::size_t,
+  std::size_t first,
   const MultiViewCamera&,
-  MultiViewProjected&);
+  MultiViewProjected&,
+  std::size_t at);
 /// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
 ProjectBlockFunction SelectProjection(int isa);
 
@@ -101,6 +103,12 @@ void BinSortedRects(const std::array<int, 4>* rects,
   int chunks,
   std::vector<std::int64_t>& diff,
   TileBins& bins);
+
+/// The AVX-512 tile loop's candidate columns of pixel rows py0 .. py0 + 7 (CompositeLanes.inc
+/// RowColumns8: SpanBounds::Columns() in 8 double lanes, clipped to the tile [X0, X0 + 15]):
+/// bit l set when row py0 + l has candidate columns in the tile, then [lo[l], hi[l]] relative
+/// to X0. -1 when the machine has no AVX-512 (for the tests).
+int RowColumnsAvx512(const detail::SpanBounds& sb, int py0, int X0, int* lo, int* hi);
 
 /// CompositeTiles()'s tile loop (CompositeLanes.inc, with depth) on per-Gaussian data indexed
 /// by the ids of @p Bins.

@@ -19,6 +19,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -278,24 +279,27 @@ using ProjectBlock = raster::internal::ProjectBlockFunction;
 void ProjectBlockGeneric(const MultiViewPrepared& g,
   std::size_t first,
   const MultiViewCamera& w,
-  MultiViewProjected& out)
+  MultiViewProjected& out,
+  std::size_t at)
 {
-  mvgeneric::ProjectLanes(g, first, w, out);
+  mvgeneric::ProjectLanes(g, first, w, out, at);
 }
 void ProjectBlockAvx2(const MultiViewPrepared& g,
   std::size_t first,
   const MultiViewCamera& w,
-  MultiViewProjected& out)
+  MultiViewProjected& out,
+  std::size_t at)
 {
-  mvavx2::ProjectLanes(g, first, w, out);
-  mvavx2::ProjectLanes(g, first + 8, w, out);
+  mvavx2::ProjectLanes(g, first, w, out, at);
+  mvavx2::ProjectLanes(g, first + 8, w, out, at + 8);
 }
 void ProjectBlockAvx512(const MultiViewPrepared& g,
   std::size_t first,
   const MultiViewCamera& w,
-  MultiViewProjected& out)
+  MultiViewProjected& out,
+  std::size_t at)
 {
-  mvavx512::ProjectLanes(g, first, w, out);
+  mvavx512::ProjectLanes(g, first, w, out, at);
 }
 
 // 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
@@ -406,6 +410,192 @@ inline MultiViewCamera MakeLaneCamera(const ViewProjection<float>& f)
 } // namespace
 
 //------------------------------------------------------------------------------
+// PreparedCloudCache: the view-independent preparation of a whole cloud (PrepareForLanes of
+// every Gaussian, padded to 16), kept with everything it was computed from.
+struct PreparedCloudCache::Impl
+{
+  MultiViewPrepared Data;
+  bool Valid = false;
+  std::uint64_t Version = 0;
+  const GaussianCloud* Cloud = nullptr;
+  std::size_t Count = 0;
+  int ShDegree = 0;
+  const float* Arrays[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
+  std::size_t Sizes[5] = { 0, 0, 0, 0, 0 };
+  std::uint32_t ModBits = 0;
+  int ShUsed = 0;
+  bool Colors = false;
+  std::size_t Builds = 0, Reuses = 0;
+};
+
+PreparedCloudCache::PreparedCloudCache() = default;
+PreparedCloudCache::~PreparedCloudCache() = default;
+PreparedCloudCache::PreparedCloudCache(const PreparedCloudCache&) {}
+PreparedCloudCache& PreparedCloudCache::operator=(const PreparedCloudCache& other)
+{
+  if (this != &other)
+  {
+    this->P.reset();
+  }
+  return *this;
+}
+PreparedCloudCache::PreparedCloudCache(PreparedCloudCache&&) noexcept = default;
+PreparedCloudCache& PreparedCloudCache::operator=(PreparedCloudCache&&) noexcept = default;
+
+void PreparedCloudCache::Clear()
+{
+  if (this->P)
+  {
+    this->P->Valid = false;
+  }
+}
+
+std::size_t PreparedCloudCache::Builds() const
+{
+  return this->P ? this->P->Builds : 0;
+}
+
+std::size_t PreparedCloudCache::Reuses() const
+{
+  return this->P ? this->P->Reuses : 0;
+}
+
+PreparedCloudCache::Impl& PreparedCloudCache::Internal()
+{
+  if (!this->P)
+  {
+    this->P.reset(new Impl);
+  }
+  return *this->P;
+}
+
+namespace
+{
+// The kept preparation of @p cloud for these settings: reused when the key matches (after a
+// bit-exact spot check of 64 Gaussians, std::logic_error on a difference), else recomputed.
+const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
+  const GaussianCloud& cloud,
+  std::uint64_t version,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  int threads)
+{
+  PreparedCloudCache::Impl& c = cache.Internal();
+  const std::size_t n = cloud.Count;
+  const float* arrays[5] = { cloud.Positions.data(),
+    cloud.LogScales.data(),
+    cloud.Rotations.data(),
+    cloud.OpacityLogits.data(),
+    cloud.SH.data() };
+  const std::size_t sizes[5] = { cloud.Positions.size(),
+    cloud.LogScales.size(),
+    cloud.Rotations.size(),
+    cloud.OpacityLogits.size(),
+    cloud.SH.size() };
+  std::uint32_t modBits;
+  std::memcpy(&modBits, &mod, sizeof(modBits));
+  const bool same = c.Valid && c.Version == version && c.Cloud == &cloud && c.Count == n &&
+    c.ShDegree == cloud.ShDegree && std::equal(arrays, arrays + 5, c.Arrays) &&
+    std::equal(sizes, sizes + 5, c.Sizes) && c.ModBits == modBits && c.ShUsed == shUsed &&
+    c.Colors == colors;
+  MultiViewPrepared& d = c.Data;
+  if (same)
+  {
+    // Spot check: a cloud changed under an unchanged version must not pass silently.
+    MultiViewPrepared probe;
+    for (auto* v : { &probe.X,
+           &probe.Y,
+           &probe.Z,
+           &probe.S00,
+           &probe.S01,
+           &probe.S02,
+           &probe.S11,
+           &probe.S12,
+           &probe.S22,
+           &probe.Opacity })
+    {
+      v->assign(1, 0.0f);
+    }
+    probe.Valid.assign(1, 0);
+    const std::size_t samples = std::min<std::size_t>(64, n);
+    for (std::size_t j = 0; j < samples; ++j)
+    {
+      // Spread over the cloud, shifted at every reuse so that repeated frames cover more.
+      const std::size_t i = (j * n / samples + c.Reuses * 7919) % n;
+      PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, probe, 0);
+      const float kept[10] = { d.X[i],
+        d.Y[i],
+        d.Z[i],
+        d.S00[i],
+        d.S01[i],
+        d.S02[i],
+        d.S11[i],
+        d.S12[i],
+        d.S22[i],
+        d.Opacity[i] };
+      const float now[10] = { probe.X[0],
+        probe.Y[0],
+        probe.Z[0],
+        probe.S00[0],
+        probe.S01[0],
+        probe.S02[0],
+        probe.S11[0],
+        probe.S12[0],
+        probe.S22[0],
+        probe.Opacity[0] };
+      if (std::memcmp(kept, now, sizeof(kept)) != 0 || d.Valid[i] != probe.Valid[0])
+      {
+        c.Valid = false;
+        throw std::logic_error("ProjectGaussians: cloud version " + std::to_string(version) +
+          " was kept but the parameters of Gaussian " + std::to_string(i) +
+          " changed; the caller must change the version whenever the cloud changes");
+      }
+    }
+    ++c.Reuses;
+    return d;
+  }
+  c.Valid = false;
+  const std::size_t padded = (n + 15) / 16 * 16;
+  for (auto* v : { &d.X, &d.Y, &d.Z, &d.S00, &d.S01, &d.S02, &d.S11, &d.S12, &d.S22, &d.Opacity })
+  {
+    ResizeKeep(*v, padded);
+  }
+  ResizeKeep(d.Valid, padded);
+  const std::int64_t count = static_cast<std::int64_t>(padded);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    if (i < n)
+    {
+      PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, d, i);
+    }
+    else
+    {
+      d.X[i] = d.Y[i] = d.Z[i] = 0.0f;
+      d.S00[i] = d.S01[i] = d.S02[i] = d.S11[i] = d.S12[i] = d.S22[i] = 0.0f;
+      d.Opacity[i] = 0.0f;
+      d.Valid[i] = 0;
+    }
+  }
+  c.Version = version;
+  c.Cloud = &cloud;
+  c.Count = n;
+  c.ShDegree = cloud.ShDegree;
+  std::copy(arrays, arrays + 5, c.Arrays);
+  std::copy(sizes, sizes + 5, c.Sizes);
+  c.ModBits = modBits;
+  c.ShUsed = shUsed;
+  c.Colors = colors;
+  c.Valid = true;
+  ++c.Builds;
+  return d;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 namespace
 {
 // ProjectGaussians<float> steps 1-7 with the 16-lane projection (ProjectionLanes.inc, the
@@ -416,7 +606,9 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
   const RasterSettings& settings,
   int threads,
   ViewProjection<float>& p,
-  bool reset)
+  bool reset,
+  PreparedCloudCache* cache,
+  std::uint64_t version)
 {
   const std::size_t n = cloud.Count;
   const MultiViewCamera w = MakeLaneCamera(p);
@@ -428,6 +620,10 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
   const float mod = static_cast<float>(settings.ScaleModifier);
   const auto campos = p.CameraCenter;
   const std::int64_t blocks = static_cast<std::int64_t>((n + 15) / 16);
+  // The whole cloud's preparation, kept between frames (or null: prepared per block).
+  const MultiViewPrepared* kept = cache && version != 0
+    ? &UsePreparedCloud(*cache, cloud, version, mod, shStride, shUsed, colors, threads)
+    : nullptr;
   std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
 #pragma omp parallel num_threads(threads)
   {
@@ -463,15 +659,22 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
     {
       const std::size_t first = static_cast<std::size_t>(bb) * 16;
       const std::size_t count = std::min<std::size_t>(16, n - first);
-      for (std::size_t k = 0; k < count; ++k)
+      if (kept)
       {
-        PrepareForLanes(cloud, first + k, mod, shStride, shUsed, colors, in, k);
+        block(*kept, first, w, out, 0);
       }
-      for (std::size_t k = count; k < 16; ++k)
+      else
       {
-        in.Valid[k] = 0; // padding of the last block (zeros from the assign above)
+        for (std::size_t k = 0; k < count; ++k)
+        {
+          PrepareForLanes(cloud, first + k, mod, shStride, shUsed, colors, in, k);
+        }
+        for (std::size_t k = count; k < 16; ++k)
+        {
+          in.Valid[k] = 0; // padding of the last block (zeros from the assign above)
+        }
+        block(in, 0, w, out, 0);
       }
-      block(in, 0, w, out);
       for (std::size_t k = 0; k < count; ++k)
       {
         ProjectedGaussian<float>& g = p.Gaussians[first + k];
@@ -510,7 +713,7 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
         g.TileRect[1] = out.Y0[k];
         g.TileRect[2] = out.X1[k];
         g.TileRect[3] = out.Y1[k];
-        g.Opacity = in.Opacity[k];
+        g.Opacity = kept ? kept->Opacity[first + k] : in.Opacity[k];
         if (g.Status != ProjectionStatus::Visible)
         {
           continue; // NonFinite pixel mean or OffScreen: Radius stays 0
@@ -564,7 +767,9 @@ void ProjectInto(const GaussianCloud& cloud,
   const Camera& camera,
   const RasterSettings& settings,
   ViewProjection<T>& p,
-  bool reuse)
+  bool reuse,
+  PreparedCloudCache* cache = nullptr,
+  std::uint64_t version = 0)
 {
   CheckCamera(camera);
   CheckCloud(cloud, settings.ComputeColors);
@@ -629,7 +834,7 @@ void ProjectInto(const GaussianCloud& cloud,
   {
     if (settings.KernelIsa >= 0)
     {
-      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p, reset);
+      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p, reset, cache, version);
       return;
     }
   }
@@ -861,6 +1066,17 @@ void ProjectGaussians(const GaussianCloud& cloud,
   ViewProjection<T>& projection)
 {
   ProjectInto(cloud, camera, settings, projection, true);
+}
+
+//------------------------------------------------------------------------------
+void ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache,
+  std::uint64_t cloudVersion)
+{
+  ProjectInto(cloud, camera, settings, projection, true, &cache, cloudVersion);
 }
 
 //------------------------------------------------------------------------------
@@ -1196,6 +1412,16 @@ namespace composite_avx512
 template <typename T>
 using TileFunction = void (*)(const CompositeContext<T>&, std::int64_t);
 
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) int RowColumnsOn512(
+  const raster::detail::SpanBounds& sb,
+  int py0,
+  int X0,
+  int* lo,
+  int* hi)
+{
+  return static_cast<int>(composite_avx512::RowColumns8(sb, py0, X0, lo, hi));
+}
+
 template <typename T, bool Stats, bool Work, bool Depth>
 TileFunction<T> SelectTileFunction(int isa)
 {
@@ -1234,24 +1460,26 @@ void FillCompositeData(const ViewProjection<T>& projection,
   {
     const std::size_t i = static_cast<std::size_t>(ii);
     const auto& g = projection.Gaussians[i];
+    // Constructed in place (placement new of a prvalue: no temporary on the stack, whose
+    // copy into the large array cost store-forwarding stalls).
     if (!g.IsVisible())
     {
-      kernels[i] = KernelGaussian<T>{};
-      bounds[i] = raster::detail::SpanBounds();
+      new (&kernels[i]) KernelGaussian<T>{};
+      new (&bounds[i]) raster::detail::SpanBounds();
       continue;
     }
-    kernels[i] = {
+    new (&kernels[i]) KernelGaussian<T>{
       g.U, g.V, g.ConicA, g.ConicB, g.ConicC, g.Opacity, g.Color[0], g.Color[1], g.Color[2], g.Depth
     };
     if (g.Opacity >= raster::MinAlpha<T>())
     {
       const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
-      bounds[i] = raster::detail::MakeSpanBounds<T>(
-        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
+      new (&bounds[i]) raster::detail::SpanBounds(raster::detail::MakeSpanBounds<T>(
+        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level)));
     }
     else
     {
-      bounds[i] = raster::detail::SpanBounds();
+      new (&bounds[i]) raster::detail::SpanBounds();
     }
   }
 }
@@ -1403,7 +1631,15 @@ void Rasterize(const GaussianCloud& cloud,
   const RasterSettings& settings,
   RasterWorkspace<T>& workspace)
 {
-  ProjectGaussians<T>(cloud, camera, settings, workspace.Projection);
+  if constexpr (std::is_same<T, float>::value)
+  {
+    ProjectGaussians(
+      cloud, camera, settings, workspace.Projection, workspace.Prepared, workspace.CloudVersion);
+  }
+  else
+  {
+    ProjectGaussians<T>(cloud, camera, settings, workspace.Projection);
+  }
   BinGaussians(workspace.Projection, settings.Threads, workspace.Bins, workspace.Scratch);
   CompositeTiles(workspace.Projection,
     workspace.Bins,
@@ -1662,6 +1898,18 @@ MultiViewCamera LaneCamera(const ViewProjection<float>& frame)
   return MakeLaneCamera(frame);
 }
 
+int RowColumnsAvx512(const detail::SpanBounds& sb, int py0, int X0, int* lo, int* hi)
+{
+  __builtin_cpu_init();
+  if (!(__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq")))
+  {
+    return -1;
+  }
+  return RowColumnsOn512(sb, py0, X0, lo, hi);
+}
+
+//------------------------------------------------------------------------------
 ProjectBlockFunction SelectProjection(int isa)
 {
   return SelectProjectBlock(isa);

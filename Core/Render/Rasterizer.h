@@ -156,6 +156,57 @@ void ProjectGaussians(const GaussianCloud& cloud,
   const RasterSettings& settings,
   ViewProjection<T>& projection);
 
+struct MultiViewPrepared; // internal (MultiViewData.h)
+
+/**
+ * The view-independent part of ProjectGaussians<float> (finiteness of the parameters, exp of
+ * the scales, quaternion, 3D covariance, sigmoid of the opacity) kept between frames of one
+ * cloud, for a caller that renders the same cloud from many cameras (the scene view). It is
+ * reused only while the caller's cloud version (non-zero) and everything the preparation
+ * reads besides the parameters' values are unchanged: the cloud's address, Count, ShDegree,
+ * the addresses and sizes of its parameter arrays, the scale modifier, the SH coefficients
+ * checked for finiteness and whether colours are computed. The caller promises that the
+ * values of a cloud do not change while its version does not; a sample of 64 Gaussians is
+ * re-prepared and compared bit for bit with the kept data on every reuse, and a difference
+ * throws std::logic_error naming the version and the Gaussian. Copies start empty.
+ */
+class PreparedCloudCache
+{
+public:
+  PreparedCloudCache();
+  ~PreparedCloudCache();
+  PreparedCloudCache(const PreparedCloudCache&);
+  PreparedCloudCache& operator=(const PreparedCloudCache&);
+  PreparedCloudCache(PreparedCloudCache&&) noexcept;
+  PreparedCloudCache& operator=(PreparedCloudCache&&) noexcept;
+
+  /// Forgets the kept data (the next projection prepares again).
+  void Clear();
+  /// Preparations computed / reused since construction (for tests and benchmarks).
+  std::size_t Builds() const;
+  std::size_t Reuses() const;
+
+  /// Internal (Rasterizer.cxx).
+  struct Impl;
+  Impl& Internal();
+
+private:
+  std::unique_ptr<Impl> P;
+};
+
+/**
+ * ProjectGaussians<float>(cloud, camera, settings, projection) with the view-independent
+ * preparation taken from @p cache when @p cloudVersion is non-zero and matches (see
+ * PreparedCloudCache); the result is the same, bit for bit and field by field. With
+ * @p cloudVersion 0, or with the scalar projection (KernelIsa -1), the cache is not used.
+ */
+void ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache,
+  std::uint64_t cloudVersion);
+
 /// Per-tile Gaussian lists, front to back.
 struct TileBins
 {
@@ -279,6 +330,12 @@ struct RasterWorkspace
   BinScratch Scratch;
   CompositeData<T> Composite;
   RasterImage<T> Image; ///< the result of Rasterize(cloud, camera, settings, workspace)
+  /// The caller's version of the cloud it renders (float only): non-zero = the cloud's
+  /// parameters are unchanged while this number is, and Rasterize() keeps the
+  /// view-independent preparation in Prepared between calls (see PreparedCloudCache).
+  /// Default 0: prepared again on every call.
+  std::uint64_t CloudVersion = 0;
+  PreparedCloudCache Prepared;
 };
 
 /// Projection, binning and compositing into @p workspace.Image, reusing its buffers.

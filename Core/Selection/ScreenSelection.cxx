@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 namespace vis4gs
@@ -101,14 +102,25 @@ std::array<int, 4> BlendBox(const ViewProjection<float>& projection, std::size_t
 }
 
 //------------------------------------------------------------------------------
-std::int64_t SelectSingle(const SelectionView& view, int x, int y)
+std::int64_t SelectSingle(const ViewProjection<float>& projection,
+  const TileBins& bins,
+  int x,
+  int y)
 {
-  const auto att = AttributePixels<float>(view.Projection, view.Bins, view.Settings, { { x, y } });
+  RasterSettings settings;
+  settings.ComputeColors = false;
+  const auto att = AttributePixels<float>(projection, bins, settings, { { x, y } });
   if (att.empty() || att[0].Contributions.empty())
   {
     return -1;
   }
   return att[0].Contributions.front().Gaussian;
+}
+
+//------------------------------------------------------------------------------
+std::int64_t SelectSingle(const SelectionView& view, int x, int y)
+{
+  return SelectSingle(view.Projection, view.Bins, x, y);
 }
 
 namespace
@@ -121,10 +133,39 @@ struct GroupContext
   const std::vector<std::size_t>* Starts;
   std::uint32_t* Best;
   const std::uint8_t* Targets; // nullptr: every Gaussian
+  bool Cull;                   // skip the vectors outside each Gaussian's CullBox()
 };
 
+// A pixel box that contains BlendBox(projection, id) (the same construction with the largest
+// opacity, 1, in place of the Gaussian's, and without the tile-rectangle clip): outside it
+// the Gaussian never passes the kernel test (power <= 0, alpha >= 1/255). False (no box)
+// when the 2D covariance is not positive definite or not finite.
+inline bool CullBox(const ProjectedGaussian<float>& g, int width, int height, int box[4])
+{
+  const double a = g.Cov2D[0], b = g.Cov2D[1], c = g.Cov2D[2];
+  if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && a > 0 && c > 0 &&
+        a * c - b * b > 0 && std::isfinite(static_cast<double>(g.U)) &&
+        std::isfinite(static_cast<double>(g.V))))
+  {
+    return false;
+  }
+  // BlendBox()'s r2 = 2 ln(255 o) 1.001 + 1e-3 with o <= 1 (ln 255 = 5.54126...).
+  constexpr double r2 = 2.0 * 5.5413 * 1.001 + 1e-3;
+  const double hx = std::sqrt(r2 * a) + 1.0, hy = std::sqrt(r2 * c) + 1.0;
+  auto clampTo = [](double v, int size)
+  { return static_cast<int>(std::min(static_cast<double>(size), std::max(-1.0, v))); };
+  box[0] = clampTo(std::floor(g.U - hx), width);
+  box[1] = clampTo(std::floor(g.V - hy), height);
+  box[2] = clampTo(std::ceil(g.U + hx), width);
+  box[3] = clampTo(std::ceil(g.V + hy), height);
+  return true;
+}
+
 // One tile's pixels walk the tile's list together, 16 pixels per vector, until every pixel
-// has stopped (T < 1e-4) or the list ends. Per lane the arithmetic is RasterKernel.h's.
+// has stopped (T < 1e-4) or the list ends. Per lane the arithmetic is RasterKernel.h's. A
+// Gaussian is evaluated only on the vectors whose pixels' bounding box meets its blend box:
+// on the others every lane would fail the kernel test (no weight, T unchanged), so skipping
+// them changes nothing.
 inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx, std::int64_t gi)
 {
   const auto& proj = *ctx.Projection;
@@ -143,18 +184,38 @@ inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx,
   const int blocks = (m + 15) / 16;
   V16 px[16], py[16], T[16];
   I16 alive[16];
+  int bx0[16], by0[16], bx1[16], by1[16]; // pixel bounding box of each vector's lanes
+  int ax0 = proj.Width, ay0 = proj.Height, ax1 = -1, ay1 = -1; // of all lanes
   for (int k = 0; k < blocks; ++k)
   {
+    bx0[k] = by0[k] = std::numeric_limits<int>::max();
+    bx1[k] = by1[k] = std::numeric_limits<int>::min();
     for (int l = 0; l < 16; ++l)
     {
       const int j = 16 * k + l;
       const int local = j < m ? static_cast<int>(keys[b + static_cast<std::size_t>(j)] % 256) : 0;
-      px[k][l] = static_cast<float>(tx * ts + local % ts);
-      py[k][l] = static_cast<float>(ty * ts + local / ts);
+      const int x = tx * ts + local % ts, y = ty * ts + local / ts;
+      px[k][l] = static_cast<float>(x);
+      py[k][l] = static_cast<float>(y);
       T[k][l] = 1.0f;
       alive[k][l] = j < m ? -1 : 0;
+      if (j < m)
+      {
+        bx0[k] = std::min(bx0[k], x);
+        bx1[k] = std::max(bx1[k], x);
+        by0[k] = std::min(by0[k], y);
+        by1[k] = std::max(by1[k], y);
+      }
     }
+    ax0 = std::min(ax0, bx0[k]);
+    ax1 = std::max(ax1, bx1[k]);
+    ay0 = std::min(ay0, by0[k]);
+    ay1 = std::max(ay1, by1[k]);
   }
+  // Every pixel of the tile requested (keys sorted): vector q is row q of the tile.
+  const bool fullTile = m == ts * ts && ts == 16;
+  // Bit q set while vector q has a live lane.
+  std::uint32_t liveBlocks = blocks >= 32 ? ~0u : ((1u << blocks) - 1u);
   const float minAlpha = raster::MinAlpha<float>();
   const float stopT = static_cast<float>(raster::TransmittanceStop);
   const float maxAlpha = static_cast<float>(raster::MaxAlpha);
@@ -170,14 +231,47 @@ inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx,
     }
     end = last;
   }
-  for (std::uint64_t k = bins.Offsets[tile]; k < end; ++k)
+  for (std::uint64_t k = bins.Offsets[tile]; k < end && liveBlocks != 0; ++k)
   {
+    if (k + 8 < end)
+    {
+      // The list is in depth order: its Gaussians are scattered in memory.
+      const std::uint32_t next = bins.Ids[k + 8];
+      const char* ahead = reinterpret_cast<const char*>(&proj.Gaussians[next]);
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(ahead + 52);
+      __builtin_prefetch(&best[next], 1);
+    }
     const std::uint32_t id = bins.Ids[k];
     const auto& g = proj.Gaussians[id];
-    V16 wmax = V16{};
-    I16 anyAlive = I16{};
-    for (int q = 0; q < blocks; ++q)
+    int box[4] = { std::numeric_limits<int>::min(),
+      std::numeric_limits<int>::min(),
+      std::numeric_limits<int>::max(),
+      std::numeric_limits<int>::max() };
+    if (ctx.Cull)
     {
+      CullBox(g, proj.Width, proj.Height, box);
+    }
+    if (box[0] > ax1 || box[2] < ax0 || box[1] > ay1 || box[3] < ay0)
+    {
+      continue;
+    }
+    V16 wmax = V16{};
+    I16 stopped = I16{};
+    bool any = false;
+    // A whole tile's vectors are its rows: only the box's rows are visited.
+    // (box is clamped to [-1, size] when culling: no overflow.)
+    const bool rows = fullTile && ctx.Cull;
+    const int qlo = rows ? std::max(0, box[1] - ty * ts) : 0;
+    const int qhi = rows ? std::min(blocks - 1, box[3] - ty * ts) : blocks - 1;
+    for (int q = qlo; q <= qhi; ++q)
+    {
+      if (!((liveBlocks >> q) & 1u) ||
+        (!rows && (box[0] > bx1[q] || box[2] < bx0[q] || box[1] > by1[q] || box[3] < by0[q])))
+      {
+        continue;
+      }
+      any = true;
       // Exactly KernelPower / KernelAlpha of RasterKernel.h, lane by lane.
       const V16 dx = g.U - px[q];
       const V16 dy = g.V - py[q];
@@ -194,22 +288,34 @@ inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx,
       wmax = wb > wmax ? wb : wmax;
       T[q] = blend ? Tn : T[q];
       alive[q] = alive[q] & ~stop;
-      anyAlive |= alive[q];
+      stopped |= stop;
+    }
+    if (!any)
+    {
+      continue;
     }
     float mx = 0.0f;
-    bool live = false;
+    bool someStopped = false;
     for (int l = 0; l < 16; ++l)
     {
       mx = wmax[l] > mx ? wmax[l] : mx;
-      live = live || anyAlive[l] != 0;
+      someStopped = someStopped || stopped[l] != 0;
     }
     if (mx > 0.0f)
     {
       AtomicMax(&best[id], mx);
     }
-    if (!live)
+    if (someStopped)
     {
-      break;
+      for (int q = 0; q < blocks; ++q)
+      {
+        bool live = false;
+        for (int l = 0; l < 16; ++l)
+        {
+          live = live || alive[q][l] != 0;
+        }
+        liveBlocks = live ? liveBlocks : (liveBlocks & ~(1u << q));
+      }
     }
   }
 }
@@ -232,14 +338,16 @@ void ProcessGroupBaseline(const GroupContext& ctx, std::int64_t gi)
 }
 } // namespace
 
-//------------------------------------------------------------------------------
-std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
+namespace
+{
+// The largest weights as float bit patterns (non-negative floats order like their bits).
+std::vector<std::uint32_t> MaxWeightBitsOverPixels(const ViewProjection<float>& proj,
+  const TileBins& bins,
   const std::vector<std::array<int, 2>>& pixels,
   int threads,
-  const std::vector<std::uint8_t>* targets)
+  const std::vector<std::uint8_t>* targets,
+  bool cull = true)
 {
-  const auto& proj = view.Projection;
-  const auto& bins = view.Bins;
   if (bins.TilesX != proj.TilesX || bins.TilesY != proj.TilesY ||
     bins.Offsets.size() != bins.TileCount() + 1)
   {
@@ -278,7 +386,7 @@ std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
     throw std::invalid_argument("MaxWeightsOverPixels: one target flag per Gaussian expected");
   }
   const GroupContext ctx{
-    &proj, &bins, &keys, &starts, best.data(), targets ? targets->data() : nullptr
+    &proj, &bins, &keys, &starts, best.data(), targets ? targets->data() : nullptr, cull
   };
   const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
     __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
@@ -291,10 +399,28 @@ std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
   {
     process(ctx, gi);
   }
-  std::vector<float> out(best.size());
-  if (!best.empty())
+  return best;
+}
+
+inline float BitsToFloat(std::uint32_t bits)
+{
+  float f;
+  std::memcpy(&f, &bits, sizeof(f));
+  return f;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
+  const std::vector<std::array<int, 2>>& pixels,
+  int threads,
+  const std::vector<std::uint8_t>* targets)
+{
+  const auto bits = MaxWeightBitsOverPixels(view.Projection, view.Bins, pixels, threads, targets);
+  std::vector<float> out(bits.size());
+  if (!bits.empty())
   {
-    std::memcpy(out.data(), best.data(), best.size() * sizeof(float));
+    std::memcpy(out.data(), bits.data(), bits.size() * sizeof(float));
   }
   return out;
 }
@@ -354,7 +480,8 @@ std::vector<std::array<int, 2>> BrushPixels(const std::vector<std::array<double,
 }
 
 //------------------------------------------------------------------------------
-std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
+std::vector<std::uint32_t> SelectBrush(const ViewProjection<float>& projection,
+  const TileBins& bins,
   const std::vector<std::array<int, 2>>& pixels,
   double threshold,
   int threads)
@@ -363,11 +490,11 @@ std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
   {
     throw std::invalid_argument("SelectBrush: the weight threshold must be positive");
   }
-  const auto w = MaxWeightsOverPixels(view, pixels, threads);
+  const auto w = MaxWeightBitsOverPixels(projection, bins, pixels, threads, nullptr);
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < w.size(); ++i)
   {
-    if (static_cast<double>(w[i]) >= threshold)
+    if (static_cast<double>(BitsToFloat(w[i])) >= threshold)
     {
       out.push_back(static_cast<std::uint32_t>(i));
     }
@@ -376,14 +503,118 @@ std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
 }
 
 //------------------------------------------------------------------------------
-std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
+std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
+  const std::vector<std::array<int, 2>>& pixels,
+  double threshold,
+  int threads)
+{
+  return SelectBrush(view.Projection, view.Bins, pixels, threshold, threads);
+}
+
+namespace
+{
+// Visible-only Frame selection of the candidates (centre inside [x0, x1] x [y0, y1], already
+// clipped) from maxima M with M[i] >= the largest weight of i over the rectangle, and equal to
+// it when i's BlendBox lies inside the rectangle (the maxima over the view, or over the tiles
+// the rectangle touches): reject M < threshold, accept boxes inside, and replay the rectangle's
+// pixels for the rest (near its border): first the pixel nearest each centre (where an
+// unoccluded Gaussian weighs most), then, for those still undecided, every pixel of the
+// rectangle inside their boxes.
+std::vector<std::uint32_t> FrameFromMaxima(const ViewProjection<float>& proj,
+  const TileBins& bins,
+  const std::vector<float>& maxima,
+  const std::vector<std::uint32_t>& candidates,
   int x0,
   int y0,
   int x1,
   int y1,
   const FrameOptions& options)
 {
-  const auto& proj = view.Projection;
+  const int rw = x1 - x0 + 1;
+  std::vector<std::uint32_t> out, ambiguous;
+  for (std::uint32_t i : candidates)
+  {
+    if (!(static_cast<double>(maxima[i]) >= options.WeightThreshold))
+    {
+      continue;
+    }
+    const auto box = BlendBox(proj, i);
+    if (box[0] >= x0 && box[1] >= y0 && box[2] <= x1 && box[3] <= y1)
+    {
+      out.push_back(i);
+    }
+    else
+    {
+      ambiguous.push_back(i);
+    }
+  }
+  std::vector<std::uint8_t> targets(ambiguous.empty() ? 0 : proj.Gaussians.size(), 0);
+  for (int round = 0; round < 2 && !ambiguous.empty(); ++round)
+  {
+    for (std::uint32_t i : ambiguous)
+    {
+      targets[i] = static_cast<std::uint8_t>(round + 1);
+    }
+    std::vector<std::uint8_t> mark(static_cast<std::size_t>(rw) * (y1 - y0 + 1), 0);
+    for (std::uint32_t i : ambiguous)
+    {
+      std::array<int, 4> box = BlendBox(proj, i);
+      if (round == 0)
+      {
+        const auto& g = proj.Gaussians[i];
+        const int cx = std::min(x1, std::max(x0, static_cast<int>(std::lround(g.U))));
+        const int cy = std::min(y1, std::max(y0, static_cast<int>(std::lround(g.V))));
+        box = { cx, cy, cx, cy };
+      }
+      const int bx0 = std::max(x0, box[0]), bx1 = std::min(x1, box[2]);
+      for (int y = std::max(y0, box[1]); y <= std::min(y1, box[3]) && bx0 <= bx1; ++y)
+      {
+        std::fill_n(&mark[static_cast<std::size_t>(y - y0) * rw + (bx0 - x0)],
+          bx1 - bx0 + 1,
+          std::uint8_t(1));
+      }
+    }
+    std::vector<std::array<int, 2>> pixels;
+    for (int y = y0; y <= y1; ++y)
+    {
+      for (int x = x0; x <= x1; ++x)
+      {
+        if (mark[static_cast<std::size_t>(y - y0) * rw + (x - x0)])
+        {
+          pixels.push_back({ x, y });
+        }
+      }
+    }
+    const auto w =
+      MaxWeightBitsOverPixels(proj, bins, pixels, options.Threads, &targets, options.CullReplay);
+    std::vector<std::uint32_t> undecided;
+    for (std::uint32_t i : ambiguous)
+    {
+      if (static_cast<double>(BitsToFloat(w[i])) >= options.WeightThreshold)
+      {
+        out.push_back(i);
+      }
+      else if (round == 0)
+      {
+        undecided.push_back(i);
+      }
+      targets[i] = 0;
+    }
+    ambiguous.swap(undecided);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::uint32_t> SelectFrameImpl(const ViewProjection<float>& proj,
+  const TileBins& bins,
+  const std::vector<float>* viewMaxima,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options)
+{
   if (x0 > x1)
   {
     std::swap(x0, x1);
@@ -402,12 +633,24 @@ std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
     return candidates;
   }
   const float ulo = x0 - 0.5f, uhi = x1 + 0.5f, vlo = y0 - 0.5f, vhi = y1 + 0.5f;
-  for (std::size_t i = 0; i < proj.Gaussians.size(); ++i)
   {
-    const auto& g = proj.Gaussians[i];
-    if (g.IsVisible() && g.U >= ulo && g.U < uhi && g.V >= vlo && g.V < vhi)
+    // Flags in parallel (the scan reads one cache line per Gaussian), compacted in order.
+    const std::int64_t n = static_cast<std::int64_t>(proj.Gaussians.size());
+    std::vector<std::uint8_t> inside(static_cast<std::size_t>(n));
+    const ProjectedGaussian<float>* gs = proj.Gaussians.data();
+    std::uint8_t* flags = inside.data();
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(options.Threads))
+    for (std::int64_t i = 0; i < n; ++i)
     {
-      candidates.push_back(static_cast<std::uint32_t>(i));
+      const auto& g = gs[i];
+      flags[i] = g.IsVisible() && g.U >= ulo && g.U < uhi && g.V >= vlo && g.V < vhi;
+    }
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+      if (flags[i])
+      {
+        candidates.push_back(static_cast<std::uint32_t>(i));
+      }
     }
   }
   if (options.IncludeOccluded || candidates.empty())
@@ -418,85 +661,9 @@ std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
   {
     throw std::invalid_argument("SelectFrame: the weight threshold must be positive");
   }
-  const int rw = x1 - x0 + 1;
-  if (view.ViewMaxWeights.size() == proj.Gaussians.size())
+  if (viewMaxima && viewMaxima->size() == proj.Gaussians.size())
   {
-    // Decide from the largest weights over the view; replay only pixels of the rectangle for
-    // the candidates whose blend box crosses the rectangle's border: first the pixel nearest
-    // each one's centre (where an unoccluded Gaussian weighs most), then, for those still
-    // undecided, every pixel of the rectangle inside their boxes.
-    std::vector<std::uint32_t> out, ambiguous;
-    for (std::uint32_t i : candidates)
-    {
-      if (!(static_cast<double>(view.ViewMaxWeights[i]) >= options.WeightThreshold))
-      {
-        continue;
-      }
-      const auto box = BlendBox(proj, i);
-      if (box[0] >= x0 && box[1] >= y0 && box[2] <= x1 && box[3] <= y1)
-      {
-        out.push_back(i);
-      }
-      else
-      {
-        ambiguous.push_back(i);
-      }
-    }
-    std::vector<std::uint8_t> targets(proj.Gaussians.size(), 0);
-    for (int round = 0; round < 2 && !ambiguous.empty(); ++round)
-    {
-      for (std::uint32_t i : ambiguous)
-      {
-        targets[i] = static_cast<std::uint8_t>(round + 1);
-      }
-      std::vector<std::uint8_t> mark(static_cast<std::size_t>(rw) * (y1 - y0 + 1), 0);
-      for (std::uint32_t i : ambiguous)
-      {
-        std::array<int, 4> box = BlendBox(proj, i);
-        if (round == 0)
-        {
-          const auto& g = proj.Gaussians[i];
-          const int cx = std::min(x1, std::max(x0, static_cast<int>(std::lround(g.U))));
-          const int cy = std::min(y1, std::max(y0, static_cast<int>(std::lround(g.V))));
-          box = { cx, cy, cx, cy };
-        }
-        const int bx0 = std::max(x0, box[0]), bx1 = std::min(x1, box[2]);
-        for (int y = std::max(y0, box[1]); y <= std::min(y1, box[3]) && bx0 <= bx1; ++y)
-        {
-          std::fill_n(&mark[static_cast<std::size_t>(y - y0) * rw + (bx0 - x0)],
-            bx1 - bx0 + 1,
-            std::uint8_t(1));
-        }
-      }
-      std::vector<std::array<int, 2>> pixels;
-      for (int y = y0; y <= y1; ++y)
-      {
-        for (int x = x0; x <= x1; ++x)
-        {
-          if (mark[static_cast<std::size_t>(y - y0) * rw + (x - x0)])
-          {
-            pixels.push_back({ x, y });
-          }
-        }
-      }
-      const auto w = MaxWeightsOverPixels(view, pixels, options.Threads, &targets);
-      std::vector<std::uint32_t> undecided;
-      for (std::uint32_t i : ambiguous)
-      {
-        if (static_cast<double>(w[i]) >= options.WeightThreshold)
-        {
-          out.push_back(i);
-        }
-        else if (round == 0)
-        {
-          undecided.push_back(i);
-        }
-        targets[i] = 0;
-      }
-      ambiguous.swap(undecided);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
+    return FrameFromMaxima(proj, bins, *viewMaxima, candidates, x0, y0, x1, y1, options);
   }
   std::vector<std::array<int, 2>> pixels;
   pixels.reserve(static_cast<std::size_t>(x1 - x0 + 1) * (y1 - y0 + 1));
@@ -515,18 +682,47 @@ std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
       }
     }
   }
-  const auto w = MaxWeightsOverPixels(view, pixels, options.Threads);
+  const auto w =
+    MaxWeightBitsOverPixels(proj, bins, pixels, options.Threads, nullptr, options.CullReplay);
   std::vector<std::uint32_t> out;
   for (std::uint32_t i : candidates)
   {
-    if (static_cast<double>(w[i]) >= options.WeightThreshold)
+    if (static_cast<double>(BitsToFloat(w[i])) >= options.WeightThreshold)
     {
       out.push_back(i);
     }
   }
   return out;
 }
+} // namespace
 
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options)
+{
+  return SelectFrameImpl(view.Projection, view.Bins, &view.ViewMaxWeights, x0, y0, x1, y1, options);
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
+  const TileBins& bins,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options)
+{
+  if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
+    bins.Offsets.size() != bins.TileCount() + 1)
+  {
+    throw std::invalid_argument("SelectFrame: the tile bins do not belong to the projection");
+  }
+  return SelectFrameImpl(projection, bins, nullptr, x0, y0, x1, y1, options);
+}
 //------------------------------------------------------------------------------
 RayQuery PixelRay(const Camera& camera, double x, double y, double sigmas)
 {

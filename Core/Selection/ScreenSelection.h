@@ -73,12 +73,22 @@ SelectionView PrepareSelectionView(const GaussianCloud& cloud,
 /// Index of the Gaussian with the largest weight at pixel (x, y), or -1 when none blends there.
 std::int64_t SelectSingle(const SelectionView& view, int x, int y);
 
+/// SelectSingle() on a projection and its tile lists that the caller keeps (see the
+/// SelectFrame() overload taking them).
+std::int64_t SelectSingle(const ViewProjection<float>& projection,
+  const TileBins& bins,
+  int x,
+  int y);
+
 /**
  * Largest weight of every Gaussian over @p pixels (out-of-image pixels ignored): a dense
  * array, one float per Gaussian, 0 where it does not blend. Parallel over pixels. With
  * @p targets (one flag per Gaussian), only the flagged Gaussians' weights are wanted: each
  * tile's list is walked only up to its last flagged entry (the flagged weights are the same,
- * the others may be too small).
+ * the others may be too small). Each Gaussian is evaluated only on the requested pixels of
+ * its tile that lie in a box containing its BlendBox() (rows of a whole tile, bounding boxes
+ * of 16 pixels otherwise): the other pixels cannot blend it, so the weights are those of a
+ * replay of every Gaussian on every pixel, bit for bit.
  */
 std::vector<float> MaxWeightsOverPixels(const SelectionView& view,
   const std::vector<std::array<int, 2>>& pixels,
@@ -98,12 +108,25 @@ std::vector<std::uint32_t> SelectBrush(const SelectionView& view,
   double threshold,
   int threads = 0);
 
+/// SelectBrush() on a projection and its tile lists that the caller keeps (see the
+/// SelectFrame() overload taking them).
+std::vector<std::uint32_t> SelectBrush(const ViewProjection<float>& projection,
+  const TileBins& bins,
+  const std::vector<std::array<int, 2>>& pixels,
+  double threshold,
+  int threads = 0);
+
 struct FrameOptions
 {
   /// Minimum of the largest weight over the rectangle for a Gaussian to count as visible.
   double WeightThreshold = 0.01;
   /// Take every projected Gaussian with its centre inside, visible or not.
   bool IncludeOccluded = false;
+  /// Replays evaluate a Gaussian only on the pixel vectors that meet a box containing its
+  /// BlendBox() (outside it the kernel test always fails: no weight, T unchanged), instead of
+  /// on every requested pixel of its tile (false: the straightforward replay, kept as the
+  /// reference for tests and benchmarks). Same selection. Default on.
+  bool CullReplay = true;
   int Threads = 0;
 };
 
@@ -118,6 +141,23 @@ struct FrameOptions
  * inside their blend boxes: the same selection as the full replay, at a fraction of its cost.
  */
 std::vector<std::uint32_t> SelectFrame(const SelectionView& view,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options = {});
+
+/**
+ * Frame selection on a projection and its tile lists that the caller keeps, without view
+ * maxima: e.g. the scene view's last full-resolution frame (the RasterWorkspace its CPU
+ * drawing path keeps), drawn for the same camera and cloud with unmodified opacities, whether
+ * or not colours were computed. Reusing them saves PrepareSelectionView(); the selection is
+ * the one SelectFrame() makes on PrepareSelectionView(cloud, camera) without view maxima
+ * (only the geometry fields of the projection are read). Throws std::invalid_argument when
+ * the bins do not belong to the projection or the threshold is not positive.
+ */
+std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
+  const TileBins& bins,
   int x0,
   int y0,
   int x1,

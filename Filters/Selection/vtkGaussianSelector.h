@@ -20,11 +20,12 @@
  *    of the stroke) is >= WeightThreshold.
  *  - Frame: every Gaussian whose centre projects into the rectangle and whose largest weight
  *    over the rectangle is >= WeightThreshold (visible inside the rectangle); with
- *    IncludeOccluded, every projected one whose centre is inside. The second visible-only
- *    frame with the same camera (or the first, when it covers a quarter of the view) also
- *    computes every Gaussian's largest weight over the view (one compositing pass, cached with
- *    the projection); frames then replay only pixels near the rectangle's border (the same
- *    result as replaying every pixel of the rectangle, as the first frame does).
+ *    IncludeOccluded, every projected one whose centre is inside. A visible-only frame
+ *    replays the compositing of the rectangle's pixels (each Gaussian only on the pixel rows
+ *    its blend box meets); one that covers half of the view or more first computes every
+ *    Gaussian's largest weight over the view (one compositing pass, about the cost of
+ *    replaying the whole view, cached with the projection), after which frames with that
+ *    camera replay only pixels near the rectangle's border (the same result).
  *  - Ray: every Gaussian that the viewing ray through the pixel passes within RaySigmas
  *    standard deviations of (Mahalanobis distance), in depth order (GetRayHitIds()), found
  *    through an octree over the Gaussians' bounding boxes (built once per scene).
@@ -37,7 +38,15 @@
  * selection hub's link) and the link's AnnotationChangedEvent is fired.
  *
  * The projection and binning of the scene are cached per camera (the first selection after
- * the camera moved pays for them: GetLastPrepareTime()); the octree per scene.
+ * the camera moved pays for them: GetLastPrepareTime()); the octree per scene. With a
+ * SplatMapper set, a Single, Brush or Frame selection after the camera moved reuses instead
+ * the projection and tile lists of the image the mapper last drew on its CPU-rasteriser
+ * path, when that image is provably of this view: the mapper's input is the Scene (same
+ * object, same MTime), the camera and viewport size are equal to the renderer's, at full
+ * resolution, with ScaleModifier 1 and no hidden or dimmed Gaussians
+ * (vtkGaussianSplatMapper::GetLastFullFrame()); a Frame that computes the view maxima copies
+ * that frame into its cached view instead of projecting. Otherwise it projects the scene as
+ * above; the selection is the same.
  */
 #ifndef vtkGaussianSelector_h
 #define vtkGaussianSelector_h
@@ -48,8 +57,17 @@
 #include <memory> // For std::unique_ptr
 #include <vector> // For std::vector
 
+#ifndef __VTK_WRAP__
+namespace vis4gs
+{
+template <typename T>
+struct RasterWorkspace;
+}
+#endif
+
 class vtkAnnotationLink;
 class vtkDoubleArray;
+class vtkGaussianSplatMapper;
 class vtkIdTypeArray;
 class vtkPoints;
 class vtkPolyData;
@@ -85,6 +103,16 @@ public:
    */
   void SetRenderer(vtkRenderer* renderer);
   vtkGetObjectMacro(Renderer, vtkRenderer);
+  ///@}
+
+  ///@{
+  /**
+   * The mapper drawing the Scene in the Renderer, whose last full-resolution CPU-rasteriser
+   * frame a Single, Brush or Frame selection may reuse (see above). Default none (always
+   * project).
+   */
+  void SetSplatMapper(vtkGaussianSplatMapper* mapper);
+  vtkGetObjectMacro(SplatMapper, vtkGaussianSplatMapper);
   ///@}
 
   ///@{
@@ -181,6 +209,12 @@ public:
   vtkGetMacro(LastPrepareTime, double);
   ///@}
 
+  /**
+   * Whether the last selection read (or copied) the SplatMapper's drawn frame instead of
+   * projecting the scene.
+   */
+  vtkGetMacro(LastSelectionReusedFrame, bool);
+
 protected:
   vtkGaussianSelector();
   ~vtkGaussianSelector() override;
@@ -188,6 +222,7 @@ protected:
   vtkPolyData* Scene = nullptr;
   vtkRenderer* Renderer = nullptr;
   vtkAnnotationLink* AnnotationLink = nullptr;
+  vtkGaussianSplatMapper* SplatMapper = nullptr;
   int Modifier = REPLACE;
   double WeightThreshold = 0.01;
   double BrushRadius = 8.0;
@@ -196,12 +231,16 @@ protected:
   int NumberOfThreads = 0;
   double LastSelectionTime = 0.0;
   double LastPrepareTime = 0.0;
+  bool LastSelectionReusedFrame = false;
 
 private:
   vtkGaussianSelector(const vtkGaussianSelector&) = delete;
   void operator=(const vtkGaussianSelector&) = delete;
 
   bool PrepareView(bool needView);
+#ifndef __VTK_WRAP__
+  bool PrepareViewOrFrame(const vis4gs::RasterWorkspace<float>*& frame);
+#endif
   void PublishIndices(const std::vector<unsigned int>& indices);
 
   struct vtkInternals;

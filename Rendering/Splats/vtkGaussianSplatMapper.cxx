@@ -293,6 +293,7 @@ struct vtkGaussianSplatMapper::vtkInternals
   std::vector<float> Depths;
   std::vector<std::uint32_t> Order;
   vtkMTimeType InputTime = 0;
+  std::uint64_t CloudVersion = 0; // changes whenever Cloud is rebuilt (Work.Prepared's key)
   vtkMTimeType DisplayTime = 0;
   std::array<double, 16> SortedWorldToCamera{};
   vtkIdType SortedBudget = 0;
@@ -318,6 +319,12 @@ struct vtkGaussianSplatMapper::vtkInternals
   bool RasterValid = false;
   double AdaptiveDistance = 0.0; // interactive sample distance (auto-adjusted); 0 = not set
   std::size_t RasterDrawn = 0;
+  // Work's projection and tile lists are the plain scene's for FrameCamera (full resolution,
+  // no hiding or dimming, ScaleModifier 1): GetLastFullFrame().
+  bool FrameReusable = false;
+  vis4gs::Camera FrameCamera;
+  vtkPolyData* FrameInput = nullptr; // identity only
+  vtkMTimeType FrameInputTime = 0;
 
   // GPU side.
   vtkOpenGLRenderWindow* Window = nullptr;
@@ -597,6 +604,7 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     std::string error;
     in.Cloud = vis4gs::GaussianCloud();
     in.InputTime = input->GetMTime();
+    ++in.CloudVersion;
     in.RasterValid = false;
     if (!vis4gs::PolyDataToGaussianCloud(input, in.Cloud, &error))
     {
@@ -759,9 +767,12 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     settings.ScaleModifier = this->ScaleModifier;
     settings.Threads = threads;
     std::size_t drawn = 0;
+    in.FrameReusable = false;
+    bool unmodified = w == width && h == height && this->ScaleModifier == 1.0;
     try
     {
-      vis4gs::ProjectGaussians<float>(in.Cloud, camera, settings, in.Work.Projection);
+      vis4gs::ProjectGaussians(
+        in.Cloud, camera, settings, in.Work.Projection, in.Work.Prepared, in.CloudVersion);
       vis4gs::ViewProjection<float>& projection = in.Work.Projection;
       drawn = projection.Counts.Visible;
       vis4gs::SplatDisplayOptions opt;
@@ -791,15 +802,21 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
           {
             g.Status = vis4gs::ProjectionStatus::OffScreen;
             --drawn;
+            unmodified = false;
             continue;
           }
           std::copy_n(&in.Display[4 * i], 3, g.Color);
+          unmodified = unmodified && in.Display[4 * i + 3] == 1.0f;
           g.Opacity *= in.Display[4 * i + 3];
         }
       }
       vis4gs::BinGaussians<float>(projection, threads, in.Work.Bins, in.Work.Scratch);
       vis4gs::CompositeTiles<float>(
         projection, in.Work.Bins, settings, in.Image, nullptr, nullptr, &in.Work.Composite);
+      in.FrameReusable = unmodified;
+      in.FrameCamera = camera;
+      in.FrameInput = input;
+      in.FrameInputTime = in.InputTime;
     }
     catch (const std::exception& e)
     {
@@ -916,6 +933,19 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   in.Quad->Render();
   in.DepthTexture->Deactivate();
   in.ImageTexture->Deactivate();
+}
+
+//------------------------------------------------------------------------------
+const vis4gs::RasterWorkspace<float>* vtkGaussianSplatMapper::GetLastFullFrame(
+  const vis4gs::Camera*& camera,
+  vtkPolyData*& input,
+  vtkMTimeType& inputTime) const
+{
+  const vtkInternals& in = *this->Internals;
+  camera = in.FrameReusable ? &in.FrameCamera : nullptr;
+  input = in.FrameReusable ? in.FrameInput : nullptr;
+  inputTime = in.FrameReusable ? in.FrameInputTime : 0;
+  return in.FrameReusable ? &in.Work : nullptr;
 }
 
 //------------------------------------------------------------------------------

@@ -72,7 +72,8 @@
  *  - re-renders only when the camera, the viewport, the input or a display property changed;
  *  - keeps the rasteriser's per-frame buffers (vis4gs::RasterWorkspace: projection, tile
  *    lists, compositing data; about 300 MB at 1M Gaussians) between frames, so a frame does
- *    not allocate and page-fault them again.
+ *    not allocate and page-fault them again, and the input's view-independent preparation
+ *    (3D covariances, opacities: 44 B per Gaussian) until the input changes.
  * MaximumNumberOfSplats and GeometryPath apply to the OpenGL path only.
  *
  * Set the renderer's camera from a vis4gs::Camera with vtkGaussianCameraUtilities.
@@ -88,6 +89,14 @@
 class vtkIdTypeArray;
 class vtkLookupTable;
 class vtkSelection;
+#ifndef __VTK_WRAP__
+namespace vis4gs
+{
+struct Camera;
+template <typename T>
+struct RasterWorkspace;
+}
+#endif
 
 class VIS4GSRENDERINGSPLATS_EXPORT vtkGaussianSplatMapper : public vtkPolyDataMapper
 {
@@ -313,6 +322,21 @@ public:
   vtkGetMacro(LastRasterTime, double);
   ///@}
 
+#ifndef __VTK_WRAP__
+  /**
+   * CPU path: the rasteriser buffers of the last image drawn (projection and tile lists in
+   * vis4gs::RasterWorkspace), with the camera and the input (pointer, for identity only, and
+   * its MTime when converted) it was drawn for, when that image was drawn at full resolution
+   * with ScaleModifier 1 and every Gaussian unmodified (no hiding, no opacity dimming:
+   * overlay colours do not matter); nullptr otherwise (nothing drawn on the CPU path yet, a
+   * reduced interactive frame, ...). Valid until the next render. vtkGaussianSelector reuses
+   * them, when the camera and scene are its own, instead of projecting the scene again.
+   */
+  const vis4gs::RasterWorkspace<float>* GetLastFullFrame(const vis4gs::Camera*& camera,
+    vtkPolyData*& input,
+    vtkMTimeType& inputTime) const;
+#endif
+
   ///@{
   /**
    * CPU threads for sorting and colours; 0 (default) uses OpenMP's default.
@@ -340,8 +364,14 @@ public:
 
   void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
-  bool HasOpaqueGeometry() override { return true; }
-  bool HasTranslucentPolygonalGeometry() override { return false; }
+  bool HasOpaqueGeometry() override
+  {
+    return true;
+  }
+  bool HasTranslucentPolygonalGeometry() override
+  {
+    return false;
+  }
 
 protected:
   vtkGaussianSplatMapper();

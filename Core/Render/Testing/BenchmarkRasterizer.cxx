@@ -5,6 +5,11 @@
 //   BenchmarkRasterizer --peak           measured single-precision FMA peak, 1 and 2 threads
 //   BenchmarkRasterizer --naive          tiled vs naive per-pixel renderer on a small case
 //   BenchmarkRasterizer --footprint N    footprint pass of N Gaussians at 320x180 (1/4 res)
+//   BenchmarkRasterizer --frames N F T [V]  F frames of the scene view's synthetic scene
+//                                        (Core/Splats, SH 0, orbiting camera, 1280x720) through
+//                                        one RasterWorkspace with T threads; per-phase CPU
+//                                        time of the process (robust on a shared machine);
+//                                        V: cloud version (non-zero keeps the preparation)
 //
 // Synthetic scene: N Gaussians uniformly in the view frustum between z = 2 and z = 12, log
 // scales normal around log(0.02 * (1e6/N)^(1/3)) (sd 0.7 per axis: anisotropic, heavy-tailed
@@ -13,6 +18,7 @@
 #include "Footprint.h"
 #include "GaussianMath.h"
 #include "Rasterizer.h"
+#include "SyntheticScene.h"
 
 #include <immintrin.h>
 #include <omp.h>
@@ -430,10 +436,71 @@ void Footprint(std::size_t n)
   }
 }
 
+//------------------------------------------------------------------------------
+// The scene view's frames: MakeSyntheticScene + MakeSyntheticCamera as
+// BenchmarkGaussianSplatMapper, every frame re-rendered through one workspace.
+void Frames(std::size_t n, int frames, int threads, std::uint64_t version)
+{
+  const GaussianCloud cloud = MakeSyntheticScene(n, 0, 1);
+  RasterSettings s;
+  s.Threads = threads;
+  s.ShDegree = 0;
+  RasterWorkspace<float> ws;
+  std::vector<double> phase[4], wall;
+  for (int f = -1; f < frames; ++f)
+  {
+    const Camera cam = MakeSyntheticCamera(1280, 720, 0.05 * (f + 1));
+    const double w0 = Now();
+    const double c0 = CpuNow();
+    ProjectGaussians(cloud, cam, s, ws.Projection, ws.Prepared, version);
+    const double c1 = CpuNow();
+    BinGaussians(ws.Projection, threads, ws.Bins, ws.Scratch);
+    const double c2 = CpuNow();
+    CompositeTiles(ws.Projection, ws.Bins, s, ws.Image, nullptr, nullptr, &ws.Composite);
+    const double c3 = CpuNow();
+    if (f < 0)
+    {
+      continue; // first frame allocates
+    }
+    wall.push_back(Now() - w0);
+    phase[0].push_back(c1 - c0);
+    phase[1].push_back(c2 - c1);
+    phase[2].push_back(c3 - c2);
+    phase[3].push_back(c3 - c0);
+  }
+  auto median = [](std::vector<double> v)
+  {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  std::printf("frames N=%zu 1280x720 threads=%d, cloud version %llu (prepared %zu times, "
+              "reused %zu), median of %d: CPU project %.1f ms, bin+sort "
+              "%.1f ms, composite %.1f ms, total %.1f ms (wall %.1f ms)\n",
+    n,
+    threads,
+    static_cast<unsigned long long>(version),
+    ws.Prepared.Builds(),
+    ws.Prepared.Reuses(),
+    frames,
+    1e3 * median(phase[0]),
+    1e3 * median(phase[1]),
+    1e3 * median(phase[2]),
+    1e3 * median(phase[3]),
+    1e3 * median(wall));
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
 {
+  if (argc > 4 && std::string(argv[1]) == "--frames")
+  {
+    Frames(std::strtoull(argv[2], nullptr, 10),
+      std::atoi(argv[3]),
+      std::atoi(argv[4]),
+      argc > 5 ? std::strtoull(argv[5], nullptr, 10) : 0);
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "--peak")
   {
     Peak();

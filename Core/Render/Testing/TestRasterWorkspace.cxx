@@ -13,9 +13,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 
 using namespace vis4gs;
 using namespace vis4gs::rastertest;
@@ -66,10 +69,14 @@ struct Step
   Camera Cam;
 };
 
+// With @p keep, the float projections go through the workspace's kept preparation
+// (PreparedCloudCache), one cloud version per cloud of the sequence.
 template <typename T>
-void RunSequence(const std::vector<Step>& steps, int isa, int threads)
+void RunSequence(const std::vector<Step>& steps, int isa, int threads, bool keep = false)
 {
   RasterWorkspace<T> ws;
+  std::vector<const GaussianCloud*> versions; // version = 1 + position here
+  std::size_t switches = 0;
   RasterSettings rs;
   rs.KernelIsa = isa;
   rs.Threads = threads;
@@ -86,14 +93,34 @@ void RunSequence(const std::vector<Step>& steps, int isa, int threads)
     const TileBins bins = BinGaussians(proj, threads);
     RasterImage<T> ref;
     CompositeTiles(proj, bins, rs, ref);
+    std::uint64_t version = 0;
+    if (keep)
+    {
+      auto it = std::find(versions.begin(), versions.end(), &cloud);
+      if (it == versions.end())
+      {
+        versions.push_back(&cloud);
+        it = versions.end() - 1;
+      }
+      version = static_cast<std::uint64_t>(it - versions.begin()) + 1;
+      switches += s == 0 || steps[s - 1].Cloud != &cloud ? 1 : 0;
+    }
     if (s % 2 == 0)
     {
-      ProjectGaussians<T>(cloud, cam, rs, ws.Projection);
+      if constexpr (std::is_same<T, float>::value)
+      {
+        ProjectGaussians(cloud, cam, rs, ws.Projection, ws.Prepared, version);
+      }
+      else
+      {
+        ProjectGaussians<T>(cloud, cam, rs, ws.Projection);
+      }
       BinGaussians(ws.Projection, threads, ws.Bins, ws.Scratch);
       CompositeTiles(ws.Projection, ws.Bins, rs, ws.Image, nullptr, nullptr, &ws.Composite);
     }
     else
     {
+      ws.CloudVersion = version;
       Rasterize<T>(cloud, cam, rs, ws);
     }
     ExpectSameProjection(proj, ws.Projection);
@@ -127,6 +154,17 @@ void RunSequence(const std::vector<Step>& steps, int isa, int threads)
     }
   }
   EXPECT_GT(changed, 100u) << "the sequence must move Gaussians between statuses";
+  if (keep && std::is_same<T, float>::value && isa >= 0)
+  {
+    // Prepared once per switch of cloud, reused for every other frame.
+    EXPECT_EQ(switches, ws.Prepared.Builds());
+    EXPECT_EQ(steps.size() - switches, ws.Prepared.Reuses());
+  }
+  else
+  {
+    EXPECT_EQ(0u, ws.Prepared.Builds());
+    EXPECT_EQ(0u, ws.Prepared.Reuses());
+  }
 }
 
 std::vector<Step> Sequence(const GaussianCloud& big, const GaussianCloud& small)
@@ -157,6 +195,112 @@ TEST(RasterWorkspace, ReuseIsBitIdenticalOnMixedScenes)
     }
   }
   RunSequence<double>(steps, 0, 2);
+}
+
+TEST(RasterWorkspace, KeptPreparationIsBitIdenticalOnMixedScenes)
+{
+  const GaussianCloud big = MixedScene(3000, 3, 17u);
+  const GaussianCloud small = MixedScene(700, 1, 23u);
+  std::vector<Step> steps = Sequence(big, small);
+  // Several frames of the same cloud in a row (the scene view's case) besides the switches.
+  steps.insert(steps.begin() + 1, steps[0]);
+  steps.push_back({ &big, LookAt(80, 60, 50, 50, { 1.0, 2.0, -1.0 }, { 0, 0, 5 }) });
+  for (int isa : { 0, 1, 2, -1 })
+  {
+    for (int threads : { 1, 3 })
+    {
+      RunSequence<float>(steps, isa, threads, true);
+    }
+  }
+  RunSequence<double>(steps, 0, 2, true); // double: never kept
+}
+
+// The kept preparation follows everything it was computed from; a changed cloud under an
+// unchanged version throws instead of rendering stale data.
+TEST(RasterWorkspace, KeptPreparationFollowsTheCloud)
+{
+  GaussianCloud cloud = MixedScene(2000, 2, 41u);
+  const Camera cam = LookAt(120, 90, 90, 90, { 0.3, -0.2, -0.5 }, { 0, 0, 5 });
+  RasterSettings rs;
+  rs.Threads = 2;
+  RasterWorkspace<float> ws;
+  auto check = [&](const GaussianCloud& c, const RasterSettings& s, std::uint64_t version)
+  {
+    ws.CloudVersion = version;
+    Rasterize<float>(c, cam, s, ws);
+    ExpectSameProjection(ProjectGaussians<float>(c, cam, s), ws.Projection);
+    const RasterImage<float> ref = Rasterize<float>(c, cam, s);
+    ExpectSameImage(ref, ws.Image);
+  };
+  check(cloud, rs, 1);
+  check(cloud, rs, 1);
+  EXPECT_EQ(1u, ws.Prepared.Builds());
+  EXPECT_EQ(1u, ws.Prepared.Reuses());
+
+  // New parameters under a new version: prepared again.
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    cloud.LogScales[3 * i + 1] += 0.3f;
+  }
+  check(cloud, rs, 2);
+  EXPECT_EQ(2u, ws.Prepared.Builds());
+
+  // New parameters under the same version: the spot check throws, and nothing stale is kept.
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    cloud.OpacityLogits[i] = -cloud.OpacityLogits[i];
+  }
+  ws.CloudVersion = 2;
+  EXPECT_THROW(Rasterize<float>(cloud, cam, rs, ws), std::logic_error);
+  check(cloud, rs, 2); // the cache was dropped: prepared again, correct
+  EXPECT_EQ(3u, ws.Prepared.Builds());
+  // So is a change of 32 consecutive Gaussians (the 64 samples of 2000 are at most 32 apart).
+  for (std::size_t i = 100; i < 132; ++i)
+  {
+    cloud.LogScales[3 * i] += 0.25f;
+  }
+  ws.CloudVersion = 2;
+  EXPECT_THROW(Rasterize<float>(cloud, cam, rs, ws), std::logic_error);
+  check(cloud, rs, 3);
+
+  // Same version, but another cloud object, another size, other settings: prepared again.
+  std::size_t builds = ws.Prepared.Builds();
+  const GaussianCloud copy = cloud;
+  check(copy, rs, 3);
+  EXPECT_EQ(++builds, ws.Prepared.Builds());
+  const GaussianCloud smaller = MixedScene(900, 2, 41u);
+  check(smaller, rs, 3);
+  EXPECT_EQ(++builds, ws.Prepared.Builds());
+  RasterSettings scaled = rs;
+  scaled.ScaleModifier = 0.7;
+  check(smaller, scaled, 3);
+  EXPECT_EQ(++builds, ws.Prepared.Builds());
+  RasterSettings degree = scaled;
+  degree.ShDegree = 0; // fewer SH coefficients checked for finiteness
+  check(smaller, degree, 3);
+  EXPECT_EQ(++builds, ws.Prepared.Builds());
+  RasterSettings noColors = degree;
+  noColors.ComputeColors = false;
+  check(smaller, noColors, 3);
+  EXPECT_EQ(++builds, ws.Prepared.Builds());
+  check(smaller, noColors, 3);
+  EXPECT_EQ(builds, ws.Prepared.Builds());
+
+  // Version 0: never kept; Clear() forgets; copies start empty.
+  const std::size_t reuses = ws.Prepared.Reuses();
+  check(smaller, noColors, 0);
+  EXPECT_EQ(builds, ws.Prepared.Builds());
+  EXPECT_EQ(reuses, ws.Prepared.Reuses());
+  ws.Prepared.Clear();
+  check(smaller, noColors, 3);
+  EXPECT_EQ(++builds, ws.Prepared.Builds());
+  const PreparedCloudCache copied = ws.Prepared;
+  EXPECT_EQ(0u, copied.Builds());
+  RasterWorkspace<float> moved = std::move(ws);
+  EXPECT_EQ(builds, moved.Prepared.Builds());
+  moved.CloudVersion = 3;
+  Rasterize<float>(smaller, cam, noColors, moved);
+  EXPECT_EQ(builds, moved.Prepared.Builds()); // the moved cache is reused
 }
 
 TEST(RasterWorkspace, ReuseIsBitIdenticalOnRealScene)

@@ -4,6 +4,7 @@
 #include "RasterTestUtils.h"
 
 #include "Footprint.h"
+#include "RasterInternal.h"
 #include "Rasterizer.h"
 
 #include <gtest/gtest.h>
@@ -462,6 +463,76 @@ TEST(Rasterizer, NarrowSpansTwoRowsPerVectorBitIdentical)
       }
     }
   }
+}
+
+//------------------------------------------------------------------------------
+// The AVX-512 tile loop computes the candidate columns of 8 rows per vector (RowColumns8);
+// every row must get exactly what the scalar SpanBounds::Columns() and the tile clip give:
+// same rows kept, same clipped columns. Conics from tiny to huge, means far off the tile and
+// beyond the +-2^30 clamp, opacity levels from 1/255 to 1, tile columns around the span.
+TEST(Rasterizer, RowColumnsVectorEqualsScalar)
+{
+  std::mt19937 rng(31u);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::size_t kept = 0, dropped = 0, clipped = 0, clamped = 0, bounds = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const double scale = std::pow(10.0, -6.0 + 12.0 * u01(rng)); // conic magnitude
+    const double ang = 6.283185307179586 * u01(rng);
+    const double ratio = std::pow(10.0, 4.0 * u01(rng));
+    const double l1 = scale, l2 = scale * ratio;
+    const double cs = std::cos(ang), sn = std::sin(ang);
+    const float a = static_cast<float>(l1 * cs * cs + l2 * sn * sn);
+    const float b = static_cast<float>((l1 - l2) * cs * sn);
+    const float c = static_cast<float>(l1 * sn * sn + l2 * cs * cs);
+    const double far = trial % 97 == 0 ? 3e9 : (trial % 13 == 0 ? 1e5 : 200.0);
+    const float u = static_cast<float>((2.0 * u01(rng) - 1.0) * far);
+    const float v = static_cast<float>((2.0 * u01(rng) - 1.0) * far);
+    const double level = std::log(std::max(1.0 / 255.0, u01(rng)) * 255.0) * -1.0;
+    const raster::detail::SpanBounds sb =
+      raster::detail::MakeSpanBounds<float>(u, v, a, b, c, std::min(0.0, level));
+    if (!sb.Bounded)
+    {
+      continue;
+    }
+    ++bounds;
+    // Rows around the mean (or anywhere for far means), tiles around the span.
+    const int py0 = static_cast<int>(std::floor(std::max(-2e9, std::min(2e9, double(v))))) -
+      static_cast<int>(u01(rng) * 24.0);
+    const int x0 =
+      16 * static_cast<int>(std::floor(std::max(-1e8, std::min(1e8, double(u))) / 16.0)) +
+      16 * (static_cast<int>(u01(rng) * 5.0) - 2);
+    int lo[8], hi[8];
+    const int mask = raster::internal::RowColumnsAvx512(sb, py0, x0, lo, hi);
+    if (mask < 0)
+    {
+      GTEST_SKIP() << "no AVX-512 on this machine";
+    }
+    for (int l = 0; l < 8; ++l)
+    {
+      int xa = 0, xb = 0;
+      const bool has = sb.Columns(py0 + l, xa, xb);
+      clamped += has && (std::abs(xa) >= 1073741824 || std::abs(xb) >= 1073741824) ? 1 : 0;
+      const bool ok = has && !(xb < x0 || xa > x0 + 15);
+      ASSERT_EQ(ok, ((mask >> l) & 1) != 0) << "trial " << trial << " row " << l;
+      if (ok)
+      {
+        ++kept;
+        ASSERT_EQ(std::max(xa - x0, 0), lo[l]) << "trial " << trial << " row " << l;
+        ASSERT_EQ(std::min(xb - x0, 15), hi[l]) << "trial " << trial << " row " << l;
+        clipped += (xa < x0 || xb > x0 + 15) ? 1 : 0;
+      }
+      else
+      {
+        ++dropped;
+      }
+    }
+  }
+  EXPECT_GT(bounds, 10000u);
+  EXPECT_GT(kept, 10000u);
+  EXPECT_GT(dropped, 10000u);
+  EXPECT_GT(clipped, 1000u);
+  EXPECT_GT(clamped, 0u);
 }
 
 //------------------------------------------------------------------------------

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 namespace vis4gs
@@ -103,6 +104,40 @@ std::vector<float> NaiveMaxWeights(const SelectionView& v,
     }
   }
   return best;
+}
+
+/// Frame selection by definition: centre in the (clamped) rectangle and largest weight over
+/// its pixels >= threshold, from NaiveMaxWeights().
+std::vector<std::uint32_t> BruteForceFrame(const SelectionView& v,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  double threshold)
+{
+  std::vector<std::array<int, 2>> rect;
+  const int w1 = v.Projection.Width - 1, h1 = v.Projection.Height - 1;
+  const int ax = std::max(0, std::min(x0, x1)), bx = std::min(w1, std::max(x0, x1));
+  const int ay = std::max(0, std::min(y0, y1)), by = std::min(h1, std::max(y0, y1));
+  for (int y = ay; y <= by; ++y)
+  {
+    for (int x = ax; x <= bx; ++x)
+    {
+      rect.push_back({ x, y });
+    }
+  }
+  const auto w = NaiveMaxWeights(v, rect);
+  std::vector<std::uint32_t> selected;
+  for (std::uint32_t i = 0; i < v.Projection.Gaussians.size(); ++i)
+  {
+    const auto& g = v.Projection.Gaussians[i];
+    if (g.IsVisible() && g.U >= ax - 0.5f && g.U < bx + 0.5f && g.V >= ay - 0.5f &&
+      g.V < by + 0.5f && static_cast<double>(w[i]) >= threshold)
+    {
+      selected.push_back(i);
+    }
+  }
+  return selected;
 }
 }
 
@@ -307,37 +342,154 @@ TEST(ScreenSelection, FrameFromViewMaxWeightsEqualsReplay)
       fo.Threads = 2;
       fo.WeightThreshold = threshold;
       const auto fast = SelectFrame(cached, x0, y0, x1, y1, fo);
-      ASSERT_EQ(fast, SelectFrame(replay, x0, y0, x1, y1, fo))
+      FrameOptions full = fo;
+      full.CullReplay = false;
+      ASSERT_EQ(fast, SelectFrame(replay, x0, y0, x1, y1, full))
         << x0 << "," << y0 << " " << x1 << "," << y1 << " threshold " << threshold;
       nonEmpty += fast.empty() ? 0 : 1;
       if (r % 8 == 0)
       {
-        std::vector<std::array<int, 2>> rect;
-        const int ax = std::max(0, std::min(x0, x1)), bx = std::min(95, std::max(x0, x1));
-        const int ay = std::max(0, std::min(y0, y1)), by = std::min(63, std::max(y0, y1));
-        for (int y = ay; y <= by; ++y)
-        {
-          for (int x = ax; x <= bx; ++x)
-          {
-            rect.push_back({ x, y });
-          }
-        }
-        const auto w = NaiveMaxWeights(replay, rect);
-        std::vector<std::uint32_t> expected;
-        for (std::uint32_t i = 0; i < cloud.Count; ++i)
-        {
-          const auto& g = replay.Projection.Gaussians[i];
-          if (g.IsVisible() && g.U >= ax - 0.5f && g.U < bx + 0.5f && g.V >= ay - 0.5f &&
-            g.V < by + 0.5f && static_cast<double>(w[i]) >= threshold)
-          {
-            expected.push_back(i);
-          }
-        }
-        ASSERT_EQ(fast, expected);
+        ASSERT_EQ(fast, BruteForceFrame(replay, x0, y0, x1, y1, threshold));
       }
     }
   }
   EXPECT_GT(nonEmpty, 30);
+}
+
+TEST(ScreenSelection, FrameOnReusedDrawnProjectionEqualsReplay)
+{
+  // The scene view's frame: projected with colours (SH degree 1) and binned by the renderer's
+  // own calls, reused as is; the selection must equal the full replay on the selection's own
+  // projection, and the brute-force definition.
+  auto cloud = TestCloud(2500, 23);
+  cloud.ShDegree = 1;
+  cloud.SH.assign(3 * cloud.Count * static_cast<std::size_t>(cloud.ShCoefficientCount()), 0.0f);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (auto& v : cloud.SH)
+  {
+    v = 0.5f * u(rng);
+  }
+  for (auto& p : cloud.Positions)
+  {
+    p *= 0.6f; // denser: several layers per pixel
+  }
+  for (std::size_t i = 0; i < cloud.Count; i += 10)
+  {
+    cloud.LogScales[3 * i] = -1.2f + 0.3f * u(rng); // large: crosses many tiles
+    if (i % 20 == 0)
+    {
+      cloud.LogScales[3 * i + 1] = -7.0f; // needles and disks
+      cloud.OpacityLogits[i] = 6.0f;
+    }
+    if (i % 30 == 0)
+    {
+      cloud.OpacityLogits[i] = -5.6f; // opacity just above 1/255
+    }
+    if (i % 500 == 0)
+    {
+      cloud.LogScales[3 * i] = cloud.LogScales[3 * i + 2] = 0.5f; // covers most of the image
+      cloud.OpacityLogits[i] = -3.0f;
+    }
+  }
+  const Camera cam = TestCamera();
+  const SelectionView replay = PrepareSelectionView(cloud, cam, 2);
+  RasterWorkspace<float> frame;
+  RasterSettings drawn;
+  drawn.Threads = 3;
+  drawn.Background = { 0.2, 0.3, 0.4 };
+  Rasterize<float>(cloud, cam, drawn, frame);
+  ASSERT_EQ(frame.Projection.Gaussians.size(), cloud.Count);
+  // What the selection reads is the same with and without colours, bit for bit.
+  std::size_t visible = 0;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    const auto& a = frame.Projection.Gaussians[i];
+    const auto& b = replay.Projection.Gaussians[i];
+    ASSERT_EQ(a.Status, b.Status) << i;
+    ASSERT_TRUE(std::memcmp(&a.U, &b.U, 7 * sizeof(float)) == 0) << i; // U..Depth
+    ASSERT_TRUE(std::memcmp(a.Cov2D, b.Cov2D, sizeof(a.Cov2D)) == 0) << i;
+    ASSERT_TRUE(std::memcmp(a.TileRect, b.TileRect, sizeof(a.TileRect)) == 0) << i;
+    visible += a.IsVisible() ? 1 : 0;
+  }
+  EXPECT_GT(visible, 2000u);
+  ASSERT_EQ(frame.Bins.Offsets, replay.Bins.Offsets);
+  ASSERT_EQ(frame.Bins.Ids, replay.Bins.Ids);
+
+  // 1. The culled replay's weights over every pixel equal an independent replay.
+  {
+    std::vector<std::array<int, 2>> all;
+    for (int y = 0; y < cam.Height; ++y)
+    {
+      for (int x = 0; x < cam.Width; ++x)
+      {
+        all.push_back({ x, y });
+      }
+    }
+    const auto culled = MaxWeightsOverPixels(replay, all, 2);
+    const auto naive = NaiveMaxWeights(replay, all);
+    ASSERT_EQ(culled.size(), cloud.Count);
+    std::size_t blended = 0;
+    for (std::size_t i = 0; i < cloud.Count; ++i)
+    {
+      ASSERT_EQ(culled[i], naive[i]) << i;
+      blended += naive[i] > 0 ? 1 : 0;
+    }
+    EXPECT_GT(blended, 1000u);
+  }
+
+  // 2. Frames on the reused projection (culled replay): identical to the straightforward
+  // replay on the selection's own projection (every Gaussian of a tile's list on every pixel),
+  // to the culled replay there, and to the brute-force definition.
+  std::uniform_int_distribution<int> px(-20, 110), py(-20, 80);
+  int nonEmpty = 0;
+  std::size_t selected = 0;
+  for (int r = 0; r < 24; ++r)
+  {
+    int x0 = px(rng), x1 = px(rng), y0 = py(rng), y1 = py(rng);
+    if (r < 4)
+    {
+      // Single pixels, a single row, and the whole image.
+      x1 = x0 + (r == 2 ? 30 : 0);
+      y1 = y0;
+      if (r == 3)
+      {
+        x0 = y0 = -3;
+        x1 = y1 = 500;
+      }
+    }
+    for (double threshold : { 0.01, r < 4 ? 0.98 : 0.3 })
+    {
+      FrameOptions fo;
+      fo.Threads = 2;
+      fo.WeightThreshold = threshold;
+      const auto reused = SelectFrame(frame.Projection, frame.Bins, x0, y0, x1, y1, fo);
+      FrameOptions full = fo;
+      full.CullReplay = false;
+      const auto expected = SelectFrame(replay, x0, y0, x1, y1, full);
+      ASSERT_EQ(reused, expected) << x0 << "," << y0 << " " << x1 << "," << y1 << " threshold "
+                                  << threshold;
+      ASSERT_EQ(SelectFrame(replay, x0, y0, x1, y1, fo), expected);
+      ASSERT_EQ(SelectFrame(frame.Projection, frame.Bins, x0, y0, x1, y1, full), expected);
+      nonEmpty += reused.empty() ? 0 : 1;
+      selected += reused.size();
+      if (r % 8 == 0)
+      {
+        ASSERT_EQ(reused, BruteForceFrame(replay, x0, y0, x1, y1, threshold));
+      }
+    }
+    FrameOptions occ;
+    occ.IncludeOccluded = true;
+    ASSERT_EQ(SelectFrame(frame.Projection, frame.Bins, x0, y0, x1, y1, occ),
+      SelectFrame(replay, x0, y0, x1, y1, occ));
+  }
+  EXPECT_GT(nonEmpty, 15);
+  EXPECT_GT(selected, 3000u);
+
+  // 3. Bins of another projection are refused.
+  TileBins wrong = frame.Bins;
+  wrong.TilesX += 1;
+  EXPECT_THROW(SelectFrame(frame.Projection, wrong, 0, 0, 10, 10), std::invalid_argument);
 }
 
 TEST(ScreenSelection, BrushPixels)
