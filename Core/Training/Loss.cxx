@@ -53,7 +53,7 @@ std::vector<double> MakeWindow()
  * columns). The window is symmetric, so this is also its own adjoint. @p tmp holds W*H.
  */
 template <typename T>
-void Blur(const T* in, T* out, T* tmp, int W, int H)
+inline __attribute__((always_inline)) void BlurBody(const T* in, T* out, T* tmp, int W, int H)
 {
   const std::vector<double>& wd = SsimWindow1D();
   T w[2 * Radius + 1];
@@ -122,12 +122,231 @@ void Blur(const T* in, T* out, T* tmp, int W, int H)
   }
 }
 
+// BlurBody compiled for baseline x86-64, AVX2 and AVX-512, chosen at run time. Its loops
+// are element-wise (each output sums its taps in a fixed order; no contraction: the library
+// is built with -ffp-contract=off), so the vector width changes no result bit.
+template <typename T>
+void BlurBaseline(const T* in, T* out, T* tmp, int W, int H)
+{
+  BlurBody(in, out, tmp, W, H);
+}
+template <typename T>
+__attribute__((target("avx2"))) void BlurAvx2(const T* in, T* out, T* tmp, int W, int H)
+{
+  BlurBody(in, out, tmp, W, H);
+}
+template <typename T>
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void BlurAvx512(const T* in,
+  T* out,
+  T* tmp,
+  int W,
+  int H)
+{
+  BlurBody(in, out, tmp, W, H);
+}
+
+template <typename T>
+using BlurFunction = void (*)(const T*, T*, T*, int, int);
+
+/// 0 = best available, 1 = baseline, 2 = AVX2, 3 = AVX-512 (falls back when unsupported).
+template <typename T>
+BlurFunction<T> SelectBlur(int isa)
+{
+  __builtin_cpu_init();
+  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  const bool has2 = __builtin_cpu_supports("avx2");
+  if ((isa <= 0 || isa >= 3) && has512)
+  {
+    return &BlurAvx512<T>;
+  }
+  if ((isa <= 0 || isa >= 2) && has2)
+  {
+    return &BlurAvx2<T>;
+  }
+  return &BlurBaseline<T>;
+}
+
+// The per-pixel passes of SSIM over pixels [p0, p1) of one channel, element-wise like the
+// blur and dispatched the same way (same bits on every instruction set).
+template <typename T>
+inline __attribute__((always_inline)) void SplitBody(const T* x,
+  const T* y,
+  int ch,
+  std::size_t p0,
+  std::size_t p1,
+  T* px,
+  T* py,
+  T* pxx,
+  T* pyy,
+  T* pxy)
+{
+  for (std::size_t p = p0; p < p1; ++p)
+  {
+    const T a = x[3 * p + ch], c = y[3 * p + ch];
+    px[p] = a;
+    py[p] = c;
+    pxx[p] = a * a;
+    pyy[p] = c * c;
+    pxy[p] = a * c;
+  }
+}
+
+template <typename T>
+inline __attribute__((always_inline)) void MapBody(std::size_t p0,
+  std::size_t p1,
+  const T* mx,
+  const T* my,
+  const T* sxx,
+  const T* syy,
+  const T* sxy,
+  T* smap,
+  T* gmu,
+  T* gxx,
+  T* gxy,
+  bool gradient)
+{
+  for (std::size_t p = p0; p < p1; ++p)
+  {
+    const T mux = mx[p], muy = my[p];
+    const T vx = sxx[p] - mux * mux, vy = syy[p] - muy * muy, cxy = sxy[p] - mux * muy;
+    const T A1 = T(2) * mux * muy + T(C1), A2 = T(2) * cxy + T(C2);
+    const T B1 = mux * mux + muy * muy + T(C1), B2 = vx + vy + T(C2);
+    const T S = (A1 * A2) / (B1 * B2);
+    smap[p] = S;
+    if (gradient)
+    {
+      // The three gradient maps g_mu, g_xx, g_xy replace xx, yy, xy.
+      gmu[p] = S * (T(2) * muy / A1 - T(2) * mux / B1 - T(2) * muy / A2 + T(2) * mux / B2);
+      gxx[p] = -S / B2;
+      gxy[p] = T(2) * S / A2;
+    }
+  }
+}
+
+template <typename T>
+inline __attribute__((always_inline)) void GradBody(int ch,
+  std::size_t p0,
+  std::size_t p1,
+  const T* bmu,
+  const T* bxx,
+  const T* bxy,
+  const T* px,
+  const T* py,
+  T invN,
+  T* gradSsim)
+{
+  for (std::size_t p = p0; p < p1; ++p)
+  {
+    gradSsim[3 * p + ch] = (bmu[p] + T(2) * px[p] * bxx[p] + py[p] * bxy[p]) * invN;
+  }
+}
+
+#define VIS4GS_SSIM_PASSES(SUFFIX, TARGET)                                                         \
+  template <typename T>                                                                            \
+  TARGET void Split##SUFFIX(const T* x,                                                            \
+    const T* y,                                                                                    \
+    int ch,                                                                                        \
+    std::size_t p0,                                                                                \
+    std::size_t p1,                                                                                \
+    T* px,                                                                                         \
+    T* py,                                                                                         \
+    T* pxx,                                                                                        \
+    T* pyy,                                                                                        \
+    T* pxy)                                                                                        \
+  {                                                                                                \
+    SplitBody(x, y, ch, p0, p1, px, py, pxx, pyy, pxy);                                            \
+  }                                                                                                \
+  template <typename T>                                                                            \
+  TARGET void Map##SUFFIX(std::size_t p0,                                                          \
+    std::size_t p1,                                                                                \
+    const T* mx,                                                                                   \
+    const T* my,                                                                                   \
+    const T* sxx,                                                                                  \
+    const T* syy,                                                                                  \
+    const T* sxy,                                                                                  \
+    T* smap,                                                                                       \
+    T* gmu,                                                                                        \
+    T* gxx,                                                                                        \
+    T* gxy,                                                                                        \
+    bool gradient)                                                                                 \
+  {                                                                                                \
+    MapBody(p0, p1, mx, my, sxx, syy, sxy, smap, gmu, gxx, gxy, gradient);                         \
+  }                                                                                                \
+  template <typename T>                                                                            \
+  TARGET void Grad##SUFFIX(int ch,                                                                 \
+    std::size_t p0,                                                                                \
+    std::size_t p1,                                                                                \
+    const T* bmu,                                                                                  \
+    const T* bxx,                                                                                  \
+    const T* bxy,                                                                                  \
+    const T* px,                                                                                   \
+    const T* py,                                                                                   \
+    T invN,                                                                                        \
+    T* gradSsim)                                                                                   \
+  {                                                                                                \
+    GradBody(ch, p0, p1, bmu, bxx, bxy, px, py, invN, gradSsim);                                   \
+  }
+VIS4GS_SSIM_PASSES(Baseline, )
+VIS4GS_SSIM_PASSES(Avx2, __attribute__((target("avx2"))))
+VIS4GS_SSIM_PASSES(Avx512, __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))))
+#undef VIS4GS_SSIM_PASSES
+
+/// The SSIM kernels of one instruction set (0 best, 1 baseline, 2 AVX2, 3 AVX-512).
+template <typename T>
+struct SsimKernels
+{
+  void (*Blur)(const T*, T*, T*, int, int);
+  void (*Split)(const T*, const T*, int, std::size_t, std::size_t, T*, T*, T*, T*, T*);
+  void (*Map)(std::size_t,
+    std::size_t,
+    const T*,
+    const T*,
+    const T*,
+    const T*,
+    const T*,
+    T*,
+    T*,
+    T*,
+    T*,
+    bool);
+  void (
+    *Grad)(int, std::size_t, std::size_t, const T*, const T*, const T*, const T*, const T*, T, T*);
+
+  static SsimKernels Select(int isa)
+  {
+    const BlurFunction<T> blur = SelectBlur<T>(isa);
+    if (blur == &BlurAvx512<T>)
+    {
+      return { blur, &SplitAvx512<T>, &MapAvx512<T>, &GradAvx512<T> };
+    }
+    if (blur == &BlurAvx2<T>)
+    {
+      return { blur, &SplitAvx2<T>, &MapAvx2<T>, &GradAvx2<T> };
+    }
+    return { blur, &SplitBaseline<T>, &MapBaseline<T>, &GradBaseline<T> };
+  }
+  static const SsimKernels& Best()
+  {
+    static const SsimKernels best = Select(0);
+    return best;
+  }
+};
+
 /**
  * SSIM map sum per channel, and optionally the gradient of the mean SSIM with respect to x
  * (reference §3) written to @p gradSsim (3 per pixel, interleaved).
  */
 template <typename T>
-double SsimImpl(const T* x, const T* y, int W, int H, int threads, T* gradSsim)
+double SsimImpl(const T* x,
+  const T* y,
+  int W,
+  int H,
+  int threads,
+  T* gradSsim,
+  const SsimKernels<T>& kernels = SsimKernels<T>::Best(),
+  const T* targetPlanes = nullptr,
+  T* targetOut = nullptr)
 {
   if (W <= 0 || H <= 0)
   {
@@ -176,7 +395,7 @@ double SsimImpl(const T* x, const T* y, int W, int H, int threads, T* gradSsim)
       const int t = 0;
 #endif
       const int ch = task / count, k = task % count;
-      Blur(plane(ch, pairs[k][0]), plane(ch, pairs[k][1]), scratch(t), W, H);
+      kernels.Blur(plane(ch, pairs[k][0]), plane(ch, pairs[k][1]), scratch(t), W, H);
     }
   };
   // Per-pixel passes in blocks of pixels, channel by channel inside a block, so that the
@@ -189,46 +408,41 @@ double SsimImpl(const T* x, const T* y, int W, int H, int threads, T* gradSsim)
     const std::size_t p0 = static_cast<std::size_t>(b) * Block, p1 = std::min(P, p0 + Block);
     for (int ch = 0; ch < 3; ++ch)
     {
-      T *px = plane(ch, X), *py = plane(ch, Y), *pxx = plane(ch, XX), *pyy = plane(ch, YY),
-        *pxy = plane(ch, XY);
-      for (std::size_t p = p0; p < p1; ++p)
-      {
-        const T a = x[3 * p + ch], c = y[3 * p + ch];
-        px[p] = a;
-        py[p] = c;
-        pxx[p] = a * a;
-        pyy[p] = c * c;
-        pxy[p] = a * c;
-      }
+      kernels.Split(
+        x, y, ch, p0, p1, plane(ch, X), plane(ch, Y), plane(ch, XX), plane(ch, YY), plane(ch, XY));
     }
   }
-  static const int forward[5][2] = { { X, MX }, { Y, MY }, { XX, SXX }, { YY, SYY }, { XY, SXY } };
-  blurAll(forward, 5);
+  static const int forward[5][2] = { { X, MX }, { XX, SXX }, { XY, SXY }, { Y, MY }, { YY, SYY } };
+  // With the target's maps given, its two blurs per channel are not redone.
+  blurAll(forward, targetPlanes ? 3 : 5);
+  if (targetOut)
+  {
+    // PrepareSsimTarget(): keep the target's maps (blurred mean, blurred square).
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      std::copy(plane(ch, MY), plane(ch, MY) + P, targetOut + (2 * ch) * P);
+      std::copy(plane(ch, SYY), plane(ch, SYY) + P, targetOut + (2 * ch + 1) * P);
+    }
+    return 0;
+  }
 #pragma omp parallel for num_threads(nthreads) schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b)
   {
     const std::size_t p0 = static_cast<std::size_t>(b) * Block, p1 = std::min(P, p0 + Block);
     for (int ch = 0; ch < 3; ++ch)
     {
-      const T *mx = plane(ch, MX), *my = plane(ch, MY), *sxx = plane(ch, SXX),
-              *syy = plane(ch, SYY), *sxy = plane(ch, SXY);
-      T *smap = plane(ch, SMAP), *gmu = plane(ch, XX), *gxx = plane(ch, YY), *gxy = plane(ch, XY);
-      for (std::size_t p = p0; p < p1; ++p)
-      {
-        const T mux = mx[p], muy = my[p];
-        const T vx = sxx[p] - mux * mux, vy = syy[p] - muy * muy, cxy = sxy[p] - mux * muy;
-        const T A1 = T(2) * mux * muy + T(C1), A2 = T(2) * cxy + T(C2);
-        const T B1 = mux * mux + muy * muy + T(C1), B2 = vx + vy + T(C2);
-        const T S = (A1 * A2) / (B1 * B2);
-        smap[p] = S;
-        if (gradSsim)
-        {
-          // The three gradient maps g_mu, g_xx, g_xy replace xx, yy, xy.
-          gmu[p] = S * (T(2) * muy / A1 - T(2) * mux / B1 - T(2) * muy / A2 + T(2) * mux / B2);
-          gxx[p] = -S / B2;
-          gxy[p] = T(2) * S / A2;
-        }
-      }
+      kernels.Map(p0,
+        p1,
+        plane(ch, MX),
+        targetPlanes ? targetPlanes + (2 * ch) * P : plane(ch, MY),
+        plane(ch, SXX),
+        targetPlanes ? targetPlanes + (2 * ch + 1) * P : plane(ch, SYY),
+        plane(ch, SXY),
+        plane(ch, SMAP),
+        plane(ch, XX),
+        plane(ch, YY),
+        plane(ch, XY),
+        gradSsim != nullptr);
     }
   }
   double channelSum[3] = { 0, 0, 0 };
@@ -253,12 +467,16 @@ double SsimImpl(const T* x, const T* y, int W, int H, int threads, T* gradSsim)
       const std::size_t p0 = static_cast<std::size_t>(b) * Block, p1 = std::min(P, p0 + Block);
       for (int ch = 0; ch < 3; ++ch)
       {
-        const T *bmu = plane(ch, MX), *bxx = plane(ch, MY), *bxy = plane(ch, SXX),
-                *px = plane(ch, X), *py = plane(ch, Y);
-        for (std::size_t p = p0; p < p1; ++p)
-        {
-          gradSsim[3 * p + ch] = (bmu[p] + T(2) * px[p] * bxx[p] + py[p] * bxy[p]) * invN;
-        }
+        kernels.Grad(ch,
+          p0,
+          p1,
+          plane(ch, MX),
+          plane(ch, MY),
+          plane(ch, SXX),
+          plane(ch, X),
+          plane(ch, Y),
+          invN,
+          gradSsim);
       }
     }
   }
@@ -272,6 +490,21 @@ const std::vector<double>& SsimWindow1D()
 {
   static const std::vector<double> window = MakeWindow();
   return window;
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void detail::SsimBlur(const T* in, T* out, int width, int height, int isa)
+{
+  std::vector<T> tmp(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  SelectBlur<T>(isa)(in, out, tmp.data(), width, height);
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+double detail::SsimOnIsa(const T* x, const T* y, int width, int height, int isa, T* gradient)
+{
+  return SsimImpl<T>(x, y, width, height, 1, gradient, SsimKernels<T>::Select(isa));
 }
 
 //------------------------------------------------------------------------------
@@ -295,35 +528,64 @@ double Ssim(const T* x, const T* y, int width, int height, int threads)
 
 //------------------------------------------------------------------------------
 template <typename T>
+void PrepareSsimTarget(const T* y, int width, int height, SsimTarget<T>& target, int threads)
+{
+  const std::size_t P =
+    static_cast<std::size_t>(std::max(0, width)) * static_cast<std::size_t>(std::max(0, height));
+  target.Planes.resize(6 * P);
+  SsimImpl<T>(
+    y, y, width, height, threads, nullptr, SsimKernels<T>::Best(), nullptr, target.Planes.data());
+  target.Image = y;
+  target.Width = width;
+  target.Height = height;
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
 LossValues TrainingLoss(const T* x,
   const T* y,
   int width,
   int height,
   double lambda,
   std::vector<T>* gradient,
-  int threads)
+  int threads,
+  const SsimTarget<T>* target)
 {
   const std::size_t count = 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (target &&
+    (target->Image != y || target->Width != width || target->Height != height ||
+      target->Planes.size() != 2 * count))
+  {
+    throw std::invalid_argument("TrainingLoss: the SSIM target maps were made for another image");
+  }
+  const T* targetPlanes = target ? target->Planes.data() : nullptr;
   LossValues v;
-  if (gradient)
+  if (!gradient)
   {
-    gradient->assign(count, T(0));
+    v.Ssim =
+      SsimImpl<T>(x, y, width, height, threads, nullptr, SsimKernels<T>::Best(), targetPlanes);
+    v.L1 = L1Loss(x, y, count);
+    v.Loss = (1.0 - lambda) * v.L1 + lambda * (1.0 - v.Ssim);
+    return v;
   }
-  v.Ssim = SsimImpl<T>(x, y, width, height, threads, gradient ? gradient->data() : nullptr);
-  v.L1 = L1Loss(x, y, count);
+  // SsimImpl writes every entry of the gradient: sized, not zeroed.
+  gradient->resize(count);
+  v.Ssim = SsimImpl<T>(
+    x, y, width, height, threads, gradient->data(), SsimKernels<T>::Best(), targetPlanes);
+  // The L1 term and its gradient in one pass (the L1 sum in the order of L1Loss()).
+  const T l1w = static_cast<T>((1.0 - lambda) / static_cast<double>(count));
+  const T sw = static_cast<T>(-lambda);
+  T* g = gradient->data();
+  double l1 = 0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    l1 += std::abs(static_cast<double>(x[i]) - static_cast<double>(y[i]));
+    const T d = x[i] - y[i];
+    const T sign = d > T(0) ? T(1) : (d < T(0) ? T(-1) : T(0));
+    g[i] = l1w * sign + sw * g[i];
+  }
+  v.L1 = count ? l1 / static_cast<double>(count) : 0.0;
   v.Loss = (1.0 - lambda) * v.L1 + lambda * (1.0 - v.Ssim);
-  if (gradient)
-  {
-    const T l1w = static_cast<T>((1.0 - lambda) / static_cast<double>(count));
-    const T sw = static_cast<T>(-lambda);
-    T* g = gradient->data();
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      const T d = x[i] - y[i];
-      const T sign = d > T(0) ? T(1) : (d < T(0) ? T(-1) : T(0));
-      g[i] = l1w * sign + sw * g[i];
-    }
-  }
   return v;
 }
 
@@ -345,14 +607,32 @@ double Psnr(const T* x, const T* y, std::size_t count)
   return 20.0 * std::log10(1.0 / std::sqrt(mse));
 }
 
+template void detail::SsimBlur<float>(const float*, float*, int, int, int);
+template void detail::SsimBlur<double>(const double*, double*, int, int, int);
+template double detail::SsimOnIsa<float>(const float*, const float*, int, int, int, float*);
+template double detail::SsimOnIsa<double>(const double*, const double*, int, int, int, double*);
 template double L1Loss<float>(const float*, const float*, std::size_t);
 template double L1Loss<double>(const double*, const double*, std::size_t);
 template double Ssim<float>(const float*, const float*, int, int, int);
 template double Ssim<double>(const double*, const double*, int, int, int);
-template LossValues
-TrainingLoss<float>(const float*, const float*, int, int, double, std::vector<float>*, int);
-template LossValues
-TrainingLoss<double>(const double*, const double*, int, int, double, std::vector<double>*, int);
+template void PrepareSsimTarget<float>(const float*, int, int, SsimTarget<float>&, int);
+template void PrepareSsimTarget<double>(const double*, int, int, SsimTarget<double>&, int);
+template LossValues TrainingLoss<float>(const float*,
+  const float*,
+  int,
+  int,
+  double,
+  std::vector<float>*,
+  int,
+  const SsimTarget<float>*);
+template LossValues TrainingLoss<double>(const double*,
+  const double*,
+  int,
+  int,
+  double,
+  std::vector<double>*,
+  int,
+  const SsimTarget<double>*);
 template double Psnr<float>(const float*, const float*, std::size_t);
 template double Psnr<double>(const double*, const double*, std::size_t);
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <immintrin.h>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -271,7 +272,8 @@ void TileBackwardScalar(const BackwardContext<T>& ctx, std::size_t t, PartitionS
         {
           continue;
         }
-        const T Tc = pT[q] / (T(1) - alpha);
+        const T inv = T(1) / (T(1) - alpha);
+        const T Tc = pT[q] * inv;
         pT[q] = Tc;
         const T w = alpha * Tc;
         const T lastAlpha = pLastA[q];
@@ -285,7 +287,7 @@ void TileBackwardScalar(const BackwardContext<T>& ctx, std::size_t t, PartitionS
         }
         dLdAlpha *= Tc;
         pLastA[q] = alpha;
-        dLdAlpha += (-pFinal[q] / (T(1) - alpha)) * pBg[q];
+        dLdAlpha += ((-pFinal[q]) * inv) * pBg[q];
         const T dLdG = op * dLdAlpha;
         const T dx = u - fx, dy = v - fy;
         const T gdx = G * dx, gdy = G * dy;
@@ -326,6 +328,7 @@ struct BackwardLanes<double>
   typedef std::int64_t I __attribute__((vector_size(128)));
 };
 
+#define VIS4GS_LANES_AVX512 0
 #define VIS4GS_LANES_NAMESPACE lanes_baseline
 #define VIS4GS_LANES_TARGET
 #include "RasterBackwardLanes.inc"
@@ -336,11 +339,14 @@ struct BackwardLanes<double>
 #include "RasterBackwardLanes.inc"
 #undef VIS4GS_LANES_NAMESPACE
 #undef VIS4GS_LANES_TARGET
+#undef VIS4GS_LANES_AVX512
+#define VIS4GS_LANES_AVX512 1
 #define VIS4GS_LANES_NAMESPACE lanes_avx512
 #define VIS4GS_LANES_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
 #include "RasterBackwardLanes.inc"
 #undef VIS4GS_LANES_NAMESPACE
 #undef VIS4GS_LANES_TARGET
+#undef VIS4GS_LANES_AVX512
 
 template <typename T>
 using BackwardTileFunction = void (*)(const BackwardContext<T>&, std::size_t, PartitionSink<T>&);
@@ -388,7 +394,56 @@ BackwardTileFunction<T> SelectBackwardTile(int isa)
   return &TileLanesBaseline<T>;
 }
 
+std::uint32_t SpanRowMaskBaseline(const raster::detail::SpanBounds& sb, int x0, int y0)
+{
+  return lanes_baseline::SpanRowMask(sb, x0, y0);
+}
+__attribute__((target("avx2"))) std::uint32_t SpanRowMaskAvx2(const raster::detail::SpanBounds& sb,
+  int x0,
+  int y0)
+{
+  return lanes_avx2::SpanRowMask(sb, x0, y0);
+}
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) std::uint32_t SpanRowMaskAvx512(
+  const raster::detail::SpanBounds& sb,
+  int x0,
+  int y0)
+{
+  return lanes_avx512::SpanRowMask(sb, x0, y0);
+}
+
 } // namespace
+
+//------------------------------------------------------------------------------
+std::uint32_t detail::BackwardSpanRowMask(const raster::detail::SpanBounds& span,
+  int x0,
+  int y0,
+  int isa)
+{
+  if (isa < 0)
+  {
+    std::uint32_t mask = 0;
+    for (int r = 0; r < 16; ++r)
+    {
+      int xa, xb;
+      if (span.Columns(y0 + r, xa, xb) && xb >= x0 && xa <= x0 + 15)
+      {
+        mask |= 1u << r;
+      }
+    }
+    return mask;
+  }
+  const BackwardTileFunction<float> f = SelectBackwardTile<float>(isa);
+  if (f == &TileLanesAvx512<float>)
+  {
+    return SpanRowMaskAvx512(span, x0, y0);
+  }
+  if (f == &TileLanesAvx2<float>)
+  {
+    return SpanRowMaskAvx2(span, x0, y0);
+  }
+  return SpanRowMaskBaseline(span, x0, y0);
+}
 
 //------------------------------------------------------------------------------
 template <typename T>
@@ -477,12 +532,30 @@ void CompositeBackward(const ViewProjection<T>& projection,
     H };
   const BackwardTileFunction<T> tileFunction = SelectBackwardTile<T>(options.KernelIsa);
 
+  // Partitions handed out largest first (by their tiles' list lengths), so that the last
+  // one to finish is a small one: with 16 bands on 2 threads, the band order left one
+  // thread idle for up to a band's time. Which thread runs a partition never changes what
+  // it computes.
+  int order[16];
+  {
+    std::size_t cost[16];
+    for (int part = 0; part < P; ++part)
+    {
+      const int ty0 = static_cast<int>(static_cast<long long>(bins.TilesY) * part / P);
+      const int ty1 = static_cast<int>(static_cast<long long>(bins.TilesY) * (part + 1) / P);
+      cost[part] = bins.Offsets[static_cast<std::size_t>(ty1) * bins.TilesX] -
+        bins.Offsets[static_cast<std::size_t>(ty0) * bins.TilesX];
+      order[part] = part;
+    }
+    std::stable_sort(order, order + P, [&cost](int a, int b) { return cost[a] > cost[b]; });
+  }
 #pragma omp parallel num_threads(threads)
   {
     std::vector<T> local;
 #pragma omp for schedule(dynamic, 1)
-    for (int part = 0; part < P; ++part)
+    for (int k = 0; k < P; ++k)
     {
+      const int part = order[k];
       std::vector<std::uint32_t>& touched = ws.Touched[part];
       touched.clear();
       PartitionSink<T> sink{ ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S,
@@ -505,22 +578,33 @@ void CompositeBackward(const ViewProjection<T>& projection,
     }
   }
   // Fixed-order reduction: each Gaussian adds the partitions that touched it in partition
-  // order, so the sums do not depend on how the Gaussians are split between threads.
+  // order, so the sums do not depend on how the Gaussians are split between threads. The
+  // Gaussians go in chunks, and within a chunk partition after partition, so that each
+  // partition's rows are read as one sequential stream while the chunk's outputs stay in
+  // cache (reading the 16 partitions of one Gaussian after another missed the cache on
+  // nearly every row).
   T* out = gradients.Values.data();
-  const std::int64_t count = static_cast<std::int64_t>(n);
+  constexpr std::int64_t Chunk = 1024;
+  const std::int64_t chunks = (static_cast<std::int64_t>(n) + Chunk - 1) / Chunk;
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t gi = 0; gi < count; ++gi)
+  for (std::int64_t c = 0; c < chunks; ++c)
   {
-    const std::size_t g = static_cast<std::size_t>(gi);
-    T* o = out + g * S;
+    const std::size_t g0 = static_cast<std::size_t>(c * Chunk);
+    const std::size_t g1 = std::min(n, g0 + static_cast<std::size_t>(Chunk));
     for (int part = 0; part < P; ++part)
     {
-      if (ws.Marks[static_cast<std::size_t>(part) * n + g])
+      const std::uint8_t* marks = ws.Marks.data() + static_cast<std::size_t>(part) * n;
+      const T* rows = ws.Accumulators.data() + static_cast<std::size_t>(part) * n * S;
+      for (std::size_t g = g0; g < g1; ++g)
       {
-        const T* r = ws.Accumulators.data() + (static_cast<std::size_t>(part) * n + g) * S;
-        for (int k = 0; k < S; ++k)
+        if (marks[g])
         {
-          o[k] += r[k];
+          T* o = out + g * S;
+          const T* r = rows + g * S;
+          for (int k = 0; k < S; ++k)
+          {
+            o[k] += r[k];
+          }
         }
       }
     }
@@ -577,7 +661,17 @@ void ProjectBackward(const GaussianCloud& cloud,
       "the cloud (" + std::to_string(n) + " Gaussians)");
   }
   const int K = cloud.ShCoefficientCount();
-  gradients.Reset(n, K);
+  // Sized without zeroing: every Gaussian writes all of its entries below (zeros where it
+  // is culled or a coefficient is unused), which saves a pass over ~250 B per Gaussian.
+  gradients.Count = n;
+  gradients.ShCoefficients = K;
+  gradients.Positions.resize(3 * n);
+  gradients.LogScales.resize(3 * n);
+  gradients.Rotations.resize(4 * n);
+  gradients.OpacityLogits.resize(n);
+  gradients.SH.resize(3 * static_cast<std::size_t>(K) * n);
+  gradients.ViewspaceGradients.resize(2 * n);
+  gradients.Visible.resize(n);
   const int degree = projection.ShDegree;
   const int used = (degree + 1) * (degree + 1);
   const T W = static_cast<T>(projection.Width), H = static_cast<T>(projection.Height);
@@ -599,11 +693,23 @@ void ProjectBackward(const GaussianCloud& cloud,
   {
     const std::size_t i = static_cast<std::size_t>(ii);
     const ProjectedGaussian<T>& pg = projection.Gaussians[i];
+    T* gsh = gradients.SH.data() + i * 3 * static_cast<std::size_t>(K);
     if (!pg.IsVisible())
     {
+      gradients.Visible[i] = 0;
+      std::fill_n(gradients.Positions.data() + 3 * i, 3, T(0));
+      std::fill_n(gradients.LogScales.data() + 3 * i, 3, T(0));
+      std::fill_n(gradients.Rotations.data() + 4 * i, 4, T(0));
+      gradients.OpacityLogits[i] = T(0);
+      std::fill_n(gsh, 3 * K, T(0));
+      gradients.ViewspaceGradients[2 * i] = T(0);
+      gradients.ViewspaceGradients[2 * i + 1] = T(0);
       continue;
     }
     gradients.Visible[i] = 1;
+    // Coefficients above the active degree (all of them without colours) get no gradient.
+    const int firstZero = colors ? std::min(used, K) : 0;
+    std::fill(gsh + 3 * firstZero, gsh + 3 * K, T(0));
     const T* pgrad = projected.Values.data() + i * S;
     const T gu = pgrad[0], gv = pgrad[1], gA = pgrad[2], gB = pgrad[3], gC = pgrad[4];
     const T gO = pgrad[5];
@@ -800,7 +906,6 @@ void ProjectBackward(const GaussianCloud& cloud,
       const T d[3] = { v3[0] / len, v3[1] / len, v3[2] / len };
       T Y[16];
       ShBasis<T>(d, degree, Y);
-      T* gsh = gradients.SH.data() + i * 3 * static_cast<std::size_t>(K);
       for (int k = 0; k < used; ++k)
       {
         for (int ch = 0; ch < 3; ++ch)

@@ -187,6 +187,16 @@ void RasterBackward(const GaussianCloud& cloud,
   GaussianGradients<T>& gradients,
   const BackwardSettings& options = {});
 
+namespace detail
+{
+/// Testing hook of the lane path's row selection: bit r (r < 16) is set when tile row
+/// y0 + r has candidate columns of @p span within [x0, x0 + 15], computed as the 16-lane
+/// backward does on instruction set @p isa (1 baseline, 2 AVX2, 3 AVX-512, 0 the best;
+/// an unsupported one falls back as BackwardSettings::KernelIsa does), or for @p isa = -1
+/// row by row with SpanBounds::Columns(), the definition it must reproduce.
+std::uint32_t BackwardSpanRowMask(const raster::detail::SpanBounds& span, int x0, int y0, int isa);
+} // namespace detail
+
 extern template struct GaussianGradients<float>;
 extern template struct GaussianGradients<double>;
 extern template void CompositeBackward<float>(const ViewProjection<float>&,

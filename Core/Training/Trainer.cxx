@@ -616,13 +616,15 @@ double Trainer::Step()
   settings.Background = this->Data.Background;
   settings.ShDegree = this->ActiveShDegree;
   settings.Threads = threads;
-  const ViewProjection<float> proj = ProjectGaussians<float>(this->Cloud, cam, settings);
-  const TileBins bins = BinGaussians(proj, threads);
+  ViewProjection<float>& proj = this->StepProjection;
+  ProjectGaussians<float>(this->Cloud, cam, settings, proj);
+  TileBins& bins = this->StepBins;
+  BinGaussians(proj, threads, bins, this->StepBinScratch);
   GaussianGradients<float>& grads = this->Gradients;
   BackwardSettings bopt;
   bopt.Threads = threads;
   bopt.KernelIsa = o.KernelIsa;
-  RasterImage<float> image;
+  RasterImage<float>& image = this->StepImage;
   if (o.KernelIsa < 0)
   {
     CompositeTiles(proj, bins, settings, image);
@@ -635,13 +637,36 @@ double Trainer::Step()
   }
   const auto t1 = Clock::now();
 
+  if (this->SsimTargetsUsable < 0)
+  {
+    std::size_t bytes = 0;
+    for (const Camera& c : this->Data.Cameras)
+    {
+      bytes += 6 * sizeof(float) * static_cast<std::size_t>(std::max(0, c.Width)) *
+        static_cast<std::size_t>(std::max(0, c.Height));
+    }
+    this->SsimTargetsUsable = bytes <= (std::size_t(256) << 20) ? 1 : 0;
+    this->SsimTargets.assign(this->SsimTargetsUsable ? this->Data.Cameras.size() : 0, {});
+  }
+  const float* target = this->Data.Images[view].data();
+  const SsimTarget<float>* ssimTarget = nullptr;
+  if (this->SsimTargetsUsable > 0)
+  {
+    SsimTarget<float>& st = this->SsimTargets[view];
+    if (st.Image != target || st.Width != cam.Width || st.Height != cam.Height)
+    {
+      PrepareSsimTarget(target, cam.Width, cam.Height, st, threads);
+    }
+    ssimTarget = &st;
+  }
   const LossValues loss = TrainingLoss(image.Color.data(),
-    this->Data.Images[view].data(),
+    target,
     cam.Width,
     cam.Height,
     o.LambdaDssim,
     &this->GradientScratch,
-    threads);
+    threads,
+    ssimTarget);
   const auto t2 = Clock::now();
 
   RasterBackward(

@@ -40,6 +40,7 @@
 #include "Adam.h"
 #include "Camera.h"
 #include "GaussianCloud.h"
+#include "Loss.h"
 #include "RasterBackward.h"
 #include "TrainingLogTypes.h"
 
@@ -249,6 +250,16 @@ private:
   double LossEma = 0;
   std::vector<float> GradientScratch;
   GaussianGradients<float> Gradients; ///< reused between iterations (scratch memory)
+  /// The step's projection, tile lists and image, kept so that their memory is reused
+  /// between iterations instead of being allocated and page-faulted again.
+  ViewProjection<float> StepProjection;
+  TileBins StepBins;
+  BinScratch StepBinScratch;
+  RasterImage<float> StepImage;
+  /// Per camera: the SSIM maps of its target image, made on first use (while all of them
+  /// fit in 256 MB; otherwise TrainingLoss() recomputes them every iteration).
+  std::vector<SsimTarget<float>> SsimTargets;
+  int SsimTargetsUsable = -1; ///< -1 not decided yet, 0 no, 1 yes
 };
 
 } // namespace vis4gs

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 using namespace vis4gs;
@@ -186,4 +188,127 @@ TEST(Loss, ThreadCountDoesNotChangeResults)
   const auto b = TrainingLoss(x.data(), y.data(), W, H, 0.2, &g2, 2);
   EXPECT_EQ(a.Loss, b.Loss);
   EXPECT_EQ(g1, g2);
+}
+
+// The SSIM blur runs on the best instruction set: every instruction set must give the same
+// bits (element-wise loops, no contraction), and the blur must equal a direct 11x11
+// zero-padded window in double to float rounding, on planes narrower and wider than the
+// window, with border columns only, and with large and tiny values.
+TEST(Loss, SsimBlurIsBitIdenticalOnEveryInstructionSetAndMatchesDirectWindow)
+{
+  const std::vector<double>& g = SsimWindow1D();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (const auto& size : { std::pair<int, int>{ 1, 1 },
+         { 7, 3 },
+         { 10, 11 },
+         { 11, 12 },
+         { 37, 29 },
+         { 64, 5 },
+         { 130, 67 } })
+  {
+    const int W = size.first, H = size.second;
+    std::vector<float> in(static_cast<std::size_t>(W) * H);
+    for (std::size_t i = 0; i < in.size(); ++i)
+    {
+      in[i] = u(rng) * (i % 13 == 0 ? 1e20f : (i % 7 == 0 ? 1e-20f : 1.0f));
+    }
+    std::vector<float> ref(in.size()), out(in.size());
+    detail::SsimBlur(in.data(), ref.data(), W, H, 1);
+    for (int isa : { 0, 2, 3 })
+    {
+      detail::SsimBlur(in.data(), out.data(), W, H, isa);
+      EXPECT_EQ(out, ref) << W << "x" << H << " isa " << isa;
+    }
+    for (int py = 0; py < H; ++py)
+    {
+      for (int px = 0; px < W; ++px)
+      {
+        double s = 0, mag = 0;
+        for (int j = 0; j < 11; ++j)
+        {
+          for (int i = 0; i < 11; ++i)
+          {
+            const int qx = px + i - 5, qy = py + j - 5;
+            if (qx >= 0 && qy >= 0 && qx < W && qy < H)
+            {
+              const double v = in[static_cast<std::size_t>(qy) * W + qx];
+              s += g[i] * g[j] * v;
+              mag += g[i] * g[j] * std::abs(v);
+            }
+          }
+        }
+        const float b = ref[static_cast<std::size_t>(py) * W + px];
+        ASSERT_NEAR(b, s, 1e-6 * mag + 1e-30) << W << "x" << H << " pixel " << px << ", " << py;
+      }
+    }
+  }
+}
+
+// The whole SSIM (map, mean and gradient) gives the same bits on every instruction set.
+TEST(Loss, SsimIsBitIdenticalOnEveryInstructionSet)
+{
+  for (const auto& size : { std::pair<int, int>{ 9, 4 }, { 45, 38 }, { 130, 70 } })
+  {
+    const int W = size.first, H = size.second;
+    std::vector<double> xd = RandomImage(W, H, 11);
+    const std::vector<double> yd = RandomImage(W, H, 12);
+    for (std::size_t i = 0; i < xd.size(); i += 17)
+    {
+      xd[i] = yd[i]; // equal pixels
+    }
+    const std::vector<float> x(xd.begin(), xd.end()), y(yd.begin(), yd.end());
+    std::vector<float> ref(x.size()), grad(x.size());
+    const double s1 = detail::SsimOnIsa(x.data(), y.data(), W, H, 1, ref.data());
+    EXPECT_NEAR(s1, NaiveSsim(xd, yd, W, H), 1e-5);
+    for (int isa : { 0, 2, 3 })
+    {
+      const double s = detail::SsimOnIsa(x.data(), y.data(), W, H, isa, grad.data());
+      EXPECT_EQ(s, s1) << W << "x" << H << " isa " << isa;
+      EXPECT_EQ(grad, ref) << W << "x" << H << " isa " << isa;
+    }
+    EXPECT_EQ(Ssim(x.data(), y.data(), W, H, 2), s1);
+  }
+}
+
+// The trainer keeps each view's target-only SSIM maps: the loss and its gradient must be
+// the same bits as without them, with and without a gradient, on any thread count, and maps
+// made for another image or size are refused.
+TEST(Loss, KeptTargetMapsGiveTheSameBits)
+{
+  const int W = 53, H = 41;
+  const std::vector<double> xd = RandomImage(W, H, 21), yd = RandomImage(W, H, 22);
+  const std::vector<float> x(xd.begin(), xd.end()), y(yd.begin(), yd.end());
+  SsimTarget<float> target;
+  PrepareSsimTarget(y.data(), W, H, target, 2);
+  EXPECT_EQ(target.Planes.size(), 6u * W * H);
+  for (int threads : { 1, 2 })
+  {
+    std::vector<float> g0, g1;
+    const LossValues a = TrainingLoss(x.data(), y.data(), W, H, 0.2, &g0, threads);
+    const LossValues b = TrainingLoss(x.data(), y.data(), W, H, 0.2, &g1, threads, &target);
+    EXPECT_EQ(a.Loss, b.Loss);
+    EXPECT_EQ(a.L1, b.L1);
+    EXPECT_EQ(a.Ssim, b.Ssim);
+    EXPECT_EQ(g0, g1);
+    const LossValues c = TrainingLoss(
+      x.data(), y.data(), W, H, 0.2, static_cast<std::vector<float>*>(nullptr), threads, &target);
+    EXPECT_EQ(c.Loss, a.Loss);
+  }
+  // Identical images: SSIM 1 through the kept maps as well.
+  EXPECT_NEAR(
+    TrainingLoss(
+      y.data(), y.data(), W, H, 0.2, static_cast<std::vector<float>*>(nullptr), 1, &target)
+      .Ssim,
+    1.0,
+    1e-6);
+  const std::vector<float> other = y;
+  EXPECT_THROW(
+    TrainingLoss(
+      x.data(), other.data(), W, H, 0.2, static_cast<std::vector<float>*>(nullptr), 1, &target),
+    std::invalid_argument);
+  EXPECT_THROW(
+    TrainingLoss(
+      x.data(), y.data(), W, H - 1, 0.2, static_cast<std::vector<float>*>(nullptr), 1, &target),
+    std::invalid_argument);
 }

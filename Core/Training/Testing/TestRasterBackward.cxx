@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -765,4 +766,88 @@ TEST(RasterBackward, TrainingForwardMatchesRenderBitForBit)
   EXPECT_EQ(kept.Workspace.PreparedFor, nullptr); // consumed
   CompositeBackward(proj, bins, p.Settings, img, w.data(), fresh);
   EXPECT_EQ(kept.Values, fresh.Values);
+}
+
+// The lane path picks a Gaussian's rows in a tile with SpanBounds::Columns() evaluated for
+// 16 rows at once in double lanes, its integer tests rewritten as comparisons: on every
+// instruction set the row mask must equal the row-by-row definition, including rows at
+// the ellipse's top and bottom (disc near 0), bounds that land exactly on the tile's
+// column limits, needles, disks, huge and tiny conics and far-away centres.
+TEST(RasterBackward, LaneRowSelectionMatchesColumns)
+{
+  std::mt19937 rng(20261121);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  int compared = 0, nonEmpty = 0, partial = 0;
+  auto check = [&](const raster::detail::SpanBounds& sb, int x0, int y0)
+  {
+    const std::uint32_t ref = detail::BackwardSpanRowMask(sb, x0, y0, -1);
+    nonEmpty += ref != 0;
+    partial += ref != 0 && ref != 0xFFFFu;
+    for (int isa : { 0, 1, 2, 3 })
+    {
+      ASSERT_EQ(detail::BackwardSpanRowMask(sb, x0, y0, isa), ref)
+        << "isa " << isa << " tile (" << x0 << ", " << y0 << ") u " << sb.U << " v " << sb.V
+        << " A " << sb.A << " B " << sb.B << " det " << sb.Det;
+    }
+    ++compared;
+  };
+  for (int k = 0; k < 20000; ++k)
+  {
+    // Scales from 0.05 to 200 pixels, any orientation, aspect ratios up to 1e4.
+    const double s1 = std::pow(10.0, -1.3 + 3.6 * uni(rng));
+    const double s2 = s1 * std::pow(10.0, -4.0 * uni(rng) * (k % 3 == 0));
+    const double th = 6.283185307179586 * uni(rng);
+    const double c = std::cos(th), s = std::sin(th);
+    const double i1 = 1 / (s1 * s1), i2 = 1 / (s2 * s2);
+    const float a = static_cast<float>(c * c * i1 + s * s * i2);
+    const float b = static_cast<float>(c * s * (i1 - i2));
+    const float cc = static_cast<float>(s * s * i1 + c * c * i2);
+    const float u = static_cast<float>(-40 + 120 * uni(rng));
+    // Half-integer and integer centres put bounds exactly on column and row limits.
+    const float v = k % 5 == 0 ? static_cast<float>(std::round(-40 + 120 * uni(rng)))
+                               : static_cast<float>(-40 + 120 * uni(rng));
+    const double opacity = k % 7 == 0 ? 0.999 : 0.004 + uni(rng);
+    const double level = std::min(0.0, std::log((1.0 / 255.0) / opacity));
+    const raster::detail::SpanBounds sb =
+      raster::detail::MakeSpanBounds<float>(u, v, a, b, cc, level);
+    if (!sb.Bounded)
+    {
+      continue;
+    }
+    check(sb, 16 * (k % 3), 16 * ((k / 3) % 3));
+  }
+  // Exact limits: hand-made bounds whose lo / hi land on x0 + 16 and x0 - 1 (s = 2 where
+  // dy = 2: u = 19 and 35 put lo on 16 and 32, u = -4 and 12 put hi on -1 and 15).
+  raster::detail::SpanBounds sb;
+  sb.Bounded = true;
+  sb.A = 1;
+  sb.B = 0;
+  sb.Det = 1;
+  sb.InvA = 1;
+  sb.BOverA = 0;
+  sb.NegTwoL = 2 * 4.0; // s = sqrt(8 - dy^2)
+  sb.RowMin = -100;
+  sb.RowMax = 100;
+  for (double u :
+    { 12.0, 13.0, 19.0, 35.0, -4.0, 14.0, 15.0, 16.0, 17.0, -2.0, -3.0, 0.5, 1e12, -1e12 })
+  {
+    for (double v : { 0.0, 8.0, 15.5, -3.0, 19.0 })
+    {
+      sb.U = u;
+      sb.V = v;
+      check(sb, 16, 0);
+      check(sb, 0, 0);
+    }
+  }
+  // Infinite and NaN bounds are rejected alike.
+  sb.U = std::numeric_limits<double>::infinity();
+  check(sb, 0, 0);
+  sb.U = std::numeric_limits<double>::quiet_NaN();
+  check(sb, 0, 0);
+  sb.U = 3;
+  sb.NegTwoL = std::numeric_limits<double>::infinity();
+  check(sb, 0, 0);
+  EXPECT_GT(compared, 10000);
+  EXPECT_GT(nonEmpty, 1000);
+  EXPECT_GT(partial, 500);
 }
