@@ -1445,20 +1445,18 @@ TileFunction<T> SelectTileFunction(int isa)
 //------------------------------------------------------------------------------
 namespace
 {
-// The per-Gaussian data of the compositing loop (CompositeData), every element written.
+// The per-Gaussian data of the compositing loop (CompositeData) for Gaussians [begin, end),
+// every element written.
 template <typename T>
-void FillCompositeData(const ViewProjection<T>& projection,
-  int threads,
+inline __attribute__((always_inline)) void FillCompositeRange(const ViewProjection<T>& projection,
+  std::size_t begin,
+  std::size_t end,
   raster::detail::KernelGaussian<T>* kernels,
   raster::detail::SpanBounds* bounds)
 {
   using raster::detail::KernelGaussian;
-  const std::size_t n = projection.Gaussians.size();
-  const std::int64_t count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t ii = 0; ii < count; ++ii)
+  for (std::size_t i = begin; i < end; ++i)
   {
-    const std::size_t i = static_cast<std::size_t>(ii);
     const auto& g = projection.Gaussians[i];
     // Constructed in place (placement new of a prvalue: no temporary on the stack, whose
     // copy into the large array cost store-forwarding stalls).
@@ -1481,6 +1479,47 @@ void FillCompositeData(const ViewProjection<T>& projection,
     {
       new (&bounds[i]) raster::detail::SpanBounds();
     }
+  }
+}
+
+template <typename T>
+void FillCompositeRangeBaseline(const ViewProjection<T>& projection,
+  std::size_t begin,
+  std::size_t end,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  FillCompositeRange(projection, begin, end, kernels, bounds);
+}
+
+/// The same IEEE operations (no contraction: -ffp-contract=off) with AVX2 encodings (rounding
+/// instructions for floor/ceil instead of the baseline's emulation): the same bits, faster.
+template <typename T>
+__attribute__((target("avx2"))) void FillCompositeRangeAvx2(const ViewProjection<T>& projection,
+  std::size_t begin,
+  std::size_t end,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  FillCompositeRange(projection, begin, end, kernels, bounds);
+}
+
+template <typename T>
+void FillCompositeData(const ViewProjection<T>& projection,
+  int threads,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  const std::size_t n = projection.Gaussians.size();
+  const auto fill =
+    __builtin_cpu_supports("avx2") ? &FillCompositeRangeAvx2<T> : &FillCompositeRangeBaseline<T>;
+  constexpr std::size_t block = 4096;
+  const std::int64_t blocks = static_cast<std::int64_t>((n + block - 1) / block);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    const std::size_t begin = static_cast<std::size_t>(b) * block;
+    fill(projection, begin, std::min(n, begin + block), kernels, bounds);
   }
 }
 } // namespace

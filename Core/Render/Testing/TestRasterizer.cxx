@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -586,6 +587,41 @@ void ExpectDepthOffAndKeptDataMatch(const GaussianCloud& cloud,
     bounded += b.Bounded ? 1 : 0;
   }
   EXPECT_GT(bounded, 0u);
+  // PrepareCompositeData() runs an AVX2 encoding of the scalar code where the CPU has it: every
+  // span field must equal the scalar definition compiled here (baseline x86-64), bit for bit.
+  ASSERT_EQ(expected.Bounds.size(), proj.Gaussians.size());
+  const auto bits = [](double x)
+  {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof(u));
+    return u;
+  };
+  for (std::size_t i = 0; i < proj.Gaussians.size(); ++i)
+  {
+    const auto& g = proj.Gaussians[i];
+    raster::detail::SpanBounds want;
+    if (g.IsVisible() && g.Opacity >= raster::MinAlpha<T>())
+    {
+      const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
+      want = raster::detail::MakeSpanBounds<T>(
+        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level));
+    }
+    const auto& got = expected.Bounds[i];
+    ASSERT_EQ(want.Bounded, got.Bounded) << i;
+    ASSERT_EQ(want.RowMin, got.RowMin) << i;
+    ASSERT_EQ(want.RowMax, got.RowMax) << i;
+    for (const auto field : { &raster::detail::SpanBounds::U,
+           &raster::detail::SpanBounds::V,
+           &raster::detail::SpanBounds::A,
+           &raster::detail::SpanBounds::B,
+           &raster::detail::SpanBounds::Det,
+           &raster::detail::SpanBounds::InvA,
+           &raster::detail::SpanBounds::BOverA,
+           &raster::detail::SpanBounds::NegTwoL })
+    {
+      ASSERT_EQ(bits(want.*field), bits(got.*field)) << i;
+    }
+  }
   for (int isa = 0; isa <= 3; ++isa)
   {
     for (int threads : { 1, 2, 3 })
