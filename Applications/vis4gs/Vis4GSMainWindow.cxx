@@ -1206,9 +1206,10 @@ long long Vis4GSMainWindow::SelectInScene(int mode,
     d->Hub->SelectIds(ids, combine);
   }
   const char* names[] = { "Single", "Brush", "Frame", "Ray" };
-  this->statusBar()->showMessage(QString("%1: %2 Gaussians picked in %3 ms")
+  this->statusBar()->showMessage(QString("%1: %2 %3 picked in %4 ms")
                                    .arg(names[mode])
                                    .arg(count)
+                                   .arg(count == 1 ? "Gaussian" : "Gaussians")
                                    .arg(d->Selector->GetLastSelectionTime(), 0, 'f', 1),
     5000);
   return count;
