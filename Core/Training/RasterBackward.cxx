@@ -328,17 +328,23 @@ struct BackwardLanes<double>
   typedef std::int64_t I __attribute__((vector_size(128)));
 };
 
+// VIS4GS_LANES_NATIVE_BYTES: the widest vector register of the instruction set; the
+// baseline and AVX2 instantiations run the tile loop on vectors of that width.
 #define VIS4GS_LANES_AVX512 0
+#define VIS4GS_LANES_NATIVE_BYTES 16
 #define VIS4GS_LANES_NAMESPACE lanes_baseline
 #define VIS4GS_LANES_TARGET
 #include "RasterBackwardLanes.inc"
 #undef VIS4GS_LANES_NAMESPACE
 #undef VIS4GS_LANES_TARGET
+#undef VIS4GS_LANES_NATIVE_BYTES
+#define VIS4GS_LANES_NATIVE_BYTES 32
 #define VIS4GS_LANES_NAMESPACE lanes_avx2
 #define VIS4GS_LANES_TARGET __attribute__((target("avx2")))
 #include "RasterBackwardLanes.inc"
 #undef VIS4GS_LANES_NAMESPACE
 #undef VIS4GS_LANES_TARGET
+#undef VIS4GS_LANES_NATIVE_BYTES
 #undef VIS4GS_LANES_AVX512
 #define VIS4GS_LANES_AVX512 1
 #define VIS4GS_LANES_NAMESPACE lanes_avx512
