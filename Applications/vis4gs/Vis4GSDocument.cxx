@@ -7,6 +7,7 @@
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkGaussianArtifactScoreFilter.h"
@@ -39,6 +40,20 @@
 
 namespace
 {
+// Updates @p algorithm; false when it reported an error (VTK filters report, not throw).
+bool UpdateReportingErrors(vtkAlgorithm* algorithm)
+{
+  vtkNew<vtkCallbackCommand> errors;
+  bool failed = false;
+  errors->SetClientData(&failed);
+  errors->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void*) { *static_cast<bool*>(client) = true; });
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, errors);
+  algorithm->Update();
+  algorithm->RemoveObserver(tag);
+  return !failed;
+}
+
 vtkSmartPointer<vtkTable> MetricsToTable(const vis4gs::MetricsTable& m)
 {
   auto table = vtkSmartPointer<vtkTable>::New();
@@ -130,13 +145,7 @@ void BuildGenealogy(const vis4gs::EventTable& events,
   }
   filter->SetLastIteration(lastIteration);
   filter->SetRepairUnknownParents(true);
-  vtkNew<vtkCallbackCommand> errors;
-  bool failed = false;
-  errors->SetClientData(&failed);
-  errors->SetCallback(
-    [](vtkObject*, unsigned long, void* client, void*) { *static_cast<bool*>(client) = true; });
-  filter->AddObserver(vtkCommand::ErrorEvent, errors);
-  filter->Update();
+  const bool failed = !UpdateReportingErrors(filter);
   if (failed)
   {
     throw std::runtime_error("vtkGaussianGenealogyTreeFilter failed (see the error output)");
@@ -473,13 +482,7 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
       }
     });
   filter->AddObserver(vtkCommand::ProgressEvent, observer);
-  vtkNew<vtkCallbackCommand> errors;
-  bool failed = false;
-  errors->SetClientData(&failed);
-  errors->SetCallback(
-    [](vtkObject*, unsigned long, void* client, void*) { *static_cast<bool*>(client) = true; });
-  filter->AddObserver(vtkCommand::ErrorEvent, errors);
-  filter->Update();
+  const bool failed = !UpdateReportingErrors(filter);
   if (failed || !filter->GetOutput())
   {
     throw std::runtime_error("the score filter failed (see the error output)");

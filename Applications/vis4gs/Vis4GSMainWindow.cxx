@@ -85,6 +85,8 @@
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <string>
+#include <utility>
 
 struct Vis4GSMainWindow::Internals
 {
@@ -171,6 +173,35 @@ double CpuNow()
 {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
+
+// --benchmark: prints the wall and CPU time since the previous stage at each call.
+class StageTimer
+{
+public:
+  StageTimer(bool enabled, std::string prefix)
+    : Enabled(enabled)
+    , Prefix(std::move(prefix))
+  {
+  }
+  void operator()(const char* what)
+  {
+    if (this->Enabled)
+    {
+      const double now = Now(), cpu = CpuNow();
+      std::cout << this->Prefix << what << ": " << now - this->Start << " s (" << cpu - this->Cpu
+                << " s CPU)" << std::endl;
+      this->Start = now;
+      this->Cpu = cpu;
+    }
+  }
+
+  double GetStart() const { return this->Start; }
+
+private:
+  bool Enabled;
+  std::string Prefix;
+  double Start = Now(), Cpu = CpuNow();
+};
 
 // Forwards the scene interactor's mouse events to the window; can abort them so that the
 // camera style does not rotate while brushing or framing.
@@ -700,22 +731,11 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
     // Scores of the previous document: let them finish, their result is dropped.
     d->ScoreWorker->wait();
   }
-  double stageStart = Now(), stageCpu = CpuNow();
-  auto stage = [this, &stageStart, &stageCpu](const char* what)
-  {
-    if (d->Benchmark)
-    {
-      const double now = Now(), cpu = CpuNow();
-      std::cout << "benchmark:   " << what << ": " << now - stageStart << " s (" << cpu - stageCpu
-                << " s CPU)" << std::endl;
-      stageStart = now;
-      stageCpu = cpu;
-    }
-  };
+  StageTimer stage(d->Benchmark, "benchmark:   ");
   if (d->Benchmark)
   {
     std::cout << "benchmark:   document loaded (worker thread) after "
-              << stageStart - d->BenchmarkStart << " s: " << doc->Seconds << " s in Load"
+              << stage.GetStart() - d->BenchmarkStart << " s: " << doc->Seconds << " s in Load"
               << std::endl;
   }
   d->Doc = doc;
@@ -808,18 +828,7 @@ void Vis4GSMainWindow::UpdateScene(bool render)
   {
     return;
   }
-  double stageStart = Now(), stageCpu = CpuNow();
-  auto stage = [this, &stageStart, &stageCpu](const char* what)
-  {
-    if (d->Benchmark)
-    {
-      const double now = Now(), cpu = CpuNow();
-      std::cout << "benchmark:     " << what << ": " << now - stageStart << " s (" << cpu - stageCpu
-                << " s CPU)" << std::endl;
-      stageStart = now;
-      stageCpu = cpu;
-    }
-  };
+  StageTimer stage(d->Benchmark, "benchmark:     ");
   d->SceneMapper->SetInputData(scene);
   d->Selector->SetScene(scene);
   stage("selector");

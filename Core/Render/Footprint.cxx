@@ -216,24 +216,8 @@ VIS4GS_FP_AVX512 F16 SelectF16(I16 m, F16 a, F16 b)
 
 VIS4GS_FP_AVX512 F16 FootprintExp16(F16 x)
 {
-  // raster::KernelExpLanes, spelled out here so that its comparisons carry the attribute.
-  const I16 inRange = x >= -87.33654f;
-  x = SelectF16(inRange, x, F16{});
-  const F16 t = x * 1.44269504088896341f;
-  const F16 n = (t + 12582912.0f) - 12582912.0f;
-  F16 r = x - n * 0.693359375f;
-  r = r - n * -2.12194440e-4f;
-  const F16 r2 = r * r;
-  F16 p = F16{} + 1.9875691500E-4f;
-  p = p * r + 1.3981999507E-3f;
-  p = p * r + 8.3334519073E-3f;
-  p = p * r + 4.1665795894E-2f;
-  p = p * r + 1.6666665459E-1f;
-  p = p * r + 5.0000001201E-1f;
-  p = p * r2 + r + 1.0f;
-  const I16 bits = (__builtin_convertvector(n, I16) + 127) << 23;
-  const F16 res = p * reinterpret_cast<F16>(bits);
-  return SelectF16(inRange, res, F16{});
+  // Called from here, the always-inlined comparisons take this function's instruction set.
+  return raster::KernelExpLanes<F16, I16>(x);
 }
 
 // AlphaTest8 on 16 lanes (same decisions lane by lane), as a bit mask.
