@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -158,6 +159,24 @@ inline GaussianCloud RandomScene(std::size_t n,
     }
   }
   return cloud;
+}
+
+/// A per-pixel map for footprint sums with the awkward values: tiny and negative entries, a
+/// NaN, an Inf, a -0 and a huge last pixel (packed lanes must never read past the map).
+inline std::vector<float> OddMap(int w, int h, unsigned seed)
+{
+  std::vector<float> map(static_cast<std::size_t>(w) * h);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 2);
+  for (std::size_t i = 0; i < map.size(); ++i)
+  {
+    map[i] = u(rng) * (i % 5 == 0 ? 1e-9f : 1.0f);
+  }
+  map[map.size() / 3] = std::numeric_limits<float>::quiet_NaN();
+  map[map.size() / 2] = std::numeric_limits<float>::infinity();
+  map[map.size() / 2 + 7] = -0.0f;
+  map[map.size() - 1] = 1e30f; // last pixel: packed lanes must never read past the map
+  return map;
 }
 
 /// Naive per-pixel compositing over a projection: one global (depth, index) order, every

@@ -295,22 +295,6 @@ void CheckAllPathsIdentical(const ViewProjection<float>& proj, const std::vector
   }
 }
 
-std::vector<float> OddMap(int w, int h, unsigned seed)
-{
-  std::vector<float> map(static_cast<std::size_t>(w) * h);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1, 2);
-  for (std::size_t i = 0; i < map.size(); ++i)
-  {
-    map[i] = u(rng) * (i % 5 == 0 ? 1e-9f : 1.0f);
-  }
-  map[map.size() / 3] = std::numeric_limits<float>::quiet_NaN();
-  map[map.size() / 2] = std::numeric_limits<float>::infinity();
-  map[map.size() / 2 + 7] = -0.0f;
-  map[map.size() - 1] = 1e30f; // last pixel: packed lanes must never read past the map
-  return map;
-}
-
 } // namespace
 
 TEST(Footprint, VectorPathBitIdenticalOnMixedScene)

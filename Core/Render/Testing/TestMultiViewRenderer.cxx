@@ -26,21 +26,6 @@ using namespace vis4gs::rastertest;
 namespace
 {
 
-std::vector<float> OddMap(int w, int h, unsigned seed)
-{
-  std::vector<float> map(static_cast<std::size_t>(w) * h);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1, 2);
-  for (std::size_t i = 0; i < map.size(); ++i)
-  {
-    map[i] = u(rng) * (i % 5 == 0 ? 1e-9f : 1.0f);
-  }
-  map[map.size() / 3] = std::numeric_limits<float>::quiet_NaN();
-  map[map.size() / 2] = std::numeric_limits<float>::infinity();
-  map[map.size() - 1] = -0.0f;
-  return map;
-}
-
 // Stiff members: NaN/Inf parameters, behind the camera, near plane, needles, disks, huge,
 // tiny, opacity logits of +-1000 and near 1/255, zero quaternions, far off-screen.
 GaussianCloud StiffScene(int degree)

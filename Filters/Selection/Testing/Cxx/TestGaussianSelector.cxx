@@ -217,20 +217,29 @@ int TestGaussianSelector(int, char*[])
   // selection always equals Core's straightforward replay on the renderer's camera.
   mapper->SetDrawMethodToCPURasterizer();
   sel->SetSplatMapper(mapper);
+  // Core's selection view on the renderer's camera, and its straightforward Frame replay.
+  auto ownView = [&]
+  {
+    const vis4gs::Camera now =
+      vtkGaussianCameraUtilities::FromVTKCamera(ren->GetActiveCamera(), W, H);
+    return vis4gs::PrepareSelectionView(cloud, now, 1);
+  };
+  auto straightFrame =
+    [&](const vis4gs::SelectionView& own, int x0, int y0, int x1, int y1, bool occluded)
+  {
+    vis4gs::FrameOptions straight;
+    straight.Threads = 1;
+    straight.CullReplay = false;
+    straight.IncludeOccluded = occluded;
+    return toIds(vis4gs::SelectFrame(own, x0, y0, x1, y1, straight));
+  };
   int reused = 0, notReused = 0;
   auto frameCase = [&](const char* what, bool expectReuse, bool occluded)
   {
     sel->SetIncludeOccluded(occluded);
     const vtkIdType n = sel->SelectFrame(50, 30, 150, 120);
-    const vis4gs::Camera now =
-      vtkGaussianCameraUtilities::FromVTKCamera(ren->GetActiveCamera(), W, H);
-    const auto own = vis4gs::PrepareSelectionView(cloud, now, 1);
-    vis4gs::FrameOptions straight;
-    straight.Threads = 1;
-    straight.CullReplay = false;
-    straight.IncludeOccluded = occluded;
-    const auto expected =
-      toIds(vis4gs::SelectFrame(own, 50, H - 1 - 30, 150, H - 1 - 120, straight));
+    const auto own = ownView();
+    const auto expected = straightFrame(own, 50, H - 1 - 30, 150, H - 1 - 120, occluded);
     const bool ok = Ids(sel->GetSelectedIds()) == expected &&
       n == static_cast<vtkIdType>(expected.size()) && !expected.empty();
     const bool reuse = sel->GetLastSelectionReusedFrame();
@@ -306,13 +315,7 @@ int TestGaussianSelector(int, char*[])
   {
     const vtkIdType n = sel->SelectFrame(0, 0, W - 1, H - 1 - 10 * k);
     const bool reuse = sel->GetLastSelectionReusedFrame();
-    const vis4gs::Camera now =
-      vtkGaussianCameraUtilities::FromVTKCamera(ren->GetActiveCamera(), W, H);
-    const auto own = vis4gs::PrepareSelectionView(cloud, now, 1);
-    vis4gs::FrameOptions straight;
-    straight.Threads = 1;
-    straight.CullReplay = false;
-    const auto expected = toIds(vis4gs::SelectFrame(own, 0, 10 * k, W - 1, H - 1, straight));
+    const auto expected = straightFrame(ownView(), 0, 10 * k, W - 1, H - 1, false);
     Check(Ids(sel->GetSelectedIds()) == expected && n == static_cast<vtkIdType>(expected.size()) &&
         expected.size() > 10000,
       "whole-view frame (view maxima) equals Core");
