@@ -1,0 +1,166 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The logger on the original trainer's own GaussianModel (graphdeco-inria/gaussian-
+splatting scene/gaussian_model.py, loaded from a copy by upstream.py on the CPU; skipped
+with a message when there is none).
+
+The loop is train.py's, from iteration 1, with the README's lines in it; the model is
+created by its own create_from_pcd (simple_knn's distCUDA2, CUDA only, replaced by the
+same mean squared distance to the 3 nearest neighbours in torch). The rasteriser (CUDA
+only) is replaced by a pinhole projection giving what render() gives the loop:
+viewspace_points (whose gradient feeds add_densification_stats), visibility_filter and
+radii. The lineage check: _features_rest[:, -1, 2] holds each row's root id; the loss
+never reads _features_rest, so Adam never changes it, while densify_and_clone / _split
+copy it into the children and prune_points removes it with its row."""
+
+import types
+
+import h5py
+import numpy as np
+import torch
+
+import upstream
+from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_3dgs
+
+GaussianModel, REDIRECTED = upstream.load_3dgs_model()  # skips the module without a copy
+
+WIDTH, HEIGHT, FOCAL = 64, 48, 60.0
+
+
+def dist_cuda2(points):
+    """simple_knn's distCUDA2: mean squared distance to the 3 nearest other points."""
+    d2 = torch.cdist(points, points) ** 2
+    d2.fill_diagonal_(float("inf"))
+    return d2.topk(3, largest=False).values.mean(dim=1)
+
+
+def optimization_params(iterations):
+    """arguments/__init__.py OptimizationParams defaults, with the densification schedule
+    shortened to fit a test (same relations: interval, reset, from/until)."""
+    return types.SimpleNamespace(
+        iterations=iterations, position_lr_init=0.00016, position_lr_final=0.0000016,
+        position_lr_delay_mult=0.01, position_lr_max_steps=iterations, feature_lr=0.0025,
+        opacity_lr=0.025, scaling_lr=0.005, rotation_lr=0.001, exposure_lr_init=0.01,
+        exposure_lr_final=0.001, exposure_lr_delay_steps=0, exposure_lr_delay_mult=0.0,
+        percent_dense=0.01, lambda_dssim=0.2, densification_interval=10,
+        opacity_reset_interval=40, densify_from_iter=5, densify_until_iter=70,
+        densify_grad_threshold=0.0002)
+
+
+def render(g, weights, directions, push):
+    """What render() returns to the loop, and a loss with fixed per-root weights."""
+    means = g.get_xyz
+    z = means[:, 2:3]
+    xy = FOCAL * means[:, :2] / z + torch.tensor([WIDTH / 2.0, HEIGHT / 2.0])
+    viewspace = torch.cat([xy, torch.zeros_like(z)], dim=1)
+    viewspace.retain_grad()
+    radius = (3.0 * FOCAL * g.get_scaling.max(dim=1).values / z[:, 0]).ceil()
+    radii = torch.where((xy[:, 0] > 0) & (xy[:, 0] < WIDTH), radius, torch.zeros_like(radius))
+    root = g._features_rest[:, -1, 2].detach().long()
+    image_term = (viewspace[:, :2] * (weights[root, None] * directions[root])).sum()
+    loss = image_term + 1e-3 * (push[root, None] * g._opacity).sum() \
+        + 1e-3 * (g._features_dc ** 2).sum()
+    return loss, viewspace, radii > 0, radii
+
+
+def root_through_events(events, n0):
+    root = {i: i for i in range(n0)}
+    for k, p, c in zip(events[1], events[2], events[3]):
+        if k in (CLONE, SPLIT):
+            root[int(c)] = root[int(p)]
+    return root
+
+
+def test_original_gaussian_model_train_loop(tmp_path):
+    torch.manual_seed(0)
+    n0, iterations = 300, 80
+    g = torch.Generator().manual_seed(1)
+    pcd = types.SimpleNamespace(points=(torch.rand(n0, 3, generator=g) * 2 - 1
+                                        + torch.tensor([0.0, 0.0, 4.0])).numpy(),
+                                colors=torch.rand(n0, 3, generator=g).numpy())
+    cams = [types.SimpleNamespace(image_name=f"view{i}") for i in range(2)]
+    upstream.sys.modules["scene.gaussian_model"].distCUDA2 = dist_cuda2
+    gaussians = GaussianModel(3)
+    gaussians.create_from_pcd(pcd, cams, spatial_lr_scale=1.0)
+    with torch.no_grad():
+        gaussians._features_rest[:, -1, 2] = torch.arange(n0, dtype=torch.float32)
+        # half small (cloned), half large (split) against percent_dense * extent = 0.01
+        small = torch.rand(n0, generator=g) < 0.5
+        gaussians._scaling[:] = torch.where(small[:, None], np.log(0.004), np.log(0.05))
+    weights = torch.rand(n0, generator=g) * 2.5e-4  # gradient norms around the threshold
+    directions = torch.nn.functional.normalize(torch.randn(n0, 2, generator=g), dim=1)
+    push = torch.where(torch.rand(n0, generator=g) < 0.3, 1.0, -0.2)
+    with torch.no_grad():  # the pushed-down ones start near the prune threshold
+        gaussians._opacity[push > 0] = float(np.log(0.008 / 0.992))
+    opt = optimization_params(iterations)
+    gaussians.training_setup(opt)
+    cameras_extent = 1.0
+    path = str(tmp_path / "training_log.h5")
+
+    # -- README: after Scene(...) and gaussians.training_setup(opt) ------------------
+    logger = TrainingLogger(path, scene="random", sh_degree=3, iterations=opt.iterations,
+                            snapshot_interval=10)
+    tracker = track_3dgs(gaussians, logger)
+    # ---------------------------------------------------------------------------------
+    first_iter = 1
+    all_events = []
+    for iteration in range(first_iter, opt.iterations + 1):
+        gaussians.update_learning_rate(iteration)
+        loss, viewspace_point_tensor, visibility_filter, radii = render(
+            gaussians, weights, directions, push)
+        Ll1 = loss.detach()
+        loss.backward()
+        # -- README: right after loss.backward() --------------------------------------
+        logger.log_metrics(iteration, loss=loss, l1=Ll1)
+        # ------------------------------------------------------------------------------
+        with torch.no_grad():
+            if iteration < opt.densify_until_iter:
+                gaussians.max_radii2D[visibility_filter] = torch.max(
+                    gaussians.max_radii2D[visibility_filter], radii[visibility_filter])
+                gaussians.add_densification_stats(viewspace_point_tensor, visibility_filter)
+                if iteration > opt.densify_from_iter and iteration % opt.densification_interval == 0:
+                    size_threshold = 20 if iteration > opt.opacity_reset_interval else None
+                    gaussians.densify_and_prune(opt.densify_grad_threshold, 0.005,
+                                                cameras_extent, size_threshold)
+                if iteration % opt.opacity_reset_interval == 0:
+                    gaussians.reset_opacity()
+            if iteration < opt.iterations:
+                gaussians.exposure_optimizer.step()
+                gaussians.exposure_optimizer.zero_grad(set_to_none=True)
+                gaussians.optimizer.step()
+                gaussians.optimizer.zero_grad(set_to_none=True)
+        pend = logger.writer._pending_events
+        if pend:
+            all_events.append(tuple(np.concatenate([e[j] for e in pend]) for j in range(4)))
+        # -- README: last line of the loop body ----------------------------------------
+        logger.step(iteration)
+        # ------------------------------------------------------------------------------
+        events = tuple(np.concatenate([e[j] for e in all_events]) if all_events
+                       else np.zeros(0) for j in range(4))
+        root_of = root_through_events(events, n0)
+        stored = gaussians._features_rest[:, -1, 2].detach().long().tolist()
+        ids = tracker.ids.tolist()
+        assert len(ids) == len(stored) == len(set(ids))
+        for row, gid in enumerate(ids):
+            assert stored[row] == root_of[gid], f"iteration {iteration}, row {row}, id {gid}"
+    final = tracker.ids.clone()
+    logger.close()
+
+    assert tracker.warnings == []
+    check_format(path)
+    events = read_events(path)
+    kinds = set(events[1].tolist())
+    assert kinds == {CLONE, SPLIT, PRUNE}, kinds
+    alive, _ = replay_genealogy(events, n0)
+    assert alive == set(final.tolist())
+    with h5py.File(path, "r") as f:
+        snaps = sorted(int(k) for k in f["snapshots"])
+        assert snaps == list(range(0, iterations + 1, 10))
+        assert f["metrics/iteration"][0] == 1
+    info = dump(path)
+    if require_dump():
+        assert info["repairs"] == [] and info["events"] == len(events[0])
+    counts = {k: int((events[1] == k).sum()) for k in (CLONE, SPLIT, PRUNE)}
+    print(f"original 3DGS {GaussianModel.commit}: {REDIRECTED} device redirections; "
+          f"{n0} -> {len(final)} Gaussians; events clone {counts[CLONE]}, split "
+          f"{counts[SPLIT]}, prune {counts[PRUNE]}; snapshots {snaps}")
