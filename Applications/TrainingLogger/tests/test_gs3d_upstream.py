@@ -12,6 +12,7 @@ radii. The lineage check: _features_rest[:, -1, 2] holds each row's root id; the
 never reads _features_rest, so Adam never changes it, while densify_and_clone / _split
 copy it into the children and prune_points removes it with its row."""
 
+import os
 import types
 
 import h5py
@@ -20,7 +21,7 @@ import torch
 
 import upstream
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
-from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_3dgs
+from vis4gs_logger import CLONE, PRUNE, SPLIT
 
 GaussianModel, REDIRECTED = upstream.load_3dgs_model()  # skips the module without a copy
 
@@ -97,12 +98,24 @@ def test_original_gaussian_model_train_loop(tmp_path):
     cameras_extent = 1.0
     path = str(tmp_path / "training_log.h5")
 
-    # -- README: after Scene(...) and gaussians.training_setup(opt) ------------------
-    logger = TrainingLogger(path, scene="random", sh_degree=3, iterations=opt.iterations,
-                            snapshot_interval=10)
-    tracker = track_3dgs(gaussians, logger)
-    # ---------------------------------------------------------------------------------
-    first_iter = 1
+    source = tmp_path / "scene"
+    (source / "images").mkdir(parents=True)
+    for cam in cams:
+        (source / "images" / f"{cam.image_name}.png").write_bytes(b"")
+        cam.image_width, cam.image_height, cam.FoVx, cam.FoVy = WIDTH, HEIGHT, 1.0, 0.8
+        cam.world_view_transform = torch.eye(4)
+    dataset = types.SimpleNamespace(model_path=str(tmp_path), source_path=str(source),
+                                    sh_degree=3, images="images")
+    scene = types.SimpleNamespace(getTrainCameras=lambda: cams[:1], getTestCameras=lambda: cams[1:])
+    first_iter = 0
+    readme = upstream.readme_fragments("## Original 3DGS")
+    ns = {"os": os, "dataset": dataset, "opt": opt, "scene": scene, "gaussians": gaussians,
+          "first_iter": first_iter}
+    exec(readme[""], ns)
+    exec(readme["after `scene = Scene(dataset, gaussians)` and `gaussians.training_setup(opt)`:"], ns)
+    logger, tracker = ns["logger"], ns["tracker"]
+    logger.snapshot_interval = 10  # (default 500) to see several in 80 iterations
+    first_iter += 1  # train.py
     all_events = []
     for iteration in range(first_iter, opt.iterations + 1):
         gaussians.update_learning_rate(iteration)
@@ -110,9 +123,8 @@ def test_original_gaussian_model_train_loop(tmp_path):
             gaussians, weights, directions, push)
         Ll1 = loss.detach()
         loss.backward()
-        # -- README: right after loss.backward() --------------------------------------
-        logger.log_metrics(iteration, loss=loss, l1=Ll1)
-        # ------------------------------------------------------------------------------
+        ns.update(iteration=iteration, loss=loss, Ll1=Ll1)
+        exec(readme["in the loop, right after loss.backward() (before densification):"], ns)
         with torch.no_grad():
             if iteration < opt.densify_until_iter:
                 gaussians.max_radii2D[visibility_filter] = torch.max(
@@ -132,9 +144,10 @@ def test_original_gaussian_model_train_loop(tmp_path):
         pend = logger.writer._pending_events
         if pend:
             all_events.append(tuple(np.concatenate([e[j] for e in pend]) for j in range(4)))
-        # -- README: last line of the loop body ----------------------------------------
-        logger.step(iteration)
-        # ------------------------------------------------------------------------------
+        if iteration in (40, iterations):  # train.py's test_iterations
+            ns.update(l1_test=0.1, psnr_test=25.0)
+            exec(readme["in training_report, where the test views are evaluated:"], ns)
+        exec(readme["last line of the loop body:"], ns)
         events = tuple(np.concatenate([e[j] for e in all_events]) if all_events
                        else np.zeros(0) for j in range(4))
         root_of = root_through_events(events, n0)
@@ -144,7 +157,12 @@ def test_original_gaussian_model_train_loop(tmp_path):
         for row, gid in enumerate(ids):
             assert stored[row] == root_of[gid], f"iteration {iteration}, row {row}, id {gid}"
     final = tracker.ids.clone()
-    logger.close()
+    exec(readme["after the loop:"], ns)
+    with h5py.File(path, "r") as f:
+        np.testing.assert_array_equal(f["metrics/test/iteration"][:], [40, iterations])
+        assert list(f["cameras/split"][:]) == [0, 1]
+        for rel in f["cameras/image"].asstr()[:]:
+            assert os.path.isfile(os.path.join(tmp_path, rel)), rel
 
     assert tracker.warnings == []
     check_format(path)

@@ -16,7 +16,8 @@ events, every row's root must equal the root reached through the logged parents 
 row's id.
 """
 
-import math
+import os
+import types
 
 import h5py
 import numpy as np
@@ -25,7 +26,7 @@ import torch
 
 import upstream
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
-from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_gsplat
+from vis4gs_logger import CLONE, PRUNE, SPLIT
 
 gsplat_strategy = upstream.load_gsplat()  # skips the module without a copy
 
@@ -105,6 +106,23 @@ class Scene:
         return loss, info, n
 
 
+def colmap_parser(folder, views=6):
+    """The attributes of gsplat's examples/datasets/colmap.py Parser that
+    log_gsplat_cameras reads, with image files on disk."""
+    images = folder / "images_4"
+    images.mkdir(parents=True)
+    names = [f"frame_{i:03d}.jpg" for i in range(views)]
+    for n in names:
+        (images / n).write_bytes(b"")
+    c2w = np.repeat(np.eye(4)[None], views, axis=0)
+    c2w[:, 0, 3] = np.arange(views) * 0.1
+    k = np.array([[FOCAL, 0, WIDTH / 2], [0, FOCAL, HEIGHT / 2], [0, 0, 1]])
+    return types.SimpleNamespace(
+        data_dir=str(folder), test_every=4, image_names=names,
+        image_paths=[str(images / n) for n in names], camtoworlds=c2w,
+        camera_ids=[1] * views, Ks_dict={1: k}, imsize_dict={1: (WIDTH, HEIGHT)})
+
+
 def root_through_events(events, n0):
     """id -> root id, from the logged parents alone."""
     it, kind, parent, child = events
@@ -142,11 +160,15 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
     scene = Scene(n0, seed)
     result_dir = tmp_path / name
     result_dir.mkdir()
-    # -- README: gsplat, after the strategy state exists ------------------------------
-    logger = TrainingLogger(f"{result_dir}/training_log.h5", sh_degree=3,
-                            iterations=max_steps, snapshot_interval=10)
-    tracker = track_gsplat(splats, logger, strategy_state=strategy_state)
-    # ---------------------------------------------------------------------------------
+    readme = upstream.readme_fragments("## gsplat")
+    runner = types.SimpleNamespace(splats=splats, strategy_state=strategy_state,
+                                   parser=colmap_parser(tmp_path / f"{name}-data"))
+    cfg = types.SimpleNamespace(result_dir=str(result_dir), sh_degree=3, max_steps=max_steps)
+    ns = {"self": runner, "cfg": cfg}
+    exec(readme[""], ns)
+    exec(readme["in Runner.__init__, after self.strategy_state = ...initialize_state(...):"], ns)
+    logger, tracker = ns["logger"], ns["tracker"]
+    logger.snapshot_interval = 10  # (default 500) to see several in 80 steps
     scheduler = torch.optim.lr_scheduler.ExponentialLR(optimizers["means"],
                                                        gamma=0.01 ** (1.0 / max_steps))
     seen = set()
@@ -161,9 +183,8 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
             # what gsplat's rasterizer backward stores next to .grad (|grad| per pixel, summed)
             info["means2d"].absgrad = info["means2d"].grad.abs()
         l1loss = loss.detach()
-        # -- README: after loss.backward() --------------------------------------------
-        logger.log_metrics(step, loss=loss, l1=l1loss, num_gaussians=len(splats["means"]))
-        # ------------------------------------------------------------------------------
+        ns.update(step=step, loss=loss, l1loss=l1loss)
+        exec(readme["in the loop, after loss.backward():"], ns)
         for optimizer in optimizers.values():
             optimizer.step()
             optimizer.zero_grad(set_to_none=True)
@@ -180,16 +201,24 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
         if len(new[0]):
             all_events.append(new)
             seen.update(int(k) for k in new[1])
-        # -- README: end of the step ----------------------------------------------------
-        logger.step(step)
-        # ------------------------------------------------------------------------------
+        exec(readme["at the end of the step (after strategy.step_post_backward):"], ns)
+        if step in (39, max_steps - 1):  # simple_trainer's eval_steps are i - 1
+            ns["stats"] = {"psnr": 20.0 + step / 10.0, "ssim": 0.5, "lpips": 0.25}
+            exec(readme["in eval(), after `stats` is computed (LPIPS as the trainer computes it):"], ns)
         events = tuple(np.concatenate([e[j] for e in all_events]) if all_events
                        else np.zeros(0) for j in range(4))
         check_lineage(splats, tracker, root_through_events(events, n0))
         logged[0] += 1
     final_ids = tracker.ids.clone()
-    logger.close()
+    exec(readme["after the loop:"], ns)
     path = f"{result_dir}/training_log.h5"
+    with h5py.File(path, "r") as f:  # test metrics, LPIPS, cameras with their image files
+        np.testing.assert_array_equal(f["metrics/test/iteration"][:], [39, max_steps - 1])
+        np.testing.assert_array_equal(f["metrics/test/lpips"][:], [0.25, 0.25])
+        assert list(f["cameras/split"][:]) == [1, 0, 0, 0, 1, 0]
+        for rel in f["cameras/image"].asstr()[:]:
+            assert not os.path.isabs(rel) and os.path.isfile(os.path.join(result_dir, rel))
+        assert f["cameras"].attrs["source"] == runner.parser.data_dir
     events = read_events(path)
     check_lineage(splats, type("T", (), {"ids": final_ids})(), root_through_events(events, n0))
     return path, splats, final_ids, seen, events, tracker

@@ -158,3 +158,24 @@ def load_3dgs_model():
         commit = open(os.path.join(src, "COMMIT")).read().strip()
     model.GaussianModel.commit = commit
     return model.GaussianModel, n1 + n2
+
+
+def readme_fragments(title):
+    """The README's integration block under the heading ``title``, cut at its comment
+    lines: {comment: code}. The upstream tests execute these fragments in the trainers'
+    loops, so the README shows exactly what was run."""
+    readme = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                          "README.md")
+    text = open(readme).read()
+    section = text[text.index(title):]
+    block = section[section.index("```python\n") + 10:]
+    block = block[:block.index("```")]
+    fragments, key, lines = {}, "", []
+    for line in block.splitlines():
+        if line.startswith("# "):
+            fragments[key] = "\n".join(lines)
+            key, lines = line[2:].strip(), []
+        else:
+            lines.append(line)
+    fragments[key] = "\n".join(lines)
+    return fragments
