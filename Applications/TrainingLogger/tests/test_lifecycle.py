@@ -16,6 +16,7 @@ import pytest
 import torch
 
 import mock_gsplat_ops
+import test_gsplat
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
 from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_gsplat
 
@@ -23,17 +24,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def make_splats(n, seed=0):
-    g = torch.Generator().manual_seed(seed)
-    params = torch.nn.ParameterDict({
-        "means": torch.nn.Parameter(torch.randn(n, 3, generator=g)),
-        "scales": torch.nn.Parameter(torch.full((n, 3), -3.0)),
-        "quats": torch.nn.Parameter(torch.rand(n, 4, generator=g)),
-        "opacities": torch.nn.Parameter(torch.logit(torch.full((n,), 0.1))),
-        "sh0": torch.nn.Parameter(torch.randn(n, 1, 3, generator=g)),
-        "shN": torch.nn.Parameter(torch.zeros(n, 15, 3)),
-    })
-    optimizers = {k: torch.optim.Adam([{"params": [v], "lr": 1e-3, "name": k}], eps=1e-15)
-                  for k, v in params.items()}
+    params, optimizers, _ = test_gsplat.make_splats(n, seed)
     return params, optimizers
 
 
