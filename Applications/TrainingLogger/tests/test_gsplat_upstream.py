@@ -26,12 +26,10 @@ import torch
 
 import upstream
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from test_lifecycle import FOCAL, HEIGHT, WIDTH, colmap_parser
 from vis4gs_logger import CLONE, PRUNE, SPLIT
 
 gsplat_strategy = upstream.load_gsplat()  # skips the module without a copy
-
-WIDTH, HEIGHT, FOCAL = 64, 48, 60.0
-
 
 def create_splats(n, seed, sh_degree=3):
     """create_splats_with_optimizers of simple_trainer.py on random points, plus "root"."""
@@ -106,23 +104,6 @@ class Scene:
         return loss, info, n
 
 
-def colmap_parser(folder, views=6):
-    """The attributes of gsplat's examples/datasets/colmap.py Parser that
-    log_gsplat_cameras reads, with image files on disk."""
-    images = folder / "images_4"
-    images.mkdir(parents=True)
-    names = [f"frame_{i:03d}.jpg" for i in range(views)]
-    for n in names:
-        (images / n).write_bytes(b"")
-    c2w = np.repeat(np.eye(4)[None], views, axis=0)
-    c2w[:, 0, 3] = np.arange(views) * 0.1
-    k = np.array([[FOCAL, 0, WIDTH / 2], [0, FOCAL, HEIGHT / 2], [0, 0, 1]])
-    return types.SimpleNamespace(
-        data_dir=str(folder), test_every=4, image_names=names,
-        image_paths=[str(images / n) for n in names], camtoworlds=c2w,
-        camera_ids=[1] * views, Ks_dict={1: k}, imsize_dict={1: (WIDTH, HEIGHT)})
-
-
 def root_through_events(events, n0):
     """id -> root id, from the logged parents alone."""
     it, kind, parent, child = events
@@ -149,7 +130,8 @@ def pending_events(logger):
     return tuple(np.concatenate([e[j] for e in pend]) for j in range(4))
 
 
-def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run"):
+def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run",
+          before_step=None):
     """simple_trainer.py's loop (from step 0) with the README's lines."""
     torch.manual_seed(seed)
     splats, optimizers = create_splats(n0, seed)
@@ -175,6 +157,8 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
     logged = [0]  # events already checked (written ones are read back from the file)
     all_events = []
     for step in range(0, max_steps):
+        if before_step is not None:
+            before_step(step, strategy)
         loss, info, _ = scene.rasterize(splats, packed, getattr(strategy, "absgrad", False))
         strategy.step_pre_backward(params=splats, optimizers=optimizers,
                                    state=strategy_state, step=step, info=info)
@@ -239,6 +223,9 @@ def check_log(path, splats, final_ids, n0, max_steps, events):
     if require_dump():
         assert info["events"] == len(events[0]) and info["repairs"] == []
         assert info["snapshots"] == snaps
+        # the C++ reader gives the paths the application resolves against the log's folder
+        for rel in info["camera_images"]:
+            assert os.path.isfile(os.path.join(os.path.dirname(path), rel)), rel
 
 
 @pytest.mark.parametrize("packed,absgrad,revised", [(False, False, False), (True, False, False),
@@ -273,3 +260,21 @@ def test_mcmc_strategy(tmp_path):
 def test_pinned_commit_is_recorded():
     """The tests say which upstream code they ran."""
     assert len(gsplat_strategy.commit) >= 7, gsplat_strategy.commit
+
+
+def test_default_strategy_from_one_gaussian_to_none(tmp_path):
+    """One Gaussian grows by gsplat's own duplicate/split, then its prune removes every
+    Gaussian: the last snapshot is the empty model."""
+    def prune_all_at_the_last_refine(step, strategy):
+        if step == 40:
+            strategy.prune_opa = 1.0  # every opacity is below 1
+
+    strategy = gsplat_strategy.DefaultStrategy(refine_start_iter=5, refine_every=10,
+                                               reset_every=1000, grow_grad2d=0.0)
+    path, splats, final_ids, seen, events, tracker = train(
+        tmp_path, strategy, 41, n0=1, seed=5, before_step=prune_all_at_the_last_refine)
+    assert len(final_ids) == 0 and PRUNE in seen and seen & {CLONE, SPLIT}, seen
+    check_log(path, splats, final_ids, 1, 41, events)
+    with h5py.File(path, "r") as f:
+        counts = [len(f[f"snapshots/{s:06d}/id"]) for s in (0, 10, 20, 30, 40)]
+    assert counts[0] == 1 and counts[1] == 2 and counts[-1] == 0, counts

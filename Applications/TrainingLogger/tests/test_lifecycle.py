@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The cases a real run meets at its edges, on the gsplat hooks with the stand-in ops
+"""The cases a real run meets at its edges (and the cameras it logs), on the gsplat hooks with the stand-in ops
 (checked against gsplat's own in test_mocks_upstream.py): a loop that starts at step 0,
 a model pruned to nothing, a model of one Gaussian, a run killed at any moment, and a run
 resumed from a checkpoint. Every log is read back by h5py and by the C++ reader."""
@@ -9,6 +9,7 @@ import signal
 import subprocess
 import sys
 import time
+import types
 
 import h5py
 import numpy as np
@@ -21,6 +22,7 @@ from logcheck import check_format, dump, read_events, replay_genealogy, require_
 from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_gsplat
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+WIDTH, HEIGHT, FOCAL = 64, 48, 60.0
 
 
 def make_splats(n, seed=0):
@@ -93,6 +95,19 @@ sys.path[:0] = [sys.argv[2], sys.argv[3]]
 import mock_gsplat_ops
 from vis4gs_logger import TrainingLogger, track_gsplat
 from test_lifecycle import make_splats
+import os, signal
+from vis4gs_logger import writer
+if len(sys.argv) > 4:  # die inside the writer: at the N-th call of one of its methods
+    method, nth = sys.argv[4].split(":")
+    raw, calls = writer.TrainingLogWriter.__dict__[method], [0]
+    original = getattr(writer.TrainingLogWriter, method)
+    def dying(*args, **kwargs):
+        calls[0] += 1
+        if calls[0] == int(nth):
+            os.kill(os.getpid(), signal.SIGKILL)
+        return original(*args, **kwargs)
+    setattr(writer.TrainingLogWriter, method,
+            staticmethod(dying) if isinstance(raw, staticmethod) else dying)
 params, optimizers = make_splats(200)
 logger = TrainingLogger(sys.argv[1], snapshot_interval=3, flush_every_s=0.0)
 track_gsplat(params, logger, modules=[mock_gsplat_ops])
@@ -110,38 +125,57 @@ while True:
 """
 
 
-@pytest.mark.parametrize("delay_s", [0.0, 0.35, 0.8, 1.3, 2.1])
-def test_killed_run_leaves_a_valid_log(tmp_path, delay_s):
-    """SIGKILL at several moments (in __init__, mid-step, mid-snapshot, later): the file
-    reads as a valid log up to its last flush."""
+@pytest.mark.parametrize("steps", [0, 1, 2, 5, 14, 40])
+def test_killed_run_leaves_a_valid_log(tmp_path, steps):
+    """SIGKILL as soon as the run has reported `steps` finished steps (0: at once, before
+    or while the file is created); the process is then anywhere in the next step (in
+    densification, a flush or a snapshot). The file reads as a valid log that holds at
+    least every snapshot of the finished steps."""
     path = str(tmp_path / "killed.h5")
     root = os.path.dirname(HERE)
     child = subprocess.Popen([sys.executable, "-c", _CHILD, path, HERE, root],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        # Wait until the logger exists (the interpreter and torch take a while to start).
-        first = child.stdout.readline() if delay_s > 0 else ""
-        time.sleep(delay_s)
+        for k in range(steps):
+            assert child.stdout.readline().strip() == str(k + 1), child.stderr.read()
         child.send_signal(signal.SIGKILL)
         child.wait(timeout=30)
     finally:
         if child.poll() is None:
             child.kill()
-    if delay_s > 0:
-        assert first.strip() == "1"
-    if not os.path.exists(path):
-        return  # killed before the file was created: nothing to read
-    with h5py.File(path, "r"):
-        pass  # opens
-    if delay_s == 0.0 and not _has_format(path):
-        return  # killed inside the creation of the file, before its first flush
+    if steps == 0 and not _has_format(path):
+        return  # killed before the file's first flush: there is no log to read
     check_format(path)
     events = read_events(path)
-    alive, _ = replay_genealogy(events, 200)
+    replay_genealogy(events, 200)
+    with h5py.File(path, "r") as f:
+        snaps = sorted(int(k) for k in f["snapshots"])
+        assert set(range(0, steps + 1, 3)) <= set(snaps)
+        assert len(f["metrics/iteration"]) >= steps - 1
     info = dump(path)
     if require_dump():
         assert info["repairs"] == [] and info["events"] == len(events[0])
-        assert info["snapshots"][0] == 0 and info["counts"][0] == 200
+        assert info["snapshots"] == snaps and info["counts"][0] == 200
+
+
+@pytest.mark.parametrize("where", ["_dataset:20", "_dataset:45", "_append:30", "_append:61"])
+def test_run_killed_inside_the_writer_leaves_a_valid_log(tmp_path, where):
+    """SIGKILL in the middle of writing a snapshot (between two of its datasets) or of a
+    flush (between two appended columns): the log is the one of the last flush."""
+    path = str(tmp_path / "killed.h5")
+    child = subprocess.run([sys.executable, "-c", _CHILD, path, HERE, os.path.dirname(HERE),
+                            where], capture_output=True, text=True, timeout=120)
+    assert child.returncode == -signal.SIGKILL, child.stderr
+    reported = [int(line) for line in child.stdout.split()]
+    assert reported, "killed before the first step"
+    check_format(path)
+    replay_genealogy(read_events(path), 200)
+    with h5py.File(path, "r") as f:
+        snaps = sorted(int(k) for k in f["snapshots"])
+        assert set(range(0, reported[-1] + 1, 3)) <= set(snaps)
+    info = dump(path)
+    if require_dump():
+        assert info["repairs"] == [] and info["snapshots"] == snaps
 
 
 def _has_format(path):
@@ -191,3 +225,66 @@ def test_resumed_run_starts_a_clear_new_log(tmp_path):
     info = dump(path)
     if require_dump():
         assert info["snapshots"] == [5, 10] and info["repairs"] == []
+
+
+def colmap_parser(folder, views=6):
+    """The attributes of gsplat's examples/datasets/colmap.py Parser that
+    log_gsplat_cameras reads, with image files on disk."""
+    images = folder / "images_4"
+    images.mkdir(parents=True)
+    names = [f"frame_{i:03d}.jpg" for i in range(views)]
+    for n in names:
+        (images / n).write_bytes(b"")
+    c2w = np.repeat(np.eye(4)[None], views, axis=0)
+    c2w[:, 0, 3] = np.arange(views) * 0.1
+    k = np.array([[FOCAL, 0, WIDTH / 2], [0, FOCAL, HEIGHT / 2], [0, 0, 1]])
+    return types.SimpleNamespace(
+        data_dir=str(folder), test_every=4, image_names=names,
+        image_paths=[str(images / n) for n in names], camtoworlds=c2w,
+        camera_ids=[1] * views, Ks_dict={1: k}, imsize_dict={1: (WIDTH, HEIGHT)})
+
+
+def test_cameras_lead_to_their_images(tmp_path):
+    """Relative image paths that the C++ reader returns and the application resolves
+    against the log's folder: gsplat's Parser, and 3DGS cameras whose image names have no
+    extension; world_to_camera is the inverse of the Parser's camera-to-world."""
+    parser = colmap_parser(tmp_path / "garden")
+    out = tmp_path / "results" / "run"
+    out.mkdir(parents=True)
+    params, _ = make_splats(4)
+    path = str(out / "training_log.h5")
+    logger = TrainingLogger(path)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    logger.log_gsplat_cameras(parser)
+    logger.close()
+    with h5py.File(path, "r") as f:
+        c = f["cameras"]
+        images = list(c["image"].asstr()[:])
+        assert images == [os.path.join("..", "..", "garden", "images_4", n)
+                          for n in parser.image_names]
+        assert list(c["split"][:]) == [1, 0, 0, 0, 1, 0]
+        assert c.attrs["source"] == parser.data_dir
+        assert c.attrs["image_dir"] == os.path.dirname(parser.image_paths[0])
+        w2c = c["world_to_camera"][:]
+        np.testing.assert_allclose(w2c[3] @ parser.camtoworlds[3], np.eye(4), atol=1e-12)
+        assert c["fx"][0] == FOCAL and c["cx"][0] == WIDTH / 2 and c["width"][0] == WIDTH
+    info = dump(path)
+    if require_dump():
+        assert info["camera_images"] == images
+        assert all(os.path.isfile(os.path.join(out, p)) for p in images)
+
+    # 3DGS: names without extension, looked up in the image folder; unknown ones stay "".
+    (tmp_path / "scene" / "images").mkdir(parents=True)
+    (tmp_path / "scene" / "images" / "a.JPG").write_bytes(b"")
+    cams = [types.SimpleNamespace(image_name=n, image_width=WIDTH, image_height=HEIGHT,
+                                  FoVx=1.0, FoVy=0.8, world_view_transform=torch.eye(4))
+            for n in ("a", "missing")]
+    path = str(out / "gs3d.h5")
+    logger = TrainingLogger(path)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    logger.log_3dgs_cameras(cams[:1], cams[1:], images_dir=str(tmp_path / "scene" / "images"),
+                            source=str(tmp_path / "scene"))
+    logger.close()
+    with h5py.File(path, "r") as f:
+        assert list(f["cameras/image"].asstr()[:]) == [
+            os.path.join("..", "..", "scene", "images", "a.JPG"), ""]
