@@ -18,25 +18,18 @@ import torch
 
 import mock_3dgs
 import mock_gsplat_ops
+import test_gsplat
 import upstream
 
 
 def _splats(n, seed):
-    g = torch.Generator().manual_seed(seed)
-    params = torch.nn.ParameterDict({
-        "means": torch.nn.Parameter(torch.randn(n, 3, generator=g)),
-        "scales": torch.nn.Parameter(torch.randn(n, 3, generator=g) * 0.5 - 3.0),
-        "quats": torch.nn.Parameter(torch.randn(n, 4, generator=g)),
-        "opacities": torch.nn.Parameter(torch.randn(n, generator=g)),
-        "sh0": torch.nn.Parameter(torch.randn(n, 1, 3, generator=g)),
-        "shN": torch.nn.Parameter(torch.randn(n, 15, 3, generator=g)),
-    })
-    optimizers = {k: torch.optim.Adam([{"params": [v], "lr": 1e-3, "name": k}], eps=1e-15)
-                  for k, v in params.items()}
-    sum((v ** 2).sum() for v in params.values()).backward()
-    for o in optimizers.values():
-        o.step()
-        o.zero_grad()
+    """test_gsplat's splats (one optimizer step taken) with varied opacities, SH rest and
+    strategy state, so that every column is compared on distinct values."""
+    params, optimizers, _ = test_gsplat.make_splats(n, seed)
+    g = torch.Generator().manual_seed(seed + 1)
+    with torch.no_grad():
+        params["opacities"][:] = torch.randn(n, generator=g)
+        params["shN"][:] = torch.randn(n, 15, 3, generator=g)
     state = {"grad2d": torch.rand(n, generator=g), "count": torch.rand(n, generator=g)}
     return params, optimizers, state
 
