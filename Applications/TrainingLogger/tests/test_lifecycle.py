@@ -2,8 +2,8 @@
 """The cases a real run meets at its edges (and the cameras it logs), on the gsplat hooks
 with the stand-in ops (checked against gsplat's own in test_mocks_upstream.py): a loop
 that starts at step 0, a model pruned to nothing, a model of one Gaussian, a run killed
-at any moment, and a run
-resumed from a checkpoint. Every log is read back by h5py and by the C++ reader."""
+at any moment, and a run resumed from a checkpoint. Every log is read back by h5py and
+by the C++ reader."""
 
 import os
 import signal

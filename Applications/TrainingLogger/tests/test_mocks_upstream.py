@@ -10,6 +10,7 @@ the sampled sources; the stand-in's compute_relocation is a simplified formula, 
 opacity and scale values of those rows are not compared (the logger never reads them).
 """
 
+import math
 import types
 
 import numpy as np
@@ -18,6 +19,7 @@ import torch
 
 import mock_3dgs
 import mock_gsplat_ops
+import mock_gsplat_strategy
 import test_gsplat
 import upstream
 
@@ -58,12 +60,8 @@ def _adam_state(params, optimizers):
     ("sample_add", {"n": 7, "binoms": None, "min_opacity": 0.005})])
 def test_gsplat_ops_stand_in_matches_upstream(name, kwargs):
     ops = upstream.load_gsplat().ops  # skips without a copy
-    binoms = torch.zeros(51, 51)
-    for n in range(51):
-        for k in range(n + 1):
-            binoms[n, k] = float(np.math.comb(n, k))
     if "binoms" in kwargs:
-        kwargs = dict(kwargs, binoms=binoms)
+        kwargs = dict(kwargs, binoms=_binoms())
     theirs = _run(ops, name, 3, **kwargs)
     ours = _run(mock_gsplat_ops, name, 3, **kwargs)
     values_differ = {"opacities", "scales"} if name in ("relocate", "sample_add") else set()
@@ -79,6 +77,55 @@ def test_gsplat_ops_stand_in_matches_upstream(name, kwargs):
             torch.testing.assert_close(b[key][s], a[key][s], rtol=0, atol=0)
     for key in theirs[2]:
         torch.testing.assert_close(ours[2][key], theirs[2][key], rtol=0, atol=0)
+
+
+def _binoms():
+    binoms = torch.zeros(51, 51)
+    for n in range(51):
+        for k in range(n + 1):
+            binoms[n, k] = float(math.comb(n, k))
+    return binoms
+
+
+@pytest.mark.parametrize("kind", ["default", "mcmc"])
+def test_gsplat_strategy_stand_in_matches_upstream(kind):
+    """mock_gsplat_strategy's grow_and_prune = DefaultStrategy._grow_gs + _prune_gs (before
+    the first opacity reset), mcmc_relocate_and_add = MCMCStrategy._relocate_gs +
+    _add_new_gs, each with its own ops."""
+    strategy = upstream.load_gsplat()
+
+    def inputs():
+        params, optimizers, state = _splats(60, 9)
+        g = torch.Generator().manual_seed(3)
+        with torch.no_grad():
+            params["scales"][:] = torch.log(torch.where(torch.rand(60, 1, generator=g) < 0.5,
+                                                        0.005, 0.05) * torch.ones(60, 3))
+            params["opacities"][:] = torch.logit(torch.rand(60, generator=g) * 0.02)
+        state["grad2d"] = torch.rand(60, generator=g) * 4e-4
+        state["count"] = torch.ones(60)
+        state["scene_scale"] = 1.0
+        return params, optimizers, state
+
+    theirs, ours = inputs(), inputs()
+    torch.manual_seed(5)
+    if kind == "default":
+        upstream_strategy = strategy.DefaultStrategy()
+        upstream_strategy._grow_gs(*theirs, step=600)
+        upstream_strategy._prune_gs(*theirs, step=600)
+    else:
+        upstream_strategy = strategy.MCMCStrategy(cap_max=80)
+        upstream_strategy._relocate_gs(*theirs[:2], _binoms())
+        upstream_strategy._add_new_gs(*theirs[:2], _binoms())
+    torch.manual_seed(5)
+    if kind == "default":
+        mock_gsplat_strategy.grow_and_prune(*ours, scene_scale=1.0)
+    else:
+        mock_gsplat_strategy.mcmc_relocate_and_add(*ours[:2], {}, _binoms(), cap_max=80)
+    assert len(theirs[0]["means"]) != 60
+    for key in theirs[0]:
+        if kind == "mcmc" and key in ("opacities", "scales"):
+            continue  # the stand-in's relocation formula is simplified
+        torch.testing.assert_close(ours[0][key], theirs[0][key], rtol=0, atol=0, msg=key)
 
 
 def test_3dgs_stand_in_matches_the_original_gaussian_model():
