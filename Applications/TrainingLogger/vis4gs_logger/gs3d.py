@@ -189,9 +189,10 @@ class GaussianModelTracker(IdTracker):
 
 def track_3dgs(gaussians, logger, snapshot_initial=True):
     """Starts tracking a GaussianModel (call after Scene(...) has created its Gaussians):
-    wraps its densification methods and, by default, writes a snapshot at iteration 0."""
+    wraps its densification methods and, by default, writes a snapshot at iteration 0
+    (logger.start_iteration for a resumed run)."""
     tracker = GaussianModelTracker(gaussians, logger).install()
     tracker._ensure()
     if snapshot_initial:
-        logger.snapshot(0)
+        logger.snapshot(logger.start_iteration)
     return tracker

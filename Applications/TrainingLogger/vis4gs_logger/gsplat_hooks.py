@@ -260,9 +260,10 @@ class GsplatTracker(IdTracker):
 def track_gsplat(splats, logger, strategy_state=None, modules=None, snapshot_initial=True):
     """Starts tracking gsplat's ``splats`` (ParameterDict with means, scales, quats,
     opacities, sh0, shN): wraps the strategy ops and, by default, writes a snapshot at
-    iteration 0. Pass the strategy state dict to log grad2d/count as grad_accum/denom."""
+    iteration 0 (logger.start_iteration for a resumed run). Pass the strategy state dict
+    to log grad2d/count as grad_accum/denom."""
     tracker = GsplatTracker(splats, logger, strategy_state).install(modules)
     tracker._ensure()
     if snapshot_initial:
-        logger.snapshot(0)
+        logger.snapshot(logger.start_iteration)
     return tracker

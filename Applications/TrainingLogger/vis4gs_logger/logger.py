@@ -3,7 +3,9 @@
 snapshots at an interval. Id tracking lives in the trackers (gs3d.py, gsplat_hooks.py)."""
 
 import math
+import os
 import time
+import warnings
 
 import numpy as np
 
@@ -25,22 +27,38 @@ class TrainingLogger:
     (stored as NaN). ``elapsed_s`` defaults to the wall time since the logger was created.
     ``deflate``, ``snapshot_deflate`` (default 0: snapshots uncompressed), ``chunk_rows``
     and ``flush_every_s`` are passed to TrainingLogWriter.
+
+    ``start_iteration``: the iteration of the checkpoint a resumed run starts from (3DGS
+    ``--start_checkpoint``). The row-to-id map of the checkpoint is not in the trainer's
+    checkpoint, so a resumed run starts a clear new log: its ids restart at 0 for the
+    checkpoint's Gaussians, its first snapshot is the checkpoint's iteration and the root
+    attribute ``start_iteration`` says so. An existing log at ``path`` is kept, renamed to
+    ``<name>.before-<start_iteration>.h5`` (a warning names it).
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000,
                  snapshot_interval=DEFAULT_SNAPSHOT_INTERVAL, snapshot_sh_rest=True,
                  snapshot_statistics=True, deflate=1, chunk_rows=4096, producer=None,
-                 flush_every_s=300.0, snapshot_deflate=0):
+                 flush_every_s=300.0, snapshot_deflate=0, start_iteration=0):
+        self.start_iteration = int(start_iteration)
+        if self.start_iteration > 0 and os.path.exists(path):
+            root, ext = os.path.splitext(os.fspath(path))
+            kept = f"{root}.before-{self.start_iteration}{ext or '.h5'}"
+            os.replace(path, kept)
+            warnings.warn(f"vis4gs_logger: resuming at iteration {self.start_iteration}: "
+                          f"the previous log is kept as {kept}; {path} is a new log",
+                          RuntimeWarning, stacklevel=2)
         self.writer = TrainingLogWriter(path, scene=scene, sh_degree=sh_degree,
                                         iterations=iterations, producer=producer,
                                         deflate=deflate, chunk_rows=chunk_rows,
                                         flush_every_s=flush_every_s,
-                                        snapshot_deflate=snapshot_deflate)
+                                        snapshot_deflate=snapshot_deflate,
+                                        start_iteration=self.start_iteration)
         self.path = self.writer.path
         self.snapshot_interval = int(snapshot_interval) if snapshot_interval else 0
         self.snapshot_sh_rest = snapshot_sh_rest
         self.snapshot_statistics = snapshot_statistics
-        self.iteration = 0
+        self.iteration = self.start_iteration
         self.tracker = None
         self._start = time.perf_counter()
         #: seconds spent inside the logger (for measuring its overhead)
@@ -75,21 +93,63 @@ class TrainingLogger:
 
     # -- cameras -----------------------------------------------------------------------
     def log_cameras(self, names, widths, heights, fx, fy, cx, cy, world_to_camera,
-                    splits=None, images=None):
-        """Writes /cameras from columns (world_to_camera: [V,4,4], OpenCV convention)."""
+                    splits=None, images=None, source=None, image_dir=None):
+        """Writes /cameras from columns (world_to_camera: [V,4,4], OpenCV convention).
+        images: paths of the training images (absolute, or relative to the current
+        directory); they are stored relative to the log so that ``vis4gs view LOG`` finds
+        them without flags. source / image_dir: the scene's cameras.json or COLMAP folder
+        and image folder, stored as attributes of /cameras."""
+        if images is not None:
+            images = [self._relative_image(p) for p in images]
         self.writer.write_cameras(names, widths, heights, fx, fy, cx, cy, world_to_camera,
-                                  splits, images)
+                                  splits, images, source=source, image_dir=image_dir)
+
+    def _relative_image(self, image):
+        image = str(image)
+        if not image or image.startswith("/images/"):
+            return image
+        base = os.path.dirname(os.path.abspath(self.path))
+        return os.path.relpath(os.path.abspath(image), base)
+
+    def log_gsplat_cameras(self, parser, test_every=None):
+        """Writes /cameras from gsplat's COLMAP ``Parser`` (examples/datasets/colmap.py):
+        every image, split as simple_trainer's Dataset splits it (index % test_every == 0:
+        test), intrinsics of the (undistorted) camera, the Parser's image paths."""
+        test_every = parser.test_every if test_every is None else int(test_every)
+        c2w = to_numpy(parser.camtoworlds, np.float64).reshape(-1, 4, 4)
+        names, widths, heights, fx, fy, cx, cy, splits = ([] for _ in range(8))
+        for i, name in enumerate(parser.image_names):
+            cam = parser.camera_ids[i]
+            k = to_numpy(parser.Ks_dict[cam], np.float64)
+            w, h = parser.imsize_dict[cam]
+            names.append(str(name))
+            widths.append(int(w))
+            heights.append(int(h))
+            fx.append(k[0, 0])
+            fy.append(k[1, 1])
+            cx.append(k[0, 2])
+            cy.append(k[1, 2])
+            splits.append(1 if test_every > 0 and i % test_every == 0 else 0)
+        image_dir = os.path.dirname(parser.image_paths[0]) if len(parser.image_paths) else None
+        self.log_cameras(names, widths, heights, fx, fy, cx, cy, np.linalg.inv(c2w), splits,
+                         list(parser.image_paths), source=getattr(parser, "data_dir", None),
+                         image_dir=image_dir)
 
     def log_3dgs_cameras(self, train_cameras, test_cameras=(), image_paths=None,
-                         embed_images=False):
+                         embed_images=False, images_dir=None, source=None):
         """Writes /cameras from the original trainer's Camera objects
         (scene.getTrainCameras(), scene.getTestCameras()).
 
         The world-to-camera matrix is world_view_transform transposed (the trainer stores
         it column-major for the rasteriser); fx = W / (2 tan(FoVx/2)), principal point at
-        the image centre, as the rasteriser assumes. image_paths: optional dict name ->
-        path stored as the image path; embed_images: store original_image in /images.
+        the image centre, as the rasteriser assumes. images_dir: the scene's image folder
+        (``os.path.join(dataset.source_path, dataset.images)``): the trainer's image names
+        have no extension, the file of each is looked up there. image_paths: optional dict
+        name -> path instead; embed_images: store original_image in /images. source: the
+        scene folder (``dataset.source_path``), recorded as an attribute.
         """
+        if image_paths is None and images_dir is not None:
+            image_paths = _files_by_stem(images_dir)
         cams = list(train_cameras) + list(test_cameras)
         names, widths, heights, fx, fy, cx, cy, w2c, splits, images = ([] for _ in range(10))
         for i, cam in enumerate(cams):
@@ -115,17 +175,22 @@ class TrainingLogger:
             elif image_paths is not None:
                 images.append(str(image_paths.get(cam.image_name, "")))
             else:
-                images.append(str(cam.image_name))
+                images.append("")  # a bare image name would resolve to nothing
         self.log_cameras(names, widths, heights, fx, fy, cx, cy, np.array(w2c).reshape(-1, 4, 4),
-                         splits, images)
+                         splits, images, source=source, image_dir=images_dir)
 
     # -- snapshots ---------------------------------------------------------------------
     def should_snapshot(self, iteration):
         return self.snapshot_interval > 0 and int(iteration) % self.snapshot_interval == 0
 
     def step(self, iteration):
-        """Call at the end of each iteration: writes a snapshot at the interval."""
-        if self.should_snapshot(iteration):
+        """Call at the end of each iteration: writes a snapshot at the interval.
+
+        The snapshot of an iteration that already has one is not written again: gsplat's
+        loop starts at step 0, after track_gsplat() wrote the snapshot of iteration 0 (and a
+        resumed run starts at the checkpoint's iteration, which track_* wrote too)."""
+        iteration = int(iteration)
+        if self.should_snapshot(iteration) and iteration != self.writer.last_snapshot_iteration:
             self.snapshot(iteration)
 
     def snapshot(self, iteration):
@@ -150,3 +215,15 @@ class TrainingLogger:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+def _files_by_stem(folder):
+    """name without extension -> path of the file in folder (3DGS's image_name is the
+    file name without its extension; its readers take the first file of each stem)."""
+    files = {}
+    for entry in sorted(os.listdir(folder)):
+        path = os.path.join(folder, entry)
+        if os.path.isfile(path):
+            files.setdefault(os.path.splitext(entry)[0], path)
+            files[entry] = path  # names given with their extension
+    return files

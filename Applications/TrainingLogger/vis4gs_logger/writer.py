@@ -38,6 +38,16 @@ def _scalar(value):
     return float(value)
 
 
+def _sh_rows(sh, n):
+    """sh as [N,K,3]; K is taken from the shape so that an empty model (N = 0, all
+    Gaussians pruned) keeps its coefficient count instead of failing to infer it."""
+    if sh.ndim == 2:
+        sh = sh[:, None, :]
+    if sh.ndim != 3 or sh.shape[0] != n or sh.shape[2] != 3:
+        raise ValueError(f"sh has shape {sh.shape}; expected [{n},K,3] or [{n},3]")
+    return sh
+
+
 class TrainingLogWriter:
     """Writes one training log while a trainer runs.
 
@@ -59,7 +69,8 @@ class TrainingLogWriter:
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
-                 deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0):
+                 deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0,
+                 start_iteration=0):
         from . import __version__
 
         self.path = os.fspath(path)
@@ -81,6 +92,9 @@ class TrainingLogWriter:
         f.attrs["scene"] = scene
         f.attrs["sh_degree"] = np.int64(sh_degree)
         f.attrs["iterations"] = np.int64(iterations)
+        if start_iteration:
+            # A run resumed from a checkpoint: ids restart at 0 for the checkpoint's rows.
+            f.attrs["start_iteration"] = np.int64(start_iteration)
         self._metrics = {False: self._create_metrics("metrics"), True: None}
         self._pending_metrics = {False: [], True: []}
         events = f.create_group("events")
@@ -137,9 +151,11 @@ class TrainingLogWriter:
         return self._last_snapshot
 
     def write_cameras(self, names, widths, heights, fx, fy, cx, cy, world_to_camera,
-                      splits=None, images=None):
+                      splits=None, images=None, source=None, image_dir=None):
         """Writes /cameras (once). world_to_camera is [V,4,4]; splits 0 train / 1 test;
-        images are paths relative to the log, or "/images/<name>" for embedded ones."""
+        images are paths relative to the log, or "/images/<name>" for embedded ones.
+        source (the scene's cameras.json or COLMAP folder) and image_dir (its image folder)
+        are stored as attributes of /cameras, as given (for the record)."""
         self._check_open()
         if self._cameras_written:
             raise RuntimeError(f"{self.path}: /cameras is already written")
@@ -156,6 +172,9 @@ class TrainingLogWriter:
         g.create_dataset("world_to_camera", data=w2c)
         images = images if images is not None else [""] * v
         g.create_dataset("image", data=np.array([str(p) for p in images], dtype=object), dtype=str_type)
+        for key, value in (("source", source), ("image_dir", image_dir)):
+            if value:
+                g.attrs[key] = os.fspath(value)
         self._cameras_written = True
 
     def write_image(self, name, image):
@@ -211,7 +230,7 @@ class TrainingLogWriter:
             "log_scale": to_numpy(log_scale, np.float32).reshape(n, 3),
             "rotation": to_numpy(rotation, np.float32).reshape(n, 4),
             "opacity_logit": to_numpy(opacity_logit, np.float32).reshape(n),
-            "sh": to_numpy(sh, np.float32).reshape(n, -1, 3),
+            "sh": _sh_rows(to_numpy(sh, np.float32), n),
         }
         if grad_accum is not None:
             arrays["grad_accum"] = to_numpy(grad_accum, np.float32).reshape(n)

@@ -59,7 +59,13 @@ int main(int argc, char* argv[])
     out["events"] = reader.ReadEvents().Size(); // validates the genealogy
     out["metrics"] = reader.ReadMetrics(false).Size();
     out["test_metrics"] = reader.ReadMetrics(true).Size();
-    out["cameras"] = reader.ReadCameras().size();
+    nlohmann::json images = nlohmann::json::array();
+    for (const vis4gs::Camera& camera : reader.ReadCameras())
+    {
+      images.push_back(camera.ImagePath); // as stored: the application resolves relative ones
+    }
+    out["cameras"] = images.size();
+    out["camera_images"] = images;
     nlohmann::json rows = nlohmann::json::array();
     if (!history.empty())
     {
