@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Trainer benchmark (Documentation/performance.md, section "Training"): iterations per
+// Trainer benchmark (Documentation/performance-history.md, section "Training"): iterations per
 // second with a fixed number of Gaussians (densification off) at a given resolution, with
 // the time split into forward, loss, backward and optimiser; then the cost of one
 // densify-and-prune and of writing one snapshot of that size.
