@@ -196,6 +196,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     doc->Scene = vtkSmartPointer<vtkPolyData>::New();
     vis4gs::GaussianCloudToPolyData(cloud, doc->Scene);
     text << path << ": " << cloud.Count << " Gaussians (a scene file: no training history)\n";
+    stage("scene file");
   }
   else
   {
@@ -337,7 +338,13 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   }
   report(1.0, "done");
   doc->Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  text << "loaded in " << doc->Seconds << " s (" << timings.str() << " )\n";
+  text << "loaded in " << doc->Seconds << " s";
+  const std::string stages = timings.str();
+  if (!stages.empty()) // (every branch above times its stages; never print "( )")
+  {
+    text << " (" << stages.substr(1, stages.size() - 2) << ")";
+  }
+  text << "\n";
   doc->Summary = text.str();
   return doc;
 }

@@ -72,6 +72,12 @@ public:
    */
   void SetSplatBudget(long long splats);
 
+  /**
+   * Show the welcome panel at the top of the control panel: what a newcomer can try on the
+   * embedded demo (the case study of the user guide), dismissible. `vis4gs demo` turns it on.
+   */
+  void ShowWelcome();
+
   /// Saves a screenshot of a dock ("scene", "tree", "panel", "timeline", "histogram") or of
   /// the whole window ("window"). Returns false when it could not be written.
   bool SaveScreenshot(const QString& which, const QString& path);
@@ -108,6 +114,9 @@ protected:
 
 private:
   void BuildUi();
+  // Docks and panel rows for the views the document has data for (tree, timeline, cameras,
+  // snapshots); the remaining views share the window.
+  void LayoutForDocument();
   void OnProgress(double fraction, const QString& message);
   void OnLoaded(std::shared_ptr<Vis4GSDocument> document, const QString& error);
   void OnSelectionChanged();

@@ -47,6 +47,10 @@ void Define(Vis4GSArguments& args)
     "k-th in depth order; selection and scores use every Gaussian). 0 draws all. Software "
     "OpenGL draws every Gaussian with the exact CPU rasteriser instead.");
   args.AddOption("resolution", "W,H", "1400,900", "Initial window size.");
+  args.AddFlag("welcome",
+    false,
+    "Show the welcome panel (what to try first: the user guide's case study) at the top of "
+    "the control panel; `vis4gs demo` turns it on.");
 }
 
 int Run(const Vis4GSArguments& args)
@@ -72,6 +76,10 @@ int Run(const Vis4GSArguments& args)
     window.resize(static_cast<int>(size[0]), static_cast<int>(size[1]));
   }
   window.SetSplatBudget(static_cast<long long>(args.GetDouble("splat-budget")));
+  if (args.GetFlag("welcome"))
+  {
+    window.ShowWelcome();
+  }
   if (args.GetFlag("benchmark"))
   {
     if (args.GetPositional("FILE").empty())
