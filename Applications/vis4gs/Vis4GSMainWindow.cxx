@@ -1516,9 +1516,25 @@ void Vis4GSMainWindow::OnIterationChanged(int iteration)
   }
   if (d->Doc->Log->FindNearestSnapshot(iteration) != d->Doc->Iteration)
   {
+    // The snapshot is read in this thread (the views need it at once, and the log's reader
+    // is not shared with a worker): a busy bar and message are painted before it starts.
+    const bool shown = d->Progress->isVisible();
+    d->Progress->setRange(0, 0);
+    d->Progress->show();
+    this->statusBar()->showMessage(QString("reading the snapshot of iteration %1")
+                                     .arg(d->Doc->Log->FindNearestSnapshot(iteration)));
+    QApplication::processEvents(QEventLoop::ExcludeUserInputEvents);
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    auto done = [this, shown]
+    {
+      QApplication::restoreOverrideCursor();
+      d->Progress->setRange(0, 100);
+      d->Progress->setVisible(shown);
+    };
     try
     {
       d->Doc->LoadIteration(iteration);
+      done();
       this->UpdateScene();
       if (!d->Benchmark)
       {
@@ -1527,6 +1543,7 @@ void Vis4GSMainWindow::OnIterationChanged(int iteration)
     }
     catch (const std::exception& e)
     {
+      done();
       this->statusBar()->showMessage(QString("snapshot: ") + e.what(), 5000);
     }
   }
