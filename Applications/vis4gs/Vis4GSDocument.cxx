@@ -6,6 +6,7 @@
 #include "ImageIO.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
@@ -158,7 +159,8 @@ void BuildGenealogy(const vis4gs::EventTable& events,
 
 //------------------------------------------------------------------------------
 std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
-  const Progress& progress)
+  const Progress& progress,
+  const std::string& cameraPath)
 {
   const auto start = std::chrono::steady_clock::now();
   auto doc = std::make_shared<Vis4GSDocument>();
@@ -197,6 +199,15 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     vis4gs::GaussianCloudToPolyData(cloud, doc->Scene);
     text << path << ": " << cloud.Count << " Gaussians (a scene file: no training history)\n";
     stage("scene file");
+    report(0.8, "reading the cameras");
+    const std::vector<vis4gs::Camera> cameras = Vis4GSFindSceneCameras(path, cameraPath);
+    if (!cameras.empty())
+    {
+      doc->Cameras = vtkSmartPointer<vtkTable>::New();
+      vis4gs::CamerasToTable(cameras, doc->Cameras);
+      text << "cameras: " << cameras.size() << "\n";
+      stage("cameras");
+    }
   }
   else
   {

@@ -154,6 +154,7 @@ struct Vis4GSMainWindow::Internals
   QFormLayout* Form = nullptr;
   QWidget* IterationRow = nullptr;
   QWidget* Welcome = nullptr;
+  std::string SceneCameras;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   vtkNew<vtkCallbackCommand> HubCommand;
   QThread* Worker = nullptr;
@@ -815,23 +816,25 @@ void Vis4GSMainWindow::Open(const QString& path)
   d->Progress->setValue(0);
   d->Progress->show();
   this->statusBar()->showMessage("loading " + path);
-  const std::string file = path.toStdString();
+  const std::string file = path.toStdString(), cameras = d->SceneCameras;
   // Readers and filters run in a worker thread; progress and the result are posted back to
   // the GUI thread, which keeps handling events (the interface stays responsive).
   d->Worker = QThread::create(
-    [this, file]
+    [this, file, cameras]
     {
       std::shared_ptr<Vis4GSDocument> doc;
       QString error;
       try
       {
-        doc = Vis4GSDocument::Load(file,
+        doc = Vis4GSDocument::Load(
+          file,
           [this](double f, const std::string& m)
           {
             const QString message = QString::fromStdString(m);
             QMetaObject::invokeMethod(
               this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
-          });
+          },
+          cameras);
       }
       catch (const std::exception& e)
       {
@@ -841,6 +844,12 @@ void Vis4GSMainWindow::Open(const QString& path)
         this, [this, doc, error] { this->OnLoaded(doc, error); }, Qt::QueuedConnection);
     });
   d->Worker->start();
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::SetSceneCameras(const QString& cameras)
+{
+  d->SceneCameras = cameras.toStdString();
 }
 
 //------------------------------------------------------------------------------

@@ -47,6 +47,12 @@ public:
   /// Starts loading @p path in a worker thread.
   void Open(const QString& path);
 
+  /**
+   * Cameras for the scene files opened next (a cameras.json or a COLMAP folder; empty, the
+   * default, looks for cameras.json next to the scene, Vis4GSFindSceneCameras()).
+   */
+  void SetSceneCameras(const QString& cameras);
+
   /// Runs the scripted end-to-end check once the file is loaded (used by tests), saving
   /// screenshots of every view into @p directory; the application exits with 0 or 1.
   void SetSelfTest(const QString& directory);

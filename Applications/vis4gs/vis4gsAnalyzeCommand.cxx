@@ -7,8 +7,6 @@
 // self-contained HTML report (base64 PNGs, inline SVG histograms, tables, settings, timings).
 #include "Vis4GSCommand.h"
 
-#include "CameraJson.h"
-#include "ColmapDataset.h"
 #include "GaussianIO.h"
 #include "GaussianMath.h"
 #include "ImageIO.h"
@@ -16,6 +14,7 @@
 #include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSSceneCameras.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 
 #include "vtkCallbackCommand.h"
@@ -88,36 +87,7 @@ void Define(Vis4GSArguments& args)
 // ---------------------------------------------------------------------------------------
 std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSArguments& args)
 {
-  std::string path = args.Get("cameras");
-  if (path.empty())
-  {
-    const fs::path dir = fs::path(scene).parent_path();
-    for (const fs::path& p :
-      { dir / "cameras.json", dir.parent_path().parent_path() / "cameras.json" })
-    {
-      if (fs::is_regular_file(p))
-      {
-        path = p.string();
-        break;
-      }
-    }
-  }
-  std::vector<vis4gs::Camera> cameras;
-  if (path.empty())
-  {
-    return cameras;
-  }
-  if (fs::is_directory(path))
-  {
-    vis4gs::DatasetOptions options;
-    options.RequireImages = false;
-    cameras = vis4gs::LoadColmapDataset(path, options).Cameras;
-  }
-  else
-  {
-    cameras = vis4gs::ReadCamerasJson(path);
-  }
-  return cameras;
+  return Vis4GSFindSceneCameras(scene, args.Get("cameras"));
 }
 
 // The snapshot of a training log, its cameras, and its training images: embedded ones
