@@ -1777,6 +1777,18 @@ bool Vis4GSMainWindow::RunSelfTest()
         "the timeline's three charts have " + std::to_string(d->Docks[3]->height()) +
           " pixels of height (at least 280)");
     }
+    if (d->Welcome)
+    {
+      // The welcome panel is shown and names controls that exist (it tells what to click).
+      auto* text = d->Welcome->findChild<QLabel*>("welcome");
+      auto* overlay = qobject_cast<QLabel*>(d->Form->labelForField(d->Overlay));
+      const QString welcome = text ? text->text() : QString();
+      check(d->Welcome->isVisible() && overlay && welcome.contains(overlay->text()) &&
+          welcome.contains(d->HideOutside->text()) &&
+          (!d->Doc->Cameras || d->Overlay->findText(vis4gs::arrays::ViewCoverage) >= 0) &&
+          welcome.contains(vis4gs::arrays::ViewCoverage),
+        "the welcome panel is shown and its steps name the panel's controls");
+    }
     const std::string& summary = d->Doc->Summary;
     check(summary.find("loaded in") != std::string::npos &&
         summary.find("( )") == std::string::npos && summary.find("()") == std::string::npos,

@@ -42,10 +42,11 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     FIXTURES_REQUIRED vis4gsViewLog
     PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
   # The embedded demo log (cameras, images, genealogy): the floater case study end to end,
-  # with baseline images of the scene and tree views (tolerant comparison, Xvfb + llvmpipe).
+  # with baseline images of the scene and tree views (tolerant comparison, Xvfb + llvmpipe),
+  # opened as `vis4gs demo` opens it (with the welcome panel).
   add_test(NAME vis4gs-ViewDemoEndToEnd
     COMMAND vis4gs view "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
-      "--self-test=${_vis4gs_view_dir}/demo-screenshots" --resolution=1200,800
+      "--self-test=${_vis4gs_view_dir}/demo-screenshots" --resolution=1200,800 --welcome
       "--baseline=${CMAKE_CURRENT_SOURCE_DIR}/Testing/Data/Baseline")
   set_tests_properties(vis4gs-ViewDemoEndToEnd PROPERTIES LABELS "Application;GUI"
     PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
