@@ -35,6 +35,7 @@
 #include <ctime>
 #include <exception>
 #include <filesystem>
+#include <system_error>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -193,7 +194,16 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   };
   if (!isLog)
   {
-    report(0.1, "reading the scene");
+    std::error_code size;
+    const auto bytes = std::filesystem::file_size(path, size);
+    std::ostringstream what;
+    what.precision(3);
+    what << "reading the scene";
+    if (!size)
+    {
+      what << " (" << static_cast<double>(bytes) / 1e6 << " MB)";
+    }
+    report(-1.0, what.str()); // the Core readers report no fraction
     vis4gs::GaussianCloud cloud = vis4gs::ReadGaussianScene(path);
     doc->Scene = vtkSmartPointer<vtkPolyData>::New();
     vis4gs::GaussianCloudToPolyData(cloud, doc->Scene);

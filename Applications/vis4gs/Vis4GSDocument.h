@@ -41,7 +41,8 @@ struct Vis4GSDocument
   std::string Summary;  ///< training log text for panel C
   double Seconds = 0.0; ///< load time
 
-  /// Progress callback: fraction in [0, 1] and a message.
+  /// Progress callback: fraction in [0, 1] and a message; a negative fraction is a step of
+  /// unknown length (a busy indicator), e.g. reading a scene file.
   using Progress = std::function<void(double, const std::string&)>;
 
   /**

@@ -855,7 +855,15 @@ void Vis4GSMainWindow::SetSceneCameras(const QString& cameras)
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::OnProgress(double fraction, const QString& message)
 {
-  d->Progress->setValue(static_cast<int>(100 * fraction));
+  if (fraction < 0)
+  {
+    d->Progress->setRange(0, 0); // a step of unknown length: busy indicator
+  }
+  else
+  {
+    d->Progress->setRange(0, 100);
+    d->Progress->setValue(static_cast<int>(100 * fraction));
+  }
   this->statusBar()->showMessage(message);
 }
 
