@@ -35,9 +35,9 @@
 #include <ctime>
 #include <exception>
 #include <filesystem>
-#include <system_error>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 namespace
