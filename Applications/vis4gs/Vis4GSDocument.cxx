@@ -6,6 +6,7 @@
 #include "ImageIO.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
@@ -36,6 +37,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 namespace
@@ -158,7 +160,8 @@ void BuildGenealogy(const vis4gs::EventTable& events,
 
 //------------------------------------------------------------------------------
 std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
-  const Progress& progress)
+  const Progress& progress,
+  const std::string& cameraPath)
 {
   const auto start = std::chrono::steady_clock::now();
   auto doc = std::make_shared<Vis4GSDocument>();
@@ -191,11 +194,30 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   };
   if (!isLog)
   {
-    report(0.1, "reading the scene");
+    std::error_code size;
+    const auto bytes = std::filesystem::file_size(path, size);
+    std::ostringstream what;
+    what.precision(3);
+    what << "reading the scene";
+    if (!size)
+    {
+      what << " (" << static_cast<double>(bytes) / 1e6 << " MB)";
+    }
+    report(-1.0, what.str()); // the Core readers report no fraction
     vis4gs::GaussianCloud cloud = vis4gs::ReadGaussianScene(path);
     doc->Scene = vtkSmartPointer<vtkPolyData>::New();
     vis4gs::GaussianCloudToPolyData(cloud, doc->Scene);
     text << path << ": " << cloud.Count << " Gaussians (a scene file: no training history)\n";
+    stage("scene file");
+    report(0.8, "reading the cameras");
+    const std::vector<vis4gs::Camera> cameras = Vis4GSFindSceneCameras(path, cameraPath);
+    if (!cameras.empty())
+    {
+      doc->Cameras = vtkSmartPointer<vtkTable>::New();
+      vis4gs::CamerasToTable(cameras, doc->Cameras);
+      text << "cameras: " << cameras.size() << "\n";
+      stage("cameras");
+    }
   }
   else
   {
@@ -337,7 +359,13 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   }
   report(1.0, "done");
   doc->Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  text << "loaded in " << doc->Seconds << " s (" << timings.str() << " )\n";
+  text << "loaded in " << doc->Seconds << " s";
+  const std::string stages = timings.str();
+  if (!stages.empty()) // (every branch above times its stages; never print "( )")
+  {
+    text << " (" << stages.substr(1, stages.size() - 2) << ")";
+  }
+  text << "\n";
   doc->Summary = text.str();
   return doc;
 }

@@ -41,11 +41,17 @@ struct Vis4GSDocument
   std::string Summary;  ///< training log text for panel C
   double Seconds = 0.0; ///< load time
 
-  /// Progress callback: fraction in [0, 1] and a message.
+  /// Progress callback: fraction in [0, 1] and a message; a negative fraction is a step of
+  /// unknown length (a busy indicator), e.g. reading a scene file.
   using Progress = std::function<void(double, const std::string&)>;
 
-  /// Loads @p path; throws std::runtime_error naming the file on failure.
-  static std::shared_ptr<Vis4GSDocument> Load(const std::string& path, const Progress& progress);
+  /**
+   * Loads @p path; throws std::runtime_error naming the file on failure. A scene file gets
+   * the cameras of @p cameras (Vis4GSFindSceneCameras(); a log has its own and ignores it).
+   */
+  static std::shared_ptr<Vis4GSDocument> Load(const std::string& path,
+    const Progress& progress,
+    const std::string& cameras = std::string());
 
   /// Replaces Scene with the snapshot nearest @p iteration (logs only); returns its iteration.
   int LoadIteration(int iteration);

@@ -43,6 +43,7 @@
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkTree.h"
+#include "vtkVariant.h"
 
 #include <QApplication>
 #include <QCheckBox>
@@ -66,6 +67,7 @@
 #include <QPlainTextEdit>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QShortcut>
 #include <QSlider>
 #include <QSpinBox>
@@ -149,6 +151,10 @@ struct Vis4GSMainWindow::Internals
   QPlainTextEdit* LogText = nullptr;
   QTableWidget* Table = nullptr;
   QProgressBar* Progress = nullptr;
+  QFormLayout* Form = nullptr;
+  QWidget* IterationRow = nullptr;
+  QWidget* Welcome = nullptr;
+  std::string SceneCameras;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   vtkNew<vtkCallbackCommand> HubCommand;
   QThread* Worker = nullptr;
@@ -310,7 +316,10 @@ void Vis4GSMainWindow::BuildUi()
   d->SceneActor->SetMapper(d->SceneMapper);
   d->SceneRenderer->AddActor(d->SceneActor);
   d->Legend->SetNumberOfLabels(5);
-  d->Legend->SetMaximumWidthInPixels(70);
+  // Wide enough for the "suspicious" annotation at the bright end of a score's map.
+  d->Legend->SetMaximumWidthInPixels(150);
+  d->Legend->SetAnnotationLeaderPadding(4);
+  d->Legend->SetVerticalTitleSeparation(10);
   d->Legend->SetPosition(0.88, 0.1);
   d->Legend->SetPosition2(0.11, 0.8);
   d->Legend->VisibilityOff();
@@ -396,6 +405,7 @@ void Vis4GSMainWindow::BuildUi()
   // C: log and control panel.
   auto* panel = new QWidget(this);
   auto* form = new QFormLayout(panel);
+  d->Form = form;
   d->SelectionMode = new QComboBox(panel);
   d->SelectionMode->addItems({ "Single (click)", "Brush (drag)", "Frame (drag)", "Ray (click)" });
   d->SelectionMode->setToolTip("Selection in the scene view (left button). Shift adds to the "
@@ -422,6 +432,7 @@ void Vis4GSMainWindow::BuildUi()
   itLayout->addWidget(d->IterationSlider, 1);
   itLayout->addWidget(d->IterationLabel);
   form->addRow("Iteration", itRow);
+  d->IterationRow = itRow;
   d->Overlay = new QComboBox(panel);
   d->Overlay->addItem("True colour");
   form->addRow("Overlay", d->Overlay);
@@ -550,7 +561,12 @@ void Vis4GSMainWindow::BuildUi()
       }
       this->UpdateOverlay();
     });
-  makeDock(2, "C. Log and control panel", panel, Qt::RightDockWidgetArea);
+  // The panel scrolls rather than imposing its height on the window (1280x800 fits).
+  auto* panelScroll = new QScrollArea(this);
+  panelScroll->setWidget(panel);
+  panelScroll->setWidgetResizable(true);
+  panelScroll->setFrameShape(QFrame::NoFrame);
+  makeDock(2, "C. Log and control panel", panelScroll, Qt::RightDockWidgetArea);
 
   d->Progress = new QProgressBar(this);
   d->Progress->setRange(0, 100);
@@ -658,6 +674,135 @@ void Vis4GSMainWindow::BuildUi()
     view->addAction(dock->toggleViewAction());
   }
   this->resize(1400, 900);
+  this->LayoutForDocument();
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::LayoutForDocument()
+{
+  const Vis4GSDocument* doc = d->Doc.get();
+  const bool tree = doc && doc->Tree != nullptr;
+  const bool timeline = doc && doc->Metrics != nullptr;
+  const bool cameras = doc && doc->Cameras && doc->Cameras->GetNumberOfRows() > 0;
+  const bool snapshots = doc && doc->Snapshots.size() > 1;
+  QDockWidget* scene = d->Docks[0];
+  QDockWidget* treeDock = d->Docks[1];
+  QDockWidget* panel = d->Docks[2];
+  QDockWidget* timelineDock = d->Docks[3];
+  QDockWidget* histogram = d->Docks[4];
+  // Scene on the left over the whole height unless a timeline is shown; on the right the
+  // tree above the panel; the timeline (wide, three charts) and the histogram share the
+  // bottom, or without a timeline the histogram goes under the panel so that nothing is left
+  // empty under the scene.
+  this->addDockWidget(Qt::LeftDockWidgetArea, scene);
+  if (tree)
+  {
+    this->addDockWidget(Qt::RightDockWidgetArea, treeDock);
+    this->splitDockWidget(treeDock, panel, Qt::Vertical);
+  }
+  else
+  {
+    this->addDockWidget(Qt::RightDockWidgetArea, panel);
+  }
+  if (timeline)
+  {
+    this->addDockWidget(Qt::BottomDockWidgetArea, timelineDock);
+    this->splitDockWidget(timelineDock, histogram, Qt::Horizontal);
+  }
+  else
+  {
+    this->splitDockWidget(panel, histogram, Qt::Vertical);
+  }
+  // A hidden dock keeps its space in the window; a view without data is taken out instead.
+  for (QDockWidget* dock : { treeDock, timelineDock })
+  {
+    if (!(dock == treeDock ? tree : timeline))
+    {
+      this->removeDockWidget(dock);
+    }
+  }
+  treeDock->setVisible(tree);
+  timelineDock->setVisible(timeline);
+  scene->show();
+  panel->show();
+  histogram->show();
+  // Panel rows without data are hidden (no empty camera list or dead slider).
+  auto showRow = [this](QWidget* field, bool visible)
+  {
+    field->setVisible(visible);
+    if (QWidget* label = d->Form->labelForField(field))
+    {
+      label->setVisible(visible);
+    }
+  };
+  showRow(d->CameraList, cameras);
+  showRow(d->ShowFrustums, cameras);
+  showRow(d->IterationRow, snapshots);
+  // Sizes: the scene about 55 % of the width; the timeline's three stacked charts 40 % of the
+  // height (at least 300 pixels); the tree above the panel about half of the right column.
+  // Applied again once the new dock arrangement is laid out (resizeDocks on docks that were
+  // just moved is only approximate), the bottom last so that the columns do not push it.
+  auto sizes = [this, tree, timeline, scene, treeDock, panel, timelineDock, histogram]
+  {
+    const int w = this->width(),
+              h = this->height() - this->menuBar()->sizeHint().height() -
+      this->statusBar()->sizeHint().height();
+    const int bottom = timeline ? std::max(300, h * 2 / 5) : 0, top = std::max(300, h - bottom);
+    this->resizeDocks({ scene }, { w * 55 / 100 }, Qt::Horizontal);
+    if (tree)
+    {
+      this->resizeDocks({ treeDock, panel }, { top / 2, top / 2 }, Qt::Vertical);
+    }
+    else if (!timeline)
+    {
+      this->resizeDocks({ panel, histogram }, { top * 6 / 10, top * 4 / 10 }, Qt::Vertical);
+    }
+    if (timeline)
+    {
+      this->resizeDocks(
+        { timelineDock, histogram }, { w * 65 / 100, w * 35 / 100 }, Qt::Horizontal);
+      this->resizeDocks({ timelineDock }, { bottom }, Qt::Vertical);
+    }
+  };
+  sizes();
+  QTimer::singleShot(0, this, sizes);
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::ShowWelcome()
+{
+  if (d->Welcome)
+  {
+    d->Welcome->show();
+    return;
+  }
+  // What the case study of the user guide does, as steps a newcomer can follow.
+  d->Welcome = new QWidget(this);
+  auto* layout = new QVBoxLayout(d->Welcome);
+  auto* text = new QLabel(d->Welcome);
+  text->setObjectName("welcome");
+  text->setWordWrap(true);
+  text->setTextFormat(Qt::RichText);
+  text->setText("<b>Welcome to Vis4GS.</b> This demo is a 2000-iteration training run with "
+                "planted floaters. Try the case study of the user guide:"
+                "<ol style='margin-left:-20px'>"
+                "<li><b>Find a floater:</b> set <i>Overlay</i> to <i>ViewCoverage</i> (when "
+                "the scores are computed, see the status bar) and tick <i>Hide Gaussians "
+                "outside the range</i> with the range 0 to 0.3: bright (yellow) splats are "
+                "the suspicious ones, seen by few training views.</li>"
+                "<li><b>Select it:</b> click one in the scene (Single mode, key 1). Its "
+                "training cameras turn red.</li>"
+                "<li><b>Its lineage:</b> the tree (B) draws its ancestors in yellow; press L "
+                "to zoom to them.</li>"
+                "<li><b>Its history:</b> the timeline (D) plots its opacity over the "
+                "snapshots; the slider or the Left/Right keys move through them.</li>"
+                "</ol>Rotate: left drag; zoom: wheel; R resets the camera.");
+  layout->addWidget(text);
+  auto* close = new QPushButton("Close this help", d->Welcome);
+  layout->addWidget(close, 0, Qt::AlignRight);
+  connect(close, &QPushButton::clicked, d->Welcome, &QWidget::hide);
+  d->Welcome->setStyleSheet("QWidget { background: #fff8d0; }");
+  d->Form->insertRow(0, d->Welcome);
 }
 
 //------------------------------------------------------------------------------
@@ -671,23 +816,25 @@ void Vis4GSMainWindow::Open(const QString& path)
   d->Progress->setValue(0);
   d->Progress->show();
   this->statusBar()->showMessage("loading " + path);
-  const std::string file = path.toStdString();
+  const std::string file = path.toStdString(), cameras = d->SceneCameras;
   // Readers and filters run in a worker thread; progress and the result are posted back to
   // the GUI thread, which keeps handling events (the interface stays responsive).
   d->Worker = QThread::create(
-    [this, file]
+    [this, file, cameras]
     {
       std::shared_ptr<Vis4GSDocument> doc;
       QString error;
       try
       {
-        doc = Vis4GSDocument::Load(file,
+        doc = Vis4GSDocument::Load(
+          file,
           [this](double f, const std::string& m)
           {
             const QString message = QString::fromStdString(m);
             QMetaObject::invokeMethod(
               this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
-          });
+          },
+          cameras);
       }
       catch (const std::exception& e)
       {
@@ -700,9 +847,23 @@ void Vis4GSMainWindow::Open(const QString& path)
 }
 
 //------------------------------------------------------------------------------
+void Vis4GSMainWindow::SetSceneCameras(const QString& cameras)
+{
+  d->SceneCameras = cameras.toStdString();
+}
+
+//------------------------------------------------------------------------------
 void Vis4GSMainWindow::OnProgress(double fraction, const QString& message)
 {
-  d->Progress->setValue(static_cast<int>(100 * fraction));
+  if (fraction < 0)
+  {
+    d->Progress->setRange(0, 0); // a step of unknown length: busy indicator
+  }
+  else
+  {
+    d->Progress->setRange(0, 100);
+    d->Progress->setValue(static_cast<int>(100 * fraction));
+  }
   this->statusBar()->showMessage(message);
 }
 
@@ -746,9 +907,7 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Hub->ClearSelection();
   this->setWindowTitle("Vis4GS - " + QFileInfo(QString::fromStdString(doc->Path)).fileName());
   d->LogText->setPlainText(QString::fromStdString(doc->Summary));
-  // Only the views the file has data for.
-  d->Docks[1]->setVisible(doc->Tree != nullptr);
-  d->Docks[3]->setVisible(doc->Metrics != nullptr);
+  this->LayoutForDocument();
   d->Tree->SetTree(doc->Tree);
   d->Tree->SetFamilyBands(doc->Bands);
   d->Tree->GetTreeItem()->ResetViewport();
@@ -1374,9 +1533,25 @@ void Vis4GSMainWindow::OnIterationChanged(int iteration)
   }
   if (d->Doc->Log->FindNearestSnapshot(iteration) != d->Doc->Iteration)
   {
+    // The snapshot is read in this thread (the views need it at once, and the log's reader
+    // is not shared with a worker): a busy bar and message are painted before it starts.
+    const bool shown = d->Progress->isVisible();
+    d->Progress->setRange(0, 0);
+    d->Progress->show();
+    this->statusBar()->showMessage(QString("reading the snapshot of iteration %1")
+                                     .arg(d->Doc->Log->FindNearestSnapshot(iteration)));
+    QApplication::processEvents(QEventLoop::ExcludeUserInputEvents);
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    auto done = [this, shown]
+    {
+      QApplication::restoreOverrideCursor();
+      d->Progress->setRange(0, 100);
+      d->Progress->setVisible(shown);
+    };
     try
     {
       d->Doc->LoadIteration(iteration);
+      done();
       this->UpdateScene();
       if (!d->Benchmark)
       {
@@ -1385,6 +1560,7 @@ void Vis4GSMainWindow::OnIterationChanged(int iteration)
     }
     catch (const std::exception& e)
     {
+      done();
       this->statusBar()->showMessage(QString("snapshot: ") + e.what(), 5000);
     }
   }
@@ -1474,6 +1650,10 @@ bool Vis4GSMainWindow::SaveScreenshot(const QString& which, const QString& path)
     {
       widget = d->Docks[k];
     }
+  }
+  if (!widget->isVisible())
+  {
+    return false; // (a hidden dock's grab would lay it out again and resize the others)
   }
   return widget->grab().save(path);
 }
@@ -1566,8 +1746,62 @@ bool Vis4GSMainWindow::RunSelfTest()
   {
     return false;
   }
-  QApplication::processEvents();
+  // The dock layout of the document (LayoutForDocument) settles over several posted layout
+  // requests; the picks below need the scene view at its final size.
+  for (int k = 0; k < 5; ++k)
+  {
+    QApplication::sendPostedEvents();
+    QApplication::processEvents();
+  }
   d->Hub->RenderAll();
+  {
+    // The layout shows exactly the views with data, and they fill the window between the
+    // menu and the status bar (no large empty area).
+    const bool has[5] = { true, d->Doc->Tree != nullptr, true, d->Doc->Metrics != nullptr, true };
+    long long covered = 0;
+    for (int k = 0; k < 5; ++k)
+    {
+      const bool shown = d->Docks[k]->isVisible();
+      check(shown == has[k],
+        std::string("the ") + DockNames[k] + " view is " + (shown ? "shown" : "hidden") +
+          " (it has " + (has[k] ? "data" : "no data") + ")");
+      if (shown)
+      {
+        covered += static_cast<long long>(d->Docks[k]->width()) * d->Docks[k]->height();
+        check(d->Docks[k]->width() >= 200 && d->Docks[k]->height() >= 150,
+          std::string("the ") + DockNames[k] + " view is usable (" +
+            std::to_string(d->Docks[k]->width()) + "x" + std::to_string(d->Docks[k]->height()) +
+            " pixels)");
+      }
+    }
+    const long long area = static_cast<long long>(this->width()) *
+      (this->height() - this->menuBar()->height() - this->statusBar()->height());
+    check(covered >= 0.9 * area,
+      "the views cover " + std::to_string(100 * covered / std::max(1LL, area)) +
+        " % of the window (at least 90 %)");
+    if (d->Doc->Metrics)
+    {
+      check(d->Docks[3]->height() >= 280,
+        "the timeline's three charts have " + std::to_string(d->Docks[3]->height()) +
+          " pixels of height (at least 280)");
+    }
+    if (d->Welcome)
+    {
+      // The welcome panel is shown and names controls that exist (it tells what to click).
+      auto* text = d->Welcome->findChild<QLabel*>("welcome");
+      auto* overlay = qobject_cast<QLabel*>(d->Form->labelForField(d->Overlay));
+      const QString welcome = text ? text->text() : QString();
+      check(d->Welcome->isVisible() && overlay && welcome.contains(overlay->text()) &&
+          welcome.contains(d->HideOutside->text()) &&
+          (!d->Doc->Cameras || d->Overlay->findText(vis4gs::arrays::ViewCoverage) >= 0) &&
+          welcome.contains(vis4gs::arrays::ViewCoverage),
+        "the welcome panel is shown and its steps name the panel's controls");
+    }
+    const std::string& summary = d->Doc->Summary;
+    check(summary.find("loaded in") != std::string::npos &&
+        summary.find("( )") == std::string::npos && summary.find("()") == std::string::npos,
+      "the load summary names the time of every stage (no empty parentheses)");
+  }
   vtkTable* cameras = d->Doc->Cameras;
   vtkPointData* pd = scene->GetPointData();
   vtkDataArray* ids = pd->GetArray("GaussianId");
@@ -1795,6 +2029,25 @@ bool Vis4GSMainWindow::RunSelfTest()
     d->Overlay->setCurrentText(vis4gs::arrays::ViewCoverage);
     check(d->SceneMapper->GetSplatColoring() == vtkGaussianSplatMapper::SCORE,
       "the View Coverage overlay is shown");
+    {
+      // The legend names the suspicious end (low coverage), drawn bright on the black scene.
+      auto* table = vtkLookupTable::SafeDownCast(d->Legend->GetLookupTable());
+      const double* range = table ? table->GetRange() : nullptr;
+      double bright[3] = { 0, 0, 0 }, dark[3] = { 0, 0, 0 };
+      if (range)
+      {
+        table->GetColor(range[0], bright);
+        table->GetColor(range[1], dark);
+      }
+      const vtkIdType at = range ? table->GetAnnotatedValueIndex(vtkVariant(range[0])) : -1;
+      auto luminance = [](const double* c)
+      { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+      check(d->Legend->GetVisibility() && at >= 0 && table->GetAnnotation(at) == "suspicious" &&
+          luminance(bright) > 5 * luminance(dark),
+        "the legend labels the low end of View Coverage 'suspicious' and draws it bright "
+        "(luminance " +
+          std::to_string(luminance(bright)) + " against " + std::to_string(luminance(dark)) + ")");
+    }
     d->SceneWindow->Render();
     QApplication::processEvents();
     this->SaveScreenshot("scene", d->SelfTestDir + "/overlay-coverage-scene.png");

@@ -47,6 +47,12 @@ public:
   /// Starts loading @p path in a worker thread.
   void Open(const QString& path);
 
+  /**
+   * Cameras for the scene files opened next (a cameras.json or a COLMAP folder; empty, the
+   * default, looks for cameras.json next to the scene, Vis4GSFindSceneCameras()).
+   */
+  void SetSceneCameras(const QString& cameras);
+
   /// Runs the scripted end-to-end check once the file is loaded (used by tests), saving
   /// screenshots of every view into @p directory; the application exits with 0 or 1.
   void SetSelfTest(const QString& directory);
@@ -71,6 +77,12 @@ public:
    * scores always use every Gaussian. Default 200000.
    */
   void SetSplatBudget(long long splats);
+
+  /**
+   * Show the welcome panel at the top of the control panel: what a newcomer can try on the
+   * embedded demo (the case study of the user guide), dismissible. `vis4gs demo` turns it on.
+   */
+  void ShowWelcome();
 
   /// Saves a screenshot of a dock ("scene", "tree", "panel", "timeline", "histogram") or of
   /// the whole window ("window"). Returns false when it could not be written.
@@ -108,6 +120,9 @@ protected:
 
 private:
   void BuildUi();
+  // Docks and panel rows for the views the document has data for (tree, timeline, cameras,
+  // snapshots); the remaining views share the window.
+  void LayoutForDocument();
   void OnProgress(double fraction, const QString& message);
   void OnLoaded(std::shared_ptr<Vis4GSDocument> document, const QString& error);
   void OnSelectionChanged();

@@ -7,15 +7,14 @@
 // self-contained HTML report (base64 PNGs, inline SVG histograms, tables, settings, timings).
 #include "Vis4GSCommand.h"
 
-#include "CameraJson.h"
-#include "ColmapDataset.h"
 #include "GaussianIO.h"
 #include "GaussianMath.h"
 #include "ImageIO.h"
 #include "Rasterizer.h"
-#include "SplatAttributes.h" // vis4gs::Viridis, the colour map the splat mapper uses
+#include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSSceneCameras.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 
 #include "vtkCallbackCommand.h"
@@ -88,36 +87,7 @@ void Define(Vis4GSArguments& args)
 // ---------------------------------------------------------------------------------------
 std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSArguments& args)
 {
-  std::string path = args.Get("cameras");
-  if (path.empty())
-  {
-    const fs::path dir = fs::path(scene).parent_path();
-    for (const fs::path& p :
-      { dir / "cameras.json", dir.parent_path().parent_path() / "cameras.json" })
-    {
-      if (fs::is_regular_file(p))
-      {
-        path = p.string();
-        break;
-      }
-    }
-  }
-  std::vector<vis4gs::Camera> cameras;
-  if (path.empty())
-  {
-    return cameras;
-  }
-  if (fs::is_directory(path))
-  {
-    vis4gs::DatasetOptions options;
-    options.RequireImages = false;
-    cameras = vis4gs::LoadColmapDataset(path, options).Cameras;
-  }
-  else
-  {
-    cameras = vis4gs::ReadCamerasJson(path);
-  }
-  return cameras;
+  return Vis4GSFindSceneCameras(scene, args.Get("cameras"));
 }
 
 // The snapshot of a training log, its cameras, and its training images: embedded ones
@@ -263,7 +233,7 @@ std::string Histogram(const std::vector<double>& v, const std::string& title)
   for (int b = 0; b < bins; ++b)
   {
     const double h = 130.0 * count[b] / peak;
-    const auto col = vis4gs::Viridis((b + 0.5) / bins);
+    const auto col = vis4gs::OverlayColor((b + 0.5) / bins, 0, 1, vis4gs::SuspiciousEndOf(title));
     s << "<rect x=\"" << 10 + b * 10 << "\" y=\"" << 140 - h << "\" width=\"9\" height=\"" << h
       << "\" fill=\"rgb(" << int(col[0] * 255) << "," << int(col[1] * 255) << ","
       << int(col[2] * 255) << ")\"><title>" << count[b] << "</title></rect>";
@@ -271,6 +241,31 @@ std::string Histogram(const std::vector<double>& v, const std::string& title)
   s << "<text x=\"10\" y=\"160\" font-size=\"11\">" << lo << "</text><text x=\"410\" y=\"160\" "
     << "font-size=\"11\" text-anchor=\"end\">" << hi << "</text></svg><figcaption>" << Html(title)
     << " (" << v.size() << " Gaussians; highest bin " << peak << ")</figcaption></figure>\n";
+  return s.str();
+}
+
+// The overlay images' legend: the colour map over [lo, hi] as an SVG gradient, the
+// suspicious end labelled.
+std::string Legend(const std::string& name, double lo, double hi)
+{
+  const vis4gs::SuspiciousEnd end = vis4gs::SuspiciousEndOf(name);
+  std::ostringstream s;
+  s << "<figure><svg width=\"420\" height=\"46\" xmlns=\"http://www.w3.org/2000/svg\">"
+    << "<defs><linearGradient id=\"map-" << Html(name) << "\">";
+  for (int k = 0; k <= 16; ++k)
+  {
+    const auto c = vis4gs::OverlayColor(k / 16.0, 0, 1, end);
+    s << "<stop offset=\"" << k / 16.0 << "\" stop-color=\"rgb(" << int(c[0] * 255) << ","
+      << int(c[1] * 255) << "," << int(c[2] * 255) << ")\"/>";
+  }
+  s << "</linearGradient></defs><rect x=\"10\" y=\"4\" width=\"400\" height=\"18\" fill=\"url(#map-"
+    << Html(name) << ")\"/><text x=\"10\" y=\"38\" font-size=\"11\">" << lo
+    << (end == vis4gs::SuspiciousEnd::Low ? " (suspicious)" : "")
+    << "</text><text x=\"410\" y=\"38\" font-size=\"11\" text-anchor=\"end\">"
+    << (end == vis4gs::SuspiciousEnd::High ? "(suspicious) " : "") << hi
+    << "</text></svg><figcaption>" << Html(name) << " colour map"
+    << (end == vis4gs::SuspiciousEnd::None ? "" : ": the suspicious end is the bright (yellow) one")
+    << "</figcaption></figure>\n";
   return s.str();
 }
 
@@ -516,8 +511,10 @@ int Run(const Vis4GSArguments& args)
       std::cout << "  Gaussian " << cloud.GetId(i) << "  " << values[i] << "\n";
     }
   }
-  // Overlays of the first training views: colours replaced by viridis(score).
+  // Overlays of the first training views: colours replaced by the overlay colour map of
+  // the score (vis4gs::OverlayColor, the scene view's), its suspicious end bright on black.
   std::vector<std::pair<std::string, fs::path>> overlays;
+  std::vector<std::string> legends;
   const int overlayViews = std::max(0, args.GetInt("overlay-views"));
   if (needCameras && overlayViews > 0)
   {
@@ -540,12 +537,14 @@ int Run(const Vis4GSArguments& args)
         : name == vis4gs::arrays::ViewCoverage
         ? 1.0
         : std::max(1e-30, sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))]);
+      legends.push_back(Legend(name, 0.0, hi));
+      const vis4gs::SuspiciousEnd end = vis4gs::SuspiciousEndOf(name);
       vis4gs::GaussianCloud colored = cloud;
       colored.ShDegree = 0;
       colored.SH.assign(3 * cloud.Count, 0.0f);
       for (std::size_t i = 0; i < cloud.Count; ++i)
       {
-        const auto c = vis4gs::Viridis(values[i] / hi);
+        const auto c = vis4gs::OverlayColor(values[i], 0.0, hi, end);
         for (int k = 0; k < 3; ++k)
         {
           colored.SH[3 * i + k] = static_cast<float>((c[k] - 0.5) / vis4gs::sh::C0);
@@ -558,6 +557,8 @@ int Run(const Vis4GSArguments& args)
         {
           continue;
         }
+        std::cout << "vis4gs analyze: overlay " << name << " in " << cameras[v].Name << " ("
+                  << done + 1 << " of " << overlayViews << ")" << std::endl;
         const auto render = vis4gs::Rasterize<float>(colored, cameras[v]);
         vis4gs::Image image;
         image.Width = render.Width;
@@ -607,7 +608,14 @@ int Run(const Vis4GSArguments& args)
     html << Histogram(values, name);
   }
   html << "<h2>Overlays</h2><p>Scores through viridis (coverage 0..1; other scores 0..their "
-          "99th percentile), rendered with the rasteriser.</p>\n";
+          "99th percentile), rendered with the rasteriser on black. The map is turned so that "
+          "the suspicious end of each score is the bright (yellow) end: low View Coverage, high "
+          "Blur and Needle scores.</p>\n";
+  for (const std::string& legend : legends)
+  {
+    html << legend;
+  }
+  html << "<br>\n";
   for (const auto& [title, file] : overlays)
   {
     html << "<figure><img src=\"data:image/png;base64," << Base64(ReadBytes(file))

@@ -94,8 +94,11 @@ std::map<std::int32_t, std::map<std::int64_t, double>> CoverageHistory(
   vis4gs::SnapshotReadOptions options;
   options.Arrays = vis4gs::SnapshotParameters;
   std::map<std::int32_t, std::map<std::int64_t, double>> history;
-  for (int iteration : log.GetSnapshotIterations())
+  const std::vector<int>& iterations = log.GetSnapshotIterations();
+  for (int iteration : iterations)
   {
+    std::cout << "vis4gs demo: View Coverage of the snapshot of iteration " << iteration << " ("
+              << history.size() + 1 << " of " << iterations.size() << ")" << std::endl;
     const vis4gs::GaussianCloud cloud = log.ReadSnapshot(iteration, options);
     const vis4gs::GaussianScores scores = vis4gs::ComputeGaussianScores(cloud, cameras, settings);
     auto& values = history[iteration];
@@ -223,7 +226,7 @@ int Run(const Vis4GSArguments& args)
   if (args.GetFlag("gui") && display && *display)
   {
     std::cout << "vis4gs demo: opening " << log << " (use --no-gui for the batch report)\n";
-    return RunCommand("view", { log });
+    return RunCommand("view", { log, "--welcome" });
   }
   const fs::path output = args.Get("output");
   const int analyzed = RunCommand("analyze",

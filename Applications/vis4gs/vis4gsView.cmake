@@ -42,13 +42,36 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     FIXTURES_REQUIRED vis4gsViewLog
     PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
   # The embedded demo log (cameras, images, genealogy): the floater case study end to end,
-  # with baseline images of the scene and tree views (tolerant comparison, Xvfb + llvmpipe).
+  # with baseline images of the scene and tree views (tolerant comparison, Xvfb + llvmpipe),
+  # opened as `vis4gs demo` opens it (with the welcome panel).
   add_test(NAME vis4gs-ViewDemoEndToEnd
     COMMAND vis4gs view "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
-      "--self-test=${_vis4gs_view_dir}/demo-screenshots" --resolution=1200,800
+      "--self-test=${_vis4gs_view_dir}/demo-screenshots" --resolution=1200,800 --welcome
       "--baseline=${CMAKE_CURRENT_SOURCE_DIR}/Testing/Data/Baseline")
   set_tests_properties(vis4gs-ViewDemoEndToEnd PROPERTIES LABELS "Application;GUI"
     PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
+  # A scene file with cameras (issue 21): the demo's last snapshot as a PLY (analyze writes
+  # it) with its training cameras as cameras.json beside it, found by the view on its own:
+  # the layout without tree and timeline, View Coverage and the frustum check.
+  set(_vis4gs_scene_dir "${_vis4gs_view_dir}/scene-with-cameras")
+  add_test(NAME vis4gs-ViewMakeSceneWithCameras
+    COMMAND "${CMAKE_COMMAND}" -E env PYTHONDONTWRITEBYTECODE=1
+      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/LogCamerasJson.py"
+      "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" "${_vis4gs_scene_dir}/cameras.json")
+  add_test(NAME vis4gs-ViewMakeScenePly
+    COMMAND vis4gs analyze "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --scores=shape
+      "--output=${_vis4gs_scene_dir}")
+  set_tests_properties(vis4gs-ViewMakeSceneWithCameras vis4gs-ViewMakeScenePly PROPERTIES
+    LABELS "Application;GUI" FIXTURES_SETUP vis4gsSceneWithCameras)
+  set_tests_properties(vis4gs-ViewMakeSceneWithCameras PROPERTIES
+    PASS_REGULAR_EXPRESSION "wrote 29 training cameras")
+  add_test(NAME vis4gs-ViewSceneWithCameras
+    COMMAND vis4gs view "${_vis4gs_scene_dir}/scores.ply"
+      "--self-test=${_vis4gs_scene_dir}/screenshots" --resolution=1280,800)
+  set_tests_properties(vis4gs-ViewSceneWithCameras PROPERTIES LABELS "Application;GUI"
+    FIXTURES_REQUIRED vis4gsSceneWithCameras
+    PASS_REGULAR_EXPRESSION "the tree view is hidden.*the timeline view is hidden.*View Coverage was computed.*self-test passed"
+    FAIL_REGULAR_EXPRESSION "FAILED")
   # The benchmark mode runs (figures of real sizes: Documentation/performance.md).
   add_test(NAME vis4gs-ViewBenchmarkMode
     COMMAND vis4gs view "${_vis4gs_view_dir}/synthetic.h5" --benchmark --resolution=800,600)

@@ -47,6 +47,16 @@ void Define(Vis4GSArguments& args)
     "k-th in depth order; selection and scores use every Gaussian). 0 draws all. Software "
     "OpenGL draws every Gaussian with the exact CPU rasteriser instead.");
   args.AddOption("resolution", "W,H", "1400,900", "Initial window size.");
+  args.AddOption("cameras",
+    "FILE_OR_DIR",
+    "",
+    "Cameras of a scene file (a training log has its own): the trainer's cameras.json or a "
+    "COLMAP dataset folder. Default: cameras.json next to the scene or two folders up (the "
+    "INRIA model layout); none found, no cameras.");
+  args.AddFlag("welcome",
+    false,
+    "Show the welcome panel (what to try first: the user guide's case study) at the top of "
+    "the control panel; `vis4gs demo` turns it on.");
 }
 
 int Run(const Vis4GSArguments& args)
@@ -72,6 +82,11 @@ int Run(const Vis4GSArguments& args)
     window.resize(static_cast<int>(size[0]), static_cast<int>(size[1]));
   }
   window.SetSplatBudget(static_cast<long long>(args.GetDouble("splat-budget")));
+  window.SetSceneCameras(QString::fromStdString(args.Get("cameras")));
+  if (args.GetFlag("welcome"))
+  {
+    window.ShowWelcome();
+  }
   if (args.GetFlag("benchmark"))
   {
     if (args.GetPositional("FILE").empty())

@@ -252,6 +252,34 @@ std::array<float, 3> Viridis(double t)
 }
 
 //------------------------------------------------------------------------------
+SuspiciousEnd SuspiciousEndOf(const std::string& arrayName)
+{
+  if (arrayName == "ViewCoverage")
+  {
+    return SuspiciousEnd::Low;
+  }
+  if (arrayName == "BlurScore" || arrayName == "NeedleScore" || arrayName == "NeedleShape")
+  {
+    return SuspiciousEnd::High;
+  }
+  return SuspiciousEnd::None;
+}
+
+//------------------------------------------------------------------------------
+std::array<float, 3> OverlayColor(double value, double lo, double hi, SuspiciousEnd end)
+{
+  const double span = hi - lo;
+  // A zero or negative span maps everything at or above lo to the hi end.
+  double t = span > 0 ? (value - lo) / span : (value >= lo ? 1.0 : 0.0);
+  if (!(t > 0.0)) // also NaN
+  {
+    t = 0.0;
+  }
+  t = std::min(t, 1.0);
+  return Viridis(end == SuspiciousEnd::Low ? 1.0 - t : t);
+}
+
+//------------------------------------------------------------------------------
 void ComputeSplatDisplay(const float* trueColors,
   std::size_t count,
   const SplatDisplayOptions& options,
@@ -270,7 +298,6 @@ void ComputeSplatDisplay(const float* trueColors,
   rgba.resize(4 * count);
   keep.resize(count);
   const double lo = options.ColorRange[0], hi = options.ColorRange[1];
-  const double span = hi - lo;
   const std::int64_t n = static_cast<std::int64_t>(count);
 #pragma omp parallel for num_threads(ThreadCount(threads)) schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii)
@@ -296,9 +323,7 @@ void ComputeSplatDisplay(const float* trueColors,
       }
       else
       {
-        // A zero or negative span maps everything at or above lo to the top colour.
-        const double t = span > 0 ? (s - lo) / span : (s >= lo ? 1.0 : 0.0);
-        const auto v = Viridis(t);
+        const auto v = OverlayColor(s, lo, hi, options.Suspicious);
         c[0] = v[0];
         c[1] = v[1];
         c[2] = v[2];

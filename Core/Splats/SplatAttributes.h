@@ -25,6 +25,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace vis4gs
@@ -62,6 +63,31 @@ void EvaluateSplatColors(const GaussianCloud& cloud,
 /// interpolation between 17 samples of the 256-entry table (max error < 0.004 per channel).
 std::array<float, 3> Viridis(double t);
 
+/**
+ * Which end of a score marks a Gaussian as suspicious: View Coverage when low (few training
+ * views constrain the Gaussian), BlurScore, NeedleScore and NeedleShape when high. Any other
+ * array has none.
+ */
+enum class SuspiciousEnd
+{
+  None,
+  Low,
+  High
+};
+
+/// The suspicious end of the per-Gaussian array named @p arrayName (DESIGN §4 scores).
+SuspiciousEnd SuspiciousEndOf(const std::string& arrayName);
+
+/**
+ * Overlay colour of @p value over [@p lo, @p hi]: viridis, turned so that its bright (yellow)
+ * end is the suspicious end of the score, which then stands out against the black background
+ * of the scene view and the overlay images (DESIGN §7); SuspiciousEnd::None and High keep
+ * viridis' direction (lo dark, hi bright). Values outside the range are clamped; NaN maps to
+ * lo; hi <= lo maps everything at or above lo to the hi end. The one colour map of every
+ * overlay (scene view, legend, `vis4gs analyze` images and histograms).
+ */
+std::array<float, 3> OverlayColor(double value, double lo, double hi, SuspiciousEnd end);
+
 /// How ComputeSplatDisplay() colours the splats.
 struct SplatDisplayOptions
 {
@@ -71,6 +97,8 @@ struct SplatDisplayOptions
   const double* Scores = nullptr;
   /// Scores mapped to the ends of the colour map. Default [0, 1].
   std::array<double, 2> ColorRange{ 0.0, 1.0 };
+  /// The score's suspicious end, drawn bright (OverlayColor()). Default None (lo dark).
+  SuspiciousEnd Suspicious = SuspiciousEnd::None;
   /// Hide Gaussians whose score is outside VisibleRange (or NaN). Default off.
   bool HideOutsideRange = false;
   /// Inclusive range of the scores shown when HideOutsideRange is on. Default [0, 1].

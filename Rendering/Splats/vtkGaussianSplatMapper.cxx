@@ -39,6 +39,7 @@
 #include "vtkSelectionNode.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkVariant.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -407,6 +408,7 @@ struct vtkGaussianSplatMapper::vtkInternals
       opt.Scores = this->Scores.data();
     }
     opt.ScoreColoring = self->SplatColoring == SCORE;
+    opt.Suspicious = vis4gs::SuspiciousEndOf(self->ScoreArrayName ? self->ScoreArrayName : "");
     opt.ColorRange = self->AutoScoreRange
       ? std::array<double, 2>{ this->AutoRange[0], this->AutoRange[1] }
       : std::array<double, 2>{ self->ScoreRange[0], self->ScoreRange[1] };
@@ -514,12 +516,15 @@ vtkLookupTable* vtkGaussianSplatMapper::GetScoreLookupTable()
   {
     this->ScoreLookupTable = vtkLookupTable::New();
     this->ScoreLookupTable->SetNumberOfTableValues(256);
-    for (int i = 0; i < 256; ++i)
-    {
-      const auto c = vis4gs::Viridis(i / 255.0);
-      this->ScoreLookupTable->SetTableValue(i, c[0], c[1], c[2], 1.0);
-    }
     this->ScoreLookupTable->SetNanColor(0.5, 0.5, 0.5, 1.0);
+  }
+  // The splats' colour map (OverlayColor), its suspicious end bright and labelled.
+  const vis4gs::SuspiciousEnd end =
+    vis4gs::SuspiciousEndOf(this->ScoreArrayName ? this->ScoreArrayName : "");
+  for (int i = 0; i < 256; ++i)
+  {
+    const auto c = vis4gs::OverlayColor(i, 0, 255, end);
+    this->ScoreLookupTable->SetTableValue(i, c[0], c[1], c[2], 1.0);
   }
   double range[2] = { this->ScoreRange[0], this->ScoreRange[1] };
   if (this->AutoScoreRange)
@@ -538,6 +543,12 @@ vtkLookupTable* vtkGaussianSplatMapper::GetScoreLookupTable()
     range[1] = range[0] + 1.0;
   }
   this->ScoreLookupTable->SetTableRange(range);
+  this->ScoreLookupTable->ResetAnnotations();
+  if (end != vis4gs::SuspiciousEnd::None)
+  {
+    this->ScoreLookupTable->SetAnnotation(
+      vtkVariant(end == vis4gs::SuspiciousEnd::Low ? range[0] : range[1]), "suspicious");
+  }
   return this->ScoreLookupTable;
 }
 

@@ -40,8 +40,11 @@
  * Modes (each a property, combinable):
  *  - SplatColoring TRUE_COLOR (default) or SCORE: a point-data score array
  *    (ScoreArrayName, e.g. ViewCoverage, BlurScore, NeedleScore, NeedleShape) through the
- *    viridis colour map over ScoreRange (automatic from the data unless set); the same map is
- *    available as a vtkLookupTable for a vtkScalarBarActor legend (GetScoreLookupTable()).
+ *    viridis colour map over ScoreRange (automatic from the data unless set), turned so that
+ *    the score's suspicious end (low View Coverage, high Blur, Needle and needle shape;
+ *    vis4gs::OverlayColor) is its bright end and stands out against a dark background; the
+ *    same map is available as a vtkLookupTable for a vtkScalarBarActor legend
+ *    (GetScoreLookupTable()).
  *  - HideOutsideRange: only Gaussians whose score lies in VisibleRange are drawn.
  *  - SelectedIds (GaussianId values, e.g. from a PEDIGREEIDS vtkSelection via SetSelection()):
  *    highlighted (mixed towards HighlightColor); DimUnselected dims every other Gaussian.
@@ -346,8 +349,10 @@ public:
   ///@}
 
   /**
-   * The viridis lookup table over the current colour-map range (for a vtkScalarBarActor).
-   * The range is the automatic one of the current input when AutoScoreRange is on.
+   * The splats' colour-map lookup table over the current colour-map range (for a
+   * vtkScalarBarActor). The range is the automatic one of the current input when
+   * AutoScoreRange is on. For a score with a suspicious end (vis4gs::SuspiciousEndOf) the
+   * table carries the annotation "suspicious" at that end of the range.
    */
   vtkLookupTable* GetScoreLookupTable();
 

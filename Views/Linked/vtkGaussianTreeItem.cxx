@@ -105,7 +105,7 @@ void ReadColumn(vtkDataArray* a, vtkIdType n, std::vector<T>& out)
 constexpr float MarginLeft = 8.f;
 constexpr float MarginRight = 8.f;
 constexpr float MarginBottom = 26.f;
-constexpr float MarginTop = 8.f;
+constexpr float MarginTop = 20.f; // the status line is drawn in it, above the nodes
 
 // vtkContextMouseEvent::GetModifiers dereferences the interactor; scripted events have none.
 int Modifiers(const vtkContextMouseEvent& mouse)
@@ -1317,8 +1317,8 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   status << "z=" << this->GetZoom() << "  tau=" << vis4gs::ZoomThreshold(this->GetZoom())
          << "  shown " << in.Visible.size() << " of " << in.NumberOfRows;
   text->SetJustificationToLeft();
-  text->SetVerticalJustificationToTop();
-  painter->DrawString(map.L + 4, map.T - 4, status.str());
+  text->SetVerticalJustificationToBottom();
+  painter->DrawString(map.L + 4, map.T + 4, status.str());
   return true;
 }
 

@@ -198,6 +198,59 @@ TEST(SplatAttributes, ViridisEndsAndLuminanceIncreases)
   }
 }
 
+TEST(SplatAttributes, OverlaySuspiciousEndIsTheBrightEnd)
+{
+  EXPECT_EQ(SuspiciousEndOf("ViewCoverage"), SuspiciousEnd::Low);
+  for (const char* name : { "BlurScore", "NeedleScore", "NeedleShape" })
+  {
+    EXPECT_EQ(SuspiciousEndOf(name), SuspiciousEnd::High) << name;
+  }
+  EXPECT_EQ(SuspiciousEndOf("Opacity"), SuspiciousEnd::None);
+  EXPECT_EQ(SuspiciousEndOf(""), SuspiciousEnd::None);
+  auto lum = [](const std::array<float, 3>& c)
+  { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+  // Against a black background the suspicious end is the brightest colour of the map, and
+  // the luminance falls monotonically away from it (so the map stays perceptually ordered).
+  for (SuspiciousEnd end : { SuspiciousEnd::Low, SuspiciousEnd::High, SuspiciousEnd::None })
+  {
+    const double suspicious = end == SuspiciousEnd::Low ? 0.2 : 0.8;
+    const double other = end == SuspiciousEnd::Low ? 0.8 : 0.2;
+    EXPECT_EQ(OverlayColor(suspicious, 0.2, 0.8, end), Viridis(1.0));
+    EXPECT_EQ(OverlayColor(other, 0.2, 0.8, end), Viridis(0.0));
+    double last = lum(OverlayColor(suspicious, 0.2, 0.8, end));
+    for (int k = 1; k <= 50; ++k)
+    {
+      const double v = suspicious + (other - suspicious) * k / 50.0;
+      const double l = lum(OverlayColor(v, 0.2, 0.8, end));
+      EXPECT_LT(l, last) << v;
+      last = l;
+    }
+    // The brightest colour is at least 8 times the luminance of the darkest: what the eye
+    // finds against black.
+    EXPECT_GT(lum(Viridis(1.0)), 8 * lum(Viridis(0.0)));
+  }
+  // Clamping, NaN and an empty range.
+  EXPECT_EQ(OverlayColor(-5, 0, 1, SuspiciousEnd::Low), Viridis(1.0));
+  EXPECT_EQ(OverlayColor(5, 0, 1, SuspiciousEnd::Low), Viridis(0.0));
+  EXPECT_EQ(OverlayColor(std::nan(""), 0, 1, SuspiciousEnd::High), Viridis(0.0));
+  EXPECT_EQ(OverlayColor(0.5, 0.5, 0.5, SuspiciousEnd::High), Viridis(1.0));
+  EXPECT_EQ(OverlayColor(0.4, 0.5, 0.5, SuspiciousEnd::High), Viridis(0.0));
+  // ComputeSplatDisplay uses the same map.
+  const double scores[2] = { 0.0, 0.25 };
+  SplatDisplayOptions o;
+  o.ScoreColoring = true;
+  o.Scores = scores;
+  o.Suspicious = SuspiciousEnd::Low;
+  std::vector<float> rgba;
+  std::vector<std::uint8_t> keep;
+  ComputeSplatDisplay(nullptr, 2, o, rgba, keep);
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    EXPECT_EQ(rgba[ch], Viridis(1.0)[ch]);
+    EXPECT_EQ(rgba[4 + ch], Viridis(0.75)[ch]);
+  }
+}
+
 TEST(SplatAttributes, DisplayModes)
 {
   const float colors[9] = { 0.2f, 0.4f, 0.6f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f };

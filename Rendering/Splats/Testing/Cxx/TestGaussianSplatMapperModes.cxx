@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Regression image of the display modes, one viewport each: true colour, the four score
-// overlays (ViewCoverage with its viridis legend, BlurScore, NeedleScore, NeedleShape) and an
-// overlay with Gaussians outside a score range hidden.
+// overlays (ViewCoverage with its legend, the suspicious low end bright and labelled; BlurScore,
+// NeedleScore, NeedleShape) and an overlay with Gaussians outside a score range hidden.
 #include "SplatTestHelpers.h"
 
 #include "Vis4GSDataModel.h"
@@ -20,6 +20,7 @@
 #include "vtkRenderer.h"
 #include "vtkScalarBarActor.h"
 #include "vtkTextProperty.h"
+#include "vtkVariant.h"
 
 #include <cmath>
 #include <cstdio>
@@ -131,6 +132,31 @@ int TestGaussianSplatMapperModes(int argc, char* argv[])
   {
     std::printf("FAILED: legend range %g..%g\n", range[0], range[1]);
     fail = 1;
+  }
+  // Each legend names its suspicious end, and that end is the bright one of the map: low
+  // View Coverage, high Blur, Needle and needle shape.
+  for (int v = 1; v <= 4; ++v)
+  {
+    vtkLookupTable* lut = mappers[v]->GetScoreLookupTable();
+    const double* r = lut->GetRange();
+    const bool low = v == 1;
+    const vtkIdType at = lut->GetAnnotatedValueIndex(vtkVariant(low ? r[0] : r[1]));
+    double bright[3], dark[3];
+    lut->GetColor(low ? r[0] : r[1], bright);
+    lut->GetColor(low ? r[1] : r[0], dark);
+    auto luminance = [](const double* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+    if (lut->GetNumberOfAnnotatedValues() != 1 || at < 0 ||
+      lut->GetAnnotation(at) != "suspicious" || !(luminance(bright) > 5 * luminance(dark)))
+    {
+      std::printf("FAILED: %s legend: %lld annotations, 'suspicious' at index %lld, luminance of "
+                  "the suspicious end %g, of the other %g\n",
+        names[v - 1],
+        static_cast<long long>(lut->GetNumberOfAnnotatedValues()),
+        static_cast<long long>(at),
+        luminance(bright),
+        luminance(dark));
+      fail = 1;
+    }
   }
   const int retVal = vtkRegressionTestImage(win);
   return fail || !retVal;

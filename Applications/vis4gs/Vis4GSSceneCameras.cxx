@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Vis4GSSceneCameras.h"
+
+#include "CameraJson.h"
+#include "ColmapDataset.h"
+
+#include <filesystem>
+
+std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
+  const std::string& cameras)
+{
+  namespace fs = std::filesystem;
+  std::string path = cameras;
+  if (path.empty())
+  {
+    const fs::path dir = fs::path(scene).parent_path();
+    for (const fs::path& p :
+      { dir / "cameras.json", dir.parent_path().parent_path() / "cameras.json" })
+    {
+      if (fs::is_regular_file(p))
+      {
+        path = p.string();
+        break;
+      }
+    }
+  }
+  if (path.empty())
+  {
+    return {};
+  }
+  if (fs::is_directory(path))
+  {
+    vis4gs::DatasetOptions options;
+    options.RequireImages = false;
+    return vis4gs::LoadColmapDataset(path, options).Cameras;
+  }
+  return vis4gs::ReadCamerasJson(path);
+}

@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Vis4GSSceneCameras.h
+ * @brief The cameras of a Gaussian scene file, for `vis4gs analyze` and `vis4gs view`.
+ */
+#ifndef Vis4GSSceneCameras_h
+#define Vis4GSSceneCameras_h
+
+#include "Camera.h"
+
+#include <string>
+#include <vector>
+
+/**
+ * The cameras of the scene file @p scene: @p cameras names a cameras.json or a COLMAP dataset
+ * folder (sparse/0; images not required); empty looks for cameras.json next to @p scene and
+ * two folders up (the INRIA model layout, point_cloud/iteration_N/point_cloud.ply). Returns
+ * none when nothing is found; the readers throw std::runtime_error naming the file when one
+ * cannot be read.
+ */
+std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
+  const std::string& cameras);
+
+#endif
