@@ -21,29 +21,33 @@ namespace
 vtkMPIController* TheController = nullptr;
 char RankText[64] = "";
 
+void WriteText(const char* text)
+{
+  const ssize_t ignored = write(2, text, std::strlen(text));
+  (void)ignored;
+}
+
 // Async-signal-safe: write(2) of buffers prepared beforehand, then the default action.
 void SayWhereAndDie(int signal)
 {
+  char number[4] = {
+    static_cast<char>('0' + (signal / 10) % 10), static_cast<char>('0' + signal % 10), '\0', '\0'
+  };
   const char* view = vtkGaussianArtifactScoreFilter::GetViewInProgress();
-  const char* head = "vis4gs: ";
-  ssize_t ignored = write(2, head, std::strlen(head));
-  ignored = write(2, RankText, std::strlen(RankText));
-  const char* mid = view[0] ? " died on signal while on " : " died on signal (no view in progress)";
-  ignored = write(2, mid, std::strlen(mid));
-  ignored = write(2, view, std::strlen(view));
-  char number[16];
-  int k = 0;
-  number[k++] = ' ';
-  number[k++] = '(';
-  if (signal >= 10)
+  WriteText("vis4gs: ");
+  WriteText(RankText);
+  WriteText(" stopped by signal ");
+  WriteText(number[0] == '0' ? number + 1 : number);
+  if (view[0])
   {
-    number[k++] = static_cast<char>('0' + signal / 10);
+    WriteText(" while on ");
+    WriteText(view);
+    WriteText("\n");
   }
-  number[k++] = static_cast<char>('0' + signal % 10);
-  number[k++] = ')';
-  number[k++] = '\n';
-  ignored = write(2, number, static_cast<std::size_t>(k));
-  (void)ignored;
+  else
+  {
+    WriteText(" with no view in progress\n");
+  }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }

@@ -82,8 +82,9 @@ void SetViewInProgress(const std::string& text)
   }
 }
 
-// Fault injection for the tests (Filters/Diagnostics/Testing): VIS4GS_TEST_KILL_VIEW=R:V makes
-// process R raise SIGTERM when it starts camera V, as if killed there.
+// Fault injection for the tests (Applications/vis4gs/Testing/AnalyzeMPI.sh):
+// VIS4GS_TEST_KILL_VIEW=R:V makes process R raise SIGTERM when it starts camera V (V = "any":
+// its first view), as if it were killed there.
 void MaybeKillForTest(int rank, std::size_t view)
 {
   const char* spec = std::getenv("VIS4GS_TEST_KILL_VIEW");
@@ -92,8 +93,9 @@ void MaybeKillForTest(int rank, std::size_t view)
     return;
   }
   int r = -1;
-  unsigned long v = 0;
-  if (std::sscanf(spec, "%d:%lu", &r, &v) == 2 && r == rank && v == view)
+  char which[32] = "";
+  if (std::sscanf(spec, "%d:%31s", &r, which) == 2 && r == rank &&
+    (std::string(which) == "any" || std::string(which) == std::to_string(view)))
   {
     std::raise(SIGTERM);
   }
