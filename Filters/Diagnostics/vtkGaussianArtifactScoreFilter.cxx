@@ -27,6 +27,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -110,8 +111,10 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
   const vis4gs::ScoreSettings& settings,
   const vis4gs::TrainingImageProvider& images,
   vis4gs::GaussianScores& scores,
-  vtkIdType& rendered)
+  vtkIdType& rendered,
+  double seconds[2])
 {
+  const auto start = std::chrono::steady_clock::now();
   const int rank = controller->GetLocalProcessId();
   const int ranks = controller->GetNumberOfProcesses();
   const bool needCameras =
@@ -166,9 +169,12 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
     message << ": " << e.what();
     error = message.str();
   }
+  seconds[0] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Agree on failure before any reduction, so no process waits for one that gave up.
   int failed = error.empty() ? 0 : 1, anyFailed = 0;
   controller->AllReduce(&failed, &anyFailed, 1, vtkCommunicator::MAX_OP);
+  // Timed from here: the wait for the slowest process above is load imbalance, not reduction.
+  const auto reduction = std::chrono::steady_clock::now();
   if (anyFailed)
   {
     if (!error.empty())
@@ -216,6 +222,7 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
   controller->AllReduce(counts, totals, 2, vtkCommunicator::SUM_OP);
   partials.ViewsScored = static_cast<std::size_t>(totals[0]);
   partials.ViewsWithoutImage = static_cast<std::size_t>(totals[1]);
+  seconds[1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - reduction).count();
   try
   {
     scores = vis4gs::FinishGaussianScores(cloud, settings, std::move(partials));
@@ -280,6 +287,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   this->NumberOfViewsWithoutImage = 0;
   this->NumberOfFlaggedGaussians = 0;
   this->NumberOfViewsRendered = 0;
+  this->ComputeSeconds = this->ReductionSeconds = 0;
 
   vis4gs::ScoreSettings settings;
   settings.Request.ViewCoverage = this->ComputeViewCoverage;
@@ -361,6 +369,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
     this->Controller ? this->Controller : vtkMultiProcessController::GetGlobalController();
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
   vis4gs::GaussianScores scores;
+  double seconds[2] = { 0, 0 };
   if (ranks <= 1)
   {
     try
@@ -373,6 +382,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
       return 0;
     }
     this->NumberOfViewsRendered = static_cast<vtkIdType>(scores.ViewIndices.size());
+    seconds[0] = scores.Timings.Total;
   }
   else if (!ComputeDistributed(this,
              controller,
@@ -381,10 +391,13 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
              settings,
              images,
              scores,
-             this->NumberOfViewsRendered))
+             this->NumberOfViewsRendered,
+             seconds))
   {
     return 0;
   }
+  this->ComputeSeconds = seconds[0];
+  this->ReductionSeconds = seconds[1];
   for (const std::string& warning : scores.Warnings)
   {
     vtkWarningMacro(<< warning);
@@ -450,5 +463,7 @@ void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfViewsWithoutImage: " << this->NumberOfViewsWithoutImage << "\n";
   os << indent << "NumberOfFlaggedGaussians: " << this->NumberOfFlaggedGaussians << "\n";
   os << indent << "NumberOfViewsRendered: " << this->NumberOfViewsRendered << "\n";
+  os << indent << "ComputeSeconds: " << this->ComputeSeconds << "\n";
+  os << indent << "ReductionSeconds: " << this->ReductionSeconds << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -171,6 +171,16 @@ public:
    */
   static const char* GetViewInProgress();
 
+  ///@{
+  /**
+   * Seconds of the last execution spent by this process on its views (projection, rendering,
+   * images, loss maps, footprints, sums) and on the reduction over the processes (0 in one
+   * process), for the benchmarks (Documentation/performance.md).
+   */
+  vtkGetMacro(ComputeSeconds, double);
+  vtkGetMacro(ReductionSeconds, double);
+  ///@}
+
   /// Views rendered by this process in the last execution (all of them in one process).
   vtkGetMacro(NumberOfViewsRendered, vtkIdType);
 
@@ -199,6 +209,8 @@ protected:
   vtkIdType NumberOfViewsWithoutImage = 0;
   vtkIdType NumberOfFlaggedGaussians = 0;
   vtkIdType NumberOfViewsRendered = 0;
+  double ComputeSeconds = 0;
+  double ReductionSeconds = 0;
   vtkMultiProcessController* Controller = nullptr;
 
 private:
