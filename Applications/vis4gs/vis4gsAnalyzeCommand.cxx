@@ -15,11 +15,13 @@
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSSceneCameras.h"
+#include "Vis4GSMPI.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -38,6 +40,8 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
+#include <unistd.h>
 
 namespace
 {
@@ -82,6 +86,10 @@ void Define(Vis4GSArguments& args)
     "0",
     "Occlusion-aware coverage: count a view only when max alpha*T >= T (0: off).");
   args.AddOption("overlay-views", "N", "4", "Number of training views rendered as overlays.");
+  args.AddFlag("mpi",
+    false,
+    "Spread the training views over MPI processes (implied when launched by mpiexec; "
+    "process 0 writes the outputs).");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -97,7 +105,8 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
   const Vis4GSArguments& args,
   const fs::path& output,
   bool needCameras,
-  std::vector<vis4gs::Camera>& cameras)
+  std::vector<vis4gs::Camera>& cameras,
+  bool writeImages)
 {
   const vis4gs::TrainingLogReader log(path);
   for (const std::string& lack : log.GetLacks())
@@ -134,12 +143,15 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
     const std::string prefix = "/images/";
     if (c.ImagePath.rfind(prefix, 0) == 0)
     {
-      int width = 0, height = 0;
       const std::string name = c.ImagePath.substr(prefix.size());
-      const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
       const fs::path file = output / "images" / (name + ".png");
-      fs::create_directories(file.parent_path());
-      vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+      if (writeImages) // under MPI process 0 writes them once for every process
+      {
+        int width = 0, height = 0;
+        const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
+        fs::create_directories(file.parent_path());
+        vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+      }
       c.ImagePath = file.string();
     }
     else if (!c.ImagePath.empty() && fs::path(c.ImagePath).is_relative())
@@ -287,9 +299,55 @@ std::vector<std::size_t> TopK(const std::vector<double>& v, std::size_t k)
 }
 
 // ---------------------------------------------------------------------------------------
+// The outputs go to a hidden folder inside the output folder and are moved into place only when
+// all of them are written, so a failure (or a process killed under MPI) leaves no partial
+// scores.csv, scores.ply or report.html; the hidden folder is removed on failure when possible.
+class StagingFolder
+{
+public:
+  explicit StagingFolder(const fs::path& output)
+    : Output(output)
+    , Path(output / (".vis4gs-analyze-partial-" + std::to_string(::getpid())))
+  {
+    fs::create_directories(this->Path);
+  }
+  ~StagingFolder()
+  {
+    std::error_code ec;
+    fs::remove_all(this->Path, ec);
+  }
+  StagingFolder(const StagingFolder&) = delete;
+  StagingFolder& operator=(const StagingFolder&) = delete;
+
+  const fs::path& Get() const { return this->Path; }
+
+  // Renames every file into the output folder (report.html last: it marks a complete run).
+  void Commit()
+  {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(this->Path))
+    {
+      files.push_back(entry.path());
+    }
+    std::stable_partition(
+      files.begin(), files.end(), [](const fs::path& p) { return p.filename() != "report.html"; });
+    for (const fs::path& file : files)
+    {
+      fs::rename(file, this->Output / file.filename());
+    }
+  }
+
+private:
+  fs::path Output;
+  fs::path Path;
+};
+
 int Run(const Vis4GSArguments& args)
 {
   const auto start = Clock::now();
+  const Vis4GSMPISession mpi(args.GetFlag("mpi"));
+  vtkMultiProcessController* controller =
+    mpi.Active() ? vtkMultiProcessController::GetGlobalController() : nullptr;
   const std::string scene = args.GetPositional("scene");
   const fs::path output = args.Get("output");
   const std::size_t top = static_cast<std::size_t>(std::max(0, args.GetInt("top")));
@@ -337,7 +395,7 @@ int Run(const Vis4GSArguments& args)
   std::vector<vis4gs::Camera> cameras;
   if (isLog)
   {
-    cloud = ReadLogScene(scene, args, output, needCameras, cameras);
+    cloud = ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0);
   }
   else
   {
@@ -360,6 +418,10 @@ int Run(const Vis4GSArguments& args)
   if (!args.Get("images").empty())
   {
     AttachImagesByName(cameras, args.Get("images"));
+  }
+  if (controller)
+  {
+    controller->Barrier(); // the images process 0 extracted from a log are on disk
   }
   const double tRead = Since(t0);
 
@@ -437,10 +499,21 @@ int Run(const Vis4GSArguments& args)
     }
   }
   const double tScores = Since(t0);
+  if (mpi.Active())
+  {
+    std::cout << "vis4gs analyze: process " << mpi.Rank() << " of " << mpi.Size() << " rendered "
+              << filter->GetNumberOfViewsRendered() << " of " << filter->GetNumberOfViewsUsed()
+              << " views\n";
+    if (mpi.Rank() != 0)
+    {
+      return 0; // process 0 has the reduced scores too and writes the outputs
+    }
+  }
 
   // Outputs.
   t0 = Clock::now();
   fs::create_directories(output);
+  StagingFolder staging(output);
   vis4gs::GaussianCloud withScores = cloud;
   for (const auto& [name, values] : scores)
   {
@@ -463,9 +536,9 @@ int Run(const Vis4GSArguments& args)
     p.Bytes.assign(flags.begin(), flags.end());
     withScores.Extra.push_back(std::move(p));
   }
-  vis4gs::WriteGaussianPly((output / "scores.ply").string(), withScores);
+  vis4gs::WriteGaussianPly((staging.Get() / "scores.ply").string(), withScores);
   {
-    std::ofstream csv(output / "scores.csv");
+    std::ofstream csv(staging.Get() / "scores.csv");
     csv << "GaussianId";
     for (const auto& s : scores)
     {
@@ -564,7 +637,7 @@ int Run(const Vis4GSArguments& args)
         image.Width = render.Width;
         image.Height = render.Height;
         image.Pixels = render.Color;
-        const fs::path file = output / (std::string(name) + "-" + cameras[v].Name + ".png");
+        const fs::path file = staging.Get() / (std::string(name) + "-" + cameras[v].Name + ".png");
         vis4gs::WritePng(file.string(), image);
         overlays.emplace_back(std::string(name) + " in " + cameras[v].Name, file);
         ++done;
@@ -574,7 +647,7 @@ int Run(const Vis4GSArguments& args)
   const double tOutputs = Since(t0);
 
   // HTML report.
-  std::ofstream html(output / "report.html");
+  std::ofstream html(staging.Get() / "report.html");
   html << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>vis4gs analyze: "
        << Html(scene) << "</title><style>body{font-family:sans-serif;margin:2em}"
        << "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
@@ -648,6 +721,8 @@ int Run(const Vis4GSArguments& args)
   {
     throw std::runtime_error((output / "report.html").string() + ": could not be written");
   }
+  html.close();
+  staging.Commit();
   std::cout << "vis4gs analyze: wrote " << (output / "report.html").string() << ", scores.csv, "
             << "scores.ply and " << overlays.size() << " overlay images\n";
   return 0;

@@ -123,11 +123,13 @@ std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
 }
 
 //------------------------------------------------------------------------------
-GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
+ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   const std::vector<Camera>& cameras,
   const ScoreSettings& settings,
+  const std::vector<std::size_t>& ownViews,
   const TrainingImageProvider& images,
-  const ScoreProgress& progress)
+  const ScoreProgress& progress,
+  const ScoreViewStarted& viewStarted)
 {
   const auto start = Clock::now();
   const ScoreRequest& request = settings.Request;
@@ -168,41 +170,7 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
     throw std::invalid_argument("more than 2^32-1 Gaussians");
   }
 
-  GaussianScores out;
-  out.Flags.assign(n, 0);
-  // Invalid parameters (flag only; the rasteriser skips these Gaussians by itself).
-  {
-    std::size_t invalid = 0;
-    const std::int64_t sn = static_cast<std::int64_t>(n);
-#pragma omp parallel for reduction(+ : invalid) schedule(static)
-    for (std::int64_t g = 0; g < sn; ++g)
-    {
-      const std::size_t i = static_cast<std::size_t>(g);
-      const bool ok = AllFinite(cloud.Positions, 3 * i, 3) &&
-        AllFinite(cloud.LogScales, 3 * i, 3) && AllFinite(cloud.Rotations, 4 * i, 4) &&
-        AllFinite(cloud.OpacityLogits, i, 1);
-      if (!ok)
-      {
-        out.Flags[i] |= InvalidParameters;
-        ++invalid;
-      }
-    }
-    out.InvalidCount = invalid;
-  }
-
-  // Needle shape: no cameras needed.
-  std::vector<double> shape;
-  if (request.Needle || request.NeedleShape)
-  {
-    const auto t0 = Clock::now();
-    shape.resize(n);
-    ComputeNeedleShapes(cloud.LogScales.data(), n, shape.data());
-    out.Timings.NeedleShape = Seconds(t0);
-  }
-  if (request.NeedleShape)
-  {
-    out.NeedleShape = shape;
-  }
+  ScorePartials out;
   if (!needCameras)
   {
     out.Timings.Total = Seconds(start);
@@ -210,7 +178,14 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   }
 
   out.ViewIndices = SelectViews(cameras, settings);
-  out.ViewsUsed = out.ViewIndices.size();
+  for (std::size_t i : ownViews)
+  {
+    if (std::find(out.ViewIndices.begin(), out.ViewIndices.end(), i) == out.ViewIndices.end())
+    {
+      throw std::invalid_argument(
+        "camera " + std::to_string(i) + " is not one of the views the settings select");
+    }
+  }
   for (std::size_t i : out.ViewIndices)
   {
     const Camera& c = cameras[i];
@@ -241,7 +216,8 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   {
     out.CoverageViews.assign(n, 0);
   }
-  std::vector<double> blurSum, needleSum;
+  std::vector<double>& blurSum = out.BlurSum;
+  std::vector<double>& needleSum = out.NeedleSum;
   if (scores)
   {
     out.ScoredViews.assign(n, 0);
@@ -250,7 +226,7 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   }
   std::vector<bool> coveredByScorePass(cameras.size(), false);
   const std::size_t totalSteps =
-    (request.ViewCoverage ? out.ViewsUsed : 0) + (scores ? out.ViewsUsed : 0);
+    (request.ViewCoverage ? ownViews.size() : 0) + (scores ? ownViews.size() : 0);
   std::size_t done = 0;
   auto step = [&]()
   {
@@ -275,8 +251,12 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
     }
     FootprintStats stats;
     RasterImage<float> render;
-    for (std::size_t vi : out.ViewIndices)
+    for (std::size_t vi : ownViews)
     {
+      if (viewStarted)
+      {
+        viewStarted(vi);
+      }
       const Camera& full = cameras[vi];
       auto t0 = Clock::now();
       Image image;
@@ -380,12 +360,6 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
       ++out.ViewsScored;
       step();
     }
-    if (out.ViewsWithoutImage > 0)
-    {
-      out.Warnings.push_back(std::to_string(out.ViewsWithoutImage) + " of " +
-        std::to_string(out.ViewsUsed) +
-        " training views have no image and were skipped for the blur and needle scores");
-    }
   }
 
   // Coverage pass (views the score pass did not cover).
@@ -393,7 +367,7 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   {
     // Fused, early-exit visibility (FastCoverage.h): identical counts, no footprint sizes.
     std::vector<Camera> pending;
-    for (std::size_t vi : out.ViewIndices)
+    for (std::size_t vi : ownViews)
     {
       if (!coveredByScorePass[vi])
       {
@@ -405,6 +379,17 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
     constexpr std::size_t batch = 64;
     for (std::size_t first = 0; first < pending.size(); first += batch)
     {
+      if (viewStarted)
+      {
+        for (std::size_t vi : ownViews)
+        {
+          if (!coveredByScorePass[vi])
+          {
+            viewStarted(vi); // the batch's views are counted together; name the first
+            break;
+          }
+        }
+      }
       const std::size_t last = std::min(pending.size(), first + batch);
       const std::vector<Camera> views(pending.begin() + first, pending.begin() + last);
       const auto t0 = Clock::now();
@@ -421,19 +406,23 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
         step();
       }
     }
-    for (std::size_t k = pending.size(); k < out.ViewIndices.size(); ++k)
+    for (std::size_t k = pending.size(); k < ownViews.size(); ++k)
     {
       step(); // views the score pass covered
     }
   }
   else if (request.ViewCoverage)
   {
-    for (std::size_t vi : out.ViewIndices)
+    for (std::size_t vi : ownViews)
     {
       if (coveredByScorePass[vi])
       {
         step();
         continue;
+      }
+      if (viewStarted)
+      {
+        viewStarted(vi);
       }
       const Camera view = ViewAt(cameras[vi], settings.CoverageResolution);
       auto t0 = Clock::now();
@@ -461,6 +450,94 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
       out.Timings.Accumulation += Seconds(t0);
       step();
     }
+  }
+
+  out.Timings.Total = Seconds(start);
+  return out;
+}
+
+//------------------------------------------------------------------------------
+GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
+  const ScoreSettings& settings,
+  ScorePartials partials)
+{
+  const auto start = Clock::now();
+  const ScoreRequest& request = settings.Request;
+  const bool scores = request.Blur || request.Needle;
+  const bool needCameras = scores || request.ViewCoverage;
+  const std::size_t n = cloud.Count;
+  if ((request.Needle || request.NeedleShape) && cloud.LogScales.size() != 3 * n)
+  {
+    throw std::invalid_argument("the needle shape needs the log-scales of every Gaussian");
+  }
+  if ((request.ViewCoverage && partials.CoverageViews.size() != n) ||
+    (scores &&
+      (partials.ScoredViews.size() != n || partials.BlurSum.size() != n ||
+        partials.NeedleSum.size() != n)))
+  {
+    throw std::invalid_argument("the partial scores do not match the cloud or the request");
+  }
+  GaussianScores out;
+  out.Flags.assign(n, 0);
+  // Invalid parameters (flag only; the rasteriser skips these Gaussians by itself).
+  {
+    std::size_t invalid = 0;
+    const std::int64_t sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for reduction(+ : invalid) schedule(static)
+    for (std::int64_t g = 0; g < sn; ++g)
+    {
+      const std::size_t i = static_cast<std::size_t>(g);
+      const bool ok = AllFinite(cloud.Positions, 3 * i, 3) &&
+        AllFinite(cloud.LogScales, 3 * i, 3) && AllFinite(cloud.Rotations, 4 * i, 4) &&
+        AllFinite(cloud.OpacityLogits, i, 1);
+      if (!ok)
+      {
+        out.Flags[i] |= InvalidParameters;
+        ++invalid;
+      }
+    }
+    out.InvalidCount = invalid;
+  }
+
+  // Needle shape: no cameras needed.
+  std::vector<double> shape;
+  if (request.Needle || request.NeedleShape)
+  {
+    const auto t0 = Clock::now();
+    shape.resize(n);
+    ComputeNeedleShapes(cloud.LogScales.data(), n, shape.data());
+    out.Timings.NeedleShape = Seconds(t0);
+  }
+  if (request.NeedleShape)
+  {
+    out.NeedleShape = shape;
+  }
+  if (!needCameras)
+  {
+    out.Timings.Total = Seconds(start);
+    return out;
+  }
+
+  out.ViewIndices = std::move(partials.ViewIndices);
+  out.ViewsUsed = out.ViewIndices.size();
+  out.ViewsScored = partials.ViewsScored;
+  out.ViewsWithoutImage = partials.ViewsWithoutImage;
+  out.CoverageViews = std::move(partials.CoverageViews);
+  out.ScoredViews = std::move(partials.ScoredViews);
+  const std::vector<double>& blurSum = partials.BlurSum;
+  const std::vector<double>& needleSum = partials.NeedleSum;
+  const ScoreTimings& pt = partials.Timings;
+  out.Timings.Projection = pt.Projection;
+  out.Timings.Rendering = pt.Rendering;
+  out.Timings.Images = pt.Images;
+  out.Timings.LossMaps = pt.LossMaps;
+  out.Timings.Footprints = pt.Footprints;
+  out.Timings.Accumulation = pt.Accumulation;
+  if (scores && out.ViewsWithoutImage > 0)
+  {
+    out.Warnings.push_back(std::to_string(out.ViewsWithoutImage) + " of " +
+      std::to_string(out.ViewsUsed) +
+      " training views have no image and were skipped for the blur and needle scores");
   }
 
   // Final scores.
@@ -525,8 +602,89 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
     out.Warnings.push_back(std::to_string(out.InvalidCount) +
       " Gaussians have NaN or infinite parameters; they are never visible and are flagged");
   }
-  out.Timings.Total = Seconds(start);
+  out.Timings.Total = pt.Total + Seconds(start);
   return out;
+}
+
+//------------------------------------------------------------------------------
+GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const TrainingImageProvider& images,
+  const ScoreProgress& progress)
+{
+  const ScoreRequest& request = settings.Request;
+  const bool needCameras = request.ViewCoverage || request.Blur || request.Needle;
+  const std::vector<std::size_t> views =
+    needCameras ? SelectViews(cameras, settings) : std::vector<std::size_t>();
+  return FinishGaussianScores(
+    cloud, settings, ComputeScorePartials(cloud, cameras, settings, views, images, progress));
+}
+
+//------------------------------------------------------------------------------
+std::vector<double> EstimateViewCosts(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const std::vector<std::size_t>& views,
+  const ScoreSettings& settings)
+{
+  const bool scores = settings.Request.Blur || settings.Request.Needle;
+  const int factor = scores ? settings.LossResolution : settings.CoverageResolution;
+  const std::size_t n = cloud.Count;
+  const std::size_t stride = std::max<std::size_t>(1, n / 4096);
+  std::vector<double> costs;
+  costs.reserve(views.size());
+  for (std::size_t vi : views)
+  {
+    const Camera& c = cameras.at(vi);
+    const double w = c.Width, h = c.Height;
+    const auto& m = c.WorldToCamera;
+    std::size_t seen = 0, sampled = 0;
+    for (std::size_t g = 0; g < n && cloud.Positions.size() >= 3 * n; g += stride)
+    {
+      ++sampled;
+      const double x = cloud.Positions[3 * g], y = cloud.Positions[3 * g + 1],
+                   z = cloud.Positions[3 * g + 2];
+      const double cz = m[8] * x + m[9] * y + m[10] * z + m[11];
+      if (!(cz > 0.2))
+      {
+        continue; // the rasteriser's near plane
+      }
+      const double u = c.Fx * (m[0] * x + m[1] * y + m[2] * z + m[3]) / cz + c.Cx;
+      const double v = c.Fy * (m[4] * x + m[5] * y + m[6] * z + m[7]) / cz + c.Cy;
+      seen += (u >= 0 && u < w && v >= 0 && v < h) ? 1 : 0;
+    }
+    const double fraction = sampled > 0 ? (seen + 1.0) / (sampled + 1.0) : 1.0;
+    const double pixels =
+      static_cast<double>(LossMapSize(c.Width, factor)) * LossMapSize(c.Height, factor);
+    // The +1 keeps an empty view's cost positive: it still costs a projection.
+    costs.push_back(pixels * fraction * static_cast<double>(n + 1));
+  }
+  return costs;
+}
+
+//------------------------------------------------------------------------------
+std::vector<int> SplitViewsByCost(const std::vector<double>& costs, int parts)
+{
+  if (parts < 1)
+  {
+    throw std::invalid_argument("views must be split over at least one process");
+  }
+  std::vector<std::size_t> order(costs.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = i;
+  }
+  std::stable_sort(
+    order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+  std::vector<double> load(static_cast<std::size_t>(parts), 0.0);
+  std::vector<int> owner(costs.size(), 0);
+  for (std::size_t i : order)
+  {
+    const auto least = std::min_element(load.begin(), load.end());
+    *least += std::isfinite(costs[i]) ? costs[i] : 0.0;
+    owner[i] = static_cast<int>(least - load.begin());
+  }
+  return owner;
 }
 
 } // namespace vis4gs

@@ -184,6 +184,74 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
 std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
   const ScoreSettings& settings);
 
+/**
+ * Per-Gaussian partial results of the view-dependent scores over a subset of the selected
+ * views: what a process that renders only some views contributes, so that the views can be
+ * spread over processes (MPI, Filters/Diagnostics/vtkGaussianArtifactScoreFilter). Every
+ * member except ViewIndices and Timings is a plain sum over views, so the partials of
+ * disjoint view subsets combine by element-wise addition (integers exactly; BlurSum and
+ * NeedleSum in a different order than one process would use, hence last-bit differences of
+ * Blur and Needle, never of View Coverage). omega(g,v) needs max_h |Omega(h,v)|, a per-view
+ * quantity, so it is finished on the process that renders v and only omega*L' travels.
+ */
+struct ScorePartials
+{
+  /// Camera indices of every selected view (|V|), whoever renders them.
+  std::vector<std::size_t> ViewIndices;
+  /// Visible views per Gaussian of the coverage pass (empty when coverage is not requested).
+  std::vector<std::uint32_t> CoverageViews;
+  /// Visible scored views per Gaussian, sums of omega*L' and of L' (empty without blur/needle).
+  std::vector<std::uint32_t> ScoredViews;
+  std::vector<double> BlurSum;
+  std::vector<double> NeedleSum;
+  /// Views scored (with an image) and skipped for lack of one, among the views rendered.
+  std::size_t ViewsScored = 0;
+  std::size_t ViewsWithoutImage = 0;
+  ScoreTimings Timings;
+};
+
+/// Called with the camera index of each view before it is rendered (to name it in errors).
+using ScoreViewStarted = std::function<void(std::size_t cameraIndex)>;
+
+/**
+ * The partials of @p views (camera indices, a subset of SelectViews(); empty: none, every
+ * buffer still sized for the cloud) with the same checks and exceptions as
+ * ComputeGaussianScores(). @p images is called only for views of @p views.
+ */
+ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const std::vector<std::size_t>& views,
+  const TrainingImageProvider& images = {},
+  const ScoreProgress& progress = {},
+  const ScoreViewStarted& viewStarted = {});
+
+/**
+ * The scores from partials that cover every selected view (one process's, or the
+ * element-wise sums of several): needle shape, flags, means and warnings.
+ * ComputeGaussianScores() = FinishGaussianScores(ComputeScorePartials(every selected view)).
+ */
+GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
+  const ScoreSettings& settings,
+  ScorePartials partials);
+
+/**
+ * Estimated cost of each view of @p views: its pixels (at the blur/needle or coverage
+ * resolution, whichever is rendered) times the Gaussians whose mean projects into it, counted
+ * on a deterministic sample of at most 4096 Gaussians (every process gets the same numbers).
+ */
+std::vector<double> EstimateViewCosts(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const std::vector<std::size_t>& views,
+  const ScoreSettings& settings);
+
+/**
+ * Splits views of costs @p costs over @p parts processes, largest cost first onto the least
+ * loaded process (ties: lower view position, lower process), deterministic. Returns the
+ * process of each view. A process may get no view when views are fewer than processes.
+ */
+std::vector<int> SplitViewsByCost(const std::vector<double>& costs, int parts);
+
 } // namespace vis4gs
 
 #endif

@@ -14,9 +14,11 @@
 #include "ImageIO.h"
 #include "Vis4GSDataModel.h"
 
+#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -24,12 +26,20 @@
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <system_error>
 #include <vector>
 
 vtkStandardNewMacro(vtkGaussianArtifactScoreFilter);
+vtkCxxSetObjectMacro(vtkGaussianArtifactScoreFilter, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -57,12 +67,186 @@ void AddArray(vtkPolyData* output, const char* name, const std::vector<double>& 
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   output->GetPointData()->AddArray(array);
 }
+
+char ViewInProgress[256] = "";
+
+void SetViewInProgress(const std::string& text)
+{
+  // The first byte is written last, so a signal handler reads "" or the whole text.
+  ViewInProgress[0] = '\0';
+  const std::size_t n = std::min(text.size(), sizeof(ViewInProgress) - 1);
+  if (n > 0)
+  {
+    std::memcpy(ViewInProgress + 1, text.data() + 1, n - 1);
+    ViewInProgress[n] = '\0';
+    ViewInProgress[0] = text[0];
+  }
+}
+
+// Fault injection for the tests (Applications/vis4gs/Testing/AnalyzeMPI.sh):
+// VIS4GS_TEST_KILL_VIEW=R:V makes process R raise SIGTERM when it starts camera V (V = "any":
+// its first view), as if it were killed there.
+void MaybeKillForTest(int rank, std::size_t view)
+{
+  const char* spec = std::getenv("VIS4GS_TEST_KILL_VIEW");
+  if (!spec)
+  {
+    return;
+  }
+  int r = -1;
+  char which[32] = "";
+  if (std::sscanf(spec, "%d:%31s", &r, which) == 2 && r == rank &&
+    (std::string(which) == "any" || std::string(which) == std::to_string(view)))
+  {
+    std::raise(SIGTERM);
+  }
+}
+
+// The MPI path (see SetController): the partials of this process's views, summed over the
+// processes, finished on every process.
+bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
+  vtkMultiProcessController* controller,
+  const vis4gs::GaussianCloud& cloud,
+  const std::vector<vis4gs::Camera>& cameras,
+  const vis4gs::ScoreSettings& settings,
+  const vis4gs::TrainingImageProvider& images,
+  vis4gs::GaussianScores& scores,
+  vtkIdType& rendered,
+  double seconds[2])
+{
+  const auto start = std::chrono::steady_clock::now();
+  const int rank = controller->GetLocalProcessId();
+  const int ranks = controller->GetNumberOfProcesses();
+  const bool needCameras =
+    settings.Request.ViewCoverage || settings.Request.Blur || settings.Request.Needle;
+  vis4gs::ScorePartials partials;
+  std::string error;
+  std::size_t current = static_cast<std::size_t>(-1);
+  try
+  {
+    std::vector<std::size_t> own;
+    if (needCameras)
+    {
+      // Every process computes the same split from the same scene, cameras and settings.
+      const std::vector<std::size_t> views = vis4gs::SelectViews(cameras, settings);
+      const std::vector<int> owner =
+        vis4gs::SplitViewsByCost(vis4gs::EstimateViewCosts(cloud, cameras, views, settings), ranks);
+      for (std::size_t k = 0; k < views.size(); ++k)
+      {
+        if (owner[k] == rank)
+        {
+          own.push_back(views[k]);
+        }
+      }
+    }
+    auto progress = [self](std::size_t done, std::size_t total)
+    { self->UpdateProgress(total > 0 ? 0.95 * static_cast<double>(done) / total : 0.95); };
+    partials = vis4gs::ComputeScorePartials(cloud,
+      cameras,
+      settings,
+      own,
+      images,
+      progress,
+      [&](std::size_t view)
+      {
+        current = view;
+        SetViewInProgress("view " + std::to_string(view) + " ('" + cameras[view].Name + "')");
+        MaybeKillForTest(rank, view);
+      });
+    current = static_cast<std::size_t>(-1);
+    SetViewInProgress("");
+    rendered = static_cast<vtkIdType>(own.size());
+  }
+  catch (const std::exception& e)
+  {
+    SetViewInProgress("");
+    std::ostringstream message;
+    message << "process " << rank << " of " << ranks;
+    if (current != static_cast<std::size_t>(-1) && current < cameras.size())
+    {
+      message << ", view " << current << " ('" << cameras[current].Name << "')";
+    }
+    message << ": " << e.what();
+    error = message.str();
+  }
+  seconds[0] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Agree on failure before any reduction, so no process waits for one that gave up.
+  int failed = error.empty() ? 0 : 1, anyFailed = 0;
+  controller->AllReduce(&failed, &anyFailed, 1, vtkCommunicator::MAX_OP);
+  // Timed from here: the wait for the slowest process above is load imbalance, not reduction.
+  const auto reduction = std::chrono::steady_clock::now();
+  if (anyFailed)
+  {
+    if (!error.empty())
+    {
+      vtkErrorWithObjectMacro(self, "Scores failed on " << error);
+    }
+    else
+    {
+      vtkErrorWithObjectMacro(self,
+        "Scores failed on another process (process " << rank << " of " << ranks
+                                                     << " gave up with it)");
+    }
+    return false;
+  }
+  // The element-wise sums of the partials (ScorePartials says why that is exact).
+  auto sumU32 = [controller](std::vector<std::uint32_t>& v)
+  {
+    std::vector<std::uint32_t> sum(v.size(), 0);
+    controller->AllReduce(reinterpret_cast<const unsigned int*>(v.data()),
+      reinterpret_cast<unsigned int*>(sum.data()),
+      static_cast<vtkIdType>(v.size()),
+      vtkCommunicator::SUM_OP);
+    v.swap(sum);
+  };
+  auto sumF64 = [controller](std::vector<double>& v)
+  {
+    std::vector<double> sum(v.size(), 0.0);
+    controller->AllReduce(
+      v.data(), sum.data(), static_cast<vtkIdType>(v.size()), vtkCommunicator::SUM_OP);
+    v.swap(sum);
+  };
+  static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "32-bit unsigned int");
+  if (!partials.CoverageViews.empty())
+  {
+    sumU32(partials.CoverageViews);
+  }
+  if (!partials.ScoredViews.empty())
+  {
+    sumU32(partials.ScoredViews);
+    sumF64(partials.BlurSum);
+    sumF64(partials.NeedleSum);
+  }
+  unsigned long long counts[2] = { partials.ViewsScored, partials.ViewsWithoutImage },
+                     totals[2] = { 0, 0 };
+  controller->AllReduce(counts, totals, 2, vtkCommunicator::SUM_OP);
+  partials.ViewsScored = static_cast<std::size_t>(totals[0]);
+  partials.ViewsWithoutImage = static_cast<std::size_t>(totals[1]);
+  seconds[1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - reduction).count();
+  try
+  {
+    scores = vis4gs::FinishGaussianScores(cloud, settings, std::move(partials));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(
+      self, "Scores failed on process " << rank << " of " << ranks << ": " << e.what());
+    return false;
+  }
+  return true;
+}
 }
 
 //------------------------------------------------------------------------------
 vtkGaussianArtifactScoreFilter::vtkGaussianArtifactScoreFilter()
 {
   this->SetNumberOfInputPorts(2);
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianArtifactScoreFilter::~vtkGaussianArtifactScoreFilter()
+{
+  this->SetController(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -102,6 +286,8 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   this->NumberOfViewsUsed = 0;
   this->NumberOfViewsWithoutImage = 0;
   this->NumberOfFlaggedGaussians = 0;
+  this->NumberOfViewsRendered = 0;
+  this->ComputeSeconds = this->ReductionSeconds = 0;
 
   vis4gs::ScoreSettings settings;
   settings.Request.ViewCoverage = this->ComputeViewCoverage;
@@ -179,16 +365,39 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   auto progress = [this](std::size_t done, std::size_t total)
   { this->UpdateProgress(total > 0 ? static_cast<double>(done) / total : 1.0); };
 
+  vtkMultiProcessController* controller =
+    this->Controller ? this->Controller : vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
   vis4gs::GaussianScores scores;
-  try
+  double seconds[2] = { 0, 0 };
+  if (ranks <= 1)
   {
-    scores = vis4gs::ComputeGaussianScores(cloud, cameras, settings, images, progress);
+    try
+    {
+      scores = vis4gs::ComputeGaussianScores(cloud, cameras, settings, images, progress);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("Scores failed: " << e.what());
+      return 0;
+    }
+    this->NumberOfViewsRendered = static_cast<vtkIdType>(scores.ViewIndices.size());
+    seconds[0] = scores.Timings.Total;
   }
-  catch (const std::exception& e)
+  else if (!ComputeDistributed(this,
+             controller,
+             cloud,
+             cameras,
+             settings,
+             images,
+             scores,
+             this->NumberOfViewsRendered,
+             seconds))
   {
-    vtkErrorMacro("Scores failed: " << e.what());
     return 0;
   }
+  this->ComputeSeconds = seconds[0];
+  this->ReductionSeconds = seconds[1];
   for (const std::string& warning : scores.Warnings)
   {
     vtkWarningMacro(<< warning);
@@ -229,6 +438,12 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
 }
 
 //------------------------------------------------------------------------------
+const char* vtkGaussianArtifactScoreFilter::GetViewInProgress()
+{
+  return ViewInProgress;
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -247,4 +462,8 @@ void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfViewsUsed: " << this->NumberOfViewsUsed << "\n";
   os << indent << "NumberOfViewsWithoutImage: " << this->NumberOfViewsWithoutImage << "\n";
   os << indent << "NumberOfFlaggedGaussians: " << this->NumberOfFlaggedGaussians << "\n";
+  os << indent << "NumberOfViewsRendered: " << this->NumberOfViewsRendered << "\n";
+  os << indent << "ComputeSeconds: " << this->ComputeSeconds << "\n";
+  os << indent << "ReductionSeconds: " << this->ReductionSeconds << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

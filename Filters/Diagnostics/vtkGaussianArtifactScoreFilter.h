@@ -36,6 +36,7 @@
 
 #include <string> // For ImageDirectory
 
+class vtkMultiProcessController;
 class vtkTable;
 
 class VIS4GSFILTERSDIAGNOSTICS_EXPORT vtkGaussianArtifactScoreFilter : public vtkPolyDataAlgorithm
@@ -147,9 +148,45 @@ public:
   vtkGetMacro(NumberOfFlaggedGaussians, vtkIdType);
   ///@}
 
+  ///@{
+  /**
+   * The processes the training views are spread over. Default nullptr: the global
+   * controller (vtkMultiProcessController::GetGlobalController()), which is null, or a single
+   * process, unless the program started MPI (vtkMPIController), so a program that never
+   * uses MPI runs in one process exactly as before. With more than one process, every
+   * process must hold the whole scene and the same cameras and settings; each renders the
+   * views SplitViewsByCost() gives it (Core/Diagnostics/ArtifactScores.h) and reads only
+   * their images, the per-Gaussian partials are summed with AllReduce, and every process
+   * gets the full scores. If a process fails, every process's RequestData fails and the
+   * error names the failing process and the view it was on.
+   */
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  /**
+   * "view N ('name')" while a distributed execution renders view N in this process, else "".
+   * A fixed buffer, safe to read from a signal handler (the vis4gs program's MPI session
+   * names the view when a process is killed).
+   */
+  static const char* GetViewInProgress();
+
+  ///@{
+  /**
+   * Seconds of the last execution spent by this process on its views (projection, rendering,
+   * images, loss maps, footprints, sums) and on the reduction over the processes (0 in one
+   * process), for the benchmarks (Documentation/performance.md).
+   */
+  vtkGetMacro(ComputeSeconds, double);
+  vtkGetMacro(ReductionSeconds, double);
+  ///@}
+
+  /// Views rendered by this process in the last execution (all of them in one process).
+  vtkGetMacro(NumberOfViewsRendered, vtkIdType);
+
 protected:
   vtkGaussianArtifactScoreFilter();
-  ~vtkGaussianArtifactScoreFilter() override = default;
+  ~vtkGaussianArtifactScoreFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request,
@@ -171,6 +208,10 @@ protected:
   vtkIdType NumberOfViewsUsed = 0;
   vtkIdType NumberOfViewsWithoutImage = 0;
   vtkIdType NumberOfFlaggedGaussians = 0;
+  vtkIdType NumberOfViewsRendered = 0;
+  double ComputeSeconds = 0;
+  double ReductionSeconds = 0;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkGaussianArtifactScoreFilter(const vtkGaussianArtifactScoreFilter&) = delete;

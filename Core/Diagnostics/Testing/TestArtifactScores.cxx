@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -706,4 +707,104 @@ TEST(ArtifactScores, SharedProjectionGivesIdenticalScores)
       }
     }
   }
+}
+
+// The pieces a distributed run is made of (issue 18): partials over disjoint view subsets,
+// added element by element, finished, equal ComputeGaussianScores (integers exactly, sums to
+// the last bits: only their order differs); a view outside the selection is refused.
+TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
+{
+  GaussianCloud cloud;
+  cloud.Resize(4, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, std::log(0.5f), std::log(0.3f), std::log(0.3f), 2);
+  SetGaussian(cloud, 1, 0.3f, 0.1f, 4, std::log(0.02f), std::log(0.4f), std::log(0.01f), 1);
+  SetGaussian(cloud, 2, 60, 0, -3, -2, -2, -2, 1); // seen by no view
+  SetGaussian(cloud, 3, -0.2f, 0.2f, 6, -1.5f, -2.5f, -2, 0);
+  const std::vector<Camera> cameras{
+    MakeCamera(0), MakeCamera(10, true), MakeCamera(-1), MakeCamera(11, true), MakeCamera(0.5)
+  };
+  OffsetImages images{ &cloud, { 0.2f, 0.1f, 0.3f, 0.05f, 0.15f }, { false, false, false, true } };
+  vis4gs::ScoreSettings settings;
+  const auto whole = vis4gs::ComputeGaussianScores(cloud, cameras, settings, images);
+  const std::vector<std::size_t> first{ 0, 3 }, second{ 1, 2, 4 };
+  auto a = vis4gs::ComputeScorePartials(cloud, cameras, settings, first, images);
+  const auto b = vis4gs::ComputeScorePartials(cloud, cameras, settings, second, images);
+  for (std::size_t g = 0; g < cloud.Count; ++g)
+  {
+    a.CoverageViews[g] += b.CoverageViews[g];
+    a.ScoredViews[g] += b.ScoredViews[g];
+    a.BlurSum[g] += b.BlurSum[g];
+    a.NeedleSum[g] += b.NeedleSum[g];
+  }
+  a.ViewsScored += b.ViewsScored;
+  a.ViewsWithoutImage += b.ViewsWithoutImage;
+  const auto summed = vis4gs::FinishGaussianScores(cloud, settings, a);
+  EXPECT_EQ(summed.ViewCoverage, whole.ViewCoverage);
+  EXPECT_EQ(summed.CoverageViews, whole.CoverageViews);
+  EXPECT_EQ(summed.ScoredViews, whole.ScoredViews);
+  EXPECT_EQ(summed.Flags, whole.Flags);
+  EXPECT_EQ(summed.NeedleShape, whole.NeedleShape);
+  EXPECT_EQ(summed.ViewsWithoutImage, 1u);
+  EXPECT_EQ(summed.ViewsScored, whole.ViewsScored);
+  EXPECT_EQ(summed.Warnings, whole.Warnings);
+  EXPECT_GT(whole.BlurScore[0], 0);
+  for (std::size_t g = 0; g < cloud.Count; ++g)
+  {
+    EXPECT_NEAR(summed.BlurScore[g], whole.BlurScore[g], 1e-13 * std::abs(whole.BlurScore[g]));
+    EXPECT_NEAR(
+      summed.NeedleScore[g], whole.NeedleScore[g], 1e-13 * std::abs(whole.NeedleScore[g]));
+  }
+  // No view at all: buffers sized for the cloud, all zero.
+  const auto none = vis4gs::ComputeScorePartials(cloud, cameras, settings, {}, images);
+  EXPECT_EQ(none.CoverageViews, std::vector<std::uint32_t>(cloud.Count, 0));
+  EXPECT_EQ(none.BlurSum, std::vector<double>(cloud.Count, 0.0));
+  EXPECT_EQ(none.ViewIndices.size(), cameras.size());
+  // A view the settings do not select.
+  vis4gs::ScoreSettings stride;
+  stride.ViewStride = 2;
+  EXPECT_THROW(
+    vis4gs::ComputeScorePartials(cloud, cameras, stride, { 1 }, images), std::invalid_argument);
+  // Partials that do not match the cloud.
+  auto wrong = a;
+  wrong.BlurSum.pop_back();
+  EXPECT_THROW(vis4gs::FinishGaussianScores(cloud, settings, wrong), std::invalid_argument);
+}
+
+// The split: every view to exactly one process, largest cost first onto the least-loaded one
+// (an LPT schedule: within 4/3 of the optimum), deterministic, idle processes when views are
+// fewer, costs from pixels x Gaussians in view.
+TEST(ArtifactScores, SplitViewsByCost)
+{
+  const std::vector<double> costs{ 5, 1, 1, 1, 1, 1, 4, 2 };
+  const std::vector<int> owner = vis4gs::SplitViewsByCost(costs, 2);
+  double load[2] = { 0, 0 };
+  for (std::size_t v = 0; v < costs.size(); ++v)
+  {
+    ASSERT_TRUE(owner[v] == 0 || owner[v] == 1);
+    load[owner[v]] += costs[v];
+  }
+  EXPECT_EQ(load[0], 8); // 5+1+1+1 and 4+2+1+1: the optimum here
+  EXPECT_EQ(load[1], 8);
+  EXPECT_EQ(owner, vis4gs::SplitViewsByCost(costs, 2));
+  // One costly view and ten cheap ones: a split by count would give 6 + 5 views.
+  const std::vector<int> skewed = vis4gs::SplitViewsByCost({ 10, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 }, 2);
+  EXPECT_EQ(std::count(skewed.begin(), skewed.end(), skewed[0]), 1); // the big view alone
+  const std::vector<int> few = vis4gs::SplitViewsByCost({ 3, 2 }, 5);
+  EXPECT_EQ(few, (std::vector<int>{ 0, 1 })); // processes 2..4 get nothing
+  EXPECT_TRUE(vis4gs::SplitViewsByCost({}, 3).empty());
+  EXPECT_THROW(vis4gs::SplitViewsByCost({ 1 }, 0), std::invalid_argument);
+
+  // Costs: a view that sees the Gaussians costs more than one looking away, and pixels count.
+  GaussianCloud cloud;
+  cloud.Resize(2, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, -2, -2, -2, 1);
+  SetGaussian(cloud, 1, 0.2f, 0, 6, -2, -2, -2, 1);
+  const std::vector<Camera> cameras{
+    MakeCamera(0), MakeCamera(0, true), MakeCamera(0, false, 128, 96)
+  };
+  const auto cost = vis4gs::EstimateViewCosts(cloud, cameras, { 0, 1, 2 }, {});
+  ASSERT_EQ(cost.size(), 3u);
+  EXPECT_GT(cost[0], cost[1]);
+  EXPECT_DOUBLE_EQ(cost[2], 4 * cost[0]);
+  EXPECT_GT(cost[1], 0);
 }

@@ -1,0 +1,425 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    TestGaussianArtifactScoreFilterMPI.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+// vtkGaussianArtifactScoreFilter distributed over MPI processes (run under mpiexec -n K)
+// against the single-process Core computation on every process: View Coverage, the visible
+// view counts and the flags identical, Blur and Needle within 1e-12 relative, for the demo log
+// and a random scene with stiff Gaussians, for every approximation of the scores, with fewer
+// views than processes, and a failing view on one process (every process fails, the error
+// names the process and the view).
+#include "vtkGaussianArtifactScoreFilter.h"
+
+#include "ArtifactScores.h"
+#include "ImageIO.h"
+#include "TrainingLogReader.h"
+#include "Vis4GSDataModel.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkMPIController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkTable.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+int Rank = 0;
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED (process " << Rank << "): " << what << "\n";
+    ++Failures;
+  }
+}
+
+struct Scene
+{
+  std::string Name;
+  vis4gs::GaussianCloud Cloud;
+  std::vector<vis4gs::Camera> Cameras;
+};
+
+vis4gs::Camera LookAtOrigin(const std::string& name, double angle, double distance)
+{
+  vis4gs::Camera c;
+  c.Name = name;
+  c.Width = 64;
+  c.Height = 48;
+  c.Fx = c.Fy = 56;
+  c.Cx = 32;
+  c.Cy = 24;
+  // Camera on a circle in the xz-plane looking at the origin (rows: right, down, forward).
+  const double s = std::sin(angle), co = std::cos(angle);
+  const double eye[3] = { distance * s, 0.3, -distance * co };
+  const double f[3] = { -s, 0, co }, r[3] = { co, 0, s }, d[3] = { 0, 1, 0 };
+  const double* rows[3] = { r, d, f };
+  for (int i = 0; i < 3; ++i)
+  {
+    c.WorldToCamera[4 * i + 0] = rows[i][0];
+    c.WorldToCamera[4 * i + 1] = rows[i][1];
+    c.WorldToCamera[4 * i + 2] = rows[i][2];
+    c.WorldToCamera[4 * i + 3] = -(rows[i][0] * eye[0] + rows[i][1] * eye[1] + rows[i][2] * eye[2]);
+  }
+  return c;
+}
+
+// Random Gaussians, a third of them stiff (needles and disks, scale ratios up to e^9), with
+// opacities from almost 0 to almost 1, a few NaN and one huge; random training images.
+Scene RandomStiffScene(const std::filesystem::path& folder)
+{
+  Scene s;
+  s.Name = "random stiff scene";
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const std::size_t n = 3000;
+  s.Cloud.Resize(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      s.Cloud.Positions[3 * i + k] = 1.5f * u(rng);
+      s.Cloud.LogScales[3 * i + k] = -3.5f + 1.5f * u(rng);
+      s.Cloud.SH[3 * i + k] = u(rng);
+    }
+    if (i % 3 == 0)
+    {
+      s.Cloud.LogScales[3 * i + i % 2] += 4.5f; // needle or disk
+      s.Cloud.LogScales[3 * i + 2] -= 4.5f;
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      s.Cloud.Rotations[4 * i + k] = u(rng);
+    }
+    s.Cloud.OpacityLogits[i] = 6 * u(rng);
+  }
+  s.Cloud.Positions[3 * 7] = std::nanf("");
+  s.Cloud.LogScales[3 * 11] = 3;
+  for (int v = 0; v < 7; ++v)
+  {
+    s.Cameras.push_back(LookAtOrigin("rand" + std::to_string(v), 0.8 * v, 4.0 + 0.3 * v));
+    // Different sizes make the views' costs differ.
+    s.Cameras.back().Width = 64 + 16 * (v % 3);
+    s.Cameras.back().Cx = s.Cameras.back().Width / 2.0;
+    vis4gs::Image image;
+    image.Width = s.Cameras.back().Width;
+    image.Height = 48;
+    image.Pixels.resize(3 * static_cast<std::size_t>(image.Width) * 48);
+    for (float& p : image.Pixels)
+    {
+      p = 0.5f + 0.5f * u(rng);
+    }
+    const auto file = folder / ("rand" + std::to_string(v) + ".png");
+    if (Rank == 0)
+    {
+      vis4gs::WritePng(file.string(), image);
+    }
+    s.Cameras.back().ImagePath = file.string();
+  }
+  s.Cameras[3].Split = vis4gs::CameraSplit::Test;
+  return s;
+}
+
+Scene DemoLog(const std::string& path, const std::filesystem::path& folder)
+{
+  Scene s;
+  s.Name = "demo log";
+  const vis4gs::TrainingLogReader log(path);
+  vis4gs::SnapshotReadOptions options;
+  options.ShDegree = -1;
+  int logged = 0;
+  s.Cloud = log.ReadNearestSnapshot(log.GetSnapshotIterations().back(), options, &logged);
+  s.Cameras = log.ReadCameras();
+  for (vis4gs::Camera& c : s.Cameras)
+  {
+    const std::string prefix = "/images/";
+    if (c.ImagePath.rfind(prefix, 0) == 0)
+    {
+      const std::string name = c.ImagePath.substr(prefix.size());
+      const auto file = folder / ("demo-" + name + ".png");
+      if (Rank == 0)
+      {
+        int width = 0, height = 0;
+        const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
+        vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+      }
+      c.ImagePath = file.string();
+    }
+  }
+  return s;
+}
+
+struct Config
+{
+  std::string Name;
+  vis4gs::ScoreSettings Settings;
+};
+
+std::vector<Config> Configs(std::size_t trainViews)
+{
+  std::vector<Config> configs;
+  auto add = [&](const std::string& name, auto change)
+  {
+    Config c;
+    c.Name = name;
+    change(c.Settings);
+    configs.push_back(c);
+  };
+  add("exact", [](vis4gs::ScoreSettings&) {});
+  add("loss resolution 2", [](vis4gs::ScoreSettings& s) { s.LossResolution = 2; });
+  add("loss resolution 8", [](vis4gs::ScoreSettings& s) { s.LossResolution = 8; });
+  add("coverage resolution 4", [](vis4gs::ScoreSettings& s) { s.CoverageResolution = 4; });
+  add("coverage only, resolution 2",
+    [](vis4gs::ScoreSettings& s)
+    {
+      s.Request.Blur = s.Request.Needle = false;
+      s.CoverageResolution = 2;
+    });
+  add("view stride 2", [](vis4gs::ScoreSettings& s) { s.ViewStride = 2; });
+  add("ellipse footprint",
+    [](vis4gs::ScoreSettings& s) { s.Footprint = vis4gs::FootprintMode::Ellipse3Sigma; });
+  add("float accumulation",
+    [](vis4gs::ScoreSettings& s) { s.Accumulation = vis4gs::FootprintAccumulation::Float; });
+  add("occlusion threshold 0.05", [](vis4gs::ScoreSettings& s) { s.OcclusionThreshold = 0.05; });
+  add("lambda 0.7, blur only",
+    [](vis4gs::ScoreSettings& s)
+    {
+      s.Lambda = 0.7;
+      s.Request.Needle = s.Request.ViewCoverage = false;
+    });
+  // One view for all processes: every process but one renders none.
+  add("one view",
+    [trainViews](vis4gs::ScoreSettings& s) { s.ViewStride = static_cast<int>(trainViews); });
+  return configs;
+}
+
+void Configure(vtkGaussianArtifactScoreFilter* filter, const vis4gs::ScoreSettings& s)
+{
+  filter->SetComputeViewCoverage(s.Request.ViewCoverage);
+  filter->SetComputeBlurScore(s.Request.Blur);
+  filter->SetComputeNeedleScore(s.Request.Needle);
+  filter->SetComputeNeedleShape(s.Request.NeedleShape);
+  filter->SetLossResolution(s.LossResolution);
+  filter->SetCoverageResolution(s.CoverageResolution);
+  filter->SetViewStride(s.ViewStride);
+  filter->SetFootprintMode(s.Footprint == vis4gs::FootprintMode::Ellipse3Sigma ? 1 : 0);
+  filter->SetFloatAccumulation(s.Accumulation == vis4gs::FootprintAccumulation::Float);
+  filter->SetOcclusionThreshold(s.OcclusionThreshold);
+  filter->SetLambda(s.Lambda);
+}
+
+void CompareExact(vtkDataArray* a, const std::vector<double>& v, const std::string& what)
+{
+  bool same = a && a->GetNumberOfTuples() == static_cast<vtkIdType>(v.size());
+  for (std::size_t i = 0; same && i < v.size(); ++i)
+  {
+    same = a->GetTuple1(static_cast<vtkIdType>(i)) == v[i];
+  }
+  Check(same, what + ": not identical to one process");
+}
+
+void CompareRelative(vtkDataArray* a, const std::vector<double>& v, const std::string& what)
+{
+  if (!a || a->GetNumberOfTuples() != static_cast<vtkIdType>(v.size()))
+  {
+    Check(false, what + ": missing or wrong size");
+    return;
+  }
+  double worst = 0;
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    const double x = a->GetTuple1(static_cast<vtkIdType>(i));
+    const double scale = std::max(std::abs(x), std::abs(v[i]));
+    if (scale > 0)
+    {
+      worst = std::max(worst, std::abs(x - v[i]) / scale);
+    }
+  }
+  Check(worst <= 1e-12, what + ": relative difference " + std::to_string(worst) + " > 1e-12");
+}
+
+void OnError(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  auto* messages = static_cast<std::string*>(clientData);
+  *messages += callData ? static_cast<const char*>(callData) : "";
+  *messages += "\n";
+}
+
+void TestScene(vtkMPIController* controller, const Scene& scene)
+{
+  auto provider = [](std::size_t, const vis4gs::Camera& c, vis4gs::Image& image)
+  {
+    if (c.ImagePath.empty() || !std::filesystem::exists(c.ImagePath))
+    {
+      return false;
+    }
+    image = vis4gs::LoadTrainingImage(c);
+    return true;
+  };
+  vtkNew<vtkPolyData> poly;
+  vis4gs::GaussianCloudToPolyData(scene.Cloud, poly);
+  vtkNew<vtkTable> table;
+  vis4gs::CamerasToTable(scene.Cameras, table);
+  std::size_t train = 0;
+  for (const vis4gs::Camera& c : scene.Cameras)
+  {
+    train += c.Split == vis4gs::CameraSplit::Train ? 1 : 0;
+  }
+  for (const Config& config : Configs(train))
+  {
+    const std::string what = scene.Name + ", " + config.Name;
+    const vis4gs::GaussianScores one =
+      vis4gs::ComputeGaussianScores(scene.Cloud, scene.Cameras, config.Settings, provider);
+    vtkNew<vtkGaussianArtifactScoreFilter> filter;
+    filter->SetController(controller);
+    filter->SetInputData(poly);
+    filter->SetCamerasData(table);
+    Configure(filter, config.Settings);
+    filter->Update();
+    vtkPointData* pd = filter->GetOutput()->GetPointData();
+    const auto& r = config.Settings.Request;
+    if (r.ViewCoverage)
+    {
+      CompareExact(pd->GetArray(vis4gs::arrays::ViewCoverage), one.ViewCoverage, what);
+    }
+    if (r.Blur)
+    {
+      CompareRelative(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, what + " blur");
+    }
+    if (r.Needle)
+    {
+      CompareRelative(pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, what + " needle");
+    }
+    std::vector<double> flags(one.Flags.begin(), one.Flags.end());
+    CompareExact(pd->GetArray("NoVisibleView"), flags, what + " flags");
+    Check(filter->GetNumberOfViewsUsed() == static_cast<vtkIdType>(one.ViewsUsed),
+      what + ": views used");
+    Check(filter->GetNumberOfViewsWithoutImage() == static_cast<vtkIdType>(one.ViewsWithoutImage),
+      what + ": views without image");
+    // Every view rendered exactly once over the processes, and by its owner in the split.
+    long long mine = filter->GetNumberOfViewsRendered(), all = 0;
+    controller->AllReduce(&mine, &all, 1, vtkCommunicator::SUM_OP);
+    Check(all == static_cast<long long>(one.ViewsUsed), what + ": views rendered in all");
+    const std::vector<int> owner = vis4gs::SplitViewsByCost(
+      vis4gs::EstimateViewCosts(scene.Cloud, scene.Cameras, one.ViewIndices, config.Settings),
+      controller->GetNumberOfProcesses());
+    long long expected = 0;
+    for (int o : owner)
+    {
+      expected += o == Rank ? 1 : 0;
+    }
+    Check(mine == expected, what + ": views rendered here");
+  }
+
+  // A view whose image cannot be read fails every process; the error names process and view.
+  std::vector<vis4gs::Camera> broken = scene.Cameras;
+  vis4gs::ScoreSettings exact;
+  const std::vector<std::size_t> views = vis4gs::SelectViews(broken, exact);
+  const std::vector<int> owner =
+    vis4gs::SplitViewsByCost(vis4gs::EstimateViewCosts(scene.Cloud, broken, views, exact),
+      controller->GetNumberOfProcesses());
+  const int victim = controller->GetNumberOfProcesses() - 1;
+  std::size_t badView = views.size();
+  for (std::size_t k = 0; k < views.size(); ++k)
+  {
+    if (owner[k] == victim)
+    {
+      badView = views[k];
+      break;
+    }
+  }
+  if (badView == views.size())
+  {
+    return; // the last process has no view (more processes than views)
+  }
+  const auto badFile = std::filesystem::path(broken[badView].ImagePath).parent_path() /
+    ("broken-" + std::to_string(badView) + ".png");
+  if (Rank == 0)
+  {
+    std::ofstream(badFile) << "not a PNG";
+  }
+  controller->Barrier();
+  broken[badView].ImagePath = badFile.string();
+  vtkNew<vtkTable> brokenTable;
+  vis4gs::CamerasToTable(broken, brokenTable);
+  vtkNew<vtkGaussianArtifactScoreFilter> filter;
+  filter->SetController(controller);
+  filter->SetInputData(poly);
+  filter->SetCamerasData(brokenTable);
+  std::string errors;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetCallback(OnError);
+  onError->SetClientData(&errors);
+  filter->AddObserver(vtkCommand::ErrorEvent, onError);
+  filter->Update();
+  Check(filter->GetOutput()->GetPointData()->GetArray(vis4gs::arrays::BlurScore) == nullptr,
+    scene.Name + ": scores produced although a view failed");
+  Check(!errors.empty(), scene.Name + ": no error on a process although a view failed");
+  if (Rank == victim)
+  {
+    const std::string expected = "process " + std::to_string(victim) + " of " +
+      std::to_string(controller->GetNumberOfProcesses()) + ", view " + std::to_string(badView) +
+      " ('" + broken[badView].Name + "')";
+    Check(errors.find(expected) != std::string::npos,
+      scene.Name + ": the error does not name '" + expected + "': " + errors);
+  }
+}
+}
+
+int main(int argc, char* argv[])
+{
+  vtkNew<vtkMPIController> controller;
+  controller->Initialize(&argc, &argv);
+  Rank = controller->GetLocalProcessId();
+  if (argc < 3)
+  {
+    std::cerr << "usage: TestGaussianArtifactScoreFilterMPI DEMO.h5 SCRATCH_FOLDER\n";
+    controller->Finalize();
+    return 2;
+  }
+  const std::filesystem::path folder = argv[2];
+  if (Rank == 0)
+  {
+    std::filesystem::create_directories(folder);
+  }
+  controller->Barrier();
+  try
+  {
+    const Scene random = RandomStiffScene(folder);
+    const Scene demo = DemoLog(argv[1], folder);
+    controller->Barrier(); // process 0's images are written
+    TestScene(controller, random);
+    TestScene(controller, demo);
+  }
+  catch (const std::exception& e)
+  {
+    Check(false, std::string("exception: ") + e.what());
+  }
+  int mine = Failures, all = 0;
+  controller->AllReduce(&mine, &all, 1, vtkCommunicator::SUM_OP);
+  if (Rank == 0)
+  {
+    std::cout << (all == 0 ? "PASSED" : "FAILED") << " on " << controller->GetNumberOfProcesses()
+              << " processes\n";
+  }
+  controller->Finalize();
+  return all == 0 ? 0 : 1;
+}
