@@ -18,8 +18,10 @@
 #include "ImageIO.h"
 #include "Vis4GSDataModel.h"
 
+#include "vtkDataArray.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
@@ -163,6 +165,35 @@ int main(int argc, char* argv[])
       slowest,
       maxCompute,
       reduction);
+    // --write-scores=DIR: every score array as raw float64, so that runs on different
+    // process counts can be compared value by value (Scripts/compare-mpi-scores.py).
+    if (args.count("write-scores"))
+    {
+      const std::filesystem::path out = args["write-scores"];
+      std::filesystem::create_directories(out);
+      vtkPointData* pd = filter->GetOutput()->GetPointData();
+      for (const char* name : { "ViewCoverage", "BlurScore", "NeedleScore" })
+      {
+        vtkDataArray* array = pd->GetArray(name);
+        if (!array)
+        {
+          std::fprintf(stderr, "no %s array in the output\n", name);
+          return 1;
+        }
+        std::vector<double> values(static_cast<std::size_t>(array->GetNumberOfTuples()));
+        for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+        {
+          values[static_cast<std::size_t>(i)] = array->GetTuple1(i);
+        }
+        std::FILE* f = std::fopen((out / (std::string(name) + ".f64")).c_str(), "wb");
+        if (!f || std::fwrite(values.data(), sizeof(double), values.size(), f) != values.size())
+        {
+          std::fprintf(stderr, "cannot write %s\n", (out / name).c_str());
+          return 1;
+        }
+        std::fclose(f);
+      }
+    }
   }
   controller->Finalize();
   return 0;
