@@ -14,8 +14,8 @@
 #include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
-#include "Vis4GSSceneCameras.h"
 #include "Vis4GSMPI.h"
+#include "Vis4GSSceneCameras.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 
 #include "vtkCallbackCommand.h"
