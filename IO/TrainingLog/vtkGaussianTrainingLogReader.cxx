@@ -16,11 +16,13 @@
 
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -417,6 +419,30 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
       output->AddColumn(MakeColumn<vtkUnsignedCharArray>("Kind", e.Kind));
       output->AddColumn(MakeColumn<vtkIdTypeArray>("Parent", e.Parent));
       output->AddColumn(MakeColumn<vtkIdTypeArray>("Child", e.Child));
+      // What vtkGaussianGenealogyTreeFilter needs besides the rows, so that connecting this
+      // port to it needs no glue: the initial Gaussians (the ids of the first snapshot, as the
+      // application takes them) and the last iteration (the planned one, or the last snapshot
+      // when training went on longer).
+      const std::vector<int>& snapshots = d.Log->GetSnapshotIterations();
+      vtkNew<vtkIdTypeArray> initial;
+      initial->SetName("InitialIds");
+      if (!snapshots.empty())
+      {
+        vis4gs::SnapshotReadOptions idsOnly;
+        idsOnly.Arrays = vis4gs::SnapshotIds;
+        const auto first = d.Log->ReadSnapshot(snapshots.front(), idsOnly);
+        initial->SetNumberOfTuples(static_cast<vtkIdType>(first.Count));
+        for (std::size_t i = 0; i < first.Count; ++i)
+        {
+          initial->SetValue(static_cast<vtkIdType>(i), first.GetId(i));
+        }
+      }
+      output->GetFieldData()->AddArray(initial);
+      vtkNew<vtkIntArray> last;
+      last->SetName("LastIteration");
+      last->InsertNextValue(
+        std::max(d.Log->GetHeader().Iterations, snapshots.empty() ? 0 : snapshots.back()));
+      output->GetFieldData()->AddArray(last);
     }
   }
   catch (const std::exception& e)

@@ -22,7 +22,9 @@
  *   L1, PSNR, SSIM, LPIPS, ElapsedSeconds from /metrics and TestL1, TestPSNR, TestSSIM,
  *   TestLPIPS, TestLoss from /metrics/test, merged by iteration (NaN where not measured).
  * - port 3, vtkTable: events in training order: Iteration, Kind (1 clone, 2 split,
- *   3 prune), Parent, Child (-1 for prunes).
+ *   3 prune), Parent, Child (-1 for prunes); its field data holds `InitialIds` (the ids of
+ *   the first snapshot) and `LastIteration` (the planned last iteration, or the last
+ *   snapshot's if later), what vtkGaussianGenealogyTreeFilter reads when connected to it.
  *
  * The logged snapshot iterations are reported as TIME_STEPS; UPDATE_TIME_STEP (or, without
  * one, Iteration; -1 = the last snapshot) picks the snapshot. Only the outputs a request
