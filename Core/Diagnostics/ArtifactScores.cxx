@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -588,6 +589,21 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
         out.NeedleScore[g] = shape[g] * (needleSum[g] / k);
       }
     }
+  }
+  if (scores && out.ViewsScored == 0 && out.ViewsUsed > 0)
+  {
+    out.ScoresUnavailable = "no training image for any of the " + std::to_string(out.ViewsUsed) +
+      " views used: BlurScore and NeedleScore cannot be computed and are NaN";
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (request.Blur)
+    {
+      std::fill(out.BlurScore.begin(), out.BlurScore.end(), nan);
+    }
+    if (request.Needle)
+    {
+      std::fill(out.NeedleScore.begin(), out.NeedleScore.end(), nan);
+    }
+    out.Warnings.push_back(out.ScoresUnavailable);
   }
   out.NoCoverageViewCount = noCoverage;
   out.NoScoredViewCount = noScored;

@@ -152,6 +152,10 @@ struct GaussianScores
   std::size_t NoScoredViewCount = 0;
   std::size_t InvalidCount = 0;
   std::vector<std::string> Warnings;
+  /// Why BlurScore and NeedleScore are NaN for every Gaussian, or empty when they were
+  /// computed: with no training image for any view used, the scores cannot be computed at all,
+  /// and a score that could not be computed is NaN with its reason, never 0.
+  std::string ScoresUnavailable;
   ScoreTimings Timings;
 };
 

@@ -131,10 +131,7 @@ Image ReadPng(const unsigned char* data, std::size_t size, const std::string& na
   image.Pixels.resize(n);
   if (outDepth == 8)
   {
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      image.Pixels[i] = raw[i] / 255.0f;
-    }
+    image = ImageFromBytes(raw.data(), image.Width, image.Height, channels);
   }
   else
   {
@@ -228,15 +225,7 @@ Image ReadJpeg(const unsigned char* data, std::size_t size, const std::string& n
   }
   jpeg_finish_decompress(&cinfo);
   jpeg_destroy_decompress(&cinfo);
-  image.Width = static_cast<int>(w);
-  image.Height = static_cast<int>(h);
-  image.Channels = 3;
-  image.Pixels.resize(raw.size());
-  for (std::size_t i = 0; i < raw.size(); ++i)
-  {
-    image.Pixels[i] = raw[i] / 255.0f;
-  }
-  return image;
+  return ImageFromBytes(raw.data(), static_cast<int>(w), static_cast<int>(h), 3);
 }
 
 //------------------------------------------------------------------------------
@@ -500,11 +489,35 @@ Image LoadTrainingImage(const Camera& camera, const std::array<float, 3>& backgr
   {
     throw std::runtime_error(std::string(e.what()) + " (image of camera '" + camera.Name + "')");
   }
-  image = CompositeOnBackground(image, background);
+  return PrepareTrainingImage(image, camera, background);
+}
+
+//------------------------------------------------------------------------------
+Image PrepareTrainingImage(const Image& image,
+  const Camera& camera,
+  const std::array<float, 3>& background)
+{
+  Image out = CompositeOnBackground(image, background);
   if (camera.Width > 0 && camera.Height > 0 &&
-    (image.Width != camera.Width || image.Height != camera.Height))
+    (out.Width != camera.Width || out.Height != camera.Height))
   {
-    image = ResizeImage(image, camera.Width, camera.Height);
+    out = ResizeImage(out, camera.Width, camera.Height);
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+Image ImageFromBytes(const unsigned char* bytes, int width, int height, int channels)
+{
+  Image image;
+  image.Width = width;
+  image.Height = height;
+  image.Channels = channels;
+  const std::size_t n = static_cast<std::size_t>(width) * height * channels;
+  image.Pixels.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    image.Pixels[i] = bytes[i] / 255.0f;
   }
   return image;
 }

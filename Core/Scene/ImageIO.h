@@ -80,6 +80,17 @@ Image LoadTrainingImage(const Camera& camera, const std::array<float, 3>& backgr
  */
 void AttachImages(std::vector<Camera>& cameras, const std::string& folder);
 
+/// What LoadTrainingImage does to an image once read: composited on @p background and
+/// resized to the camera's size. For images that come from elsewhere than a file (a training
+/// log's /images), so that they are prepared exactly as the same pixels read from a PNG.
+Image PrepareTrainingImage(const Image& image,
+  const Camera& camera,
+  const std::array<float, 3>& background = { 0, 0, 0 });
+
+/// 8-bit samples (row-major, @p channels per pixel) as an Image of values / 255, the
+/// conversion every 8-bit reader uses.
+Image ImageFromBytes(const unsigned char* bytes, int width, int height, int channels);
+
 } // namespace vis4gs
 
 #endif

@@ -12,10 +12,12 @@
 
 #include "ArtifactScores.h"
 #include "ImageIO.h"
+#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
@@ -23,10 +25,12 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -34,6 +38,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <system_error>
 #include <vector>
@@ -344,21 +349,52 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
       camera.ImagePath = it == files.end() ? std::string() : it->second;
     }
   }
-  const auto background = settings.Raster.Background;
+  const std::array<float, 3> background = { static_cast<float>(settings.Raster.Background[0]),
+    static_cast<float>(settings.Raster.Background[1]),
+    static_cast<float>(settings.Raster.Background[2]) };
+  // Images inside a training log ("/images/<name>" in a camera table that names its log,
+  // as vtkGaussianTrainingLogReader's is) are read from the log by the process that scores
+  // the view, never through temporary files.
+  std::shared_ptr<const vis4gs::TrainingLogReader> log;
+  if (needImages && table)
+  {
+    auto* name =
+      vtkStringArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("TrainingLogFile"));
+    if (name && name->GetNumberOfValues() == 1)
+    {
+      try
+      {
+        log = std::make_shared<const vis4gs::TrainingLogReader>(name->GetValue(0));
+      }
+      catch (const std::exception& e)
+      {
+        vtkErrorMacro("The training log of the cameras cannot be read: " << e.what());
+        return 0;
+      }
+    }
+  }
   vis4gs::TrainingImageProvider images;
   if (needImages)
   {
-    images = [background](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
+    images = [background, log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
     {
+      const std::string prefix = "/images/";
       std::error_code ec;
+      if (log && camera.ImagePath.rfind(prefix, 0) == 0 &&
+        !std::filesystem::is_regular_file(camera.ImagePath, ec))
+      {
+        int width = 0, height = 0;
+        const std::vector<unsigned char> bytes =
+          log->ReadImage(camera.ImagePath.substr(prefix.size()), width, height);
+        image = vis4gs::PrepareTrainingImage(
+          vis4gs::ImageFromBytes(bytes.data(), width, height, 3), camera, background);
+        return true;
+      }
       if (camera.ImagePath.empty() || !std::filesystem::is_regular_file(camera.ImagePath, ec))
       {
         return false;
       }
-      image = vis4gs::LoadTrainingImage(camera,
-        { static_cast<float>(background[0]),
-          static_cast<float>(background[1]),
-          static_cast<float>(background[2]) });
+      image = vis4gs::LoadTrainingImage(camera, background);
       return true;
     };
   }
@@ -421,6 +457,15 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   {
     AddArray(output, vis4gs::arrays::NeedleShape, scores.NeedleShape);
   }
+  // The reasons travel with the data (a script sees them without a warning handler): every
+  // warning of the computation, and why the blur and needle arrays are NaN when they are.
+  vtkNew<vtkStringArray> notes;
+  notes->SetName("ScoreWarnings");
+  for (const std::string& warning : scores.Warnings)
+  {
+    notes->InsertNextValue(warning);
+  }
+  output->GetFieldData()->AddArray(notes);
   if (needCameras)
   {
     vtkNew<vtkUnsignedCharArray> flags;

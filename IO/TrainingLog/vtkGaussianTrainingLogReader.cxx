@@ -26,11 +26,13 @@
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
@@ -302,7 +304,25 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
     {
       vtkTable* output = vtkTable::GetData(outInfo->GetInformationObject(1));
       output->Initialize();
-      vis4gs::CamerasToTable(d.Log->ReadCameras(), output);
+      // Image paths as a consumer needs them wherever it runs: a path relative to the log
+      // becomes absolute; "/images/<name>" (an image inside the log) stays, and the table
+      // names the log in its field data (TrainingLogFile) so that
+      // vtkGaussianArtifactScoreFilter reads those images from it, with no temporary files.
+      std::vector<vis4gs::Camera> cameras = d.Log->ReadCameras();
+      const std::filesystem::path logFile = std::filesystem::absolute(this->FileName);
+      for (vis4gs::Camera& camera : cameras)
+      {
+        if (!camera.ImagePath.empty() && camera.ImagePath.rfind("/images/", 0) != 0 &&
+          std::filesystem::path(camera.ImagePath).is_relative())
+        {
+          camera.ImagePath = (logFile.parent_path() / camera.ImagePath).lexically_normal();
+        }
+      }
+      vis4gs::CamerasToTable(cameras, output);
+      vtkNew<vtkStringArray> source;
+      source->SetName("TrainingLogFile");
+      source->InsertNextValue(logFile.string());
+      output->GetFieldData()->AddArray(source);
     }
     if (wanted(2))
     {

@@ -17,7 +17,10 @@
  *   iteration (DESIGN §2 arrays: GaussianId as pedigree ids, LogScale, Rotation,
  *   OpacityLogit, SH, Opacity, Scale; grad_accum/denom when LoadStatistics is on). The
  *   iteration actually loaded is reported by GetLoadedIteration().
- * - port 1, vtkTable: cameras, one row per view (vis4gs::CamerasToTable columns).
+ * - port 1, vtkTable: cameras, one row per view (vis4gs::CamerasToTable columns). Image
+ *   paths relative to the log are made absolute; an image inside the log keeps the path
+ *   "/images/<name>", and the field-data string `TrainingLogFile` (the log's absolute path)
+ *   lets vtkGaussianArtifactScoreFilter read it from the log.
  * - port 2, vtkTable: metrics, one row per logged iteration: Iteration, NumGaussians, Loss,
  *   L1, PSNR, SSIM, LPIPS, ElapsedSeconds from /metrics and TestL1, TestPSNR, TestSSIM,
  *   TestLPIPS, TestLoss from /metrics/test, merged by iteration (NaN where not measured).
