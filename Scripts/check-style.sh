@@ -9,7 +9,7 @@ status=0
 
 if [ "$check" = layering ] || [ "$check" = all ]; then
   bad=$(grep -rlE '^\s*#\s*include\s*[<"](vtk|QVTK)' Core --include='*.h' --include='*.cxx' \
-    --include='*.hxx' --include='*.txx' || true)
+    --include='*.hxx' --include='*.txx' --include='*.inc' || true)
   if [ -n "$bad" ]; then
     echo "FAILED: Core/ must not include VTK headers; found in:"
     echo "$bad"
@@ -26,7 +26,7 @@ if [ "$check" = format ] || [ "$check" = all ]; then
     exit 1
   fi
   mapfile -t files < <(git ls-files --cached --others --exclude-standard \
-    '*.h' '*.cxx' '*.hxx' '*.txx' '*.cpp' | grep -v '^build' || true)
+    '*.h' '*.cxx' '*.hxx' '*.txx' '*.cpp' '*.inc' | grep -v '^build' || true)
   bad=()
   for f in "${files[@]}"; do
     [ -f "$f" ] || continue
