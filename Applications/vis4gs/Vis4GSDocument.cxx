@@ -60,7 +60,7 @@ vtkSmartPointer<vtkTable> MetricsToTable(const vis4gs::MetricsTable& m)
 {
   auto table = vtkSmartPointer<vtkTable>::New();
   vtkNew<vtkIntArray> it;
-  it->SetName("iteration");
+  it->SetName(vis4gs::arrays::MetricIteration);
   for (auto v : m.Iteration)
   {
     it->InsertNextValue(v);
@@ -77,11 +77,11 @@ vtkSmartPointer<vtkTable> MetricsToTable(const vis4gs::MetricsTable& m)
     table->AddColumn(a);
   };
   std::vector<double> count(m.NumGaussians.begin(), m.NumGaussians.end());
-  add("num_gaussians", count);
-  add("loss", m.Loss);
-  add("psnr", m.Psnr);
-  add("ssim", m.Ssim);
-  add("lpips", m.Lpips);
+  add(vis4gs::arrays::MetricGaussians, count);
+  add(vis4gs::arrays::MetricLoss, m.Loss);
+  add(vis4gs::arrays::MetricPSNR, m.Psnr);
+  add(vis4gs::arrays::MetricSSIM, m.Ssim);
+  add(vis4gs::arrays::MetricLPIPS, m.Lpips);
   return table;
 }
 

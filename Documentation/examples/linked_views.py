@@ -1,11 +1,11 @@
 """Linked views from a VTK Python script: genealogy tree (view B), timeline (view D) and an
 attribute histogram, all linked through one vtkGaussianSelectionHub.
 
-Usage (build tree):  build/bin/vis4gs-python Documentation/examples/linked_views.py LOG.h5
-Without a log argument it builds a tiny hand-made genealogy so that it runs anywhere (that
-path is what was run and checked). The LOG.h5 path assumes the IO/TrainingLog reader's class
-name and port order (events on port 3) and had not been run when this example was written.
-Close each window to go on.
+Usage (build tree):  build/bin/vis4gs-python Documentation/examples/linked_views.py [LOG.h5]
+With a log (e.g. Data/Demo/vis4gs-demo.h5) the tree and the metrics come straight from the
+training-log reader's ports (events on port 3, metrics on port 2), with nothing set by hand;
+without one, a tiny hand-made genealogy and metrics table. Close each window to go on;
+`--no-interaction` renders once and exits (CTest runs both forms this way).
 """
 import sys
 
@@ -33,7 +33,16 @@ def tiny_tree():
         (g.GetVertexData().SetPedigreeIds if name == "GaussianId" else g.GetVertexData().AddArray)(a)
     tree = vtkTree()
     tree.CheckedShallowCopy(g)
-    return tree, None
+    metrics = vtkTable()
+    it, psnr = vtkIntArray(), vtkDoubleArray()
+    it.SetName("Iteration")
+    psnr.SetName("PSNR")
+    for k in range(7):
+        it.InsertNextValue(500 * k)
+        psnr.InsertNextValue(20 + 2 * k ** 0.5)
+    metrics.AddColumn(it)
+    metrics.AddColumn(psnr)
+    return tree, None, metrics
 
 
 def log_tree(path):
@@ -44,11 +53,12 @@ def log_tree(path):
     genealogy = vis4gs.vtkGaussianGenealogyTreeFilter()
     genealogy.SetInputConnection(reader.GetOutputPort(3))  # events table
     genealogy.Update()
-    return genealogy.GetOutput(), genealogy.GetFamilyBands()
+    reader.Update(2)  # the metrics port (each port is read only when asked for)
+    return genealogy.GetOutput(), genealogy.GetFamilyBands(), reader.GetOutputDataObject(2)
 
 
 files = [a for a in sys.argv[1:] if not a.startswith("--")]
-tree, bands = log_tree(files[0]) if files else tiny_tree()
+tree, bands, metrics = log_tree(files[0]) if files else tiny_tree()
 
 hub = vis4gs.vtkGaussianSelectionHub()
 tree_view = vis4gs.vtkGaussianTreeView()
@@ -58,26 +68,21 @@ if bands is not None:
 tree_view.SetSelectionHub(hub)
 tree_view.GetRenderWindow().SetSize(800, 400)
 
-metrics = vtkTable()
-it, psnr = vtkIntArray(), vtkDoubleArray()
-it.SetName("iteration")
-psnr.SetName("psnr")
-for k in range(7):
-    it.InsertNextValue(500 * k)
-    psnr.InsertNextValue(20 + 2 * k ** 0.5)
-metrics.AddColumn(it)
-metrics.AddColumn(psnr)
 timeline = vis4gs.vtkGaussianTimelineView()
 timeline.SetMetrics(metrics)
 timeline.SetSelectionHub(hub)
 timeline.GetRenderWindow().SetSize(800, 400)
 
-# Select Gaussian 2 as the scene view would: the tree highlights its lineage 0 -> 1 -> 2.
+# Select a Gaussian as the scene view would: the tree highlights its lineage (in the tiny
+# tree, 3: 0 -> 1 -> 3; in a log, the last Gaussian born).
+pedigree = tree.GetVertexData().GetPedigreeIds()
+chosen = pedigree.GetValue(tree.GetNumberOfVertices() - 1)
 ids = vtkIdTypeArray()
-ids.InsertNextValue(2)
+ids.InsertNextValue(chosen)
 hub.SelectIds(ids)
 hub.SetIteration(1000)  # moves the cursor of every view
-print("selected:", hub.GetNumberOfSelectedIds(), "Gaussian(s)")
+print(f"tree: {tree.GetNumberOfVertices()} vertices; metrics: {metrics.GetNumberOfRows()} rows;",
+      f"selected: {hub.GetNumberOfSelectedIds()} Gaussian(s), id {chosen}")
 
 for view in (tree_view, timeline):
     view.Render()

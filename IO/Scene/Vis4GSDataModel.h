@@ -50,6 +50,18 @@ constexpr const char* NeedleScore = "NeedleScore";
 constexpr const char* NeedleShape = "NeedleShape";
 // Gaussian field data
 constexpr const char* SHDegree = "SHDegree";
+// Metrics table columns: one spelling everywhere (the training-log reader's metrics port, the
+// application's tables, the timeline view's defaults); test-set columns of the reader's
+// merged table carry the prefix MetricTestPrefix ("TestPSNR").
+constexpr const char* MetricIteration = "Iteration";
+constexpr const char* MetricGaussians = "NumGaussians";
+constexpr const char* MetricLoss = "Loss";
+constexpr const char* MetricL1 = "L1";
+constexpr const char* MetricPSNR = "PSNR";
+constexpr const char* MetricSSIM = "SSIM";
+constexpr const char* MetricLPIPS = "LPIPS";
+constexpr const char* MetricElapsed = "ElapsedSeconds";
+constexpr const char* MetricTestPrefix = "Test";
 // Camera table columns
 constexpr const char* CameraName = "Name";
 constexpr const char* CameraSplit = "Split";

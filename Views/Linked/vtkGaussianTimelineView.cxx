@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianTimelineView.h"
 
+#include "Vis4GSDataModel.h" // vis4gs::arrays, the column names of the metrics tables
+
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChartLegend.h"
@@ -83,11 +85,11 @@ vtkGaussianTimelineView::vtkGaussianTimelineView()
   : Internals(new vtkInternals)
 {
   this->SetHistoryProperty("Opacity");
-  this->SetIterationColumn("iteration");
-  this->SetCountColumn("num_gaussians");
-  this->SetPSNRColumn("psnr");
-  this->SetSSIMColumn("ssim");
-  this->SetLPIPSColumn("lpips");
+  this->SetIterationColumn(vis4gs::arrays::MetricIteration);
+  this->SetCountColumn(vis4gs::arrays::MetricGaussians);
+  this->SetPSNRColumn(vis4gs::arrays::MetricPSNR);
+  this->SetSSIMColumn(vis4gs::arrays::MetricSSIM);
+  this->SetLPIPSColumn(vis4gs::arrays::MetricLPIPS);
   this->SetHistoryIterationColumn("Iteration");
   this->SetHistoryIdColumn("GaussianId");
   auto& in = *this->Internals;

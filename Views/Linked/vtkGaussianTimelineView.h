@@ -24,7 +24,8 @@
  * a hub is linked, sets the hub's iteration, which moves every view.
  *
  * Tables (column names settable):
- * - metrics (SetMetrics, SetTestMetrics): iteration, num_gaussians, psnr, ssim, lpips
+ * - metrics (SetMetrics, SetTestMetrics): Iteration, NumGaussians, PSNR, SSIM, LPIPS (the
+ *   spelling of vtkGaussianTrainingLogReader's metrics port, vis4gs::arrays::Metric*)
  *   (DESIGN §3 /metrics);
  * - history (SetHistory): long format, one row per (iteration, Gaussian): Iteration,
  *   GaussianId and one column per property or score (Opacity, ViewCoverage, ...), as the log
@@ -101,7 +102,7 @@ public:
 
   ///@{
   /**
-   * Column names. Defaults: iteration, num_gaussians, psnr, ssim, lpips (metrics);
+   * Column names. Defaults: Iteration, NumGaussians, PSNR, SSIM, LPIPS (metrics);
    * Iteration, GaussianId (history).
    */
   vtkSetStringMacro(IterationColumn);

@@ -154,12 +154,12 @@ vtkSmartPointer<vtkTable> MakeMetrics()
 {
   auto table = vtkSmartPointer<vtkTable>::New();
   vtkNew<vtkIntArray> it;
-  it->SetName("iteration");
+  it->SetName("Iteration");
   vtkNew<vtkDoubleArray> psnr, ssim, lpips, count;
-  psnr->SetName("psnr");
-  ssim->SetName("ssim");
-  lpips->SetName("lpips");
-  count->SetName("num_gaussians");
+  psnr->SetName("PSNR");
+  ssim->SetName("SSIM");
+  lpips->SetName("LPIPS");
+  count->SetName("NumGaussians");
   for (int k = 0; k <= 6; ++k)
   {
     it->InsertNextValue(500 * k);

@@ -17,7 +17,7 @@ namespace linkedtest
 /// 3 families, 8 Gaussians (ids 0..7) under a virtual root (vertex 0, GaussianId -1).
 vtkSmartPointer<vtkTree> MakeTree();
 vtkSmartPointer<vtkTable> MakeBands();
-/// iteration 0, 500, ..., 3000 with psnr, ssim, lpips (NaN), num_gaussians.
+/// Iteration 0, 500, ..., 3000 with PSNR, SSIM, LPIPS (NaN), NumGaussians.
 vtkSmartPointer<vtkTable> MakeMetrics();
 /// Gaussians 0..7 alive or not, with GaussianId, Opacity (id / 10 + 0.05), Scale.
 vtkSmartPointer<vtkPolyData> MakeScene();

@@ -54,8 +54,8 @@ tree_view.SetSelectionHub(hub)
 
 metrics = vtkTable()
 it, psnr = vtkIntArray(), vtkDoubleArray()
-it.SetName("iteration")
-psnr.SetName("psnr")
+it.SetName("Iteration")
+psnr.SetName("PSNR")
 for k in range(5):
     it.InsertNextValue(250 * k)
     psnr.InsertNextValue(20.0 + k)
