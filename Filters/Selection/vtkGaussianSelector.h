@@ -44,10 +44,10 @@
  *
  * The projection and binning of the scene are cached per camera (the first selection after
  * the camera moved pays for them: GetLastPrepareTime()); the octree per scene. With a
- * SplatMapper set, a Single, Brush or Frame selection after the camera moved reuses instead
- * the projection and tile lists of the image the mapper last drew on its CPU-rasteriser
- * path, when that image is provably of this view: the mapper's input is the Scene (same
- * object, same MTime), the camera and viewport size are equal to the renderer's, at full
+ * SplatMapper set, a Single, Brush, Frame or (footprint) Ray selection after the camera moved
+ * reuses instead the projection and tile lists of the image the mapper last drew on its
+ * CPU-rasteriser path, when that image is provably of this view: the mapper's input is the Scene
+ * (same object, same MTime), the camera and viewport size are equal to the renderer's, at full
  * resolution, with ScaleModifier 1 and no hidden or dimmed Gaussians
  * (vtkGaussianSplatMapper::GetLastFullFrame()); a Frame that computes the view maxima copies
  * that frame into its cached view instead of projecting. Otherwise it projects the scene as
@@ -113,7 +113,7 @@ public:
   ///@{
   /**
    * The mapper drawing the Scene in the Renderer, whose last full-resolution CPU-rasteriser
-   * frame a Single, Brush or Frame selection may reuse (see above). Default none (always
+   * frame a Single, Brush, Frame or Ray selection may reuse (see above). Default none (always
    * project).
    */
   void SetSplatMapper(vtkGaussianSplatMapper* mapper);

@@ -282,6 +282,16 @@ int TestGaussianSelector(int, char*[])
     Check(sel->GetLastSelectionReusedFrame() == expectReuse && ns == (g >= 0 ? 1 : 0) &&
         (g < 0 || Ids(sel->GetSelectedIds()) == std::vector<vtkIdType>{ cloud.Ids[g] }),
       "Single on the reused/own frame equals Core");
+    sel->SelectRay(sx, sy);
+    std::vector<vtkIdType> rayExpected;
+    for (const auto& c : vis4gs::SelectRay(own, sx, H - 1 - sy))
+    {
+      rayExpected.push_back(cloud.Ids[c.Gaussian]);
+    }
+    const auto rayNow = Ids(sel->GetRayHitIds());
+    Check(sel->GetLastSelectionReusedFrame() == expectReuse && rayNow == rayExpected &&
+        (g < 0 || std::find(rayNow.begin(), rayNow.end(), cloud.Ids[g]) != rayNow.end()),
+      "Ray on the reused/own frame equals Core and holds Single's pick");
     vtkNew<vtkPoints> strokeNow;
     strokeNow->InsertNextPoint(60, 70, 0);
     strokeNow->InsertNextPoint(140, 85, 0);
