@@ -24,6 +24,7 @@
 #include "vtkCellArray.h"
 #include "vtkContextMouseEvent.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkIdTypeArray.h"
@@ -85,6 +86,7 @@
 #include <ctime>
 #include <functional>
 #include <iostream>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <string>
@@ -1866,52 +1868,156 @@ bool Vis4GSMainWindow::RunSelfTest()
       }
     }
   }
-  if (order.empty())
+  // Without cameras: five orbit views around the scene's bounds (v = -1 ... -5).
+  const int orbitViews = 5;
+  for (int k = 0; order.empty() && k < orbitViews; ++k)
   {
-    order.push_back(-1); // the current view
+    order.push_back(-1 - k);
   }
-  int width = d->SceneWindow->GetSize()[0], height = d->SceneWindow->GetSize()[1];
-  vtkIdType target = -1, targetId = -1, view = -1;
-  double display[3] = { 0, 0, 0 };
-  d->Selector->SetScene(scene);
-  for (vtkIdType c : candidates)
+  auto setView = [&](vtkIdType v)
   {
-    const vtkIdType id = static_cast<vtkIdType>(ids->GetComponent(c, 0));
-    for (vtkIdType v : order)
+    if (v >= 0)
     {
-      if (target >= 0)
+      vtkGaussianCameraUtilities::JumpToCamera(d->SceneRenderer, cameras, v);
+      return;
+    }
+    const int k = static_cast<int>(-1 - v);
+    vtkCamera* camera = d->SceneRenderer->GetActiveCamera();
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetPosition(0, 0, 1);
+    camera->SetViewUp(0, 1, 0);
+    d->SceneRenderer->ResetCamera(scene->GetBounds());
+    camera->Azimuth(360.0 / orbitViews * k);
+    camera->Elevation(k % 2 == 0 ? 25.0 : -25.0);
+    camera->OrthogonalizeViewUp();
+    d->SceneRenderer->ResetCameraClippingRange();
+  };
+  int width = d->SceneWindow->GetSize()[0], height = d->SceneWindow->GetSize()[1];
+  d->Selector->SetScene(scene);
+  {
+    // One definition per mode, on every scene: at a grid of pixels of several views, the
+    // Gaussian Single picks is among those Ray returns (the footprints covering the pixel in
+    // the drawn frame), and Ray lists them in depth order with alpha in [1/255, 0.99].
+    // The file's first three cameras and three orbit views.
+    std::vector<vtkIdType> gridViews;
+    for (std::size_t n = 0; n < order.size() && order[n] >= 0 && n < 3; ++n)
+    {
+      gridViews.push_back(order[n]);
+    }
+    for (vtkIdType v = -1; v >= -3; --v)
+    {
+      gridViews.push_back(v);
+    }
+    int tested = 0, members = 0, ordered = 0, nonEmpty = 0;
+    std::string firstFailure;
+    for (vtkIdType view : gridViews)
+    {
+      setView(view);
+      d->SceneWindow->Render();
+      for (int gy = 1; gy <= 7; ++gy)
       {
-        break;
-      }
-      if (v >= 0)
-      {
-        vtkGaussianCameraUtilities::JumpToCamera(d->SceneRenderer, cameras, v);
-      }
-      double p[3];
-      scene->GetPoint(c, p);
-      d->SceneRenderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
-      d->SceneRenderer->WorldToDisplay();
-      d->SceneRenderer->GetDisplayPoint(display);
-      display[0] = std::round(display[0]);
-      display[1] = std::round(display[1]);
-      if (display[0] < 1 || display[1] < 1 || display[0] > width - 2 || display[1] > height - 2 ||
-        display[2] <= 0 || display[2] >= 1)
-      {
-        continue;
-      }
-      d->Selector->SetModifier(vtkGaussianSelector::REPLACE);
-      vtkIdTypeArray* picked = d->Selector->GetSelectedIds();
-      if (d->Selector->SelectSingle(display[0], display[1]) == 1 &&
-        picked->GetNumberOfTuples() == 1 && picked->GetValue(0) == id)
-      {
-        target = c;
-        targetId = id;
-        view = v;
+        for (int gx = 1; gx <= 7; ++gx)
+        {
+          const double sx = std::floor(width * gx / 8.0), sy = std::floor(height * gy / 8.0);
+          d->Selector->SetModifier(vtkGaussianSelector::REPLACE);
+          if (d->Selector->SelectSingle(sx, sy) < 0)
+          {
+            continue;
+          }
+          vtkIdTypeArray* single = d->Selector->GetSelectedIds();
+          const vtkIdType pick = single->GetNumberOfTuples() == 1 ? single->GetValue(0) : -1;
+          if (d->Selector->SelectRay(sx, sy) < 0)
+          {
+            continue;
+          }
+          ++tested;
+          vtkIdTypeArray* ray = d->Selector->GetRayHitIds();
+          vtkDoubleArray* depth = d->Selector->GetRayHitDistances();
+          vtkDoubleArray* alpha = d->Selector->GetRayHitAlphas();
+          bool found = pick < 0, sorted = true;
+          for (vtkIdType k = 0; k < ray->GetNumberOfTuples(); ++k)
+          {
+            found = found || ray->GetValue(k) == pick;
+            sorted = sorted && (k == 0 || depth->GetValue(k - 1) <= depth->GetValue(k)) &&
+              alpha->GetValue(k) >= 1.0 / 255.0 - 1e-7 && alpha->GetValue(k) <= 0.99 + 1e-7;
+          }
+          nonEmpty += pick >= 0 ? 1 : 0;
+          members += found ? 1 : 0;
+          ordered += sorted ? 1 : 0;
+          if ((!found || !sorted) && firstFailure.empty())
+          {
+            firstFailure = " (first failure: view " + std::to_string(view) + ", pixel " +
+              std::to_string(static_cast<int>(sx)) + "," + std::to_string(static_cast<int>(sy)) +
+              ", Single " + std::to_string(pick) + ", " + std::to_string(ray->GetNumberOfTuples()) +
+              " on the ray)";
+          }
+        }
       }
     }
-    if (target >= 0)
+    check(tested > 0 && members == tested && ordered == tested,
+      "Single's pick is on the Ray at " + std::to_string(members) + " of " +
+        std::to_string(tested) + " pixels of " + std::to_string(gridViews.size()) + " views (" +
+        std::to_string(nonEmpty) + " with a pick), Ray in depth order with alpha in " +
+        "[1/255, 0.99] at " + std::to_string(ordered) + firstFailure);
+  }
+  vtkIdType target = -1, targetId = -1, view = -1;
+  double display[3] = { 0, 0, 0 };
+  // Whether candidate c is the front-most Gaussian at the pixel where its centre projects in
+  // the current view (then it becomes the target).
+  auto tryCandidate = [&](vtkIdType c, vtkIdType v)
+  {
+    const vtkIdType id = static_cast<vtkIdType>(ids->GetComponent(c, 0));
+    double p[3];
+    scene->GetPoint(c, p);
+    d->SceneRenderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
+    d->SceneRenderer->WorldToDisplay();
+    d->SceneRenderer->GetDisplayPoint(display);
+    display[0] = std::round(display[0]);
+    display[1] = std::round(display[1]);
+    if (display[0] < 1 || display[1] < 1 || display[0] > width - 2 || display[1] > height - 2 ||
+      display[2] <= 0 || display[2] >= 1)
     {
-      break;
+      return false;
+    }
+    d->Selector->SetModifier(vtkGaussianSelector::REPLACE);
+    vtkIdTypeArray* picked = d->Selector->GetSelectedIds();
+    if (d->Selector->SelectSingle(display[0], display[1]) == 1 &&
+      picked->GetNumberOfTuples() == 1 && picked->GetValue(0) == id)
+    {
+      target = c;
+      targetId = id;
+      view = v;
+      return true;
+    }
+    return false;
+  };
+  for (std::size_t n = 0; n < candidates.size() && target < 0; ++n)
+  {
+    for (std::size_t m = 0; m < order.size() && target < 0; ++m)
+    {
+      setView(order[m]);
+      tryCandidate(candidates[n], order[m]);
+    }
+  }
+  // None of the preferred candidates is front-most anywhere (e.g. a file without scores or
+  // lineage, where the newest are arbitrary): the most opaque Gaussians, view by view (one
+  // projection per view).
+  if (target < 0 && opacity)
+  {
+    std::vector<vtkIdType> opaque(static_cast<std::size_t>(scene->GetNumberOfPoints()));
+    std::iota(opaque.begin(), opaque.end(), vtkIdType(0));
+    std::stable_sort(opaque.begin(),
+      opaque.end(),
+      [&](vtkIdType a, vtkIdType b)
+      { return opacity->GetComponent(a, 0) > opacity->GetComponent(b, 0); });
+    opaque.resize(std::min<std::size_t>(opaque.size(), 2000));
+    for (std::size_t m = 0; m < order.size() && target < 0; ++m)
+    {
+      setView(order[m]);
+      for (std::size_t n = 0; n < opaque.size() && target < 0; ++n)
+      {
+        tryCandidate(opaque[n], order[m]);
+      }
     }
   }
   check(target >= 0, "a floater candidate is the front-most Gaussian at its projected pixel");

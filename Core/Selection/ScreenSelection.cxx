@@ -102,19 +102,86 @@ std::array<int, 4> BlendBox(const ViewProjection<float>& projection, std::size_t
 }
 
 //------------------------------------------------------------------------------
+std::vector<RayContribution> SelectRay(const ViewProjection<float>& projection,
+  const TileBins& bins,
+  int x,
+  int y)
+{
+  if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
+    bins.Offsets.size() != bins.TileCount() + 1)
+  {
+    throw std::invalid_argument("SelectRay: the tile bins do not belong to this projection");
+  }
+  std::vector<RayContribution> out;
+  if (x < 0 || y < 0 || x >= projection.Width || y >= projection.Height)
+  {
+    return out;
+  }
+  const std::size_t tile = static_cast<std::size_t>(y / raster::TileSize) * projection.TilesX +
+    static_cast<std::size_t>(x / raster::TileSize);
+  // The same float expressions as CompositeTiles()/AttributePixels(): the blended prefix
+  // carries the compositor's T bit for bit; past its early stop T keeps multiplying.
+  float Tr = 1;
+  bool blending = true;
+  for (std::uint64_t k = bins.Offsets[tile]; k < bins.Offsets[tile + 1]; ++k)
+  {
+    const std::uint32_t id = bins.Ids[k];
+    const auto& g = projection.Gaussians[id];
+    const float power = raster::KernelPower<float>(
+      g.U, g.V, g.ConicA, g.ConicB, g.ConicC, static_cast<float>(x), static_cast<float>(y));
+    const float alpha = raster::KernelAlpha<float>(g.Opacity, power);
+    if (alpha < 0.0f)
+    {
+      continue;
+    }
+    const float Tn = Tr * (1.0f - alpha);
+    if (blending && Tn < static_cast<float>(raster::TransmittanceStop))
+    {
+      blending = false;
+    }
+    RayContribution c;
+    c.Gaussian = id;
+    c.ListPosition = static_cast<std::uint32_t>(k - bins.Offsets[tile] + 1);
+    c.Depth = static_cast<double>(g.Depth);
+    c.Alpha = static_cast<double>(alpha);
+    c.Transmittance = static_cast<double>(Tr);
+    c.Weight = static_cast<double>(alpha * Tr);
+    c.Blended = blending;
+    out.push_back(c);
+    Tr = Tn;
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<RayContribution> SelectRay(const SelectionView& view, int x, int y)
+{
+  return SelectRay(view.Projection, view.Bins, x, y);
+}
+
+//------------------------------------------------------------------------------
+std::int64_t SingleFromRay(const std::vector<RayContribution>& ray)
+{
+  std::int64_t best = -1;
+  double bestWeight = -1;
+  for (const auto& c : ray)
+  {
+    if (c.Blended && c.Weight > bestWeight)
+    {
+      best = c.Gaussian;
+      bestWeight = c.Weight;
+    }
+  }
+  return best;
+}
+
+//------------------------------------------------------------------------------
 std::int64_t SelectSingle(const ViewProjection<float>& projection,
   const TileBins& bins,
   int x,
   int y)
 {
-  RasterSettings settings;
-  settings.ComputeColors = false;
-  const auto att = AttributePixels<float>(projection, bins, settings, { { x, y } });
-  if (att.empty() || att[0].Contributions.empty())
-  {
-    return -1;
-  }
-  return att[0].Contributions.front().Gaussian;
+  return SingleFromRay(SelectRay(projection, bins, x, y));
 }
 
 //------------------------------------------------------------------------------

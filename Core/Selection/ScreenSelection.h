@@ -10,7 +10,10 @@
  * w = alpha * T, exactly as CompositeTiles()/AttributePixels() blend it (same float
  * arithmetic, same early stop at T < 1e-4).
  *
- *  - Single: the Gaussian with the largest weight at the clicked pixel (ties: front first).
+ *  - Single: the Gaussian with the largest weight at the clicked pixel (ties: front first),
+ *    taken from the Ray set at that pixel, so always one of its members.
+ *  - Ray: every Gaussian whose rasteriser footprint covers the pixel, occluded or not, in
+ *    depth order with its alpha and alpha*T (SelectRay()).
  *  - Brush: the Gaussians whose largest weight over the brushed pixels is >= a threshold.
  *  - Frame: the Gaussians whose projected centre (U, V) lies in the rectangle of pixels
  *    [x0, x1] x [y0, y1] (i.e. x0 - 0.5 <= U < x1 + 0.5) and that are visible there: their
@@ -69,6 +72,40 @@ std::array<int, 4> BlendBox(const ViewProjection<float>& projection, std::size_t
 SelectionView PrepareSelectionView(const GaussianCloud& cloud,
   const Camera& camera,
   int threads = 0);
+
+/// One Gaussian whose rasteriser footprint covers a pixel (see SelectRay()).
+struct RayContribution
+{
+  std::uint32_t Gaussian = 0;     ///< index in the cloud
+  std::uint32_t ListPosition = 0; ///< 1-based position in the pixel's tile list (depth order)
+  double Depth = 0;               ///< view-space z of the mean
+  double Alpha = 0;               ///< alpha = min(0.99, o e^power) >= 1/255
+  double Transmittance = 0;       ///< T in front of it along the full composite
+  double Weight = 0;              ///< alpha * T
+  /// Blended by the compositor (false past its early stop at T < 1e-4: the pixel's colour
+  /// does not contain it, yet its footprint covers the pixel).
+  bool Blended = false;
+};
+
+/**
+ * Ray mode at pixel (x, y): every Gaussian whose rasteriser footprint covers the pixel
+ * (in the pixel's tile list, i.e. not culled at the near plane and its tile rectangle holds
+ * the pixel, and alpha >= 1/255 there), occluded or not, in depth order, with its alpha and
+ * alpha*T. T runs over the whole list, in the compositor's float arithmetic: up to the early
+ * stop it is bit for bit the compositor's, so SelectSingle() (the largest weight among the
+ * blended entries) is always a member of this set. Empty outside the image.
+ */
+std::vector<RayContribution> SelectRay(const ViewProjection<float>& projection,
+  const TileBins& bins,
+  int x,
+  int y);
+
+/// SelectRay() on a prepared view.
+std::vector<RayContribution> SelectRay(const SelectionView& view, int x, int y);
+
+/// The index SelectSingle() takes from a SelectRay() result: the blended entry with the
+/// largest weight (ties: front first), or -1.
+std::int64_t SingleFromRay(const std::vector<RayContribution>& ray);
 
 /// Index of the Gaussian with the largest weight at pixel (x, y), or -1 when none blends there.
 std::int64_t SelectSingle(const SelectionView& view, int x, int y);
@@ -164,8 +201,10 @@ std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
   int y1,
   const FrameOptions& options = {});
 
-/// The viewing ray through pixel (x, y) (fractional pixels allowed): origin at the camera
-/// centre, unit direction R^T ((x - (W-1)/2)/fx, (y - (H-1)/2)/fy, 1) normalised; TMin = 0.
+/// The viewing ray through pixel (x, y) (fractional pixels allowed), for the optional 3D
+/// k-sigma ellipsoid test (GaussianOctree::IntersectRay; not the Ray mode, whose set is the
+/// drawn footprints, SelectRay()): origin at the camera centre, unit direction R^T ((x -
+/// (W-1)/2)/fx, (y - (H-1)/2)/fy, 1) normalised; TMin = 0.
 RayQuery PixelRay(const Camera& camera, double x, double y, double sigmas = 3.0);
 
 /**

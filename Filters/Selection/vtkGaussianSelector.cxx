@@ -91,6 +91,8 @@ struct vtkGaussianSelector::vtkInternals
   vtkNew<vtkIdTypeArray> SelectedIds;
   vtkNew<vtkIdTypeArray> RayIds;
   vtkNew<vtkDoubleArray> RayDistances;
+  vtkNew<vtkDoubleArray> RayAlphas;
+  vtkNew<vtkDoubleArray> RayWeights;
   int Width = 0, Height = 0, OriginX = 0, OriginY = 0;
 };
 
@@ -106,7 +108,9 @@ vtkGaussianSelector::vtkGaussianSelector()
 {
   this->Internals->SelectedIds->SetName(vis4gs::arrays::GaussianId);
   this->Internals->RayIds->SetName(vis4gs::arrays::GaussianId);
-  this->Internals->RayDistances->SetName("Sigmas");
+  this->Internals->RayDistances->SetName("Depth");
+  this->Internals->RayAlphas->SetName("Alpha");
+  this->Internals->RayWeights->SetName("Weight");
 }
 
 //------------------------------------------------------------------------------
@@ -258,6 +262,18 @@ vtkIdTypeArray* vtkGaussianSelector::GetRayHitIds()
 vtkDoubleArray* vtkGaussianSelector::GetRayHitDistances()
 {
   return this->Internals->RayDistances;
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* vtkGaussianSelector::GetRayHitAlphas()
+{
+  return this->Internals->RayAlphas;
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* vtkGaussianSelector::GetRayHitWeights()
+{
+  return this->Internals->RayWeights;
 }
 
 //------------------------------------------------------------------------------
@@ -458,43 +474,77 @@ vtkIdType vtkGaussianSelector::SelectRay(double x, double y)
 {
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
-  if (!this->PrepareView(false))
-  {
-    return -1;
-  }
-  std::vector<vis4gs::RayHit> hits;
+  this->LastSelectionReusedFrame = false;
+  std::vector<vis4gs::RayContribution> hits;
+  std::vector<vis4gs::RayHit> ellipsoidHits;
   try
   {
-    if (!in.OctreeValid || in.Octree.GetBoundSigmas() < this->RaySigmas)
+    if (this->RayEllipsoid)
     {
-      const auto tb = std::chrono::steady_clock::now();
-      vis4gs::GaussianOctree::Options o;
-      o.BoundSigmas = std::max(3.0, this->RaySigmas);
-      in.Octree.Build(in.Cloud, o);
-      in.OctreeValid = true;
-      this->LastPrepareTime += MsSince(tb);
+      if (!this->PrepareView(false))
+      {
+        return -1;
+      }
+      if (!in.OctreeValid || in.Octree.GetBoundSigmas() < this->RaySigmas)
+      {
+        const auto tb = std::chrono::steady_clock::now();
+        vis4gs::GaussianOctree::Options o;
+        o.BoundSigmas = std::max(3.0, this->RaySigmas);
+        in.Octree.Build(in.Cloud, o);
+        in.OctreeValid = true;
+        this->LastPrepareTime += MsSince(tb);
+      }
+      const double px = std::floor(x) - in.OriginX;
+      const double py = in.Height - 1 - (std::floor(y) - in.OriginY);
+      ellipsoidHits =
+        in.Octree.IntersectRay(vis4gs::PixelRay(in.ViewCamera, px, py, this->RaySigmas));
     }
-    const double px = std::floor(x) - in.OriginX;
-    const double py = in.Height - 1 - (std::floor(y) - in.OriginY);
-    hits = in.Octree.IntersectRay(vis4gs::PixelRay(in.ViewCamera, px, py, this->RaySigmas));
+    else
+    {
+      const vis4gs::RasterWorkspace<float>* frame = nullptr;
+      if (!this->PrepareViewOrFrame(frame))
+      {
+        return -1;
+      }
+      const int px = static_cast<int>(std::floor(x)) - in.OriginX;
+      const int py = in.Height - 1 - (static_cast<int>(std::floor(y)) - in.OriginY);
+      hits = frame ? vis4gs::SelectRay(frame->Projection, frame->Bins, px, py)
+                   : vis4gs::SelectRay(in.View, px, py);
+    }
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro("vtkGaussianSelector: " << e.what());
     return -1;
   }
-  in.RayIds->SetNumberOfTuples(static_cast<vtkIdType>(hits.size()));
-  in.RayDistances->SetNumberOfTuples(static_cast<vtkIdType>(hits.size()));
+  const std::size_t n = this->RayEllipsoid ? ellipsoidHits.size() : hits.size();
+  in.RayIds->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  in.RayDistances->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  in.RayDistances->SetName(this->RayEllipsoid ? "Sigmas" : "Depth");
+  in.RayAlphas->SetNumberOfTuples(static_cast<vtkIdType>(this->RayEllipsoid ? 0 : n));
+  in.RayWeights->SetNumberOfTuples(static_cast<vtkIdType>(this->RayEllipsoid ? 0 : n));
   std::vector<std::uint32_t> picked;
-  for (std::size_t k = 0; k < hits.size(); ++k)
+  for (std::size_t k = 0; k < n; ++k)
   {
-    in.RayIds->SetValue(
-      static_cast<vtkIdType>(k), static_cast<vtkIdType>(in.Ids[hits[k].Gaussian]));
-    in.RayDistances->SetValue(static_cast<vtkIdType>(k), hits[k].Distance);
-    picked.push_back(hits[k].Gaussian);
+    const vtkIdType t = static_cast<vtkIdType>(k);
+    const std::uint32_t g = this->RayEllipsoid ? ellipsoidHits[k].Gaussian : hits[k].Gaussian;
+    in.RayIds->SetValue(t, static_cast<vtkIdType>(in.Ids[g]));
+    if (this->RayEllipsoid)
+    {
+      in.RayDistances->SetValue(t, ellipsoidHits[k].Distance);
+    }
+    else
+    {
+      in.RayDistances->SetValue(t, hits[k].Depth);
+      in.RayAlphas->SetValue(t, hits[k].Alpha);
+      in.RayWeights->SetValue(t, hits[k].Weight);
+    }
+    picked.push_back(g);
   }
   in.RayIds->Modified();
   in.RayDistances->Modified();
+  in.RayAlphas->Modified();
+  in.RayWeights->Modified();
   this->PublishIndices(picked);
   this->LastSelectionTime = MsSince(t0);
   return static_cast<vtkIdType>(picked.size());
@@ -513,6 +563,7 @@ void vtkGaussianSelector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BrushRadius: " << this->BrushRadius << "\n";
   os << indent << "IncludeOccluded: " << this->IncludeOccluded << "\n";
   os << indent << "RaySigmas: " << this->RaySigmas << "\n";
+  os << indent << "RayEllipsoid: " << this->RayEllipsoid << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "LastSelectionTime: " << this->LastSelectionTime << "\n";
   os << indent << "LastPrepareTime: " << this->LastPrepareTime << "\n";

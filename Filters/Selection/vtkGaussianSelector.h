@@ -26,9 +26,14 @@
  *    Gaussian's largest weight over the view (one compositing pass, about the cost of
  *    replaying the whole view, cached with the projection), after which frames with that
  *    camera replay only pixels near the rectangle's border (the same result).
- *  - Ray: every Gaussian that the viewing ray through the pixel passes within RaySigmas
- *    standard deviations of (Mahalanobis distance), in depth order (GetRayHitIds()), found
- *    through an octree over the Gaussians' bounding boxes (built once per scene).
+ *  - Ray: every Gaussian whose rasteriser footprint covers the pixel in the drawn frame
+ *    (alpha = min(0.99, o e^power) >= 1/255 there, inside its tile rectangle, after the
+ *    near-plane cull), occluded or not, in depth order (GetRayHitIds()) with its view depth,
+ *    alpha and weight alpha*T along the full composite (GetRayHitDistances(),
+ *    GetRayHitAlphas(), GetRayHitWeights()). Single's pick at a pixel is always one of them.
+ *    With RayEllipsoid on instead: every Gaussian that the viewing ray passes within
+ *    RaySigmas standard deviations of (the 3D ellipsoid test, distances in sigmas, no alpha
+ *    or weight), found through an octree over the Gaussians' bounding boxes.
  *
  * Coordinates are VTK display coordinates of the renderer's window (x right, y up, as the
  * interactor reports them). Each selection combines with the current one by Modifier
@@ -39,10 +44,10 @@
  *
  * The projection and binning of the scene are cached per camera (the first selection after
  * the camera moved pays for them: GetLastPrepareTime()); the octree per scene. With a
- * SplatMapper set, a Single, Brush or Frame selection after the camera moved reuses instead
- * the projection and tile lists of the image the mapper last drew on its CPU-rasteriser
- * path, when that image is provably of this view: the mapper's input is the Scene (same
- * object, same MTime), the camera and viewport size are equal to the renderer's, at full
+ * SplatMapper set, a Single, Brush, Frame or (footprint) Ray selection after the camera moved
+ * reuses instead the projection and tile lists of the image the mapper last drew on its
+ * CPU-rasteriser path, when that image is provably of this view: the mapper's input is the Scene
+ * (same object, same MTime), the camera and viewport size are equal to the renderer's, at full
  * resolution, with ScaleModifier 1 and no hidden or dimmed Gaussians
  * (vtkGaussianSplatMapper::GetLastFullFrame()); a Frame that computes the view maxima copies
  * that frame into its cached view instead of projecting. Otherwise it projects the scene as
@@ -108,7 +113,7 @@ public:
   ///@{
   /**
    * The mapper drawing the Scene in the Renderer, whose last full-resolution CPU-rasteriser
-   * frame a Single, Brush or Frame selection may reuse (see above). Default none (always
+   * frame a Single, Brush, Frame or Ray selection may reuse (see above). Default none (always
    * project).
    */
   void SetSplatMapper(vtkGaussianSplatMapper* mapper);
@@ -150,10 +155,21 @@ public:
 
   ///@{
   /**
-   * Ray: k of the k-sigma test. Default 3 (the octree is rebuilt when a larger k is asked).
+   * Ray with RayEllipsoid: k of the k-sigma test. Default 3 (the octree is rebuilt when a
+   * larger k is asked).
    */
   vtkSetClampMacro(RaySigmas, double, 0.0, 100.0);
   vtkGetMacro(RaySigmas, double);
+  ///@}
+
+  ///@{
+  /**
+   * Ray by the 3D k-sigma ellipsoid through the octree instead of the drawn footprints.
+   * Default off (the footprints: the set consistent with the image and with Single).
+   */
+  vtkSetMacro(RayEllipsoid, bool);
+  vtkGetMacro(RayEllipsoid, bool);
+  vtkBooleanMacro(RayEllipsoid, bool);
   ///@}
 
   ///@{
@@ -194,10 +210,14 @@ public:
 
   ///@{
   /**
-   * The last Ray selection: GaussianIds in depth order and their distances in sigmas.
+   * The last Ray selection: GaussianIds in depth order; their view depths ("Depth"), or
+   * distances in sigmas ("Sigmas") with RayEllipsoid; their alpha and alpha*T at the pixel
+   * (empty with RayEllipsoid).
    */
   vtkIdTypeArray* GetRayHitIds();
   vtkDoubleArray* GetRayHitDistances();
+  vtkDoubleArray* GetRayHitAlphas();
+  vtkDoubleArray* GetRayHitWeights();
   ///@}
 
   ///@{
@@ -228,6 +248,7 @@ protected:
   double BrushRadius = 8.0;
   bool IncludeOccluded = false;
   double RaySigmas = 3.0;
+  bool RayEllipsoid = false;
   int NumberOfThreads = 0;
   double LastSelectionTime = 0.0;
   double LastPrepareTime = 0.0;

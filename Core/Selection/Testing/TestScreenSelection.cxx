@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 
 namespace vis4gs
@@ -139,6 +140,157 @@ std::vector<std::uint32_t> BruteForceFrame(const SelectionView& v,
   }
   return selected;
 }
+// Needles, disks, huge and tiny scales, means at and behind the near plane, opacity 0 and 1
+// (logits -inf and +inf) among ordinary Gaussians.
+GaussianCloud ExtremeCloud()
+{
+  GaussianCloud c = TestCloud(400, 11);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < c.Count; ++i)
+  {
+    float* s = &c.LogScales[3 * i];
+    switch (i % 8)
+    {
+      case 0: // needle
+        s[0] = 0.5f;
+        s[1] = s[2] = -9.0f;
+        break;
+      case 1: // disk
+        s[0] = s[1] = 0.0f;
+        s[2] = -12.0f;
+        break;
+      case 2: // huge
+        s[0] = s[1] = s[2] = 2.0f;
+        break;
+      case 3: // tiny
+        s[0] = s[1] = s[2] = -14.0f;
+        break;
+      case 4: // near the camera plane (camera at world z ~ -6 in front of the scene)
+        c.Positions[3 * i + 2] = -5.8f + 0.002f * static_cast<float>(i % 50);
+        break;
+      case 5:
+        c.OpacityLogits[i] = inf;
+        break;
+      case 6:
+        c.OpacityLogits[i] = -inf;
+        break;
+      default:
+        break;
+    }
+  }
+  return c;
+}
+}
+
+// Ray = the footprints covering the pixel in depth order, from an independent walk without
+// tile bins; Single is its largest blended weight, hence a member, and agrees with the
+// attribution replay; the blended prefix carries the compositor's weights bit for bit.
+TEST(ScreenSelection, RayIsTheFootprintsAndContainsSingle)
+{
+  std::size_t withOccluded = 0;
+  for (int scene = 0; scene < 2; ++scene)
+  {
+    const GaussianCloud cloud = scene == 0 ? TestCloud(600, 5) : ExtremeCloud();
+    const SelectionView v = PrepareSelectionView(cloud, TestCamera(), 1);
+    const auto& p = v.Projection;
+    RasterSettings rs;
+    rs.ComputeColors = false;
+    std::size_t nonEmpty = 0;
+    for (int y = 0; y < p.Height; y += 3)
+    {
+      for (int x = 0; x < p.Width; x += 3)
+      {
+        const auto ray = SelectRay(v, x, y);
+        // Independent list: tile rectangle holds the pixel's tile, visible, depth order.
+        std::vector<std::uint32_t> list;
+        for (std::uint32_t i = 0; i < p.Gaussians.size(); ++i)
+        {
+          const auto& g = p.Gaussians[i];
+          if (g.IsVisible() && x / 16 >= g.TileRect[0] && x / 16 < g.TileRect[2] &&
+            y / 16 >= g.TileRect[1] && y / 16 < g.TileRect[3])
+          {
+            list.push_back(i);
+          }
+        }
+        std::stable_sort(list.begin(),
+          list.end(),
+          [&p](std::uint32_t a, std::uint32_t b)
+          { return p.Gaussians[a].Depth < p.Gaussians[b].Depth; });
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t i : list)
+        {
+          const auto& g = p.Gaussians[i];
+          const float dx = g.U - static_cast<float>(x), dy = g.V - static_cast<float>(y);
+          const float power =
+            -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
+          if (power <= 0.0f &&
+            std::min(0.99f, g.Opacity * raster::KernelExp(power)) >= 1.0f / 255.0f)
+          {
+            expected.push_back(i);
+          }
+        }
+        std::vector<std::uint32_t> got;
+        for (const auto& c : ray)
+        {
+          got.push_back(c.Gaussian);
+          EXPECT_GE(c.Alpha, 1.0 / 255.0 - 1e-9);
+          EXPECT_LE(c.Alpha, 0.99 + 1e-9);
+          EXPECT_GE(c.Weight, 0.0);
+          EXPECT_TRUE(std::isfinite(c.Weight));
+          EXPECT_GT(cloud.OpacityLogits[c.Gaussian], -std::numeric_limits<float>::infinity());
+        }
+        // Ties in depth may be ordered differently by the two sorts: compare as sets, and
+        // the depths must not decrease.
+        for (std::size_t k = 1; k < ray.size(); ++k)
+        {
+          EXPECT_LE(ray[k - 1].Depth, ray[k].Depth);
+        }
+        auto sg = got, se = expected;
+        std::sort(sg.begin(), sg.end());
+        std::sort(se.begin(), se.end());
+        ASSERT_EQ(sg, se) << "pixel " << x << "," << y << " scene " << scene;
+
+        const auto att = AttributePixels<float>(p, v.Bins, rs, { { x, y } });
+        const std::int64_t single = SelectSingle(v, x, y);
+        if (att[0].Contributions.empty())
+        {
+          EXPECT_EQ(single, -1);
+          EXPECT_TRUE(std::none_of(
+            ray.begin(), ray.end(), [](const RayContribution& c) { return c.Blended; }));
+          continue;
+        }
+        ++nonEmpty;
+        EXPECT_EQ(single, att[0].Contributions.front().Gaussian);
+        EXPECT_TRUE(std::any_of(ray.begin(),
+          ray.end(),
+          [single](const RayContribution& c)
+          { return static_cast<std::int64_t>(c.Gaussian) == single; }));
+        std::size_t blended = 0;
+        for (const auto& c : ray)
+        {
+          if (!c.Blended)
+          {
+            // Past the stop: T (1 - alpha) fell below 1e-4 at the first of them, alpha <= 0.99.
+            EXPECT_LE(c.Weight, c.Transmittance);
+            EXPECT_LT(c.Transmittance, 1e-4 / (1.0 - 0.99) * (1.0 + 1e-6));
+            withOccluded += 1;
+            continue;
+          }
+          ++blended;
+          const auto it = std::find_if(att[0].Contributions.begin(),
+            att[0].Contributions.end(),
+            [&c](const PixelContribution& a) { return a.Gaussian == c.Gaussian; });
+          ASSERT_NE(it, att[0].Contributions.end());
+          EXPECT_EQ(it->Weight, c.Weight);
+          EXPECT_EQ(it->Transmittance, c.Transmittance);
+        }
+        EXPECT_EQ(blended, att[0].Contributions.size());
+      }
+    }
+    EXPECT_GT(nonEmpty, 50u) << "scene " << scene;
+  }
+  EXPECT_GT(withOccluded, 0u) << "no pixel reached the early stop: the test is too easy";
+  EXPECT_TRUE(SelectRay(PrepareSelectionView(TestCloud(10, 1), TestCamera(), 1), -1, 0).empty());
 }
 
 TEST(ScreenSelection, MaxWeightsAgreeWithAttributionAndNaiveReplay)

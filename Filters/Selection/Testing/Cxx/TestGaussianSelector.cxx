@@ -15,6 +15,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -165,9 +166,32 @@ int TestGaussianSelector(int, char*[])
   Check(brush == toIds(vis4gs::SelectBrush(view, pixels, 0.01, 2)), "Brush equals Core's Brush");
   Check(!brush.empty(), "Brush selects something");
 
-  // Ray through the centre, against the brute force on the same pixel ray.
+  // Ray through the centre: the footprints covering the pixel, as Core finds them, in depth
+  // order with alpha and alpha*T; Single's pick there is one of them.
   sel->SelectRay(100, 75);
   const auto rayHits = Ids(sel->GetRayHitIds());
+  const auto coreRay = vis4gs::SelectRay(view, 100, H - 1 - 75);
+  std::vector<vtkIdType> coreRayIds;
+  bool sameValues =
+    sel->GetRayHitWeights()->GetNumberOfTuples() == static_cast<vtkIdType>(coreRay.size());
+  for (std::size_t k = 0; k < coreRay.size(); ++k)
+  {
+    coreRayIds.push_back(cloud.Ids[coreRay[k].Gaussian]);
+    const vtkIdType t = static_cast<vtkIdType>(k);
+    sameValues = sameValues && sel->GetRayHitWeights()->GetValue(t) == coreRay[k].Weight &&
+      sel->GetRayHitAlphas()->GetValue(t) == coreRay[k].Alpha &&
+      sel->GetRayHitDistances()->GetValue(t) == coreRay[k].Depth;
+  }
+  Check(rayHits == coreRayIds && sameValues, "Ray equals Core's footprint Ray, in depth order");
+  const std::int64_t singleAtCentre = vis4gs::SelectSingle(view, 100, H - 1 - 75);
+  Check(singleAtCentre >= 0 &&
+      std::find(rayHits.begin(), rayHits.end(), cloud.Ids[singleAtCentre]) != rayHits.end(),
+    "Single's pick is on the Ray");
+  // The 3D ellipsoid option, against the brute force on the same pixel ray.
+  sel->RayEllipsoidOn();
+  sel->SelectRay(100, 75);
+  const auto ellipsoidHits = Ids(sel->GetRayHitIds());
+  sel->RayEllipsoidOff();
   const auto bf =
     vis4gs::IntersectRayBruteForce(cloud, vis4gs::PixelRay(cam, 100, H - 1 - 75, 3.0));
   std::vector<vtkIdType> bfIds;
@@ -175,7 +199,9 @@ int TestGaussianSelector(int, char*[])
   {
     bfIds.push_back(cloud.Ids[h.Gaussian]);
   }
-  Check(rayHits == bfIds, "Ray hits equal the brute force, in depth order");
+  Check(ellipsoidHits == bfIds && !bfIds.empty(),
+    "RayEllipsoid hits equal the brute force, in depth order");
+  sel->SelectRay(100, 75);
   Check(!rayHits.empty(), "the central ray hits the donut");
   std::printf("ray: %zu hits; single/frame/brush latency %.2f ms (prepare %.2f ms)\n",
     rayHits.size(),
@@ -256,6 +282,16 @@ int TestGaussianSelector(int, char*[])
     Check(sel->GetLastSelectionReusedFrame() == expectReuse && ns == (g >= 0 ? 1 : 0) &&
         (g < 0 || Ids(sel->GetSelectedIds()) == std::vector<vtkIdType>{ cloud.Ids[g] }),
       "Single on the reused/own frame equals Core");
+    sel->SelectRay(sx, sy);
+    std::vector<vtkIdType> rayExpected;
+    for (const auto& c : vis4gs::SelectRay(own, sx, H - 1 - sy))
+    {
+      rayExpected.push_back(cloud.Ids[c.Gaussian]);
+    }
+    const auto rayNow = Ids(sel->GetRayHitIds());
+    Check(sel->GetLastSelectionReusedFrame() == expectReuse && rayNow == rayExpected &&
+        (g < 0 || std::find(rayNow.begin(), rayNow.end(), cloud.Ids[g]) != rayNow.end()),
+      "Ray on the reused/own frame equals Core and holds Single's pick");
     vtkNew<vtkPoints> strokeNow;
     strokeNow->InsertNextPoint(60, 70, 0);
     strokeNow->InsertNextPoint(140, 85, 0);
