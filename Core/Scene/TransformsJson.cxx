@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <stdexcept>
 
 namespace vis4gs
@@ -94,6 +95,28 @@ std::vector<char> Slurp(const std::string& path)
     Fail(path, "cannot open");
   }
   return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Camera names key the training log, but NeRF-synthetic reuses stems across splits
+// (train/r_0, test/r_0): a repeated name takes its image folder's name as a prefix
+// ("test_r_0"), then an index if it still repeats.
+void MakeNamesUnique(std::vector<Camera>& cameras)
+{
+  std::set<std::string> seen;
+  for (Camera& cam : cameras)
+  {
+    if (!seen.insert(cam.Name).second)
+    {
+      const std::string folder = fs::path(cam.ImagePath).parent_path().filename().string();
+      std::string name = folder.empty() ? cam.Name : folder + "_" + cam.Name;
+      for (int k = 1; seen.count(name); ++k)
+      {
+        name = cam.Name + "_" + std::to_string(k);
+      }
+      cam.Name = name;
+      seen.insert(name);
+    }
+  }
 }
 
 } // namespace
@@ -283,6 +306,7 @@ TransformsCameras ReadTransformsJsonFromMemory(const void* data,
       std::to_string(frames.size()) + " frames skipped: image file not found" +
       (options.RequireImages ? "" : " and no 'w'/'h' given"));
   }
+  MakeNamesUnique(out.Cameras);
   if (distorted)
   {
     out.Warnings.push_back(
@@ -346,6 +370,7 @@ TransformsCameras LoadTransformsDataset(const std::string& path, bool requireIma
     TransformsCameras test = ReadTransformsJson((dir / "transforms_test.json").string(), options);
     out.Cameras.insert(out.Cameras.end(), test.Cameras.begin(), test.Cameras.end());
     out.Warnings.insert(out.Warnings.end(), test.Warnings.begin(), test.Warnings.end());
+    MakeNamesUnique(out.Cameras);
   }
   return out;
 }

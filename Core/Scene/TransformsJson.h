@@ -13,7 +13,9 @@
  * relative to the json's folder, with or without extension (NeRF-synthetic omits `.png`).
  * Frames whose image is missing are skipped with one warning naming how many (as instant-ngp
  * does) unless RequireImages is false and the size is known. Non-zero distortion keys
- * (k1, k2, k3, k4, p1, p2) are ignored with one warning.
+ * (k1, k2, k3, k4, p1, p2) are ignored with one warning. A camera's Name is the stem of its
+ * `file_path`; a repeated stem (train/r_0 and test/r_0) takes its folder as a prefix
+ * ("test_r_0"), then "_1", "_2"... so that names stay unique (they key the training log).
  */
 #ifndef vis4gs_TransformsJson_h
 #define vis4gs_TransformsJson_h

@@ -131,6 +131,8 @@ TEST(TransformsJson, MissingImagesOneWarningAndSplits)
   ASSERT_EQ(res.Cameras.size(), 2u); // b.png is missing in both files
   EXPECT_EQ(res.Cameras[0].Split, CameraSplit::Train);
   EXPECT_EQ(res.Cameras[1].Split, CameraSplit::Test);
+  EXPECT_EQ(res.Cameras[0].Name, "a");
+  EXPECT_EQ(res.Cameras[1].Name, "train_a"); // the same stem in both splits
   // Per file: one missing-images warning naming the count, one distortion warning.
   ASSERT_EQ(res.Warnings.size(), 4u);
   EXPECT_NE(res.Warnings[0].find("1 of 2 frames skipped"), std::string::npos);
