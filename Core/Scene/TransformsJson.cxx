@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "TransformsJson.h"
 #include "ImageIO.h"
+#include "JsonNumber.h"
 
 #include <nlohmann/json.hpp>
 
@@ -40,18 +41,9 @@ const json* Lookup(const json& frame, const json& top, const char* key)
   return it != top.end() ? &*it : nullptr;
 }
 
-double Number(const json& j, const std::string& name, const std::string& where)
+double Number(const nlohmann::json& j, const std::string& name, const std::string& where)
 {
-  if (!j.is_number())
-  {
-    Fail(name, where + " is not a number");
-  }
-  const double v = j.get<double>();
-  if (!std::isfinite(v))
-  {
-    Fail(name, where + " is not finite");
-  }
-  return v;
+  return detail::JsonNumber(j, name, where);
 }
 
 int Side(const json& j, const std::string& name, const std::string& where)

@@ -23,6 +23,26 @@ namespace
 constexpr int RandomPointCount = 10000;
 constexpr float RandomCubeHalfSide = 1.3f;
 
+// The training images of data.Cameras, composited on the background, at the cameras' size.
+void LoadImages(TrainingData& data, double bgValue)
+{
+  data.Background = { bgValue, bgValue, bgValue };
+  const std::array<float, 3> bg = {
+    static_cast<float>(bgValue), static_cast<float>(bgValue), static_cast<float>(bgValue)
+  };
+  for (const Camera& cam : data.Cameras)
+  {
+    Image img = LoadTrainingImage(cam, bg);
+    if (img.Width != cam.Width || img.Height != cam.Height || img.Channels != 3)
+    {
+      throw std::runtime_error(cam.ImagePath + ": image of camera '" + cam.Name +
+        "' could not be brought to " + std::to_string(cam.Width) + "x" +
+        std::to_string(cam.Height) + " RGB");
+    }
+    data.Images.push_back(std::move(img.Pixels));
+  }
+}
+
 TrainingData LoadTransformsTrainingData(const std::string& path,
   const TrainingDataOptions& options,
   double bgValue)
@@ -38,10 +58,6 @@ TrainingData LoadTransformsTrainingData(const std::string& path,
   }
   TrainingData data;
   data.Name = path;
-  data.Background = { bgValue, bgValue, bgValue };
-  const std::array<float, 3> bg = {
-    static_cast<float>(bgValue), static_cast<float>(bgValue), static_cast<float>(bgValue)
-  };
   for (Camera& cam : tc.Cameras)
   {
     // Without --eval the original trainer trains on the test views too.
@@ -50,17 +66,9 @@ TrainingData LoadTransformsTrainingData(const std::string& path,
       cam.Split = CameraSplit::Train;
     }
     const auto size = TrainingResolution(cam.Width, cam.Height, options.Resolution);
-    cam = cam.Resized(size.first, size.second);
-    Image img = LoadTrainingImage(cam, bg);
-    if (img.Width != cam.Width || img.Height != cam.Height || img.Channels != 3)
-    {
-      throw std::runtime_error(cam.ImagePath + ": image of camera '" + cam.Name +
-        "' could not be brought to " + std::to_string(cam.Width) + "x" +
-        std::to_string(cam.Height) + " RGB");
-    }
-    data.Images.push_back(std::move(img.Pixels));
-    data.Cameras.push_back(std::move(cam));
+    data.Cameras.push_back(cam.Resized(size.first, size.second));
   }
+  LoadImages(data, bgValue);
   std::mt19937 rng(0);
   std::uniform_real_distribution<float> u(-RandomCubeHalfSide, RandomCubeHalfSide);
   std::uniform_real_distribution<float> shs(0.0f, 1.0f / 255.0f);
@@ -131,22 +139,8 @@ TrainingData LoadTrainingData(const std::string& path, const TrainingDataOptions
     throw std::runtime_error(path + ": points3D holds no points to initialise the Gaussians from");
   }
   data.Name = path;
-  data.Background = { bgValue, bgValue, bgValue };
   data.Cameras = ds.Cameras;
-  const std::array<float, 3> bg = {
-    static_cast<float>(bgValue), static_cast<float>(bgValue), static_cast<float>(bgValue)
-  };
-  for (const Camera& cam : data.Cameras)
-  {
-    Image img = LoadTrainingImage(cam, bg);
-    if (img.Width != cam.Width || img.Height != cam.Height || img.Channels != 3)
-    {
-      throw std::runtime_error(cam.ImagePath + ": image of camera '" + cam.Name +
-        "' could not be brought to " + std::to_string(cam.Width) + "x" +
-        std::to_string(cam.Height) + " RGB");
-    }
-    data.Images.push_back(std::move(img.Pixels));
-  }
+  LoadImages(data, bgValue);
   data.PointPositions = ds.PointPositions;
   data.PointColors.resize(ds.PointColors.size());
   for (std::size_t i = 0; i < ds.PointColors.size(); ++i)
