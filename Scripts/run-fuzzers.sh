@@ -12,7 +12,7 @@ seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
-targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzColmap)
+targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -26,7 +26,7 @@ fi
 # Seed corpora: small real inputs (headers plus a few rows of the real files) and hand-made ones.
 seeds="$build/seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzColmap}
+mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap}
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
 if [ -f "$ply" ]; then
@@ -66,6 +66,12 @@ cat >"$seeds/FuzzCamerasJson/cameras.json" <<'JSON'
   "rotation": [[0, -1, 0], [1, 0, 0], [0, 0, 1]], "fy": 700.5, "fx": 710.25},
  {"id": 1, "img_name": "b", "width": 8, "height": 6, "position": [0, 0, 0],
   "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "fy": 7, "fx": 7, "cx": 4, "cy": 3}]
+JSON
+cat >"$seeds/FuzzTransformsJson/transforms.json" <<'JSON'
+{"camera_angle_x": 0.69, "w": 8, "h": 6, "k1": 0.1,
+ "frames": [{"file_path": "./train/r_0", "transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,4],[0,0,0,1]]},
+  {"file_path": "b.png", "fl_x": 20, "fl_y": 21, "cx": 4, "cy": 3, "camera_angle_y": 0.5,
+   "transform_matrix": [[0,0,1,4],[0,1,0,0],[-1,0,0,0],[0,0,0,1]]}]}
 JSON
 statue="$data/colmap_statue_bartoszek/sparse/0"
 if [ -f "$statue/cameras.bin" ]; then

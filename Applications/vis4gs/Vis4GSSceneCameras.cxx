@@ -3,8 +3,10 @@
 
 #include "CameraJson.h"
 #include "ColmapDataset.h"
+#include "TransformsJson.h"
 
 #include <filesystem>
+#include <iostream>
 
 std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   const std::string& cameras)
@@ -27,6 +29,16 @@ std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   if (path.empty())
   {
     return {};
+  }
+  if (vis4gs::IsTransformsFolder(path) || vis4gs::IsTransformsJson(path))
+  {
+    // Rendering needs no images: keep frames whose image is missing when w/h are given.
+    vis4gs::TransformsCameras tc = vis4gs::LoadTransformsDataset(path, false);
+    for (const std::string& w : tc.Warnings)
+    {
+      std::cerr << "warning: " << w << "\n";
+    }
+    return std::move(tc.Cameras);
   }
   if (fs::is_directory(path))
   {

@@ -12,11 +12,12 @@
 #include <vector>
 
 /**
- * The cameras of the scene file @p scene: @p cameras names a cameras.json or a COLMAP dataset
- * folder (sparse/0; images not required); empty looks for cameras.json next to @p scene and
- * two folders up (the INRIA model layout, point_cloud/iteration_N/point_cloud.ply). Returns
- * none when nothing is found; the readers throw std::runtime_error naming the file when one
- * cannot be read.
+ * The cameras of the scene file @p scene: @p cameras names a cameras.json, a COLMAP dataset
+ * folder (sparse/0; images not required), or a NeRF-synthetic / instant-ngp transforms*.json
+ * or folder (TransformsJson.h; detected by content, frames without image need w/h); empty looks for
+ * cameras.json next to @p scene and two folders up (the INRIA model layout,
+ * point_cloud/iteration_N/point_cloud.ply). Returns none when nothing is found; the readers throw
+ * std::runtime_error naming the file when one cannot be read.
  */
 std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   const std::string& cameras);

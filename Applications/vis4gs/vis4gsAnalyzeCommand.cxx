@@ -64,7 +64,8 @@ void Define(Vis4GSArguments& args)
   args.AddOption("cameras",
     "FILE|DIR",
     "",
-    "cameras.json, or a COLMAP dataset folder (sparse/0 + images). Default: cameras.json "
+    "cameras.json, a COLMAP dataset folder (sparse/0 + images) or a transforms*.json (file or "
+    "folder). Default: cameras.json "
     "beside the scene or two folders up (the trainer's model folder).");
   args.AddOption("images",
     "DIR",

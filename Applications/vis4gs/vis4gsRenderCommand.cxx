@@ -34,7 +34,8 @@ void Define(Vis4GSArguments& args)
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",
-    "Cameras: the trainer's cameras.json or a COLMAP dataset folder. Default: a synthetic "
+    "Cameras: the trainer's cameras.json, a COLMAP dataset folder or a transforms*.json (file or "
+    "folder). Default: a synthetic "
     "camera looking at the scene's bounding box from -z.");
   args.AddOption("camera", "INDEX_OR_NAME", "0", "Camera to render: its row index or its name.");
   args.AddOption("resolution",

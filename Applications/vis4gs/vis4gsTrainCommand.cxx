@@ -29,7 +29,9 @@ extern "C" void OnInterrupt(int)
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional("DATASET", "COLMAP dataset folder, or a synthetic scene description (.json).");
+  args.AddPositional("DATASET",
+    "COLMAP dataset folder, NeRF-synthetic / instant-ngp folder or transforms*.json, or a "
+    "synthetic scene description (.json).");
   args.AddOption("output", "LOG.h5", "training-log.h5", "Training log to write (HDF5, DESIGN §3).");
   args.AddOption("iterations", "N", "30000", "Number of training iterations.");
   args.AddFlag("schedule-scale",

@@ -50,8 +50,9 @@ void Define(Vis4GSArguments& args)
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",
-    "Cameras of a scene file (a training log has its own): the trainer's cameras.json or a "
-    "COLMAP dataset folder. Default: cameras.json next to the scene or two folders up (the "
+    "Cameras of a scene file (a training log has its own): the trainer's cameras.json, a "
+    "COLMAP dataset folder or a transforms*.json (file or folder). Default: cameras.json next to "
+    "the scene or two folders up (the "
     "INRIA model layout); none found, no cameras.");
   args.AddFlag("welcome",
     false,

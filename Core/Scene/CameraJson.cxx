@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "CameraJson.h"
+#include "JsonNumber.h"
 #include "SceneFile.h"
 
 #include <nlohmann/json.hpp>
@@ -27,16 +28,7 @@ constexpr double MaxImageSide = 1 << 20;
 //------------------------------------------------------------------------------
 double Number(const nlohmann::json& j, const std::string& name, const std::string& where)
 {
-  if (!j.is_number())
-  {
-    Fail(name, where + " is not a number");
-  }
-  const double v = j.get<double>();
-  if (!std::isfinite(v))
-  {
-    Fail(name, where + " is not finite");
-  }
-  return v;
+  return detail::JsonNumber(j, name, where);
 }
 
 //------------------------------------------------------------------------------

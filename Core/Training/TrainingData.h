@@ -30,7 +30,9 @@ struct TrainingDataOptions
   int Threads = 0;
 };
 
-/// Loads @p path: a ".json" file is a synthetic scene description, a folder a COLMAP dataset.
+/// Loads @p path: a NeRF-synthetic / instant-ngp folder or transforms*.json (TransformsJson.h,
+/// started from 10,000 random grey points in [-1.3, 1.3]^3), a ".json" file a synthetic scene
+/// description, a folder a COLMAP dataset.
 /// Throws std::runtime_error naming the path and the problem.
 TrainingData LoadTrainingData(const std::string& path, const TrainingDataOptions& options = {});
 

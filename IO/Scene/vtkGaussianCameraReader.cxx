@@ -15,6 +15,7 @@
 #include "CameraJson.h"
 #include "ColmapDataset.h"
 #include "ImageIO.h"
+#include "TransformsJson.h"
 
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -49,7 +50,17 @@ int vtkGaussianCameraReader::RequestData(vtkInformation* vtkNotUsed(request),
   try
   {
     struct stat st;
-    if (::stat(this->FileName.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    if (vis4gs::IsTransformsFolder(this->FileName) || vis4gs::IsTransformsJson(this->FileName))
+    {
+      vis4gs::TransformsCameras tc =
+        vis4gs::LoadTransformsDataset(this->FileName, this->RequireImages);
+      for (const auto& w : tc.Warnings)
+      {
+        vtkWarningMacro(<< w);
+      }
+      cameras = std::move(tc.Cameras);
+    }
+    else if (::stat(this->FileName.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
     {
       vis4gs::DatasetOptions options;
       options.Eval = this->Eval;

@@ -20,6 +20,10 @@
  * 4, 8: divided, reading `images_N` when it exists; other positive values: target width).
  * A distorted COLMAP model is read with its distortion parameters and a single warning.
  * For cameras.json, image files in ImageFolder (when it exists) are matched to cameras by name.
+ * FileName may also be a NeRF-synthetic / instant-ngp `transforms*.json` (any JSON object with
+ * `frames`) or a folder holding transforms_train.json (+ transforms_test.json: Test) or
+ * transforms.json (Core/Scene/TransformsJson.h); RequireImages off keeps frames whose image
+ * is missing when the file gives `w`/`h`.
  *
  * Errors (missing files, bad records, cameras without images) are reported with
  * vtkErrorMacro naming the file and the problem. The parsing is done by Core/Scene

@@ -25,6 +25,7 @@
 #include "vtkTable.h"
 
 #include <cmath>
+#include <fstream>
 
 using iotest::Check;
 
@@ -83,6 +84,27 @@ int TestGaussianCameraReader(int, char*[])
   Check(fx && fx->GetTuple1(4) == ds.Cameras[4].Fx, "json: fx");
   auto* jimages = vtkStringArray::SafeDownCast(jt->GetColumnByName(vis4gs::arrays::CameraImage));
   Check(jimages && jimages->GetValue(0) == statue + "/images/DSC_5283.jpg", "json: image matched");
+
+  // A NeRF-synthetic folder (TransformsJson.h): splits, the OpenGL -> OpenCV pose, frames kept
+  // without images when w/h are given and RequireImages is off.
+  const std::string frame = R"({"fl_x": 100, "w": 8, "h": 6, "frames": [{"file_path": "r_0",
+    "transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,4],[0,0,0,1]]}]})";
+  std::ofstream(dir / "transforms_train.json") << frame;
+  std::ofstream(dir / "transforms_test.json") << frame;
+  vtkNew<vtkGaussianCameraReader> nerf;
+  nerf->SetFileName(dir.Path.c_str());
+  nerf->RequireImagesOff();
+  nerf->Update();
+  vtkTable* nt = nerf->GetOutput();
+  Check(nt->GetNumberOfRows() == 2, "transforms: 2 cameras");
+  vtkDataArray* nsplit =
+    vtkDataArray::SafeDownCast(nt->GetColumnByName(vis4gs::arrays::CameraSplit));
+  Check(nsplit && nsplit->GetTuple1(0) == 0 && nsplit->GetTuple1(1) == 1, "transforms: splits");
+  vtkDataArray* nw2c =
+    vtkDataArray::SafeDownCast(nt->GetColumnByName(vis4gs::arrays::CameraWorldToCamera));
+  Check(nw2c && nw2c->GetComponent(0, 5) == -1 && nw2c->GetComponent(0, 10) == -1 &&
+      nw2c->GetComponent(0, 11) == 4,
+    "transforms: y and z flipped, camera 4 in front of the origin");
 
   // Errors: a missing dataset, a dataset whose images are missing.
   vtkNew<vtkGaussianCameraReader> bad;
