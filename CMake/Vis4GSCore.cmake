@@ -39,8 +39,50 @@ function (vis4gs_add_core_test name)
   target_link_libraries(${target} PRIVATE ${arg_DEPENDS} vis4gs::TestingCore GTest::gtest_main)
   gtest_discover_tests(${target}
     TEST_PREFIX "Core${name}."
-    PROPERTIES LABELS "Core;Core${name}"
+    PROPERTIES LABELS "Core;Core${name}" SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]"
     DISCOVERY_TIMEOUT 60)
+  # The TESTs that start with VIS4GS_REQUIRE_SHARED_DATA() read ../shared/data: label them
+  # SharedData once discovery has added them (an include file that runs after gtest's).
+  set(_shared)
+  foreach (_source IN LISTS arg_SOURCES)
+    get_filename_component(_path "${_source}" ABSOLUTE)
+    file(STRINGS "${_path}" _lines REGEX "^TEST(_F|_P)?\\(|VIS4GS_REQUIRE_SHARED_DATA\\(\\)")
+    set(_test)
+    foreach (_line IN LISTS _lines)
+      if (_line MATCHES "^TEST(_F|_P)?\\(([A-Za-z0-9_]+), *([A-Za-z0-9_]+)\\)")
+        set(_test "Core${name}.${CMAKE_MATCH_2}.${CMAKE_MATCH_3}")
+      elseif (_test)
+        list(APPEND _shared "${_test}")
+      endif ()
+    endforeach ()
+  endforeach ()
+  if (_shared)
+    set(_include "${CMAKE_CURRENT_BINARY_DIR}/${target}_shared_data.cmake")
+    set(_content "")
+    foreach (_test IN LISTS _shared)
+      string(APPEND _content
+        "set_tests_properties(\"${_test}\" PROPERTIES LABELS \"Core;Core${name};SharedData\")\n")
+    endforeach ()
+    file(WRITE "${_include}" "${_content}")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${_include}")
+  endif ()
+endfunction ()
+
+# vis4gs_shared_data_tests(<test>...)
+# Marks tests that read the real third-party data in VIS4GS_SHARED_DATA_DIR (../shared/data
+# beside the checkout): label SharedData, exit status 77 reported as skipped (what
+# Testing/Core's VIS4GS_SHARED_DATA_OR_SKIP() and Applications' RunIfPresent.sh return). When
+# the folder is absent at configure time they are disabled (CTest lists them as not run), and
+# the test Vis4GS-SharedData says which folder is missing; with CI=true they stay enabled and
+# fail, as does Vis4GS-SharedData.
+function (vis4gs_shared_data_tests)
+  foreach (_test IN LISTS ARGN)
+    set_property(TEST "${_test}" APPEND PROPERTY LABELS SharedData)
+    set_property(TEST "${_test}" PROPERTY SKIP_RETURN_CODE 77)
+    if (NOT EXISTS "${VIS4GS_SHARED_DATA_DIR}" AND NOT "$ENV{CI}" STREQUAL "true")
+      set_property(TEST "${_test}" PROPERTY DISABLED TRUE)
+    endif ()
+  endforeach ()
 endfunction ()
 
 # vis4gs_add_benchmark(<name> SOURCES ... DEPENDS ...)

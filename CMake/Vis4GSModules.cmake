@@ -38,9 +38,14 @@ function (vis4gs_add_python_test module)
       COMMAND /usr/bin/python3 "${CMAKE_CURRENT_SOURCE_DIR}/${_script}" ${arg_ARGS}
       WORKING_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}")
     set_tests_properties("${module}Python-${_name}" PROPERTIES
-      ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH};VIS4GS_SHARED_DATA_DIR=${VIS4GS_SHARED_DATA_DIR};VIS4GS_SOURCE_DIR=${PROJECT_SOURCE_DIR};VIS4GS_BINARY_DIR=${CMAKE_BINARY_DIR}"
+      ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH}:${PROJECT_SOURCE_DIR}/Testing/Python;VIS4GS_SHARED_DATA_DIR=${VIS4GS_SHARED_DATA_DIR};VIS4GS_SOURCE_DIR=${PROJECT_SOURCE_DIR};VIS4GS_BINARY_DIR=${CMAKE_BINARY_DIR}"
       LABELS "${_library};Python"
       FAIL_REGULAR_EXPRESSION "FAILED:;Traceback")
+    # A script that reads ../shared/data (through Testing/Python's shared_data_dir()).
+    file(READ "${CMAKE_CURRENT_SOURCE_DIR}/${_script}" _text)
+    if (_text MATCHES "shared_data_dir\\(\\)")
+      vis4gs_shared_data_tests("${module}Python-${_name}")
+    endif ()
   endforeach ()
 endfunction ()
 

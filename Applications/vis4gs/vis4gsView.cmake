@@ -74,8 +74,8 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     FAIL_REGULAR_EXPRESSION "FAILED")
   # The selection modes on real scenes (issue 15): Single's pick is on the Ray at a grid of
   # pixels of several views, and the floater case study's selections, on each file of the
-  # shared data. Guard (until the common SharedData mechanism lands): a missing file skips
-  # with exit code 77 and a message naming it, and fails when CI=true.
+  # shared data. The guard skips with exit code 77 and a message naming a missing file, and
+  # fails when CI=true (vis4gs_shared_data_tests).
   set(_vis4gs_guard "${CMAKE_CURRENT_SOURCE_DIR}/Testing/RunIfPresent.sh")
   foreach (_vis4gs_real
       "PointCloudPly|inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
@@ -89,8 +89,8 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
         "$<TARGET_FILE:vis4gs>" view "${VIS4GS_SHARED_DATA_DIR}/${_vis4gs_file}"
         "--self-test=${_vis4gs_view_dir}/selftest-${_vis4gs_name}" --resolution=1200,800)
     set_tests_properties(vis4gs-ViewSelfTest-${_vis4gs_name} PROPERTIES
-      LABELS "Application;GUI;SharedData" SKIP_RETURN_CODE 77
-      FAIL_REGULAR_EXPRESSION "FAILED")
+      LABELS "Application;GUI" FAIL_REGULAR_EXPRESSION "FAILED")
+    vis4gs_shared_data_tests(vis4gs-ViewSelfTest-${_vis4gs_name})
   endforeach ()
   # Extreme shapes generated at test time: needles, disks, huge and tiny scales, opacity 0
   # and 1, means at the near plane of one of its two cameras.

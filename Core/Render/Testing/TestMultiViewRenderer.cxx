@@ -199,6 +199,7 @@ TEST(MultiViewRenderer, BitIdenticalOnStiffScene)
 
 TEST(MultiViewRenderer, BitIdenticalOnRealScene)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const GaussianCloud cloud = ReadGaussianPly(vis4gs::testing::SharedDataPath(
     "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"));
   ASSERT_GT(cloud.Count, 1000u);

@@ -305,6 +305,7 @@ TEST(RasterWorkspace, KeptPreparationFollowsTheCloud)
 
 TEST(RasterWorkspace, ReuseIsBitIdenticalOnRealScene)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const GaussianCloud real = ReadGaussianPly(vis4gs::testing::SharedDataPath(
     "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"));
   ASSERT_GT(real.Count, 1000u);

@@ -117,6 +117,7 @@ ViewProjection<To> ConvertProjection(const ViewProjection<From>& p)
 //------------------------------------------------------------------------------
 TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   double worstRoundedInputs = 0;
   for (const auto& sc : kScenes)
   {
@@ -268,6 +269,7 @@ TEST(RasterizerScenes, FloatVersusDoubleAndSanity)
 //------------------------------------------------------------------------------
 TEST(RasterizerScenes, RealSceneMatchesNaive)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const GaussianCloud cloud = ReadGaussianPly(vis4gs::testing::SharedDataPath(kScenes[0].Path));
   const Camera cam = CameraForScene(cloud, 64, 48, { 0.2, 0.1, 1 });
   RasterSettings s;

@@ -84,6 +84,7 @@ void ExpectModelsEqual(const ColmapModel& a, const ColmapModel& b)
 //------------------------------------------------------------------------------
 TEST(Colmap, ReadsStatueBinaryModel)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const ColmapModel m = ReadColmapModel(StatueSparse);
   ASSERT_EQ(m.Cameras.size(), 23u);
   ASSERT_EQ(m.Images.size(), 23u);
@@ -128,6 +129,7 @@ TEST(Colmap, ReadsStatueBinaryModel)
 
 TEST(Colmap, ReadsSimpleRadialOriginal)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const ColmapModel m = ReadColmapModel(StatueRadial);
   ASSERT_EQ(m.Cameras.size(), 23u);
   const ColmapModel u = ReadColmapModel(StatueSparse);
@@ -152,6 +154,7 @@ TEST(Colmap, ReadsSimpleRadialOriginal)
 
 TEST(Colmap, BinaryWriteReproducesTheFilesAndTextReadsBackEqual)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   const ColmapModel m = ReadColmapModel(StatueSparse);
   MakeDir(dir / "bin");
@@ -248,6 +251,7 @@ TEST(Colmap, HandWrittenTextWithEveryModel)
 
 TEST(ColmapErrors, TruncatedAndOversizedBinaryFiles)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   for (const char* f : { "cameras.bin", "images.bin", "points3D.bin" })
   {
     const auto bytes = FileBytes(StatueSparse + "/" + f);
@@ -329,6 +333,7 @@ TEST(ColmapErrors, BadText)
 //------------------------------------------------------------------------------
 TEST(ColmapDataset, StatueSortedSplitAndScaled)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const Dataset ds = LoadColmapDataset(Statue);
   ASSERT_EQ(ds.Cameras.size(), 23u);
   EXPECT_FALSE(ds.Distorted);
@@ -387,6 +392,7 @@ TEST(ColmapDataset, TrainingResolutionLikeTheTrainer)
 
 TEST(ColmapDataset, DistortedDatasetWarnsOnceAndImagesFolders)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   MakeDir(dir / "sparse");
   MakeDir(dir / "sparse/0");
@@ -441,6 +447,7 @@ TEST(CameraJson, HandDerivedCamera)
 
 TEST(CameraJson, RoundTripOfTheStatueCameras)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   const Dataset ds = LoadColmapDataset(Statue);
   WriteCamerasJson(dir / "cameras.json", ds.Cameras);

@@ -166,6 +166,7 @@ GaussianCloud Synthetic(std::size_t n, int degree)
 //------------------------------------------------------------------------------
 TEST(GaussianPly, ReadsInriaFileExactly)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   GaussianReadReport report;
   const GaussianCloud c = ReadGaussianPly(InriaPly, {}, &report);
   ASSERT_EQ(c.Count, 9080u);
@@ -216,6 +217,7 @@ TEST(GaussianPly, ReadsInriaFileExactly)
 
 TEST(GaussianPly, WritingTheInriaFileBackGivesTheSameBytes)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   const GaussianCloud c = ReadGaussianPly(InriaPly);
   WriteGaussianPly(dir / "out.ply", c);
@@ -226,6 +228,7 @@ TEST(GaussianPly, WritingTheInriaFileBackGivesTheSameBytes)
 
 TEST(GaussianPly, ReadsDonutWithoutNormalsOrRest)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   GaussianReadReport report;
   const GaussianCloud c = ReadGaussianPly(DonutPly, {}, &report);
   ASSERT_EQ(c.Count, 45624u);
@@ -260,6 +263,7 @@ TEST(GaussianPly, ReadsDonutWithoutNormalsOrRest)
 
 TEST(GaussianPly, MaxShDegreeAndSkippedArrays)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const GaussianCloud full = ReadGaussianPly(InriaPly);
   for (int d = 0; d <= 3; ++d)
   {
@@ -327,6 +331,7 @@ TEST(GaussianPly, RoundTripsAreBitExactInEveryFormat)
 
 TEST(GaussianPly, RealFileRoundTripsThroughBigEndianAndAscii)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   const GaussianCloud c = ReadGaussianPly(InriaPly);
   for (PlyFormat f : { PlyFormat::BinaryBigEndian, PlyFormat::Ascii })
@@ -468,6 +473,7 @@ GaussianCloud ReadText(const std::string& text, const std::string& name = "bad.p
 
 TEST(GaussianPlyErrors, TruncatedBinaryFile)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const auto bytes = FileBytes(InriaPly);
   TempDir dir;
   // Cut in the middle of the data: the error names the file, both counts and happens before
@@ -600,6 +606,7 @@ TEST(GaussianPlyErrors, UnreadableFileAndUnwritableFolder)
 //------------------------------------------------------------------------------
 TEST(GaussianSplat, ReadsRealSplatFile)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   GaussianReadReport report;
   const GaussianCloud c = ReadGaussianScene(SplatFile, {}, &report);
   ASSERT_EQ(c.Count, 22764u);
@@ -634,6 +641,7 @@ TEST(GaussianSplat, ReadsRealSplatFile)
 
 TEST(GaussianSplat, WriteReadIsStableAndBadSizesFail)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   const GaussianCloud c = ReadSplat(SplatFile);
   WriteSplat(dir / "w.splat", c);

@@ -86,6 +86,7 @@ std::vector<double> PillowRow(const std::vector<double>& in, int outSize)
 
 TEST(ImageIO, ReadsStatueJpegAtTheCameraSize)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   const Dataset ds = LoadColmapDataset(Statue);
   const Image im = ReadImage(ds.Cameras[0].ImagePath);
   EXPECT_EQ(im.Channels, 3);
@@ -280,6 +281,7 @@ TEST(ImageIO, ResizeMatchesPillowsFormula)
 
 TEST(ImageIO, UnreadableImagesAndCamerasWithoutImages)
 {
+  VIS4GS_REQUIRE_SHARED_DATA();
   TempDir dir;
   WriteFile(dir / "garbage.png", std::string("this is not an image"));
   EXPECT_THROW_WITH(ReadImage(dir / "garbage.png"), "garbage.png", "not a PNG or JPEG");

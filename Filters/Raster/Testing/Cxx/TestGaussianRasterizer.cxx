@@ -102,6 +102,7 @@ bool SameAsCore(vtkImageData* out, const vis4gs::RasterImage<T>& ref)
 
 int TestGaussianRasterizer(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   const vis4gs::GaussianCloud cloud = vis4gs::ReadGaussianPly(
     vis4gs::testing::SharedDataPath("gs_ply_sh0_variant_donut_v3dg/fused.ply"));
   vtkNew<vtkPolyData> scene;

@@ -11,6 +11,7 @@ import vis4gs
 from vtkmodules.util.numpy_support import vtk_to_numpy, numpy_to_vtk
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIntArray, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkTable
+from vis4gs_test_data import shared_data_dir
 
 failures = []
 
@@ -21,8 +22,7 @@ def check(ok, what):
         failures.append(what)
 
 
-data = os.environ.get("VIS4GS_SHARED_DATA_DIR",
-                      os.path.join(os.path.dirname(__file__), "../../../../../shared/data"))
+data = shared_data_dir()
 ply = os.path.join(data, "gs_ply_sh0_variant_donut_v3dg/fused.ply")
 
 W, H, F, TZ = 40, 28, 50.0, 0.5

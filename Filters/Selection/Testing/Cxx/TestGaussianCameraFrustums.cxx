@@ -3,6 +3,7 @@
 // Gaussians each one sees; counts against Core; regression image with the highlighted
 // selection.
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "ScreenSelection.h"
 #include "Vis4GSDataModel.h"
@@ -32,6 +33,7 @@
 
 int TestGaussianCameraFrustums(int argc, char* argv[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   int fail = 0;
   vis4gs::GaussianCloud cloud = splattest::LoadScene(false);
   // Views around the donut, each aimed off-centre with a narrow field of view, so that they

@@ -2,6 +2,7 @@
 // vtkGaussianSelector against Core run independently on the same camera: Single, Brush,
 // Frame, Ray; the modifiers as set algebra; the published PEDIGREEIDS selection and link.
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "GaussianOctree.h"
 #include "ScreenSelection.h"
@@ -63,6 +64,7 @@ void OnChange(vtkObject*, unsigned long, void*, void*)
 
 int TestGaussianSelector(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   vis4gs::GaussianCloud cloud = splattest::LoadScene(false);
   cloud.Ids.resize(cloud.Count);
   for (std::size_t i = 0; i < cloud.Count; ++i)

@@ -31,6 +31,7 @@ using iotest::Check;
 
 int TestGaussianCameraReader(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   const std::string statue = vis4gs::testing::SharedDataPath("colmap_statue_bartoszek");
   vtkNew<vtkGaussianCameraReader> reader;
   reader->SetFileName(statue.c_str());

@@ -44,6 +44,7 @@ bool SameFloats(vtkDataArray* a, const std::vector<float>& v)
 
 int TestGaussianPLYReader(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   const std::string ply = vis4gs::testing::SharedDataPath(
     "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply");
   const vis4gs::GaussianCloud core = vis4gs::ReadGaussianPly(ply);

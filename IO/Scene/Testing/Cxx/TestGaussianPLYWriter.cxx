@@ -42,6 +42,7 @@ std::vector<char> Bytes(const std::string& path)
 
 int TestGaussianPLYWriter(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   const std::string ply = vis4gs::testing::SharedDataPath(
     "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply");
   iotest::TempDir dir;

@@ -9,6 +9,7 @@ import vis4gs
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import numpy as np
+from vis4gs_test_data import shared_data_dir
 
 failures = []
 
@@ -19,7 +20,7 @@ def check(ok, what):
         failures.append(what)
 
 
-data = os.environ.get("VIS4GS_SHARED_DATA_DIR", os.path.join(os.path.dirname(__file__), "../../../../../shared/data"))
+data = shared_data_dir()
 ply = os.path.join(data, "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply")
 
 # Independent decode of the file with numpy: 62 little-endian floats per row.

@@ -3,6 +3,7 @@
 // the exact CPU rasteriser (Core/Render) on real scenes, same camera: PSNR >= 30 dB, and the
 // pictures are not empty. The CPU-rasteriser path is tested in TestGaussianSplatMapperRasterized.
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "Rasterizer.h"
 #include "Vis4GSDataModel.h"
@@ -112,6 +113,7 @@ int CheckScene(bool inria, int width, int height, double azimuth, int path = 1)
 
 int TestGaussianSplatMapperAgreement(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   int fail = 0;
   fail |= CheckScene(false, 240, 180, 0.3);
   fail |= CheckScene(false, 200, 200, 2.0);

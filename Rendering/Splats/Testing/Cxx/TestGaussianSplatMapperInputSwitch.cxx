@@ -4,6 +4,7 @@
 // read; switching the iteration re-renders the other snapshot, and each picture agrees with
 // the CPU rasteriser on that snapshot (PSNR >= 30 dB) and not with the other one.
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "Rasterizer.h"
 #include "TrainingLogWriter.h"
@@ -23,6 +24,7 @@
 
 int TestGaussianSplatMapperInputSwitch(int argc, char* argv[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   // Snapshot 100: every other Gaussian, less opaque; snapshot 300: the full donut.
   const vis4gs::GaussianCloud full = splattest::LoadScene(false);
   vis4gs::GaussianCloud early;

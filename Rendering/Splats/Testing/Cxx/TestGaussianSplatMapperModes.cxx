@@ -3,6 +3,7 @@
 // overlays (ViewCoverage with its legend, the suspicious low end bright and labelled; BlurScore,
 // NeedleScore, NeedleShape) and an overlay with Gaussians outside a score range hidden.
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraUtilities.h"
@@ -27,6 +28,7 @@
 
 int TestGaussianSplatMapperModes(int argc, char* argv[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   const vis4gs::GaussianCloud cloud = splattest::LoadScene(false);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);

@@ -11,6 +11,7 @@
 //     them is hidden where the splats' accumulated alpha is >= 0.5 (the depth they write);
 //  4. a display mode (hiding by score) changes the picture (the cached image is not reused).
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "Rasterizer.h"
 #include "Vis4GSDataModel.h"
@@ -306,6 +307,7 @@ int CheckScene(bool inria, int width, int height, double azimuth)
 
 int TestGaussianSplatMapperRasterized(int, char*[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   int fail = 0;
   fail |= CheckScene(false, 240, 180, 0.3);
   fail |= CheckScene(true, 256, 160, 0.8);

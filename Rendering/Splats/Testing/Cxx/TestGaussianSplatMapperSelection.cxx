@@ -3,6 +3,7 @@
 // dimmed (right). The selection is a PEDIGREEIDS vtkSelection of GaussianIds that differ from
 // the point indices.
 #include "SplatTestHelpers.h"
+#include "Vis4GSTestData.h" // VIS4GS_SHARED_DATA_OR_SKIP
 
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraUtilities.h"
@@ -22,6 +23,7 @@
 
 int TestGaussianSplatMapperSelection(int argc, char* argv[])
 {
+  VIS4GS_SHARED_DATA_OR_SKIP();
   vis4gs::GaussianCloud cloud = splattest::LoadScene(false);
   cloud.Ids.resize(cloud.Count);
   for (std::size_t i = 0; i < cloud.Count; ++i)

@@ -9,8 +9,9 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 
 import vis4gs
+from vis4gs_test_data import shared_data_dir
 
-data = os.environ.get("VIS4GS_SHARED_DATA_DIR", "/work/shared/data")
+data = shared_data_dir()
 ply = os.path.join(data, "gs_ply_sh0_variant_donut_v3dg", "fused.ply")
 
 reader = vis4gs.vtkGaussianPLYReader()
