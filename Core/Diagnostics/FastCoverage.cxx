@@ -36,18 +36,6 @@ struct PreparedView
   float LimX, LimY, FocalX, FocalY;
 };
 
-bool Finite(const float* v, int n)
-{
-  for (int i = 0; i < n; ++i)
-  {
-    if (!std::isfinite(v[i]))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 PreparedGaussian Prepare(const GaussianCloud& cloud, std::size_t i, float mod)
 {
   PreparedGaussian p{};
@@ -55,7 +43,7 @@ PreparedGaussian Prepare(const GaussianCloud& cloud, std::size_t i, float mod)
   const float* ls = &cloud.LogScales[3 * i];
   const float* rot = &cloud.Rotations[4 * i];
   const float logit = cloud.OpacityLogits[i];
-  p.Valid = Finite(pos, 3) && Finite(ls, 3) && Finite(rot, 4) && std::isfinite(logit);
+  p.Valid = ClassifyGaussian(pos, ls, rot, logit) == GaussianClass::Drawn;
   if (!p.Valid)
   {
     return p;

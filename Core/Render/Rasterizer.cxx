@@ -341,7 +341,7 @@ inline void PrepareForLanes(const GaussianCloud& cloud,
   const float* rot = &cloud.Rotations[4 * i];
   const float logit = cloud.OpacityLogits[i];
   const float* shf = colors ? &cloud.SH[i * shStride] : nullptr;
-  if (!AllFinite(pos, 3) || !AllFinite(ls, 3) || !AllFinite(rot, 4) || !std::isfinite(logit) ||
+  if (ClassifyGaussian(pos, ls, rot, logit) != GaussianClass::Drawn ||
     (colors && !AllFinite(shf, static_cast<std::size_t>(shUsed))))
   {
     p.X[k] = p.Y[k] = p.Z[k] = 0.0f;
@@ -872,7 +872,7 @@ void ProjectInto(const GaussianCloud& cloud,
       const float logit = cloud.OpacityLogits[i];
       const float* shf = colors ? &cloud.SH[i * shStride] : nullptr;
       g.Status = ProjectionStatus::InvalidParameters;
-      if (!AllFinite(pos, 3) || !AllFinite(ls, 3) || !AllFinite(rot, 4) || !std::isfinite(logit) ||
+      if (ClassifyGaussian(pos, ls, rot, logit) != GaussianClass::Drawn ||
         (colors && !AllFinite(shf, static_cast<std::size_t>(shUsed))))
       {
         ++local[static_cast<int>(ProjectionStatus::InvalidParameters)];

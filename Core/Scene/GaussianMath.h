@@ -89,6 +89,61 @@ inline std::array<T, 9> QuaternionToMatrix(const std::array<T, 4>& q)
     T(1) - T(2) * (x * x + y * y) };
 }
 
+/// How the reference draws one Gaussian with special values (Documentation/special-values.md).
+/// Drawn covers every case where the reference's arithmetic has an answer: opacity logit
+/// +inf (opacity 1) and -inf (opacity 0, never reaches 1/255), log-scale -inf (scale 0: a
+/// point dilated by +0.3 px^2), a zero quaternion (identity rotation), +-0 and denormals.
+/// Every other reason names a parameter for which the reference has no answer (NaN or an
+/// infinity that turns into NaN in the covariance or the projection); such a Gaussian is
+/// skipped and counted per reason.
+enum class GaussianClass : int
+{
+  Drawn = 0,
+  NaNParameter,     ///< NaN in position, log-scale, rotation or opacity logit
+  InfinitePosition, ///< +-inf position component
+  InfiniteLogScale, ///< +inf log-scale: inf * 0 in the covariance
+  InfiniteRotation, ///< +-inf quaternion component: inf / inf on normalisation
+  Count
+};
+
+/// Classifies one Gaussian from its stored parameters (position xyz, log-scales, quaternion
+/// wxyz, opacity logit). SH coefficients do not take part: the reference draws a Gaussian
+/// with non-finite SH with whatever colour its arithmetic gives (NaN included).
+template <typename T>
+inline GaussianClass ClassifyGaussian(const T pos[3], const T logScale[3], const T rot[4], T logit)
+{
+  bool nan = std::isnan(logit);
+  bool infPos = false, infScale = false, infRot = false;
+  for (int k = 0; k < 3; ++k)
+  {
+    nan = nan || std::isnan(pos[k]) || std::isnan(logScale[k]);
+    infPos = infPos || std::isinf(pos[k]);
+    infScale = infScale || (std::isinf(logScale[k]) && logScale[k] > T(0));
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    nan = nan || std::isnan(rot[k]);
+    infRot = infRot || std::isinf(rot[k]);
+  }
+  if (nan)
+  {
+    return GaussianClass::NaNParameter;
+  }
+  if (infPos)
+  {
+    return GaussianClass::InfinitePosition;
+  }
+  if (infScale)
+  {
+    return GaussianClass::InfiniteLogScale;
+  }
+  if (infRot)
+  {
+    return GaussianClass::InfiniteRotation;
+  }
+  return GaussianClass::Drawn;
+}
+
 } // namespace vis4gs
 
 #endif

@@ -154,7 +154,7 @@ void PackSplatGeometry(const GaussianCloud& cloud,
     const float* rot = &cloud.Rotations[4 * i];
     const float logit = cloud.OpacityLogits[i];
     float* out = &packed[i * SplatGeometryFloats];
-    if (!AllFinite(pos, 3) || !AllFinite(ls, 3) || !AllFinite(rot, 4) || !std::isfinite(logit))
+    if (ClassifyGaussian(pos, ls, rot, logit) != GaussianClass::Drawn)
     {
       continue; // valid = 0
     }

@@ -293,7 +293,8 @@ TEST(RasterizerStiff, OpacityLogitExtremes)
 }
 
 //------------------------------------------------------------------------------
-// NaN/Inf parameters: skipped and counted; the rest of the image is bit-identical to the
+// NaN/Inf parameters the reference has no answer for (vis4gs::ClassifyGaussian): skipped and
+// counted; the rest of the image is bit-identical to the
 // image of the valid Gaussians alone.
 TEST(RasterizerStiff, NonFiniteParametersSkippedAndCounted)
 {
@@ -307,11 +308,11 @@ TEST(RasterizerStiff, NonFiniteParametersSkippedAndCounted)
   extra.Positions[3 + 1] = kInf;
   extra.LogScales[3 * 2 + 2] = kNaN;
   extra.LogScales[3 * 3] = kInf;
-  extra.LogScales[3 * 4 + 1] = -kInf;
+  extra.Rotations[4 * 4 + 1] = kInf;
   extra.Rotations[4 * 5] = kNaN;
   extra.Rotations[4 * 6 + 3] = -kInf;
   extra.OpacityLogits[7] = kNaN;
-  extra.OpacityLogits[8] = kInf;
+  extra.Positions[3 * 8] = -kInf;
   extra.SH[48 * 9 + 1] = kNaN;   // DC
   extra.SH[48 * 10 + 30] = kInf; // degree 3
   extra.Positions[3 * 11 + 2] = -kInf;

@@ -96,7 +96,7 @@ TEST(SplatAttributes, AxisAlignedAndInvalidGaussians)
     cloud.Rotations[4 * i] = 2.0f; // unnormalised identity
   }
   cloud.Positions[3] = std::numeric_limits<float>::quiet_NaN();    // Gaussian 1: NaN mean
-  cloud.OpacityLogits[3] = std::numeric_limits<float>::infinity(); // Gaussian 3: Inf logit
+  cloud.OpacityLogits[3] = std::numeric_limits<float>::infinity(); // Gaussian 3: Inf logit (drawn)
   std::vector<float> packed;
   PackSplatGeometry(cloud, 1.0, packed);
   const float* g = &packed[0];
@@ -110,7 +110,10 @@ TEST(SplatAttributes, AxisAlignedAndInvalidGaussians)
   EXPECT_EQ(g[10], 1.0f);
   EXPECT_EQ(packed[1 * SplatGeometryFloats + 10], 0.0f); // NaN mean
   EXPECT_EQ(packed[2 * SplatGeometryFloats + 10], 0.0f); // exp(200) overflows float
-  EXPECT_EQ(packed[3 * SplatGeometryFloats + 10], 0.0f); // Inf logit
+  // +inf logit: drawn with opacity exactly 1, as the reference's sigmoid gives
+  // (Documentation/special-values.md).
+  EXPECT_EQ(packed[3 * SplatGeometryFloats + 10], 1.0f);
+  EXPECT_EQ(packed[3 * SplatGeometryFloats + 3], 1.0f);
   GaussianCloud bad = cloud;
   bad.Rotations.pop_back();
   EXPECT_THROW(PackSplatGeometry(bad, 1.0, packed), std::invalid_argument);
