@@ -11,6 +11,7 @@
 #include "GaussianMath.h"
 #include "ImageIO.h"
 #include "Rasterizer.h"
+#include "SpecialValues.h"
 #include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
@@ -409,6 +410,20 @@ int Run(const Vis4GSArguments& args)
     if (needCameras)
     {
       cameras = LoadCameras(scene, args);
+    }
+  }
+  if (mpi.Rank() == 0)
+  {
+    // Say which Gaussians no score covers, per reason, before spending time on the scores.
+    const vis4gs::SpecialValueCounts special = vis4gs::CountSpecialValues(cloud);
+    for (const std::string& line :
+      { vis4gs::DescribeSkipped(special, false), vis4gs::DescribeDrawnSpecials(special) })
+    {
+      if (!line.empty())
+      {
+        std::cerr << "vis4gs analyze: note: " << scene << ": " << line
+                  << " (Documentation/special-values.md)\n";
+      }
     }
   }
   if (needCameras && cameras.empty())

@@ -205,11 +205,13 @@ int Run(const Vis4GSArguments& args)
   vis4gs::WritePng8(output, W, H, 3, pixels.data());
   std::cout << "vis4gs render: " << W << "x" << H << ", " << raster->GetNumberOfVisibleGaussians()
             << " of " << scene->GetNumberOfPoints() << " Gaussians visible";
-  if (raster->GetNumberOfInvalidGaussians() > 0)
-  {
-    std::cout << ", " << raster->GetNumberOfInvalidGaussians() << " skipped (NaN/Inf)";
-  }
   std::cout << " -> " << output << std::endl;
+  const std::string special = raster->GetSpecialValuesSummary();
+  if (!special.empty())
+  {
+    std::cout << "vis4gs render: special values (Documentation/special-values.md): " << special
+              << std::endl;
+  }
   return 0;
 }
 

@@ -108,6 +108,18 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     FIXTURES_REQUIRED vis4gsExtremeScene
     PASS_REGULAR_EXPRESSION "Single's pick is on the Ray at [0-9]+ of [0-9]+ pixels of 5 views.*self-test passed"
     FAIL_REGULAR_EXPRESSION "FAILED")
+  # The special-value table (Documentation/special-values.md) through the commands: render's
+  # and analyze's per-reason counts equal numpy's on the raw floats, and what is skipped
+  # leaves no pixel changed.
+  add_test(NAME vis4gs-SpecialValuesCommands
+    COMMAND "${CMAKE_COMMAND}" -E env PYTHONDONTWRITEBYTECODE=1
+      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckSpecialValues.py"
+      "$<TARGET_FILE:vis4gs>" "${_vis4gs_extreme_dir}/extreme.ply"
+      "${_vis4gs_extreme_dir}/special-values")
+  set_tests_properties(vis4gs-SpecialValuesCommands PROPERTIES LABELS "Application"
+    FIXTURES_REQUIRED vis4gsExtremeScene
+    PASS_REGULAR_EXPRESSION "special values checked: 3005 Gaussians, 3000 drawn"
+    FAIL_REGULAR_EXPRESSION "FAILED")
   # The benchmark mode runs (figures of real sizes: Documentation/performance.md).
   add_test(NAME vis4gs-ViewBenchmarkMode
     COMMAND vis4gs view "${_vis4gs_view_dir}/synthetic.h5" --benchmark --resolution=800,600)

@@ -2,6 +2,7 @@
 #include "ArtifactScores.h"
 
 #include "FastCoverage.h"
+#include "GaussianMath.h"
 #include "NeedleShape.h"
 
 #include <algorithm>
@@ -38,20 +39,27 @@ Camera ViewAt(const Camera& camera, int factor)
   return camera.Resized(LossMapSize(camera.Width, factor), LossMapSize(camera.Height, factor));
 }
 
-bool AllFinite(const std::vector<float>& values, std::size_t first, std::size_t count)
+/// Parameter @p k of Gaussian @p i, or @p fallback when the request left the array out.
+float Param(const std::vector<float>& values, std::size_t i, int width, int k, float fallback)
 {
-  if (values.empty())
+  return values.empty() ? fallback : values[static_cast<std::size_t>(width) * i + k];
+}
+
+/// The class the renderer gives Gaussian @p i (Documentation/special-values.md), so a
+/// Gaussian it draws is never flagged and one it skips always is.
+GaussianClass ClassOf(const GaussianCloud& cloud, std::size_t i)
+{
+  float pos[3], ls[3], rot[4];
+  for (int k = 0; k < 3; ++k)
   {
-    return true;
+    pos[k] = Param(cloud.Positions, i, 3, k, 0.0f);
+    ls[k] = Param(cloud.LogScales, i, 3, k, 0.0f);
   }
-  for (std::size_t k = 0; k < count; ++k)
+  for (int k = 0; k < 4; ++k)
   {
-    if (!std::isfinite(values[first + k]))
-    {
-      return false;
-    }
+    rot[k] = Param(cloud.Rotations, i, 4, k, k == 0 ? 1.0f : 0.0f);
   }
-  return true;
+  return ClassifyGaussian(pos, ls, rot, Param(cloud.OpacityLogits, i, 1, 0, 0.0f));
 }
 
 // Per-view visibility (and optionally occlusion-aware visibility) into the coverage counts.
@@ -488,10 +496,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     for (std::int64_t g = 0; g < sn; ++g)
     {
       const std::size_t i = static_cast<std::size_t>(g);
-      const bool ok = AllFinite(cloud.Positions, 3 * i, 3) &&
-        AllFinite(cloud.LogScales, 3 * i, 3) && AllFinite(cloud.Rotations, 4 * i, 4) &&
-        AllFinite(cloud.OpacityLogits, i, 1);
-      if (!ok)
+      if (ClassOf(cloud, i) != GaussianClass::Drawn)
       {
         out.Flags[i] |= InvalidParameters;
         ++invalid;

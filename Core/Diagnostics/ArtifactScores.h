@@ -112,7 +112,9 @@ enum ScoreFlag : std::uint8_t
   NoVisibleCoverageView = 1,
   /// No visible view with an image in the blur/needle pass (E_B = E_N = 0).
   NoVisibleScoredView = 2,
-  /// A position, scale, rotation or opacity value is NaN or infinite.
+  /// A parameter for which the reference has no answer (ClassifyGaussian: NaN, an infinite
+  /// position or rotation component, a log-scale of +inf); +-inf opacity logits, a log-scale
+  /// of -inf and a zero quaternion are drawn and scored like any Gaussian.
   InvalidParameters = 4
 };
 

@@ -125,8 +125,9 @@ GaussianCloud ReadSplatFromMemory(const void* data,
   GaussianReadReport* report = nullptr);
 
 /// Writes the antimatter15 `.splat` format (quantising colour, opacity and rotation; used by
-/// tests and exports, never for analysis).
-void WriteSplat(const std::string& path, const GaussianCloud& cloud);
+/// tests and exports, never for analysis). Gaussians the reference cannot draw
+/// (ClassifyGaussian, or a non-finite DC colour) are left out; returns how many were.
+std::size_t WriteSplat(const std::string& path, const GaussianCloud& cloud);
 
 /// Reads a scene by extension: ".splat" with ReadSplat, anything else with ReadGaussianPly.
 GaussianCloud ReadGaussianScene(const std::string& path,

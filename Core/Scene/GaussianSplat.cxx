@@ -187,16 +187,34 @@ GaussianCloud ReadSplatFromMemory(const void* data,
 }
 
 //------------------------------------------------------------------------------
-void WriteSplat(const std::string& path, const GaussianCloud& cloud)
+std::size_t WriteSplat(const std::string& path, const GaussianCloud& cloud)
 {
-  const std::size_t n = cloud.Count;
   const std::size_t k = static_cast<std::size_t>(cloud.ShCoefficientCount());
-  if (cloud.Positions.size() != 3 * n || cloud.LogScales.size() != 3 * n ||
-    cloud.Rotations.size() != 4 * n || cloud.OpacityLogits.size() != n ||
-    cloud.SH.size() != 3 * k * n)
+  if (cloud.Positions.size() != 3 * cloud.Count || cloud.LogScales.size() != 3 * cloud.Count ||
+    cloud.Rotations.size() != 4 * cloud.Count || cloud.OpacityLogits.size() != cloud.Count ||
+    cloud.SH.size() != 3 * k * cloud.Count)
   {
     throw std::invalid_argument("WriteSplat: the cloud must hold every parameter array");
   }
+  // Bytes cannot hold what the reference has no answer for (NaN, infinite positions, ...):
+  // such Gaussians are left out and counted rather than written as some other Gaussian.
+  // What the reference draws keeps its meaning: opacity logit +-inf -> 255 / 0, log-scale
+  // -inf -> scale 0, a zero quaternion -> bytes 128 (read back as the zero quaternion).
+  std::vector<std::size_t> kept;
+  kept.reserve(cloud.Count);
+  for (std::size_t g = 0; g < cloud.Count; ++g)
+  {
+    const float* dc = &cloud.SH[3 * k * g];
+    if (ClassifyGaussian(&cloud.Positions[3 * g],
+          &cloud.LogScales[3 * g],
+          &cloud.Rotations[4 * g],
+          cloud.OpacityLogits[g]) == GaussianClass::Drawn &&
+      std::isfinite(dc[0]) && std::isfinite(dc[1]) && std::isfinite(dc[2]))
+    {
+      kept.push_back(g);
+    }
+  }
+  const std::size_t n = kept.size();
   auto toByte = [](double v)
   { return static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::nearbyint(v)))); };
   detail::WriteFileAtomically(path,
@@ -210,7 +228,7 @@ void WriteSplat(const std::string& path, const GaussianCloud& cloud)
         buffer.assign(count * SplatRowSize, 0);
         for (std::size_t r = 0; r < count; ++r)
         {
-          const std::size_t g = first + r;
+          const std::size_t g = kept[first + r];
           unsigned char* row = buffer.data() + r * SplatRowSize;
           float v[6];
           for (int c = 0; c < 3; ++c)
@@ -242,6 +260,7 @@ void WriteSplat(const std::string& path, const GaussianCloud& cloud)
         detail::WriteBytes(f, buffer.data(), buffer.size(), path);
       }
     });
+  return cloud.Count - n;
 }
 
 } // namespace vis4gs

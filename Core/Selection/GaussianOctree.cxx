@@ -36,34 +36,20 @@ void CheckCloud(const GaussianCloud& cloud)
   }
 }
 
-bool AllFinite(const float* v, int n)
-{
-  for (int i = 0; i < n; ++i)
-  {
-    if (!std::isfinite(v[i]))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-/// Rotation and clamped scales of Gaussian i; false for an invalid or point Gaussian.
+/// Rotation and clamped scales of Gaussian i; false for a Gaussian the renderer skips
+/// (ClassifyGaussian). What the renderer draws is selectable: a zero quaternion is the
+/// identity rotation and a log-scale of -inf the clamped smallest scale, as drawn.
 bool GaussianFrame(const GaussianCloud& cloud, std::size_t i, std::array<double, 9>& R, double s[3])
 {
   const float* p = &cloud.Positions[3 * i];
   const float* ls = &cloud.LogScales[3 * i];
   const float* q = &cloud.Rotations[4 * i];
-  if (!AllFinite(p, 3) || !AllFinite(ls, 3) || !AllFinite(q, 4))
+  const float logit = cloud.OpacityLogits.empty() ? 0.0f : cloud.OpacityLogits[i];
+  if (ClassifyGaussian(p, ls, q, logit) != GaussianClass::Drawn)
   {
     return false;
   }
   const double qd[4] = { q[0], q[1], q[2], q[3] };
-  const double n = std::sqrt(qd[0] * qd[0] + qd[1] * qd[1] + qd[2] * qd[2] + qd[3] * qd[3]);
-  if (!(n > 1e-12))
-  {
-    return false;
-  }
   R = QuaternionToMatrix<double>(NormalizeQuaternion<double>(qd));
   for (int k = 0; k < 3; ++k)
   {
@@ -417,16 +403,15 @@ std::vector<RayHit> IntersectRayBruteForce(const GaussianCloud& cloud, const Ray
     const float* mu = &cloud.Positions[3 * i];
     const float* ls = &cloud.LogScales[3 * i];
     const float* q = &cloud.Rotations[4 * i];
-    if (!AllFinite(mu, 3) || !AllFinite(ls, 3) || !AllFinite(q, 4))
+    const float logit = cloud.OpacityLogits.empty() ? 0.0f : cloud.OpacityLogits[i];
+    if (ClassifyGaussian(mu, ls, q, logit) != GaussianClass::Drawn)
     {
       continue;
     }
-    const L qn = std::sqrt(static_cast<L>(q[0]) * q[0] + static_cast<L>(q[1]) * q[1] +
-      static_cast<L>(q[2]) * q[2] + static_cast<L>(q[3]) * q[3]);
-    if (!(qn > 1e-12L))
-    {
-      continue;
-    }
+    // The reference's normalisation: a zero quaternion stays zero, i.e. the identity.
+    const L qn = std::max(std::sqrt(static_cast<L>(q[0]) * q[0] + static_cast<L>(q[1]) * q[1] +
+                            static_cast<L>(q[2]) * q[2] + static_cast<L>(q[3]) * q[3]),
+      1e-12L);
     const L w = q[0] / qn, x = q[1] / qn, y = q[2] / qn, z = q[3] / qn;
     const L R[3][3] = { { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
       { 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },

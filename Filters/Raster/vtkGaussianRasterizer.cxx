@@ -11,6 +11,7 @@
 #include "vtkGaussianRasterizer.h"
 
 #include "Rasterizer.h"
+#include "SpecialValues.h"
 #include "Vis4GSDataModel.h"
 
 #include "vtkDoubleArray.h"
@@ -185,6 +186,7 @@ int vtkGaussianRasterizer::RequestData(vtkInformation* vtkNotUsed(request),
   vtkImageData* output = vtkImageData::GetData(outputVector);
   this->NumberOfVisibleGaussians = 0;
   this->NumberOfInvalidGaussians = 0;
+  this->SpecialValuesSummary.clear();
   if (!input || !table)
   {
     vtkErrorMacro("Needs a Gaussian scene on port 0 and the camera table on port 1.");
@@ -253,10 +255,17 @@ int vtkGaussianRasterizer::RequestData(vtkInformation* vtkNotUsed(request),
   this->NumberOfVisibleGaussians = static_cast<vtkIdType>(counts.Visible);
   this->NumberOfInvalidGaussians =
     static_cast<vtkIdType>(counts.InvalidParameters + counts.NonFinite);
-  if (counts.InvalidParameters > 0)
   {
-    vtkWarningMacro(<< counts.InvalidParameters
-                    << " Gaussians with NaN/Inf parameters were skipped.");
+    // One memory-bound pass over the cloud, small next to the render.
+    const vis4gs::SpecialValueCounts special =
+      vis4gs::CountSpecialValues(cloud, this->SHDegree < 0 ? cloud.ShDegree : this->SHDegree);
+    const std::string skipped = vis4gs::DescribeSkipped(special, true);
+    const std::string drawn = vis4gs::DescribeDrawnSpecials(special);
+    this->SpecialValuesSummary = skipped + (!skipped.empty() && !drawn.empty() ? "; " : "") + drawn;
+    if (!skipped.empty())
+    {
+      vtkWarningMacro(<< "Gaussians the reference cannot draw: " << skipped);
+    }
   }
   return 1;
 }
@@ -277,4 +286,5 @@ void vtkGaussianRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "NumberOfVisibleGaussians: " << this->NumberOfVisibleGaussians << "\n";
   os << indent << "NumberOfInvalidGaussians: " << this->NumberOfInvalidGaussians << "\n";
+  os << indent << "SpecialValuesSummary: " << this->SpecialValuesSummary << "\n";
 }

@@ -136,6 +136,13 @@ public:
   vtkGetMacro(NumberOfInvalidGaussians, vtkIdType);
   ///@}
 
+  /**
+   * Why Gaussians were skipped in the last update, per reason ("3 skipped: 2 with a NaN
+   * parameter, 1 with an infinite position"; Documentation/special-values.md), followed by
+   * the special values drawn as the reference draws them; empty when there is nothing to say.
+   */
+  const char* GetSpecialValuesSummary() const { return this->SpecialValuesSummary.c_str(); }
+
 protected:
   vtkGaussianRasterizer();
   ~vtkGaussianRasterizer() override = default;
@@ -162,6 +169,7 @@ protected:
   int NumberOfThreads = 0;
   vtkIdType NumberOfVisibleGaussians = 0;
   vtkIdType NumberOfInvalidGaussians = 0;
+  std::string SpecialValuesSummary;
 
 private:
   vtkGaussianRasterizer(const vtkGaussianRasterizer&) = delete;

@@ -298,6 +298,55 @@ TEST(ArtifactScores, StiffGaussiansAreFlaggedAndDoNotPoison)
   }
 }
 
+TEST(ArtifactScores, SpecialValuesTheReferenceDrawsAreScoredLikeTheirLimits)
+{
+  // Documentation/special-values.md: an opacity logit of +-inf, a log-scale of -inf and a zero
+  // quaternion are drawn by the reference (opacity 1 / 0, scale 0, identity rotation), so
+  // their scores equal those of the finite stand-ins the renderer draws identically
+  // (TestSpecialValues), and they are not flagged.
+  const float inf = std::numeric_limits<float>::infinity();
+  GaussianCloud special, limits;
+  for (GaussianCloud* c : { &special, &limits })
+  {
+    c->Resize(5, 0);
+    for (std::size_t i = 0; i < 5; ++i)
+    {
+      SetGaussian(*c, i, 0.25f * (static_cast<float>(i) - 2), 0.05f, 5, -2.5f, -3, -3.5f, 1);
+    }
+  }
+  special.OpacityLogits[0] = inf;
+  limits.OpacityLogits[0] = 1e30f;
+  special.OpacityLogits[1] = -inf;
+  limits.OpacityLogits[1] = -1e30f;
+  special.LogScales[3 * 2 + 1] = -inf;
+  limits.LogScales[3 * 2 + 1] = -200;
+  for (int k = 0; k < 4; ++k)
+  {
+    special.Rotations[4 * 3 + k] = 0;
+    limits.Rotations[4 * 3 + k] = k == 0 ? 1.0f : 0.0f;
+  }
+  const std::vector<Camera> cameras{ MakeCamera(), MakeCamera(-1), MakeCamera(9, true) };
+  const OffsetImages imagesA{ &special, { 0.1f, -0.2f, 0.3f }, {} };
+  const OffsetImages imagesB{ &limits, { 0.1f, -0.2f, 0.3f }, {} };
+  const auto a = vis4gs::ComputeGaussianScores(special, cameras, {}, imagesA);
+  const auto b = vis4gs::ComputeGaussianScores(limits, cameras, {}, imagesB);
+  EXPECT_EQ(a.InvalidCount, 0u);
+  for (std::size_t i = 0; i < 5; ++i)
+  {
+    EXPECT_EQ(a.Flags[i], b.Flags[i]) << i;
+    EXPECT_EQ(a.Flags[i] & vis4gs::InvalidParameters, 0) << i;
+    EXPECT_EQ(a.ViewCoverage[i], b.ViewCoverage[i]) << i;
+    EXPECT_EQ(a.BlurScore[i], b.BlurScore[i]) << i;
+    EXPECT_EQ(a.NeedleScore[i], b.NeedleScore[i]) << i;
+  }
+  // The opaque one is seen as often as the ordinary Gaussian 4; the transparent one
+  // by none.
+  EXPECT_GT(a.ViewCoverage[4], 0.0);
+  EXPECT_EQ(a.ViewCoverage[0], a.ViewCoverage[4]);
+  EXPECT_EQ(a.ViewCoverage[1], 0.0);
+  EXPECT_EQ(a.ViewCoverage[2], a.ViewCoverage[4]);
+}
+
 TEST(ArtifactScores, EmptyViewsAndViewsWithoutImages)
 {
   GaussianCloud cloud;

@@ -2,12 +2,14 @@
 #include "Camera.h"
 #include "GaussianCloud.h"
 #include "GaussianMath.h"
+#include "SpecialValues.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 
 namespace vis4gs
 {
@@ -93,6 +95,68 @@ TEST(GaussianCloud, ResizeAndExtras)
   ASSERT_NE(g.FindExtra("nx"), nullptr);
   EXPECT_EQ(g.FindExtra("nx")->GetAsDouble(3), -7.0);
   EXPECT_EQ(g.FindExtra("ny"), nullptr);
+}
+
+TEST(SpecialValues, CountsEveryRowOfTheTable)
+{
+  // One Gaussian per row of Documentation/special-values.md, plus two ordinary ones.
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  GaussianCloud c;
+  c.Resize(12, 1);
+  for (std::size_t g = 0; g < c.Count; ++g)
+  {
+    c.Rotations[4 * g] = 1;
+  }
+  c.OpacityLogits[0] = inf;
+  c.OpacityLogits[1] = -inf;
+  c.OpacityLogits[2] = nan;
+  c.LogScales[3 * 3] = -inf;
+  c.LogScales[3 * 4 + 1] = inf;
+  c.LogScales[3 * 5 + 2] = nan;
+  c.Positions[3 * 6] = -inf;
+  c.Positions[3 * 7 + 1] = nan;
+  for (int k = 0; k < 4; ++k)
+  {
+    c.Rotations[4 * 8 + k] = 0;
+  }
+  c.Rotations[4 * 9 + 2] = inf;
+  c.SH[3 * 4 * 10 + 3 * 2 + 1] = nan; // a degree-1 coefficient of Gaussian 10
+  c.Positions[3 * 11] = -0.0f;
+  c.LogScales[3 * 11] = std::numeric_limits<float>::denorm_min();
+
+  const SpecialValueCounts geometry = CountSpecialValues(c);
+  using GC = GaussianClass;
+  auto of = [&](const SpecialValueCounts& s, GC k) { return s.ByClass[static_cast<int>(k)]; };
+  EXPECT_EQ(of(geometry, GC::Drawn), 6u);            // 0, 1, 3, 8, 10 and 11
+  EXPECT_EQ(of(geometry, GC::NaNParameter), 3u);     // 2, 5, 7
+  EXPECT_EQ(of(geometry, GC::InfinitePosition), 1u); // 6
+  EXPECT_EQ(of(geometry, GC::InfiniteLogScale), 1u); // 4
+  EXPECT_EQ(of(geometry, GC::InfiniteRotation), 1u); // 9
+  EXPECT_EQ(geometry.Skipped(), 6u);
+  EXPECT_EQ(geometry.NonFiniteSH, 0u); // SH not counted without a degree
+  EXPECT_EQ(geometry.OpacityPlusInf, 1u);
+  EXPECT_EQ(geometry.OpacityMinusInf, 1u);
+  EXPECT_EQ(geometry.LogScaleMinusInf, 1u);
+  EXPECT_EQ(geometry.ZeroQuaternion, 1u);
+  // The NaN sits in a degree-1 coefficient: a degree-0 render does not use it.
+  EXPECT_EQ(CountSpecialValues(c, 0).NonFiniteSH, 0u);
+  EXPECT_EQ(CountSpecialValues(c, 1).NonFiniteSH, 1u);
+  EXPECT_EQ(CountSpecialValues(c, 3).NonFiniteSH, 1u); // clamped to the cloud's degree
+  EXPECT_EQ(DescribeSkipped(geometry, false),
+    "6 skipped: 3 with a NaN parameter, 1 with an infinite position, 1 with a log-scale of "
+    "+inf, 1 with an infinite rotation component");
+  EXPECT_EQ(DescribeSkipped(CountSpecialValues(c, 1), true).substr(0, 11), "7 skipped: ");
+  EXPECT_NE(DescribeDrawnSpecials(geometry).find("1 with opacity logit +inf (opacity 1)"),
+    std::string::npos);
+  GaussianCloud plain;
+  plain.Resize(3, 0);
+  for (std::size_t g = 0; g < plain.Count; ++g)
+  {
+    plain.Rotations[4 * g] = 1;
+  }
+  EXPECT_EQ(DescribeSkipped(CountSpecialValues(plain, 0), true), "");
+  EXPECT_EQ(DescribeDrawnSpecials(CountSpecialValues(plain, 0)), "");
 }
 
 } // namespace vis4gs

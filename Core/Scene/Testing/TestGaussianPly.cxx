@@ -639,6 +639,53 @@ TEST(GaussianSplat, ReadsRealSplatFile)
   EXPECT_NEAR(c.Positions[0], 29.070545, 1e-5);
 }
 
+TEST(GaussianSplat, SpecialValuesAreWrittenAsTheReferenceDrawsThem)
+{
+  // Documentation/special-values.md, writer row: what the reference draws keeps its meaning
+  // in bytes; what it has no answer for is left out and counted.
+  const float inf = std::numeric_limits<float>::infinity();
+  GaussianCloud c;
+  c.Resize(7, 0);
+  for (std::size_t g = 0; g < 7; ++g)
+  {
+    c.Positions[3 * g] = static_cast<float>(g);
+    c.Rotations[4 * g] = 1;
+  }
+  c.Positions[3 * 1 + 1] = std::numeric_limits<float>::quiet_NaN(); // left out
+  c.OpacityLogits[2] = inf;                                         // alpha byte 255
+  c.OpacityLogits[3] = -inf;                                        // alpha byte 0
+  c.Rotations[4 * 4] = 0;                                           // zero quaternion
+  c.LogScales[3 * 5 + 2] = -inf;                                    // scale 0
+  c.SH[3 * 6] = inf;                                                // DC colour: left out
+  TempDir dir;
+  EXPECT_EQ(WriteSplat(dir / "s.splat", c), 2u);
+  const auto b = FileBytes(dir / "s.splat");
+  ASSERT_EQ(b.size(), 5u * 32u);
+  // Written in order: Gaussians 0, 2, 3, 4, 5.
+  auto row = [&](int r) { return b.data() + 32 * r; };
+  float x;
+  std::memcpy(&x, row(1), 4);
+  EXPECT_EQ(x, 2.0f);
+  EXPECT_EQ(row(1)[27], 255);
+  EXPECT_EQ(row(2)[27], 0);
+  EXPECT_EQ(row(0)[27], 128); // sigmoid(0) = 0.5 -> 127.5, rounded to even
+  for (int k = 0; k < 4; ++k)
+  {
+    EXPECT_EQ(row(3)[28 + k], 128) << k;
+  }
+  float sz;
+  std::memcpy(&sz, row(4) + 20, 4);
+  EXPECT_EQ(sz, 0.0f);
+  const GaussianCloud back = ReadSplat(dir / "s.splat");
+  ASSERT_EQ(back.Count, 5u);
+  EXPECT_EQ(ClassifyGaussian(&back.Positions[3 * 3],
+              &back.LogScales[3 * 3],
+              &back.Rotations[4 * 3],
+              back.OpacityLogits[3]),
+    vis4gs::GaussianClass::Drawn); // the zero quaternion reads back drawable
+  EXPECT_EQ(back.LogScales[3 * 4 + 2], -inf);
+}
+
 TEST(GaussianSplat, WriteReadIsStableAndBadSizesFail)
 {
   VIS4GS_REQUIRE_SHARED_DATA();

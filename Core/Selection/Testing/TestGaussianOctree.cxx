@@ -151,8 +151,10 @@ TEST(GaussianOctree, StiffGaussians)
   GaussianOctree tree;
   tree.Build(cloud);
   // 0: a needle along x (sigma_y = sigma_z = e^-200); a ray along y at z offset 1e-90 from it
-  // is 1e-90 e^200 = 7.2e-4 sigma away. 1: enormous, hit by every ray. 2: zero quaternion and
-  // 3: NaN: never hit. 4: scales e^-1000 (below the clamp): a point, missed at 0.001 offset.
+  // is 1e-90 e^200 = 7.2e-4 sigma away. 1: enormous, hit by every ray. 2: zero quaternion,
+  // the identity rotation as the renderer draws it (Documentation/special-values.md): a unit
+  // sphere. 3: NaN: never hit. 4: scales e^-1000 (below the clamp): a point, missed at 0.001
+  // offset.
   RayQuery ray = Ray({ 0, -10, 1e-90 }, { 0, 1, 0 });
   auto hits = tree.IntersectRay(ray);
   ASSERT_EQ(hits.size(), 2u);
@@ -167,10 +169,17 @@ TEST(GaussianOctree, StiffGaussians)
   ASSERT_EQ(bf.size(), 2u);
   EXPECT_EQ(bf[0].Gaussian, 0u);
   EXPECT_EQ(bf[1].Gaussian, 1u);
-  // Through the NaN and zero-rotation Gaussians' centres: only the huge one.
+  // Through the zero-rotation Gaussian's centre: it (depth 5), then the huge one (depth 6),
+  // as the brute force finds them.
   hits = tree.IntersectRay(Ray({ 6, 0, 0 }, { 0, 0, 1 }));
-  ASSERT_EQ(hits.size(), 1u);
-  EXPECT_EQ(hits[0].Gaussian, 1u);
+  ASSERT_EQ(hits.size(), 2u);
+  EXPECT_EQ(hits[0].Gaussian, 2u);
+  EXPECT_EQ(hits[0].Distance, 0.0);
+  EXPECT_EQ(hits[1].Gaussian, 1u);
+  const auto bfZero = IntersectRayBruteForce(cloud, Ray({ 6, 0, 0 }, { 0, 0, 1 }));
+  ASSERT_EQ(bfZero.size(), 2u);
+  EXPECT_EQ(bfZero[0].Gaussian, 2u);
+  // Through the NaN Gaussian's centre: only the huge one.
   hits = tree.IntersectRay(Ray({ 0, 4, 0 }, { 0, 0, 1 }));
   ASSERT_EQ(hits.size(), 1u);
   // Exactly through the point-like Gaussian 4's centre: distance 0 (hit); 1e-3 beside: miss.
