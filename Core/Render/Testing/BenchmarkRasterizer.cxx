@@ -18,7 +18,7 @@
 #include "Footprint.h"
 #include "GaussianMath.h"
 #include "Rasterizer.h"
-#include "SyntheticScene.h"
+#include "BenchmarkScene.h"
 
 #include <immintrin.h>
 #include <omp.h>
@@ -437,11 +437,11 @@ void Footprint(std::size_t n)
 }
 
 //------------------------------------------------------------------------------
-// The scene view's frames: MakeSyntheticScene + MakeSyntheticCamera as
+// The scene view's frames: MakeBenchmarkScene + MakeBenchmarkCamera as
 // BenchmarkGaussianSplatMapper, every frame re-rendered through one workspace.
 void Frames(std::size_t n, int frames, int threads, std::uint64_t version)
 {
-  const GaussianCloud cloud = MakeSyntheticScene(n, 0, 1);
+  const GaussianCloud cloud = MakeBenchmarkScene(n, 0, 1);
   RasterSettings s;
   s.Threads = threads;
   s.ShDegree = 0;
@@ -449,7 +449,7 @@ void Frames(std::size_t n, int frames, int threads, std::uint64_t version)
   std::vector<double> phase[4], wall;
   for (int f = -1; f < frames; ++f)
   {
-    const Camera cam = MakeSyntheticCamera(1280, 720, 0.05 * (f + 1));
+    const Camera cam = MakeBenchmarkCamera(1280, 720, 0.05 * (f + 1));
     const double w0 = Now();
     const double c0 = CpuNow();
     ProjectGaussians(cloud, cam, s, ws.Projection, ws.Prepared, version);

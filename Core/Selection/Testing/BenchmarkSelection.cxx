@@ -4,7 +4,7 @@
 #include "BenchmarkTiming.h"
 #include "GaussianOctree.h"
 #include "ScreenSelection.h"
-#include "SyntheticScene.h"
+#include "BenchmarkScene.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -31,8 +31,8 @@ int main(int argc, char* argv[])
     }
     std::fclose(f);
   }
-  const auto cloud = MakeSyntheticScene(n, 0, 1);
-  const auto cam = MakeSyntheticCamera(1280, 720, 0.4);
+  const auto cloud = MakeBenchmarkScene(n, 0, 1);
+  const auto cam = MakeBenchmarkCamera(1280, 720, 0.4);
   SelectionView view;
   double t = timer.TimeMs(repeats, [&] { view = PrepareSelectionView(cloud, cam, threads); });
   std::printf(

@@ -5,7 +5,7 @@
 #include "BenchmarkTiming.h"
 #include "SplatAttributes.h"
 #include "SplatSort.h"
-#include "SyntheticScene.h"
+#include "BenchmarkScene.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -20,8 +20,8 @@ int main(int argc, char* argv[])
   const int repeats = argc > 3 ? std::atoi(argv[3]) : 5;
   std::printf(
     "BenchmarkSplats: %zu Gaussians, %d threads, median of %d runs\n", n, threads, repeats);
-  const auto cloud = vis4gs::MakeSyntheticScene(n, 3, 1);
-  const auto cam = vis4gs::MakeSyntheticCamera(1280, 720, 0.4);
+  const auto cloud = vis4gs::MakeBenchmarkScene(n, 3, 1);
+  const auto cam = vis4gs::MakeBenchmarkCamera(1280, 720, 0.4);
   std::vector<float> depths, packed, rgb, rgba;
   std::vector<std::uint8_t> keep;
   std::vector<std::uint32_t> order;

@@ -5,7 +5,7 @@
 //        [shDegree=0] [threads=2] [path=1 geometry shader | 0 instanced quads]
 //        [budget=0 (all)] [method=0 automatic | 1 OpenGL splats | 2 CPU rasteriser]
 //        [interactive sample distance=2 (CPU rasteriser path; 0 = auto-adjusted)]
-#include "SyntheticScene.h"
+#include "BenchmarkScene.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraUtilities.h"
 #include "vtkGaussianSplatMapper.h"
@@ -37,7 +37,7 @@ int main(int argc, char* argv[])
   const long long budget = argc > 8 ? std::atoll(argv[8]) : 0;
   const int method = argc > 9 ? std::atoi(argv[9]) : 0;
   const double sampleDistance = argc > 10 ? std::atof(argv[10]) : 2.0;
-  const auto cloud = vis4gs::MakeSyntheticScene(n, degree, 1);
+  const auto cloud = vis4gs::MakeBenchmarkScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
   vtkNew<vtkGaussianSplatMapper> mapper;
@@ -56,7 +56,7 @@ int main(int argc, char* argv[])
   win->SetSize(W, H);
   win->AddRenderer(ren);
   vtkGaussianCameraUtilities::ApplyCamera(
-    vis4gs::MakeSyntheticCamera(W, H, 0.0), ren->GetActiveCamera());
+    vis4gs::MakeBenchmarkCamera(W, H, 0.0), ren->GetActiveCamera());
   auto now = [] { return std::chrono::steady_clock::now(); };
   auto ms = [](std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b)
   { return std::chrono::duration<double, std::milli>(b - a).count(); };
@@ -80,7 +80,7 @@ int main(int argc, char* argv[])
   for (int f = 0; f < frames; ++f)
   {
     vtkGaussianCameraUtilities::ApplyCamera(
-      vis4gs::MakeSyntheticCamera(W, H, 0.05 * (f + 1)), ren->GetActiveCamera());
+      vis4gs::MakeBenchmarkCamera(W, H, 0.05 * (f + 1)), ren->GetActiveCamera());
     const auto a = now();
     const std::clock_t c = std::clock();
     win->Render();
@@ -140,7 +140,7 @@ int main(int argc, char* argv[])
     for (int f = 0; f < frames; ++f)
     {
       vtkGaussianCameraUtilities::ApplyCamera(
-        vis4gs::MakeSyntheticCamera(W, H, 0.05 * (f + 1) + 0.025), ren->GetActiveCamera());
+        vis4gs::MakeBenchmarkCamera(W, H, 0.05 * (f + 1) + 0.025), ren->GetActiveCamera());
       win->SetDesiredUpdateRate(15.0);
       const auto a = now();
       const std::clock_t c = std::clock();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "SyntheticScene.h"
+#include "BenchmarkScene.h"
 
 #include "GaussianMath.h"
 
@@ -11,7 +11,7 @@ namespace vis4gs
 {
 
 //------------------------------------------------------------------------------
-GaussianCloud MakeSyntheticScene(std::size_t count, int shDegree, unsigned seed)
+GaussianCloud MakeBenchmarkScene(std::size_t count, int shDegree, unsigned seed)
 {
   GaussianCloud c;
   c.Resize(count, shDegree);
@@ -104,7 +104,7 @@ GaussianCloud MakeSyntheticScene(std::size_t count, int shDegree, unsigned seed)
 }
 
 //------------------------------------------------------------------------------
-Camera MakeSyntheticCamera(int width, int height, double azimuth)
+Camera MakeBenchmarkCamera(int width, int height, double azimuth)
 {
   Camera c;
   c.Name = "synthetic";
