@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Project rules CTest checks on every run (see Documentation/dev/CODING_STYLE.md):
 #   layering  Core/ includes no VTK header (DESIGN §1);
+#   modules   VTK modules depend downwards only: IO < Filters < Rendering < Views
+#             (Documentation/dev/ARCHITECTURE.md), with the one known exception listed below;
 #   format    our C++ follows VTK 9.1's .clang-format (Debian's clang-format 14).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -16,6 +18,35 @@ if [ "$check" = layering ] || [ "$check" = all ]; then
     status=1
   else
     echo "layering: Core/ includes no VTK header"
+  fi
+fi
+
+if [ "$check" = modules ] || [ "$check" = all ]; then
+  # Known upward dependency, to go when the selector moves beside the scene view class (issue
+  # 22): the selector reads the splat mapper's last drawn frame.
+  allowed="Vis4GS::FiltersSelection->Vis4GS::RenderingSplats"
+  rank() { case "$1" in IO*) echo 1 ;; Filters*) echo 2 ;; Rendering*) echo 3 ;; Views*) echo 4 ;; *) echo 9 ;; esac; }
+  bad=()
+  count=0
+  for m in $(git ls-files '*vtk.module'); do
+    own=$(awk '$1 == "NAME" { getline; print $1; exit }' "$m")
+    ownRank=$(rank "${m%%/*}")
+    # Vis4GS:: names under DEPENDS and PRIVATE_DEPENDS (not TEST_DEPENDS).
+    deps=$(awk '/^[A-Z_]+$/ { section = $1; next } section == "DEPENDS" || section == "PRIVATE_DEPENDS" { for (i = 1; i <= NF; ++i) if ($i ~ /^Vis4GS::/) print $i }' "$m")
+    for d in $deps; do
+      count=$((count + 1))
+      dRank=$(rank "${d#Vis4GS::}")
+      if [ "$dRank" -gt "$ownRank" ] && [ "$own->$d" != "$allowed" ]; then
+        bad+=("$m: $own depends on $d, a higher layer")
+      fi
+    done
+  done
+  if [ ${#bad[@]} -gt 0 ]; then
+    echo "FAILED: VTK modules must depend downwards (IO < Filters < Rendering < Views):"
+    printf '  %s\n' "${bad[@]}"
+    status=1
+  else
+    echo "modules: $count Vis4GS module dependencies point downwards (1 known exception)"
   fi
 fi
 
