@@ -15,10 +15,10 @@
 // scales normal around log(0.02 * (1e6/N)^(1/3)) (sd 0.7 per axis: anisotropic, heavy-tailed
 // projected sizes; the mean spacing shrinks with N as in real reconstructions), opacity
 // logits N(0, 2), random rotations, SH degree 3.
+#include "BenchmarkScene.h"
 #include "Footprint.h"
 #include "GaussianMath.h"
 #include "Rasterizer.h"
-#include "BenchmarkScene.h"
 
 #include <immintrin.h>
 #include <omp.h>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Selection latency per mode at N Gaussians (synthetic scene, 1280x720 view).
 // Usage: BenchmarkSelection [count=1000000] [threads=2] [repeats=5]
+#include "BenchmarkScene.h"
 #include "BenchmarkTiming.h"
 #include "GaussianOctree.h"
 #include "ScreenSelection.h"
-#include "BenchmarkScene.h"
 
 #include <algorithm>
 #include <cstdio>

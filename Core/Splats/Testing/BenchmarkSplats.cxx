@@ -2,10 +2,10 @@
 // Per-frame CPU work of the GPU splat renderer at N Gaussians: view depths, back-to-front
 // sort (parallel radix vs std::sort), SH colours per degree, geometry packing, display colours.
 // Usage: BenchmarkSplats [count=1000000] [threads=2] [repeats=5]
+#include "BenchmarkScene.h"
 #include "BenchmarkTiming.h"
 #include "SplatAttributes.h"
 #include "SplatSort.h"
-#include "BenchmarkScene.h"
 
 #include <algorithm>
 #include <cstdio>
