@@ -88,9 +88,9 @@ struct ScoreSettings
   /// Footprints by brute force over the tile rectangle (the straightforward implementation,
   /// for benchmarks and tests). Default off.
   bool BruteForceFootprints = false;
-  /// Instruction set of the footprint and coverage kernels: 0 = best available (default),
-  /// 1 = scalar only (the previous implementation, for benchmarks), 2 = AVX2. Results are
-  /// bit-identical on every path.
+  /// Instruction set of the footprint and coverage kernels (Render/KernelIsa.h): 0 = best
+  /// available (default), 1 = baseline (the scalar loops, for benchmarks), 2 = AVX2,
+  /// 3 = AVX-512. Results are bit-identical on every path.
   int KernelIsa = 0;
   /// Blur/needle views rendered with Render/MultiViewRenderer.h: the view-independent part
   /// of the projection computed once for all views, a vectorised per-view projection shared

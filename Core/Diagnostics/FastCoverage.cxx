@@ -2,6 +2,7 @@
 #include "FastCoverage.h"
 
 #include "GaussianMath.h"
+#include "KernelIsa.h"
 #include "RasterBounds.h"
 #include "RasterKernel.h"
 #include "Rasterizer.h"
@@ -311,7 +312,7 @@ namespace avx2
 namespace avx512
 {
 #define VIS4GS_LANES 16
-#define VIS4GS_TARGET "avx512f,avx512vl,avx512bw,avx512dq"
+#define VIS4GS_TARGET VIS4GS_AVX512_FEATURES
 #include "FastCoverageLanes.inc"
 #undef VIS4GS_LANES
 #undef VIS4GS_TARGET
@@ -333,26 +334,18 @@ unsigned BlockAvx512(const GaussianBlock& g, const PreparedView& w, unsigned& un
   return avx512::VisibleLanes(g, 0, w, undecided);
 }
 
-// 0 best, 1 scalar (nullptr), 2 AVX2, 3 AVX-512.
+// KernelIsa.h; the baseline is the scalar loop (nullptr).
 BlockFunction SelectBlockFunction(int isa)
 {
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if (isa == 1)
+  switch (ResolveKernelIsa(isa))
   {
-    return nullptr;
+    case KernelIsa::Avx512:
+      return &BlockAvx512;
+    case KernelIsa::Avx2:
+      return &BlockAvx2;
+    default:
+      return nullptr;
   }
-  if ((isa == 0 || isa >= 3) && has512)
-  {
-    return &BlockAvx512;
-  }
-  if (has2)
-  {
-    return &BlockAvx2;
-  }
-  return nullptr;
 }
 
 } // namespace

@@ -37,21 +37,6 @@ std::uint64_t MixBits(std::uint64_t x)
   return x;
 }
 
-const char* EventKindName(std::uint8_t kind)
-{
-  switch (kind)
-  {
-    case 1:
-      return "clone";
-    case 2:
-      return "split";
-    case 3:
-      return "prune";
-    default:
-      return "unknown";
-  }
-}
-
 std::string RowText(std::size_t row, std::int32_t iteration, std::uint8_t kind)
 {
   std::ostringstream s;
@@ -200,11 +185,11 @@ void GenealogyBuilder::ValidateRows(std::int32_t& lastIteration)
         << this->Options.InitialIteration;
       throw std::runtime_error(s.str());
     }
-    if (kind < 1 || kind > 3)
+    if (!IsEventKind(kind))
     {
       std::ostringstream s;
       s << "genealogy: event row " << r << " (iteration " << it << "): unknown kind "
-        << static_cast<int>(kind) << " (expected 1 clone, 2 split, 3 prune)";
+        << static_cast<int>(kind) << " (expected " << EventKindValues << ")";
       throw std::runtime_error(s.str());
     }
     if (ev.Parent[r] < 0)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Footprint.h"
 
+#include "KernelIsa.h"
 #include "MultiViewData.h"
 #include "RasterBounds.h"
 
@@ -30,7 +31,7 @@ namespace
 typedef float F8 __attribute__((vector_size(32)));
 typedef std::int32_t I8 __attribute__((vector_size(32)));
 
-#define VIS4GS_FP_AVX2 __attribute__((target("avx2"), always_inline)) inline
+#define VIS4GS_FP_AVX2 __attribute__((target(VIS4GS_AVX2_FEATURES), always_inline)) inline
 
 VIS4GS_FP_AVX2 F8 FootprintExp8(F8 x)
 {
@@ -61,7 +62,7 @@ VIS4GS_FP_AVX2 I8 AlphaTest8(F8 power, float opacity, float inside, float outsid
 
 // Pixels [xa, xb] of row y: counts those in Omega and adds their map values, left to right.
 template <typename Acc>
-__attribute__((target("avx2"))) void FootprintRowAvx2(const ProjectedGaussian<float>& g,
+VIS4GS_TARGET_AVX2 void FootprintRowAvx2(const ProjectedGaussian<float>& g,
   bool rasterMode,
   float inside,
   float outside,
@@ -134,7 +135,7 @@ const BoxLanes PackedLanes;
 // time. Counts the pixels in Omega and adds their map values in row-major order, visiting
 // only the footprint's pixels, as the scalar path does.
 template <typename Acc>
-__attribute__((target("avx2"))) void FootprintBoxAvx2(const ProjectedGaussian<float>& g,
+VIS4GS_TARGET_AVX2 void FootprintBoxAvx2(const ProjectedGaussian<float>& g,
   bool rasterMode,
   float inside,
   float outside,
@@ -199,7 +200,7 @@ __attribute__((target("avx2"))) void FootprintBoxAvx2(const ProjectedGaussian<fl
 // (j % w, j / w)), the same float operations per lane and the same alpha test as the AVX2
 // path, and the pixels found are summed in the same row-major order, so counts and sums are
 // bit-identical to it (and to the scalar and brute-force paths).
-#define VIS4GS_FP_AVX512_TARGET "avx512f,avx512vl,avx512bw,avx512dq"
+#define VIS4GS_FP_AVX512_TARGET VIS4GS_AVX512_FEATURES
 #define VIS4GS_FP_AVX512 __attribute__((target(VIS4GS_FP_AVX512_TARGET), always_inline)) inline
 typedef float F16 __attribute__((vector_size(64)));
 typedef std::int32_t I16 __attribute__((vector_size(64)));
@@ -287,19 +288,6 @@ __attribute__((target(VIS4GS_FP_AVX512_TARGET))) void FootprintBoxAvx512(
       }
     }
   }
-}
-
-bool HasAvx512()
-{
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-}
-
-bool HasAvx2()
-{
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
 }
 
 template <typename T>
@@ -535,11 +523,19 @@ inline void FootprintOne(const ProjectedGaussian<T>& g,
 template <typename T>
 int VectorLevel(const FootprintOptions& opt)
 {
-  if (!IsFloat<T>() || opt.BruteForce || opt.KernelIsa == 1 || !HasAvx2())
+  if (!IsFloat<T>() || opt.BruteForce)
   {
     return 0;
   }
-  return (opt.KernelIsa == 0 || opt.KernelIsa >= 3) && HasAvx512() ? 3 : 2;
+  switch (ResolveKernelIsa(opt.KernelIsa))
+  {
+    case KernelIsa::Avx512:
+      return 3;
+    case KernelIsa::Avx2:
+      return 2;
+    default:
+      return 0;
+  }
 }
 
 //------------------------------------------------------------------------------

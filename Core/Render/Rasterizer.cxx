@@ -2,6 +2,7 @@
 #include "Rasterizer.h"
 
 #include "GaussianMath.h"
+#include "KernelIsa.h"
 #include "MultiViewData.h"
 #include "RasterBounds.h"
 #include "RasterInternal.h"
@@ -267,7 +268,7 @@ namespace mvavx2
 namespace mvavx512
 {
 #define VIS4GS_LANES 16
-#define VIS4GS_TARGET "avx512f,avx512vl,avx512bw,avx512dq"
+#define VIS4GS_TARGET VIS4GS_AVX512_FEATURES
 #include "ProjectionLanes.inc"
 #undef VIS4GS_LANES
 #undef VIS4GS_TARGET
@@ -302,26 +303,18 @@ void ProjectBlockAvx512(const MultiViewPrepared& g,
   mvavx512::ProjectLanes(g, first, w, out, at);
 }
 
-// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
+// KernelIsa.h: 1 (baseline) is the generic 16-lane vectors.
 ProjectBlock SelectProjectBlock(int isa)
 {
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if (isa == 1)
+  switch (ResolveKernelIsa(isa))
   {
-    return &ProjectBlockGeneric;
+    case KernelIsa::Avx512:
+      return &ProjectBlockAvx512;
+    case KernelIsa::Avx2:
+      return &ProjectBlockAvx2;
+    default:
+      return &ProjectBlockGeneric;
   }
-  if ((isa == 0 || isa >= 3) && has512)
-  {
-    return &ProjectBlockAvx512;
-  }
-  if (has2)
-  {
-    return &ProjectBlockAvx2;
-  }
-  return &ProjectBlockGeneric;
 }
 
 // View-independent part of ProjectGaussians<float> step 3 for Gaussian @p i (the same
@@ -1393,7 +1386,7 @@ namespace composite_baseline
 } // namespace composite_baseline
 namespace composite_avx2
 {
-#define VIS4GS_COMPOSITE_TARGET __attribute__((target("avx2")))
+#define VIS4GS_COMPOSITE_TARGET VIS4GS_TARGET_AVX2
 #define VIS4GS_COMPOSITE_PACKED false
 #include "CompositeLanes.inc"
 #undef VIS4GS_COMPOSITE_PACKED
@@ -1401,7 +1394,7 @@ namespace composite_avx2
 } // namespace composite_avx2
 namespace composite_avx512
 {
-#define VIS4GS_COMPOSITE_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#define VIS4GS_COMPOSITE_TARGET VIS4GS_TARGET_AVX512
 #define VIS4GS_COMPOSITE_PACKED true
 #include "CompositeLanes.inc"
 #undef VIS4GS_COMPOSITE_PACKED
@@ -1412,8 +1405,7 @@ namespace composite_avx512
 template <typename T>
 using TileFunction = void (*)(const CompositeContext<T>&, std::int64_t);
 
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) int RowColumnsOn512(
-  const raster::detail::SpanBounds& sb,
+VIS4GS_TARGET_AVX512 int RowColumnsOn512(const raster::detail::SpanBounds& sb,
   int py0,
   int X0,
   int* lo,
@@ -1425,19 +1417,15 @@ __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) int RowColumnsOn51
 template <typename T, bool Stats, bool Work, bool Depth>
 TileFunction<T> SelectTileFunction(int isa)
 {
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if ((isa == 0 || isa >= 3) && has512)
+  switch (ResolveKernelIsa(isa))
   {
-    return &composite_avx512::CompositeTile<T, Stats, Work, Depth>;
+    case KernelIsa::Avx512:
+      return &composite_avx512::CompositeTile<T, Stats, Work, Depth>;
+    case KernelIsa::Avx2:
+      return &composite_avx2::CompositeTile<T, Stats, Work, Depth>;
+    default:
+      return &composite_baseline::CompositeTile<T, Stats, Work, Depth>;
   }
-  if ((isa == 0 || isa >= 2) && has2)
-  {
-    return &composite_avx2::CompositeTile<T, Stats, Work, Depth>;
-  }
-  return &composite_baseline::CompositeTile<T, Stats, Work, Depth>;
 }
 
 } // namespace
@@ -1495,7 +1483,7 @@ void FillCompositeRangeBaseline(const ViewProjection<T>& projection,
 /// The same IEEE operations (no contraction: -ffp-contract=off) with AVX2 encodings (rounding
 /// instructions for floor/ceil instead of the baseline's emulation): the same bits, faster.
 template <typename T>
-__attribute__((target("avx2"))) void FillCompositeRangeAvx2(const ViewProjection<T>& projection,
+VIS4GS_TARGET_AVX2 void FillCompositeRangeAvx2(const ViewProjection<T>& projection,
   std::size_t begin,
   std::size_t end,
   raster::detail::KernelGaussian<T>* kernels,
@@ -1511,8 +1499,7 @@ void FillCompositeData(const ViewProjection<T>& projection,
   raster::detail::SpanBounds* bounds)
 {
   const std::size_t n = projection.Gaussians.size();
-  const auto fill =
-    __builtin_cpu_supports("avx2") ? &FillCompositeRangeAvx2<T> : &FillCompositeRangeBaseline<T>;
+  const auto fill = CpuHasAvx2() ? &FillCompositeRangeAvx2<T> : &FillCompositeRangeBaseline<T>;
   constexpr std::size_t block = 4096;
   const std::int64_t blocks = static_cast<std::int64_t>((n + block - 1) / block);
 #pragma omp parallel for schedule(static) num_threads(threads)
@@ -1939,9 +1926,7 @@ MultiViewCamera LaneCamera(const ViewProjection<float>& frame)
 
 int RowColumnsAvx512(const detail::SpanBounds& sb, int py0, int X0, int* lo, int* hi)
 {
-  __builtin_cpu_init();
-  if (!(__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq")))
+  if (!CpuHasAvx512())
   {
     return -1;
   }

@@ -2,6 +2,7 @@
 #include "ScreenSelection.h"
 
 #include "Footprint.h"
+#include "KernelIsa.h"
 #include "RasterKernel.h"
 
 #include <omp.h>
@@ -387,14 +388,12 @@ inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx,
   }
 }
 
-__attribute__((target("avx2"))) void ProcessGroupAvx2(const GroupContext& ctx, std::int64_t gi)
+VIS4GS_TARGET_AVX2 void ProcessGroupAvx2(const GroupContext& ctx, std::int64_t gi)
 {
   ProcessGroup(ctx, gi);
 }
 
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void ProcessGroupAvx512(
-  const GroupContext& ctx,
-  std::int64_t gi)
+VIS4GS_TARGET_AVX512 void ProcessGroupAvx512(const GroupContext& ctx, std::int64_t gi)
 {
   ProcessGroup(ctx, gi);
 }
@@ -455,11 +454,10 @@ std::vector<std::uint32_t> MaxWeightBitsOverPixels(const ViewProjection<float>& 
   const GroupContext ctx{
     &proj, &bins, &keys, &starts, best.data(), targets ? targets->data() : nullptr, cull
   };
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  void (*process)(const GroupContext&, std::int64_t) = has512 ? ProcessGroupAvx512
-    : __builtin_cpu_supports("avx2")                          ? ProcessGroupAvx2
-                                                              : ProcessGroupBaseline;
+  const KernelIsa isa = ResolveKernelIsa(0);
+  void (*process)(const GroupContext&, std::int64_t) = isa == KernelIsa::Avx512 ? ProcessGroupAvx512
+    : isa == KernelIsa::Avx2                                                    ? ProcessGroupAvx2
+                             : ProcessGroupBaseline;
   const std::int64_t groups = static_cast<std::int64_t>(starts.size()) - 1;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(threads))
   for (std::int64_t gi = 0; gi < groups; ++gi)

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Loss.h"
 
+#include "KernelIsa.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -131,16 +133,12 @@ void BlurBaseline(const T* in, T* out, T* tmp, int W, int H)
   BlurBody(in, out, tmp, W, H);
 }
 template <typename T>
-__attribute__((target("avx2"))) void BlurAvx2(const T* in, T* out, T* tmp, int W, int H)
+VIS4GS_TARGET_AVX2 void BlurAvx2(const T* in, T* out, T* tmp, int W, int H)
 {
   BlurBody(in, out, tmp, W, H);
 }
 template <typename T>
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void BlurAvx512(const T* in,
-  T* out,
-  T* tmp,
-  int W,
-  int H)
+VIS4GS_TARGET_AVX512 void BlurAvx512(const T* in, T* out, T* tmp, int W, int H)
 {
   BlurBody(in, out, tmp, W, H);
 }
@@ -148,23 +146,19 @@ __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void BlurAvx512(co
 template <typename T>
 using BlurFunction = void (*)(const T*, T*, T*, int, int);
 
-/// 0 = best available, 1 = baseline, 2 = AVX2, 3 = AVX-512 (falls back when unsupported).
+/// The instruction sets of KernelIsa.h (every variant gives the same bits).
 template <typename T>
 BlurFunction<T> SelectBlur(int isa)
 {
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if ((isa <= 0 || isa >= 3) && has512)
+  switch (ResolveKernelIsa(isa))
   {
-    return &BlurAvx512<T>;
+    case KernelIsa::Avx512:
+      return &BlurAvx512<T>;
+    case KernelIsa::Avx2:
+      return &BlurAvx2<T>;
+    default:
+      return &BlurBaseline<T>;
   }
-  if ((isa <= 0 || isa >= 2) && has2)
-  {
-    return &BlurAvx2<T>;
-  }
-  return &BlurBaseline<T>;
 }
 
 // The per-pixel passes of SSIM over pixels [p0, p1) of one channel, element-wise like the
@@ -288,8 +282,8 @@ inline __attribute__((always_inline)) void GradBody(int ch,
     GradBody(ch, p0, p1, bmu, bxx, bxy, px, py, invN, gradSsim);                                   \
   }
 VIS4GS_SSIM_PASSES(Baseline, )
-VIS4GS_SSIM_PASSES(Avx2, __attribute__((target("avx2"))))
-VIS4GS_SSIM_PASSES(Avx512, __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))))
+VIS4GS_SSIM_PASSES(Avx2, VIS4GS_TARGET_AVX2)
+VIS4GS_SSIM_PASSES(Avx512, VIS4GS_TARGET_AVX512)
 #undef VIS4GS_SSIM_PASSES
 
 /// The SSIM kernels of one instruction set (0 best, 1 baseline, 2 AVX2, 3 AVX-512).

@@ -2,6 +2,7 @@
 #include "RasterBackward.h"
 
 #include "GaussianMath.h"
+#include "KernelIsa.h"
 #include "RasterBounds.h"
 #include "RasterKernel.h"
 
@@ -340,7 +341,7 @@ struct BackwardLanes<double>
 #undef VIS4GS_LANES_NATIVE_BYTES
 #define VIS4GS_LANES_NATIVE_BYTES 32
 #define VIS4GS_LANES_NAMESPACE lanes_avx2
-#define VIS4GS_LANES_TARGET __attribute__((target("avx2")))
+#define VIS4GS_LANES_TARGET VIS4GS_TARGET_AVX2
 #include "RasterBackwardLanes.inc"
 #undef VIS4GS_LANES_NAMESPACE
 #undef VIS4GS_LANES_TARGET
@@ -348,7 +349,7 @@ struct BackwardLanes<double>
 #undef VIS4GS_LANES_AVX512
 #define VIS4GS_LANES_AVX512 1
 #define VIS4GS_LANES_NAMESPACE lanes_avx512
-#define VIS4GS_LANES_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#define VIS4GS_LANES_TARGET VIS4GS_TARGET_AVX512
 #include "RasterBackwardLanes.inc"
 #undef VIS4GS_LANES_NAMESPACE
 #undef VIS4GS_LANES_TARGET
@@ -363,15 +364,14 @@ void TileLanesBaseline(const BackwardContext<T>& ctx, std::size_t t, PartitionSi
   lanes_baseline::TileBackwardLanes<T>(ctx, t, sink);
 }
 template <typename T>
-__attribute__((target("avx2"))) void TileLanesAvx2(const BackwardContext<T>& ctx,
+VIS4GS_TARGET_AVX2 void TileLanesAvx2(const BackwardContext<T>& ctx,
   std::size_t t,
   PartitionSink<T>& sink)
 {
   lanes_avx2::TileBackwardLanes<T>(ctx, t, sink);
 }
 template <typename T>
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) void TileLanesAvx512(
-  const BackwardContext<T>& ctx,
+VIS4GS_TARGET_AVX512 void TileLanesAvx512(const BackwardContext<T>& ctx,
   std::size_t t,
   PartitionSink<T>& sink)
 {
@@ -385,33 +385,28 @@ BackwardTileFunction<T> SelectBackwardTile(int isa)
   {
     return &TileBackwardScalar<T>;
   }
-  __builtin_cpu_init();
-  const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  const bool has2 = __builtin_cpu_supports("avx2");
-  if ((isa == 0 || isa >= 3) && has512)
+  switch (ResolveKernelIsa(isa))
   {
-    return &TileLanesAvx512<T>;
+    case KernelIsa::Avx512:
+      return &TileLanesAvx512<T>;
+    case KernelIsa::Avx2:
+      return &TileLanesAvx2<T>;
+    default:
+      return &TileLanesBaseline<T>;
   }
-  if ((isa == 0 || isa >= 2) && has2)
-  {
-    return &TileLanesAvx2<T>;
-  }
-  return &TileLanesBaseline<T>;
 }
 
 std::uint32_t SpanRowMaskBaseline(const raster::detail::SpanBounds& sb, int x0, int y0)
 {
   return lanes_baseline::SpanRowMask(sb, x0, y0);
 }
-__attribute__((target("avx2"))) std::uint32_t SpanRowMaskAvx2(const raster::detail::SpanBounds& sb,
+VIS4GS_TARGET_AVX2 std::uint32_t SpanRowMaskAvx2(const raster::detail::SpanBounds& sb,
   int x0,
   int y0)
 {
   return lanes_avx2::SpanRowMask(sb, x0, y0);
 }
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) std::uint32_t SpanRowMaskAvx512(
-  const raster::detail::SpanBounds& sb,
+VIS4GS_TARGET_AVX512 std::uint32_t SpanRowMaskAvx512(const raster::detail::SpanBounds& sb,
   int x0,
   int y0)
 {

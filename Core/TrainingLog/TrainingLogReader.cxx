@@ -26,21 +26,6 @@ struct SnapshotEntry
   std::string Group; ///< full path, e.g. "/snapshots/000500"
 };
 
-const char* KindName(std::uint8_t kind)
-{
-  switch (kind)
-  {
-    case 1:
-      return "clone";
-    case 2:
-      return "split";
-    case 3:
-      return "prune";
-    default:
-      return "unknown kind";
-  }
-}
-
 herr_t CollectName(hid_t, const char* name, const H5L_info_t*, void* data)
 {
   static_cast<std::vector<std::string>*>(data)->push_back(name);
@@ -1058,13 +1043,13 @@ EventTable TrainingLogReader::ReadEvents() const
     auto where = [&]()
     {
       return "/events row " + std::to_string(i) + " (iteration " + std::to_string(it) + ", " +
-        KindName(kind) + ", parent " + std::to_string(t.Parent[i]) + ", child " +
+        EventKindName(kind) + ", parent " + std::to_string(t.Parent[i]) + ", child " +
         std::to_string(child) + ")";
     };
     const char* category = nullptr;
     std::int32_t* end = nullptr;
     std::uint8_t* endKind = nullptr;
-    if (kind < 1 || kind > 3)
+    if (!IsEventKind(kind))
     {
       category = "of an unknown kind";
     }
@@ -1088,7 +1073,7 @@ EventTable TrainingLogReader::ReadEvents() const
         const std::string c = category;
         if (c == "of an unknown kind")
         {
-          problem = where() + " has kind " + std::to_string(kind) + " (1 clone, 2 split, 3 prune)";
+          problem = where() + " has kind " + std::to_string(kind) + " (" + EventKindValues + ")";
         }
         else if (c == "naming unknown ids")
         {
@@ -1097,7 +1082,7 @@ EventTable TrainingLogReader::ReadEvents() const
         else if (c == "naming ended ids")
         {
           problem = where() + " names id " + std::to_string(t.Parent[i]) + ", which ended (" +
-            KindName(*endKind) + ") at iteration " + std::to_string(*end);
+            EventKindName(*endKind) + ") at iteration " + std::to_string(*end);
         }
         else
         {

@@ -22,6 +22,31 @@ enum class EventKind : std::uint8_t
   Prune = 3
 };
 
+/// True for the values /events/kind may hold (1 clone, 2 split, 3 prune).
+inline bool IsEventKind(std::uint8_t kind)
+{
+  return kind >= 1 && kind <= 3;
+}
+
+/// "clone", "split", "prune", or "unknown kind": the one spelling in every message.
+inline const char* EventKindName(std::uint8_t kind)
+{
+  switch (kind)
+  {
+    case 1:
+      return "clone";
+    case 2:
+      return "split";
+    case 3:
+      return "prune";
+    default:
+      return "unknown kind";
+  }
+}
+
+/// The values /events/kind may hold, for messages about a bad one.
+constexpr const char* EventKindValues = "1 clone, 2 split, 3 prune";
+
 /// One row of /events: rows are kept in the order the trainer did them.
 struct TrainingEvent
 {

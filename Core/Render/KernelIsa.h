@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file KernelIsa.h
+ * @brief The one instruction-set dispatch of Core's SIMD kernels: what the `KernelIsa`
+ * settings mean, what the CPU has, and the target attributes the kernels are compiled with.
+ *
+ * Every kernel with hand-written vector code (projection, compositing, footprints, fast
+ * coverage, the loss, the backward pass, screen selection) is compiled once per instruction
+ * set and picks its variant at run time with ResolveKernelIsa(), so that a setting such as
+ * `RasterSettings::KernelIsa = 2` means the same thing in every module:
+ *
+ * | setting | kernel                                                                   |
+ * |---------|--------------------------------------------------------------------------|
+ * | 0       | the widest the CPU has (the default)                                     |
+ * | 1       | the baseline build: code compiled for x86-64's baseline (SSE2), no       |
+ * |         | run-time-selected extension (vector code where the module has a generic  |
+ * |         | vector variant, its scalar loop where it has none)                       |
+ * | 2       | AVX2                                                                     |
+ * | 3       | AVX-512 (F, VL, BW, DQ)                                                  |
+ *
+ * A request the CPU cannot run falls back to the widest set below it that it can. Modules
+ * with a scalar pixel-by-pixel reference name it -1; that is not an instruction set and is
+ * handled by the module before dispatch. Every variant gives the same results bit for bit
+ * where the module's tests say so (the compositing loops are built with -ffp-contract=off).
+ */
+#ifndef vis4gs_KernelIsa_h
+#define vis4gs_KernelIsa_h
+
+/// Target strings and attributes of the AVX2 and AVX-512 variants (the AVX-512 subsets the
+/// kernels use).
+#define VIS4GS_AVX2_FEATURES "avx2"
+#define VIS4GS_TARGET_AVX2 __attribute__((target(VIS4GS_AVX2_FEATURES)))
+#define VIS4GS_AVX512_FEATURES "avx512f,avx512vl,avx512bw,avx512dq"
+#define VIS4GS_TARGET_AVX512 __attribute__((target(VIS4GS_AVX512_FEATURES)))
+
+namespace vis4gs
+{
+
+/// An instruction set a kernel is compiled for (the values of the `KernelIsa` settings).
+enum class KernelIsa : int
+{
+  Best = 0,
+  Baseline = 1,
+  Avx2 = 2,
+  Avx512 = 3
+};
+
+/// True when the CPU (and the OS) can run the AVX2 / AVX-512 variants; detected once.
+bool CpuHasAvx2();
+bool CpuHasAvx512();
+
+/**
+ * The variant a kernel runs for the setting @p requested (0 best, 1 baseline, 2 AVX2,
+ * 3 AVX-512; larger values read as 3, negative ones as 1): the requested set, or the widest
+ * one below it that the CPU has. Never returns KernelIsa::Best.
+ */
+KernelIsa ResolveKernelIsa(int requested);
+
+/// Name of @p isa for messages and benchmark tables ("baseline", "AVX2", "AVX-512", "best").
+const char* KernelIsaName(KernelIsa isa);
+
+} // namespace vis4gs
+
+#endif
