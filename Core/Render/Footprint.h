@@ -67,8 +67,8 @@ struct FootprintOptions
   int Threads = 0;
   /// Instruction set of the float fast path (KernelIsa.h): 0 = best available (default),
   /// 1 = baseline (the scalar loop), 2 = AVX2 (8 pixels at a time), 3 = AVX2 rows and
-  /// AVX-512 packed boxes (16 pixels at a time). Results are bit-identical on every path (counts, and sums accumulated in the
-  /// same pixel order); a knob for tests and benchmarks.
+  /// AVX-512 packed boxes (16 pixels at a time). Results are bit-identical on every path (counts,
+  /// and sums accumulated in the same pixel order); a knob for tests and benchmarks.
   int KernelIsa = 0;
 };
 
