@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianTreeItem.h"
 
+#include "TreeDrawIndex.h"
+
 #include "vtkGaussianSelectionHub.h"
 
 #include "vtkBrush.h"
@@ -139,19 +141,11 @@ struct vtkGaussianTreeItem::vtkInternals
   vtkMTimeType BuiltTreeTime = 0;
   vtkMTimeType BuiltBandsTime = 0;
 
-  // Per vertex (index = tree vertex id).
+  // Per vertex (index = tree vertex id): the columns and orders in Core, the node kind
+  // slot and pruned flag here.
   vtkSmartPointer<vtkDataArray> IdArray;
-  std::vector<std::int32_t> Birth, End;
-  std::vector<double> Row, P;
-  std::vector<std::uint8_t> Kind, Pruned, Valid;
-  std::vector<vtkIdType> ByP;   // valid vertices, P descending
-  std::vector<vtkIdType> ByRow; // valid vertices, row ascending
-  // GaussianId -> vertex: dense table when ids are dense, else sorted pairs.
-  vtkIdType IdMin = 0;
-  std::vector<vtkIdType> DenseIdToVertex;
-  std::vector<std::pair<vtkIdType, vtkIdType>> SortedIdToVertex;
-  double DataMinX = 0, DataMaxX = 1, DataMinY = 0, DataMaxY = 1;
-  vtkIdType NumberOfRows = 0;
+  vis4gs::TreeDrawIndex Index;
+  std::vector<std::uint8_t> Kind, Pruned;
 
   std::vector<float> BandMinX, BandMaxX, BandMinY, BandMaxY;
 
@@ -160,7 +154,7 @@ struct vtkGaussianTreeItem::vtkInternals
 
   std::vector<vtkIdType> Selected, Lineage;
   std::vector<std::uint8_t> InLineage;
-  std::vector<vtkIdType> Visible;
+  std::vector<std::int64_t> Visible;
   vtkIdType Work = 0;
   int Iteration = -1;
 
@@ -172,20 +166,7 @@ struct vtkGaussianTreeItem::vtkInternals
   std::vector<float> Pts;
   std::vector<unsigned char> Cols;
 
-  vtkIdType VertexOfId(vtkIdType id) const
-  {
-    if (!this->DenseIdToVertex.empty())
-    {
-      const vtkIdType k = id - this->IdMin;
-      return (k >= 0 && k < static_cast<vtkIdType>(this->DenseIdToVertex.size()))
-        ? this->DenseIdToVertex[k]
-        : -1;
-    }
-    auto it = std::lower_bound(this->SortedIdToVertex.begin(),
-      this->SortedIdToVertex.end(),
-      std::make_pair(id, std::numeric_limits<vtkIdType>::min()));
-    return (it != this->SortedIdToVertex.end() && it->first == id) ? it->second : -1;
-  }
+  vtkIdType VertexOfId(vtkIdType id) const { return this->Index.VertexOfId(id); }
 };
 
 //------------------------------------------------------------------------------
@@ -290,20 +271,13 @@ void vtkGaussianTreeItem::BuildIndex()
   const bool treeCurrent = tree && in.BuiltTreeTime >= tree->GetMTime();
   if (!tree)
   {
-    in.Birth.clear();
-    in.End.clear();
-    in.Row.clear();
-    in.P.clear();
+    in.Index.Clear();
     in.Kind.clear();
     in.Pruned.clear();
-    in.Valid.clear();
-    in.ByP.clear();
-    in.ByRow.clear();
     in.InLineage.clear();
     in.Selected.clear();
     in.Lineage.clear();
     in.IdArray = nullptr;
-    in.NumberOfRows = 0;
   }
   else if (!treeCurrent)
   {
@@ -334,12 +308,12 @@ void vtkGaussianTreeItem::BuildIndex()
     }
     in.IdArray = ids;
     // Typed, parallel copies of the vertex arrays (10M vertices: a few hundred ms).
-    std::vector<vtkIdType> idValues;
+    std::vector<std::int64_t> idValues;
     ReadColumn(ids, n, idValues);
-    ReadColumn(xs, n, in.Birth);
-    ReadColumn(death, n, in.End);
-    ReadColumn(ys, n, in.Row);
-    ReadColumn(ps, n, in.P);
+    ReadColumn(xs, n, in.Index.Birth);
+    ReadColumn(death, n, in.Index.End);
+    ReadColumn(ys, n, in.Index.Row);
+    ReadColumn(ps, n, in.Index.P);
     ReadColumn(kinds, n, in.Kind);
     if (pruned)
     {
@@ -349,33 +323,17 @@ void vtkGaussianTreeItem::BuildIndex()
     {
       in.Pruned.assign(n, 0);
     }
-    in.Valid.resize(n);
-    std::int32_t last = std::numeric_limits<std::int32_t>::min();
-    vtkIdType idMin = std::numeric_limits<vtkIdType>::max(), idMax = -1, valid = 0;
     {
-      const vtkIdType* idp = idValues.data();
-      std::uint8_t* validp = in.Valid.data();
       std::uint8_t* kindp = in.Kind.data();
       std::uint8_t* prunedp = in.Pruned.data();
-      const std::int32_t* birthp = in.Birth.data();
-      const std::int32_t* endp = in.End.data();
-#pragma omp parallel for schedule(static) reduction(max : last, idMax)                           \
-  reduction(min : idMin) reduction(+ : valid) if (n > 65536)
+#pragma omp parallel for schedule(static) if (n > 65536)
       for (vtkIdType v = 0; v < n; ++v)
       {
-        const vtkIdType id = idp[v];
-        validp[v] = id >= 0;
         kindp[v] = static_cast<std::uint8_t>(KindSlot(kindp[v]));
         prunedp[v] = prunedp[v] != 0;
-        if (id >= 0)
-        {
-          ++valid;
-          last = std::max({ last, birthp[v], endp[v] });
-          idMin = std::min(idMin, id);
-          idMax = std::max(idMax, id);
-        }
       }
     }
+    std::int32_t last = std::numeric_limits<std::int32_t>::min();
     if (vtkDataArray* l = tree->GetFieldData()->GetArray("LastIteration"))
     {
       if (l->GetNumberOfTuples() > 0)
@@ -383,200 +341,7 @@ void vtkGaussianTreeItem::BuildIndex()
         last = static_cast<std::int32_t>(l->GetComponent(0, 0));
       }
     }
-    double minX = std::numeric_limits<double>::max(), minY = minX;
-    double maxX = std::numeric_limits<double>::lowest(), maxY = maxX;
-    {
-      const std::uint8_t* validp = in.Valid.data();
-      const std::int32_t* birthp = in.Birth.data();
-      std::int32_t* endp = in.End.data();
-      const double* rowp = in.Row.data();
-#pragma omp parallel for schedule(static) reduction(min                                            \
-                                                    : minX, minY)                                  \
-  reduction(max                                                                                    \
-            : maxX, maxY) if (n > 65536)
-      for (vtkIdType v = 0; v < n; ++v)
-      {
-        if (!validp[v])
-        {
-          continue;
-        }
-        if (endp[v] < 0)
-        {
-          endp[v] = last;
-        }
-        minX = std::min(minX, double(birthp[v]));
-        maxX = std::max(maxX, double(endp[v]));
-        minY = std::min(minY, rowp[v]);
-        maxY = std::max(maxY, rowp[v]);
-      }
-    }
-    if (valid == 0)
-    {
-      minX = minY = 0;
-      maxX = maxY = 1;
-    }
-    in.DataMinX = minX;
-    in.DataMaxX = std::max(maxX, minX + 1);
-    in.DataMinY = minY;
-    in.DataMaxY = maxY;
-    in.NumberOfRows = valid;
-
-    // P descending: counting sort on an 18-bit key (buckets of ~40 nodes at 10M), then exact
-    // order inside each bucket.
-    const int levels = 1 << 18;
-    const int buckets = levels + 1;
-    auto key = [&](vtkIdType v) -> int
-    {
-      const double p = in.P[v];
-      if (!(p == p))
-      {
-        return buckets - 1; // NaN last
-      }
-      const double c = std::min(1.0, std::max(0.0, p));
-      return (levels - 1) - static_cast<int>(c * (levels - 1));
-    };
-    std::vector<std::int32_t> keys(static_cast<std::size_t>(n));
-    {
-      std::int32_t* k = keys.data();
-      const std::uint8_t* validp = in.Valid.data();
-#pragma omp parallel for schedule(static) if (n > 65536)
-      for (vtkIdType v = 0; v < n; ++v)
-      {
-        k[v] = validp[v] ? key(v) : -1;
-      }
-    }
-    std::vector<vtkIdType> count(buckets + 1, 0);
-    for (vtkIdType v = 0; v < n; ++v)
-    {
-      if (keys[v] >= 0)
-      {
-        ++count[keys[v] + 1];
-      }
-    }
-    for (int b = 0; b < buckets; ++b)
-    {
-      count[b + 1] += count[b];
-    }
-    in.ByP.assign(valid, 0);
-    {
-      std::vector<vtkIdType> pos(count.begin(), count.end() - 1);
-      for (vtkIdType v = 0; v < n; ++v)
-      {
-        if (keys[v] >= 0)
-        {
-          in.ByP[pos[keys[v]]++] = v;
-        }
-      }
-    }
-    keys = std::vector<std::int32_t>();
-    {
-      // Buckets are sorted independently (same result as one after the other).
-      vtkIdType* byP = in.ByP.data();
-      const vtkIdType* c = count.data();
-      const double* pv = in.P.data();
-#pragma omp parallel for schedule(dynamic, 256) if (valid > 65536)
-      for (int b = 0; b < buckets; ++b)
-      {
-        if (c[b + 1] - c[b] > 1)
-        {
-          std::sort(
-            byP + c[b], byP + c[b + 1], [pv](vtkIdType a, vtkIdType d) { return pv[a] > pv[d]; });
-        }
-      }
-    }
-    // Rows ascending. The genealogy filter's rows are a permutation of minY .. minY + valid - 1:
-    // then ByRow is its inverse (one scatter); otherwise (other inputs) a counting sort when
-    // the rows are dense integers, else a stable sort.
-    in.ByRow.assign(valid, -1);
-    bool permutation = valid > 0 && maxY - minY + 1 == static_cast<double>(valid);
-    for (vtkIdType v = 0; permutation && v < n; ++v)
-    {
-      if (in.Valid[v])
-      {
-        const double r = in.Row[v] - minY;
-        if (!(r >= 0 && r < static_cast<double>(valid))) // (also NaN)
-        {
-          permutation = false;
-          break;
-        }
-        const vtkIdType k = static_cast<vtkIdType>(r);
-        if (static_cast<double>(k) != r || in.ByRow[k] >= 0)
-        {
-          permutation = false; // not an integer, or a repeated row
-        }
-        else
-        {
-          in.ByRow[k] = v;
-        }
-      }
-    }
-    if (!permutation)
-    {
-      in.ByRow.clear();
-      for (vtkIdType v = 0; v < n; ++v)
-      {
-        if (in.Valid[v])
-        {
-          in.ByRow.push_back(v);
-        }
-      }
-      const double rowSpan = maxY - minY + 1;
-      if (valid > 0 && rowSpan <= 2.0 * valid + 16)
-      {
-        std::vector<vtkIdType> rc(static_cast<std::size_t>(rowSpan) + 1, 0);
-        for (vtkIdType v : in.ByRow)
-        {
-          ++rc[static_cast<std::size_t>(in.Row[v] - minY) + 1];
-        }
-        for (std::size_t b = 0; b + 1 < rc.size(); ++b)
-        {
-          rc[b + 1] += rc[b];
-        }
-        std::vector<vtkIdType> sorted(in.ByRow.size());
-        for (vtkIdType v : in.ByRow)
-        {
-          sorted[rc[static_cast<std::size_t>(in.Row[v] - minY)]++] = v;
-        }
-        in.ByRow.swap(sorted);
-      }
-      else
-      {
-        std::stable_sort(in.ByRow.begin(),
-          in.ByRow.end(),
-          [&](vtkIdType a, vtkIdType b) { return in.Row[a] < in.Row[b]; });
-      }
-    }
-    // GaussianId -> vertex.
-    in.DenseIdToVertex.clear();
-    in.SortedIdToVertex.clear();
-    if (valid > 0 && idMax - idMin < 4 * valid + 1024)
-    {
-      in.IdMin = idMin;
-      in.DenseIdToVertex.assign(static_cast<std::size_t>(idMax - idMin + 1), -1);
-      vtkIdType* dense = in.DenseIdToVertex.data();
-      const vtkIdType* idp = idValues.data();
-      const std::uint8_t* validp = in.Valid.data();
-      // Ids are unique (pedigree ids), so the threads write distinct entries.
-#pragma omp parallel for schedule(static) if (n > 65536)
-      for (vtkIdType v = 0; v < n; ++v)
-      {
-        if (validp[v])
-        {
-          dense[idp[v] - idMin] = v;
-        }
-      }
-    }
-    else
-    {
-      for (vtkIdType v = 0; v < n; ++v)
-      {
-        if (in.Valid[v])
-        {
-          in.SortedIdToVertex.emplace_back(idValues[v], v);
-        }
-      }
-      std::sort(in.SortedIdToVertex.begin(), in.SortedIdToVertex.end());
-    }
+    in.Index.Build(idValues, last);
     in.InLineage.assign(n, 0);
     in.Selected.clear();
     in.Lineage.clear();
@@ -623,11 +388,11 @@ void vtkGaussianTreeItem::BuildIndex()
   if (!in.ViewportSet)
   {
     in.ViewportSet = true;
-    const double mx = 0.02 * (in.DataMaxX - in.DataMinX);
-    in.VX0 = in.DataMinX - mx;
-    in.VX1 = in.DataMaxX + mx;
-    in.VY0 = in.DataMinY - 0.5;
-    in.VY1 = in.DataMaxY + 0.5;
+    const double mx = 0.02 * (in.Index.DataMaxX - in.Index.DataMinX);
+    in.VX0 = in.Index.DataMinX - mx;
+    in.VX1 = in.Index.DataMaxX + mx;
+    in.VY0 = in.Index.DataMinY - 0.5;
+    in.VY1 = in.Index.DataMaxY + 0.5;
   }
 }
 
@@ -655,7 +420,7 @@ void vtkGaussianTreeItem::UpdateSelection()
   }
   in.Selected.clear();
   in.Lineage.clear();
-  if (!in.Hub || !in.Tree || in.Valid.empty())
+  if (!in.Hub || !in.Tree || in.Index.Valid.empty())
   {
     return;
   }
@@ -672,7 +437,7 @@ void vtkGaussianTreeItem::UpdateSelection()
   // Ancestors, then the selection and its descendants (breadth first, iterative).
   for (vtkIdType s : in.Selected)
   {
-    for (vtkIdType a = tree->GetParent(s); a >= 0 && in.Valid[a] && !in.InLineage[a];
+    for (vtkIdType a = tree->GetParent(s); a >= 0 && in.Index.Valid[a] && !in.InLineage[a];
          a = tree->GetParent(a))
     {
       in.InLineage[a] = 1;
@@ -756,7 +521,7 @@ double vtkGaussianTreeItem::GetZoom()
   this->BuildIndex();
   auto& in = *this->Internals;
   const vis4gs::ZoomParameters zp;
-  const double all = in.DataMaxY - in.DataMinY + 1.0;
+  const double all = in.Index.DataMaxY - in.Index.DataMinY + 1.0;
   const double sMax = all / this->ZoomedInRows;
   if (sMax <= 1.0)
   {
@@ -773,7 +538,7 @@ void vtkGaussianTreeItem::SetZoom(double z)
   this->BuildIndex();
   auto& in = *this->Internals;
   const vis4gs::ZoomParameters zp;
-  const double all = in.DataMaxY - in.DataMinY + 1.0;
+  const double all = in.Index.DataMaxY - in.Index.DataMinY + 1.0;
   const double sMax = std::max(1.0, all / this->ZoomedInRows);
   const double t = (std::min(zp.ZMax, std::max(zp.ZMin, z)) - zp.ZMin) / (zp.ZMax - zp.ZMin);
   const double s = std::exp(t * std::log(sMax));
@@ -800,7 +565,7 @@ void vtkGaussianTreeItem::ZoomRows(double factor, double aboutRow)
     return;
   }
   // Never zoom in past a few rows nor out past the whole tree.
-  const double all = in.DataMaxY - in.DataMinY + 1.0;
+  const double all = in.Index.DataMaxY - in.Index.DataMinY + 1.0;
   double span = (in.VY1 - in.VY0) / factor;
   span = std::min(std::max(span, 4.0), all + 1.0);
   const double f = (aboutRow - in.VY0) / (in.VY1 - in.VY0);
@@ -818,7 +583,7 @@ void vtkGaussianTreeItem::ZoomIterations(double factor, double aboutIteration)
   {
     return;
   }
-  const double all = 1.1 * (in.DataMaxX - in.DataMinX) + 1.0;
+  const double all = 1.1 * (in.Index.DataMaxX - in.Index.DataMinX) + 1.0;
   double span = (in.VX1 - in.VX0) / factor;
   span = std::min(std::max(span, 10.0), all);
   const double f = (aboutIteration - in.VX0) / (in.VX1 - in.VX0);
@@ -851,15 +616,15 @@ void vtkGaussianTreeItem::ZoomToSelection()
   double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
   for (vtkIdType v : in.Lineage)
   {
-    lo = std::min(lo, in.Row[v]);
-    hi = std::max(hi, in.Row[v]);
+    lo = std::min(lo, in.Index.Row[v]);
+    hi = std::max(hi, in.Index.Row[v]);
   }
   const double pad = std::max(2.0, 0.1 * (hi - lo));
   in.VY0 = lo - pad;
   in.VY1 = hi + pad;
-  const double mx = 0.02 * (in.DataMaxX - in.DataMinX);
-  in.VX0 = in.DataMinX - mx;
-  in.VX1 = in.DataMaxX + mx;
+  const double mx = 0.02 * (in.Index.DataMaxX - in.Index.DataMinX);
+  in.VX0 = in.Index.DataMinX - mx;
+  in.VX1 = in.Index.DataMaxX + mx;
   this->Modified();
 }
 
@@ -870,46 +635,15 @@ vtkIdType vtkGaussianTreeItem::UpdateLevelOfDetail()
   auto& in = *this->Internals;
   in.Visible.clear();
   in.Work = 0;
-  if (in.ByP.empty())
-  {
-    return 0;
-  }
   const double tau = vis4gs::ZoomThreshold(this->GetZoom());
-  const double rowLo = in.VY0, rowHi = in.VY1;
-  const double xLo = in.VX0, xHi = in.VX1;
-  auto rowLess = [&](vtkIdType v, double r) { return in.Row[v] < r; };
-  auto k0 = std::lower_bound(in.ByRow.begin(), in.ByRow.end(), rowLo, rowLess);
-  auto k1 = std::lower_bound(k0, in.ByRow.end(), std::nextafter(rowHi, HUGE_VAL), rowLess);
-  auto p1 =
-    std::partition_point(in.ByP.begin(), in.ByP.end(), [&](vtkIdType v) { return in.P[v] >= tau; });
-  const vtkIdType nRows = k1 - k0;
-  const vtkIdType nP = p1 - in.ByP.begin();
+  in.Work =
+    in.Index.QueryVisible(tau, in.VX0, in.VX1, in.VY0, in.VY1, in.InLineage.data(), in.Visible);
+  const auto& index = in.Index;
   auto inView = [&](vtkIdType v)
-  { return in.Row[v] >= rowLo && in.Row[v] <= rowHi && in.Birth[v] <= xHi && in.End[v] >= xLo; };
-  if (nP <= nRows)
   {
-    for (auto it = in.ByP.begin(); it != p1; ++it)
-    {
-      const vtkIdType v = *it;
-      if (!in.InLineage[v] && inView(v))
-      {
-        in.Visible.push_back(v);
-      }
-    }
-    in.Work = nP;
-  }
-  else
-  {
-    for (auto it = k0; it != k1; ++it)
-    {
-      const vtkIdType v = *it;
-      if (in.P[v] >= tau && !in.InLineage[v] && in.Birth[v] <= xHi && in.End[v] >= xLo)
-      {
-        in.Visible.push_back(v);
-      }
-    }
-    in.Work = nRows;
-  }
+    return index.Row[v] >= in.VY0 && index.Row[v] <= in.VY1 && index.Birth[v] <= in.VX1 &&
+      index.End[v] >= in.VX0;
+  };
   for (vtkIdType v : in.Lineage)
   {
     if (inView(v))
@@ -924,7 +658,7 @@ vtkIdType vtkGaussianTreeItem::UpdateLevelOfDetail()
 //------------------------------------------------------------------------------
 void vtkGaussianTreeItem::GetVisibleVertices(vtkIdTypeArray* vertices)
 {
-  std::vector<vtkIdType> v = this->Internals->Visible;
+  std::vector<vtkIdType> v(this->Internals->Visible.begin(), this->Internals->Visible.end());
   std::sort(v.begin(), v.end());
   vertices->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
   std::copy(v.begin(), v.end(), vertices->GetPointer(0));
@@ -997,10 +731,10 @@ void vtkGaussianTreeItem::GetVertexPosition(vtkIdType vertex, float position[2])
   auto& in = *this->Internals;
   VIS4GS_TREE_MAP(this, in);
   position[0] = position[1] = 0.f;
-  if (vertex >= 0 && vertex < static_cast<vtkIdType>(in.Row.size()))
+  if (vertex >= 0 && vertex < static_cast<vtkIdType>(in.Index.Row.size()))
   {
-    position[0] = map.X(in.Birth[vertex]);
-    position[1] = map.Y(in.Row[vertex]);
+    position[0] = map.X(in.Index.Birth[vertex]);
+    position[1] = map.Y(in.Index.Row[vertex]);
   }
 }
 
@@ -1013,13 +747,13 @@ vtkIdType vtkGaussianTreeItem::PickVertex(float x, float y, float tolerance)
   float bestD = tolerance;
   for (vtkIdType v : in.Visible)
   {
-    const float sy = map.Y(in.Row[v]);
+    const float sy = map.Y(in.Index.Row[v]);
     const float dy = std::abs(sy - y);
     if (dy > bestD)
     {
       continue;
     }
-    const float sx0 = map.X(in.Birth[v]), sx1 = map.X(in.End[v]);
+    const float sx0 = map.X(in.Index.Birth[v]), sx1 = map.X(in.Index.End[v]);
     float dx = 0.f;
     if (x < sx0)
     {
@@ -1161,18 +895,18 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   vtkTree* tree = in.Tree;
   for (vtkIdType v : in.Visible)
   {
-    const float y = map.Y(in.Row[v]);
-    const float x0 = map.X(in.Birth[v]);
-    pts.insert(pts.end(), { x0, y, std::max(map.X(in.End[v]), x0 + 1.f), y });
+    const float y = map.Y(in.Index.Row[v]);
+    const float x0 = map.X(in.Index.Birth[v]);
+    pts.insert(pts.end(), { x0, y, std::max(map.X(in.Index.End[v]), x0 + 1.f), y });
     const unsigned char* c = KindColors[in.Kind[v]];
     for (int k = 0; k < 2; ++k)
     {
       cols.insert(cols.end(), { c[0], c[1], c[2], 200 });
     }
     const vtkIdType parent = tree->GetParent(v);
-    if (parent >= 0 && in.Valid[parent])
+    if (parent >= 0 && in.Index.Valid[parent])
     {
-      edges.insert(edges.end(), { x0, map.Y(in.Row[parent]), x0, y });
+      edges.insert(edges.end(), { x0, map.Y(in.Index.Row[parent]), x0, y });
     }
   }
   vtkNew<vtkPen> pen;
@@ -1200,17 +934,17 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
     pts.clear();
     for (vtkIdType v : in.Lineage)
     {
-      if (in.Row[v] < in.VY0 || in.Row[v] > in.VY1)
+      if (in.Index.Row[v] < in.VY0 || in.Index.Row[v] > in.VY1)
       {
         continue;
       }
-      const float y = map.Y(in.Row[v]);
-      const float x0 = map.X(in.Birth[v]);
-      pts.insert(pts.end(), { x0, y, std::max(map.X(in.End[v]), x0 + 1.f), y });
+      const float y = map.Y(in.Index.Row[v]);
+      const float x0 = map.X(in.Index.Birth[v]);
+      pts.insert(pts.end(), { x0, y, std::max(map.X(in.Index.End[v]), x0 + 1.f), y });
       const vtkIdType parent = tree->GetParent(v);
-      if (parent >= 0 && in.Valid[parent] && in.InLineage[parent])
+      if (parent >= 0 && in.Index.Valid[parent] && in.InLineage[parent])
       {
-        pts.insert(pts.end(), { x0, map.Y(in.Row[parent]), x0, y });
+        pts.insert(pts.end(), { x0, map.Y(in.Index.Row[parent]), x0, y });
       }
     }
     pen->SetWidth(3.f);
@@ -1227,12 +961,12 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   cols.clear();
   for (vtkIdType v : in.Visible)
   {
-    pts.insert(pts.end(), { map.X(in.Birth[v]), map.Y(in.Row[v]) });
+    pts.insert(pts.end(), { map.X(in.Index.Birth[v]), map.Y(in.Index.Row[v]) });
     const unsigned char* c = KindColors[in.Kind[v]];
     cols.insert(cols.end(), { c[0], c[1], c[2], 255 });
     if (in.Pruned[v])
     {
-      pts.insert(pts.end(), { map.X(in.End[v]), map.Y(in.Row[v]) });
+      pts.insert(pts.end(), { map.X(in.Index.End[v]), map.Y(in.Index.Row[v]) });
       const unsigned char* pc = KindColors[4];
       cols.insert(cols.end(), { pc[0], pc[1], pc[2], 255 });
     }
@@ -1248,9 +982,9 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
     pts.clear();
     for (vtkIdType v : in.Selected)
     {
-      if (in.Row[v] >= in.VY0 && in.Row[v] <= in.VY1)
+      if (in.Index.Row[v] >= in.VY0 && in.Index.Row[v] <= in.VY1)
       {
-        pts.insert(pts.end(), { map.X(in.Birth[v]), map.Y(in.Row[v]) });
+        pts.insert(pts.end(), { map.X(in.Index.Birth[v]), map.Y(in.Index.Row[v]) });
       }
     }
     pen->SetWidth(9.f);
@@ -1315,7 +1049,7 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   std::ostringstream status;
   status.precision(3);
   status << "z=" << this->GetZoom() << "  tau=" << vis4gs::ZoomThreshold(this->GetZoom())
-         << "  shown " << in.Visible.size() << " of " << in.NumberOfRows;
+         << "  shown " << in.Visible.size() << " of " << in.Index.NumberOfRows;
   text->SetJustificationToLeft();
   text->SetVerticalJustificationToBottom();
   painter->DrawString(map.L + 4, map.T + 4, status.str());
