@@ -9,6 +9,13 @@
 
 =========================================================================*/
 #include "vtkGaussianSplatMapper.h"
+
+#include "vtkGaussianSplatFS.h"
+#include "vtkGaussianSplatGS.h"
+#include "vtkGaussianSplatInstancedVS.h"
+#include "vtkGaussianSplatPointVS.h"
+#include "vtkGaussianSplatProjection.h"
+#include "vtkGaussianSplatRasterImageFS.h"
 #include "vtkGaussianCameraUtilities.h"
 
 #include "Rasterizer.h"
@@ -54,223 +61,13 @@
 
 namespace
 {
-// The per-Gaussian projection both OpenGL paths share: everything is fetched from texture
-// buffers; mirrors the reference's preprocessCUDA in float (reference §2.3). Returns false for
-// a culled Gaussian.
-const char* SplatProjectionGLSL = R"(
-uniform samplerBuffer splatGeometry; // 3 RGBA texels per Gaussian
-uniform samplerBuffer splatColor;    // rgb, opacity scale
-uniform usamplerBuffer splatOrder;   // draw position -> Gaussian index
-uniform vec4 viewRow0;
-uniform vec4 viewRow1;
-uniform vec4 viewRow2;
-uniform vec2 focal;
-uniform vec2 tanFov;
-uniform vec2 imageSize;
-uniform vec2 depthCoeffs;
-// conic: A, B, C, opacity; center: reference pixel coordinates; rect: pixel columns/rows
-// x0, y0, x1, y1 (inclusive), reference convention; depth: NDC z.
-bool projectSplat(int drawIndex, out vec4 conic, out vec3 color, out vec2 center, out vec4 rect,
-  out float depth)
-{
-  conic = vec4(0.0);
-  color = vec3(0.0);
-  center = vec2(0.0);
-  rect = vec4(0.0);
-  depth = 0.0;
-  int idx = int(texelFetch(splatOrder, drawIndex).r);
-  vec4 t0 = texelFetch(splatGeometry, 3 * idx);
-  vec4 t1 = texelFetch(splatGeometry, 3 * idx + 1);
-  vec4 t2 = texelFetch(splatGeometry, 3 * idx + 2);
-  if (t2.z < 0.5) { return false; }
-  vec3 mu = t0.xyz;
-  vec4 col = texelFetch(splatColor, idx);
-  float opacity = t0.w * col.w;
-  vec3 t = vec3(dot(viewRow0.xyz, mu) + viewRow0.w, dot(viewRow1.xyz, mu) + viewRow1.w,
-    dot(viewRow2.xyz, mu) + viewRow2.w);
-  if (!(t.z > 0.2)) { return false; }
-  mat3 Sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
-  float limx = 1.3 * tanFov.x;
-  float limy = 1.3 * tanFov.y;
-  float tx = clamp(t.x / t.z, -limx, limx) * t.z;
-  float ty = clamp(t.y / t.z, -limy, limy) * t.z;
-  float J00 = focal.x / t.z;
-  float J02 = -(focal.x * tx) / (t.z * t.z);
-  float J11 = focal.y / t.z;
-  float J12 = -(focal.y * ty) / (t.z * t.z);
-  vec3 T0 = J00 * viewRow0.xyz + J02 * viewRow2.xyz;
-  vec3 T1 = J11 * viewRow1.xyz + J12 * viewRow2.xyz;
-  vec3 S0 = Sigma * T0;
-  vec3 S1 = Sigma * T1;
-  float a = dot(T0, S0) + 0.3;
-  float b = dot(T0, S1);
-  float c = dot(T1, S1) + 0.3;
-  float det = a * c - b * b;
-  if (det == 0.0 || isnan(det) || isinf(det) || isinf(a) || isinf(c) || isnan(b)) { return false; }
-  float A = c / det;
-  float B = -b / det;
-  float C = a / det;
-  float mid = 0.5 * (a + c);
-  float root = sqrt(max(0.1, mid * mid - det));
-  float radius = ceil(3.0 * sqrt(max(mid + root, mid - root)));
-  // ndc2Pix of the reference: ndc = x / (tan * (z + 1e-7)).
-  float ndcX = (t.x / tanFov.x) * (1.0 / (t.z + 0.0000001));
-  float ndcY = (t.y / tanFov.y) * (1.0 / (t.z + 0.0000001));
-  float u = ((ndcX + 1.0) * imageSize.x - 1.0) * 0.5;
-  float v = ((ndcY + 1.0) * imageSize.y - 1.0) * 0.5;
-  if (isinf(radius) || isnan(u) || isnan(v) || isinf(u) || isinf(v)) { return false; }
-  // Tile rectangle (reference getRect), in tiles, max exclusive.
-  vec2 grid = ceil(imageSize / 16.0);
-  float rx0 = clamp(float(int((u - radius) / 16.0)), 0.0, grid.x);
-  float ry0 = clamp(float(int((v - radius) / 16.0)), 0.0, grid.y);
-  float rx1 = clamp(float(int((u + radius + 15.0) / 16.0)), 0.0, grid.x);
-  float ry1 = clamp(float(int((v + radius + 15.0) / 16.0)), 0.0, grid.y);
-  if ((rx1 - rx0) * (ry1 - ry0) == 0.0) { return false; }
-  // Where alpha can reach 1/255: o e^power >= 1/255 <=> r^2 <= 2 ln(255 o).
-  float omax = min(opacity, 1.0);
-  if (!(255.0 * omax >= 1.0)) { return false; }
-  float r2 = 2.0 * log(255.0 * omax);
-  float hx = sqrt(r2 * a) + 1.0;
-  float hy = sqrt(r2 * c) + 1.0;
-  float x0 = max(rx0 * 16.0, floor(u - hx));
-  float y0 = max(ry0 * 16.0, floor(v - hy));
-  float x1 = min(min(rx1 * 16.0, imageSize.x) - 1.0, ceil(u + hx));
-  float y1 = min(min(ry1 * 16.0, imageSize.y) - 1.0, ceil(v + hy));
-  if (x1 < x0 || y1 < y0) { return false; }
-  conic = vec4(A, B, C, opacity);
-  color = col.rgb;
-  center = vec2(u, v);
-  rect = vec4(x0, y0, x1, y1);
-  float zc = (depthCoeffs.x * (-t.z) + depthCoeffs.y) / t.z;
-  depth = clamp(zc, -0.999999, 0.999999);
-  return true;
-}
-)";
-
-// Geometry-shader path: one point per Gaussian (gl_VertexID = draw position), expanded by
-// SplatGS.
-const char* SplatPointMain = R"(
-flat out vec4 gConic;
-flat out vec3 gColor;
-flat out vec2 gCenter;
-flat out vec4 gRect;
-flat out float gDepth;
-flat out int gValid;
-void main()
-{
-  vec4 conic; vec3 color; vec2 center; vec4 rect; float depth;
-  gValid = projectSplat(gl_VertexID, conic, color, center, rect, depth) ? 1 : 0;
-  gConic = conic;
-  gColor = color;
-  gCenter = center;
-  gRect = rect;
-  gDepth = depth;
-  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-}
-)";
-
-// Instanced path: one instance per Gaussian and a 4-vertex strip per instance (no geometry
-// shader): each of the 4 vertices repeats the projection.
-const char* SplatInstancedMain = R"(
-flat out vec4 fConic;
-flat out vec3 fColor;
-flat out vec2 fCenter;
-void main()
-{
-  vec4 conic; vec3 color; vec2 center; vec4 rect; float depth;
-  bool valid = projectSplat(gl_InstanceID, conic, color, center, rect, depth);
-  fConic = conic;
-  fColor = color;
-  fCenter = center;
-  gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: culled
-  if (!valid) { return; }
-  // Corner gl_VertexID of the triangle strip: bit 0 picks the column edge, bit 1 the row edge.
-  float px = (gl_VertexID & 1) == 0 ? rect.x : rect.z + 1.0;
-  float py = (gl_VertexID & 2) == 0 ? rect.y : rect.w + 1.0;
-  gl_Position = vec4(2.0 * px / imageSize.x - 1.0, 1.0 - 2.0 * py / imageSize.y, depth, 1.0);
-}
-)";
-
+// The shaders are the files in glsl/, embedded at build time (vtk_encode_string, as VTK's
+// own OpenGL2 module does). Both vertex paths share the per-Gaussian projection.
 std::string SplatVertexShader(bool instanced)
 {
-  return std::string("//VTK::System::Dec\n") + SplatProjectionGLSL +
-    (instanced ? SplatInstancedMain : SplatPointMain);
+  return std::string("//VTK::System::Dec\n") + vtkGaussianSplatProjection +
+    (instanced ? vtkGaussianSplatInstancedVS : vtkGaussianSplatPointVS);
 }
-
-// CPU-rasteriser path: the rasterised image (premultiplied RGB, alpha; row 0 at the bottom)
-// and the expected view depth per pixel, drawn over the viewport. depthPass 0 blends the
-// colour depth-tested at the expected depth; depthPass 1 writes that depth where alpha >= 0.5.
-const char* RasterImageFS = R"(//VTK::System::Dec
-//VTK::Output::Dec
-in vec2 texCoord;
-uniform sampler2D splatImage;
-uniform sampler2D splatDepth;
-uniform vec2 depthCoeffs;
-uniform int depthPass;
-void main()
-{
-  vec4 c = texture(splatImage, texCoord);
-  float z = texture(splatDepth, texCoord).r;
-  float zc = (depthCoeffs.x * (-z) + depthCoeffs.y) / z;
-  gl_FragDepth = clamp(0.5 * zc + 0.5, 0.0, 1.0);
-  if (c.a <= 0.0 || (depthPass == 1 && c.a < 0.5)) { discard; }
-  gl_FragData[0] = c;
-}
-)";
-
-const char* SplatGS = R"(//VTK::System::Dec
-layout(points) in;
-layout(triangle_strip, max_vertices = 4) out;
-uniform vec2 imageSize;
-flat in vec4 gConic[];
-flat in vec3 gColor[];
-flat in vec2 gCenter[];
-flat in vec4 gRect[];
-flat in float gDepth[];
-flat in int gValid[];
-flat out vec4 fConic;
-flat out vec3 fColor;
-flat out vec2 fCenter;
-void corner(float px, float py)
-{
-  // Reference pixel (column px, row py from the top) edge -> OpenGL NDC.
-  fConic = gConic[0];
-  fColor = gColor[0];
-  fCenter = gCenter[0];
-  gl_Position = vec4(2.0 * px / imageSize.x - 1.0, 1.0 - 2.0 * py / imageSize.y, gDepth[0], 1.0);
-  EmitVertex();
-}
-void main()
-{
-  if (gValid[0] == 0) { return; }
-  vec4 r = gRect[0];
-  corner(r.x, r.y);
-  corner(r.z + 1.0, r.y);
-  corner(r.x, r.w + 1.0);
-  corner(r.z + 1.0, r.w + 1.0);
-  EndPrimitive();
-}
-)";
-
-const char* SplatFS = R"(//VTK::System::Dec
-//VTK::Output::Dec
-uniform vec4 viewportRect; // x, y origin and width, height of the renderer in the window
-flat in vec4 fConic;
-flat in vec3 fColor;
-flat in vec2 fCenter;
-void main()
-{
-  float px = gl_FragCoord.x - 0.5 - viewportRect.x;
-  float py = viewportRect.w - 0.5 - (gl_FragCoord.y - viewportRect.y);
-  float dx = fCenter.x - px;
-  float dy = fCenter.y - py;
-  float power = -0.5 * (fConic.x * dx * dx + fConic.z * dy * dy) - fConic.y * dx * dy;
-  if (power > 0.0) { discard; }
-  float alpha = min(0.99, fConic.w * exp(power));
-  if (alpha < 1.0 / 255.0) { discard; }
-  gl_FragData[0] = vec4(fColor * alpha, alpha);
-}
-)";
 
 double MsSince(std::chrono::steady_clock::time_point t0)
 {
@@ -902,7 +699,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   // Draw: blend the image depth-tested at the expected depth, then write that depth.
   if (!in.Quad)
   {
-    in.Quad.reset(new vtkOpenGLQuadHelper(renWin, nullptr, RasterImageFS, ""));
+    in.Quad.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkGaussianSplatRasterImageFS, ""));
     if (!in.Quad->Program)
     {
       vtkErrorMacro("vtkGaussianSplatMapper: the image shaders failed to compile");
@@ -1125,7 +922,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   {
     const std::string vs = SplatVertexShader(instanced);
     cached =
-      renWin->GetShaderCache()->ReadyShaderProgram(vs.c_str(), SplatFS, instanced ? "" : SplatGS);
+      renWin->GetShaderCache()->ReadyShaderProgram(vs.c_str(), vtkGaussianSplatFS, instanced ? "" : vtkGaussianSplatGS);
     if (!cached)
     {
       vtkErrorMacro("vtkGaussianSplatMapper: the splat shaders failed to compile");
