@@ -892,18 +892,24 @@ std::vector<unsigned char> WriteSpzToMemory(const GaussianCloud& cloud,
   }
 
   const int numStreams = rest > 0 ? 6 : 5;
+  // One zstd frame per stream, compressed in parallel as Niantic's writer does.
   std::vector<std::vector<unsigned char>> frames(static_cast<std::size_t>(numStreams));
+  std::vector<std::size_t> results(static_cast<std::size_t>(numStreams));
+#pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < numStreams; ++i)
   {
     frames[i].resize(ZSTD_compressBound(p.Sizes[i]));
-    const std::size_t c =
+    results[i] =
       ZSTD_compress(frames[i].data(), frames[i].size(), p.Block(i), p.Sizes[i], options.ZstdLevel);
-    if (ZSTD_isError(c))
+  }
+  for (int i = 0; i < numStreams; ++i)
+  {
+    if (ZSTD_isError(results[i]))
     {
       throw std::runtime_error(
-        std::string("WriteSpz: zstd compression failed: ") + ZSTD_getErrorName(c));
+        std::string("WriteSpz: zstd compression failed: ") + ZSTD_getErrorName(results[i]));
     }
-    frames[i].resize(c);
+    frames[i].resize(results[i]);
   }
   std::vector<unsigned char> out(NgspHeaderSize + 16 * static_cast<std::size_t>(numStreams), 0);
   StoreU32(out.data(), NgspMagic);

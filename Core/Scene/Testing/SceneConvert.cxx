@@ -23,17 +23,22 @@ int main(int argc, char* argv[])
 {
   if (argc < 3)
   {
-    std::fprintf(stderr, "usage: %s IN OUT [--max-sh-degree=D]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s IN OUT [--max-sh-degree=D] [--zstd-level=L]\n", argv[0]);
     return 2;
   }
   try
   {
     vis4gs::GaussianReadOptions options;
+    vis4gs::SpzWriteOptions spzOptions;
     for (int i = 3; i < argc; ++i)
     {
       if (std::strncmp(argv[i], "--max-sh-degree=", 16) == 0)
       {
         options.MaxShDegree = std::stoi(argv[i] + 16);
+      }
+      else if (std::strncmp(argv[i], "--zstd-level=", 13) == 0)
+      {
+        spzOptions.ZstdLevel = std::stoi(argv[i] + 13);
       }
     }
     vis4gs::GaussianReadReport read;
@@ -45,7 +50,7 @@ int main(int argc, char* argv[])
     const std::string ext = vis4gs::detail::LowerExtension(argv[2]);
     if (ext == ".spz")
     {
-      const vis4gs::SpzWriteReport r = vis4gs::WriteSpz(argv[2], cloud);
+      const vis4gs::SpzWriteReport r = vis4gs::WriteSpz(argv[2], cloud, spzOptions);
       std::printf("{\n  \"read_format\": \"%s\", \"written\": %zu, \"left_out\": %zu, "
                   "\"special_values\": %zu, \"fractional_bits\": %d, \"file_bytes\": %zu,\n",
         read.Format.c_str(),
