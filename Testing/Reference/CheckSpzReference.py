@@ -154,7 +154,9 @@ def quantisation_errors(src, back, fractional_bits, clip=True, sh1_bits=5, rest_
     b = np.stack([back["rot_%d" % i] for i in range(4)], axis=1)
     b *= np.where(np.sum(q * b, axis=1) < 0, -1, 1)[:, None]
     e["rotation"] = np.max(np.abs(b - q))
-    bound["rotation"] = 2e-3
+    # Stored components within h = sqrt(1/2)/511/2; the rebuilt largest one w >= 1/2 within
+    # sqrt(1 - w^2) sqrt(3) h / w <= 2.07e-3.
+    bound["rotation"] = 2.1e-3
     return e, bound
 
 
