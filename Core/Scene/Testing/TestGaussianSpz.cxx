@@ -279,6 +279,16 @@ TEST(GaussianSpz, ReadsHandBuiltVersion2And3)
     EXPECT_EQ(report.FileShDegree, 1);
     EXPECT_TRUE(report.Warnings.empty());
     ExpectTwoGaussians(c, version >= 3, true);
+    // Extension records after the data (flag bit 1): Adobe's coordinate system saying RDF.
+    raw[14] = 0x2;
+    for (std::uint32_t v : { 0xADBE0003u, 4u, 6u })
+    {
+      PutU32(raw, v);
+    }
+    const Bytes withExtension = Gzip(raw);
+    ExpectTwoGaussians(ReadSpzFromMemory(withExtension.data(), withExtension.size(), "rdf.spz"),
+      version >= 3,
+      false);
   }
 }
 
