@@ -12,7 +12,7 @@ seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
-targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap)
+targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzSpz)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -26,7 +26,7 @@ fi
 # Seed corpora: small real inputs (headers plus a few rows of the real files) and hand-made ones.
 seeds="$build/seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap}
+mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap,FuzzSpz}
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
 if [ -f "$ply" ]; then
@@ -84,6 +84,24 @@ fi
 { printf '\x04'; printf '1 1 0 0 0 0 0 0 1 a.png\n1.5 2.5 7 3 4 -1\n2 0 1 0 0 1 2 3 1 b.png\n\n'; } \
   >"$seeds/FuzzColmap/images.txt"
 { printf '\x05'; printf '5 1 2 3 255 0 10 0.25 1 0 2 1\n'; } >"$seeds/FuzzColmap/points3D.txt"
+
+# SPZ seeds: four Gaussians with SH degree 1 as v3 (gzip, with extension records after the
+# data) and v4 (raw-block zstd frames behind the table of contents, with extension records).
+/usr/bin/python3 - "$seeds/FuzzSpz" <<'PY'
+import gzip, struct, sys
+n = 4
+streams = [bytes(range(9 * n)), bytes([10, 128, 200, 255]), bytes(3 * n), bytes([144] * 3 * n),
+           struct.pack("<I", 3 << 30) * n, bytes([128] * 9 * n)]
+ext = struct.pack("<III", 0xADBE0003, 4, 4) + struct.pack("<II", 0x12340001, 2) + b"xy"
+legacy = struct.pack("<IIIBBBB", 0x5053474E, 3, n, 1, 12, 2, 0) + b"".join(streams) + ext
+open(sys.argv[1] + "/v3.spz", "wb").write(gzip.compress(legacy))
+def zstd_raw(b):  # one frame, single segment, 1-byte content size, one raw last block
+    return struct.pack("<IBB", 0xFD2FB528, 0x20, len(b)) + (1 | len(b) << 3).to_bytes(3, "little") + b
+frames = [zstd_raw(b) for b in streams]
+v4 = struct.pack("<IIIBBBBI", 0x5053474E, 4, n, 1, 12, 2, 6, 32 + len(ext)) + bytes(12) + ext
+v4 += b"".join(struct.pack("<QQ", len(f), len(b)) for f, b in zip(frames, streams)) + b"".join(frames)
+open(sys.argv[1] + "/v4.spz", "wb").write(v4)
+PY
 
 status=0
 mkdir -p "$build/artifacts"

@@ -604,7 +604,7 @@ void Vis4GSMainWindow::BuildUi()
       const QString path = QFileDialog::getOpenFileName(this,
         "Open a training log or a scene",
         QString(),
-        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.splat);;All files (*)");
+        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.splat);;All files (*)");
       if (!path.isEmpty())
       {
         this->Open(path);
@@ -1603,7 +1603,7 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   const QString path = QFileDialog::getSaveFileName(this,
     deleteSelection ? "Save the scene without the selection" : "Export the selected Gaussians",
     deleteSelection ? "pruned.ply" : "selection.ply",
-    "PLY (*.ply)");
+    "PLY (*.ply);;SPZ v4, quantised for web viewers (*.spz)");
   if (path.isEmpty())
   {
     return;
@@ -1632,6 +1632,24 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   }
   try
   {
+    if (path.endsWith(".spz", Qt::CaseInsensitive))
+    {
+      // Lossy: say how much was lost and what could not be stored.
+      const vis4gs::SpzWriteReport r = vis4gs::WriteSpz(path.toStdString(), cloud);
+      this->statusBar()->showMessage(QString("%1: %2 Gaussians written as SPZ v4, %3 left out; "
+                                             "max error: position %4, log-scale %5, opacity %6, "
+                                             "colour %7, SH %8")
+                                       .arg(path)
+                                       .arg(r.Written)
+                                       .arg(r.LeftOut)
+                                       .arg(r.Position.Max, 0, 'g', 3)
+                                       .arg(r.LogScale.Max, 0, 'g', 3)
+                                       .arg(r.Opacity.Max, 0, 'g', 3)
+                                       .arg(r.Color.Max, 0, 'g', 3)
+                                       .arg(r.SH.Max, 0, 'g', 3),
+        10000);
+      return;
+    }
     vis4gs::WriteGaussianPly(path.toStdString(), cloud);
     this->statusBar()->showMessage(
       QString("%1: %2 Gaussians written").arg(path).arg(points->GetNumberOfPoints()), 5000);

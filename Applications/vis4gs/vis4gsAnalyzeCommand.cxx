@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// `vis4gs analyze`: batch diagnosis of a scene (DESIGN §4, §5). Reads Gaussians (PLY/.splat),
+// `vis4gs analyze`: batch diagnosis of a scene (DESIGN §4, §5). Reads Gaussians (PLY/SPZ/.splat),
 // cameras (cameras.json or a COLMAP dataset folder) and training images, computes the
 // requested scores through vtkGaussianArtifactScoreFilter, and writes: the scene with the
 // scores as extra PLY properties, a CSV table, the top-k Gaussians per score, overlay images
@@ -57,7 +57,7 @@ double Since(Clock::time_point t)
 void Define(Vis4GSArguments& args)
 {
   args.AddPositional(
-    "scene", "Gaussian scene: a 3DGS .ply or .splat, or a training log .h5 (DESIGN §3).");
+    "scene", "Gaussian scene: a 3DGS .ply, .spz or .splat, or a training log .h5 (DESIGN §3).");
   args.AddOption("iteration",
     "N",
     "-1",

@@ -30,7 +30,8 @@ namespace
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional("scene", "3DGS scene: the trainer's PLY or an antimatter15 .splat file.");
+  args.AddPositional(
+    "scene", "3DGS scene: the trainer's PLY, an SPZ or an antimatter15 .splat file.");
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",

@@ -2,7 +2,7 @@
 /**
  * @file GaussianIO.h
  * @brief Reading and writing 3DGS scenes: the trainer's PLY (binary little/big endian and
- * ASCII) and the antimatter15 `.splat` format (reference §1.1).
+ * ASCII), the antimatter15 `.splat` format (reference §1.1) and Niantic's SPZ.
  *
  * PLY properties are looked up by name in any order; every PLY scalar type name is accepted
  * (char/int8, uchar/uint8, short/int16, ushort/uint16, int/int32, uint/uint32,
@@ -129,7 +129,87 @@ GaussianCloud ReadSplatFromMemory(const void* data,
 /// (ClassifyGaussian, or a non-finite DC colour) are left out; returns how many were.
 std::size_t WriteSplat(const std::string& path, const GaussianCloud& cloud);
 
-/// Reads a scene by extension: ".splat" with ReadSplat, anything else with ReadGaussianPly.
+/**
+ * Reads Niantic's SPZ (versions 2 and 3: one gzip stream; version 4: zstd streams behind a
+ * table of contents; Documentation/file-formats.md, "SPZ"). Decoding follows the format's
+ * definition: 24-bit fixed-point positions, log-scales byte/16-10, opacity logit of byte/255
+ * (clamped to [1e-6, 1-1e-6] as splat-transform does), DC colour (byte/255-0.5)/0.15, SH
+ * (byte-128)/128, rotations as 3 bytes xyz (v2) or smallest-three in 4 bytes (v3+). SPZ
+ * stores RUB axes unless Adobe's coordinate-system extension says otherwise; positions,
+ * quaternions and SH are converted to the INRIA PLY axes (RDF): y and z change sign, the
+ * quaternion's y and z, and the SH coefficients odd in y xor z. Only the SH degree asked for
+ * is decoded (a degree-4 file gives at most degree 3). Counts and sizes are checked against
+ * the file before anything is allocated; a file that claims more than 1032 times its size
+ * once decompressed is refused. Errors name the file and the problem.
+ */
+GaussianCloud ReadSpz(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+GaussianCloud ReadSpzFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+
+/// True if @p path starts like an SPZ file (a gzip stream or an "NGSP" header).
+bool IsSpzFile(const std::string& path);
+
+struct SpzWriteOptions
+{
+  /// Fractional bits of the 24-bit fixed-point positions; -1 picks the most that fit the
+  /// scene's largest coordinate (Niantic's writer always uses 12).
+  int FractionalBits = -1;
+  /// Bits kept of the 8-bit SH bytes, degree 1 and degrees 2-3 (the reference's defaults).
+  int Sh1Bits = 5;
+  int ShRestBits = 4;
+  /// Sets the header's antialiased flag.
+  bool Antialiased = false;
+  int ZstdLevel = 12;
+};
+
+/// Largest and root-mean-square absolute difference between the source and what reads back.
+struct SpzAttributeError
+{
+  double Max = 0;
+  double Rms = 0;
+};
+
+struct SpzWriteReport
+{
+  std::size_t Written = 0;
+  /// Gaussians left out: not drawable (ClassifyGaussian), non-finite SH, or OutOfRange.
+  std::size_t LeftOut = 0;
+  std::size_t OutOfRange = 0; ///< a coordinate beyond 2^23: no fixed point holds it
+  /// Drawable special values written with their meaning and left out of the errors:
+  /// opacity logit +-inf (bytes 255/0), log-scale -inf (stored as -10), zero quaternions
+  /// (stored as the identity).
+  std::size_t SpecialValues = 0;
+  int FractionalBits = 0;
+  std::size_t FileBytes = 0;
+  SpzAttributeError Position; ///< scene units, per component
+  SpzAttributeError LogScale; ///< natural log
+  SpzAttributeError Rotation; ///< unit quaternion components, sign aligned
+  SpzAttributeError Opacity;  ///< sigmoid(logit), 0..1
+  SpzAttributeError Color;    ///< SH DC coefficients
+  SpzAttributeError SH;       ///< higher SH coefficients
+};
+
+/**
+ * Writes SPZ version 4 in RUB axes (the format's default), zstd streams, no extensions.
+ * Gaussians the reference cannot draw (ClassifyGaussian), with a non-finite SH coefficient,
+ * or with a coordinate beyond 2^23 are left out and counted, as WriteSplat does; drawable
+ * special values keep their meaning. Returns the quantisation error per attribute, measured
+ * by decoding what was written. Written through a temporary file renamed into place.
+ */
+SpzWriteReport WriteSpz(const std::string& path,
+  const GaussianCloud& cloud,
+  const SpzWriteOptions& options = {});
+std::vector<unsigned char> WriteSpzToMemory(const GaussianCloud& cloud,
+  const SpzWriteOptions& options = {},
+  SpzWriteReport* report = nullptr);
+
+/// Reads a scene by content, then extension: SPZ (gzip or "NGSP" start) with ReadSpz, ".splat"
+/// with ReadSplat, anything else with ReadGaussianPly.
 GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);

@@ -1653,6 +1653,10 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
+  if (IsSpzFile(path))
+  {
+    return ReadSpz(path, options, report);
+  }
   if (detail::LowerExtension(path) == ".splat")
   {
     return ReadSplat(path, options, report);

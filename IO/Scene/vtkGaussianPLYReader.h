@@ -10,14 +10,16 @@
 =========================================================================*/
 /**
  * @class   vtkGaussianPLYReader
- * @brief   Reads a 3DGS scene (the trainer's PLY, or an antimatter15 .splat) as the Gaussian
- * vtkPolyData of DESIGN §2.
+ * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, or an antimatter15 .splat) as
+ * the Gaussian vtkPolyData of DESIGN §2.
  *
  * The output's points are the means; point data holds the raw parameters (LogScale,
  * Rotation, OpacityLogit, SH coefficient-major), GaussianId (pedigree ids), the activated
  * Opacity and Scale, and every property the model does not interpret (normals, scores) as an
- * array of its own type. float32 values are copied bit-exactly. Files ending in `.splat` are
- * read as antimatter15 splats, anything else as PLY (binary little/big endian or ASCII).
+ * array of its own type. float32 values are copied bit-exactly. SPZ files (versions 2-4) are
+ * recognised by their content whatever their name, and converted from SPZ's RUB axes to the
+ * PLY's (Documentation/file-formats.md, "SPZ"); files ending in `.splat` are read as
+ * antimatter15 splats, anything else as PLY (binary little/big endian or ASCII).
  *
  * Errors (missing file, truncated data, missing properties, ...) are reported with
  * vtkErrorMacro naming the file and the problem, and the request fails. Gaussians with NaN or
@@ -43,7 +45,7 @@ public:
 
   ///@{
   /**
-   * The file to read (.ply or .splat). Default: none.
+   * The file to read (.ply, .spz or .splat). Default: none.
    */
   vtkSetStdStringFromCharMacro(FileName);
   vtkGetCharFromStdStringMacro(FileName);
@@ -102,8 +104,8 @@ public:
   ///@{
   /**
    * Facts about the last file read: its SH degree, its format ("binary_little_endian",
-   * "binary_big_endian", "ascii" or "splat"), and the number of Gaussians holding a NaN or
-   * infinite value.
+   * "binary_big_endian", "ascii", "splat", or "spz v2".."spz v4", followed by " antialiased"
+   * when the SPZ header says so), and the number of Gaussians holding a NaN or infinite value.
    */
   vtkGetMacro(FileSHDegree, int);
   vtkGetCharFromStdStringMacro(FileFormat);

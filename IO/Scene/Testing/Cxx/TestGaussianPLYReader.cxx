@@ -116,8 +116,24 @@ int TestGaussianPLYReader(int, char*[])
     splat->GetOutput()->GetPointData()->GetArray(vis4gs::arrays::SH)->GetNumberOfComponents() == 3,
     "splat SH degree 0");
 
-  // NaN values: kept, counted, one warning.
+  // SPZ by content (issue 19): the real PLY written as SPZ v4 by the Core writer and read
+  // back through the VTK reader, equal to the Core SPZ reader's values.
   iotest::TempDir dir;
+  vis4gs::WriteSpz(dir / "inria.spz", core);
+  const vis4gs::GaussianCloud spzCore = vis4gs::ReadSpz(dir / "inria.spz");
+  vtkNew<vtkGaussianPLYReader> spz;
+  spz->SetFileName((dir / "inria.spz").c_str());
+  spz->Update();
+  Check(std::string(spz->GetFileFormat()) == "spz v4", "spz format");
+  Check(spz->GetFileSHDegree() == 3, "spz SH degree 3");
+  vtkPointData* sd = spz->GetOutput()->GetPointData();
+  Check(spz->GetOutput()->GetNumberOfPoints() == static_cast<vtkIdType>(core.Count) &&
+      SameFloats(sd->GetArray(vis4gs::arrays::LogScale), spzCore.LogScales) &&
+      SameFloats(sd->GetArray(vis4gs::arrays::SH), spzCore.SH) &&
+      SameFloats(sd->GetArray(vis4gs::arrays::Rotation), spzCore.Rotations),
+    "spz arrays equal to the Core reader's");
+
+  // NaN values: kept, counted, one warning.
   vis4gs::GaussianCloud bad = core;
   bad.OpacityLogits[3] = std::numeric_limits<float>::quiet_NaN();
   bad.Positions[3 * 7] = std::numeric_limits<float>::infinity();
