@@ -10,13 +10,13 @@
 =========================================================================*/
 #include "vtkGaussianSplatMapper.h"
 
+#include "vtkGaussianCameraUtilities.h"
 #include "vtkGaussianSplatFS.h"
 #include "vtkGaussianSplatGS.h"
 #include "vtkGaussianSplatInstancedVS.h"
 #include "vtkGaussianSplatPointVS.h"
 #include "vtkGaussianSplatProjection.h"
 #include "vtkGaussianSplatRasterImageFS.h"
-#include "vtkGaussianCameraUtilities.h"
 
 #include "Rasterizer.h"
 #include "SplatAttributes.h"
@@ -921,8 +921,8 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   if (!cached)
   {
     const std::string vs = SplatVertexShader(instanced);
-    cached =
-      renWin->GetShaderCache()->ReadyShaderProgram(vs.c_str(), vtkGaussianSplatFS, instanced ? "" : vtkGaussianSplatGS);
+    cached = renWin->GetShaderCache()->ReadyShaderProgram(
+      vs.c_str(), vtkGaussianSplatFS, instanced ? "" : vtkGaussianSplatGS);
     if (!cached)
     {
       vtkErrorMacro("vtkGaussianSplatMapper: the splat shaders failed to compile");
