@@ -107,7 +107,9 @@ with tempfile.TemporaryDirectory() as tmp:
         rows += rc.compare_file(path, scene, [w2c.astype(np.float64)], width, height, fov_x,
                                 label=f"garden own camera {k} {width}x{height}",
                                 report=rc.print_row)
-    rows += rc.compare_file(path, scene, rr.orbit_cameras(scene.means, count=2), 160, 120,
+    # One orbit camera and one inside: the garden's 138,766 Gaussians cost the reference
+    # ~5 s an image.
+    rows += rc.compare_file(path, scene, rr.orbit_cameras(scene.means, count=1), 160, 120,
                             label="garden orbit 160x120", report=rc.print_row)
 
     statue = os.path.join(data, "colmap_statue_bartoszek/sparse/0")
