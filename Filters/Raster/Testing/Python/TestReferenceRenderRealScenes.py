@@ -3,8 +3,9 @@ double arithmetic) matches the independent numpy float64 reference of the 3DGS f
 (Testing/Python/reference_render.py, which parses the files itself) at >= 50 dB PSNR per
 image, from the file's own cameras when it has them and from orbit cameras generated around
 the scene's bounds (plus one inside them):
- - inria_ply_tiny_kacytran: the INRIA PLY (SH degree 3) and the .splat (22,764 Gaussians,
-   17 of them with alpha 255, i.e. opacity logit +inf once read);
+ - inria_ply_tiny_kacytran: the INRIA PLY (SH degree 3), the .splat (22,764 Gaussians,
+   17 of them with alpha 255, i.e. opacity logit +inf once read) and that .splat converted to
+   an INRIA PLY, which stores those 17 logits as +inf;
  - gs_ply_sh0_variant_donut_v3dg: the Mip-Splatting PLY without normals and f_rest;
  - gsplat_test_garden_npz and colmap_statue_bartoszek hold points and real cameras, not
    Gaussians: the points become Gaussians (random anisotropic scales at the point density,
@@ -83,7 +84,7 @@ rows += rc.compare_file(ply, scene, cams, 160, 120, label="kacytran PLY 160x120"
 rows += rc.compare_file(ply, scene, cams[:1], 320, 240, label="kacytran PLY 320x240",
                         report=rc.print_row)
 splat = os.path.join(kacy, "model_1.splat")
-scene = rr.read_splat(splat)
+scene = splat_scene = rr.read_splat(splat)
 rows += rc.compare_file(splat, scene, rr.orbit_cameras(scene.means, count=4), 160, 120,
                         label="kacytran .splat 160x120", report=rc.print_row)
 donut = os.path.join(data, "gs_ply_sh0_variant_donut_v3dg/fused.ply")
@@ -95,6 +96,23 @@ rows += rc.compare_file(donut, scene,
 
 rng = np.random.default_rng(15)
 with tempfile.TemporaryDirectory() as tmp:
+    # The .splat converted to the INRIA layout as converters do (logit of a/255, log of the
+    # scale, SH DC from the colour): its 17 alpha-255 Gaussians get opacity logit +inf, the
+    # case issue 15 found on a real capture.
+    path = os.path.join(tmp, "kacytran_from_splat.ply")
+    with np.errstate(divide="ignore"):
+        logits = np.log(splat_scene.opacities) - np.log1p(-splat_scene.opacities)
+        log_scales = np.log(splat_scene.scales)
+    rr.write_inria_ply(path, splat_scene.means, log_scales, splat_scene.rotations, logits,
+                       ((splat_scene.colors - 0.5) / rr.C0)[:, None, :])
+    converted = rr.read_inria_ply(path)
+    if np.sum(np.isposinf(rr.read_ply_vertices(path)["opacity"])) != 17:
+        print("FAILED: the converted PLY should hold 17 opacity logits of +inf")
+        sys.exit(1)
+    rows += rc.compare_file(path, converted, rr.orbit_cameras(converted.means, count=1), 160,
+                            120, label="kacytran .splat as INRIA PLY (+inf logits) 160x120",
+                            report=rc.print_row)
+
     garden = np.load(os.path.join(data, "gsplat_test_garden_npz/test_garden.npz"))
     points = garden["means3d"].astype(np.float64)
     path = os.path.join(tmp, "garden.ply")
