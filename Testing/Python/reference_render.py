@@ -15,7 +15,8 @@ identity. Values the reference has no answer for (NaN, infinite positions, rotat
 +inf log-scales, non-finite SH) are left out, as Vis4GS documents.
 
 The compositing loop runs over the Gaussians in depth order and is vectorised over the
-pixels of each Gaussian's tile rectangle, so a scene of ~10^4-10^5 Gaussians at 160x120 to
+pixels of each Gaussian's tile rectangle (cropped to the bounding box of its alpha >= 1/255
+ellipse, outside which the reference skips every pixel anyway), so a scene of ~10^4-10^5 Gaussians at 160x120 to
 320x240 renders in seconds.
 """
 import numpy as np
