@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -856,4 +857,221 @@ TEST(ArtifactScores, SplitViewsByCost)
   EXPECT_GT(cost[0], cost[1]);
   EXPECT_DOUBLE_EQ(cost[2], 4 * cost[0]);
   EXPECT_GT(cost[1], 0);
+}
+
+//------------------------------------------------------------------------------
+// Issue 15: blur and needle scores with a non-constant loss map.
+namespace
+{
+
+// Whether pixel (x, y) is in Omega(g) of Gaussian @p i (tile rectangle, kernel, alpha test).
+bool InFootprint(const vis4gs::ViewProjection<float>& proj, std::size_t i, int x, int y)
+{
+  const auto& g = proj.Gaussians[i];
+  if (!g.IsVisible() || x / 16 < g.TileRect[0] || x / 16 >= g.TileRect[2] ||
+    y / 16 < g.TileRect[1] || y / 16 >= g.TileRect[3])
+  {
+    return false;
+  }
+  const float power = vis4gs::raster::KernelPower<float>(
+    g.U, g.V, g.ConicA, g.ConicB, g.ConicC, static_cast<float>(x), static_cast<float>(y));
+  return vis4gs::raster::KernelAlpha<float>(g.Opacity, power) >= 0;
+}
+
+// Needle shape by hand from the scales (DESIGN §4): q_k = s_k^2 / sum s^2,
+// H = -sum q log q, s = (3 - e^H) / 2.
+double ShapeByHand(const GaussianCloud& cloud, std::size_t i)
+{
+  double s2[3], sum = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    s2[k] = std::exp(2.0 * cloud.LogScales[3 * i + k]);
+    sum += s2[k];
+  }
+  double h = 0;
+  for (double v : s2)
+  {
+    h -= v / sum * std::log(v / sum);
+  }
+  return (3 - std::exp(h)) / 2;
+}
+
+// A: anisotropic, left of the axis; B: A's mirror image (x -> -x); C: on the axis, below.
+// All axis-aligned with one colour and opacity 0.27, whose alpha footprint (2.9 sigma) lies
+// inside the 3-sigma tile rectangle, so that mirroring the scene mirrors every footprint.
+// On a 96x64 view the render is mirror-symmetric about the column x = 47.5.
+GaussianCloud MirrorScene()
+{
+  GaussianCloud cloud;
+  cloud.Resize(3, 0);
+  SetGaussian(cloud, 0, -1.43f, 0.2f, 5, std::log(0.3f), std::log(0.15f), std::log(0.1f), -1);
+  SetGaussian(cloud, 1, 1.43f, 0.2f, 5, std::log(0.3f), std::log(0.15f), std::log(0.1f), -1);
+  SetGaussian(cloud, 2, 0, -0.4f, 5, std::log(0.2f), std::log(0.2f), std::log(0.05f), -1);
+  return cloud;
+}
+
+// The render plus a positive linear ramp per channel (non-constant L1, a Laplacian of 0
+// away from the borders), optionally mirrored, plus @p hot added to pixel (hx, hy).
+vis4gs::Image RampImage(const GaussianCloud& cloud,
+  const Camera& camera,
+  bool mirrored,
+  int hx = -1,
+  int hy = -1,
+  float hot = 0)
+{
+  const auto render = vis4gs::Rasterize<float>(cloud, camera);
+  vis4gs::Image image;
+  image.Width = camera.Width;
+  image.Height = camera.Height;
+  image.Pixels = render.Color;
+  for (int y = 0; y < camera.Height; ++y)
+  {
+    for (int x = 0; x < camera.Width; ++x)
+    {
+      const int rx = mirrored ? camera.Width - 1 - x : x;
+      for (int c = 0; c < 3; ++c)
+      {
+        image.At(x, y, c) += 0.05f + 0.004f * (c + 1) * rx + 0.002f * y;
+      }
+    }
+  }
+  if (hx >= 0)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      image.At(hx, hy, c) += hot;
+    }
+  }
+  return image;
+}
+
+vis4gs::GaussianScores ScoresWith(const GaussianCloud& cloud,
+  const Camera& camera,
+  const vis4gs::Image& image,
+  double lambda)
+{
+  vis4gs::ScoreSettings settings;
+  settings.Lambda = lambda;
+  return vis4gs::ComputeGaussianScores(cloud,
+    { camera },
+    settings,
+    [&](std::size_t, const Camera&, vis4gs::Image& out)
+    {
+      out = image;
+      return true;
+    });
+}
+
+} // namespace
+
+// One hot pixel: adding d to every channel of image pixel p (where the image already exceeds
+// the render, so |render - image| grows by exactly d) raises the loss map by
+//   lambda = 0:   d at p only (L = L1);
+//   lambda = 0.2: 0.8 d + 0.2 |4 d| = 1.6 d at p and 0.2 |d| at its four neighbours (the
+//                 four-neighbour Laplacian of the ramp is 0, that of the spike is -4d, +d).
+// With one view, E_B(g) = omega(g) L'(g) and E_N(g) = s(g) L'(g), L' the sum of L over
+// Omega(g): a Gaussian whose footprint holds p and its neighbours gains omega*dL' and
+// s*dL'; a Gaussian whose footprint holds none of them is unchanged, bit for bit.
+TEST(ArtifactScores, HotPixelChangesOnlyTheScoresOfTheGaussiansCoveringIt)
+{
+  const GaussianCloud cloud = MirrorScene();
+  const Camera camera = MakeCamera(0, false, 96, 64);
+  const auto proj = vis4gs::ProjectGaussians<float>(cloud, camera, {});
+  const auto omega = NaiveFootprints(cloud, camera);
+  const double maxOmega = *std::max_element(omega.begin(), omega.end());
+  ASSERT_GT(omega[2], 30u);
+  ASSERT_LT(omega[2], maxOmega); // C's blur weight omega is below 1, A's is 1
+  const int around[5][2] = { { 0, 0 }, { -1, 0 }, { 1, 0 }, { 0, -1 }, { 0, 1 } };
+  // The outside pixel (5, 5) and its neighbours are in no footprint.
+  for (const auto& d : around)
+  {
+    for (std::size_t g = 0; g < 3; ++g)
+    {
+      ASSERT_FALSE(InFootprint(proj, g, 5 + d[0], 5 + d[1]));
+    }
+  }
+  const float hot = 0.25f;
+  for (double lambda : { 0.0, 0.2 })
+  {
+    const auto base = ScoresWith(cloud, camera, RampImage(cloud, camera, false), lambda);
+    for (std::size_t g = 0; g < 3; ++g)
+    {
+      EXPECT_GT(base.BlurScore[g], 0) << g; // the ramp gives every footprint a loss
+    }
+    const auto outside =
+      ScoresWith(cloud, camera, RampImage(cloud, camera, false, 5, 5, hot), lambda);
+    EXPECT_EQ(outside.BlurScore, base.BlurScore) << lambda;
+    EXPECT_EQ(outside.NeedleScore, base.NeedleScore) << lambda;
+    // At p: (1 - lambda) d + lambda 4 d; at its four neighbours: lambda d each.
+    const double dLoss = (1 - lambda) * hot + lambda * 4 * hot + 4 * lambda * hot;
+    for (std::size_t target : { 0u, 2u })
+    {
+      const int px = static_cast<int>(std::lround(proj.Gaussians[target].U));
+      const int py = static_cast<int>(std::lround(proj.Gaussians[target].V));
+      for (const auto& d : around)
+      {
+        for (std::size_t g = 0; g < 3; ++g)
+        {
+          ASSERT_EQ(InFootprint(proj, g, px + d[0], py + d[1]), g == target);
+        }
+      }
+      const auto inside =
+        ScoresWith(cloud, camera, RampImage(cloud, camera, false, px, py, hot), lambda);
+      const double w = omega[target] / maxOmega;
+      const double blurChange = inside.BlurScore[target] - base.BlurScore[target];
+      const double needleChange = inside.NeedleScore[target] - base.NeedleScore[target];
+      std::printf("lambda %.1f, Gaussian %zu (omega %.4f): blur +%.9g (predicted %.9g), "
+                  "needle +%.9g (predicted %.9g)\n",
+        lambda,
+        target,
+        w,
+        blurChange,
+        w * dLoss,
+        needleChange,
+        ShapeByHand(cloud, target) * dLoss);
+      EXPECT_NEAR(blurChange, w * dLoss, 1e-5 * dLoss) << lambda;
+      EXPECT_NEAR(needleChange, ShapeByHand(cloud, target) * dLoss, 1e-5 * dLoss) << lambda;
+      for (std::size_t g = 0; g < 3; ++g)
+      {
+        if (g != target)
+        {
+          EXPECT_EQ(inside.BlurScore[g], base.BlurScore[g]) << g << " " << lambda;
+          EXPECT_EQ(inside.NeedleScore[g], base.NeedleScore[g]) << g << " " << lambda;
+        }
+      }
+    }
+  }
+}
+
+// A flipped image: the scene is mirror-symmetric (B is A's mirror, C its own) and so is the
+// render, so the loss map of the mirrored image is the mirrored loss map (L1 and the
+// four-neighbour Laplacian with replicated edges commute with the mirror). Predicted: A and B
+// swap their blur and needle scores, C keeps its own; the ramp makes A's and B's differ.
+TEST(ArtifactScores, FlippedImageSwapsTheScoresOfMirroredGaussians)
+{
+  const GaussianCloud cloud = MirrorScene();
+  const Camera camera = MakeCamera(0, false, 96, 64);
+  const auto omega = NaiveFootprints(cloud, camera);
+  ASSERT_EQ(omega[0], omega[1]);
+  for (double lambda : { 0.0, 0.2 })
+  {
+    const auto s = ScoresWith(cloud, camera, RampImage(cloud, camera, false), lambda);
+    const auto f = ScoresWith(cloud, camera, RampImage(cloud, camera, true), lambda);
+    std::printf("lambda %.1f: blur A %.9g B %.9g C %.9g; flipped: A %.9g B %.9g C %.9g\n",
+      lambda,
+      s.BlurScore[0],
+      s.BlurScore[1],
+      s.BlurScore[2],
+      f.BlurScore[0],
+      f.BlurScore[1],
+      f.BlurScore[2]);
+    EXPECT_GT(std::abs(s.BlurScore[0] - s.BlurScore[1]), 0.1 * s.BlurScore[0]) << lambda;
+    EXPECT_NEAR(f.BlurScore[0], s.BlurScore[1], 1e-5 * s.BlurScore[1]) << lambda;
+    EXPECT_NEAR(f.BlurScore[1], s.BlurScore[0], 1e-5 * s.BlurScore[0]) << lambda;
+    EXPECT_NEAR(f.BlurScore[2], s.BlurScore[2], 1e-5 * s.BlurScore[2]) << lambda;
+    EXPECT_NEAR(f.NeedleScore[0], s.NeedleScore[1], 1e-5 * s.NeedleScore[1]) << lambda;
+    EXPECT_NEAR(f.NeedleScore[1], s.NeedleScore[0], 1e-5 * s.NeedleScore[0]) << lambda;
+    EXPECT_NEAR(f.NeedleScore[2], s.NeedleScore[2], 1e-5 * s.NeedleScore[2]) << lambda;
+    EXPECT_EQ(f.ViewCoverage, s.ViewCoverage);
+  }
 }

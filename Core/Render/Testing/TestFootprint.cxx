@@ -373,3 +373,83 @@ TEST(Footprint, VectorPathBitIdenticalOnRealScene)
     CheckAllPathsIdentical(proj, OddMap(w, h, 11u));
   }
 }
+
+//------------------------------------------------------------------------------
+// Issue 15: |Omega| of an axis-aligned Gaussian from its analytic ellipse, for several sizes
+// and opacities. On the axis camera a Gaussian at (x, 0, z) with scales (sx, sy, sz) projects
+// (reference §2.3, J = [[f/z, 0, -f x/z^2], [0, f/z, 0]]) to the dilated variances
+//   a = (f sx/z)^2 + (f x sz/z^2)^2 + 0.3,   c = (f sy/z)^2 + 0.3,   b = 0,
+// centred at u = f x/z + (W-1)/2, v = (H-1)/2. alpha = min(0.99, o e^power) >= 1/255 is
+// dx^2/a + dy^2/c <= 2 ln(255 o); the rasteriser evaluates only the pixels of the tile
+// rectangle of radius ceil(3 sqrt(lambda_max)), lambda_max = (a+c)/2 + max(sqrt(0.1), |a-c|/2).
+// The count of pixel centres inside both is computed here from these formulas alone.
+TEST(Footprint, AxisAlignedCountEqualsAnalyticEllipse)
+{
+  struct Case
+  {
+    double Sx, Sy, Sz, Opacity, X;
+    bool TilesCut; // whether the tile rectangle removes pixels of the alpha ellipse
+  };
+  const Case cases[] = {
+    { 0.05, 0.02, 0.03, 0.3, 0.0, false },   // 2.5 x 1 px, 76 pixels
+    { 0.2, 0.08, 0.05, 0.9, 0.0, true },     // 10 x 4 px: alpha reaches past 3 sigma, 1364 of 1372
+    { 0.12, 0.3, 0.1, 0.6, 0.37, false },    // off-centre: u not an integer, sz enters a; 2872
+    { 1e-9, 1e-9, 1e-9, 0.99, 0.11, false }, // a dilated point: a = c = 0.3; 12 pixels
+    { 0.5, 0.5, 0.5, 0.05, -0.2, false },    // large and faint; 9992 pixels
+  };
+  const int w = 160, h = 128;
+  const double f = 200, z = 4;
+  const Camera cam = AxisCamera(w, h, f, f);
+  for (const Case& k : cases)
+  {
+    GaussianCloud cloud;
+    cloud.Resize(1, 0);
+    const float logit = static_cast<float>(std::log(k.Opacity / (1 - k.Opacity)));
+    SetGaussian(cloud,
+      0,
+      { static_cast<float>(k.X), 0.0f, static_cast<float>(z) },
+      { static_cast<float>(std::log(k.Sx)),
+        static_cast<float>(std::log(k.Sy)),
+        static_cast<float>(std::log(k.Sz)) },
+      { 1, 0, 0, 0 },
+      logit,
+      { 0.5f, 0.5f, 0.5f });
+    // The stored float values, so that the hand computation sees what the rasteriser sees.
+    const double sx = std::exp(static_cast<double>(cloud.LogScales[0]));
+    const double sy = std::exp(static_cast<double>(cloud.LogScales[1]));
+    const double sz = std::exp(static_cast<double>(cloud.LogScales[2]));
+    const double x = cloud.Positions[0];
+    const double o = 1 / (1 + std::exp(-static_cast<double>(logit)));
+    const double a = std::pow(f * sx / z, 2) + std::pow(f * x * sz / (z * z), 2) + 0.3;
+    const double c = std::pow(f * sy / z, 2) + 0.3;
+    const double u = f * x / z + (w - 1) / 2.0, v = (h - 1) / 2.0;
+    const double lambda = (a + c) / 2 + std::max(std::sqrt(0.1), std::abs(a - c) / 2);
+    const double r = std::ceil(3 * std::sqrt(lambda));
+    const auto tile = [](double p, int tiles)
+    { return std::min(std::max(static_cast<int>(std::trunc(p / 16)), 0), tiles); };
+    const int gx = (w + 15) / 16, gy = (h + 15) / 16;
+    const int x0 = 16 * tile(u - r, gx), x1 = std::min(16 * tile(u + r + 15, gx), w);
+    const int y0 = 16 * tile(v - r, gy), y1 = std::min(16 * tile(v + r + 15, gy), h);
+    const double threshold = 2 * std::log(255 * o);
+    std::uint32_t expected = 0, ellipse = 0;
+    for (int py = 0; py < h; ++py)
+    {
+      for (int px = 0; px < w; ++px)
+      {
+        const bool inside = (px - u) * (px - u) / a + (py - v) * (py - v) / c <= threshold;
+        ellipse += inside;
+        expected += inside && px >= x0 && px < x1 && py >= y0 && py < y1;
+      }
+    }
+    const auto pf = ProjectGaussians<float>(cloud, cam);
+    const auto pd = ProjectGaussians<double>(cloud, cam);
+    ASSERT_TRUE(pd.Gaussians[0].IsVisible());
+    EXPECT_EQ(ComputeFootprints(pd).PixelCount[0], expected) << "sx " << k.Sx;
+    EXPECT_EQ(ComputeFootprints(pf).PixelCount[0], expected) << "sx " << k.Sx;
+    // The lattice count of the whole ellipse is its area pi sqrt(ac) threshold up to the
+    // boundary (a few pixels per unit of perimeter); the tile cut only ever removes pixels.
+    const double area = 3.141592653589793 * std::sqrt(a * c) * threshold;
+    EXPECT_NEAR(ellipse, area, 2 + 0.1 * area) << "sx " << k.Sx;
+    EXPECT_EQ(expected < ellipse, k.TilesCut) << "sx " << k.Sx;
+  }
+}

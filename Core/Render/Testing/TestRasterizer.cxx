@@ -829,3 +829,87 @@ TEST(Rasterizer, BadInputThrows)
   s.ComputeColors = false;
   EXPECT_NO_THROW(ProjectGaussians<float>(bad, AxisCamera(10, 10, 10, 10), s));
 }
+
+//------------------------------------------------------------------------------
+// Issue 15: a degree-3 colour computed by hand for one direction. The camera is the identity
+// at the origin and the Gaussian sits at (1, 1.5, 3), so the direction from the camera centre
+// is d = (2, 3, 6)/7 exactly (|(2, 3, 6)| = 7). With x = 2/7, y = 3/7, z = 6/7 the basis of
+// reference §2.4 is, with the reference's literal constants:
+//   Y0 = C0, Y1 = -C1 3/7, Y2 = C1 6/7, Y3 = -C1 2/7,
+//   Y4 = C2[0] 6/49 (xy), Y5 = C2[1] 18/49 (yz), Y6 = C2[2] 59/49 (2z^2 - x^2 - y^2),
+//   Y7 = C2[3] 12/49 (xz), Y8 = C2[4] (-5/49) (x^2 - y^2),
+//   Y9 = C3[0] 9/343, Y10 = C3[1] 36/343, Y11 = C3[2] 393/343, Y12 = C3[3] 198/343,
+//   Y13 = C3[4] 262/343, Y14 = C3[5] (-30/343), Y15 = C3[6] (-46/343).
+// Red has every coefficient 1 (colour 0.5 + sum Y_k = 0.224044861698247), green has
+// (-1)^k (k+1)/16 (2.011981865757068), blue only a DC of -3, so 0.5 - 3 C0 < 0 is clamped
+// to 0.
+TEST(Rasterizer, ShDegree3ColourByHand)
+{
+  GaussianCloud cloud;
+  cloud.Resize(1, 3);
+  SetGaussian(cloud, 0, { 1.0f, 1.5f, 3.0f }, { -3, -3, -3 }, { 1, 0, 0, 0 }, 2.0f, { 0, 0, 0 });
+  for (int k = 0; k < 16; ++k)
+  {
+    cloud.SH[3 * k + 0] = 1.0f;
+    cloud.SH[3 * k + 1] = static_cast<float>((k % 2 ? -1.0 : 1.0) * (k + 1) / 16.0);
+    cloud.SH[3 * k + 2] = k == 0 ? -3.0f : 0.0f;
+  }
+  const double c0 = 0.28209479177387814, c1 = 0.4886025119029199;
+  const double c2[5] = { 1.0925484305920792,
+    -1.0925484305920792,
+    0.31539156525252005,
+    -1.0925484305920792,
+    0.5462742152960396 };
+  const double c3[7] = { -0.5900435899266435,
+    2.890611442640554,
+    -0.4570457994644658,
+    0.3731763325901154,
+    -0.4570457994644658,
+    1.445305721320277,
+    -0.5900435899266435 };
+  const double y[16] = { c0,
+    -c1 * 3 / 7,
+    c1 * 6 / 7,
+    -c1 * 2 / 7,
+    c2[0] * 6 / 49,
+    c2[1] * 18 / 49,
+    c2[2] * 59 / 49,
+    c2[3] * 12 / 49,
+    c2[4] * -5 / 49,
+    c3[0] * 9 / 343,
+    c3[1] * 36 / 343,
+    c3[2] * 393 / 343,
+    c3[3] * 198 / 343,
+    c3[4] * 262 / 343,
+    c3[5] * -30 / 343,
+    c3[6] * -46 / 343 };
+  double red = 0.5, green = 0.5;
+  for (int k = 0; k < 16; ++k)
+  {
+    red += y[k];
+    green += y[k] * cloud.SH[3 * k + 1];
+  }
+  EXPECT_NEAR(red, 0.224044861698247, 1e-14);
+  EXPECT_NEAR(green, 2.011981865757068, 1e-14);
+  const Camera cam = AxisCamera(200, 160, 100, 100);
+  const auto pd = ProjectGaussians<double>(cloud, cam);
+  const auto pf = ProjectGaussians<float>(cloud, cam);
+  ASSERT_TRUE(pd.Gaussians[0].IsVisible());
+  ASSERT_TRUE(pf.Gaussians[0].IsVisible());
+  // Double: the direction (1, 1.5, 3)/3.5 carries a few ulps; float: ~1e-7 relative.
+  EXPECT_NEAR(pd.Gaussians[0].Color[0], red, 1e-14);
+  EXPECT_NEAR(pd.Gaussians[0].Color[1], green, 1e-14);
+  EXPECT_EQ(pd.Gaussians[0].Color[2], 0.0);
+  EXPECT_NEAR(pf.Gaussians[0].Color[0], red, 2e-6);
+  EXPECT_NEAR(pf.Gaussians[0].Color[1], green, 2e-6);
+  EXPECT_EQ(pf.Gaussians[0].Color[2], 0.0f);
+  // Degree 2 drops exactly the seven degree-3 terms.
+  RasterSettings s2;
+  s2.ShDegree = 2;
+  double red2 = 0.5;
+  for (int k = 0; k < 9; ++k)
+  {
+    red2 += y[k];
+  }
+  EXPECT_NEAR(ProjectGaussians<double>(cloud, cam, s2).Gaussians[0].Color[0], red2, 1e-14);
+}

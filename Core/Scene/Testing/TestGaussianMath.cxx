@@ -159,4 +159,50 @@ TEST(SpecialValues, CountsEveryRowOfTheTable)
   EXPECT_EQ(DescribeDrawnSpecials(CountSpecialValues(plain, 0)), "");
 }
 
+// Issue 15: the SH constants against the reference's literal values (reference §2.4) and
+// the closed forms they round: Y_0 = 1/(2 sqrt(pi)), Y_1 = sqrt(3)/(2 sqrt(pi)), the
+// degree-2 and degree-3 factors sqrt(15)/(2 sqrt(pi)), sqrt(5)/(4 sqrt(pi)), ..., with the
+// signs of the reference's basis.
+TEST(GaussianMath, ShConstantsAreTheReferenceLiterals)
+{
+  EXPECT_EQ(sh::C0, 0.28209479177387814);
+  EXPECT_EQ(sh::C1, 0.4886025119029199);
+  const double c2[5] = { 1.0925484305920792,
+    -1.0925484305920792,
+    0.31539156525252005,
+    -1.0925484305920792,
+    0.5462742152960396 };
+  const double c3[7] = { -0.5900435899266435,
+    2.890611442640554,
+    -0.4570457994644658,
+    0.3731763325901154,
+    -0.4570457994644658,
+    1.445305721320277,
+    -0.5900435899266435 };
+  for (int i = 0; i < 5; ++i)
+  {
+    EXPECT_EQ(sh::C2[i], c2[i]) << "C2[" << i << "]";
+  }
+  for (int i = 0; i < 7; ++i)
+  {
+    EXPECT_EQ(sh::C3[i], c3[i]) << "C3[" << i << "]";
+  }
+  const double sqrtPi = std::sqrt(3.141592653589793);
+  const double pi = 3.141592653589793;
+  EXPECT_NEAR(sh::C0, 1 / (2 * sqrtPi), 1e-16);
+  EXPECT_NEAR(sh::C1, std::sqrt(3.0) / (2 * sqrtPi), 1e-16);
+  EXPECT_NEAR(sh::C2[0], std::sqrt(15.0) / (2 * sqrtPi), 1e-15);
+  EXPECT_NEAR(sh::C2[2], std::sqrt(5.0) / (4 * sqrtPi), 1e-15);
+  EXPECT_NEAR(sh::C2[4], std::sqrt(15.0) / (4 * sqrtPi), 1e-15);
+  EXPECT_NEAR(sh::C3[0], -0.25 * std::sqrt(35 / (2 * pi)), 1e-15);
+  EXPECT_NEAR(sh::C3[1], 0.5 * std::sqrt(105 / pi), 1e-15);
+  EXPECT_NEAR(sh::C3[2], -0.25 * std::sqrt(21 / (2 * pi)), 1e-15);
+  EXPECT_NEAR(sh::C3[3], 0.25 * std::sqrt(7 / pi), 1e-15);
+  EXPECT_NEAR(sh::C3[5], 0.25 * std::sqrt(105 / pi), 1e-15);
+  EXPECT_EQ(sh::C2[1], -sh::C2[0]);
+  EXPECT_EQ(sh::C2[3], -sh::C2[0]);
+  EXPECT_EQ(sh::C3[4], sh::C3[2]);
+  EXPECT_EQ(sh::C3[6], sh::C3[0]);
+}
+
 } // namespace vis4gs
