@@ -254,6 +254,15 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       view.Affected = projection.Counts.Visible > 0;
     }
     effect.SecondsAfter += Since(t0);
+    if (!options.Baseline.empty() && !view.Affected)
+    {
+      // Nothing to render or read: the baseline is this view's figures, before and after.
+      view.HasImage = !std::isnan(options.Baseline[v].Psnr);
+      view.Before = view.After = options.Baseline[v];
+      effect.ViewsWithoutImage += view.HasImage ? 0 : 1;
+      effect.Views.push_back(std::move(view));
+      continue;
+    }
     view.HasImage = LoadTarget(images, v, camera, target);
     if (!view.HasImage)
     {
@@ -262,27 +271,23 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       continue;
     }
     t0 = Clock::now();
-    Image before;
-    const bool needBefore = options.Baseline.empty() || (view.Affected && options.Images);
-    if (needBefore)
+    if (options.Baseline.empty())
     {
       Rasterize(cloud, camera, settings, workspace);
       ++effect.ViewsRendered;
-      before = Clamped(workspace.Image);
+      view.Before = Measure(Clamped(workspace.Image), target, threads);
     }
-    view.Before = options.Baseline.empty() ? Measure(before, target, threads) : options.Baseline[v];
+    else
+    {
+      view.Before = options.Baseline[v];
+    }
     effect.SecondsBefore += Since(t0);
     t0 = Clock::now();
     if (view.Affected)
     {
       Rasterize(after, camera, settings, workspace);
       ++effect.ViewsRendered;
-      const Image afterImage = Clamped(workspace.Image);
-      view.After = Measure(afterImage, target, threads);
-      if (options.Images)
-      {
-        options.Images(view, before, afterImage, target);
-      }
+      view.After = Measure(Clamped(workspace.Image), target, threads);
     }
     else
     {

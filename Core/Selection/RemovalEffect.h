@@ -30,7 +30,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -82,12 +81,6 @@ struct RemovalEffect
   double SecondsAfter = 0;           ///< finding the affected views, rendering and measuring them
 };
 
-/// Renders of an affected view, clamped to [0, 1], and its image (for a report's figures).
-using RemovalViewImages = std::function<void(const RemovalViewEffect& view,
-  const Image& before,
-  const Image& after,
-  const Image& target)>;
-
 struct RemovalEffectOptions
 {
   /// Rasteriser options (background, SH degree); threads are set from Threads.
@@ -97,9 +90,6 @@ struct RemovalEffectOptions
   /// The "before" figures of every camera (MeasureViewMetrics() of the same cloud, cameras and
   /// settings), or empty to compute them here.
   std::vector<ViewMetrics> Baseline;
-  /// Called for each affected view with an image (renders the "before" image again when a
-  /// baseline is given).
-  RemovalViewImages Images;
   int Threads = 0; ///< OpenMP threads; 0 uses OpenMP's default
 };
 
