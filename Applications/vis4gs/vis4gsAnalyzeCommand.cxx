@@ -100,7 +100,9 @@ void Define(Vis4GSArguments& args)
     "",
     "Select the Gaussians a rule matches, e.g. \"views<=3 and opacity>=0.5\", \"blur top 5%\", "
     "\"needle>=0.8\", \"isolated r=0.1\" (user guide, 'Guided clean-up'); the scores it reads are "
-    "computed. Writes selection.csv and the rule in canonical form (selection-rule.txt).");
+    "computed. Writes selection.csv and the rule in canonical form (selection-rule.txt); "
+    "--select=@FILE reads the rule from FILE (e.g. a saved selection-rule.txt, to apply it to "
+    "another iteration or run).");
   args.AddFlag(
     "delete", false, "With --select: write the scene without the selection (cleaned.ply).");
   args.AddFlag("report",
@@ -608,9 +610,19 @@ int Run(const Vis4GSArguments& args)
   }
   // A selection rule: parsed first (a typo fails before any work) and its scores computed.
   std::optional<vis4gs::SelectionRule> rule;
-  if (!args.Get("select").empty())
+  std::string ruleText = args.Get("select");
+  if (!ruleText.empty() && ruleText[0] == '@')
   {
-    rule = vis4gs::SelectionRule::Parse(args.Get("select"));
+    std::ifstream file(ruleText.substr(1));
+    if (!file || !std::getline(file, ruleText))
+    {
+      throw std::runtime_error(
+        args.Get("select").substr(1) + ": --select cannot read a rule from it");
+    }
+  }
+  if (!ruleText.empty())
+  {
+    rule = vis4gs::SelectionRule::Parse(ruleText);
     want["coverage"] = want["coverage"] || rule->Reads(vis4gs::RuleAttribute::Coverage);
     want["blur"] = want["blur"] || rule->Reads(vis4gs::RuleAttribute::Blur);
     want["needle"] = want["needle"] || rule->Reads(vis4gs::RuleAttribute::NeedleScore);
@@ -890,9 +902,8 @@ int Run(const Vis4GSArguments& args)
     std::cout << "vis4gs analyze: rule '" << canonical << "' selects " << count << " of "
               << cloud.Count << " Gaussians\n";
     cleanupHtml = "<h2>Selection</h2><p>Rule <code>" + Html(canonical) +
-      "</code> (as given: <code>" + Html(args.Get("select")) + "</code>) selects " +
-      std::to_string(count) + " of " + std::to_string(cloud.Count) +
-      " Gaussians (selection.csv).</p>\n";
+      "</code> (as given: <code>" + Html(ruleText) + "</code>) selects " + std::to_string(count) +
+      " of " + std::to_string(cloud.Count) + " Gaussians (selection.csv).</p>\n";
     if (args.GetFlag("delete"))
     {
       vis4gs::WriteGaussianPly(
