@@ -336,20 +336,6 @@ bool LoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& ima
   return true;
 }
 
-vis4gs::Image ClampedRender(const vis4gs::GaussianCloud& cloud, const vis4gs::Camera& camera)
-{
-  const vis4gs::RasterImage<float> render = vis4gs::Rasterize<float>(cloud, camera);
-  vis4gs::Image image;
-  image.Width = render.Width;
-  image.Height = render.Height;
-  image.Pixels = render.Color;
-  for (float& x : image.Pixels)
-  {
-    x = std::min(1.0f, std::max(0.0f, x));
-  }
-  return image;
-}
-
 // Per pixel, the mean absolute error over RGB after the deletion minus before: red where the
 // pixel got worse, green where it got better, full intensity at the view's largest change.
 vis4gs::Image ErrorChangeImage(const vis4gs::Image& before,
@@ -509,8 +495,8 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
       const vis4gs::Camera& camera = cameras[v->CameraIndex];
       vis4gs::Image target;
       LoadViewImage(v->CameraIndex, camera, target);
-      const vis4gs::Image before = ClampedRender(cloud, camera);
-      const vis4gs::Image after = ClampedRender(cleaned, camera);
+      const vis4gs::Image before = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cloud, camera));
+      const vis4gs::Image after = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cleaned, camera));
       html << "<div>";
       const vis4gs::Image* targetImage = &target;
       for (const auto& [suffix, image] : { std::make_pair("image", targetImage),

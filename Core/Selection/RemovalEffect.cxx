@@ -34,20 +34,6 @@ RasterSettings Settings(const RemovalEffectOptions& options)
   return s;
 }
 
-// The render clamped to [0, 1], as the trainer and the reference evaluation measure it.
-Image Clamped(const RasterImage<float>& render)
-{
-  Image image;
-  image.Width = render.Width;
-  image.Height = render.Height;
-  image.Pixels.resize(render.Color.size());
-  std::transform(render.Color.begin(),
-    render.Color.end(),
-    image.Pixels.begin(),
-    [](float x) { return std::min(1.0f, std::max(0.0f, x)); });
-  return image;
-}
-
 ViewMetrics Measure(const Image& render, const Image& target, int threads)
 {
   ViewMetrics m;
@@ -120,6 +106,20 @@ double Change(const RemovalViewEffect& v)
   return std::isnan(c) ? 0.0 : c;
 }
 } // namespace
+
+//------------------------------------------------------------------------------
+Image ClampedImage(const RasterImage<float>& render)
+{
+  Image image;
+  image.Width = render.Width;
+  image.Height = render.Height;
+  image.Pixels.resize(render.Color.size());
+  std::transform(render.Color.begin(),
+    render.Color.end(),
+    image.Pixels.begin(),
+    [](float x) { return std::min(1.0f, std::max(0.0f, x)); });
+  return image;
+}
 
 //------------------------------------------------------------------------------
 GaussianCloud RemoveGaussians(const GaussianCloud& cloud, const std::vector<std::uint8_t>& removed)
@@ -200,7 +200,7 @@ std::vector<ViewMetrics> MeasureViewMetrics(const GaussianCloud& cloud,
       continue;
     }
     Rasterize(cloud, cameras[v], settings, workspace);
-    metrics[v] = Measure(Clamped(workspace.Image), target, threads);
+    metrics[v] = Measure(ClampedImage(workspace.Image), target, threads);
   }
   return metrics;
 }
@@ -275,7 +275,7 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
     {
       Rasterize(cloud, camera, settings, workspace);
       ++effect.ViewsRendered;
-      view.Before = Measure(Clamped(workspace.Image), target, threads);
+      view.Before = Measure(ClampedImage(workspace.Image), target, threads);
     }
     else
     {
@@ -287,7 +287,7 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
     {
       Rasterize(after, camera, settings, workspace);
       ++effect.ViewsRendered;
-      view.After = Measure(Clamped(workspace.Image), target, threads);
+      view.After = Measure(ClampedImage(workspace.Image), target, threads);
     }
     else
     {

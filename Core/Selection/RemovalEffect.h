@@ -93,6 +93,10 @@ struct RemovalEffectOptions
   int Threads = 0; ///< OpenMP threads; 0 uses OpenMP's default
 };
 
+/// A render clamped to [0, 1] as an Image: what the figures are measured on (the trainer and
+/// the reference evaluation clamp the same way).
+Image ClampedImage(const RasterImage<float>& render);
+
 /// The cloud without the Gaussians where @p removed is non-zero (one byte per Gaussian), every
 /// array (ids, extras) kept in order. Throws std::invalid_argument on a size mismatch.
 GaussianCloud RemoveGaussians(const GaussianCloud& cloud, const std::vector<std::uint8_t>& removed);

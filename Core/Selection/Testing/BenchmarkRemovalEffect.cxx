@@ -34,15 +34,7 @@ int main(int argc, char* argv[])
     height,
     threads,
     repeats);
-  if (std::FILE* f = std::fopen("/proc/loadavg", "r"))
-  {
-    char line[128] = { 0 };
-    if (std::fgets(line, sizeof(line), f))
-    {
-      std::printf("  load average at start: %s", line);
-    }
-    std::fclose(f);
-  }
+  PrintLoadAverage();
   const GaussianCloud cloud = MakeBenchmarkScene(n, degree, 1);
   std::vector<Camera> cameras;
   std::vector<Image> targets;
@@ -55,15 +47,7 @@ int main(int argc, char* argv[])
       cameras.push_back(MakeBenchmarkCamera(width, height, 2.0 * M_PI * v / views));
       cameras.back().Name = "view" + std::to_string(v);
       cameras.back().Split = v % 4 == 3 ? CameraSplit::Test : CameraSplit::Train;
-      const RasterImage<float> render = Rasterize<float>(other, cameras.back(), raster);
-      Image target;
-      target.Width = width;
-      target.Height = height;
-      target.Pixels = render.Color;
-      for (float& x : target.Pixels)
-      {
-        x = std::min(1.0f, std::max(0.0f, x));
-      }
+      Image target = ClampedImage(Rasterize<float>(other, cameras.back(), raster));
       targets.push_back(std::move(target));
     }
   }

@@ -34,19 +34,6 @@ double PlainPsnr(const RasterImage<float>& render, const Image& target)
   return -10.0 * std::log10(sum / static_cast<double>(target.Pixels.size()));
 }
 
-Image AsImage(const RasterImage<float>& render)
-{
-  Image image;
-  image.Width = render.Width;
-  image.Height = render.Height;
-  image.Pixels = render.Color;
-  for (float& x : image.Pixels)
-  {
-    x = std::min(1.0f, std::max(0.0f, x));
-  }
-  return image;
-}
-
 struct WallScene
 {
   GaussianCloud Cloud;
@@ -103,7 +90,7 @@ WallScene MakeWallScene()
   const GaussianCloud wall = RemoveGaussians(s.Cloud, floaterOnly);
   for (const Camera& c : s.Cameras)
   {
-    s.Targets.push_back(AsImage(Rasterize<float>(wall, c)));
+    s.Targets.push_back(ClampedImage(Rasterize<float>(wall, c)));
   }
   return s;
 }
