@@ -35,6 +35,7 @@ run "$bin/BenchmarkGenealogyTree"
 run "$bin/BenchmarkTrainer" --gaussians=50000 --size=256 --iterations=60 --threads=2
 run "$bin/BenchmarkSplats" 1000000 2 5
 run "$bin/BenchmarkSelection" 1000000 2 3
+run "$bin/BenchmarkRemovalEffect" 1000000 4 1920 1080 2 3 3
 # Scene view on software OpenGL: interactive frames at half resolution, then auto-adjusted.
 run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper" 1000000 1280 720 5 0 2 1 0 2 2
 run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper" 1000000 1280 720 5 0 2 1 0 2 0

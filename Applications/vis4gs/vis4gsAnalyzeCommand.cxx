@@ -5,12 +5,18 @@
 // scores as extra PLY properties, a CSV table, the top-k Gaussians per score, overlay images
 // of training views (scores through viridis, rendered with the Core rasteriser), and a
 // self-contained HTML report (base64 PNGs, inline SVG histograms, tables, settings, timings).
+// With --select=RULE (Core/Selection/SelectionRule.h) it selects Gaussians by a rule over the
+// scores and attributes; --delete writes the scene without them (cleaned.ply) and --report
+// measures the deletion against the training and test images (Core/Selection/RemovalEffect.h):
+// before-after.csv and a section of the report with the per-view table and images.
 #include "Vis4GSCommand.h"
 
 #include "GaussianIO.h"
 #include "GaussianMath.h"
 #include "ImageIO.h"
 #include "Rasterizer.h"
+#include "RemovalEffect.h"
+#include "SelectionRule.h"
 #include "SpecialValues.h"
 #include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
 #include "TrainingLogReader.h"
@@ -39,6 +45,7 @@
 #include <iostream>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -88,6 +95,20 @@ void Define(Vis4GSArguments& args)
     "0",
     "Occlusion-aware coverage: count a view only when max alpha*T >= T (0: off).");
   args.AddOption("overlay-views", "N", "4", "Number of training views rendered as overlays.");
+  args.AddOption("select",
+    "RULE",
+    "",
+    "Select the Gaussians a rule matches, e.g. \"views<=3 and opacity>=0.5\", \"blur top 5%\", "
+    "\"needle>=0.8\", \"isolated r=0.1\" (user guide, 'Guided clean-up'); the scores it reads are "
+    "computed. Writes selection.csv and the rule in canonical form (selection-rule.txt); "
+    "--select=@FILE reads the rule from FILE (e.g. a saved selection-rule.txt, to apply it to "
+    "another iteration or run).");
+  args.AddFlag(
+    "delete", false, "With --select: write the scene without the selection (cleaned.ply).");
+  args.AddFlag("report",
+    false,
+    "With --select: measure deleting the selection against the training and test images (PSNR, "
+    "SSIM, L1 per view, before and after; before-after.csv) and add it to report.html.");
   args.AddFlag("mpi",
     false,
     "Spread the training views over MPI processes (implied when launched by mpiexec; "
@@ -301,6 +322,203 @@ std::vector<std::size_t> TopK(const std::vector<double>& v, std::size_t k)
 }
 
 // ---------------------------------------------------------------------------------------
+// Clean-up by rule (--select, --delete, --report).
+
+// The training image of a camera, when it has one on disk (what the score filter reads).
+bool LoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
+{
+  std::error_code ec;
+  if (camera.ImagePath.empty() || !fs::is_regular_file(camera.ImagePath, ec))
+  {
+    return false;
+  }
+  image = vis4gs::LoadTrainingImage(camera);
+  return true;
+}
+
+// Per pixel, the mean absolute error over RGB after the deletion minus before: red where the
+// pixel got worse, green where it got better, full intensity at the view's largest change.
+vis4gs::Image ErrorChangeImage(const vis4gs::Image& before,
+  const vis4gs::Image& after,
+  const vis4gs::Image& target)
+{
+  const std::size_t pixels = static_cast<std::size_t>(target.Width) * target.Height;
+  std::vector<double> change(pixels);
+  double largest = 0;
+  for (std::size_t p = 0; p < pixels; ++p)
+  {
+    double d = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const std::size_t i = 3 * p + static_cast<std::size_t>(c);
+      d += std::abs(after.Pixels[i] - target.Pixels[i]) -
+        std::abs(before.Pixels[i] - target.Pixels[i]);
+    }
+    change[p] = d / 3;
+    largest = std::max(largest, std::abs(change[p]));
+  }
+  vis4gs::Image image;
+  image.Width = target.Width;
+  image.Height = target.Height;
+  image.Pixels.assign(3 * pixels, 0.0f);
+  for (std::size_t p = 0; p < pixels && largest > 0; ++p)
+  {
+    const float v = static_cast<float>(std::abs(change[p]) / largest);
+    image.Pixels[3 * p + (change[p] > 0 ? 0 : 1)] = v;
+  }
+  return image;
+}
+
+std::string Figure(const fs::path& file, const std::string& caption)
+{
+  return "<figure><img src=\"data:image/png;base64," + Base64(ReadBytes(file)) + "\"><figcaption>" +
+    Html(caption) + "</figcaption></figure>";
+}
+
+std::string Number(double v, int precision = 4)
+{
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(precision) << v;
+  return out.str();
+}
+
+// Measures deleting @p selected, writes before-after.csv and the figures of the views that
+// changed most into @p folder, and returns the report's section.
+std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
+  const std::vector<std::uint8_t>& selected,
+  const std::vector<vis4gs::Camera>& cameras,
+  const std::string& rule,
+  int threads,
+  const fs::path& folder)
+{
+  const auto t0 = Clock::now();
+  vis4gs::RemovalEffectOptions options;
+  options.Threads = threads;
+  const vis4gs::RemovalEffect effect =
+    vis4gs::MeasureRemovalEffect(cloud, selected, cameras, options, LoadViewImage);
+  const double seconds = Since(t0);
+  {
+    std::ofstream csv(folder / "before-after.csv");
+    csv << "view,split,affected,psnr_before,psnr_after,ssim_before,ssim_after,l1_before,l1_after\n"
+        << std::setprecision(9);
+    auto row = [&csv](const std::string& view,
+                 const std::string& split,
+                 std::size_t affected,
+                 const vis4gs::ViewMetrics& b,
+                 const vis4gs::ViewMetrics& a)
+    {
+      csv << view << "," << split << "," << affected << "," << b.Psnr << "," << a.Psnr << ","
+          << b.Ssim << "," << a.Ssim << "," << b.L1 << "," << a.L1 << "\n";
+    };
+    // Totals first ("mean" rows: means over the views of a split; affected = views changed).
+    row("mean", "train", effect.Train.AffectedViews, effect.Train.Before, effect.Train.After);
+    row("mean", "test", effect.Test.AffectedViews, effect.Test.Before, effect.Test.After);
+    for (const vis4gs::RemovalViewEffect& v : effect.Views)
+    {
+      row(v.Name,
+        v.Split == vis4gs::CameraSplit::Train ? "train" : "test",
+        v.Affected ? 1 : 0,
+        v.Before,
+        v.After);
+    }
+    if (!csv)
+    {
+      throw std::runtime_error((folder / "before-after.csv").string() + ": could not be written");
+    }
+  }
+  std::cout << "vis4gs analyze: deleting " << effect.Removed << " Gaussians: training PSNR "
+            << effect.Train.Before.Psnr << " -> " << effect.Train.After.Psnr << " dB ("
+            << effect.Train.AffectedViews << " of " << effect.Train.Views
+            << " views changed), test PSNR " << effect.Test.Before.Psnr << " -> "
+            << effect.Test.After.Psnr << " dB (" << effect.Test.AffectedViews << " of "
+            << effect.Test.Views << "), " << seconds << " s\n";
+
+  std::ostringstream html;
+  html << "<h2>Clean-up: deleting the selection, before and after</h2>\n<p>Rule <code>"
+       << Html(rule) << "</code> selects " << effect.Removed << " of " << cloud.Count
+       << " Gaussians. Every training and test view with an image is rendered with and without "
+          "them (exact rasteriser, renders clamped to [0, 1]); views where no selected Gaussian "
+          "takes part are unchanged and not rendered again. "
+       << effect.ViewsWithoutImage << " views have no image. Measured in " << Number(seconds, 2)
+       << " s.</p>\n<table><tr><th>split</th><th>views</th><th>changed</th><th>PSNR before</th>"
+          "<th>PSNR after</th><th>change</th><th>SSIM before</th><th>SSIM after</th>"
+          "<th>L1 before</th><th>L1 after</th></tr>";
+  for (const auto& [name, t] :
+    { std::make_pair("train", &effect.Train), std::make_pair("test", &effect.Test) })
+  {
+    html << "<tr><td>" << name << "</td><td>" << t->Views << "</td><td>" << t->AffectedViews
+         << "</td><td>" << Number(t->Before.Psnr) << "</td><td>" << Number(t->After.Psnr)
+         << "</td><td>" << Number(t->After.Psnr - t->Before.Psnr) << "</td><td>"
+         << Number(t->Before.Ssim) << "</td><td>" << Number(t->After.Ssim) << "</td><td>"
+         << Number(t->Before.L1) << "</td><td>" << Number(t->After.L1) << "</td></tr>";
+  }
+  html << "</table>\n<h3>Views, the largest PSNR loss first</h3><table><tr><th>view</th>"
+          "<th>split</th><th>changed</th><th>PSNR before</th><th>PSNR after</th><th>change</th>"
+          "<th>SSIM before</th><th>SSIM after</th><th>L1 before</th><th>L1 after</th></tr>";
+  for (const vis4gs::RemovalViewEffect& v : effect.Views)
+  {
+    html << "<tr><td>" << Html(v.Name) << "</td><td>"
+         << (v.Split == vis4gs::CameraSplit::Train ? "train" : "test") << "</td><td>"
+         << (v.Affected ? "yes" : "no") << "</td><td>" << Number(v.Before.Psnr) << "</td><td>"
+         << Number(v.After.Psnr) << "</td><td>" << Number(v.PsnrChange()) << "</td><td>"
+         << Number(v.Before.Ssim) << "</td><td>" << Number(v.After.Ssim) << "</td><td>"
+         << Number(v.Before.L1) << "</td><td>" << Number(v.After.L1) << "</td></tr>";
+  }
+  html << "</table>\n";
+
+  // Figures: the three changed views that lost most and the three that gained most.
+  std::vector<const vis4gs::RemovalViewEffect*> changed;
+  for (const vis4gs::RemovalViewEffect& v : effect.Views)
+  {
+    if (v.Affected && v.HasImage)
+    {
+      changed.push_back(&v);
+    }
+  }
+  std::vector<const vis4gs::RemovalViewEffect*> shown;
+  for (std::size_t i = 0; i < changed.size() && i < 3; ++i)
+  {
+    shown.push_back(changed[i]);
+  }
+  for (std::size_t i = changed.size(); i > 3 && i > changed.size() - 3; --i)
+  {
+    shown.push_back(changed[i - 1]);
+  }
+  if (!shown.empty())
+  {
+    html << "<h3>Images</h3><p>Per view: the training or test image, the render before and "
+            "after, and the change of the absolute error (red: worse after the deletion, green: "
+            "better; full intensity at the view's largest change).</p>\n";
+    const vis4gs::GaussianCloud cleaned = vis4gs::RemoveGaussians(cloud, selected);
+    for (const vis4gs::RemovalViewEffect* v : shown)
+    {
+      const vis4gs::Camera& camera = cameras[v->CameraIndex];
+      vis4gs::Image target;
+      LoadViewImage(v->CameraIndex, camera, target);
+      const vis4gs::Image before = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cloud, camera));
+      const vis4gs::Image after = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cleaned, camera));
+      html << "<div>";
+      const vis4gs::Image* targetImage = &target;
+      for (const auto& [suffix, image] : { std::make_pair("image", targetImage),
+             std::make_pair("before", &before),
+             std::make_pair("after", &after) })
+      {
+        const fs::path file = folder / ("cleanup-" + v->Name + "-" + suffix + ".png");
+        vis4gs::WritePng(file.string(), *image);
+        html << Figure(file, v->Name + " " + suffix);
+      }
+      const fs::path file = folder / ("cleanup-" + v->Name + "-change.png");
+      vis4gs::WritePng(file.string(), ErrorChangeImage(before, after, target));
+      html << Figure(file,
+                v->Name + " error change, PSNR " + Number(v->Before.Psnr, 3) + " -> " +
+                  Number(v->After.Psnr, 3) + " dB")
+           << "</div>\n";
+    }
+  }
+  return html.str();
+}
+
+// ---------------------------------------------------------------------------------------
 // The outputs go to a hidden folder inside the output folder and are moved into place only when
 // all of them are written, so a failure (or a process killed under MPI) leaves no partial
 // scores.csv, scores.ply or report.html; the hidden folder is removed on failure when possible.
@@ -376,6 +594,30 @@ int Run(const Vis4GSArguments& args)
       want[item] = true;
     }
   }
+  // A selection rule: parsed first (a typo fails before any work) and its scores computed.
+  std::optional<vis4gs::SelectionRule> rule;
+  std::string ruleText = args.Get("select");
+  if (!ruleText.empty() && ruleText[0] == '@')
+  {
+    std::ifstream file(ruleText.substr(1));
+    if (!file || !std::getline(file, ruleText))
+    {
+      throw std::runtime_error(
+        args.Get("select").substr(1) + ": --select cannot read a rule from it");
+    }
+  }
+  if (!ruleText.empty())
+  {
+    rule = vis4gs::SelectionRule::Parse(ruleText);
+    want["coverage"] = want["coverage"] || rule->Reads(vis4gs::RuleAttribute::Coverage);
+    want["blur"] = want["blur"] || rule->Reads(vis4gs::RuleAttribute::Blur);
+    want["needle"] = want["needle"] || rule->Reads(vis4gs::RuleAttribute::NeedleScore);
+  }
+  else if (args.GetFlag("delete") || args.GetFlag("report"))
+  {
+    throw std::runtime_error("--delete and --report act on a selection: give --select=RULE");
+  }
+  const bool measure = rule && args.GetFlag("report");
   const std::string footprint = args.Get("footprint");
   if (footprint != "alpha" && footprint != "ellipse")
   {
@@ -392,7 +634,7 @@ int Run(const Vis4GSArguments& args)
 
   // Read.
   auto t0 = Clock::now();
-  const bool needCameras = want["coverage"] || want["blur"] || want["needle"];
+  const bool needCameras = want["coverage"] || want["blur"] || want["needle"] || measure;
   vis4gs::GaussianCloud cloud;
   std::vector<vis4gs::Camera> cameras;
   if (isLog)
@@ -429,7 +671,8 @@ int Run(const Vis4GSArguments& args)
   if (needCameras && cameras.empty())
   {
     throw std::runtime_error(scene +
-      ": coverage, blur and needle need cameras; give --cameras=cameras.json or a COLMAP folder");
+      ": coverage, blur, needle and --report need cameras; give --cameras=cameras.json or a "
+      "COLMAP folder");
   }
   if (!args.Get("images").empty())
   {
@@ -600,6 +843,68 @@ int Run(const Vis4GSArguments& args)
       std::cout << "  Gaussian " << cloud.GetId(i) << "  " << values[i] << "\n";
     }
   }
+  // The selection by rule, the cleaned scene and the before/after measurement.
+  std::string cleanupHtml;
+  if (rule)
+  {
+    vis4gs::SelectionRuleInputs inputs;
+    inputs.Cloud = &cloud;
+    inputs.ViewsUsed = filter->GetNumberOfViewsUsed();
+    for (const auto& [name, values] : scores)
+    {
+      if (name == vis4gs::arrays::ViewCoverage)
+      {
+        inputs.ViewCoverage = &values;
+      }
+      else if (name == vis4gs::arrays::BlurScore)
+      {
+        inputs.BlurScore = &values;
+      }
+      else if (name == vis4gs::arrays::NeedleScore)
+      {
+        inputs.NeedleScore = &values;
+      }
+    }
+    const std::vector<std::uint8_t> selected = rule->Evaluate(inputs);
+    const std::string canonical = rule->ToString();
+    std::ofstream(staging.Get() / "selection-rule.txt") << canonical << "\n";
+    std::size_t count = 0;
+    {
+      std::ofstream csv(staging.Get() / "selection.csv");
+      csv << "GaussianId\n";
+      for (std::size_t i = 0; i < cloud.Count; ++i)
+      {
+        if (selected[i])
+        {
+          csv << cloud.GetId(i) << "\n";
+          ++count;
+        }
+      }
+      if (!csv)
+      {
+        throw std::runtime_error((output / "selection.csv").string() + ": could not be written");
+      }
+    }
+    std::cout << "vis4gs analyze: rule '" << canonical << "' selects " << count << " of "
+              << cloud.Count << " Gaussians\n";
+    cleanupHtml = "<h2>Selection</h2><p>Rule <code>" + Html(canonical) +
+      "</code> (as given: <code>" + Html(ruleText) + "</code>) selects " + std::to_string(count) +
+      " of " + std::to_string(cloud.Count) + " Gaussians (selection.csv).</p>\n";
+    if (args.GetFlag("delete"))
+    {
+      vis4gs::WriteGaussianPly(
+        (staging.Get() / "cleaned.ply").string(), vis4gs::RemoveGaussians(cloud, selected));
+      std::cout << "vis4gs analyze: cleaned.ply holds the " << cloud.Count - count
+                << " Gaussians not selected\n";
+      cleanupHtml += "<p>cleaned.ply: the scene without them (" +
+        std::to_string(cloud.Count - count) + " Gaussians).</p>\n";
+    }
+    if (measure)
+    {
+      cleanupHtml +=
+        MeasureCleanup(cloud, selected, cameras, canonical, args.GetInt("threads"), staging.Get());
+    }
+  }
   // Overlays of the first training views: colours replaced by the overlay colour map of
   // the score (vis4gs::OverlayColor, the scene view's), its suspicious end bright on black.
   std::vector<std::pair<std::string, fs::path>> overlays;
@@ -675,6 +980,7 @@ int Run(const Vis4GSArguments& args)
        << " Gaussians flagged (no visible view or invalid parameters).</p>\n";
   html << "<h2>Settings</h2><table>";
   for (const char* opt : { "scores",
+         "select",
          "cameras",
          "images",
          "loss-resolution",
@@ -710,6 +1016,7 @@ int Run(const Vis4GSArguments& args)
     html << "<figure><img src=\"data:image/png;base64," << Base64(ReadBytes(file))
          << "\"><figcaption>" << Html(title) << "</figcaption></figure>\n";
   }
+  html << cleanupHtml;
   html << "<h2>Most suspicious Gaussians</h2>\n";
   for (const auto& [name, values] : scores)
   {

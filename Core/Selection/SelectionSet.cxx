@@ -37,6 +37,10 @@ std::vector<std::int64_t> CombineSelection(const std::vector<std::int64_t>& curr
       std::set_symmetric_difference(
         current.begin(), current.end(), incoming.begin(), incoming.end(), std::back_inserter(out));
       break;
+    case SelectionModifier::Intersect:
+      std::set_intersection(
+        current.begin(), current.end(), incoming.begin(), incoming.end(), std::back_inserter(out));
+      break;
   }
   return out;
 }

@@ -19,7 +19,8 @@ enum class SelectionModifier : std::uint8_t
   Replace = 0,  ///< the new selection replaces the current one
   Add = 1,      ///< union
   Subtract = 2, ///< current minus new
-  Toggle = 3    ///< symmetric difference
+  Toggle = 3,   ///< symmetric difference
+  Intersect = 4 ///< current and new (a rule applied within an earlier selection)
 };
 
 /// Sorts @p values and removes duplicates.

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <functional>
 #include <vector>
@@ -45,6 +46,20 @@ public:
   /// Median CPU milliseconds (all threads) of the last TimeMs() call.
   double LastCpuMs = 0;
 };
+
+/// Prints the load average (figures taken on a busy machine say so).
+inline void PrintLoadAverage()
+{
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r"))
+  {
+    char line[128] = { 0 };
+    if (std::fgets(line, sizeof(line), f))
+    {
+      std::printf("  load average at start: %s", line);
+    }
+    std::fclose(f);
+  }
+}
 
 } // namespace vis4gs
 

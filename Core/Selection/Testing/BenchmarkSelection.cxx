@@ -22,15 +22,7 @@ int main(int argc, char* argv[])
     n,
     threads,
     repeats);
-  if (std::FILE* f = std::fopen("/proc/loadavg", "r"))
-  {
-    char line[128] = { 0 };
-    if (std::fgets(line, sizeof(line), f))
-    {
-      std::printf("  load average at start: %s", line);
-    }
-    std::fclose(f);
-  }
+  PrintLoadAverage();
   const auto cloud = MakeBenchmarkScene(n, 0, 1);
   const auto cam = MakeBenchmarkCamera(1280, 720, 0.4);
   SelectionView view;

@@ -15,6 +15,7 @@ TEST(SelectionSet, Modifiers)
   EXPECT_EQ(CombineSelection(current, incoming, SelectionModifier::Add), (V{ 1, 2, 3, 5, 7, 9 }));
   EXPECT_EQ(CombineSelection(current, incoming, SelectionModifier::Subtract), (V{ 1, 5 }));
   EXPECT_EQ(CombineSelection(current, incoming, SelectionModifier::Toggle), (V{ 1, 2, 5, 9 }));
+  EXPECT_EQ(CombineSelection(current, incoming, SelectionModifier::Intersect), (V{ 3, 7 }));
   EXPECT_EQ(CombineSelection({}, {}, SelectionModifier::Add), V{});
   EXPECT_EQ(CombineSelection(current, {}, SelectionModifier::Subtract), current);
   EXPECT_EQ(CombineSelection(current, {}, SelectionModifier::Replace), V{});

@@ -1,0 +1,318 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "RemovalEffect.h"
+
+#include "Loss.h"
+#include "RasterInternal.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+namespace vis4gs
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point t)
+{
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+bool Wanted(const Camera& camera, const RemovalEffectOptions& options)
+{
+  return camera.Split == CameraSplit::Train ? options.TrainViews : options.TestViews;
+}
+
+RasterSettings Settings(const RemovalEffectOptions& options)
+{
+  RasterSettings s = options.Raster;
+  s.Threads = options.Threads;
+  return s;
+}
+
+ViewMetrics Measure(const Image& render, const Image& target, int threads)
+{
+  ViewMetrics m;
+  const std::size_t count = render.Pixels.size();
+  m.Psnr = Psnr(render.Pixels.data(), target.Pixels.data(), count);
+  m.Ssim = Ssim(render.Pixels.data(), target.Pixels.data(), render.Width, render.Height, threads);
+  m.L1 = L1Loss(render.Pixels.data(), target.Pixels.data(), count);
+  return m;
+}
+
+// The image of view @p index, or false; throws when its size is not the camera's.
+bool LoadTarget(const TrainingImageProvider& images,
+  std::size_t index,
+  const Camera& camera,
+  Image& target)
+{
+  if (!images || !images(index, camera, target))
+  {
+    return false;
+  }
+  if (target.Width != camera.Width || target.Height != camera.Height || target.Channels != 3 ||
+    target.Pixels.size() != 3 * static_cast<std::size_t>(camera.Width) * camera.Height)
+  {
+    throw std::runtime_error("camera " + camera.Name + ": its image is " +
+      std::to_string(target.Width) + "x" + std::to_string(target.Height) + ", the camera " +
+      std::to_string(camera.Width) + "x" + std::to_string(camera.Height));
+  }
+  return true;
+}
+
+void AddToTotals(RemovalTotals& totals, const RemovalViewEffect& v)
+{
+  if (!v.HasImage)
+  {
+    return;
+  }
+  for (auto [sum, m] :
+    { std::make_pair(&totals.Before, &v.Before), std::make_pair(&totals.After, &v.After) })
+  {
+    if (totals.Views == 0)
+    {
+      *sum = ViewMetrics{ 0, 0, 0 };
+    }
+    sum->Psnr += m->Psnr;
+    sum->Ssim += m->Ssim;
+    sum->L1 += m->L1;
+  }
+  ++totals.Views;
+  totals.AffectedViews += v.Affected ? 1 : 0;
+}
+
+void FinishTotals(RemovalTotals& totals)
+{
+  const double n = static_cast<double>(totals.Views);
+  for (ViewMetrics* m : { &totals.Before, &totals.After })
+  {
+    if (totals.Views > 0)
+    {
+      m->Psnr /= n;
+      m->Ssim /= n;
+      m->L1 /= n;
+    }
+  }
+}
+
+// The sort key: identical renders of a perfect view (PSNR +inf before and after) did not change.
+double Change(const RemovalViewEffect& v)
+{
+  const double c = v.PsnrChange();
+  return std::isnan(c) ? 0.0 : c;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+Image ClampedImage(const RasterImage<float>& render)
+{
+  Image image;
+  image.Width = render.Width;
+  image.Height = render.Height;
+  image.Pixels.resize(render.Color.size());
+  std::transform(render.Color.begin(),
+    render.Color.end(),
+    image.Pixels.begin(),
+    [](float x) { return std::min(1.0f, std::max(0.0f, x)); });
+  return image;
+}
+
+//------------------------------------------------------------------------------
+GaussianCloud RemoveGaussians(const GaussianCloud& cloud, const std::vector<std::uint8_t>& removed)
+{
+  if (removed.size() != cloud.Count)
+  {
+    throw std::invalid_argument("RemoveGaussians: " + std::to_string(removed.size()) +
+      " flags for " + std::to_string(cloud.Count) + " Gaussians");
+  }
+  const std::size_t kept = cloud.Count -
+    static_cast<std::size_t>(
+      std::count_if(removed.begin(), removed.end(), [](std::uint8_t r) { return r != 0; }));
+  GaussianCloud out;
+  out.Count = kept;
+  out.ShDegree = cloud.ShDegree;
+  // Every per-Gaussian array, whatever it holds per Gaussian (arrays not loaded stay empty).
+  auto subset = [&](const auto& in, auto& result, std::size_t per)
+  {
+    if (in.size() != per * cloud.Count)
+    {
+      return;
+    }
+    result.resize(per * kept);
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < cloud.Count; ++i)
+    {
+      if (!removed[i])
+      {
+        std::copy_n(&in[per * i], per, &result[per * j++]);
+      }
+    }
+  };
+  if (!cloud.Ids.empty())
+  {
+    subset(cloud.Ids, out.Ids, 1);
+  }
+  else
+  {
+    // Ids default to the indices: keep them, or the survivors would be renumbered.
+    std::vector<std::int64_t> ids(cloud.Count);
+    std::iota(ids.begin(), ids.end(), std::int64_t(0));
+    subset(ids, out.Ids, 1);
+  }
+  subset(cloud.Positions, out.Positions, 3);
+  subset(cloud.LogScales, out.LogScales, 3);
+  subset(cloud.Rotations, out.Rotations, 4);
+  subset(cloud.OpacityLogits, out.OpacityLogits, 1);
+  if (cloud.Count > 0)
+  {
+    subset(cloud.SH, out.SH, cloud.SH.size() / cloud.Count);
+  }
+  for (const ExtraProperty& extra : cloud.Extra)
+  {
+    ExtraProperty e;
+    e.Name = extra.Name;
+    e.Type = extra.Type;
+    subset(extra.Bytes, e.Bytes, ScalarTypeSize(extra.Type));
+    out.Extra.push_back(std::move(e));
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<ViewMetrics> MeasureViewMetrics(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RemovalEffectOptions& options,
+  const TrainingImageProvider& images)
+{
+  std::vector<ViewMetrics> metrics(cameras.size());
+  const RasterSettings settings = Settings(options);
+  const int threads = raster::internal::Threads(options.Threads);
+  RasterWorkspace<float> workspace;
+  Image target;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    if (!Wanted(cameras[v], options) || !LoadTarget(images, v, cameras[v], target))
+    {
+      continue;
+    }
+    Rasterize(cloud, cameras[v], settings, workspace);
+    metrics[v] = Measure(ClampedImage(workspace.Image), target, threads);
+  }
+  return metrics;
+}
+
+//------------------------------------------------------------------------------
+RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
+  const std::vector<std::uint8_t>& removed,
+  const std::vector<Camera>& cameras,
+  const RemovalEffectOptions& options,
+  const TrainingImageProvider& images)
+{
+  if (!options.Baseline.empty() && options.Baseline.size() != cameras.size())
+  {
+    throw std::invalid_argument("MeasureRemovalEffect: a baseline of " +
+      std::to_string(options.Baseline.size()) + " views for " + std::to_string(cameras.size()) +
+      " cameras");
+  }
+  RemovalEffect effect;
+  const GaussianCloud after = RemoveGaussians(cloud, removed);
+  effect.Kept = after.Count;
+  effect.Removed = cloud.Count - after.Count;
+  const RasterSettings settings = Settings(options);
+  const int threads = raster::internal::Threads(options.Threads);
+
+  // Which views a removed Gaussian takes part in: project only those.
+  std::vector<std::uint8_t> kept(removed.size());
+  std::transform(
+    removed.begin(), removed.end(), kept.begin(), [](std::uint8_t r) { return r ? 0 : 1; });
+  const GaussianCloud gone = RemoveGaussians(cloud, kept);
+  RasterSettings cull = settings;
+  cull.ComputeColors = false;
+
+  RasterWorkspace<float> workspace;
+  ViewProjection<float> projection;
+  Image target;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    const Camera& camera = cameras[v];
+    if (!Wanted(camera, options))
+    {
+      continue;
+    }
+    RemovalViewEffect view;
+    view.CameraIndex = v;
+    view.Name = camera.Name;
+    view.Split = camera.Split;
+    auto t0 = Clock::now();
+    if (gone.Count > 0)
+    {
+      ProjectGaussians(gone, camera, cull, projection);
+      view.Affected = projection.Counts.Visible > 0;
+    }
+    effect.SecondsAfter += Since(t0);
+    if (!options.Baseline.empty() && !view.Affected)
+    {
+      // Nothing to render or read: the baseline is this view's figures, before and after.
+      view.HasImage = !std::isnan(options.Baseline[v].Psnr);
+      view.Before = view.After = options.Baseline[v];
+      effect.ViewsWithoutImage += view.HasImage ? 0 : 1;
+      effect.Views.push_back(std::move(view));
+      continue;
+    }
+    view.HasImage = LoadTarget(images, v, camera, target);
+    if (!view.HasImage)
+    {
+      ++effect.ViewsWithoutImage;
+      effect.Views.push_back(std::move(view));
+      continue;
+    }
+    t0 = Clock::now();
+    if (options.Baseline.empty())
+    {
+      Rasterize(cloud, camera, settings, workspace);
+      ++effect.ViewsRendered;
+      view.Before = Measure(ClampedImage(workspace.Image), target, threads);
+    }
+    else
+    {
+      view.Before = options.Baseline[v];
+    }
+    effect.SecondsBefore += Since(t0);
+    t0 = Clock::now();
+    if (view.Affected)
+    {
+      Rasterize(after, camera, settings, workspace);
+      ++effect.ViewsRendered;
+      view.After = Measure(ClampedImage(workspace.Image), target, threads);
+    }
+    else
+    {
+      view.After = view.Before;
+    }
+    effect.SecondsAfter += Since(t0);
+    effect.Views.push_back(std::move(view));
+  }
+  for (const RemovalViewEffect& v : effect.Views)
+  {
+    AddToTotals(v.Split == CameraSplit::Train ? effect.Train : effect.Test, v);
+  }
+  FinishTotals(effect.Train);
+  FinishTotals(effect.Test);
+  std::stable_sort(effect.Views.begin(),
+    effect.Views.end(),
+    [](const RemovalViewEffect& a, const RemovalViewEffect& b)
+    {
+      if (a.HasImage != b.HasImage)
+      {
+        return a.HasImage;
+      }
+      return a.HasImage && Change(a) < Change(b);
+    });
+  return effect;
+}
+
+} // namespace vis4gs

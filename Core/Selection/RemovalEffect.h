@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file RemovalEffect.h
+ * @brief Before / after measurement of a clean-up (issue 20): what deleting (or hiding) a set
+ * of Gaussians does to the reconstruction, measured against the training and test images with
+ * the exact rasteriser, per view and in total, with the views that got worse first.
+ *
+ * Metrics per view are those the trainer logs (Core/Training/Loss.h): the render clamped to
+ * [0, 1] against the image, PSNR over every channel and pixel, SSIM (11x11 Gaussian window),
+ * L1 mean absolute difference; totals are means over the views of a split, as the trainer's
+ * /metrics rows are.
+ *
+ * What is reused, exactly: a view in which no removed Gaussian survives the rasteriser's
+ * culls (near plane, degenerate, off screen, invalid) is not rendered again: its "after"
+ * image is bit for bit its "before" image (the removed Gaussians were in none of its tile
+ * lists, and the kept ones keep their relative order, so every tile blends the same sequence).
+ * Deciding this projects only the removed Gaussians. The "before" figures do not depend on
+ * the selection: MeasureViewMetrics() computes them once, and previews of several selections
+ * pass them in (RemovalEffectOptions::Baseline), so that each preview renders only the views
+ * its selection touches, once.
+ */
+#ifndef vis4gs_RemovalEffect_h
+#define vis4gs_RemovalEffect_h
+
+#include "ArtifactScores.h" // TrainingImageProvider
+#include "Camera.h"
+#include "GaussianCloud.h"
+#include "ImageIO.h"
+#include "Rasterizer.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace vis4gs
+{
+
+/// Image figures of one render against its image; NaN when the view has no image.
+struct ViewMetrics
+{
+  double Psnr = std::numeric_limits<double>::quiet_NaN();
+  double Ssim = std::numeric_limits<double>::quiet_NaN();
+  double L1 = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// One view before and after the removal.
+struct RemovalViewEffect
+{
+  std::size_t CameraIndex = 0;
+  std::string Name;
+  CameraSplit Split = CameraSplit::Train;
+  /// Whether a removed Gaussian takes part in this view (else After == Before, not rendered).
+  bool Affected = false;
+  /// Whether the view has an image (else its metrics are NaN and it is in no total).
+  bool HasImage = false;
+  ViewMetrics Before, After;
+  double PsnrChange() const { return this->After.Psnr - this->Before.Psnr; }
+};
+
+/// Means over the views of one split that have an image.
+struct RemovalTotals
+{
+  std::size_t Views = 0;
+  std::size_t AffectedViews = 0;
+  ViewMetrics Before, After;
+};
+
+struct RemovalEffect
+{
+  std::size_t Removed = 0; ///< Gaussians removed
+  std::size_t Kept = 0;    ///< Gaussians left
+  /// Every view measured, the largest PSNR drop first (After - Before ascending; views
+  /// without an image last; ties in camera order).
+  std::vector<RemovalViewEffect> Views;
+  RemovalTotals Train, Test;
+  std::size_t ViewsRendered = 0;     ///< renders made (before and after)
+  std::size_t ViewsWithoutImage = 0; ///< views skipped for lack of an image
+  double SecondsBefore = 0;          ///< rendering and measuring the "before" state
+  double SecondsAfter = 0;           ///< finding the affected views, rendering and measuring them
+};
+
+struct RemovalEffectOptions
+{
+  /// Rasteriser options (background, SH degree); threads are set from Threads.
+  RasterSettings Raster;
+  bool TrainViews = true; ///< measure the training views
+  bool TestViews = true;  ///< measure the test views
+  /// The "before" figures of every camera (MeasureViewMetrics() of the same cloud, cameras and
+  /// settings), or empty to compute them here.
+  std::vector<ViewMetrics> Baseline;
+  int Threads = 0; ///< OpenMP threads; 0 uses OpenMP's default
+};
+
+/// A render clamped to [0, 1] as an Image: what the figures are measured on (the trainer and
+/// the reference evaluation clamp the same way).
+Image ClampedImage(const RasterImage<float>& render);
+
+/// The cloud without the Gaussians where @p removed is non-zero (one byte per Gaussian), every
+/// array (ids, extras) kept in order. Throws std::invalid_argument on a size mismatch.
+GaussianCloud RemoveGaussians(const GaussianCloud& cloud, const std::vector<std::uint8_t>& removed);
+
+/// The figures of @p cloud in every camera (NaN for views of a split not asked for or without
+/// an image): the "before" of any removal, computed once.
+std::vector<ViewMetrics> MeasureViewMetrics(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RemovalEffectOptions& options,
+  const TrainingImageProvider& images);
+
+/**
+ * Measures removing the Gaussians where @p removed is non-zero (one byte per Gaussian of
+ * @p cloud). Throws std::invalid_argument on a size mismatch or a baseline of the wrong size,
+ * std::runtime_error (from @p images) naming an unreadable image and when an image's size
+ * differs from its camera's.
+ */
+RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
+  const std::vector<std::uint8_t>& removed,
+  const std::vector<Camera>& cameras,
+  const RemovalEffectOptions& options,
+  const TrainingImageProvider& images);
+
+} // namespace vis4gs
+
+#endif
