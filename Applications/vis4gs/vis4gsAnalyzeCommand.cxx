@@ -243,8 +243,9 @@ std::string Histogram(const std::vector<double>& v, const std::string& title)
       << int(col[2] * 255) << ")\"><title>" << count[b] << "</title></rect>";
   }
   s << "<text x=\"10\" y=\"160\" font-size=\"11\">" << lo << "</text><text x=\"410\" y=\"160\" "
-    << "font-size=\"11\" text-anchor=\"end\">" << hi << "</text></svg><figcaption>" << Vis4GSHtml(title)
-    << " (" << v.size() << " Gaussians; highest bin " << peak << ")</figcaption></figure>\n";
+    << "font-size=\"11\" text-anchor=\"end\">" << hi << "</text></svg><figcaption>"
+    << Vis4GSHtml(title) << " (" << v.size() << " Gaussians; highest bin " << peak
+    << ")</figcaption></figure>\n";
   return s.str();
 }
 

@@ -2,7 +2,9 @@
 // Scripted interactions across the linked views (tree B, timeline D, histogram) and the hub:
 // a selection made as the scene view would (pedigree ids on the hub) reaches every view; a
 // click in the tree, a click in the timeline and a brush in the histogram reach the hub and
-// hence every other view. Ends with a regression image of the three views in one window.
+// hence every other view. Ends with a regression image of the three views in one window, and
+// writes that picture and the same one with nothing selected to the working directory for the
+// masked comparison (vis4gs_image_compare.py: the second must fail it).
 #include "LinkedViewsTestData.h"
 
 #include "vtkGaussianHistogramView.h"
@@ -17,6 +19,7 @@
 #include "vtkContextMouseEvent.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPolyData.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
@@ -24,6 +27,7 @@
 #include "vtkRenderer.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
+#include "vtkWindowToImageFilter.h"
 
 #include <iostream>
 #include <vector>
@@ -63,6 +67,18 @@ vtkIdType SelectedTotal(vtkGaussianHistogramView* h, int bins)
 }
 
 vtkRenderWindowInteractor* Interactor = nullptr;
+
+void WritePng(vtkRenderWindow* window, const char* path)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(path);
+  writer->Write();
+  Check(writer->GetErrorCode() == 0, path);
+}
 
 void Click(vtkAbstractContextItem* item, float x, float y)
 {
@@ -205,6 +221,10 @@ int TestGaussianLinkedViews(int argc, char* argv[])
   {
     retVal = vtkRegressionTester::PASSED;
   }
+  WritePng(window, "TestGaussianLinkedViews-selected.png");
+  hub->ClearSelection();
+  window->Render();
+  WritePng(window, "TestGaussianLinkedViews-unselected.png");
   hub->RemoveAllViews();
   return (failures == 0 && retVal == vtkRegressionTester::PASSED) ? 0 : 1;
 }
