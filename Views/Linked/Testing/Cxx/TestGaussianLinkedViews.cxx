@@ -19,7 +19,6 @@
 #include "vtkContextMouseEvent.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
-#include "vtkPNGWriter.h"
 #include "vtkPolyData.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
@@ -27,7 +26,6 @@
 #include "vtkRenderer.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <iostream>
 #include <vector>
@@ -67,18 +65,6 @@ vtkIdType SelectedTotal(vtkGaussianHistogramView* h, int bins)
 }
 
 vtkRenderWindowInteractor* Interactor = nullptr;
-
-void WritePng(vtkRenderWindow* window, const char* path)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->SetFileName(path);
-  writer->Write();
-  Check(writer->GetErrorCode() == 0, path);
-}
 
 void Click(vtkAbstractContextItem* item, float x, float y)
 {
@@ -221,10 +207,8 @@ int TestGaussianLinkedViews(int argc, char* argv[])
   {
     retVal = vtkRegressionTester::PASSED;
   }
-  WritePng(window, "TestGaussianLinkedViews-selected.png");
-  hub->ClearSelection();
-  window->Render();
-  WritePng(window, "TestGaussianLinkedViews-unselected.png");
+  Check(linkedtest::WriteSelectionImages(window, hub, "TestGaussianLinkedViews"),
+    "the pictures with and without the selection are written");
   hub->RemoveAllViews();
   return (failures == 0 && retVal == vtkRegressionTester::PASSED) ? 0 : 1;
 }
