@@ -46,6 +46,11 @@ PLY_TYPES = {"float": "<f4", "float32": "<f4", "double": "<f8", "float64": "<f8"
 failures = []
 
 
+def summary(before, text):
+    """Prints @p text as passed when no check failed since @p before failures."""
+    print(("ok: " if len(failures) == before else "checked, with failures above: ") + text)
+
+
 def check(ok, message):
     if not ok:
         failures.append(message)
@@ -204,6 +209,7 @@ def check_outputs(output, wanted, ref, top):
         check(os.path.isfile(os.path.join(output, name)), f"{name} was not written")
     if failures:
         stop("outputs missing")
+    before = len(failures)
     header, csv_cols = read_csv(os.path.join(output, "scores.csv"))
     names = [SCORE_ARRAYS[k] for k in wanted]
     expected_header = ["GaussianId"] + names + (["NoVisibleView"] if "NoVisibleView" in ref
@@ -226,8 +232,9 @@ def check_outputs(output, wanted, ref, top):
               f"scores.csv {name} differs from the score filter's at {bad.size} of {len(got)} "
               f"Gaussians" + (f", e.g. Gaussian {ids[bad[0]]}: {got[bad[0]]!r} vs "
                               f"{exp[bad[0]]!r}" if bad.size else ""))
-    print(f"scores.csv: {len(ids)} Gaussians x {len(header) - 1} columns equal the score "
-          f"filter's ({', '.join(names)})")
+    summary(before, f"scores.csv: {len(ids)} Gaussians x {len(header) - 1} columns equal the "
+            f"score filter's ({', '.join(names)})")
+    before = len(failures)
 
     ply = read_ply(os.path.join(output, "scores.ply"))
     props = list(ply.dtype.names)
@@ -253,8 +260,9 @@ def check_outputs(output, wanted, ref, top):
     xyz = np.stack([ply["x"], ply["y"], ply["z"]], axis=1).astype(np.float64)
     check(np.array_equal(xyz, ref["points"].astype(np.float32).astype(np.float64)),
           "scores.ply positions differ from the input's")
-    print(f"scores.ply: {len(ply)} rows, {len(props)} properties ({', '.join(props[-5:])}, ...) "
-          "read back")
+    summary(before, f"scores.ply: {len(ply)} rows, {len(props)} properties "
+            f"(..., {', '.join(props[-5:])}) read back")
+    before = len(failures)
 
     with open(os.path.join(output, "report.html"), encoding="utf-8") as f:
         report = f.read()
@@ -277,11 +285,13 @@ def check_outputs(output, wanted, ref, top):
         outside = [g for g in listed if g not in row_of or key[row_of[g]] > kth]
         check(not outside, f"report.html's {name} table names Gaussians {outside} that do not "
               f"rank in the first {k} here")
-    print(f"report.html: the first {top} by each of {', '.join(names)} are the ones ranked here")
+    summary(before, f"report.html: the first {top} by each of {', '.join(names)} are the ones "
+            "ranked here")
     return report, csv_cols, ply
 
 
 def check_root_cause(output, ref, report, csv_cols, ply, min_opacity):
+    before = len(failures)
     path = os.path.join(output, "root-cause.txt")
     if not check(os.path.isfile(path), "root-cause.txt was not written"):
         return
@@ -334,8 +344,8 @@ def check_root_cause(output, ref, report, csv_cols, ply, min_opacity):
     check(len(at) >= 1, "root-cause.txt gives no coverage at any snapshot")
     check(f"Root-cause trace of Gaussian {floater}," in html.unescape(report),
           f"report.html does not name the traced Gaussian {floater}")
-    print(f"root-cause.txt: Gaussian {floater}, coverage {cov[row]:g} = {seen} of {views} "
-          "training views, the lowest visible one; report.html names it")
+    summary(before, f"root-cause.txt: Gaussian {floater}, coverage {cov[row]:g} = {seen} of "
+            f"{views} training views, the lowest visible one; report.html names it")
 
 
 def main(argv):
