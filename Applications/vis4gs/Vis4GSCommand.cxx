@@ -67,3 +67,14 @@ void Vis4GSDefineArguments(const Vis4GSCommand& command, Vis4GSArguments& args)
   args.AddFlag("verbose", false, "Print details of each step.");
   command.Define(args);
 }
+
+//------------------------------------------------------------------------------
+std::string Vis4GSHtml(const std::string& text)
+{
+  std::string o;
+  for (char c : text)
+  {
+    o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  }
+  return o;
+}

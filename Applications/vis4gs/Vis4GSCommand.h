@@ -38,6 +38,9 @@ const Vis4GSCommand* Vis4GSFindCommand(const std::string& name);
 /// --help) and the command's own.
 void Vis4GSDefineArguments(const Vis4GSCommand& command, Vis4GSArguments& args);
 
+/// @p text with <, > and & escaped for an HTML page (the reports of analyze and demo).
+std::string Vis4GSHtml(const std::string& text);
+
 #define VIS4GS_REGISTER_COMMAND(name, summary, define, run)                                        \
   namespace                                                                                        \
   {                                                                                                \

@@ -2147,6 +2147,18 @@ bool Vis4GSMainWindow::RunSelfTest()
     this->SaveScreenshot(name, d->SelfTestDir + "/selected-in-scene-" + name + ".png");
   }
   this->SaveScreenshot("window", d->SelfTestDir + "/selected-in-scene-window.png");
+  // The same views with nothing selected: the baseline comparison must fail on these, or it
+  // would not notice a missing highlight (Documentation/dev/TESTING.md, masked baselines).
+  d->Hub->ClearSelection();
+  d->Hub->RenderAll();
+  QApplication::processEvents();
+  for (const char* name : { "scene", "tree" })
+  {
+    this->SaveScreenshot(name, d->SelfTestDir + "/unselected-in-scene-" + name + ".png");
+  }
+  d->Hub->SelectIds(&targetId, 1);
+  check(d->Hub->GetNumberOfSelectedIds() == 1 && d->Hub->IsSelected(targetId),
+    "the selection is back after the screenshots without it");
   if (coverage)
   {
     // The same view coloured by View Coverage (viridis, legend), the floater highlighted.

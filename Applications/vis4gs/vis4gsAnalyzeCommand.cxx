@@ -227,16 +227,6 @@ std::vector<unsigned char> ReadBytes(const fs::path& path)
   return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
 }
 
-std::string Html(const std::string& s)
-{
-  std::string o;
-  for (char c : s)
-  {
-    o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
-  }
-  return o;
-}
-
 // Inline SVG histogram (40 bins, linear counts).
 std::string Histogram(const std::vector<double>& v, const std::string& title)
 {
@@ -274,8 +264,9 @@ std::string Histogram(const std::vector<double>& v, const std::string& title)
       << int(col[2] * 255) << ")\"><title>" << count[b] << "</title></rect>";
   }
   s << "<text x=\"10\" y=\"160\" font-size=\"11\">" << lo << "</text><text x=\"410\" y=\"160\" "
-    << "font-size=\"11\" text-anchor=\"end\">" << hi << "</text></svg><figcaption>" << Html(title)
-    << " (" << v.size() << " Gaussians; highest bin " << peak << ")</figcaption></figure>\n";
+    << "font-size=\"11\" text-anchor=\"end\">" << hi << "</text></svg><figcaption>"
+    << Vis4GSHtml(title) << " (" << v.size() << " Gaussians; highest bin " << peak
+    << ")</figcaption></figure>\n";
   return s.str();
 }
 
@@ -286,7 +277,7 @@ std::string Legend(const std::string& name, double lo, double hi)
   const vis4gs::SuspiciousEnd end = vis4gs::SuspiciousEndOf(name);
   std::ostringstream s;
   s << "<figure><svg width=\"420\" height=\"46\" xmlns=\"http://www.w3.org/2000/svg\">"
-    << "<defs><linearGradient id=\"map-" << Html(name) << "\">";
+    << "<defs><linearGradient id=\"map-" << Vis4GSHtml(name) << "\">";
   for (int k = 0; k <= 16; ++k)
   {
     const auto c = vis4gs::OverlayColor(k / 16.0, 0, 1, end);
@@ -294,11 +285,11 @@ std::string Legend(const std::string& name, double lo, double hi)
       << int(c[1] * 255) << "," << int(c[2] * 255) << ")\"/>";
   }
   s << "</linearGradient></defs><rect x=\"10\" y=\"4\" width=\"400\" height=\"18\" fill=\"url(#map-"
-    << Html(name) << ")\"/><text x=\"10\" y=\"38\" font-size=\"11\">" << lo
+    << Vis4GSHtml(name) << ")\"/><text x=\"10\" y=\"38\" font-size=\"11\">" << lo
     << (end == vis4gs::SuspiciousEnd::Low ? " (suspicious)" : "")
     << "</text><text x=\"410\" y=\"38\" font-size=\"11\" text-anchor=\"end\">"
     << (end == vis4gs::SuspiciousEnd::High ? "(suspicious) " : "") << hi
-    << "</text></svg><figcaption>" << Html(name) << " colour map"
+    << "</text></svg><figcaption>" << Vis4GSHtml(name) << " colour map"
     << (end == vis4gs::SuspiciousEnd::None ? "" : ": the suspicious end is the bright (yellow) one")
     << "</figcaption></figure>\n";
   return s.str();
@@ -970,10 +961,10 @@ int Run(const Vis4GSArguments& args)
   // HTML report.
   std::ofstream html(staging.Get() / "report.html");
   html << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>vis4gs analyze: "
-       << Html(scene) << "</title><style>body{font-family:sans-serif;margin:2em}"
+       << Vis4GSHtml(scene) << "</title><style>body{font-family:sans-serif;margin:2em}"
        << "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
        << "text-align:right}figure{display:inline-block;margin:8px}</style></head><body>\n"
-       << "<h1>Gaussian diagnosis of " << Html(scene) << "</h1>\n<p>" << cloud.Count
+       << "<h1>Gaussian diagnosis of " << Vis4GSHtml(scene) << "</h1>\n<p>" << cloud.Count
        << " Gaussians, " << cameras.size() << " cameras, " << filter->GetNumberOfViewsUsed()
        << " training views used, " << filter->GetNumberOfViewsWithoutImage() << " without image, "
        << filter->GetNumberOfFlaggedGaussians()
@@ -990,7 +981,7 @@ int Run(const Vis4GSArguments& args)
          "occlusion-threshold",
          "top" })
   {
-    html << "<tr><th>" << opt << "</th><td>" << Html(args.Get(opt)) << "</td></tr>";
+    html << "<tr><th>" << opt << "</th><td>" << Vis4GSHtml(args.Get(opt)) << "</td></tr>";
   }
   html << "<tr><th>float-accumulation</th><td>"
        << (args.GetFlag("float-accumulation") ? "yes" : "no") << "</td></tr></table>\n";
@@ -1014,7 +1005,7 @@ int Run(const Vis4GSArguments& args)
   for (const auto& [title, file] : overlays)
   {
     html << "<figure><img src=\"data:image/png;base64," << Base64(ReadBytes(file))
-         << "\"><figcaption>" << Html(title) << "</figcaption></figure>\n";
+         << "\"><figcaption>" << Vis4GSHtml(title) << "</figcaption></figure>\n";
   }
   html << cleanupHtml;
   html << "<h2>Most suspicious Gaussians</h2>\n";

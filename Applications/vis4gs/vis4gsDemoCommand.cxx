@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -42,6 +43,22 @@ const char* KindName(vis4gs::BirthKind kind)
       return "clone-split";
   }
   return "?";
+}
+
+// Writes @p text to a file beside @p path and renames it over @p path: a failed write
+// leaves no half file.
+void WriteReplacing(const fs::path& path, const std::string& text)
+{
+  const fs::path partial = path.string() + ".partial";
+  {
+    std::ofstream file(partial);
+    file << text;
+    if (!file)
+    {
+      throw std::runtime_error(path.string() + ": could not be written");
+    }
+  }
+  fs::rename(partial, path);
 }
 
 void Define(Vis4GSArguments& args)
@@ -205,13 +222,20 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
     }
   }
   std::cout << text.str();
-  std::ofstream file(output / "root-cause.txt");
-  file << text.str();
-  if (!file)
+  WriteReplacing(output / "root-cause.txt", text.str());
+  // The report names the traced floater too, so that it reads as one diagnosis.
+  const fs::path report = output / "report.html";
+  std::ifstream in(report);
+  std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t end = html.rfind("</body>");
+  if (!in || end == std::string::npos)
   {
-    throw std::runtime_error((output / "root-cause.txt").string() + ": could not be written");
+    throw std::runtime_error(report.string() + ": analyze's report is missing or incomplete");
   }
-  std::cout << "vis4gs demo: wrote " << (output / "root-cause.txt").string() << "\n";
+  html.insert(end, "<h2>Root-cause trace</h2><pre>" + Vis4GSHtml(text.str()) + "</pre>\n");
+  WriteReplacing(report, html);
+  std::cout << "vis4gs demo: wrote " << (output / "root-cause.txt").string()
+            << " and added the trace to " << report.string() << "\n";
   return 0;
 }
 

@@ -39,39 +39,64 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
   set_tests_properties(vis4gs-ViewMakeLog PROPERTIES LABELS "Application;GUI"
     FIXTURES_SETUP vis4gsViewLog)
   set_tests_properties(vis4gs-ViewEndToEnd PROPERTIES LABELS "Application;GUI"
-    FIXTURES_REQUIRED vis4gsViewLog
-    PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
+    FIXTURES_REQUIRED vis4gsViewLog FAIL_REGULAR_EXPRESSION "FAILED")
   # The embedded demo log (cameras, images, genealogy): the floater case study end to end,
-  # with baseline images of the scene and tree views (tolerant comparison, Xvfb + llvmpipe),
-  # opened as `vis4gs demo` opens it (with the welcome panel).
+  # opened as `vis4gs demo` opens it (with the welcome panel), with baseline images of the
+  # scene and tree views (the self-test's whole-image comparison, tolerant for Xvfb +
+  # llvmpipe).
+  set(_vis4gs_baselines "${CMAKE_CURRENT_SOURCE_DIR}/Testing/Data/Baseline")
+  set(_vis4gs_demo_shots "${_vis4gs_view_dir}/demo-screenshots")
   add_test(NAME vis4gs-ViewDemoEndToEnd
     COMMAND vis4gs view "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
-      "--self-test=${_vis4gs_view_dir}/demo-screenshots" --resolution=1200,800 --welcome
-      "--baseline=${CMAKE_CURRENT_SOURCE_DIR}/Testing/Data/Baseline")
+      "--self-test=${_vis4gs_demo_shots}" --resolution=1200,800 --welcome
+      "--baseline=${_vis4gs_baselines}")
   set_tests_properties(vis4gs-ViewDemoEndToEnd PROPERTIES LABELS "Application;GUI"
-    PASS_REGULAR_EXPRESSION "self-test passed" FAIL_REGULAR_EXPRESSION "FAILED")
+    FAIL_REGULAR_EXPRESSION "FAILED" FIXTURES_SETUP vis4gsViewDemoShots)
+  # The same screenshots against the baselines strictly inside masks around the selection's
+  # highlight colours, loosely elsewhere (Testing/Python/vis4gs_image_compare.py), and the
+  # proof that this catches a missing highlight: the self-test's screenshots of the same views
+  # with nothing selected must fail it inside the masks. Scene: the floater's marker and the
+  # frustum that sees it (exact colours); tree: the selected node and its lineage (blended).
+  set(_vis4gs_compare "${PROJECT_SOURCE_DIR}/Testing/Python/vis4gs_image_compare.py")
+  foreach (_vis4gs_masked
+      "scene|--highlight=255,89,0|--highlight=255,0,0|--colour-tolerance=8"
+      "tree|--highlight=255,64,64|--highlight=255,215,0|--colour-tolerance=40")
+    string(REPLACE "|" ";" _vis4gs_masked "${_vis4gs_masked}")
+    list(POP_FRONT _vis4gs_masked _vis4gs_name)
+    set(_vis4gs_baseline "${_vis4gs_baselines}/selected-in-scene-${_vis4gs_name}.png")
+    add_test(NAME vis4gs-ViewDemoMaskedBaseline-${_vis4gs_name}
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${_vis4gs_compare}" "${_vis4gs_baseline}"
+        "${_vis4gs_demo_shots}/selected-in-scene-${_vis4gs_name}.png" ${_vis4gs_masked}
+        "--diff=${_vis4gs_demo_shots}/selected-in-scene-${_vis4gs_name}-masked-diff.png")
+    add_test(NAME vis4gs-ViewDemoMaskedBaselineNeedsHighlight-${_vis4gs_name}
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${_vis4gs_compare}" "${_vis4gs_baseline}"
+        "${_vis4gs_demo_shots}/unselected-in-scene-${_vis4gs_name}.png" ${_vis4gs_masked}
+        --expect-mismatch)
+    set_tests_properties(vis4gs-ViewDemoMaskedBaseline-${_vis4gs_name}
+      vis4gs-ViewDemoMaskedBaselineNeedsHighlight-${_vis4gs_name} PROPERTIES
+      LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewDemoShots
+      FAIL_REGULAR_EXPRESSION "FAILED:")
+  endforeach ()
   # A scene file with cameras (issue 21): the demo's last snapshot as a PLY (analyze writes
   # it) with its training cameras as cameras.json beside it, found by the view on its own:
   # the layout without tree and timeline, View Coverage and the frustum check.
   set(_vis4gs_scene_dir "${_vis4gs_view_dir}/scene-with-cameras")
-  add_test(NAME vis4gs-ViewMakeSceneWithCameras
-    COMMAND "${CMAKE_COMMAND}" -E env PYTHONDONTWRITEBYTECODE=1
-      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/LogCamerasJson.py"
+  vis4gs_add_checked_test(vis4gs-ViewMakeSceneWithCameras LABELS "Application;GUI"
+    OUTPUT "wrote 29 training cameras" FILES "${_vis4gs_scene_dir}/cameras.json"
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/LogCamerasJson.py"
       "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" "${_vis4gs_scene_dir}/cameras.json")
-  add_test(NAME vis4gs-ViewMakeScenePly
-    COMMAND vis4gs analyze "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --scores=shape
-      "--output=${_vis4gs_scene_dir}")
+  vis4gs_add_checked_test(vis4gs-ViewMakeScenePly LABELS "Application;GUI"
+    FILES "${_vis4gs_scene_dir}/scores.ply"
+    COMMAND $<TARGET_FILE:vis4gs> analyze "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
+      --scores=shape "--output=${_vis4gs_scene_dir}")
   set_tests_properties(vis4gs-ViewMakeSceneWithCameras vis4gs-ViewMakeScenePly PROPERTIES
-    LABELS "Application;GUI" FIXTURES_SETUP vis4gsSceneWithCameras)
-  set_tests_properties(vis4gs-ViewMakeSceneWithCameras PROPERTIES
-    PASS_REGULAR_EXPRESSION "wrote 29 training cameras")
-  add_test(NAME vis4gs-ViewSceneWithCameras
-    COMMAND vis4gs view "${_vis4gs_scene_dir}/scores.ply"
+    FIXTURES_SETUP vis4gsSceneWithCameras)
+  vis4gs_add_checked_test(vis4gs-ViewSceneWithCameras LABELS "Application;GUI"
+    OUTPUT "the tree view is hidden.*the timeline view is hidden.*View Coverage was computed.*self-test passed"
+    COMMAND $<TARGET_FILE:vis4gs> view "${_vis4gs_scene_dir}/scores.ply"
       "--self-test=${_vis4gs_scene_dir}/screenshots" --resolution=1280,800)
-  set_tests_properties(vis4gs-ViewSceneWithCameras PROPERTIES LABELS "Application;GUI"
-    FIXTURES_REQUIRED vis4gsSceneWithCameras
-    PASS_REGULAR_EXPRESSION "the tree view is hidden.*the timeline view is hidden.*View Coverage was computed.*self-test passed"
-    FAIL_REGULAR_EXPRESSION "FAILED")
+  set_tests_properties(vis4gs-ViewSceneWithCameras PROPERTIES
+    FIXTURES_REQUIRED vis4gsSceneWithCameras)
   # The selection modes on real scenes (issue 15): Single's pick is on the Ray at a grid of
   # pixels of several views, and the floater case study's selections, on each file of the
   # shared data. The guard skips with exit code 77 and a message naming a missing file, and
@@ -95,38 +120,33 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
   # Extreme shapes generated at test time: needles, disks, huge and tiny scales, opacity 0
   # and 1, means at the near plane of one of its two cameras.
   set(_vis4gs_extreme_dir "${_vis4gs_view_dir}/extreme")
-  add_test(NAME vis4gs-ViewMakeExtremeScene
-    COMMAND "${CMAKE_COMMAND}" -E env PYTHONDONTWRITEBYTECODE=1
-      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/MakeExtremeScene.py"
+  vis4gs_add_checked_test(vis4gs-ViewMakeExtremeScene LABELS "Application;GUI"
+    OUTPUT "wrote 3000 Gaussians" FILES "${_vis4gs_extreme_dir}/extreme.ply"
+      "${_vis4gs_extreme_dir}/cameras.json"
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/MakeExtremeScene.py"
       "${_vis4gs_extreme_dir}")
-  set_tests_properties(vis4gs-ViewMakeExtremeScene PROPERTIES LABELS "Application;GUI"
-    FIXTURES_SETUP vis4gsExtremeScene PASS_REGULAR_EXPRESSION "wrote 3000 Gaussians")
-  add_test(NAME vis4gs-ViewSelfTest-ExtremeScene
-    COMMAND vis4gs view "${_vis4gs_extreme_dir}/extreme.ply"
+  set_tests_properties(vis4gs-ViewMakeExtremeScene PROPERTIES FIXTURES_SETUP vis4gsExtremeScene)
+  vis4gs_add_checked_test(vis4gs-ViewSelfTest-ExtremeScene LABELS "Application;GUI"
+    OUTPUT "Single's pick is on the Ray at [0-9]+ of [0-9]+ pixels of 5 views.*self-test passed"
+    COMMAND $<TARGET_FILE:vis4gs> view "${_vis4gs_extreme_dir}/extreme.ply"
       "--self-test=${_vis4gs_extreme_dir}/screenshots" --resolution=1200,800)
-  set_tests_properties(vis4gs-ViewSelfTest-ExtremeScene PROPERTIES LABELS "Application;GUI"
-    FIXTURES_REQUIRED vis4gsExtremeScene
-    PASS_REGULAR_EXPRESSION "Single's pick is on the Ray at [0-9]+ of [0-9]+ pixels of 5 views.*self-test passed"
-    FAIL_REGULAR_EXPRESSION "FAILED")
+  set_tests_properties(vis4gs-ViewSelfTest-ExtremeScene PROPERTIES
+    FIXTURES_REQUIRED vis4gsExtremeScene)
   # The special-value table (Documentation/special-values.md) through the commands: render's
   # and analyze's per-reason counts equal numpy's on the raw floats, and what is skipped
   # leaves no pixel changed.
-  add_test(NAME vis4gs-SpecialValuesCommands
-    COMMAND "${CMAKE_COMMAND}" -E env PYTHONDONTWRITEBYTECODE=1
-      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckSpecialValues.py"
+  vis4gs_add_checked_test(vis4gs-SpecialValuesCommands
+    OUTPUT "special values checked: 3005 Gaussians, 3000 drawn"
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckSpecialValues.py"
       "$<TARGET_FILE:vis4gs>" "${_vis4gs_extreme_dir}/extreme.ply"
       "${_vis4gs_extreme_dir}/special-values")
-  set_tests_properties(vis4gs-SpecialValuesCommands PROPERTIES LABELS "Application"
-    FIXTURES_REQUIRED vis4gsExtremeScene
-    PASS_REGULAR_EXPRESSION "special values checked: 3005 Gaussians, 3000 drawn"
-    FAIL_REGULAR_EXPRESSION "FAILED")
+  set_tests_properties(vis4gs-SpecialValuesCommands PROPERTIES
+    FIXTURES_REQUIRED vis4gsExtremeScene)
   # The benchmark mode runs (figures of real sizes: Documentation/performance.md).
-  add_test(NAME vis4gs-ViewBenchmarkMode
-    COMMAND vis4gs view "${_vis4gs_view_dir}/synthetic.h5" --benchmark --resolution=800,600)
-  set_tests_properties(vis4gs-ViewBenchmarkMode PROPERTIES LABELS "Application;GUI"
-    FIXTURES_REQUIRED vis4gsViewLog
-    PASS_REGULAR_EXPRESSION "start to all views ready.*tree pan/zoom at the overview")
-  add_test(NAME vis4gs-ViewHelp COMMAND vis4gs view --help)
-  set_tests_properties(vis4gs-ViewHelp PROPERTIES LABELS "Application"
-    PASS_REGULAR_EXPRESSION "--self-test=DIR")
+  vis4gs_add_checked_test(vis4gs-ViewBenchmarkMode LABELS "Application;GUI"
+    OUTPUT "start to all views ready.*tree pan/zoom at the overview"
+    COMMAND $<TARGET_FILE:vis4gs> view "${_vis4gs_view_dir}/synthetic.h5" --benchmark
+      --resolution=800,600)
+  set_tests_properties(vis4gs-ViewBenchmarkMode PROPERTIES FIXTURES_REQUIRED vis4gsViewLog)
+  vis4gs_add_app_test(ViewHelp ARGS view --help OUTPUT "--self-test=DIR")
 endif ()

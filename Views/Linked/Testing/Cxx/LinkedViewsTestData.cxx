@@ -5,19 +5,24 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkGaussianSelectionHub.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkMutableDirectedGraph.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace linkedtest
 {
@@ -224,5 +229,26 @@ vtkSmartPointer<vtkTable> MakeHistory()
   table->AddColumn(ids);
   table->AddColumn(opacity);
   return table;
+}
+
+//------------------------------------------------------------------------------
+bool WriteSelectionImages(vtkRenderWindow* window, vtkGaussianSelectionHub* hub, const char* name)
+{
+  auto write = [window](const std::string& path)
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->SetFileName(path.c_str());
+    writer->Write();
+    return writer->GetErrorCode() == 0;
+  };
+  bool ok = write(std::string(name) + "-selected.png");
+  hub->ClearSelection();
+  window->Render();
+  ok = write(std::string(name) + "-unselected.png") && ok;
+  return ok;
 }
 }

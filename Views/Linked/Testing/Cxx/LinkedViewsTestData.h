@@ -8,7 +8,9 @@
 
 #include "vtkSmartPointer.h"
 
+class vtkGaussianSelectionHub;
 class vtkPolyData;
+class vtkRenderWindow;
 class vtkTable;
 class vtkTree;
 
@@ -31,6 +33,11 @@ inline long long VertexOf(long long id)
 }
 /// Expected P of vertex v (derived in the .cxx from D and T per DESIGN §4).
 double ExpectedPerception(long long v);
+/// Writes @p window as <name>-selected.png, then clears @p hub's selection, renders and
+/// writes <name>-unselected.png, both in the working directory: the masked baseline
+/// comparison (Testing/Python/vis4gs_image_compare.py) must pass on the first and fail on the
+/// second. Returns false when a file could not be written.
+bool WriteSelectionImages(vtkRenderWindow* window, vtkGaussianSelectionHub* hub, const char* name);
 }
 
 #endif

@@ -2,7 +2,9 @@
 // Scripted interactions across the linked views (tree B, timeline D, histogram) and the hub:
 // a selection made as the scene view would (pedigree ids on the hub) reaches every view; a
 // click in the tree, a click in the timeline and a brush in the histogram reach the hub and
-// hence every other view. Ends with a regression image of the three views in one window.
+// hence every other view. Ends with a regression image of the three views in one window, and
+// writes that picture and the same one with nothing selected to the working directory for the
+// masked comparison (vis4gs_image_compare.py: the second must fail it).
 #include "LinkedViewsTestData.h"
 
 #include "vtkGaussianHistogramView.h"
@@ -205,6 +207,8 @@ int TestGaussianLinkedViews(int argc, char* argv[])
   {
     retVal = vtkRegressionTester::PASSED;
   }
+  Check(linkedtest::WriteSelectionImages(window, hub, "TestGaussianLinkedViews"),
+    "the pictures with and without the selection are written");
   hub->RemoveAllViews();
   return (failures == 0 && retVal == vtkRegressionTester::PASSED) ? 0 : 1;
 }

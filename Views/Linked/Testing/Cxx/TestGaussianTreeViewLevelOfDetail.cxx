@@ -2,7 +2,8 @@
 // Tree view level of detail (DESIGN §4) against a brute-force reference on a random tree of
 // 20,000 nodes: visible = (P >= tau(z) or in the selected lineage) and inside the viewport,
 // for several zooms, viewports and selections; the zoom mapping; pan/zoom; then a regression
-// image of the hand-built genealogy with a selected lineage, the cursor and the legend.
+// image of the hand-built genealogy with a selected lineage, the cursor and the legend (and
+// the same without the selection, for the masked comparison's negative test).
 #include "LinkedViewsTestData.h"
 
 #include "vtkGaussianSelectionHub.h"
@@ -255,6 +256,9 @@ int TestGaussianTreeViewLevelOfDetail(int argc, char* argv[])
   {
     retVal = vtkRegressionTester::PASSED;
   }
+  Check(linkedtest::WriteSelectionImages(
+          view->GetRenderWindow(), hub2, "TestGaussianTreeViewLevelOfDetail"),
+    "the pictures with and without the selection are written");
   hub2->RemoveAllViews();
   return (failures == 0 && retVal == vtkRegressionTester::PASSED) ? 0 : 1;
 }
