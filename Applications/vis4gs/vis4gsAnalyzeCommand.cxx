@@ -363,7 +363,7 @@ vis4gs::Image ErrorChangeImage(const vis4gs::Image& before,
 std::string Figure(const fs::path& file, const std::string& caption)
 {
   return "<figure><img src=\"data:image/png;base64," + Base64(ReadBytes(file)) + "\"><figcaption>" +
-    Html(caption) + "</figcaption></figure>";
+    Vis4GSHtml(caption) + "</figcaption></figure>";
 }
 
 std::string Number(double v, int precision = 4)
@@ -426,7 +426,7 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
 
   std::ostringstream html;
   html << "<h2>Clean-up: deleting the selection, before and after</h2>\n<p>Rule <code>"
-       << Html(rule) << "</code> selects " << effect.Removed << " of " << cloud.Count
+       << Vis4GSHtml(rule) << "</code> selects " << effect.Removed << " of " << cloud.Count
        << " Gaussians. Every training and test view with an image is rendered with and without "
           "them (exact rasteriser, renders clamped to [0, 1]); views where no selected Gaussian "
           "takes part are unchanged and not rendered again. "
@@ -448,7 +448,7 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
           "<th>SSIM before</th><th>SSIM after</th><th>L1 before</th><th>L1 after</th></tr>";
   for (const vis4gs::RemovalViewEffect& v : effect.Views)
   {
-    html << "<tr><td>" << Html(v.Name) << "</td><td>"
+    html << "<tr><td>" << Vis4GSHtml(v.Name) << "</td><td>"
          << (v.Split == vis4gs::CameraSplit::Train ? "train" : "test") << "</td><td>"
          << (v.Affected ? "yes" : "no") << "</td><td>" << Number(v.Before.Psnr) << "</td><td>"
          << Number(v.After.Psnr) << "</td><td>" << Number(v.PsnrChange()) << "</td><td>"
@@ -878,8 +878,8 @@ int Run(const Vis4GSArguments& args)
     }
     std::cout << "vis4gs analyze: rule '" << canonical << "' selects " << count << " of "
               << cloud.Count << " Gaussians\n";
-    cleanupHtml = "<h2>Selection</h2><p>Rule <code>" + Html(canonical) +
-      "</code> (as given: <code>" + Html(ruleText) + "</code>) selects " + std::to_string(count) +
+    cleanupHtml = "<h2>Selection</h2><p>Rule <code>" + Vis4GSHtml(canonical) +
+      "</code> (as given: <code>" + Vis4GSHtml(ruleText) + "</code>) selects " + std::to_string(count) +
       " of " + std::to_string(cloud.Count) + " Gaussians (selection.csv).</p>\n";
     if (args.GetFlag("delete"))
     {
