@@ -296,10 +296,10 @@ TEST(GaussianCompressedPly, WriterRoundTripWithinTheReportedQuantisation)
   EXPECT_NEAR(w.Errors[4].Max, maxAlpha, 1e-6);
   EXPECT_NEAR(w.Errors[5].Max, maxRest, 1e-6);
   // The format's steps: SH bytes are 8/256 wide (truncated, so up to one step), alpha 1/510,
-  // smallest-three 10 bits over [-0.707, 0.707] (about 0.2 degrees).
+  // smallest-three 10 bits over [-0.707, 0.707]: at most 2 sqrt(6)/1023 radians (0.274 deg).
   EXPECT_LE(maxRest, 8.0 / 256 + 1e-6);
   EXPECT_LE(maxAlpha, 0.5 / 255 + 1e-9);
-  EXPECT_LT(maxAngle, 0.25);
+  EXPECT_LT(maxAngle, 2 * std::sqrt(6.0) / 1023 * 180 / M_PI);
   EXPECT_GT(maxPos, 0.0);
   for (const auto& e : w.Errors)
   {
