@@ -12,7 +12,7 @@ seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
-targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap)
+targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzCompressedPly)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -27,6 +27,7 @@ fi
 seeds="$build/seeds"
 rm -rf "$seeds"
 mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap}
+mkdir -p "$seeds/FuzzCompressedPly"
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
 if [ -f "$ply" ]; then
@@ -84,6 +85,30 @@ fi
 { printf '\x04'; printf '1 1 0 0 0 0 0 0 1 a.png\n1.5 2.5 7 3 4 -1\n2 0 1 0 0 1 2 3 1 b.png\n\n'; } \
   >"$seeds/FuzzColmap/images.txt"
 { printf '\x05'; printf '5 1 2 3 255 0 10 0.25 1 0 2 1\n'; } >"$seeds/FuzzColmap/points3D.txt"
+
+# Compressed PLY: two Gaussians in one 18-float chunk with SH degree 1, and one in a 12-float
+# chunk (the layouts of Documentation/file-formats.md).
+/usr/bin/python3 - "$seeds/FuzzCompressedPly" <<'PY'
+import struct, sys
+bounds = ["min_x", "min_y", "min_z", "max_x", "max_y", "max_z", "min_scale_x", "min_scale_y",
+          "min_scale_z", "max_scale_x", "max_scale_y", "max_scale_z"]
+colour = ["min_r", "min_g", "min_b", "max_r", "max_g", "max_b"]
+def seed(name, chunk_props, n, sh):
+    h = "ply\nformat binary_little_endian 1.0\nelement chunk 1\n"
+    h += "".join("property float %s\n" % p for p in chunk_props)
+    h += "element vertex %d\n" % n + "".join("property uint packed_%s\n" % p
+                                           for p in ("position", "rotation", "scale", "color"))
+    if sh:
+        h += "element sh %d\n" % n + "".join("property uchar f_rest_%d\n" % i for i in range(sh))
+    body = struct.pack("<%df" % len(chunk_props), *[(-1) ** i * (i + 1) * 0.5 for i in range(len(chunk_props))])
+    for g in range(n):
+        body += struct.pack("<4I", 0x7ff003ff ^ g, (g % 4) << 30 | 0x200 << 20 | 0x1ff << 10 | 0x201,
+                            0x12345678 + g, 0xff00807f - g)
+    body += bytes((7 * i) % 256 for i in range(n * sh))
+    open(sys.argv[1] + "/" + name, "wb").write((h + "end_header\n").encode() + body)
+seed("chunk18-sh1.ply", bounds + colour, 2, 9)
+seed("chunk12.ply", bounds, 1, 0)
+PY
 
 status=0
 mkdir -p "$build/artifacts"

@@ -9,6 +9,7 @@ packages=(
   libvtk9-dev libvtk9-qt-dev python3-vtk9 qtbase5-dev
   libeigen3-dev libhdf5-dev nlohmann-json3-dev libgtest-dev
   libpng-dev libjpeg-dev
+  libwebp-dev libzip-dev
   openmpi-bin libopenmpi-dev
   xvfb xauth clang clang-format libclang-rt-14-dev
   python3-numpy python3-h5py python3-pytest python3-torch python3-pip

@@ -773,8 +773,14 @@ Encoded Encode(const GaussianCloud& cloud,
           const float v = cloud.SH[3 * k * g + 3 * i + c];
           const std::uint8_t b = PackSh(v);
           shOut[c * (kOut - 1) + i - 1] = b;
-          report.ClampedSH += std::abs(v) > 4.0f;
-          errSh.Add(std::abs(static_cast<float>(ShValue(b)) - double(v)));
+          if (std::abs(v) > 4.0f)
+          {
+            ++report.ClampedSH;
+          }
+          else
+          {
+            errSh.Add(std::abs(static_cast<float>(ShValue(b)) - double(v)));
+          }
         }
       }
       // What a reader gets back, against the source.

@@ -203,8 +203,31 @@ std::vector<unsigned char> WriteCompressedPlyToMemory(const GaussianCloud& cloud
 /// One line: written / left out counts and max/RMS error per attribute.
 std::string DescribeQuantisation(const CompressedPlyWriteReport& report);
 
-/// Reads a scene: ".splat" with ReadSplat, a compressed PLY (by content) with
-/// ReadCompressedPly, anything else with ReadGaussianPly.
+/**
+ * Reads a PlayCanvas SOG v2 scene (Documentation/file-formats.md): @p path is a `.sog` zip
+ * archive, a folder holding meta.json, or a meta.json file with its WebP textures beside it.
+ * Decoded as splat-transform decodes it (each value computed in double, rounded once to
+ * float32): positions from the 16-bit means through the inverse log transform, smallest-three
+ * quaternions, codebook log-scales and SH DC, opacity logit log(a/(1-a)) of the alpha clamped
+ * to [1e-6, 1-1e-6] (so at most +-13.8), f_rest from the palette (16-bit labels). Only the SH
+ * degree asked for is decoded. Textures are checked against meta.json's count (at least
+ * count, at most 2*count+65536 texels) before decoding, and a texture or zip entry that
+ * expands more than 1024 times past 64 MiB is refused as a decompression bomb.
+ */
+GaussianCloud ReadSog(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// Same, from a `.sog` archive in memory (fuzzers, tests); @p name is used in messages.
+GaussianCloud ReadSogZipFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// True for a folder holding meta.json, a zip archive, or a JSON file naming "means".
+bool IsSog(const std::string& path);
+
+/// Reads a scene: ".splat" with ReadSplat, a SOG (folder, zip or meta.json) with ReadSog, a
+/// compressed PLY (by content) with ReadCompressedPly, anything else with ReadGaussianPly.
 GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);

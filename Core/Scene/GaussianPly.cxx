@@ -1644,6 +1644,10 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   {
     return ReadSplat(path, options, report);
   }
+  if (IsSog(path))
+  {
+    return ReadSog(path, options, report);
+  }
   if (detail::IsRegularFile(path))
   {
     detail::InputFile file(path);
