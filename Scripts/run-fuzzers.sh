@@ -12,7 +12,7 @@ seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
-targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzCompressedPly)
+targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzCompressedPly FuzzSog)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -27,7 +27,7 @@ fi
 seeds="$build/seeds"
 rm -rf "$seeds"
 mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap}
-mkdir -p "$seeds/FuzzCompressedPly"
+mkdir -p "$seeds/FuzzCompressedPly" "$seeds/FuzzSog"
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
 if [ -f "$ply" ]; then
@@ -108,6 +108,20 @@ def seed(name, chunk_props, n, sh):
     open(sys.argv[1] + "/" + name, "wb").write((h + "end_header\n").encode() + body)
 seed("chunk18-sh1.ply", bounds + colour, 2, 9)
 seed("chunk12.ply", bounds, 1, 0)
+PY
+
+# SOG: a 24-Gaussian SH-degree-1 scene written by splat-transform 3.7 (Testing/Fuzz/Seeds), as a
+# zip (first byte even) and as the fuzzer's list of files (first byte odd).
+/usr/bin/python3 - "$root/Testing/Fuzz/Seeds/tiny.sog" "$seeds/FuzzSog" <<'PY'
+import struct, sys, zipfile
+data = open(sys.argv[1], "rb").read()
+open(sys.argv[2] + "/tiny-zip", "wb").write(b"\x00" + data)
+out = b"\x01"
+with zipfile.ZipFile(sys.argv[1]) as z:
+    for name in z.namelist():
+        body = z.read(name)
+        out += bytes([len(name)]) + name.encode() + struct.pack("<I", len(body)) + body
+open(sys.argv[2] + "/tiny-files", "wb").write(out)
 PY
 
 status=0

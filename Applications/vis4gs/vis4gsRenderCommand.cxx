@@ -30,7 +30,7 @@ namespace
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional("scene", "3DGS scene: the trainer's PLY or an antimatter15 .splat file.");
+  args.AddPositional("scene", "3DGS scene: the trainer's PLY, a compressed PLY, a SOG (.sog, meta.json or its folder) or an antimatter15 .splat.");
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",

@@ -24,6 +24,7 @@
 #include "GaussianCloud.h"
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -220,6 +221,11 @@ GaussianCloud ReadSog(const std::string& path,
 /// Same, from a `.sog` archive in memory (fuzzers, tests); @p name is used in messages.
 GaussianCloud ReadSogZipFromMemory(const void* data,
   std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// Same, from files in memory by name ("meta.json" and the textures it names).
+GaussianCloud ReadSogFromMemoryFiles(const std::map<std::string, std::vector<unsigned char>>& files,
   const std::string& name,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);

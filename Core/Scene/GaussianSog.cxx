@@ -19,6 +19,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -197,6 +198,34 @@ public:
 
 private:
   zip_t* Archive = nullptr;
+};
+
+class MemoryFiles : public SogFiles
+{
+public:
+  MemoryFiles(const std::map<std::string, std::vector<unsigned char>>& files,
+    const std::string& name)
+    : Files(files)
+  {
+    this->Name = name;
+  }
+  std::vector<unsigned char> Load(const std::string& file, std::uint64_t maxBytes) override
+  {
+    CheckFileName(this->Name, file);
+    const auto it = this->Files.find(file);
+    if (it == this->Files.end())
+    {
+      Fail(this->Name, "has no file '" + file + "'");
+    }
+    if (it->second.size() > maxBytes)
+    {
+      Fail(this->Name, "file '" + file + "' exceeds the limit of " + Human(maxBytes));
+    }
+    return it->second;
+  }
+
+private:
+  const std::map<std::string, std::vector<unsigned char>>& Files;
 };
 
 //------------------------------------------------------------------------------
@@ -668,6 +697,16 @@ GaussianCloud ReadSogZipFromMemory(const void* data,
   static const unsigned char empty = 0;
   ZipFiles files(name, data ? data : &empty, data ? size : 0);
   return ReadSogFiles(files, options, report);
+}
+
+//------------------------------------------------------------------------------
+GaussianCloud ReadSogFromMemoryFiles(const std::map<std::string, std::vector<unsigned char>>& files,
+  const std::string& name,
+  const GaussianReadOptions& options,
+  GaussianReadReport* report)
+{
+  MemoryFiles source(files, name);
+  return ReadSogFiles(source, options, report);
 }
 
 } // namespace vis4gs

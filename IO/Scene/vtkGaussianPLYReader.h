@@ -10,14 +10,17 @@
 =========================================================================*/
 /**
  * @class   vtkGaussianPLYReader
- * @brief   Reads a 3DGS scene (the trainer's PLY, or an antimatter15 .splat) as the Gaussian
- * vtkPolyData of DESIGN §2.
+ * @brief   Reads a 3DGS scene (the trainer's PLY, an antimatter15 .splat, a PlayCanvas
+ * compressed PLY or a SOG) as the Gaussian vtkPolyData of DESIGN §2.
  *
  * The output's points are the means; point data holds the raw parameters (LogScale,
  * Rotation, OpacityLogit, SH coefficient-major), GaussianId (pedigree ids), the activated
  * Opacity and Scale, and every property the model does not interpret (normals, scores) as an
  * array of its own type. float32 values are copied bit-exactly. Files ending in `.splat` are
- * read as antimatter15 splats, anything else as PLY (binary little/big endian or ASCII).
+ * read as antimatter15 splats; the others by content: a SOG v2 scene (a `.sog` zip, a folder
+ * holding meta.json, or the meta.json itself), a PlayCanvas/SuperSplat compressed PLY (a PLY
+ * with a `chunk` element and packed vertex properties; decoded as splat-transform does, see
+ * Documentation/file-formats.md), anything else as PLY (binary little/big endian or ASCII).
  *
  * Errors (missing file, truncated data, missing properties, ...) are reported with
  * vtkErrorMacro naming the file and the problem, and the request fails. Gaussians with NaN or
@@ -43,7 +46,8 @@ public:
 
   ///@{
   /**
-   * The file to read (.ply or .splat). Default: none.
+   * The file to read (.ply, .compressed.ply, .splat, .sog, meta.json, or a SOG folder).
+   * Default: none.
    */
   vtkSetStdStringFromCharMacro(FileName);
   vtkGetCharFromStdStringMacro(FileName);
