@@ -1600,10 +1600,21 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   {
     return;
   }
-  const QString path = QFileDialog::getSaveFileName(this,
+  // A name ending in .compressed.ply gets the PlayCanvas compressed PLY (SuperSplat and web
+  // viewers), with its quantisation error in the status bar.
+  const QString compressedFilter = "Compressed PLY for SuperSplat (*.compressed.ply)";
+  QString filter;
+  QString path = QFileDialog::getSaveFileName(this,
     deleteSelection ? "Save the scene without the selection" : "Export the selected Gaussians",
     deleteSelection ? "pruned.ply" : "selection.ply",
-    "PLY (*.ply)");
+    "PLY (*.ply);;" + compressedFilter,
+    &filter);
+  if (!path.isEmpty() && filter == compressedFilter &&
+    !path.endsWith(".compressed.ply", Qt::CaseInsensitive))
+  {
+    path = path.endsWith(".ply", Qt::CaseInsensitive) ? path.left(path.size() - 4) : path;
+    path += ".compressed.ply";
+  }
   if (path.isEmpty())
   {
     return;
@@ -1632,6 +1643,13 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   }
   try
   {
+    if (path.endsWith(".compressed.ply", Qt::CaseInsensitive))
+    {
+      const auto report = vis4gs::WriteCompressedPly(path.toStdString(), cloud);
+      this->statusBar()->showMessage(
+        path + ": " + QString::fromStdString(vis4gs::DescribeQuantisation(report)), 15000);
+      return;
+    }
     vis4gs::WriteGaussianPly(path.toStdString(), cloud);
     this->statusBar()->showMessage(
       QString("%1: %2 Gaussians written").arg(path).arg(points->GetNumberOfPoints()), 5000);

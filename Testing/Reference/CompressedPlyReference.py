@@ -10,6 +10,7 @@
    order must produce the same packed words as splat-transform's writer.
 
 Usage: CompressedPlyReference.py <vis4gsSceneConvert> <build dir> <work dir> generated|inria
+       [vis4gs: also checks that `vis4gs render` / `analyze` read the file as our reader does]
 """
 import os
 import sys
@@ -83,6 +84,7 @@ def within_quantisation(src, back, comp):
 
 def main():
     tool, build, work, mode = sys.argv[1:5]
+    vis4gs = sys.argv[5] if len(sys.argv) > 5 else ""
     os.makedirs(work, exist_ok=True)
     cli = ref.splat_transform(build)
     src_path = source_path(mode, work)
@@ -105,6 +107,7 @@ def main():
         sys.exit(1)
     failures += ref.compare_exact("reader vs splat-transform on its compressed PLY", ours, theirs,
                                   ref.GAUSSIAN_COLUMNS + rest)
+    failures += ref.check_commands(vis4gs, st_comp, ours_back, work, "compressed-ply")
 
     # 2. Our writer, read back by splat-transform, against the source (source order).
     our_comp = os.path.join(work, "ours.compressed.ply")

@@ -6,7 +6,7 @@ back to PLY (and the folder's meta.json); our reader's decoding of the zip, of t
 equal splat-transform's value by value (float32 bits: both compute in double and round once).
 A reading limited to SH degree 1 must equal the first coefficients.
 
-Usage: SogReference.py <vis4gsSceneConvert> <build dir> <work dir> generated|inria
+Usage: SogReference.py <vis4gsSceneConvert> <build dir> <work dir> generated|inria [vis4gs]
 """
 import os
 import shutil
@@ -20,6 +20,7 @@ from CompressedPlyReference import source_path  # noqa: E402
 
 def main():
     tool, build, work, mode = sys.argv[1:5]
+    vis4gs = sys.argv[5] if len(sys.argv) > 5 else ""
     os.makedirs(work, exist_ok=True)
     cli = ref.splat_transform(build)
     src_path = source_path(mode, work)
@@ -56,6 +57,10 @@ def main():
         failures += ref.compare_exact("reader (%s) vs splat-transform" % label, ours,
                                       theirs if label == "zip" else theirs_folder,
                                       ref.GAUSSIAN_COLUMNS + rest)
+
+    failures += ref.check_commands(vis4gs, sog, os.path.join(work, "ours-zip.ply"), work, "sog")
+    failures += ref.check_commands(vis4gs, folder, os.path.join(work, "ours-folder.ply"), work,
+                                   "sog-folder")
 
     # Only the degree asked for: degree 1 equals the first 3 coefficients per channel.
     out = os.path.join(work, "ours-sh1.ply")

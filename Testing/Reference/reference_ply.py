@@ -110,3 +110,31 @@ def compare_exact(what, ours, ref, columns, ulps=0):
     print("%s: %d columns x %d Gaussians, %d values differ by more than %d ulp (largest: %s ulp in %s)"
           % (what, len(columns), len(ours), bad, ulps, worst[0], worst[1]))
     return bad
+
+
+def check_commands(vis4gs, scene, decoded_ply, work, label):
+    """`vis4gs render` of @scene (a compressed PLY, a .sog, a SOG folder) must give the same PNG
+    bytes as the render of @decoded_ply (our reader's float32 PLY of it), and `vis4gs analyze`
+    must run on it. Returns the number of failures."""
+    if not vis4gs:
+        return 0
+    import re
+    pngs = []
+    for i, path in enumerate((scene, decoded_ply)):
+        png = os.path.join(work, "render-%s-%d.png" % (label, i))
+        run([vis4gs, "render", path, "--resolution=160,120", "--output=" + png])
+        pngs.append(open(png, "rb").read())
+    failures = 0
+    if pngs[0] != pngs[1]:
+        print("FAILED: vis4gs render of %s differs from the render of its decoded PLY" % scene)
+        failures += 1
+    else:
+        print("vis4gs render %s: same PNG as its decoded PLY (%d bytes)" % (label, len(pngs[0])))
+    out = run([vis4gs, "analyze", scene, "--scores=shape", "--top=2",
+               "--output=" + os.path.join(work, "analyze-%s" % label)])
+    if not re.search(r"top 2 by NeedleShape.*wrote .*report.html", out, re.S):
+        print("FAILED: vis4gs analyze %s printed:\n%s" % (scene, out))
+        failures += 1
+    else:
+        print("vis4gs analyze %s: report written" % label)
+    return failures
