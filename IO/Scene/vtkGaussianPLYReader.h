@@ -106,8 +106,9 @@ public:
   ///@{
   /**
    * Facts about the last file read: its SH degree, its format ("binary_little_endian",
-   * "binary_big_endian", "ascii" or "splat"), and the number of Gaussians holding a NaN or
-   * infinite value.
+   * "binary_big_endian", "ascii", "splat", "compressed_ply" or "sog"), and the number of
+   * Gaussians holding a NaN or infinite value (in a compressed PLY, an alpha of 0 or 255 is an
+   * opacity logit of -inf or +inf).
    */
   vtkGetMacro(FileSHDegree, int);
   vtkGetCharFromStdStringMacro(FileFormat);
