@@ -638,7 +638,8 @@ bool IsSog(const std::string& path)
     return false;
   }
   const std::vector<unsigned char> text = detail::ReadWholeFile(path);
-  return std::search(text.begin(), text.end(), "\"means\"", "\"means\"" + 7) != text.end();
+  static const std::string key = "\"means\"";
+  return std::search(text.begin(), text.end(), key.begin(), key.end()) != text.end();
 }
 
 //------------------------------------------------------------------------------
