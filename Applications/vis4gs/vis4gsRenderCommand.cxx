@@ -30,7 +30,9 @@ namespace
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional("scene", "3DGS scene: the trainer's PLY, a compressed PLY, a SOG (.sog, meta.json or its folder) or an antimatter15 .splat.");
+  args.AddPositional("scene",
+    "3DGS scene: the trainer's PLY, a compressed PLY, a SOG (.sog, meta.json or its folder) or an "
+    "antimatter15 .splat.");
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",
