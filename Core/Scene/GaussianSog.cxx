@@ -455,13 +455,15 @@ GaussianCloud ReadSogFiles(SogFiles& files,
   cloud.Count = n;
   cloud.ShDegree = degree;
   std::size_t bad = 0;
-  std::vector<unsigned char> rowBad(n, 0);
+  // Allocated on the first non-finite value, which comes after a texture has vouched for count.
+  std::vector<unsigned char> rowBad;
   auto store = [&](float& dst, double v, std::size_t g)
   {
     dst = static_cast<float>(v);
     if (!std::isfinite(dst))
     {
       ++bad;
+      rowBad.resize(n, 0);
       rowBad[g] = 1;
     }
   };
