@@ -12,7 +12,8 @@ seconds="${1:-20}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
-targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzSpz)
+targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzSpz FuzzCompressedPly
+  FuzzSog)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -27,6 +28,7 @@ fi
 seeds="$build/seeds"
 rm -rf "$seeds"
 mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap,FuzzSpz}
+mkdir -p "$seeds/FuzzCompressedPly" "$seeds/FuzzSog"
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
 if [ -f "$ply" ]; then
@@ -101,6 +103,44 @@ frames = [zstd_raw(b) for b in streams]
 v4 = struct.pack("<IIIBBBBI", 0x5053474E, 4, n, 1, 12, 2, 6, 32 + len(ext)) + bytes(12) + ext
 v4 += b"".join(struct.pack("<QQ", len(f), len(b)) for f, b in zip(frames, streams)) + b"".join(frames)
 open(sys.argv[1] + "/v4.spz", "wb").write(v4)
+PY
+
+# Compressed PLY: two Gaussians in one 18-float chunk with SH degree 1, and one in a 12-float
+# chunk (the layouts of Documentation/file-formats.md).
+/usr/bin/python3 - "$seeds/FuzzCompressedPly" <<'PY'
+import struct, sys
+bounds = ["min_x", "min_y", "min_z", "max_x", "max_y", "max_z", "min_scale_x", "min_scale_y",
+          "min_scale_z", "max_scale_x", "max_scale_y", "max_scale_z"]
+colour = ["min_r", "min_g", "min_b", "max_r", "max_g", "max_b"]
+def seed(name, chunk_props, n, sh):
+    h = "ply\nformat binary_little_endian 1.0\nelement chunk 1\n"
+    h += "".join("property float %s\n" % p for p in chunk_props)
+    h += "element vertex %d\n" % n + "".join("property uint packed_%s\n" % p
+                                           for p in ("position", "rotation", "scale", "color"))
+    if sh:
+        h += "element sh %d\n" % n + "".join("property uchar f_rest_%d\n" % i for i in range(sh))
+    body = struct.pack("<%df" % len(chunk_props), *[(-1) ** i * (i + 1) * 0.5 for i in range(len(chunk_props))])
+    for g in range(n):
+        body += struct.pack("<4I", 0x7ff003ff ^ g, (g % 4) << 30 | 0x200 << 20 | 0x1ff << 10 | 0x201,
+                            0x12345678 + g, 0xff00807f - g)
+    body += bytes((7 * i) % 256 for i in range(n * sh))
+    open(sys.argv[1] + "/" + name, "wb").write((h + "end_header\n").encode() + body)
+seed("chunk18-sh1.ply", bounds + colour, 2, 9)
+seed("chunk12.ply", bounds, 1, 0)
+PY
+
+# SOG: a 24-Gaussian SH-degree-1 scene written by splat-transform 3.7 (Testing/Fuzz/Seeds), as a
+# zip (first byte even) and as the fuzzer's list of files (first byte odd).
+/usr/bin/python3 - "$root/Testing/Fuzz/Seeds/tiny.sog" "$seeds/FuzzSog" <<'PY'
+import struct, sys, zipfile
+data = open(sys.argv[1], "rb").read()
+open(sys.argv[2] + "/tiny-zip", "wb").write(b"\x00" + data)
+out = b"\x01"
+with zipfile.ZipFile(sys.argv[1]) as z:
+    for name in z.namelist():
+        body = z.read(name)
+        out += bytes([len(name)]) + name.encode() + struct.pack("<I", len(body)) + body
+open(sys.argv[2] + "/tiny-files", "wb").write(out)
 PY
 
 status=0

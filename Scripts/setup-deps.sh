@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev libhdf5-dev nlohmann-json3-dev libgtest-dev
   libpng-dev libjpeg-dev
   zlib1g-dev libzstd-dev
+  libwebp-dev libzip-dev
   openmpi-bin libopenmpi-dev
   xvfb xauth clang clang-format libclang-rt-14-dev
   python3-numpy python3-h5py python3-pytest python3-torch python3-pip

@@ -604,7 +604,7 @@ void Vis4GSMainWindow::BuildUi()
       const QString path = QFileDialog::getOpenFileName(this,
         "Open a training log or a scene",
         QString(),
-        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.splat);;All files (*)");
+        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.splat *.sog meta.json);;All files (*)");
       if (!path.isEmpty())
       {
         this->Open(path);
@@ -1600,10 +1600,21 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   {
     return;
   }
-  const QString path = QFileDialog::getSaveFileName(this,
+  // A name ending in .compressed.ply gets the PlayCanvas compressed PLY (SuperSplat and web
+  // viewers), with its quantisation error in the status bar.
+  const QString compressedFilter = "Compressed PLY for SuperSplat (*.compressed.ply)";
+  QString filter;
+  QString path = QFileDialog::getSaveFileName(this,
     deleteSelection ? "Save the scene without the selection" : "Export the selected Gaussians",
     deleteSelection ? "pruned.ply" : "selection.ply",
-    "PLY (*.ply);;SPZ v4, quantised for web viewers (*.spz)");
+    "PLY (*.ply);;SPZ v4, quantised for web viewers (*.spz);;" + compressedFilter,
+    &filter);
+  if (!path.isEmpty() && filter == compressedFilter &&
+    !path.endsWith(".compressed.ply", Qt::CaseInsensitive))
+  {
+    path = path.endsWith(".ply", Qt::CaseInsensitive) ? path.left(path.size() - 4) : path;
+    path += ".compressed.ply";
+  }
   if (path.isEmpty())
   {
     return;
@@ -1648,6 +1659,13 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
                                        .arg(r.Color.Max, 0, 'g', 3)
                                        .arg(r.SH.Max, 0, 'g', 3),
         10000);
+      return;
+    }
+    if (path.endsWith(".compressed.ply", Qt::CaseInsensitive))
+    {
+      const auto report = vis4gs::WriteCompressedPly(path.toStdString(), cloud);
+      this->statusBar()->showMessage(
+        path + ": " + QString::fromStdString(vis4gs::DescribeQuantisation(report)), 15000);
       return;
     }
     vis4gs::WriteGaussianPly(path.toStdString(), cloud);

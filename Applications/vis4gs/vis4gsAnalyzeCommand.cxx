@@ -63,8 +63,9 @@ double Since(Clock::time_point t)
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional(
-    "scene", "Gaussian scene: a 3DGS .ply, .spz or .splat, or a training log .h5 (DESIGN §3).");
+  args.AddPositional("scene",
+    "Gaussian scene: a 3DGS .ply, compressed PLY, SOG (.sog, meta.json or its folder), .spz or "
+    ".splat, or a training log .h5 (DESIGN §3).");
   args.AddOption("iteration",
     "N",
     "-1",
@@ -879,8 +880,9 @@ int Run(const Vis4GSArguments& args)
     std::cout << "vis4gs analyze: rule '" << canonical << "' selects " << count << " of "
               << cloud.Count << " Gaussians\n";
     cleanupHtml = "<h2>Selection</h2><p>Rule <code>" + Vis4GSHtml(canonical) +
-      "</code> (as given: <code>" + Vis4GSHtml(ruleText) + "</code>) selects " + std::to_string(count) +
-      " of " + std::to_string(cloud.Count) + " Gaussians (selection.csv).</p>\n";
+      "</code> (as given: <code>" + Vis4GSHtml(ruleText) + "</code>) selects " +
+      std::to_string(count) + " of " + std::to_string(cloud.Count) +
+      " Gaussians (selection.csv).</p>\n";
     if (args.GetFlag("delete"))
     {
       vis4gs::WriteGaussianPly(

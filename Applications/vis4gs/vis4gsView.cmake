@@ -117,6 +117,23 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       LABELS "Application;GUI" FAIL_REGULAR_EXPRESSION "FAILED")
     vis4gs_shared_data_tests(vis4gs-ViewSelfTest-${_vis4gs_name})
   endforeach ()
+  # A compressed PLY (issue 19) written from the INRIA PLY by our writer, opened by content.
+  if (TARGET vis4gsSceneConvert)
+    set(_vis4gs_compressed "${_vis4gs_view_dir}/inria.compressed.ply")
+    set(_vis4gs_inria "${VIS4GS_SHARED_DATA_DIR}/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply")
+    add_test(NAME vis4gs-ViewMakeCompressedPly
+      COMMAND sh "${_vis4gs_guard}" "${_vis4gs_inria}" $<TARGET_FILE:vis4gsSceneConvert>
+        "${_vis4gs_inria}" "${_vis4gs_compressed}" --compressed)
+    set_tests_properties(vis4gs-ViewMakeCompressedPly PROPERTIES LABELS "Application;GUI"
+      FIXTURES_SETUP vis4gsCompressedPly FAIL_REGULAR_EXPRESSION "FAILED")
+    add_test(NAME vis4gs-ViewSelfTest-CompressedPly
+      COMMAND sh "${_vis4gs_guard}" "${_vis4gs_inria}" "$<TARGET_FILE:vis4gs>" view
+        "${_vis4gs_compressed}" "--self-test=${_vis4gs_view_dir}/selftest-CompressedPly"
+        --resolution=1200,800)
+    set_tests_properties(vis4gs-ViewSelfTest-CompressedPly PROPERTIES LABELS "Application;GUI"
+      FIXTURES_REQUIRED vis4gsCompressedPly FAIL_REGULAR_EXPRESSION "FAILED")
+    vis4gs_shared_data_tests(vis4gs-ViewMakeCompressedPly vis4gs-ViewSelfTest-CompressedPly)
+  endif ()
   # Extreme shapes generated at test time: needles, disks, huge and tiny scales, opacity 0
   # and 1, means at the near plane of one of its two cameras.
   set(_vis4gs_extreme_dir "${_vis4gs_view_dir}/extreme")

@@ -19,8 +19,10 @@ namespace
 {
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional(
-    "FILE", "Training log (.h5) or Gaussian scene (.ply, .spz, .splat) to open.", false);
+  args.AddPositional("FILE",
+    "Training log (.h5) or Gaussian scene (.ply, .compressed.ply, .sog, meta.json, .spz, .splat) "
+    "to open.",
+    false);
   args.AddOption("self-test",
     "DIR",
     "",

@@ -24,6 +24,7 @@
 #include "GaussianCloud.h"
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -208,8 +209,111 @@ std::vector<unsigned char> WriteSpzToMemory(const GaussianCloud& cloud,
   const SpzWriteOptions& options = {},
   SpzWriteReport* report = nullptr);
 
-/// Reads a scene by content, then extension: SPZ (gzip or "NGSP" start) with ReadSpz, ".splat"
-/// with ReadSplat, anything else with ReadGaussianPly.
+/**
+ * The PlayCanvas / SuperSplat compressed PLY (Documentation/file-formats.md): chunks of 256
+ * Gaussians with float32 bounds (12 or 18 per chunk), 11-10-11 position and log-scale,
+ * 2-10-10-10 smallest-three rotation, 8-8-8-8 colour and opacity, optional uint8 f_rest in an
+ * `sh` element. Decoded as splat-transform decodes it (each value computed in double, rounded
+ * once to float32): colour c -> SH DC (c - 0.5)/C0, alpha byte w -> logit -log(255/w - 1)
+ * (0 and 255 give -inf and +inf), SH byte b -> ((b+0.5)/256 - 0.5)*8 (0 -> -4, 255 -> 4).
+ * Only the SH degree asked for is decoded. Counts are checked against each other (chunks =
+ * ceil(vertices/256), sh rows = vertices) and against the file size before allocating.
+ */
+GaussianCloud ReadCompressedPly(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+GaussianCloud ReadCompressedPlyFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// True when @p head (the start of a file) is a PLY header with a `chunk` element and a
+/// `packed_position` vertex property.
+bool IsCompressedPly(const void* head, std::size_t size);
+
+struct CompressedPlyWriteOptions
+{
+  /// Write in the reference writer's Morton order (smaller chunk bounds, so smaller errors);
+  /// false keeps the cloud's order.
+  bool MortonOrder = true;
+  /// Highest SH degree written (the cloud's if lower).
+  int MaxShDegree = 3;
+  std::vector<std::string> Comments;
+};
+
+/// Max and RMS of |decoded - source| over the written values of one attribute.
+struct QuantisationError
+{
+  std::string Attribute;
+  double Max = 0;
+  double Rms = 0;
+  std::size_t Values = 0;
+};
+
+struct CompressedPlyWriteReport
+{
+  std::size_t Written = 0;
+  /// Gaussians the reference cannot draw (ClassifyGaussian, or inf/NaN in a written SH
+  /// coefficient): left out, as by WriteSplat.
+  std::size_t LeftOut = 0;
+  /// Source index of each written Gaussian, in file order.
+  std::vector<std::size_t> Order;
+  /// position, log-scale, rotation (degrees between the normalised quaternions), f_dc,
+  /// opacity (alpha = sigmoid of the logit), f_rest.
+  std::vector<QuantisationError> Errors;
+  /// Log-scale components outside the format's [-20, 20] (-inf included: written as -20) and
+  /// f_rest outside [-4, 4]; both are clamped and left out of the errors above.
+  std::size_t ClampedLogScales = 0;
+  std::size_t ClampedSH = 0;
+};
+
+/**
+ * Writes the compressed PLY as splat-transform 3.2 does (18-float chunks, same packing and
+ * rounding). Opacity logits +-inf are written as alpha 0 / 255 and read back as +-inf; a
+ * zero quaternion as the identity (the rotation the renderer gives it); a log-scale of -inf as
+ * -20 (scale 2e-9, drawn as the same dilated point). Ids and extras are not stored. Written to
+ * a temporary file and renamed into place.
+ */
+CompressedPlyWriteReport WriteCompressedPly(const std::string& path,
+  const GaussianCloud& cloud,
+  const CompressedPlyWriteOptions& options = {});
+std::vector<unsigned char> WriteCompressedPlyToMemory(const GaussianCloud& cloud,
+  const CompressedPlyWriteOptions& options = {},
+  CompressedPlyWriteReport* report = nullptr);
+/// One line: written / left out counts and max/RMS error per attribute.
+std::string DescribeQuantisation(const CompressedPlyWriteReport& report);
+
+/**
+ * Reads a PlayCanvas SOG v2 scene (Documentation/file-formats.md): @p path is a `.sog` zip
+ * archive, a folder holding meta.json, or a meta.json file with its WebP textures beside it.
+ * Decoded as splat-transform decodes it (each value computed in double, rounded once to
+ * float32): positions from the 16-bit means through the inverse log transform, smallest-three
+ * quaternions, codebook log-scales and SH DC, opacity logit log(a/(1-a)) of the alpha clamped
+ * to [1e-6, 1-1e-6] (so at most +-13.8), f_rest from the palette (16-bit labels). Only the SH
+ * degree asked for is decoded. Textures are checked against meta.json's count (at least
+ * count, at most 2*count+65536 texels) before decoding, and a texture or zip entry that
+ * expands more than 1024 times past 64 MiB is refused as a decompression bomb.
+ */
+GaussianCloud ReadSog(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// Same, from a `.sog` archive in memory (fuzzers, tests); @p name is used in messages.
+GaussianCloud ReadSogZipFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// Same, from files in memory by name ("meta.json" and the textures it names).
+GaussianCloud ReadSogFromMemoryFiles(const std::map<std::string, std::vector<unsigned char>>& files,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// True for a folder holding meta.json, a zip archive, or a JSON file naming "means".
+bool IsSog(const std::string& path);
+
+/// Reads a scene by content, then extension: SPZ (gzip or "NGSP" start) with ReadSpz, a SOG
+/// (folder, zip or meta.json) with ReadSog, ".splat" with ReadSplat, a compressed PLY (by
+/// content) with ReadCompressedPly, anything else with ReadGaussianPly.
 GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "GaussianIO.h"
+#include "PlyHeader.h"
 #include "SceneFile.h"
 
 #include <algorithm>
@@ -22,7 +23,7 @@ namespace
 
 using detail::ByteSource;
 
-constexpr std::size_t MaxHeaderBytes = std::size_t(1) << 20;
+constexpr std::size_t MaxHeaderBytes = detail::MaxPlyHeaderBytes;
 
 //------------------------------------------------------------------------------
 [[noreturn]] void Fail(const std::string& name, const std::string& what)
@@ -85,31 +86,9 @@ const char* ScalarTypeName(ScalarType t)
   return "float";
 }
 
-//------------------------------------------------------------------------------
-struct PlyProperty
-{
-  std::string Name;
-  ScalarType Type = ScalarType::Float32;
-  bool IsList = false;
-  ScalarType CountType = ScalarType::UInt8;
-  std::size_t Offset = 0; // byte offset in a binary row (fixed-size elements only)
-};
-
-struct PlyElement
-{
-  std::string Name;
-  std::uint64_t Count = 0;
-  std::vector<PlyProperty> Properties;
-  std::size_t RowSize = 0;
-  bool HasList = false;
-};
-
-struct PlyHeader
-{
-  PlyFormat Format = PlyFormat::BinaryLittleEndian;
-  std::vector<PlyElement> Elements;
-  std::size_t Bytes = 0; // header length including the end_header line
-};
+using detail::PlyElement;
+using detail::PlyHeader;
+using detail::PlyProperty;
 
 //------------------------------------------------------------------------------
 std::vector<std::string_view> Tokens(std::string_view line)
@@ -1591,6 +1570,14 @@ void WritePly(const GaussianCloud& cloud,
 } // namespace
 
 //------------------------------------------------------------------------------
+detail::PlyHeader detail::ParsePlyHeader(const unsigned char* data,
+  std::size_t size,
+  const std::string& name)
+{
+  return ParseHeader(data, size, name);
+}
+
+//------------------------------------------------------------------------------
 GaussianCloud ReadGaussianPly(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
@@ -1660,6 +1647,21 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   if (detail::LowerExtension(path) == ".splat")
   {
     return ReadSplat(path, options, report);
+  }
+  if (IsSog(path))
+  {
+    return ReadSog(path, options, report);
+  }
+  if (detail::IsRegularFile(path))
+  {
+    detail::InputFile file(path);
+    std::vector<unsigned char> head(
+      static_cast<std::size_t>(std::min<std::uint64_t>(file.Size(), detail::MaxPlyHeaderBytes)));
+    file.ReadAt(0, head.data(), head.size());
+    if (IsCompressedPly(head.data(), head.size()))
+    {
+      return ReadCompressedPly(path, options, report);
+    }
   }
   return ReadGaussianPly(path, options, report);
 }

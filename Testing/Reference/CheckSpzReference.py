@@ -212,13 +212,14 @@ def main():
     convert, install, work = sys.argv[1], sys.argv[2], sys.argv[3]
     sources = sys.argv[4:]
     os.makedirs(work, exist_ok=True)
-    r = subprocess.run(["bash", install, os.path.join(work, "..", "splat-transform")],
+    # 2.7.1: SPZ through Niantic's library, RUB in the file (install-splat-transform.sh).
+    r = subprocess.run(["bash", install, os.path.join(work, "..", ".."), "2.7.1"],
                        capture_output=True, text=True)
     if r.returncode != 0:
         print(r.stdout + r.stderr)
         sys.exit(r.returncode)
-    st = r.stdout.strip().splitlines()[-1]
-    r = subprocess.run([st, "--version"], capture_output=True, text=True)
+    st = ["node", r.stdout.strip().splitlines()[-1]]
+    r = subprocess.run([*st, "--version"], capture_output=True, text=True)
     print("reference: splat-transform " + (r.stdout + r.stderr).strip())
 
     if not sources:
@@ -228,7 +229,7 @@ def main():
         # (b) a hand-built version 2 file.
         v2 = os.path.join(work, "hand-v2.spz")
         expected = hand_built_v2(v2)
-        run([st, "-q", "-w", v2, os.path.join(work, "hand-v2.theirs.ply")])
+        run([*st, "-q", "-w", v2, os.path.join(work, "hand-v2.theirs.ply")])
         run([convert, v2, os.path.join(work, "hand-v2.ours.ply")])
         ours = read_ply(os.path.join(work, "hand-v2.ours.ply"))
         # v2's w = sqrt(1 - |xyz|^2) loses digits in float32 when w is small; the float64
@@ -244,9 +245,9 @@ def main():
         # (a) splat-transform's SPZ files, v3 (gzip) and v4 (zstd).
         for version in (3, 4):
             spz = os.path.join(work, "%s.st-v%d.spz" % (name, version))
-            run([st, "-q", "-w", "--spz-version", str(version), src_path, spz])
+            run([*st, "-q", "-w", "--spz-version", str(version), src_path, spz])
             check(spz_version(spz) == version, "%s: splat-transform wrote SPZ v%d" % (name, version))
-            run([st, "-q", "-w", spz, spz + ".theirs.ply"])
+            run([*st, "-q", "-w", spz, spz + ".theirs.ply"])
             info = json.loads(run([convert, spz, spz + ".ours.ply"]))
             check(info["read_format"] == "spz v%d" % version, "%s: read as %s" % (name, info["read_format"]))
             ours = read_ply(spz + ".ours.ply")
@@ -260,7 +261,7 @@ def main():
         report = json.loads(run([convert, src_path, spz]))
         check(spz_version(spz) == 4 and report["left_out"] == 0,
               "%s: our writer wrote SPZ v4 with all %d Gaussians" % (name, report["written"]))
-        run([st, "-q", "-w", spz, spz + ".theirs.ply"])
+        run([*st, "-q", "-w", spz, spz + ".theirs.ply"])
         theirs = read_ply(spz + ".theirs.ply")
         run([convert, spz, spz + ".ours.ply"])
         compare_decoders(read_ply(spz + ".ours.ply"), theirs, "%s, our v4 file" % name)

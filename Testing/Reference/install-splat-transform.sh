@@ -1,47 +1,51 @@
 #!/usr/bin/env bash
-# Installs the test-time reference converter @playcanvas/splat-transform (npm) into a folder of
-# the build tree, once. Never needed to build or run Vis4GS: the reference tests call this and
-# are skipped (exit 77, with the reason) when node, npm or the registry is unavailable; under
-# CI=true that is a failure.
+# Installs the npm package @playcanvas/splat-transform (PlayCanvas's converter, a test-time
+# reference for the compressed PLY / SOG / SPZ readers; never needed to build or run Vis4GS)
+# into <build>/reference-tools/<version> and prints the path of its command line tool.
 #
-# Usage: install-splat-transform.sh DIR     (prints the path of the splat-transform command)
-# The version is pinned so that conventions do not change under the tests: 2.7.1 reads and
-# writes SPZ through Niantic's own WebAssembly library (@adobe/spz) with RDF (PLY) axes on its
-# side and RUB in the file, as the SPZ specification says. (Its GitHub master, 3.x, reads SPZ
-# with its own JavaScript decoder and does not convert axes.)
-set -uo pipefail
-version="${VIS4GS_SPLAT_TRANSFORM_VERSION:-2.7.1}"
-dir="${1:?usage: install-splat-transform.sh DIR}"
-bin="$dir/node_modules/.bin/splat-transform"
+# Usage: install-splat-transform.sh <build dir> [version, default 3.7.0]
+# Each version goes to its own folder, <build>/reference-tools/<version>. Two are used: 3.7.0
+# for compressed PLY and SOG, and 2.7.1 for SPZ, because 2.7.1 reads and writes SPZ through
+# Niantic's own WebAssembly library (@adobe/spz) with RUB axes in the file as the SPZ
+# specification says, while 3.x decodes SPZ in JavaScript without converting axes.
+# Idempotent: an existing install of the same version is reused without network access.
+# Exit codes: 0 installed (path on stdout, last line), 77 node/npm or the registry unavailable
+# (message on stderr), so tests calling it can skip; under CI=true 77 becomes 1.
+set -u
+build="${1:?usage: install-splat-transform.sh <build dir> [version]}"
+version="${2:-3.7.0}"
+prefix="$build/reference-tools/$version"
+cli="$prefix/node_modules/@playcanvas/splat-transform/bin/cli.mjs"
 
 skip() {
-  echo "skipped: $1" >&2
+  echo "skipped: $*" >&2
   if [ "${CI:-}" = "true" ]; then
-    echo "FAILED: CI=true and $1" >&2
+    echo "FAILED: CI=true and $*" >&2
     exit 1
   fi
   exit 77
 }
 
-for tool in node npm; do
-  command -v "$tool" >/dev/null 2>&1 || skip "$tool is not installed (the SPZ reference check needs node >= 18 and npm)"
-done
-installed="$(cat "$dir/node_modules/@playcanvas/splat-transform/package.json" 2>/dev/null |
-  sed -n 's/^ *"version": *"\([^"]*\)".*/\1/p')"
-if [ "$installed" != "$version" ]; then
-  mkdir -p "$dir"
-  # A lock keeps parallel tests from installing twice.
-  exec 9>"$dir/.install-lock"
+node_bin="$(command -v node || true)"
+[ -n "$node_bin" ] || skip "node is not installed (splat-transform needs node >= 18)"
+major="$("$node_bin" -e 'process.stdout.write(process.versions.node.split(".")[0])' 2>/dev/null || echo 0)"
+[ "$major" -ge 18 ] 2>/dev/null || skip "node $major is too old for splat-transform (needs >= 18)"
+
+installed="$("$node_bin" -e "try{process.stdout.write(require('$prefix/node_modules/@playcanvas/splat-transform/package.json').version)}catch(e){}" 2>/dev/null)"
+if [ "$installed" != "$version" ] || [ ! -f "$cli" ]; then
+  command -v npm >/dev/null || skip "npm is not installed"
+  mkdir -p "$prefix"
+  # A lock on the prefix so that parallel tests install once.
+  exec 9>"$prefix/.install.lock"
   flock 9
-  installed="$(sed -n 's/^ *"version": *"\([^"]*\)".*/\1/p' \
-    "$dir/node_modules/@playcanvas/splat-transform/package.json" 2>/dev/null)"
-  if [ "$installed" != "$version" ]; then
-    if ! timeout 300 npm install --prefix "$dir" --no-audit --no-fund --no-save --ignore-scripts \
-      "@playcanvas/splat-transform@$version" >"$dir/npm-install.log" 2>&1; then
-      tail -5 "$dir/npm-install.log" >&2
-      skip "npm could not install @playcanvas/splat-transform@$version (no registry access?); see $dir/npm-install.log"
+  installed="$("$node_bin" -e "try{process.stdout.write(require('$prefix/node_modules/@playcanvas/splat-transform/package.json').version)}catch(e){}" 2>/dev/null)"
+  if [ "$installed" != "$version" ] || [ ! -f "$cli" ]; then
+    [ -f "$prefix/package.json" ] || echo '{"private": true}' >"$prefix/package.json"
+    if ! npm install --prefix "$prefix" --no-audit --no-fund --loglevel=error \
+      "@playcanvas/splat-transform@$version" >"$prefix/npm-install.log" 2>&1; then
+      skip "npm could not install @playcanvas/splat-transform@$version (network?); see $prefix/npm-install.log"
     fi
   fi
 fi
-[ -x "$bin" ] || skip "$bin is missing after the install"
-echo "$bin"
+[ -f "$cli" ] || skip "the splat-transform package has no bin/cli.mjs at $cli"
+echo "$cli"

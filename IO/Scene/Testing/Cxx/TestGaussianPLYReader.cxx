@@ -133,6 +133,20 @@ int TestGaussianPLYReader(int, char*[])
       SameFloats(sd->GetArray(vis4gs::arrays::Rotation), spzCore.Rotations),
     "spz arrays equal to the Core reader's");
 
+  // A compressed PLY, whatever its name: recognised by content, decoded as the Core reader.
+  vis4gs::WriteCompressedPly(dir / "scene.bin", core);
+  const vis4gs::GaussianCloud compressed = vis4gs::ReadCompressedPly(dir / "scene.bin");
+  vtkNew<vtkGaussianPLYReader> comp;
+  comp->SetFileName((dir / "scene.bin").c_str());
+  comp->Update();
+  Check(std::string(comp->GetFileFormat()) == "compressed_ply", "compressed PLY format");
+  Check(comp->GetOutput()->GetNumberOfPoints() == static_cast<vtkIdType>(core.Count),
+    "every Gaussian of the compressed PLY");
+  Check(SameFloats(comp->GetOutput()->GetPointData()->GetArray(vis4gs::arrays::Rotation),
+          compressed.Rotations) &&
+      SameFloats(comp->GetOutput()->GetPointData()->GetArray(vis4gs::arrays::SH), compressed.SH),
+    "compressed PLY values as the Core reader");
+
   // NaN values: kept, counted, one warning.
   vis4gs::GaussianCloud bad = core;
   bad.OpacityLogits[3] = std::numeric_limits<float>::quiet_NaN();
