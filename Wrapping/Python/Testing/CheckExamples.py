@@ -88,7 +88,7 @@ def scores(demo_output, tmp):
     check(count == [len(expected)], f"weakly covered: printed {count}, scores.ply {len(expected)}")
     saved = vis4gs.open(os.path.join(tmp, "weakly-covered.ply"), id_property="id")
     check(set(saved.ids.tolist()) == expected, "weakly-covered.ply holds those Gaussians")
-    return f"scripting_scores.py: top lists, scores.csv and the selection agree with vis4gs demo"
+    return "scripting_scores.py: top lists, scores.csv and the selection agree with vis4gs demo"
 
 
 def lineage(demo_output, tmp):
