@@ -5,7 +5,8 @@
 loads the plugin, reads the log (its snapshot iterations are the time steps), computes the
 scores at the last one and checks them against `vis4gs demo`'s scores.csv (the same numbers
 in the same format, Gaussian by Gaussian), builds the genealogy tree and checks the floater's
-ancestors against root-cause.txt, and saves a screenshot of the Gaussians colored by their
+ancestors (its parents in the tree, and the Vis4GS Lineage table) against root-cause.txt, and
+saves a screenshot of the Gaussians colored by their
 Blur score in ParaView's Point Gaussian representation."""
 import csv
 import re
@@ -64,6 +65,10 @@ while v is not None and v != tree.GetRoot():
     chain.append(pedigree.GetValue(v))
     v = tree.GetParent(v)
 check(chain == expected, f"the floater's ancestry {chain} differs from root-cause.txt {expected}")
+lineage = Vis4GSLineage(Input=tree_filter, GaussianId=floater)  # noqa: F821
+trace = servermanager.Fetch(lineage)
+traced = [trace.GetValueByName(r, "GaussianId").ToInt() for r in range(trace.GetNumberOfRows())]
+check(traced == expected, f"Vis4GS Lineage of {floater} gives {traced}, root-cause.txt {expected}")
 
 view = GetActiveViewOrCreate("RenderView")
 view.ViewSize = [640, 480]
@@ -87,4 +92,5 @@ if failures:
     print("FAILED:", *failures, sep="\n  ")
     sys.exit(1)
 print(f"ParaView plugin: {len(times)} time steps; {len(app)} Gaussians' {', '.join(header[1:])} "
-      f"= vis4gs demo's scores.csv; ancestry of {floater} = root-cause.txt; {screenshot}")
+      f"= vis4gs demo's scores.csv; ancestry and Vis4GS Lineage of {floater} = root-cause.txt; "
+      f"{screenshot}")
