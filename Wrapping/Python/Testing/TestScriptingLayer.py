@@ -171,6 +171,14 @@ def folder(vis4gs_exe):
     check(not any("cannot be computed" in w for w in scene.warnings),
           f"every score computed: {scene.warnings}")
 
+    # The same images named through images= (matched to the cameras by name).
+    named = vis4gs.open(ply, cameras=colmap, images=os.path.join(colmap, "images"))
+    by_name = named.scores(["blur", "needle"], **options)
+    check(same_bits(by_name["blur"], scores["blur"]) and same_bits(by_name["needle"],
+                                                                   scores["needle"]),
+          "images= gives the scores of the cameras' own image paths")
+    check(same_bits(named.select(ids=[5, 3, 1]).ids, [1, 3, 5]), "select(ids) in scene order")
+
     plys = vis4gs.vtkGaussianPLYReader()
     plys.SetFileName(ply)
     cams = vis4gs.vtkGaussianCameraReader()
