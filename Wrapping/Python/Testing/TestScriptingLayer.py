@@ -206,8 +206,20 @@ def folder(vis4gs_exe):
         app, layer = png_pixels(f"{tmp}/app.png"), png_pixels(f"{tmp}/layer.png")
         check(app.shape == layer.shape and np.array_equal(app, layer),
               "folder: the layer's render differs from vis4gs render's")
+
+        # A .splat scene too (antimatter15's format, the same reader).
+        splat = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(ply))),
+                             "model_1.splat")
+        subprocess.run([vis4gs_exe, "render", splat, f"--cameras={colmap}", "--camera=DSC_5290",
+                        "--resolution=100,66", f"--output={tmp}/app-splat.png"], check=True,
+                       stdout=subprocess.DEVNULL)
+        vis4gs.open(splat, cameras=colmap).render(f"{tmp}/layer-splat.png", camera="DSC_5290",
+                                                  size=(100, 66))
+        check(np.array_equal(png_pixels(f"{tmp}/app-splat.png"),
+                             png_pixels(f"{tmp}/layer-splat.png")),
+              "folder: the layer's render of the .splat differs from vis4gs render's")
     return f"PLY + COLMAP folder: {len(scene)} Gaussians; 4 scores = plain pipeline = vis4gs " \
-           f"analyze's scores.csv; render = vis4gs render's PNG"
+           f"analyze's scores.csv; render (.ply, .splat) = vis4gs render's PNG"
 
 
 if __name__ == "__main__":
