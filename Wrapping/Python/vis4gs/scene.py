@@ -195,8 +195,9 @@ class Scene:
         vtkGaussianArtifactScoreFilter; keywords set its parameters (loss_resolution,
         coverage_resolution, view_stride, footprint 0|1 or "alpha"|"ellipse",
         float_accumulation, occlusion_threshold, lam). The arrays (and NoVisibleView) are added
-        to this scene; returns {short name: numpy array}. The filter's warnings (Gaussians no
-        view sees, scores that could not be computed) are in scene.warnings."""
+        to this scene; returns {short name: numpy array} in the order asked. The filter's
+        warnings (Gaussians no view sees, scores that could not be computed) are in
+        scene.warnings."""
         if isinstance(which, str):
             which = [which]
         unknown = [w for w in which if w not in SCORES]
@@ -219,6 +220,8 @@ class Scene:
                 raise Vis4GSError(f"unknown score parameter {key} "
                                   f"(expected {', '.join(_SCORE_PARAMETERS)})")
             if key == "footprint" and isinstance(value, str):
+                if value not in ("alpha", "ellipse"):
+                    raise Vis4GSError(f"footprint must be alpha or ellipse, not {value!r}")
                 value = {"alpha": 0, "ellipse": 1}[value]
             getattr(score_filter, "Set" + _SCORE_PARAMETERS[key])(value)
         # The filter's warnings come back in scene.warnings (its ScoreWarnings field data);
@@ -233,18 +236,13 @@ class Scene:
         notes = out.GetFieldData().GetAbstractArray("ScoreWarnings")
         self.warnings = [] if notes is None else [notes.GetValue(i)
                                                   for i in range(notes.GetNumberOfValues())]
-        result = collections.OrderedDict()
-        for short, array in SCORES.items():
-            if short in which:
-                if out.GetPointData().GetArray(array) is None:
-                    raise Vis4GSError(f"{self.path}: computing {array} failed "
-                                      "(see the messages above)")
+        missing = [SCORES[w] for w in which if out.GetPointData().GetArray(SCORES[w]) is None]
+        if missing:
+            raise Vis4GSError(f"{self.path}: computing {', '.join(missing)} failed "
+                              "(see the messages above)")
         self.polydata = vtkPolyData()
         self.polydata.ShallowCopy(out)
-        for short, array in SCORES.items():
-            if short in which:
-                result[short] = self[array]
-        return result
+        return collections.OrderedDict((w, self[SCORES[w]]) for w in which)
 
     # ---------------------------------------------------------------- genealogy
     @property
