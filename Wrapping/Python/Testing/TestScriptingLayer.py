@@ -143,6 +143,18 @@ def demo(vis4gs_exe, log, demo_output):
         check(same_bits(saved["NeedleScore"], low["NeedleScore"]),
               "the saved selection holds its scores")
 
+        # Bad requests: an error naming the file and the problem, never an empty result.
+        for call, words in ((lambda: vis4gs.open(os.path.join(tmp, "nope.h5")), "nope.h5"),
+                            (lambda: scene.scores(["sharpness"]), "unknown score sharpness"),
+                            (lambda: saved.scores(["coverage"]), "need cameras"),
+                            (lambda: scene.render(camera=999), "no camera 999"),
+                            (lambda: scene.lineage(10 ** 9, score=None), "not in the genealogy")):
+            try:
+                call()
+                check(False, f"no error for a request that should say '{words}'")
+            except vis4gs.Vis4GSError as e:
+                check(words in str(e), f"the error '{e}' says '{words}'")
+
         # Rendering a snapshot's own camera without a display: the rasteriser's image.
         pixels = scene.render(os.path.join(tmp, "view.png"), camera=0, size=(64, 48))
         png = png_pixels(os.path.join(tmp, "view.png"))
