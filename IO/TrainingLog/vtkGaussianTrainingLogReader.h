@@ -31,8 +31,8 @@
  *
  * The logged snapshot iterations are reported as TIME_STEPS; UPDATE_TIME_STEP (or, without
  * one, Iteration; -1 = the last snapshot) picks the snapshot. Only the outputs a request
- * asks for are read: updating port 0 reads one snapshot (the SH rest only with
- * LoadSHRest), updating a table reads that table. GetPropertyHistory() returns the
+ * asks for are read: updating port 0 reads one snapshot (the SH rest unless
+ * LoadSHRest is off), updating a table reads that table. GetPropertyHistory() returns the
  * history of some ids across all snapshots with hyperslab reads.
  *
  * Missing optional groups are listed by GetLack(i); with Repair on, broken content is
@@ -69,7 +69,9 @@ public:
   ///@}
 
   ///@{
-  /// Load the SH coefficients beyond the DC term. Default: off (SH holds 3 values per Gaussian).
+  /// Load the SH coefficients beyond the DC term. Default: on, as `vis4gs analyze` reads a
+  /// snapshot, so that the blur and needle scores downstream (which render the loss maps with
+  /// every SH degree) are the application's; off keeps 3 SH values per Gaussian.
   vtkSetMacro(LoadSHRest, bool);
   vtkGetMacro(LoadSHRest, bool);
   vtkBooleanMacro(LoadSHRest, bool);
@@ -153,7 +155,7 @@ protected:
 
   char* FileName = nullptr;
   int Iteration = -1;
-  bool LoadSHRest = false;
+  bool LoadSHRest = true;
   bool LoadScales = true;
   bool LoadRotations = true;
   bool LoadOpacities = true;

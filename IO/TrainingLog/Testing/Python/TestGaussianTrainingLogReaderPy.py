@@ -61,6 +61,8 @@ assert list(steps) == [300.0, 600.0], steps
 lacks = [reader.GetLack(i) for i in range(reader.GetNumberOfLacks())]
 assert any("/cameras" in l for l in lacks) and any("/metrics/test" in l for l in lacks), lacks
 
+assert reader.GetLoadSHRest()  # the default: every SH degree, as vis4gs analyze reads
+reader.LoadSHRestOff()
 reader.UpdateTimeStep(400)
 g = reader.GetGaussiansOutput()
 assert reader.GetLoadedIteration() == 300

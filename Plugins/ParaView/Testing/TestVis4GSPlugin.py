@@ -1,0 +1,120 @@
+"""pvbatch tests of the Vis4GS ParaView plugin.
+
+  pvbatch TestVis4GSPlugin.py demo PLUGIN LOG DEMO_OUTPUT SCREENSHOT
+      loads the plugin, reads the embedded demo log (its snapshot iterations are the time
+      steps), computes the scores at the last one and checks them against `vis4gs demo`'s
+      scores.csv (the same numbers in the same format, Gaussian by Gaussian), builds the
+      genealogy tree and checks the floater's ancestors (its parents in the tree, and the
+      Vis4GS Lineage table) against root-cause.txt, and saves a screenshot of the Gaussians
+      colored by their Blur score in ParaView's Point Gaussian representation.
+  pvbatch TestVis4GSPlugin.py folder PLUGIN SCORES_CSV PLY CAMERAS
+      a 3DGS PLY with a COLMAP folder: the scores (view stride 8, loss resolution 4) against
+      the scores.csv of `vis4gs analyze` with the same options."""
+import csv
+import re
+import sys
+
+from paraview import servermanager
+from paraview.simple import (ColorBy, GetActiveViewOrCreate, LoadPlugin, OutputPort, Render,
+                             SaveScreenshot, Show)
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+
+
+def same_as_csv(scores, path):
+    """The filter's arrays printed as the application prints scores.csv, row for row; returns
+    the number of rows and the column names."""
+    data = servermanager.Fetch(scores)
+    pd = data.GetPointData()
+    ids = vtk_to_numpy(pd.GetArray("GaussianId"))
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    header, app = rows[0], rows[1:]
+    check(len(app) == data.GetNumberOfPoints(), f"{data.GetNumberOfPoints()} Gaussians, "
+          f"{path} {len(app)}")
+    columns = {name: vtk_to_numpy(pd.GetArray(name)) for name in header[1:]}
+    differ = 0
+    for r, row in enumerate(app[:data.GetNumberOfPoints()]):
+        mine = [str(int(ids[r]))] + [
+            str(int(columns[name][r])) if name == "NoVisibleView" else "%.9g" % columns[name][r]
+            for name in header[1:]]
+        differ += mine != row
+    check(differ == 0, f"{differ} Gaussians' scores differ from {path}")
+    return len(app), header[1:]
+
+
+mode = sys.argv[1]
+LoadPlugin(sys.argv[2], remote=False, ns=globals())
+if mode == "folder":
+    app_csv, ply, colmap = sys.argv[3:6]
+    scene = Vis4GSGaussianScene(FileName=ply)  # noqa: F821 (defined by the plugin)
+    cameras = Vis4GSCameras(FileName=colmap)  # noqa: F821
+    scores = Vis4GSArtifactScores(Input=scene, Cameras=cameras, ViewStride=8,  # noqa: F821
+                                  LossResolution=4)
+    count, names = same_as_csv(scores, app_csv)
+    if failures:
+        print("FAILED:", *failures, sep="\n  ")
+        sys.exit(1)
+    print(f"ParaView plugin: PLY + COLMAP folder, {count} Gaussians' {', '.join(names)} = "
+          "vis4gs analyze's scores.csv")
+    sys.exit(0)
+
+log, demo_output, screenshot = sys.argv[3:6]
+reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
+reader.UpdatePipelineInformation()
+times = list(reader.TimestepValues)
+check(len(times) > 1 and times == sorted(times), f"snapshot iterations as time steps: {times}")
+
+scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0), Cameras=OutputPort(reader, 1))  # noqa
+scores.UpdatePipeline(time=times[-1])
+count, names = same_as_csv(scores, f"{demo_output}/scores.csv")
+
+tree_filter = Vis4GSGenealogyTree(Input=OutputPort(reader, 3))  # noqa: F821
+tree = servermanager.Fetch(tree_filter)
+with open(f"{demo_output}/root-cause.txt") as f:
+    lines = f.read().split("\n")
+floater = int(re.match(r"Root-cause trace of Gaussian (\d+)", lines[0]).group(1))
+expected = [int(line.split()[0]) for line in lines[2:] if line.strip()]
+pedigree = tree.GetVertexData().GetPedigreeIds()
+vertex = {pedigree.GetValue(v): v for v in range(tree.GetNumberOfVertices())}
+chain, v = [], vertex.get(floater)
+while v is not None and v != tree.GetRoot():
+    chain.append(pedigree.GetValue(v))
+    v = tree.GetParent(v)
+check(chain == expected, f"the floater's ancestry {chain} differs from root-cause.txt {expected}")
+lineage = Vis4GSLineage(Input=tree_filter, GaussianId=floater)  # noqa: F821
+trace = servermanager.Fetch(lineage)
+traced = [trace.GetValueByName(r, "GaussianId").ToInt() for r in range(trace.GetNumberOfRows())]
+check(traced == expected, f"Vis4GS Lineage of {floater} gives {traced}, root-cause.txt {expected}")
+
+view = GetActiveViewOrCreate("RenderView")
+view.ViewSize = [640, 480]
+view.ViewTime = times[-1]
+display = Show(scores, view)
+display.SetRepresentationType("Point Gaussian")
+display.GaussianRadius = 0.02
+ColorBy(display, ("POINTS", "BlurScore"))
+display.RescaleTransferFunctionToDataRange(True)
+view.ResetCamera()
+Render(view)
+SaveScreenshot(screenshot, view, ImageResolution=[640, 480])
+png = vtkPNGReader()
+png.SetFileName(screenshot)
+png.Update()
+pixels = vtk_to_numpy(png.GetOutput().GetPointData().GetScalars())
+check(png.GetOutput().GetDimensions()[:2] == (640, 480) and pixels.std() > 1,
+      "the screenshot is 640x480 and not blank")
+
+if failures:
+    print("FAILED:", *failures, sep="\n  ")
+    sys.exit(1)
+print(f"ParaView plugin: {len(times)} time steps; {count} Gaussians' {', '.join(names)} "
+      f"= vis4gs demo's scores.csv; ancestry and Vis4GS Lineage of {floater} = root-cause.txt; "
+      f"{screenshot}")

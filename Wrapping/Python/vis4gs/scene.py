@@ -1,0 +1,462 @@
+"""A Python way into Vis4GS, thin over the VTK classes.
+
+    import vis4gs
+    scene = vis4gs.open("Data/Demo/vis4gs-demo.h5", iteration=600)
+    scores = scene.scores(["coverage", "blur", "needle"])   # numpy arrays by short name
+    for step in scene.lineage(6993): print(step)            # back to its root
+    scene.select(mask=scores["coverage"] < 0.1).save("floaters.ply")
+    scene.render("view.png", camera=0)
+
+Each call is one VTK pipeline (the readers, vtkGaussianArtifactScoreFilter,
+vtkGaussianGenealogyTreeFilter / Lineage, vtkGaussianRasterizer, vtkGaussianPLYWriter)
+set up the way the `vis4gs` program sets it up, so the arrays are the program's, bit for bit.
+The VTK objects stay reachable (`scene.polydata`, `scene.cameras`, `scene.tree`) for anything
+this layer does not cover.
+"""
+import collections
+import math
+import os
+
+import numpy as np
+from vtkmodules.numpy_interface import dataset_adapter as dsa
+from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdTypeArray, vtkObject
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData, vtkTable
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.util.numpy_support import numpy_to_vtk
+
+from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter
+from .vis4gsFiltersGenealogy import vtkGaussianGenealogyLineage, vtkGaussianGenealogyTreeFilter
+from .vis4gsFiltersRaster import vtkGaussianRasterizer
+from .vis4gsIOScene import vtkGaussianCameraReader, vtkGaussianPLYReader, vtkGaussianPLYWriter
+from .vis4gsIOTrainingLog import vtkGaussianTrainingLogReader
+
+# Short score names (as `vis4gs analyze --scores` spells them) and their arrays, in the order
+# the program writes them.
+SCORES = collections.OrderedDict([("coverage", "ViewCoverage"), ("blur", "BlurScore"),
+                                  ("needle", "NeedleScore"), ("shape", "NeedleShape")])
+# vtkGaussianArtifactScoreFilter's parameters, as keywords of Scene.scores().
+_SCORE_PARAMETERS = {"loss_resolution": "LossResolution",
+                     "coverage_resolution": "CoverageResolution",
+                     "view_stride": "ViewStride", "footprint": "FootprintMode",
+                     "float_accumulation": "FloatAccumulation",
+                     "occlusion_threshold": "OcclusionThreshold", "lam": "Lambda"}
+_BIRTH_KINDS = {0: "root", 1: "clone", 2: "split", 3: "clone-split"}
+
+Ancestor = collections.namedtuple(
+    "Ancestor", "gaussian_id born kind died snapshot value",
+    defaults=(None,))
+Ancestor.__doc__ = ("One step of a root-cause trace: the Gaussian, its birth iteration and "
+                    "kind, its death iteration (None: alive), the snapshot nearest its birth "
+                    "that holds it (None: none) and its value there (NaN without one).")
+
+
+class Vis4GSError(RuntimeError):
+    """A file that cannot be read or a request that cannot be answered, naming which."""
+
+
+def _find_cameras(scene_path):
+    """The program's default: cameras.json beside the scene, or two folders up (the trainer's
+    model folder)."""
+    folder = os.path.dirname(os.path.abspath(scene_path))
+    for candidate in (folder, os.path.dirname(os.path.dirname(folder))):
+        path = os.path.join(candidate, "cameras.json")
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def open(path, iteration=None, cameras=None, images=None, id_property=None):  # noqa: A001
+    """A Scene from a 3DGS .ply / .splat or a training log (.h5).
+
+    iteration: for a log, the snapshot nearest to it (default: the last one).
+    cameras: cameras.json, a COLMAP dataset folder or a transforms*.json; a log's own cameras
+    and, for a scene file, cameras.json beside it or two folders up, by default.
+    images: a folder of training images matched to the cameras by name (default: the
+    cameras' own, or the images stored in the log).
+    id_property: for a .ply, the integer property holding the GaussianIds (Scene.save()
+    writes them as "id"); default: the row numbers, as `vis4gs analyze` numbers them."""
+    if not os.path.exists(path):
+        raise Vis4GSError(f"{path}: no such file")
+    return Scene(path, iteration, cameras, images, id_property)
+
+
+class Scene:
+    """The Gaussians of one scene file or one snapshot of a training log, with its cameras."""
+
+    def __init__(self, path, iteration=None, cameras=None, images=None, id_property=None):
+        self.path = path
+        self.images = images
+        self._cameras_path = cameras
+        self._tree = None
+        self.warnings = []
+        self.is_log = os.path.splitext(path)[1].lower() in (".h5", ".hdf5")
+        if self.is_log:
+            self._reader = vtkGaussianTrainingLogReader()
+            self._reader.SetFileName(path)
+            self._reader.UpdateInformation()
+            self.iterations = [self._reader.GetSnapshotIteration(i)
+                               for i in range(self._reader.GetNumberOfSnapshots())]
+            if not self.iterations:
+                raise Vis4GSError(f"{path}: the training log holds no snapshot")
+            self._reader.SetIteration(-1 if iteration is None else int(iteration))
+            self._reader.Update(0)
+            if self._reader.GetLoadedIteration() < 0:
+                raise Vis4GSError(f"{path}: no snapshot could be read")
+            self.iteration = self._reader.GetLoadedIteration()
+            source = self._reader.GetOutputDataObject(0)
+        else:
+            if iteration is not None:
+                raise Vis4GSError(f"{path}: iteration= is for training logs only")
+            self._reader = vtkGaussianPLYReader()
+            self._reader.SetFileName(path)
+            if id_property:
+                self._reader.SetIdProperty(id_property)
+            self._reader.Update()
+            source = self._reader.GetOutput()
+            if source is None or source.GetNumberOfPoints() == 0:
+                raise Vis4GSError(f"{path}: no Gaussians could be read")
+            self.iterations = []
+            self.iteration = None
+        self.polydata = vtkPolyData()
+        self.polydata.ShallowCopy(source)
+        self._cameras = None
+
+    # ---------------------------------------------------------------- data
+    def __len__(self):
+        return self.polydata.GetNumberOfPoints()
+
+    def __repr__(self):
+        at = f", iteration {self.iteration}" if self.iteration is not None else ""
+        return f"<vis4gs.Scene {self.path}{at}: {len(self)} Gaussians>"
+
+    @property
+    def arrays(self):
+        """Names of the per-Gaussian arrays."""
+        pd = self.polydata.GetPointData()
+        return [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
+
+    def __getitem__(self, name):
+        """A per-Gaussian array as numpy (a view of the VTK array; copy it to keep it)."""
+        if self.polydata.GetPointData().GetAbstractArray(name) is None:
+            raise KeyError(f"{name}: no such array (there are {', '.join(self.arrays)})")
+        return np.asarray(dsa.WrapDataObject(self.polydata).PointData[name])
+
+    @property
+    def ids(self):
+        """GaussianId of each Gaussian (stable across a log's snapshots)."""
+        return self["GaussianId"]
+
+    @property
+    def positions(self):
+        return np.asarray(dsa.WrapDataObject(self.polydata).Points)
+
+    @property
+    def cameras(self):
+        """The camera table (vtkTable, one row per view), or None when there are none."""
+        if self._cameras is None:
+            table = None
+            if self._cameras_path:
+                reader = vtkGaussianCameraReader()
+                reader.SetFileName(self._cameras_path)
+                # Images are optional here: the scores that need them say so.
+                reader.SetRequireImages(False)
+                reader.Update()
+                table = reader.GetOutput()
+            elif self.is_log:
+                self._reader.Update(1)
+                table = self._reader.GetOutputDataObject(1)
+            else:
+                found = _find_cameras(self.path)
+                if found:
+                    self._cameras_path = found
+                    return self.cameras
+            if table is not None and table.GetNumberOfRows() > 0:
+                self._cameras = vtkTable()
+                self._cameras.ShallowCopy(table)
+        return self._cameras
+
+    @property
+    def camera_names(self):
+        table = self.cameras
+        if table is None:
+            return []
+        names = table.GetColumnByName("Name")
+        return [names.GetValue(r) for r in range(table.GetNumberOfRows())]
+
+    def at(self, iteration):
+        """The same log at the snapshot nearest to `iteration`."""
+        if not self.is_log:
+            raise Vis4GSError(f"{self.path}: not a training log, it has no iterations")
+        return Scene(self.path, iteration, self._cameras_path, self.images)
+
+    # ---------------------------------------------------------------- scores
+    def scores(self, which=("coverage", "blur", "needle", "shape"), **parameters):
+        """Computes only the scores named (coverage, blur, needle, shape) with
+        vtkGaussianArtifactScoreFilter; keywords set its parameters (loss_resolution,
+        coverage_resolution, view_stride, footprint 0|1 or "alpha"|"ellipse",
+        float_accumulation, occlusion_threshold, lam). The arrays (and NoVisibleView) are added
+        to this scene; returns {short name: numpy array} in the order asked. The filter's
+        warnings (Gaussians no view sees, scores that could not be computed) are in
+        scene.warnings."""
+        if isinstance(which, str):
+            which = [which]
+        unknown = [w for w in which if w not in SCORES]
+        if unknown:
+            raise Vis4GSError(f"unknown score {', '.join(unknown)} "
+                              f"(expected {', '.join(SCORES)})")
+        score_filter = vtkGaussianArtifactScoreFilter()
+        score_filter.SetInputData(self.polydata)
+        for short, array in SCORES.items():
+            getattr(score_filter, f"SetCompute{array}")(short in which)
+        if any(w != "shape" for w in which):
+            if self.cameras is None:
+                raise Vis4GSError(f"{self.path}: coverage, blur and needle need cameras; "
+                                  "give cameras=cameras.json or a COLMAP folder")
+            score_filter.SetCamerasData(self.cameras)
+        if self.images:
+            score_filter.SetImageDirectory(self.images)
+        for key, value in parameters.items():
+            if key not in _SCORE_PARAMETERS:
+                raise Vis4GSError(f"unknown score parameter {key} "
+                                  f"(expected {', '.join(_SCORE_PARAMETERS)})")
+            if key == "footprint" and isinstance(value, str):
+                if value not in ("alpha", "ellipse"):
+                    raise Vis4GSError(f"footprint must be alpha or ellipse, not {value!r}")
+                value = {"alpha": 0, "ellipse": 1}[value]
+            getattr(score_filter, "Set" + _SCORE_PARAMETERS[key])(value)
+        # The filter's warnings come back in scene.warnings (its ScoreWarnings field data);
+        # the console need not repeat them.
+        shown = vtkObject.GetGlobalWarningDisplay()
+        vtkObject.GlobalWarningDisplayOff()
+        try:
+            score_filter.Update()
+        finally:
+            vtkObject.SetGlobalWarningDisplay(shown)
+        out = score_filter.GetOutput()
+        notes = out.GetFieldData().GetAbstractArray("ScoreWarnings")
+        self.warnings = [] if notes is None else [notes.GetValue(i)
+                                                  for i in range(notes.GetNumberOfValues())]
+        missing = [SCORES[w] for w in which if out.GetPointData().GetArray(SCORES[w]) is None]
+        if missing:
+            raise Vis4GSError(f"{self.path}: computing {', '.join(missing)} failed "
+                              "(see the messages above)")
+        self.polydata = vtkPolyData()
+        self.polydata.ShallowCopy(out)
+        return collections.OrderedDict((w, self[SCORES[w]]) for w in which)
+
+    # ---------------------------------------------------------------- genealogy
+    @property
+    def tree(self):
+        """The densification tree of a training log (vtkTree, one vertex per Gaussian)."""
+        if not self.is_log:
+            raise Vis4GSError(f"{self.path}: not a training log, it has no genealogy")
+        if self._tree is None:
+            tree_filter = vtkGaussianGenealogyTreeFilter()
+            tree_filter.SetInputConnection(self._reader.GetOutputPort(3))
+            tree_filter.Update()
+            if tree_filter.GetOutput().GetNumberOfVertices() == 0:
+                raise Vis4GSError(f"{self.path}: no genealogy could be built")
+            self._tree = tree_filter.GetOutput()
+        return self._tree
+
+    def _query(self, method, ids):
+        lineage = vtkGaussianGenealogyLineage()
+        lineage.SetTree(self.tree)
+        result = vtkIdTypeArray()
+        if not getattr(lineage, method)(_id_array(ids), result):
+            raise Vis4GSError(f"{self.path}: the genealogy query failed")
+        return np.array([result.GetValue(i) for i in range(result.GetNumberOfValues())],
+                        dtype=np.int64)
+
+    def ancestors(self, ids):
+        """GaussianIds of every ancestor of the given Gaussians."""
+        return self._query("GetAncestors", ids)
+
+    def descendants(self, ids):
+        """GaussianIds of every descendant of the given Gaussians."""
+        return self._query("GetDescendants", ids)
+
+    def lineage(self, gaussian_id, score="coverage", **parameters):
+        """Root-cause trace of one Gaussian: a list of Ancestor from it up to its root, each
+        with `score` at the snapshot nearest its birth (computed on every snapshot of the log,
+        with the keyword parameters of scores(); score=None leaves the values out)."""
+        lineage = vtkGaussianGenealogyLineage()
+        lineage.SetTree(self.tree)
+        if score is not None:
+            for iteration in self.iterations:
+                snapshot = self if iteration == self.iteration else self.at(iteration)
+                values = snapshot.scores([score], **parameters)[score]
+                lineage.AddSnapshotValues(iteration, _id_array(snapshot.ids),
+                                          numpy_to_vtk(values, deep=1))
+        trace = vtkTable()
+        if not lineage.TraceToRoot(int(gaussian_id), trace):
+            raise Vis4GSError(f"{self.path}: Gaussian {gaussian_id} is not in the genealogy")
+        col = {trace.GetColumnName(c): trace.GetColumn(c)
+               for c in range(trace.GetNumberOfColumns())}
+        steps = []
+        for r in range(trace.GetNumberOfRows()):
+            death = col["DeathIteration"].GetValue(r)
+            snapshot = col["SnapshotIteration"].GetValue(r)
+            steps.append(Ancestor(col["GaussianId"].GetValue(r), col["BirthIteration"].GetValue(r),
+                                  _BIRTH_KINDS[col["BirthKind"].GetValue(r)],
+                                  None if death < 0 else death,
+                                  None if snapshot < 0 else snapshot,
+                                  float(col["Value"].GetValue(r))))
+        return steps
+
+    # ---------------------------------------------------------------- selection
+    def select(self, ids=None, mask=None):
+        """A new Scene holding the Gaussians whose GaussianId is in `ids`, or where the boolean
+        `mask` (one value per Gaussian) is true; every array comes along."""
+        if (ids is None) == (mask is None):
+            raise Vis4GSError("select() takes ids= or mask=, one of them")
+        if mask is not None:
+            mask = np.asarray(mask, dtype=bool)
+            if mask.shape != (len(self),):
+                raise Vis4GSError(f"mask has {mask.shape} values, the scene {len(self)} Gaussians")
+            rows = np.flatnonzero(mask)
+        else:
+            rows = np.flatnonzero(np.isin(self.ids, np.asarray(ids, dtype=np.int64)))
+        subset = Scene.__new__(Scene)
+        subset.__dict__.update(self.__dict__)
+        subset.polydata = _take(self.polydata, rows)
+        return subset
+
+    # ---------------------------------------------------------------- export
+    def save(self, path, ascii=False):
+        """Writes a 3DGS PLY (vtkGaussianPLYWriter: the model, the GaussianIds as the integer
+        property "id", every other array, scores included, as extra properties)."""
+        writer = vtkGaussianPLYWriter()
+        writer.SetInputData(self.polydata)
+        writer.SetFileName(path)
+        writer.WriteIdsOn()
+        if ascii:
+            writer.SetFileFormatToASCII()
+        if not writer.Write():
+            raise Vis4GSError(f"{path}: could not be written")
+        return path
+
+    def to_csv(self, path, columns=None):
+        """Writes GaussianId and the given one-component arrays (default: the scores and
+        NoVisibleView, as `vis4gs analyze` writes scores.csv, in the same number format)."""
+        pd = self.polydata.GetPointData()
+        if columns is None:
+            columns = [a for a in SCORES.values() if pd.GetArray(a) is not None]
+            if pd.GetArray("NoVisibleView") is not None:
+                columns.append("NoVisibleView")
+        data = [self[c] for c in columns]
+        for name, values in zip(columns, data):
+            if values.ndim != 1:
+                raise Vis4GSError(f"{name}: only one-component arrays go to a CSV column")
+        formats = [_format_int if np.issubdtype(v.dtype, np.integer) else _format_double
+                   for v in data]
+        temporary = path + ".part"
+        with builtins_open(temporary, "w") as f:
+            f.write(",".join(["GaussianId"] + list(columns)) + "\n")
+            for row, gid in enumerate(self.ids):
+                f.write(",".join([str(int(gid))] + [fmt(v[row]) for fmt, v in zip(formats, data)])
+                        + "\n")
+        os.replace(temporary, path)
+        return path
+
+    # ---------------------------------------------------------------- rendering
+    def render(self, path=None, camera=0, size=None, background=(0.0, 0.0, 0.0), sh_degree=-1,
+               precision="float"):
+        """Renders one camera (index or name) with the exact CPU rasteriser
+        (vtkGaussianRasterizer, off-screen, no display needed), optionally at size=(W, H).
+        Returns the image as an [H, W, 3] float array (top row first); with `path`, writes it
+        as an 8-bit PNG the way `vis4gs render` does."""
+        if self.cameras is None:
+            raise Vis4GSError(f"{self.path}: rendering needs cameras")
+        raster = vtkGaussianRasterizer()
+        raster.SetInputData(self.polydata)
+        raster.SetCamerasData(self.cameras)
+        if isinstance(camera, str):
+            if camera not in self.camera_names:
+                raise Vis4GSError(f"{self.path}: no camera named {camera}")
+            raster.SetCameraName(camera)
+        else:
+            if not 0 <= camera < self.cameras.GetNumberOfRows():
+                raise Vis4GSError(f"{self.path}: no camera {camera} "
+                                  f"(there are {self.cameras.GetNumberOfRows()})")
+            raster.SetCameraIndex(camera)
+        if size is not None:
+            raster.SetWidth(int(size[0]))
+            raster.SetHeight(int(size[1]))
+        raster.SetBackground(*background)
+        raster.SetSHDegree(sh_degree)
+        raster.SetPrecision({"float": raster.FLOAT, "double": raster.DOUBLE}[precision])
+        raster.Update()
+        image = raster.GetOutput()
+        rgb = image.GetPointData().GetArray("RGB") if image else None
+        if rgb is None:
+            raise Vis4GSError(f"{self.path}: rendering failed (see the messages above)")
+        width, height, _ = image.GetDimensions()
+        pixels = np.asarray(dsa.vtkDataArrayToVTKArray(rgb)).reshape(height, width, 3)[::-1]
+        if path is not None:
+            _write_png(path, pixels)
+        return pixels
+
+
+# The builtin, which vis4gs.open shadows in this module.
+builtins_open = __builtins__["open"] if isinstance(__builtins__, dict) else __builtins__.open
+
+
+def _format_double(value):
+    """C++'s `ostream << setprecision(9) << double`, as scores.csv is written."""
+    if math.isnan(value):
+        return "-nan" if math.copysign(1.0, value) < 0 else "nan"
+    if math.isinf(value):
+        return "inf" if value > 0 else "-inf"
+    return "%.9g" % value
+
+
+def _format_int(value):
+    return str(int(value))
+
+
+def _id_array(ids):
+    array = numpy_to_vtk(np.ascontiguousarray(np.atleast_1d(ids), dtype=np.int64), deep=1,
+                         array_type=VTK_ID_TYPE)
+    return array
+
+
+def _take(polydata, rows):
+    """The points `rows` of a Gaussian scene with every point array, as a new vtkPolyData."""
+    wrapped = dsa.WrapDataObject(polydata)
+    out = vtkPolyData()
+    out_wrapped = dsa.WrapDataObject(out)
+    out_wrapped.Points = np.ascontiguousarray(np.asarray(wrapped.Points)[rows])
+    pd = polydata.GetPointData()
+    for i in range(pd.GetNumberOfArrays()):
+        name = pd.GetArrayName(i)
+        values = np.ascontiguousarray(np.asarray(wrapped.PointData[name])[rows])
+        array = numpy_to_vtk(values, deep=1, array_type=pd.GetArray(i).GetDataType())
+        array.SetName(name)
+        out.GetPointData().AddArray(array)
+    if pd.GetPedigreeIds() is not None:
+        out.GetPointData().SetPedigreeIds(out.GetPointData().GetAbstractArray(
+            pd.GetPedigreeIds().GetName()))
+    out.GetFieldData().ShallowCopy(polydata.GetFieldData())
+    return out
+
+
+def _write_png(path, pixels):
+    """8-bit PNG of a float image, each channel clamped to [0, 1] and rounded half away from
+    zero (std::lround), non-finite values black: what `vis4gs render` writes."""
+    v = np.where(np.isfinite(pixels), np.clip(pixels, 0.0, 1.0), 0.0) * 255.0
+    floor = np.floor(v)
+    rounded = np.where(v - floor >= 0.5, floor + 1, floor).astype(np.uint8)
+    height, width, _ = rounded.shape
+    image = dsa.WrapDataObject(vtkImageData())
+    image.VTKObject.SetDimensions(width, height, 1)
+    image.PointData.append(np.ascontiguousarray(rounded[::-1]).reshape(-1, 3), "RGB")
+    image.VTKObject.GetPointData().SetActiveScalars("RGB")
+    temporary = path + ".part.png"
+    writer = vtkPNGWriter()
+    writer.SetFileName(temporary)
+    writer.SetInputData(image.VTKObject)
+    writer.Write()
+    if writer.GetErrorCode():
+        raise Vis4GSError(f"{path}: could not be written")
+    os.replace(temporary, path)
