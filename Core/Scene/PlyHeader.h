@@ -52,6 +52,15 @@ struct PlyHeader
 /// std::runtime_error starting with @p name on anything malformed.
 PlyHeader ParsePlyHeader(const unsigned char* data, std::size_t size, const std::string& name);
 
+/// The PLY header's name of @p t ("float", "uchar", ...).
+const char* PlyScalarTypeName(ScalarType t);
+
+/// True unless the float32 bit pattern @p bits is an infinity or a NaN.
+inline bool FloatBitsFinite(std::uint32_t bits)
+{
+  return (bits & 0x7f800000u) != 0x7f800000u;
+}
+
 } // namespace detail
 } // namespace vis4gs
 

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The format dispatcher: every scene format Vis4GS reads, recognised by content first (a new
+// format adds its test here), then by extension.
+#include "GaussianIO.h"
+#include "PlyHeader.h"
+#include "SceneFile.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace vis4gs
+{
+
+//------------------------------------------------------------------------------
+GaussianCloud ReadGaussianScene(const std::string& path,
+  const GaussianReadOptions& options,
+  GaussianReadReport* report)
+{
+  if (IsSpzFile(path))
+  {
+    return ReadSpz(path, options, report);
+  }
+  if (detail::LowerExtension(path) == ".splat")
+  {
+    return ReadSplat(path, options, report);
+  }
+  if (IsSog(path))
+  {
+    return ReadSog(path, options, report);
+  }
+  if (detail::IsRegularFile(path))
+  {
+    detail::InputFile file(path);
+    std::vector<unsigned char> head(
+      static_cast<std::size_t>(std::min<std::uint64_t>(file.Size(), detail::MaxPlyHeaderBytes)));
+    file.ReadAt(0, head.data(), head.size());
+    if (IsCompressedPly(head.data(), head.size()))
+    {
+      return ReadCompressedPly(path, options, report);
+    }
+  }
+  return ReadGaussianPly(path, options, report);
+}
+
+} // namespace vis4gs
