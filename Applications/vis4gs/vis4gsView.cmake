@@ -8,6 +8,7 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     vis4gsViewCommand.cxx
     Vis4GSMainWindow.cxx
     Vis4GSMainWindow.h
+    Vis4GSCleanupPanel.cxx
     Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
   target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
