@@ -150,7 +150,8 @@ QTableWidget* MakeTable(QWidget* parent)
 
 struct Vis4GSCleanupPanel::Internals
 {
-  vtkGaussianSelectionHub* Hub = nullptr;
+  // Held: the panel (a child widget) is destroyed after the main window's members.
+  vtkSmartPointer<vtkGaussianSelectionHub> Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   unsigned long HubObserver = 0;
   vtkSmartPointer<vtkPolyData> Scene;
