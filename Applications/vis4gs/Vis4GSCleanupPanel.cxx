@@ -176,6 +176,7 @@ struct Vis4GSCleanupPanel::Internals
   QLabel* Images[3] = { nullptr, nullptr, nullptr };
   QLabel* ImageCaption = nullptr;
   QSplitter* Splitter = nullptr;
+  vtkIdType MeasuredChanges = -1; // the hub's change count of the selection measured
   QThread* Worker = nullptr;
   bool LastFailed = false;
   // The "before" figures of BaselineScene in BaselineCameras, reused (RemovalEffect.h).
@@ -392,6 +393,10 @@ void Vis4GSCleanupPanel::SetScene(vtkPolyData* scene, vtkTable* cameras)
       ? "Render every training and test view with and without the selection and compare "
         "with the images: PSNR, SSIM, L1 before and after"
       : "needs cameras with training images");
+  if (newScene && d->Shown)
+  {
+    d->MeasureLabel->setText("The table is of another snapshot: measure again.");
+  }
   if (newScene && !d->AppliedRule.isEmpty() && d->Reapply->isChecked())
   {
     d->ReapplyPending = true;
@@ -569,8 +574,12 @@ bool Vis4GSCleanupPanel::LoadRule(const QString& path)
 void Vis4GSCleanupPanel::OnSelectionChanged()
 {
   const vtkIdType n = d->Hub->GetNumberOfSelectedIds();
-  d->SelectionLabel->setText(
-    n == 0 ? QString("nothing selected") : QString("%1 Gaussians selected").arg(n));
+  QString text = n == 0 ? QString("nothing selected") : QString("%1 Gaussians selected").arg(n);
+  if (d->Shown && d->Hub->GetNumberOfChanges() != d->MeasuredChanges)
+  {
+    text += " (the table is of an earlier selection)";
+  }
+  d->SelectionLabel->setText(text);
 }
 
 //------------------------------------------------------------------------------
@@ -614,6 +623,7 @@ void Vis4GSCleanupPanel::MeasureRemoval()
     job->Baseline = d->Baseline;
   }
   d->Running = job;
+  d->MeasuredChanges = d->Hub->GetNumberOfChanges();
   d->LastFailed = false;
   d->Measure->setEnabled(false);
   const QString what = QString("measuring the removal of %1 Gaussians").arg(removed);
@@ -739,6 +749,7 @@ void Vis4GSCleanupPanel::OnMeasured()
     }
   }
   d->Views->blockSignals(false);
+  this->OnSelectionChanged();
   if (d->Progress)
   {
     d->Progress(1, summary, true);
