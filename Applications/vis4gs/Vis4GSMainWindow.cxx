@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSMainWindow.h"
 
+#include "Vis4GSCleanupPanel.h"
 #include "Vis4GSDocument.h"
 
 #include "GaussianIO.h"
@@ -158,6 +159,9 @@ struct Vis4GSMainWindow::Internals
   QWidget* Welcome = nullptr;
   std::string SceneCameras;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
+  // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
+  Vis4GSCleanupPanel* Cleanup = nullptr;
+  QDockWidget* CleanupDock = nullptr;
   vtkNew<vtkCallbackCommand> HubCommand;
   QThread* Worker = nullptr;
   QString SelfTestDir;
@@ -569,6 +573,28 @@ void Vis4GSMainWindow::BuildUi()
   panelScroll->setWidgetResizable(true);
   panelScroll->setFrameShape(QFrame::NoFrame);
   makeDock(2, "C. Log and control panel", panelScroll, Qt::RightDockWidgetArea);
+  d->Cleanup = new Vis4GSCleanupPanel(d->Hub, this);
+  d->Cleanup->SetDeleteAction([this] { this->ExportPly(true); });
+  d->Cleanup->SetProgress(
+    [this](double fraction, const QString& message, bool done)
+    {
+      d->Progress->setVisible(!done);
+      if (done)
+      {
+        this->statusBar()->showMessage(message, 10000);
+        return;
+      }
+      this->OnProgress(fraction, message);
+    });
+  d->CleanupDock = new QDockWidget("Clean-up", this);
+  d->CleanupDock->setObjectName("cleanup");
+  auto* cleanupScroll = new QScrollArea(this);
+  cleanupScroll->setWidget(d->Cleanup);
+  cleanupScroll->setWidgetResizable(true);
+  cleanupScroll->setFrameShape(QFrame::NoFrame);
+  d->CleanupDock->setWidget(cleanupScroll);
+  this->addDockWidget(Qt::RightDockWidgetArea, d->CleanupDock);
+  d->CleanupDock->hide();
 
   d->Progress = new QProgressBar(this);
   d->Progress->setRange(0, 100);
@@ -625,6 +651,8 @@ void Vis4GSMainWindow::BuildUi()
     this,
     [this] { this->ExportPly(true); },
     QKeySequence::Delete);
+  select->addAction(
+    "Guided &clean-up...", this, [this] { this->ShowCleanup(); }, QKeySequence("Ctrl+K"));
   select->addAction(
     "Show lineage in the &tree",
     this,
@@ -768,6 +796,23 @@ void Vis4GSMainWindow::LayoutForDocument()
   };
   sizes();
   QTimer::singleShot(0, this, sizes);
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::ShowCleanup()
+{
+  // Under the scene with the timeline when there is one (room for the wide table), else with
+  // panel C.
+  QDockWidget* timeline = d->Docks[3];
+  const bool under = timeline->isVisible();
+  this->tabifyDockWidget(under ? timeline : d->Docks[2], d->CleanupDock);
+  d->CleanupDock->show();
+  d->CleanupDock->raise();
+  if (under)
+  {
+    this->resizeDocks({ d->CleanupDock }, { this->height() * 55 / 100 }, Qt::Vertical);
+    this->resizeDocks({ d->CleanupDock }, { this->width() * 75 / 100 }, Qt::Horizontal);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -995,6 +1040,7 @@ void Vis4GSMainWindow::UpdateScene(bool render)
   stage("selector");
   d->Frustums->SetInputData(1, scene);
   d->Histogram->SetInputData(scene);
+  d->Cleanup->SetScene(scene, d->ScoreCameras);
   const QString overlay = d->Overlay->currentText();
   const QString hist = d->HistogramArray->currentText();
   d->Overlay->blockSignals(true);
@@ -2322,6 +2368,26 @@ bool Vis4GSMainWindow::RunSelfTest()
   if (!d->BaselineDir.isEmpty())
   {
     ok = this->CompareBaselines() && ok;
+  }
+  // The clean-up panel on a log with training images (Vis4GSCleanupPanel::RunSelfTest).
+  if (d->Doc->CamerasWithImages > 0 && d->ScoreCameras)
+  {
+    const QSize size = this->size();
+    this->resize(1280, 800); // the user guide's screenshot
+    this->ShowCleanup();
+    QApplication::processEvents();
+    ok = d->Cleanup->RunSelfTest(d->SelfTestDir,
+           [&check](bool condition, const std::string& what)
+           {
+             check(condition, what);
+             return condition;
+           }) &&
+      ok;
+    d->Hub->RenderAll();
+    QApplication::processEvents();
+    this->SaveScreenshot("window", d->SelfTestDir + "/cleanup-window.png");
+    d->CleanupDock->hide();
+    this->resize(size);
   }
   // 4. The iteration slider loads another snapshot into the scene (and back). The pointers
   //    into the old scene above are not used after this.

@@ -84,6 +84,9 @@ public:
    */
   void ShowWelcome();
 
+  /// Shows the guided clean-up panel (issue 20, Vis4GSCleanupPanel) in front of its dock.
+  void ShowCleanup();
+
   /// Saves a screenshot of a dock ("scene", "tree", "panel", "timeline", "histogram") or of
   /// the whole window ("window"). Returns false when it could not be written.
   bool SaveScreenshot(const QString& which, const QString& path);

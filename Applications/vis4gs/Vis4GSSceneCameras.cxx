@@ -48,3 +48,14 @@ std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   }
   return vis4gs::ReadCamerasJson(path);
 }
+
+bool Vis4GSLoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
+{
+  std::error_code ec;
+  if (camera.ImagePath.empty() || !std::filesystem::is_regular_file(camera.ImagePath, ec))
+  {
+    return false;
+  }
+  image = vis4gs::LoadTrainingImage(camera);
+  return true;
+}

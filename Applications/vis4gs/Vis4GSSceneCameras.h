@@ -7,6 +7,9 @@
 #define Vis4GSSceneCameras_h
 
 #include "Camera.h"
+#include "ImageIO.h"
+
+#include <cstddef>
 
 #include <string>
 #include <vector>
@@ -21,5 +24,13 @@
  */
 std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   const std::string& cameras);
+
+/**
+ * The image of @p camera for a before/after measurement (RemovalEffect.h's
+ * TrainingImageProvider): false when the camera names no existing file; a file that cannot be
+ * read throws std::runtime_error naming it. Shared by `analyze --report` and the view's
+ * clean-up panel.
+ */
+bool Vis4GSLoadViewImage(std::size_t index, const vis4gs::Camera& camera, vis4gs::Image& image);
 
 #endif

@@ -316,18 +316,6 @@ std::vector<std::size_t> TopK(const std::vector<double>& v, std::size_t k)
 // ---------------------------------------------------------------------------------------
 // Clean-up by rule (--select, --delete, --report).
 
-// The training image of a camera, when it has one on disk (what the score filter reads).
-bool LoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
-{
-  std::error_code ec;
-  if (camera.ImagePath.empty() || !fs::is_regular_file(camera.ImagePath, ec))
-  {
-    return false;
-  }
-  image = vis4gs::LoadTrainingImage(camera);
-  return true;
-}
-
 // Per pixel, the mean absolute error over RGB after the deletion minus before: red where the
 // pixel got worse, green where it got better, full intensity at the view's largest change.
 vis4gs::Image ErrorChangeImage(const vis4gs::Image& before,
@@ -387,7 +375,7 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
   vis4gs::RemovalEffectOptions options;
   options.Threads = threads;
   const vis4gs::RemovalEffect effect =
-    vis4gs::MeasureRemovalEffect(cloud, selected, cameras, options, LoadViewImage);
+    vis4gs::MeasureRemovalEffect(cloud, selected, cameras, options, Vis4GSLoadViewImage);
   const double seconds = Since(t0);
   {
     std::ofstream csv(folder / "before-after.csv");
@@ -486,7 +474,7 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
     {
       const vis4gs::Camera& camera = cameras[v->CameraIndex];
       vis4gs::Image target;
-      LoadViewImage(v->CameraIndex, camera, target);
+      Vis4GSLoadViewImage(v->CameraIndex, camera, target);
       const vis4gs::Image before = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cloud, camera));
       const vis4gs::Image after = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cleaned, camera));
       html << "<div>";

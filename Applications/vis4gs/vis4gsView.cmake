@@ -8,6 +8,7 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     vis4gsViewCommand.cxx
     Vis4GSMainWindow.cxx
     Vis4GSMainWindow.h
+    Vis4GSCleanupPanel.cxx
     Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
   target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
@@ -77,6 +78,25 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewDemoShots
       FAIL_REGULAR_EXPRESSION "FAILED:")
   endforeach ()
+  # The clean-up panel (issue 20): the self-test above saves its rule, selection and
+  # before/after table; analyze re-reads the rule file (--select=@FILE) and must select the
+  # same Gaussians and compute the same table.
+  set(_vis4gs_cleanup_dir "${_vis4gs_view_dir}/cleanup-analyze")
+  vis4gs_add_app_test(ViewCleanupAnalyze ARGS analyze
+    "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --scores=coverage
+    "--select=@${_vis4gs_demo_shots}/cleanup-rule.txt" --report --overlay-views=0 --top=1
+    --threads=2 "--output=${_vis4gs_cleanup_dir}"
+    OUTPUT "rule 'views<=3' selects 110 of 5226 Gaussians"
+    FILES "${_vis4gs_cleanup_dir}/before-after.csv" "${_vis4gs_cleanup_dir}/selection.csv")
+  set_tests_properties(vis4gs-ViewCleanupAnalyze PROPERTIES LABELS "Application;GUI"
+    FIXTURES_REQUIRED vis4gsViewDemoShots FIXTURES_SETUP vis4gsViewCleanupAnalyze)
+  vis4gs_add_checked_test(vis4gs-ViewCleanupMatchesAnalyze LABELS "Application;GUI;Python"
+    OUTPUT "the view's clean-up table equals analyze's: 110 Gaussians, 37 rows"
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}"
+      "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CompareCleanupTable.py" "${_vis4gs_demo_shots}"
+      "${_vis4gs_cleanup_dir}")
+  set_tests_properties(vis4gs-ViewCleanupMatchesAnalyze PROPERTIES
+    FIXTURES_REQUIRED "vis4gsViewDemoShots;vis4gsViewCleanupAnalyze")
   # A scene file with cameras (issue 21): the demo's last snapshot as a PLY (analyze writes
   # it) with its training cameras as cameras.json beside it, found by the view on its own:
   # the layout without tree and timeline, View Coverage and the frustum check.

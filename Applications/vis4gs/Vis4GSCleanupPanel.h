@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Vis4GSCleanupPanel.h
+ * @brief The "Clean-up" panel of `vis4gs view` (issue 20): select Gaussians by a rule
+ * (Core/Selection/SelectionRule.h, through vtkGaussianRuleSelectionFilter) combined with the
+ * selection hub's current selection (replace, add, subtract, intersect), so that histogram
+ * brushing and the scene's selection modes combine with it; save and load the rule (the text
+ * files `vis4gs analyze --select=@FILE` reads) and re-apply it when the iteration changes;
+ * measure deleting the selection against the training and test images
+ * (Core/Selection/RemovalEffect.h) in a worker thread, shown per view (worst first) and per
+ * split, with the before / after / |difference| images of a chosen view; delete the selection
+ * to a new PLY (the main window's export).
+ *
+ * The "before" figures of a scene are measured once and reused by every later measurement of
+ * the same scene and cameras (RemovalEffectOptions::Baseline).
+ */
+#ifndef Vis4GSCleanupPanel_h
+#define Vis4GSCleanupPanel_h
+
+#include <QWidget>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+class QResizeEvent;
+class QString;
+class vtkGaussianSelectionHub;
+class vtkPolyData;
+class vtkTable;
+
+class Vis4GSCleanupPanel : public QWidget
+{
+public:
+  Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* parent = nullptr);
+  ~Vis4GSCleanupPanel() override;
+
+  /// How a rule's selection combines with the hub's (vtkGaussianRuleSelectionFilter's order).
+  enum CombineModes
+  {
+    REPLACE = 0,
+    ADD = 1,
+    SUBTRACT = 2,
+    INTERSECT = 3
+  };
+
+  /**
+   * The scene shown (with its score arrays once they are computed) and the cameras whose Image
+   * column names readable files (Vis4GSDocument::ScoreCameras(); null: no measurement). A new
+   * scene (another iteration) re-applies the last rule when "re-apply" is on, as soon as the
+   * scores it reads are there.
+   */
+  void SetScene(vtkPolyData* scene, vtkTable* cameras);
+
+  /// What "Delete selection to new PLY..." does (the main window's export).
+  void SetDeleteAction(std::function<void()> action);
+
+  /// Progress of the measurement: (fraction, message) while it runs, a negative fraction for
+  /// a step of unknown length; @p done true once at the end.
+  void SetProgress(std::function<void(double fraction, const QString& message, bool done)> p);
+
+  /**
+   * Applies @p rule combined by @p mode with the hub's selection. False, with the error shown
+   * under the rule field (naming the token) and the selection unchanged, when the rule cannot
+   * be parsed or evaluated.
+   */
+  bool ApplyRule(const QString& rule, int mode);
+  /// The text shown under the rule field: the canonical form or the error.
+  QString GetFeedback() const;
+  bool HasError() const;
+
+  /// Saves the last rule typed, in canonical form, to @p path (one line); false on error.
+  bool SaveRule(const QString& path);
+  /// Reads the first line of @p path into the rule field; false on error.
+  bool LoadRule(const QString& path);
+
+  /// Starts measuring the deletion of the hub's selection in a worker thread.
+  void MeasureRemoval();
+  /// Processes events until the measurement started last is done; false if it failed.
+  bool WaitForMeasurement();
+  /// Writes the table shown (totals, then views) in the columns of analyze's before-after.csv.
+  bool WriteTable(const QString& path) const;
+  /// Shows the before / after / |difference| images of table row @p row.
+  void ShowDifference(int row);
+
+  /**
+   * The panel's part of `vis4gs view --self-test` on a scene with cameras and images: a bad
+   * rule leaves the selection alone, a rule combines with a brushed selection, save/load,
+   * the measurement's table and images. Writes cleanup-selection.csv, cleanup-before-after.csv
+   * (compared with `vis4gs analyze --select --report` by a test) and screenshots into
+   * @p directory. @p check reports each assertion.
+   */
+  bool RunSelfTest(const QString& directory,
+    const std::function<bool(bool, const std::string&)>& check);
+
+protected:
+  void resizeEvent(QResizeEvent* event) override;
+
+private:
+  void OnRuleEdited();
+  void OnSelectionChanged();
+  void OnMeasured();
+
+  struct Internals;
+  std::unique_ptr<Internals> d;
+};
+
+#endif
