@@ -13,6 +13,7 @@
 #include "StateComparison.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSSceneCameras.h"
+#include "Vis4GSStateFiles.h"
 
 #include <algorithm>
 #include <cctype>
@@ -91,28 +92,7 @@ State ReadState(const std::string& path, int iteration, const char* which)
   }
   else
   {
-    // The "id" property (written by analyze --delete, and by any scene saved from a log)
-    // carries the Gaussians' ids; a scene without it numbers them 0..N-1.
-    vis4gs::GaussianReadReport report;
-    s.Cloud = vis4gs::ReadGaussianScene(path, {}, &report);
-    if (const vis4gs::ExtraProperty* id = s.Cloud.FindExtra("id"))
-    {
-      s.Cloud.Ids.resize(s.Cloud.Count);
-      for (std::size_t i = 0; i < s.Cloud.Count; ++i)
-      {
-        const double v = id->GetAsDouble(i);
-        if (!(v == std::floor(v)) || std::abs(v) > 9.0e15)
-        {
-          throw std::runtime_error(path + ": vertex " + std::to_string(i) + ": id " +
-            std::to_string(v) + " is no integer");
-        }
-        s.Cloud.Ids[i] = static_cast<std::int64_t>(v);
-      }
-    }
-    for (const std::string& w : report.Warnings)
-    {
-      std::cerr << "vis4gs compare: warning: " << w << "\n";
-    }
+    s.Cloud = Vis4GSReadSceneWithIds(path, "compare");
   }
   std::cout << "vis4gs compare: " << which << " = " << path;
   if (s.Log)
@@ -164,31 +144,6 @@ std::vector<vis4gs::Camera> FindCameras(const Vis4GSArguments& args,
     imageLog.reset();
   }
   return cameras;
-}
-
-// A training image: "/images/<name>" from the log the cameras came from, else a file.
-vis4gs::TrainingImageProvider Images(const std::shared_ptr<vis4gs::TrainingLogReader>& log)
-{
-  return [log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
-  {
-    const std::string prefix = "/images/";
-    std::error_code ec;
-    if (log && camera.ImagePath.rfind(prefix, 0) == 0 && !fs::is_regular_file(camera.ImagePath, ec))
-    {
-      int width = 0, height = 0;
-      const std::vector<unsigned char> bytes =
-        log->ReadImage(camera.ImagePath.substr(prefix.size()), width, height);
-      image = vis4gs::PrepareTrainingImage(
-        vis4gs::ImageFromBytes(bytes.data(), width, height, 3), camera);
-      return true;
-    }
-    if (camera.ImagePath.empty() || !fs::is_regular_file(camera.ImagePath, ec))
-    {
-      return false;
-    }
-    image = vis4gs::LoadTrainingImage(camera);
-    return true;
-  };
 }
 
 // Writes @p text to @p path through a temporary file, so a failure leaves no partial file.
@@ -332,7 +287,7 @@ int Run(const Vis4GSArguments& args)
     {
       vis4gs::RemovalEffectOptions options;
       options.Threads = args.GetInt("threads");
-      const vis4gs::TrainingImageProvider images = Images(imageLog);
+      const vis4gs::TrainingImageProvider images = Vis4GSLogImages(imageLog);
       ma = vis4gs::MeasureViewMetrics(a.Cloud, cameras, options, images);
       mb = vis4gs::MeasureViewMetrics(b.Cloud, cameras, options, images);
     }
