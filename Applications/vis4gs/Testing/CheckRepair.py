@@ -12,7 +12,9 @@ Checked from the files, with h5py and the wrapped VTK pipeline:
   others alive;
 - repair.csv: the training PSNR after the repair >= after the deletion; its source and
   deleted columns equal analyze's before-after.csv; the log's /metrics row at the source
-  iteration is the deleted scene's training PSNR.
+  iteration is the deleted scene's training PSNR;
+- `vis4gs compare LOG repaired.h5` (two logs): the deleted ids died, the others did not move,
+  and metrics.csv holds both runs' /metrics tables.
 
 Usage: CheckRepair.py VIS4GS LOG.h5 ANALYZE_DIR OUTPUT_DIR
 """
@@ -115,6 +117,27 @@ def main(vis4gs_exe, log_path, analyze, folder):
     at = list(metrics["iteration"]).index(source)
     check(abs(metrics["psnr"][at] - psnr[1]) < 1e-3, f"the log's /metrics at {source} "
           f"({metrics['psnr'][at]:.4f} dB) is the deleted scene's training PSNR")
+
+    # Two logs compared (vis4gs compare): the source run's last snapshot against the repaired
+    # run's; metrics.csv holds both runs' /metrics tables.
+    out = os.path.join(folder, "compare")
+    result = subprocess.run([vis4gs_exe, "compare", log_path, repaired, "--no-metrics",
+                             f"--output={out}"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True)
+    check(result.returncode == 0, "vis4gs compare LOG repaired.h5 exits 0")
+    with open(os.path.join(out, "differences.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    died = sorted(int(r["id"]) for r in rows if r["status"] == "died")
+    check(died == selected and not any(r["status"] == "born" for r in rows) and
+          all(float(r["dmove"]) == 0 for r in rows if r["status"] != "died"),
+          "compare: the deleted ids died, none was born, none of the others moved")
+    with open(os.path.join(out, "metrics.csv"), newline="") as f:
+        sources = [r["source"] for r in csv.DictReader(f)]
+    with h5py.File(log_path, "r") as src:
+        n_src = len(src["metrics"]["iteration"]) + len(src["metrics/test"]["iteration"])
+    n_rep = len(metrics["iteration"]) * 2  # train and test rows
+    check(sources.count("log-a") == n_src and sources.count("log-b") == n_rep,
+          f"compare: metrics.csv holds both runs' /metrics ({n_src} and {n_rep} rows)")
     if problems:
         sys.exit(1)
     print("repair outputs agree")
