@@ -80,6 +80,43 @@ void Compact(V& array, std::size_t width, const std::vector<char>& keep)
   array.resize(w * width);
 }
 
+// The Gaussians a fine-tune starts from: ids made explicit, SH cut or zero-padded to @p degree,
+// extras dropped. Throws for an empty or inconsistent cloud.
+GaussianCloud StartCloud(const GaussianCloud& start, int degree)
+{
+  const std::size_t n = start.Count;
+  const std::size_t kIn = 3 * static_cast<std::size_t>(start.ShCoefficientCount());
+  if (n == 0 || start.Positions.size() != 3 * n || start.LogScales.size() != 3 * n ||
+    start.Rotations.size() != 4 * n || start.OpacityLogits.size() != n ||
+    start.SH.size() != kIn * n || (!start.Ids.empty() && start.Ids.size() != n))
+  {
+    throw std::invalid_argument("trainer: the start cloud is empty or its arrays do not hold " +
+      std::to_string(n) + " Gaussians");
+  }
+  GaussianCloud c = start;
+  c.Extra.clear();
+  c.Ids.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    c.Ids[i] = start.GetId(i);
+  }
+  std::vector<std::int64_t> sorted = c.Ids;
+  std::sort(sorted.begin(), sorted.end());
+  if (sorted.front() < 0 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+  {
+    throw std::invalid_argument("trainer: the start cloud's ids must be distinct and >= 0");
+  }
+  c.ShDegree = degree;
+  const std::size_t kOut = 3 * static_cast<std::size_t>(c.ShCoefficientCount());
+  c.SH.assign(kOut * n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    std::copy_n(start.SH.begin() + static_cast<std::ptrdiff_t>(i * kIn),
+      std::min(kIn, kOut),
+      c.SH.begin() + static_cast<std::ptrdiff_t>(i * kOut));
+  }
+  return c;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -283,6 +320,65 @@ GaussianCloud Trainer::InitializeFromPoints(const std::vector<float>& positions,
 
 //------------------------------------------------------------------------------
 Trainer::Trainer(TrainingData data, const TrainerOptions& options)
+  : Trainer(std::move(data), options, nullptr)
+{
+}
+
+//------------------------------------------------------------------------------
+Trainer::Trainer(TrainingData data,
+  const TrainerOptions& options,
+  GaussianCloud start,
+  int startIteration,
+  const std::vector<std::int64_t>& prunes)
+  : Trainer(std::move(data), options, &start)
+{
+  if (startIteration < 0)
+  {
+    throw std::invalid_argument("trainer: the start iteration must be >= 0");
+  }
+  this->Iteration = this->StartIteration = startIteration;
+  this->ActiveShDegree = this->Options.ShDegree;
+  this->PendingPrunes = prunes;
+  std::sort(this->PendingPrunes.begin(), this->PendingPrunes.end());
+  std::vector<std::int64_t> ids = this->Cloud.Ids;
+  std::sort(ids.begin(), ids.end());
+  for (std::int64_t id : this->PendingPrunes)
+  {
+    if (!std::binary_search(ids.begin(), ids.end(), id))
+    {
+      throw std::invalid_argument(
+        "trainer: the start cloud has no Gaussian " + std::to_string(id) + " to prune");
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void Trainer::ApplyPendingPrunes()
+{
+  if (this->PendingPrunes.empty())
+  {
+    return;
+  }
+  const std::size_t n = this->Cloud.Count;
+  std::vector<char> keep(n, 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::int64_t id = this->Cloud.Ids[i];
+    if (std::binary_search(this->PendingPrunes.begin(), this->PendingPrunes.end(), id))
+    {
+      keep[i] = 0;
+      this->Events.Append({ this->StartIteration, EventKind::Prune, id, -1 });
+    }
+  }
+  // KeepRows compacts every per-row array, these too; they are filled later in a run.
+  this->SnapshotAccum.resize(n, 0.0f);
+  this->SnapshotDenom.resize(n, 0.0f);
+  this->KeepRows(keep);
+  this->PendingPrunes.clear();
+}
+
+//------------------------------------------------------------------------------
+Trainer::Trainer(TrainingData data, const TrainerOptions& options, const GaussianCloud* start)
   : Data(std::move(data))
   , Options(options)
 {
@@ -308,7 +404,7 @@ Trainer::Trainer(TrainingData data, const TrainerOptions& options)
   {
     throw std::invalid_argument("training data: no training camera");
   }
-  if (this->Data.PointPositions.empty())
+  if (!start && this->Data.PointPositions.empty())
   {
     throw std::invalid_argument("training data: no initial points");
   }
@@ -338,9 +434,19 @@ Trainer::Trainer(TrainingData data, const TrainerOptions& options)
   }
   this->Extent = maxDist > 0 ? 1.1 * maxDist : 1.0;
 
-  this->Cloud =
-    InitializeFromPoints(this->Data.PointPositions, this->Data.PointColors, this->Options.ShDegree);
-  this->NextId = static_cast<std::int64_t>(this->Cloud.Count);
+  if (start)
+  {
+    this->Cloud = StartCloud(*start, this->Options.ShDegree);
+    this->NextId = this->Cloud.Count == 0
+      ? 0
+      : *std::max_element(this->Cloud.Ids.begin(), this->Cloud.Ids.end()) + 1;
+  }
+  else
+  {
+    this->Cloud = InitializeFromPoints(
+      this->Data.PointPositions, this->Data.PointColors, this->Options.ShDegree);
+    this->NextId = static_cast<std::int64_t>(this->Cloud.Count);
+  }
   const std::size_t n = this->Cloud.Count;
   this->AdamPositions.Reset(3 * n);
   this->AdamScales.Reset(3 * n);
@@ -908,12 +1014,21 @@ int Trainer::Run(TrainingLogWriter* log,
     }
     log->WriteCameras(cams);
     this->Timings.Logging += Seconds(a, Clock::now());
-    if (this->Iteration == 0)
+    if (this->Iteration == this->StartIteration)
     {
+      if (!this->PendingPrunes.empty())
+      {
+        logSnapshot(false); // the state a fine-tune's deletion is made from
+        this->ApplyPendingPrunes();
+      }
       logMetrics();
-      logSnapshot(false);
+      if (lastSnapshot != this->Iteration)
+      {
+        logSnapshot(false);
+      }
     }
   }
+  this->ApplyPendingPrunes();
   while (this->Iteration < o.Iterations && !(stop && stop->load()))
   {
     this->Step();

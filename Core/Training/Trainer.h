@@ -157,6 +157,23 @@ public:
   /// that do not match their cameras, no initial points).
   Trainer(TrainingData data, const TrainerOptions& options);
 
+  /**
+   * Continues from the Gaussians @p start (ids kept; new ids follow the largest) at iteration
+   * @p startIteration: a fine-tune of a given scene (`vis4gs repair`). TrainingData's points
+   * are not used; every SH degree of Options.ShDegree is active from the start (the SH of
+   * @p start are cut or zero-padded to it); the schedules see the real iteration numbers.
+   * The Gaussians whose ids are in @p prunes are deleted when Run() starts, as the trainer
+   * prunes: prune events at @p startIteration. With a log, Run() first snapshots @p start as it
+   * is (so the prunes name Gaussians the log knows and its genealogy is one tree), then prunes,
+   * then logs the metrics of the start iteration (the scene after the deletion). Throws
+   * std::invalid_argument for an empty or inconsistent @p start or a prune id it lacks.
+   */
+  Trainer(TrainingData data,
+    const TrainerOptions& options,
+    GaussianCloud start,
+    int startIteration,
+    const std::vector<std::int64_t>& prunes = {});
+
   /// Scene extent E = 1.1 max_i |C_i - mean C| over the training cameras (1 when that is 0).
   double GetSceneExtent() const { return this->Extent; }
   const GaussianCloud& GetCloud() const { return this->Cloud; }
@@ -219,10 +236,12 @@ public:
   ///@}
 
 private:
+  Trainer(TrainingData data, const TrainerOptions& options, const GaussianCloud* start);
   void DensifyAndPrune(double maxScreenSize, bool useScreenSize);
   void ResetOpacity();
   void AppendRows(const std::vector<std::size_t>& sources);
   void KeepRows(const std::vector<char>& keep);
+  void ApplyPendingPrunes();
   void WriteSnapshot(TrainingLogWriter& log, bool final);
   double PositionLearningRate(int iteration) const;
 
@@ -230,6 +249,8 @@ private:
   TrainerOptions Options;
   GaussianCloud Cloud;
   std::int64_t NextId = 0;
+  int StartIteration = 0; ///< the first logged iteration (0, or a fine-tune's start)
+  std::vector<std::int64_t> PendingPrunes; ///< a fine-tune's deletion, applied by Run()
   double Extent = 1;
   int Iteration = 0;
   int ActiveShDegree = 0;

@@ -468,6 +468,65 @@ TEST(Trainer, SameSeedAndThreadsGiveTheSameRun)
   EXPECT_NE(a.GetCloud().Positions, e.GetCloud().Positions);
 }
 
+// A fine-tune from a given cloud (vis4gs repair, issue 20): the pruned ids are logged first, at
+// the start iteration, after a snapshot of the start cloud; positions with a zero learning rate
+// stay exactly where they were; iterations continue from the start.
+TEST(Trainer, FineTuneFromACloudPrunesFirstAndKeepsFixedPositions)
+{
+  TrainerOptions o = ShortRun(60);
+  Trainer first(TinyData(), o);
+  first.Run(nullptr);
+  const GaussianCloud start = first.GetCloud();
+  ASSERT_GT(start.Count, 4u);
+  const std::vector<std::int64_t> prunes = { start.Ids[1], start.Ids[3] };
+  TrainerOptions f = o;
+  f.Iterations = 60 + 20;
+  f.DensifyUntilIter = 0;
+  f.PositionLrInit = f.PositionLrFinal = 0;
+  f.SnapshotInterval = 20;
+  f.MetricsInterval = 20;
+  const std::string path = TempPath("finetune");
+  {
+    Trainer t(TinyData(), f, start, 60, prunes);
+    EXPECT_EQ(t.GetIteration(), 60);
+    EXPECT_EQ(t.GetActiveShDegree(), f.ShDegree);
+    TrainingLogWriterOptions wo;
+    wo.Iterations = f.Iterations;
+    wo.ShDegree = f.ShDegree;
+    TrainingLogWriter log(path, wo);
+    EXPECT_EQ(t.Run(&log), 80);
+    const GaussianCloud& c = t.GetCloud();
+    ASSERT_EQ(c.Count, start.Count - 2);
+    for (std::size_t i = 0, j = 0; i < start.Count; ++i)
+    {
+      if (i == 1 || i == 3)
+      {
+        continue;
+      }
+      EXPECT_EQ(c.Ids[j], start.Ids[i]);
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_EQ(c.Positions[3 * j + k], start.Positions[3 * i + k]) << "row " << i;
+      }
+      ++j;
+    }
+    EXPECT_NE(c.OpacityLogits,
+      std::vector<float>(
+        start.OpacityLogits.begin(), start.OpacityLogits.begin() + static_cast<long>(c.Count)));
+  }
+  TrainingLogReader r(path);
+  EXPECT_EQ(r.GetSnapshotIterations(), (std::vector<int>{ 60, 80 }));
+  EXPECT_EQ(r.ReadSnapshot(60).Ids, start.Ids);
+  const EventTable e = r.ReadEvents();
+  ASSERT_EQ(e.Size(), 2u);
+  EXPECT_EQ(e.Iteration, (std::vector<std::int32_t>{ 60, 60 }));
+  EXPECT_EQ(e.Parent, prunes);
+  EXPECT_EQ(r.ReadMetrics(false).Iteration.front(), 60);
+  // A prune id the cloud lacks is refused.
+  EXPECT_THROW(Trainer(TinyData(), f, start, 60, { 1 << 30 }), std::invalid_argument);
+  std::remove(path.c_str());
+}
+
 TEST(Trainer, OptimizerSkipsDensificationAndResetIterations)
 {
   TrainerOptions o = ShortRun(150);

@@ -1,0 +1,438 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `vis4gs compare A B --output=DIR` (issue 20): two states of a reconstruction side by side,
+// two iterations of one training log, or two logs or scenes of the same cameras. Writes
+// differences.csv (per Gaussian id: born, died, moved, opacity or scale changed beyond a
+// threshold; Core/Selection/StateComparison.h), metrics.csv (PSNR, SSIM, L1 of both states in
+// every camera with an image, measured as RemovalEffect.h measures a clean-up, and the /metrics
+// tables of the logs) and report.html.
+#include "Vis4GSCommand.h"
+
+#include "GaussianIO.h"
+#include "ImageIO.h"
+#include "RemovalEffect.h"
+#include "StateComparison.h"
+#include "TrainingLogReader.h"
+#include "Vis4GSSceneCameras.h"
+#include "Vis4GSStateFiles.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+void Define(Vis4GSArguments& args)
+{
+  args.AddPositional("A", "First state: a 3DGS .ply, .spz or .splat, or a training log .h5.");
+  args.AddPositional("B", "Second state, as A (the same log for two of its iterations).");
+  args.AddOption("iteration-a", "N", "-1", "Log A: the snapshot nearest to N; -1: the last.");
+  args.AddOption("iteration-b", "N", "-1", "Log B: the snapshot nearest to N; -1: the last.");
+  args.AddOption("cameras",
+    "FILE|DIR",
+    "",
+    "cameras.json, a COLMAP dataset folder or a transforms*.json. Default: the cameras of log "
+    "A, else of log B, else cameras.json beside A or two folders up.");
+  args.AddOption(
+    "images", "DIR", "", "Folder of training images, matched to cameras by name (file stem).");
+  args.AddOption("move", "T", "0", "A Gaussian moved when its centre travelled more than T.");
+  args.AddOption(
+    "opacity", "T", "0", "Its opacity changed when sigmoid(logit) changed by more than T.");
+  args.AddOption("scale",
+    "T",
+    "0",
+    "Its scale changed when |log s_b - log s_a| > T on some axis (0.1: about 10 %).");
+  args.AddFlag("metrics", true, "Measure both states in every camera with an image.");
+  args.AddOption("output", "DIR", "vis4gs-compare", "Folder the results are written to.");
+}
+
+bool IsLog(const std::string& path)
+{
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(),
+    extension.end(),
+    extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".h5" || extension == ".hdf5";
+}
+
+// One side of the comparison: the cloud, and its log when it came from one.
+struct State
+{
+  std::string Path;
+  std::shared_ptr<vis4gs::TrainingLogReader> Log;
+  int Iteration = -1; ///< logged iteration; -1 for a scene file
+  vis4gs::GaussianCloud Cloud;
+};
+
+State ReadState(const std::string& path, int iteration, const char* which)
+{
+  State s;
+  s.Path = path;
+  if (IsLog(path))
+  {
+    s.Log = std::make_shared<vis4gs::TrainingLogReader>(path);
+    if (s.Log->GetSnapshotIterations().empty())
+    {
+      throw std::runtime_error(path + ": the training log holds no snapshot to compare");
+    }
+    vis4gs::SnapshotReadOptions options;
+    options.ShDegree = -1;
+    s.Cloud = s.Log->ReadNearestSnapshot(
+      iteration < 0 ? s.Log->GetSnapshotIterations().back() : iteration, options, &s.Iteration);
+  }
+  else
+  {
+    s.Cloud = Vis4GSReadSceneWithIds(path, "compare");
+  }
+  std::cout << "vis4gs compare: " << which << " = " << path;
+  if (s.Log)
+  {
+    std::cout << ", snapshot of iteration " << s.Iteration;
+  }
+  std::cout << ": " << s.Cloud.Count << " Gaussians\n";
+  return s;
+}
+
+// The cameras and where their images come from: a log's embedded /images or files.
+std::vector<vis4gs::Camera> FindCameras(const Vis4GSArguments& args,
+  const State& a,
+  const State& b,
+  std::shared_ptr<vis4gs::TrainingLogReader>& imageLog)
+{
+  std::vector<vis4gs::Camera> cameras;
+  if (args.Get("cameras").empty())
+  {
+    for (const State* s : { &a, &b })
+    {
+      if (s->Log && s->Log->HasCameras())
+      {
+        cameras = s->Log->ReadCameras();
+        imageLog = s->Log;
+        const fs::path folder = fs::path(s->Path).parent_path();
+        for (vis4gs::Camera& c : cameras)
+        {
+          if (!c.ImagePath.empty() && c.ImagePath[0] != '/' && fs::path(c.ImagePath).is_relative())
+          {
+            c.ImagePath = (folder / c.ImagePath).string();
+          }
+        }
+        break;
+      }
+    }
+  }
+  if (cameras.empty())
+  {
+    cameras = Vis4GSFindSceneCameras(a.Path, args.Get("cameras"));
+  }
+  if (!args.Get("images").empty())
+  {
+    if (!fs::is_directory(args.Get("images")))
+    {
+      throw std::runtime_error(args.Get("images") + ": --images is not a folder");
+    }
+    vis4gs::AttachImages(cameras, args.Get("images"));
+    imageLog.reset();
+  }
+  return cameras;
+}
+
+// Writes @p text to @p path through a temporary file, so a failure leaves no partial file.
+void WriteText(const fs::path& path, const std::string& text)
+{
+  const fs::path temporary = path.string() + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out)
+    {
+      throw std::runtime_error(path.string() + ": could not be written");
+    }
+  }
+  fs::rename(temporary, path);
+}
+
+std::string Number(double v, int precision = 4)
+{
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(precision) << v;
+  return out.str();
+}
+
+const char* SplitName(vis4gs::CameraSplit split)
+{
+  return split == vis4gs::CameraSplit::Train ? "train" : "test";
+}
+
+// Mean over the cameras of @p split that were measured (NaN figures are views without image).
+vis4gs::ViewMetrics Mean(const std::vector<vis4gs::ViewMetrics>& m,
+  const std::vector<vis4gs::Camera>& cameras,
+  vis4gs::CameraSplit split,
+  std::size_t& views)
+{
+  vis4gs::ViewMetrics mean;
+  double psnr = 0, ssim = 0, l1 = 0;
+  views = 0;
+  for (std::size_t i = 0; i < m.size(); ++i)
+  {
+    if (cameras[i].Split == split && std::isfinite(m[i].L1))
+    {
+      psnr += m[i].Psnr;
+      ssim += m[i].Ssim;
+      l1 += m[i].L1;
+      ++views;
+    }
+  }
+  if (views > 0)
+  {
+    mean.Psnr = psnr / views;
+    mean.Ssim = ssim / views;
+    mean.L1 = l1 / views;
+  }
+  return mean;
+}
+
+// The training PSNR curves of the logs as one inline SVG (x: iteration, y: PSNR).
+std::string Curves(const std::vector<std::pair<std::string, vis4gs::MetricsTable>>& runs)
+{
+  double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const auto& run : runs)
+  {
+    for (std::size_t i = 0; i < run.second.Size(); ++i)
+    {
+      if (std::isfinite(run.second.Psnr[i]))
+      {
+        x0 = std::min<double>(x0, run.second.Iteration[i]);
+        x1 = std::max<double>(x1, run.second.Iteration[i]);
+        y0 = std::min(y0, run.second.Psnr[i]);
+        y1 = std::max(y1, run.second.Psnr[i]);
+      }
+    }
+  }
+  if (!(x1 > x0) || !(y1 > y0))
+  {
+    return "";
+  }
+  const char* colours[] = { "#1f77b4", "#d62728" };
+  std::ostringstream s;
+  s << "<figure><svg width=\"520\" height=\"220\" xmlns=\"http://www.w3.org/2000/svg\">"
+    << "<rect width=\"520\" height=\"220\" fill=\"#fff\"/>";
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    s << "<polyline fill=\"none\" stroke=\"" << colours[r % 2]
+      << "\" stroke-width=\"1.5\" points=\"";
+    for (std::size_t i = 0; i < runs[r].second.Size(); ++i)
+    {
+      if (std::isfinite(runs[r].second.Psnr[i]))
+      {
+        s << 40 + 470 * (runs[r].second.Iteration[i] - x0) / (x1 - x0) << ","
+          << 190 - 170 * (runs[r].second.Psnr[i] - y0) / (y1 - y0) << " ";
+      }
+    }
+    s << "\"/><text x=\"" << 50 + 160 * r << "\" y=\"14\" font-size=\"11\" fill=\""
+      << colours[r % 2] << "\">" << Vis4GSHtml(runs[r].first) << "</text>";
+  }
+  s << "<text x=\"40\" y=\"210\" font-size=\"11\">" << x0 << "</text><text x=\"510\" y=\"210\" "
+    << "font-size=\"11\" text-anchor=\"end\">" << x1 << "</text><text x=\"2\" y=\"190\" "
+    << "font-size=\"11\">" << Number(y0, 1) << "</text><text x=\"2\" y=\"24\" font-size=\"11\">"
+    << Number(y1, 1) << "</text></svg><figcaption>Training PSNR (dB) per iteration, from the "
+    << "logs' /metrics</figcaption></figure>\n";
+  return s.str();
+}
+
+int Run(const Vis4GSArguments& args)
+{
+  vis4gs::StateThresholds thresholds;
+  thresholds.Move = args.GetDouble("move");
+  thresholds.Opacity = args.GetDouble("opacity");
+  thresholds.Scale = args.GetDouble("scale");
+  for (const double t : { thresholds.Move, thresholds.Opacity, thresholds.Scale })
+  {
+    if (!(t >= 0))
+    {
+      throw std::runtime_error("--move, --opacity and --scale must be >= 0");
+    }
+  }
+  const State a = ReadState(args.GetPositional("A"), args.GetInt("iteration-a"), "A");
+  const State b = ReadState(args.GetPositional("B"), args.GetInt("iteration-b"), "B");
+  const vis4gs::StateComparison c = vis4gs::CompareStates(a.Cloud, b.Cloud, thresholds);
+  std::cout << "vis4gs compare: " << c.Matched << " Gaussians in both, " << c.Born << " born, "
+            << c.Died << " died; of those in both " << c.Moved << " moved, " << c.OpacityChanged
+            << " changed opacity, " << c.ScaleChanged << " changed scale, " << c.Unchanged
+            << " unchanged\n";
+
+  // Per-camera figures of both states.
+  std::vector<vis4gs::Camera> cameras;
+  std::vector<vis4gs::ViewMetrics> ma, mb;
+  if (args.GetFlag("metrics"))
+  {
+    std::shared_ptr<vis4gs::TrainingLogReader> imageLog;
+    cameras = FindCameras(args, a, b, imageLog);
+    if (cameras.empty())
+    {
+      std::cerr << "vis4gs compare: note: no cameras found (give --cameras): the states are "
+                   "not measured against images\n";
+    }
+    else
+    {
+      vis4gs::RemovalEffectOptions options;
+      options.Threads = args.GetInt("threads");
+      const vis4gs::TrainingImageProvider images = Vis4GSLogImages(imageLog);
+      ma = vis4gs::MeasureViewMetrics(a.Cloud, cameras, options, images);
+      mb = vis4gs::MeasureViewMetrics(b.Cloud, cameras, options, images);
+    }
+  }
+
+  const fs::path output = args.Get("output");
+  fs::create_directories(output);
+  {
+    std::ostringstream csv;
+    csv << "id,status,dmove,dopacity,dscale\n" << std::setprecision(9);
+    for (const vis4gs::GaussianStateDifference& d : c.Gaussians)
+    {
+      csv << d.Id << "," << vis4gs::StateChangeName(d.Change) << "," << d.Move << "," << d.Opacity
+          << "," << d.Scale << "\n";
+    }
+    WriteText(output / "differences.csv", csv.str());
+  }
+
+  // metrics.csv: source a / b (the states, per view and "mean" per split), log-a / log-b (the
+  // logs' /metrics and /metrics/test rows).
+  std::vector<std::pair<std::string, vis4gs::MetricsTable>> curves;
+  std::ostringstream csv;
+  csv << "source,split,iteration,view,gaussians,psnr,ssim,l1\n" << std::setprecision(9);
+  const State* states[] = { &a, &b };
+  const std::vector<vis4gs::ViewMetrics>* measured[] = { &ma, &mb };
+  std::ostringstream means;
+  for (int s = 0; s < 2; ++s)
+  {
+    const char* source = s == 0 ? "a" : "b";
+    for (const vis4gs::CameraSplit split :
+      { vis4gs::CameraSplit::Train, vis4gs::CameraSplit::Test })
+    {
+      std::size_t views = 0;
+      const vis4gs::ViewMetrics mean = Mean(*measured[s], cameras, split, views);
+      if (views > 0)
+      {
+        csv << source << "," << SplitName(split) << "," << states[s]->Iteration << ",mean,"
+            << states[s]->Cloud.Count << "," << mean.Psnr << "," << mean.Ssim << "," << mean.L1
+            << "\n";
+        means << "<tr><td>" << source << "</td><td>" << SplitName(split) << "</td><td>" << views
+              << "</td><td>" << Number(mean.Psnr) << "</td><td>" << Number(mean.Ssim) << "</td><td>"
+              << Number(mean.L1) << "</td></tr>";
+      }
+    }
+    for (std::size_t i = 0; i < measured[s]->size(); ++i)
+    {
+      const vis4gs::ViewMetrics& m = (*measured[s])[i];
+      if (std::isfinite(m.L1))
+      {
+        csv << source << "," << SplitName(cameras[i].Split) << "," << states[s]->Iteration << ","
+            << cameras[i].Name << "," << states[s]->Cloud.Count << "," << m.Psnr << "," << m.Ssim
+            << "," << m.L1 << "\n";
+      }
+    }
+  }
+  for (int s = 0; s < 2; ++s)
+  {
+    const State& state = *states[s];
+    std::error_code ec;
+    const bool sameLog = s == 1 && a.Log && fs::equivalent(a.Path, b.Path, ec);
+    if (!state.Log || !state.Log->HasMetrics() || sameLog)
+    {
+      continue;
+    }
+    const std::string source = s == 0 ? "log-a" : "log-b";
+    for (const bool test : { false, true })
+    {
+      if (test && !state.Log->HasTestMetrics())
+      {
+        continue;
+      }
+      const vis4gs::MetricsTable table = state.Log->ReadMetrics(test);
+      for (std::size_t i = 0; i < table.Size(); ++i)
+      {
+        csv << source << "," << (test ? "test" : "train") << "," << table.Iteration[i] << ",,"
+            << table.NumGaussians[i] << "," << table.Psnr[i] << "," << table.Ssim[i] << ","
+            << table.L1[i] << "\n";
+      }
+      if (!test)
+      {
+        curves.emplace_back(source + ": " + fs::path(state.Path).filename().string(), table);
+      }
+    }
+  }
+  WriteText(output / "metrics.csv", csv.str());
+
+  std::ostringstream html;
+  html << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>vis4gs compare</title>"
+       << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+       << "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}</style></head><body>"
+       << "<h1>Two states compared</h1><p>A: <code>" << Vis4GSHtml(a.Path) << "</code>"
+       << (a.Log ? ", iteration " + std::to_string(a.Iteration) : std::string()) << " ("
+       << a.Cloud.Count << " Gaussians)<br>B: <code>" << Vis4GSHtml(b.Path) << "</code>"
+       << (b.Log ? ", iteration " + std::to_string(b.Iteration) : std::string()) << " ("
+       << b.Cloud.Count << " Gaussians)</p><p>Thresholds (strict): move &gt; " << thresholds.Move
+       << ", |opacity change| &gt; " << thresholds.Opacity << ", |log scale change| &gt; "
+       << thresholds.Scale << ".</p>\n<h2>Gaussians by id</h2><table><tr><th>in both</th>"
+       << "<th>born</th><th>died</th><th>moved</th><th>opacity changed</th><th>scale changed</th>"
+       << "<th>unchanged</th></tr><tr><td>" << c.Matched << "</td><td>" << c.Born << "</td><td>"
+       << c.Died << "</td><td>" << c.Moved << "</td><td>" << c.OpacityChanged << "</td><td>"
+       << c.ScaleChanged << "</td><td>" << c.Unchanged << "</td></tr></table>\n";
+  if (!means.str().empty())
+  {
+    html << "<h2>Against the images</h2><p>Both states rendered in every camera with an image "
+            "(exact rasteriser, renders clamped to [0, 1]); means per split.</p><table><tr>"
+            "<th>state</th><th>split</th><th>views</th><th>PSNR</th><th>SSIM</th><th>L1</th></tr>"
+         << means.str() << "</table>\n<h3>Views, the largest PSNR loss from A to B first</h3>"
+         << "<table><tr><th>view</th><th>split</th><th>PSNR A</th><th>PSNR B</th><th>change</th>"
+            "<th>SSIM A</th><th>SSIM B</th><th>L1 A</th><th>L1 B</th></tr>";
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < ma.size(); ++i)
+    {
+      if (std::isfinite(ma[i].L1))
+      {
+        order.push_back(i);
+      }
+    }
+    std::stable_sort(order.begin(),
+      order.end(),
+      [&](std::size_t i, std::size_t j)
+      { return mb[i].Psnr - ma[i].Psnr < mb[j].Psnr - ma[j].Psnr; });
+    for (const std::size_t i : order)
+    {
+      html << "<tr><td>" << Vis4GSHtml(cameras[i].Name) << "</td><td>"
+           << SplitName(cameras[i].Split) << "</td><td>" << Number(ma[i].Psnr) << "</td><td>"
+           << Number(mb[i].Psnr) << "</td><td>" << Number(mb[i].Psnr - ma[i].Psnr) << "</td><td>"
+           << Number(ma[i].Ssim) << "</td><td>" << Number(mb[i].Ssim) << "</td><td>"
+           << Number(ma[i].L1) << "</td><td>" << Number(mb[i].L1) << "</td></tr>";
+    }
+    html << "</table>\n";
+  }
+  if (!curves.empty())
+  {
+    html << "<h2>Metric curves</h2>" << Curves(curves);
+  }
+  html << "<p>Files: differences.csv (one row per id), metrics.csv.</p></body></html>\n";
+  WriteText(output / "report.html", html.str());
+  std::cout << "vis4gs compare: wrote " << (output / "differences.csv").string() << ", "
+            << (output / "metrics.csv").string() << ", " << (output / "report.html").string()
+            << "\n";
+  return 0;
+}
+} // namespace
+
+VIS4GS_REGISTER_COMMAND("compare",
+  "Compare two states (iterations, logs or scenes): Gaussians by id, figures per camera.",
+  Define,
+  Run)
