@@ -879,8 +879,9 @@ int Run(const Vis4GSArguments& args)
     std::cout << "vis4gs analyze: rule '" << canonical << "' selects " << count << " of "
               << cloud.Count << " Gaussians\n";
     cleanupHtml = "<h2>Selection</h2><p>Rule <code>" + Vis4GSHtml(canonical) +
-      "</code> (as given: <code>" + Vis4GSHtml(ruleText) + "</code>) selects " + std::to_string(count) +
-      " of " + std::to_string(cloud.Count) + " Gaussians (selection.csv).</p>\n";
+      "</code> (as given: <code>" + Vis4GSHtml(ruleText) + "</code>) selects " +
+      std::to_string(count) + " of " + std::to_string(cloud.Count) +
+      " Gaussians (selection.csv).</p>\n";
     if (args.GetFlag("delete"))
     {
       vis4gs::WriteGaussianPly(
