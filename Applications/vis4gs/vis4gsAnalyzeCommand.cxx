@@ -63,8 +63,8 @@ double Since(Clock::time_point t)
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional(
-    "scene", "Gaussian scene: a 3DGS .ply, .spz or .splat, or a training log .h5 (DESIGN §3).");
+  args.AddPositional("scene",
+    "Gaussian scene: a 3DGS .ply, .spz, .ksplat or .splat, or a training log .h5 (DESIGN §3).");
   args.AddOption("iteration",
     "N",
     "-1",

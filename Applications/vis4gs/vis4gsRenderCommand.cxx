@@ -31,7 +31,7 @@ namespace
 void Define(Vis4GSArguments& args)
 {
   args.AddPositional(
-    "scene", "3DGS scene: the trainer's PLY, an SPZ or an antimatter15 .splat file.");
+    "scene", "3DGS scene: the trainer's PLY, an SPZ, a .ksplat or an antimatter15 .splat file.");
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",

@@ -20,7 +20,7 @@ namespace
 void Define(Vis4GSArguments& args)
 {
   args.AddPositional(
-    "FILE", "Training log (.h5) or Gaussian scene (.ply, .spz, .splat) to open.", false);
+    "FILE", "Training log (.h5) or Gaussian scene (.ply, .spz, .ksplat, .splat) to open.", false);
   args.AddOption("self-test",
     "DIR",
     "",

@@ -10,15 +10,16 @@
 =========================================================================*/
 /**
  * @class   vtkGaussianPLYReader
- * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, or an antimatter15 .splat) as
- * the Gaussian vtkPolyData of DESIGN §2.
+ * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, GaussianSplats3D's .ksplat, or
+ * an antimatter15 .splat) as the Gaussian vtkPolyData of DESIGN §2.
  *
  * The output's points are the means; point data holds the raw parameters (LogScale,
  * Rotation, OpacityLogit, SH coefficient-major), GaussianId (pedigree ids), the activated
  * Opacity and Scale, and every property the model does not interpret (normals, scores) as an
  * array of its own type. float32 values are copied bit-exactly. SPZ files (versions 2-4) are
  * recognised by their content whatever their name, and converted from SPZ's RUB axes to the
- * PLY's (Documentation/file-formats.md, "SPZ"); files ending in `.splat` are read as
+ * PLY's (Documentation/file-formats.md, "SPZ"); .ksplat files are also recognised by their
+ * content (".ksplat"); files ending in `.splat` are read as
  * antimatter15 splats, anything else as PLY (binary little/big endian or ASCII).
  *
  * Errors (missing file, truncated data, missing properties, ...) are reported with
@@ -45,7 +46,7 @@ public:
 
   ///@{
   /**
-   * The file to read (.ply, .spz or .splat). Default: none.
+   * The file to read (.ply, .spz, .ksplat or .splat). Default: none.
    */
   vtkSetStdStringFromCharMacro(FileName);
   vtkGetCharFromStdStringMacro(FileName);
@@ -104,8 +105,9 @@ public:
   ///@{
   /**
    * Facts about the last file read: its SH degree, its format ("binary_little_endian",
-   * "binary_big_endian", "ascii", "splat", or "spz v2".."spz v4", followed by " antialiased"
-   * when the SPZ header says so), and the number of Gaussians holding a NaN or infinite value.
+   * "binary_big_endian", "ascii", "splat", "ksplat", or "spz v2".."spz v4", followed by "
+   * antialiased" when the SPZ header says so), and the number of Gaussians holding a NaN or
+   * infinite value.
    */
   vtkGetMacro(FileSHDegree, int);
   vtkGetCharFromStdStringMacro(FileFormat);
