@@ -309,6 +309,42 @@ TEST(GaussianKsplat, Level2ByteSH)
   EXPECT_NEAR(c.SH[6], 1.5f, Tol);
 }
 
+TEST(GaussianKsplat, SectionsAndPartlyWrittenFiles)
+{
+  // Two sections of SH degrees 1 and 0: the smallest is read for all, with a warning.
+  const Bytes one = Level0File();
+  Section a;
+  a.SplatCount = 2;
+  a.ShDegree = 1;
+  a.Body.assign(one.begin() + 5120, one.end());
+  Section b;
+  b.SplatCount = 1;
+  for (float v : { 9.f, 8.f, 7.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f })
+  {
+    PutF32(b.Body, v);
+  }
+  for (unsigned char v : { 1, 2, 3, 4 })
+  {
+    b.Body.push_back(v);
+  }
+  Bytes file = Build(0, { a, b });
+  GaussianReadReport report;
+  GaussianCloud c = ReadKsplatFromMemory(file.data(), file.size(), "two.ksplat", {}, &report);
+  ASSERT_EQ(c.Count, 3u);
+  EXPECT_EQ(c.ShDegree, 0);
+  EXPECT_EQ(report.FileShDegree, 0);
+  EXPECT_EQ(c.Positions[6], 9.f);
+  EXPECT_NEAR(c.SH[6], (1 / 255.0 - 0.5) / 0.28209479177387814, 1e-6);
+  ASSERT_EQ(report.Warnings.size(), 2u); // degrees, and the zero scale of the first section
+  EXPECT_NE(report.Warnings[0].find("SH degrees 0 to 1"), std::string::npos);
+  // A section that marks 1 of its 2 laid-out records as written (saved while loading).
+  SetU32(file, 4096, 1);
+  c = ReadKsplatFromMemory(file.data(), file.size(), "part.ksplat", {}, &report);
+  ASSERT_EQ(c.Count, 2u);
+  EXPECT_EQ(c.Positions[3], 9.f); // the second section still starts after both records
+  EXPECT_NE(report.Warnings[1].find("2 of 3 splats are marked as written"), std::string::npos);
+}
+
 TEST(GaussianKsplat, DetectedByContentThroughReadGaussianScene)
 {
   TempDir dir;
