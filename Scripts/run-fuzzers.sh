@@ -13,7 +13,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
 targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzSpz FuzzCompressedPly
-  FuzzSog)
+  FuzzSog FuzzKsplat)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -27,7 +27,7 @@ fi
 # Seed corpora: small real inputs (headers plus a few rows of the real files) and hand-made ones.
 seeds="$build/seeds"
 rm -rf "$seeds"
-mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap,FuzzSpz}
+mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap,FuzzSpz,FuzzKsplat}
 mkdir -p "$seeds/FuzzCompressedPly" "$seeds/FuzzSog"
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
@@ -141,6 +141,26 @@ with zipfile.ZipFile(sys.argv[1]) as z:
         body = z.read(name)
         out += bytes([len(name)]) + name.encode() + struct.pack("<I", len(body)) + body
 open(sys.argv[2] + "/tiny-files", "wb").write(out)
+PY
+
+# .ksplat seeds: two Gaussians with SH degree 1 at compression level 0 (float32) and level 2
+# (one full bucket of 1 record and one partially filled bucket, byte SH).
+/usr/bin/python3 - "$seeds/FuzzKsplat" <<'PY'
+import struct, sys
+def ksplat(level, body, bucket):
+    head = bytearray(4096)
+    struct.pack_into("<BBxxIIII", head, 0, 0, 1, 1, 1, 2, 2)
+    struct.pack_into("<H", head, 20, level)
+    struct.pack_into("<ff", head, 36, -1.5, 1.5)
+    sec = bytearray(1024)
+    struct.pack_into("<IIIIfHxxIIIIH", sec, 0, 2, 2, *bucket[:5], len(body), *bucket[5:], 1)
+    return bytes(head) + bytes(sec) + body
+rec0 = struct.pack("<3f3f4f4B9f", 1, 2, 3, 0.5, 1, 2, 1, 0, 0, 0, 10, 20, 30, 40, *range(9))
+open(sys.argv[1] + "/l0.ksplat", "wb").write(ksplat(0, rec0 * 2, (0, 0, 0.0, 0, 0, 0, 0)))
+rec2 = struct.pack("<3H7H4B9B", 32767, 0, 65535, 0x3C00, 0x3800, 0x4000, 0x3C00, 0, 0, 0,
+                   10, 20, 30, 40, *range(9))
+body2 = struct.pack("<I6f", 1, 0, 0, 0, 5, 5, 5) + rec2 * 2
+open(sys.argv[1] + "/l2.ksplat", "wb").write(ksplat(2, body2, (1, 2, 5.0, 12, 32767, 1, 1)))
 PY
 
 status=0

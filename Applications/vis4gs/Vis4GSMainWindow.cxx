@@ -630,7 +630,7 @@ void Vis4GSMainWindow::BuildUi()
       const QString path = QFileDialog::getOpenFileName(this,
         "Open a training log or a scene",
         QString(),
-        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.splat *.sog meta.json);;All files (*)");
+        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.ksplat *.splat *.sog meta.json);;All files (*)");
       if (!path.isEmpty())
       {
         this->Open(path);

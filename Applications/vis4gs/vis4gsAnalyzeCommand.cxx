@@ -64,8 +64,8 @@ double Since(Clock::time_point t)
 void Define(Vis4GSArguments& args)
 {
   args.AddPositional("scene",
-    "Gaussian scene: a 3DGS .ply, compressed PLY, SOG (.sog, meta.json or its folder), .spz or "
-    ".splat, or a training log .h5 (DESIGN §3).");
+    "Gaussian scene: a 3DGS .ply, compressed PLY, SOG (.sog, meta.json or its folder), .spz, "
+    ".ksplat or .splat, or a training log .h5 (DESIGN §3).");
   args.AddOption("iteration",
     "N",
     "-1",

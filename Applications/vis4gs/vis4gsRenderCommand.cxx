@@ -32,7 +32,7 @@ void Define(Vis4GSArguments& args)
 {
   args.AddPositional("scene",
     "3DGS scene: the trainer's PLY, a compressed PLY, a SOG (.sog, meta.json or its folder), an "
-    "SPZ or an antimatter15 .splat.");
+    "SPZ, a .ksplat or an antimatter15 .splat.");
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",

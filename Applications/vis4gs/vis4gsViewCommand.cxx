@@ -20,8 +20,8 @@ namespace
 void Define(Vis4GSArguments& args)
 {
   args.AddPositional("FILE",
-    "Training log (.h5) or Gaussian scene (.ply, .compressed.ply, .sog, meta.json, .spz, .splat) "
-    "to open.",
+    "Training log (.h5) or Gaussian scene (.ply, .compressed.ply, .sog, meta.json, .spz, .ksplat, "
+    ".splat) to open.",
     false);
   args.AddOption("self-test",
     "DIR",

@@ -2,7 +2,8 @@
 /**
  * @file GaussianIO.h
  * @brief Reading and writing 3DGS scenes: the trainer's PLY (binary little/big endian and
- * ASCII), the antimatter15 `.splat` format (reference §1.1) and Niantic's SPZ.
+ * ASCII), the antimatter15 `.splat` format (reference §1.1), Niantic's SPZ, GaussianSplats3D's
+ * `.ksplat`, and PlayCanvas's compressed PLY and SOG.
  *
  * PLY properties are looked up by name in any order; every PLY scalar type name is accepted
  * (char/int8, uchar/uint8, short/int16, ushort/uint16, int/int32, uint/uint32,
@@ -311,9 +312,32 @@ GaussianCloud ReadSogFromMemoryFiles(const std::map<std::string, std::vector<uns
 /// True for a folder holding meta.json, a zip archive, or a JSON file naming "means".
 bool IsSog(const std::string& path);
 
-/// Reads a scene by content, then extension: SPZ (gzip or "NGSP" start) with ReadSpz, a SOG
-/// (folder, zip or meta.json) with ReadSog, ".splat" with ReadSplat, a compressed PLY (by
-/// content) with ReadCompressedPly, anything else with ReadGaussianPly.
+/**
+ * Reads the `.ksplat` format of mkkellogg/GaussianSplats3D (version 0.x, compression levels
+ * 0-2; Documentation/file-formats.md, ".ksplat"): positions float32 (level 0) or 16-bit
+ * offsets from float32 bucket centres, linear scales and w x y z quaternions float32 or
+ * float16, RGBA bytes, SH float32, float16 or bytes over the header's range. Converted to raw
+ * parameters: log scale, opacity logit of alpha/255 clamped to [1e-6, 1-1e-6] (as
+ * splat-transform does), SH DC (c/255-0.5)/C0; quaternions and axes as stored (the format
+ * keeps the PLY's). Only the SH degree asked for is decoded. Counts and sizes are checked
+ * against the file before anything is allocated; errors name the file and the problem.
+ */
+GaussianCloud ReadKsplat(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+GaussianCloud ReadKsplatFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+
+/// True if @p path holds a .ksplat header (version 0.x) whose sections fill the file exactly.
+bool IsKsplatFile(const std::string& path);
+
+/// Reads a scene by content, then extension: .ksplat (IsKsplatFile) with ReadKsplat, SPZ (gzip
+/// or "NGSP" start) with ReadSpz, a SOG (folder, zip or meta.json) with ReadSog, ".splat" with
+/// ReadSplat, a compressed PLY (by content) with ReadCompressedPly, anything else with
+/// ReadGaussianPly (GaussianScene.cxx: a new format adds its test there).
 GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);

@@ -17,6 +17,10 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
+  if (IsKsplatFile(path))
+  {
+    return ReadKsplat(path, options, report);
+  }
   if (IsSpzFile(path))
   {
     return ReadSpz(path, options, report);

@@ -10,18 +10,20 @@
 =========================================================================*/
 /**
  * @class   vtkGaussianPLYReader
- * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, an antimatter15 .splat, a
- * PlayCanvas compressed PLY or a SOG) as the Gaussian vtkPolyData of DESIGN §2.
+ * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, GaussianSplats3D's .ksplat, an
+ * antimatter15 .splat, a PlayCanvas compressed PLY or a SOG) as the Gaussian vtkPolyData of
+ * DESIGN §2.
  *
  * The output's points are the means; point data holds the raw parameters (LogScale,
  * Rotation, OpacityLogit, SH coefficient-major), GaussianId (pedigree ids), the activated
  * Opacity and Scale, and every property the model does not interpret (normals, scores) as an
  * array of its own type. float32 values are copied bit-exactly. Files ending in `.splat` are
  * read as antimatter15 splats; the others by content: SPZ (versions 2-4, converted from SPZ's
- * RUB axes to the PLY's), a SOG v2 scene (a `.sog` zip, a folder holding meta.json, or the
- * meta.json itself), a PlayCanvas/SuperSplat compressed PLY (a PLY with a `chunk` element and
- * packed vertex properties; decoded as splat-transform does), anything else as PLY (binary
- * little/big endian or ASCII). Documentation/file-formats.md describes each format.
+ * RUB axes to the PLY's), GaussianSplats3D's .ksplat, a SOG v2 scene (a `.sog` zip, a folder
+ * holding meta.json, or the meta.json itself), a PlayCanvas/SuperSplat compressed PLY (a PLY
+ * with a `chunk` element and packed vertex properties; decoded as splat-transform does),
+ * anything else as PLY (binary little/big endian or ASCII). Documentation/file-formats.md
+ * describes each format.
  *
  * Errors (missing file, truncated data, missing properties, ...) are reported with
  * vtkErrorMacro naming the file and the problem, and the request fails. Gaussians with NaN or
@@ -47,8 +49,8 @@ public:
 
   ///@{
   /**
-   * The file to read (.ply, .compressed.ply, .spz, .splat, .sog, meta.json, or a SOG folder).
-   * Default: none.
+   * The file to read (.ply, .compressed.ply, .spz, .ksplat, .splat, .sog, meta.json, or a SOG
+   * folder). Default: none.
    */
   vtkSetStdStringFromCharMacro(FileName);
   vtkGetCharFromStdStringMacro(FileName);
@@ -107,8 +109,8 @@ public:
   ///@{
   /**
    * Facts about the last file read: its SH degree, its format ("binary_little_endian",
-   * "binary_big_endian", "ascii", "splat", "compressed_ply", "sog", or "spz v2".."spz v4",
-   * followed by " antialiased" when the SPZ header says so), and the number of Gaussians
+   * "binary_big_endian", "ascii", "splat", "ksplat", "compressed_ply", "sog", or "spz v2".."spz
+   * v4", followed by " antialiased" when the SPZ header says so), and the number of Gaussians
    * holding a NaN or infinite value (in a compressed PLY, an alpha of 0 or 255 is an opacity
    * logit of -inf or +inf).
    */

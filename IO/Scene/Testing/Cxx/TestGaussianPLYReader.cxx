@@ -147,6 +147,32 @@ int TestGaussianPLYReader(int, char*[])
       SameFloats(comp->GetOutput()->GetPointData()->GetArray(vis4gs::arrays::SH), compressed.SH),
     "compressed PLY values as the Core reader");
 
+  // .ksplat by content (issue 19), whatever the name: one level-0 record built from the
+  // layout (4096-byte header, one 1024-byte section header, 44 bytes of float32 / RGBA).
+  std::vector<unsigned char> ksplat(4096 + 1024 + 44, 0);
+  const auto putU32 = [&ksplat](std::size_t at, std::uint32_t v)
+  { std::memcpy(ksplat.data() + at, &v, 4); }; // little-endian hosts only, as VTK's tests
+  ksplat[1] = 1;                               // version 0.1
+  for (std::size_t at : { 4, 8, 12, 16, 4096, 4100 })
+  {
+    putU32(at, 1); // one section, one splat
+  }
+  const float record[10] = { 1.f, 2.f, 3.f, 0.5f, 0.5f, 0.5f, 1.f, 0.f, 0.f, 0.f };
+  std::memcpy(ksplat.data() + 5120, record, sizeof(record));
+  ksplat[5160 + 3] = 255; // black, opaque
+  FILE* kf = std::fopen((dir / "scene.dat").c_str(), "wb");
+  std::fwrite(ksplat.data(), 1, ksplat.size(), kf);
+  std::fclose(kf);
+  vtkNew<vtkGaussianPLYReader> ks;
+  ks->SetFileName((dir / "scene.dat").c_str());
+  ks->Update();
+  vtkPolyData* kout = ks->GetOutput();
+  Check(std::string(ks->GetFileFormat()) == "ksplat" && kout->GetNumberOfPoints() == 1 &&
+      kout->GetPoint(0)[2] == 3.0 &&
+      std::abs(kout->GetPointData()->GetArray(vis4gs::arrays::LogScale)->GetComponent(0, 1) -
+        std::log(0.5)) < 1e-6,
+    "ksplat read by content");
+
   // NaN values: kept, counted, one warning.
   vis4gs::GaussianCloud bad = core;
   bad.OpacityLogits[3] = std::numeric_limits<float>::quiet_NaN();
