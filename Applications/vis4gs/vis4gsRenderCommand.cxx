@@ -6,8 +6,8 @@
 #include "ImageIO.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraReader.h"
-#include "vtkGaussianPLYReader.h"
 #include "vtkGaussianRasterizer.h"
+#include "vtkGaussianSceneReader.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -102,7 +102,7 @@ bool IsIndex(const std::string& s)
 int Run(const Vis4GSArguments& args)
 {
   const std::string scenePath = args.GetPositional("scene");
-  vtkNew<vtkGaussianPLYReader> reader;
+  vtkNew<vtkGaussianSceneReader> reader;
   reader->SetFileName(scenePath.c_str());
   reader->Update();
   vtkPolyData* scene = reader->GetOutput();

@@ -1,4 +1,4 @@
-"""Renders a scene file with Vis4GS (vtkGaussianPLYReader -> vtkGaussianRasterizer, float and
+"""Renders a scene file with Vis4GS (vtkGaussianSceneReader -> vtkGaussianRasterizer, float and
 double arithmetic) and with the independent numpy float64 reference (reference_render.py,
 which parses the file itself) from given cameras, and reports the PSNR of each image.
 Used by the reference-check tests (Filters/Raster/Testing/Python/TestReferenceRender*.py)."""
@@ -42,7 +42,7 @@ def compare_file(path, scene, cameras, width, height, fov_x_deg=60.0, background
     """Renders @p path with Vis4GS and @p scene (reference_render.Scene of the same file) with
     the reference from every world-to-camera matrix of @p cameras. Returns a list of
     (label, camera index, PSNR float, PSNR double, seconds of the reference)."""
-    reader = vis4gs.vtkGaussianPLYReader()
+    reader = vis4gs.vtkGaussianSceneReader()
     reader.SetFileName(path)
     reader.Update()
     raster = vis4gs.vtkGaussianRasterizer()

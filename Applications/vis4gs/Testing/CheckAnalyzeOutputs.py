@@ -96,7 +96,7 @@ def compute_scores(scene, options, demo):
         reader.SetIteration(reader.GetSnapshotIteration(n - 1))
         points_port, cameras_port = reader.GetOutputPort(0), reader.GetOutputPort(1)
     else:
-        reader = vis4gs.vtkGaussianPLYReader()
+        reader = vis4gs.vtkGaussianSceneReader()
         reader.SetFileName(scene)
         points_port, cameras_port = reader.GetOutputPort(0), None
         if need_cameras:

@@ -191,7 +191,7 @@ def folder(vis4gs_exe):
           "images= gives the scores of the cameras' own image paths")
     check(same_bits(named.select(ids=[5, 3, 1]).ids, [1, 3, 5]), "select(ids) in scene order")
 
-    plys = vis4gs.vtkGaussianPLYReader()
+    plys = vis4gs.vtkGaussianSceneReader()
     plys.SetFileName(ply)
     cams = vis4gs.vtkGaussianCameraReader()
     cams.SetFileName(colmap)

@@ -27,7 +27,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter
 from .vis4gsFiltersGenealogy import vtkGaussianGenealogyLineage, vtkGaussianGenealogyTreeFilter
 from .vis4gsFiltersRaster import vtkGaussianRasterizer
-from .vis4gsIOScene import vtkGaussianCameraReader, vtkGaussianPLYReader, vtkGaussianPLYWriter
+from .vis4gsIOScene import vtkGaussianCameraReader, vtkGaussianSceneReader, vtkGaussianPLYWriter
 from .vis4gsIOTrainingLog import vtkGaussianTrainingLogReader
 
 # Short score names (as `vis4gs analyze --scores` spells them) and their arrays, in the order
@@ -107,7 +107,7 @@ class Scene:
         else:
             if iteration is not None:
                 raise Vis4GSError(f"{path}: iteration= is for training logs only")
-            self._reader = vtkGaussianPLYReader()
+            self._reader = vtkGaussianSceneReader()
             self._reader.SetFileName(path)
             if id_property:
                 self._reader.SetIdProperty(id_property)

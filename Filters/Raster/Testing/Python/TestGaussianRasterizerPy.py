@@ -49,7 +49,7 @@ m.SetNumberOfComponents(16)
 m.InsertNextTuple(list(w2c.ravel()))
 table.AddColumn(m)
 
-reader = vis4gs.vtkGaussianPLYReader()
+reader = vis4gs.vtkGaussianSceneReader()
 reader.SetFileName(ply)
 raster = vis4gs.vtkGaussianRasterizer()
 raster.SetInputConnection(0, reader.GetOutputPort())

@@ -10,8 +10,8 @@
 =========================================================================*/
 // vtkGaussianPLYWriter: reader -> writer reproduces the trainer's file byte for byte; added
 // score arrays become extra PLY properties; ids, big-endian/ASCII; errors.
-#include "vtkGaussianPLYReader.h"
 #include "vtkGaussianPLYWriter.h"
+#include "vtkGaussianSceneReader.h"
 
 #include "IOSceneTestUtils.h"
 #include "Vis4GSDataModel.h"
@@ -46,7 +46,7 @@ int TestGaussianPLYWriter(int, char*[])
   const std::string ply = vis4gs::testing::SharedDataPath(
     "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply");
   iotest::TempDir dir;
-  vtkNew<vtkGaussianPLYReader> reader;
+  vtkNew<vtkGaussianSceneReader> reader;
   reader->SetFileName(ply.c_str());
   reader->Update();
 

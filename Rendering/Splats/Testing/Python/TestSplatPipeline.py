@@ -14,7 +14,7 @@ from vis4gs_test_data import shared_data_dir
 data = shared_data_dir()
 ply = os.path.join(data, "gs_ply_sh0_variant_donut_v3dg", "fused.ply")
 
-reader = vis4gs.vtkGaussianPLYReader()
+reader = vis4gs.vtkGaussianSceneReader()
 reader.SetFileName(ply)
 reader.Update()
 scene = reader.GetOutput()

@@ -1,14 +1,14 @@
 /*=========================================================================
 
   Program:   Vis4GS
-  Module:    vtkGaussianPLYReader.cxx
+  Module:    vtkGaussianSceneReader.cxx
 
   Copyright (c) Vis4GS developers
   All rights reserved.
   See LICENSE for details.
 
 =========================================================================*/
-#include "vtkGaussianPLYReader.h"
+#include "vtkGaussianSceneReader.h"
 
 #include "Vis4GSDataModel.h"
 
@@ -21,16 +21,16 @@
 
 #include <stdexcept>
 
-vtkStandardNewMacro(vtkGaussianPLYReader);
+vtkStandardNewMacro(vtkGaussianSceneReader);
 
 //------------------------------------------------------------------------------
-vtkGaussianPLYReader::vtkGaussianPLYReader()
+vtkGaussianSceneReader::vtkGaussianSceneReader()
 {
   this->SetNumberOfInputPorts(0);
 }
 
 //------------------------------------------------------------------------------
-int vtkGaussianPLYReader::RequestData(vtkInformation* vtkNotUsed(request),
+int vtkGaussianSceneReader::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** vtkNotUsed(inputVector),
   vtkInformationVector* outputVector)
 {
@@ -79,7 +79,7 @@ int vtkGaussianPLYReader::RequestData(vtkInformation* vtkNotUsed(request),
 }
 
 //------------------------------------------------------------------------------
-void vtkGaussianPLYReader::PrintSelf(ostream& os, vtkIndent indent)
+void vtkGaussianSceneReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";

@@ -1,16 +1,16 @@
 /*=========================================================================
 
   Program:   Vis4GS
-  Module:    TestGaussianPLYReader.cxx
+  Module:    TestGaussianSceneReader.cxx
 
   Copyright (c) Vis4GS developers
   All rights reserved.
   See LICENSE for details.
 
 =========================================================================*/
-// vtkGaussianPLYReader on the real INRIA PLY and .splat files: array layout of DESIGN §2,
+// vtkGaussianSceneReader on the real INRIA PLY and .splat files: array layout of DESIGN §2,
 // bit-exact values against the Core reader, options, and errors/warnings.
-#include "vtkGaussianPLYReader.h"
+#include "vtkGaussianSceneReader.h"
 
 #include "IOSceneTestUtils.h"
 #include "Vis4GSDataModel.h"
@@ -42,14 +42,14 @@ bool SameFloats(vtkDataArray* a, const std::vector<float>& v)
 }
 }
 
-int TestGaussianPLYReader(int, char*[])
+int TestGaussianSceneReader(int, char*[])
 {
   VIS4GS_SHARED_DATA_OR_SKIP();
   const std::string ply = vis4gs::testing::SharedDataPath(
     "inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply");
   const vis4gs::GaussianCloud core = vis4gs::ReadGaussianPly(ply);
 
-  vtkNew<vtkGaussianPLYReader> reader;
+  vtkNew<vtkGaussianSceneReader> reader;
   reader->SetFileName(ply.c_str());
   reader->Update();
   vtkPolyData* pd = reader->GetOutput();
@@ -106,7 +106,7 @@ int TestGaussianPLYReader(int, char*[])
   Check(d->GetArray(vis4gs::arrays::Rotation) != nullptr, "rotations still read");
 
   // .splat by extension.
-  vtkNew<vtkGaussianPLYReader> splat;
+  vtkNew<vtkGaussianSceneReader> splat;
   splat->SetFileName(
     vis4gs::testing::SharedDataPath("inria_ply_tiny_kacytran/model_1.splat").c_str());
   splat->Update();
@@ -121,7 +121,7 @@ int TestGaussianPLYReader(int, char*[])
   iotest::TempDir dir;
   vis4gs::WriteSpz(dir / "inria.spz", core);
   const vis4gs::GaussianCloud spzCore = vis4gs::ReadSpz(dir / "inria.spz");
-  vtkNew<vtkGaussianPLYReader> spz;
+  vtkNew<vtkGaussianSceneReader> spz;
   spz->SetFileName((dir / "inria.spz").c_str());
   spz->Update();
   Check(std::string(spz->GetFileFormat()) == "spz v4", "spz format");
@@ -136,7 +136,7 @@ int TestGaussianPLYReader(int, char*[])
   // A compressed PLY, whatever its name: recognised by content, decoded as the Core reader.
   vis4gs::WriteCompressedPly(dir / "scene.bin", core);
   const vis4gs::GaussianCloud compressed = vis4gs::ReadCompressedPly(dir / "scene.bin");
-  vtkNew<vtkGaussianPLYReader> comp;
+  vtkNew<vtkGaussianSceneReader> comp;
   comp->SetFileName((dir / "scene.bin").c_str());
   comp->Update();
   Check(std::string(comp->GetFileFormat()) == "compressed_ply", "compressed PLY format");
@@ -163,7 +163,7 @@ int TestGaussianPLYReader(int, char*[])
   FILE* kf = std::fopen((dir / "scene.dat").c_str(), "wb");
   std::fwrite(ksplat.data(), 1, ksplat.size(), kf);
   std::fclose(kf);
-  vtkNew<vtkGaussianPLYReader> ks;
+  vtkNew<vtkGaussianSceneReader> ks;
   ks->SetFileName((dir / "scene.dat").c_str());
   ks->Update();
   vtkPolyData* kout = ks->GetOutput();
@@ -179,7 +179,7 @@ int TestGaussianPLYReader(int, char*[])
   bad.Positions[3 * 7] = std::numeric_limits<float>::infinity();
   vis4gs::WriteGaussianPly(dir / "nan.ply", bad);
   vtkNew<iotest::MessageObserver> messages;
-  vtkNew<vtkGaussianPLYReader> nanReader;
+  vtkNew<vtkGaussianSceneReader> nanReader;
   messages->Watch(nanReader);
   nanReader->SetFileName((dir / "nan.ply").c_str());
   nanReader->Update();
@@ -194,7 +194,7 @@ int TestGaussianPLYReader(int, char*[])
   Check(messages->Errors.empty(), "no error for NaN");
 
   // Errors: missing file, truncated file; the request fails with a message naming the file.
-  vtkNew<vtkGaussianPLYReader> missing;
+  vtkNew<vtkGaussianSceneReader> missing;
   vtkNew<iotest::MessageObserver> errors;
   errors->Watch(missing);
   missing->SetFileName((dir / "missing.ply").c_str());

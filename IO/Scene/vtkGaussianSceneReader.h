@@ -1,7 +1,7 @@
 /*=========================================================================
 
   Program:   Vis4GS
-  Module:    vtkGaussianPLYReader.h
+  Module:    vtkGaussianSceneReader.h
 
   Copyright (c) Vis4GS developers
   All rights reserved.
@@ -9,7 +9,7 @@
 
 =========================================================================*/
 /**
- * @class   vtkGaussianPLYReader
+ * @class   vtkGaussianSceneReader
  * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, GaussianSplats3D's .ksplat, an
  * antimatter15 .splat, a PlayCanvas compressed PLY or a SOG) as the Gaussian vtkPolyData of
  * DESIGN §2.
@@ -32,19 +32,19 @@
  *
  * The parsing is done by vis4gs::ReadGaussianScene (Core/Scene/GaussianIO.h).
  */
-#ifndef vtkGaussianPLYReader_h
-#define vtkGaussianPLYReader_h
+#ifndef vtkGaussianSceneReader_h
+#define vtkGaussianSceneReader_h
 
 #include "vis4gsIOSceneModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For std::string
 
-class VIS4GSIOSCENE_EXPORT vtkGaussianPLYReader : public vtkPolyDataAlgorithm
+class VIS4GSIOSCENE_EXPORT vtkGaussianSceneReader : public vtkPolyDataAlgorithm
 {
 public:
-  static vtkGaussianPLYReader* New();
-  vtkTypeMacro(vtkGaussianPLYReader, vtkPolyDataAlgorithm);
+  static vtkGaussianSceneReader* New();
+  vtkTypeMacro(vtkGaussianSceneReader, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -120,8 +120,8 @@ public:
   ///@}
 
 protected:
-  vtkGaussianPLYReader();
-  ~vtkGaussianPLYReader() override = default;
+  vtkGaussianSceneReader();
+  ~vtkGaussianSceneReader() override = default;
 
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
@@ -141,8 +141,8 @@ protected:
   vtkIdType NumberOfNonFiniteGaussians = 0;
 
 private:
-  vtkGaussianPLYReader(const vtkGaussianPLYReader&) = delete;
-  void operator=(const vtkGaussianPLYReader&) = delete;
+  vtkGaussianSceneReader(const vtkGaussianSceneReader&) = delete;
+  void operator=(const vtkGaussianSceneReader&) = delete;
 };
 
 #endif
