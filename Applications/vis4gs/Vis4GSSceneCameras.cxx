@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSSceneCameras.h"
 
+#include "TrainingLogReader.h"
+
 #include "CameraJson.h"
 #include "ColmapDataset.h"
 #include "TransformsJson.h"
@@ -51,11 +53,5 @@ std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
 
 bool Vis4GSLoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
 {
-  std::error_code ec;
-  if (camera.ImagePath.empty() || !std::filesystem::is_regular_file(camera.ImagePath, ec))
-  {
-    return false;
-  }
-  image = vis4gs::LoadTrainingImage(camera);
-  return true;
+  return vis4gs::LoadCameraImage(nullptr, camera, image);
 }

@@ -37,24 +37,5 @@ vis4gs::GaussianCloud Vis4GSReadSceneWithIds(const std::string& path, const std:
 vis4gs::TrainingImageProvider Vis4GSLogImages(std::shared_ptr<vis4gs::TrainingLogReader> log)
 {
   return [log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
-  {
-    const std::string prefix = "/images/";
-    std::error_code ec;
-    if (log && camera.ImagePath.rfind(prefix, 0) == 0 &&
-      !std::filesystem::is_regular_file(camera.ImagePath, ec))
-    {
-      int width = 0, height = 0;
-      const std::vector<unsigned char> bytes =
-        log->ReadImage(camera.ImagePath.substr(prefix.size()), width, height);
-      image = vis4gs::PrepareTrainingImage(
-        vis4gs::ImageFromBytes(bytes.data(), width, height, 3), camera);
-      return true;
-    }
-    if (camera.ImagePath.empty() || !std::filesystem::is_regular_file(camera.ImagePath, ec))
-    {
-      return false;
-    }
-    image = vis4gs::LoadTrainingImage(camera);
-    return true;
-  };
+  { return vis4gs::LoadCameraImage(log.get(), camera, image); };
 }

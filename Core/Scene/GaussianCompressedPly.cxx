@@ -371,29 +371,7 @@ GaussianCloud ReadCompressed(const ByteSource& src,
       }
     });
 
-  GaussianCloud cloud;
-  cloud.Count = n;
-  cloud.ShDegree = degree;
-  if (options.LoadPositions)
-  {
-    cloud.Positions.resize(3 * n);
-  }
-  if (options.LoadScales)
-  {
-    cloud.LogScales.resize(3 * n);
-  }
-  if (options.LoadRotations)
-  {
-    cloud.Rotations.resize(4 * n);
-  }
-  if (options.LoadOpacities)
-  {
-    cloud.OpacityLogits.resize(n);
-  }
-  if (options.LoadSH)
-  {
-    cloud.SH.resize(3 * kOut * n);
-  }
+  GaussianCloud cloud = detail::AllocateReadArrays(n, degree, options);
   float logit[256], shv[256];
   for (std::uint32_t i = 0; i < 256; ++i)
   {
@@ -913,11 +891,7 @@ GaussianCloud ReadCompressedPly(const std::string& path,
   GaussianReadReport* report)
 {
   detail::InputFile file(path);
-  ByteSource src;
-  src.File = &file;
-  src.Size = file.Size();
-  src.Name = path;
-  return ReadCompressed(src, options, report);
+  return ReadCompressed(detail::FileSource(file), options, report);
 }
 
 //------------------------------------------------------------------------------
@@ -927,12 +901,7 @@ GaussianCloud ReadCompressedPlyFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  static const unsigned char empty = 0;
-  ByteSource src;
-  src.Memory = data ? static_cast<const unsigned char*>(data) : &empty;
-  src.Size = data ? size : 0;
-  src.Name = name;
-  return ReadCompressed(src, options, report);
+  return ReadCompressed(detail::MemorySource(data, size, name), options, report);
 }
 
 //------------------------------------------------------------------------------

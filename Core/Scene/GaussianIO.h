@@ -342,6 +342,14 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);
 
+namespace detail
+{
+/// A cloud of @p n Gaussians with SH degree @p shDegree (0 when @p options skip SH) whose
+/// arrays are sized for what @p options ask a reader to load, the others left empty: the one
+/// allocation rule of every scene reader.
+GaussianCloud AllocateReadArrays(std::size_t n, int shDegree, const GaussianReadOptions& options);
+} // namespace detail
+
 } // namespace vis4gs
 
 #endif

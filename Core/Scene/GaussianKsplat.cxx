@@ -39,25 +39,6 @@ constexpr double DefaultShHalfRange = 1.5;
 // splat-transform's clamp, so that both readers give the same logits for bytes 0 and 255.
 constexpr double AlphaClamp = 1e-6;
 
-std::uint16_t LoadU16(const unsigned char* p)
-{
-  return static_cast<std::uint16_t>(p[0] | (p[1] << 8));
-}
-
-std::uint32_t LoadU32(const unsigned char* p)
-{
-  return std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) |
-    (std::uint32_t(p[3]) << 24);
-}
-
-float LoadF32(const unsigned char* p)
-{
-  const std::uint32_t bits = LoadU32(p);
-  float f;
-  std::memcpy(&f, &bits, 4);
-  return f;
-}
-
 float HalfToFloat(std::uint16_t h)
 {
   const int exponent = (h >> 10) & 0x1f;
@@ -137,14 +118,14 @@ KsplatLayout ParseLayout(const unsigned char* headers,
       " (GaussianSplats3D writes 0.1; major versions other than 0 are unknown)");
   }
   layout.VersionMinor = headers[1];
-  const std::uint32_t maxSections = LoadU32(headers + 4);
-  const std::uint32_t sections = LoadU32(headers + 8);
-  layout.MaxSplatCount = LoadU32(headers + 12);
-  layout.SplatCount = LoadU32(headers + 16);
-  layout.Level = LoadU16(headers + 20);
+  const std::uint32_t maxSections = detail::LoadLE32(headers + 4);
+  const std::uint32_t sections = detail::LoadLE32(headers + 8);
+  layout.MaxSplatCount = detail::LoadLE32(headers + 12);
+  layout.SplatCount = detail::LoadLE32(headers + 16);
+  layout.Level = detail::LoadLE16(headers + 20);
   // JavaScript's `x || default`: 0 and NaN select the default.
-  const float shMin = LoadF32(headers + 36);
-  const float shMax = LoadF32(headers + 40);
+  const float shMin = detail::LoadLEFloat(headers + 36);
+  const float shMax = detail::LoadLEFloat(headers + 40);
   layout.ShMin = (shMin == 0 || std::isnan(shMin)) ? float(-DefaultShHalfRange) : shMin;
   layout.ShMax = (shMax == 0 || std::isnan(shMax)) ? float(DefaultShHalfRange) : shMax;
   if (layout.Level > 2)
@@ -177,16 +158,16 @@ KsplatLayout ParseLayout(const unsigned char* headers,
     const unsigned char* h = headers + MainHeaderBytes + std::size_t(i) * SectionHeaderBytes;
     KsplatSection& s = layout.Sections[i];
     const std::string which = "section " + std::to_string(i) + ": ";
-    s.SplatCount = LoadU32(h);
-    s.MaxSplatCount = LoadU32(h + 4);
-    s.BucketSize = LoadU32(h + 8);
-    s.BucketCount = LoadU32(h + 12);
-    const float blockSize = LoadF32(h + 16);
-    const std::uint16_t bucketStorage = LoadU16(h + 20);
-    const std::uint32_t scaleRange = LoadU32(h + 24);
-    s.FullBucketCount = LoadU32(h + 32);
-    s.PartialBucketCount = LoadU32(h + 36);
-    s.ShDegree = LoadU16(h + 40);
+    s.SplatCount = detail::LoadLE32(h);
+    s.MaxSplatCount = detail::LoadLE32(h + 4);
+    s.BucketSize = detail::LoadLE32(h + 8);
+    s.BucketCount = detail::LoadLE32(h + 12);
+    const float blockSize = detail::LoadLEFloat(h + 16);
+    const std::uint16_t bucketStorage = detail::LoadLE16(h + 20);
+    const std::uint32_t scaleRange = detail::LoadLE32(h + 24);
+    s.FullBucketCount = detail::LoadLE32(h + 32);
+    s.PartialBucketCount = detail::LoadLE32(h + 36);
+    s.ShDegree = detail::LoadLE16(h + 40);
     if (s.SplatCount > s.MaxSplatCount)
     {
       fail(which + "splat count " + std::to_string(s.SplatCount) + " exceeds its maximum " +
@@ -280,30 +261,8 @@ GaussianCloud ReadKsplatBytes(const unsigned char* data,
   }
   const int degree = options.LoadSH ? std::max(0, std::min(options.MaxShDegree, fileDegree)) : 0;
   const std::size_t n = static_cast<std::size_t>(layout.TotalSplats);
-  GaussianCloud cloud;
-  cloud.Count = n;
-  cloud.ShDegree = degree;
+  GaussianCloud cloud = detail::AllocateReadArrays(n, degree, options);
   const int coefficients = (degree + 1) * (degree + 1);
-  if (options.LoadPositions)
-  {
-    cloud.Positions.resize(3 * n);
-  }
-  if (options.LoadScales)
-  {
-    cloud.LogScales.resize(3 * n);
-  }
-  if (options.LoadRotations)
-  {
-    cloud.Rotations.resize(4 * n);
-  }
-  if (options.LoadOpacities)
-  {
-    cloud.OpacityLogits.resize(n);
-  }
-  if (options.LoadSH)
-  {
-    cloud.SH.resize(3 * std::size_t(coefficients) * n);
-  }
   float dc[256], logit[256], sh8[256];
   for (int i = 0; i < 256; ++i)
   {
@@ -313,7 +272,10 @@ GaussianCloud ReadKsplatBytes(const unsigned char* data,
   }
   const int level = layout.Level;
   const auto loadValue = [level](const unsigned char* p, std::size_t index)
-  { return level == 0 ? LoadF32(p + 4 * index) : HalfToFloat(LoadU16(p + 2 * index)); };
+  {
+    return level == 0 ? detail::LoadLEFloat(p + 4 * index)
+                      : HalfToFloat(detail::LoadLE16(p + 2 * index));
+  };
   std::size_t badValues = 0, badRows = 0;
   std::size_t g = 0;
   for (std::size_t si = 0; si < layout.Sections.size(); ++si)
@@ -341,7 +303,7 @@ GaussianCloud ReadKsplatBytes(const unsigned char* data,
         }
         bucketEnd += bucket < s.FullBucketCount
           ? s.BucketSize
-          : LoadU32(data + s.Base + 4 * (bucket - s.FullBucketCount));
+          : detail::LoadLE32(data + s.Base + 4 * (bucket - s.FullBucketCount));
       }
       if (options.LoadPositions)
       {
@@ -350,12 +312,13 @@ GaussianCloud ReadKsplatBytes(const unsigned char* data,
           float v;
           if (level == 0)
           {
-            v = LoadF32(rec + 4 * c);
+            v = detail::LoadLEFloat(rec + 4 * c);
           }
           else
           {
-            const double centre = LoadF32(bucketCentres + 12 * bucket + 4 * c);
-            v = static_cast<float>((LoadU16(rec + 2 * c) - s.ScaleRange) * s.PositionStep + centre);
+            const double centre = detail::LoadLEFloat(bucketCentres + 12 * bucket + 4 * c);
+            v = static_cast<float>(
+              (detail::LoadLE16(rec + 2 * c) - s.ScaleRange) * s.PositionStep + centre);
           }
           cloud.Positions[3 * g + c] = v;
           rowBad += !std::isfinite(v);
@@ -452,7 +415,7 @@ bool IsKsplatFile(const std::string& path)
       return false;
     }
     file.ReadAt(0, head.data(), head.size());
-    const std::uint32_t maxSections = LoadU32(head.data() + 4);
+    const std::uint32_t maxSections = detail::LoadLE32(head.data() + 4);
     if (head[0] != 0 || head[1] < 1 || head[2] != 0 || head[3] != 0 || maxSections == 0 ||
       MainHeaderBytes + std::uint64_t(maxSections) * SectionHeaderBytes > file.Size())
     {
@@ -485,12 +448,8 @@ GaussianCloud ReadKsplatFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  static const unsigned char empty = 0;
-  return ReadKsplatBytes(data ? static_cast<const unsigned char*>(data) : &empty,
-    data ? size : 0,
-    name,
-    options,
-    report);
+  const detail::ByteSource src = detail::MemorySource(data, size, name);
+  return ReadKsplatBytes(src.Memory, static_cast<std::size_t>(src.Size), name, options, report);
 }
 
 } // namespace vis4gs

@@ -1258,11 +1258,7 @@ GaussianCloud ReadGaussianPly(const std::string& path,
   GaussianReadReport* report)
 {
   detail::InputFile file(path);
-  ByteSource src;
-  src.File = &file;
-  src.Size = file.Size();
-  src.Name = path;
-  return ReadPly(src, options, report);
+  return ReadPly(detail::FileSource(file), options, report);
 }
 
 //------------------------------------------------------------------------------
@@ -1272,12 +1268,7 @@ GaussianCloud ReadGaussianPlyFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  static const unsigned char empty = 0;
-  ByteSource src;
-  src.Memory = data ? static_cast<const unsigned char*>(data) : &empty;
-  src.Size = data ? size : 0;
-  src.Name = name;
-  return ReadPly(src, options, report);
+  return ReadPly(detail::MemorySource(data, size, name), options, report);
 }
 
 } // namespace vis4gs

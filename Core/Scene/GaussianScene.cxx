@@ -47,4 +47,35 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   return ReadGaussianPly(path, options, report);
 }
 
+//------------------------------------------------------------------------------
+GaussianCloud detail::AllocateReadArrays(std::size_t n,
+  int shDegree,
+  const GaussianReadOptions& options)
+{
+  GaussianCloud cloud;
+  cloud.Count = n;
+  cloud.ShDegree = options.LoadSH ? shDegree : 0;
+  if (options.LoadPositions)
+  {
+    cloud.Positions.resize(3 * n);
+  }
+  if (options.LoadScales)
+  {
+    cloud.LogScales.resize(3 * n);
+  }
+  if (options.LoadRotations)
+  {
+    cloud.Rotations.resize(4 * n);
+  }
+  if (options.LoadOpacities)
+  {
+    cloud.OpacityLogits.resize(n);
+  }
+  if (options.LoadSH)
+  {
+    cloud.SH.resize(3 * static_cast<std::size_t>(cloud.ShCoefficientCount()) * n);
+  }
+  return cloud;
+}
+
 } // namespace vis4gs

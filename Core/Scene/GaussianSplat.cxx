@@ -21,19 +21,6 @@ namespace
 constexpr std::size_t SplatRowSize = 32;
 constexpr double AlphaClamp = 1e-4;
 
-float LoadF32LE(const unsigned char* p)
-{
-  std::uint32_t bits;
-  std::memcpy(&bits, p, 4);
-  if (!detail::HostIsLittleEndian())
-  {
-    bits = detail::ByteSwap32(bits);
-  }
-  float f;
-  std::memcpy(&f, &bits, 4);
-  return f;
-}
-
 //------------------------------------------------------------------------------
 GaussianCloud ReadSplatSource(const detail::ByteSource& src,
   const GaussianReadOptions& options,
@@ -48,29 +35,7 @@ GaussianCloud ReadSplatSource(const detail::ByteSource& src,
   GaussianReadReport report;
   report.Format = "splat";
   report.FileShDegree = 0;
-  GaussianCloud cloud;
-  cloud.Count = n;
-  cloud.ShDegree = 0;
-  if (options.LoadPositions)
-  {
-    cloud.Positions.resize(3 * n);
-  }
-  if (options.LoadScales)
-  {
-    cloud.LogScales.resize(3 * n);
-  }
-  if (options.LoadRotations)
-  {
-    cloud.Rotations.resize(4 * n);
-  }
-  if (options.LoadOpacities)
-  {
-    cloud.OpacityLogits.resize(n);
-  }
-  if (options.LoadSH)
-  {
-    cloud.SH.resize(3 * n);
-  }
+  GaussianCloud cloud = detail::AllocateReadArrays(n, 0, options);
   if (!options.IdProperty.empty())
   {
     throw std::runtime_error(
@@ -102,7 +67,7 @@ GaussianCloud ReadSplatSource(const detail::ByteSource& src,
         {
           for (int c = 0; c < 3; ++c)
           {
-            const float v = LoadF32LE(row + 4 * c);
+            const float v = detail::LoadLEFloat(row + 4 * c);
             cloud.Positions[3 * g + c] = v;
             rowBad += !std::isfinite(v);
           }
@@ -112,7 +77,7 @@ GaussianCloud ReadSplatSource(const detail::ByteSource& src,
           for (int c = 0; c < 3; ++c)
           {
             // log(0) = -inf and log(negative) = NaN are kept and reported like NaN in a PLY.
-            const float v = std::log(LoadF32LE(row + 12 + 4 * c));
+            const float v = std::log(detail::LoadLEFloat(row + 12 + 4 * c));
             cloud.LogScales[3 * g + c] = v;
             rowBad += !std::isfinite(v);
           }
@@ -164,11 +129,7 @@ GaussianCloud ReadSplat(const std::string& path,
   GaussianReadReport* report)
 {
   detail::InputFile file(path);
-  detail::ByteSource src;
-  src.File = &file;
-  src.Size = file.Size();
-  src.Name = path;
-  return ReadSplatSource(src, options, report);
+  return ReadSplatSource(detail::FileSource(file), options, report);
 }
 
 //------------------------------------------------------------------------------
@@ -178,12 +139,7 @@ GaussianCloud ReadSplatFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  static const unsigned char empty = 0;
-  detail::ByteSource src;
-  src.Memory = data ? static_cast<const unsigned char*>(data) : &empty;
-  src.Size = data ? size : 0;
-  src.Name = name;
-  return ReadSplatSource(src, options, report);
+  return ReadSplatSource(detail::MemorySource(data, size, name), options, report);
 }
 
 //------------------------------------------------------------------------------

@@ -45,17 +45,6 @@ constexpr int CoordinateRdf = 6;
 // Coefficient count per channel (without DC) for SH degrees 0..4.
 constexpr int RestDims[5] = { 0, 3, 8, 15, 24 };
 
-std::uint32_t LoadU32(const unsigned char* p)
-{
-  return std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) |
-    (std::uint32_t(p[3]) << 24);
-}
-
-std::uint64_t LoadU64(const unsigned char* p)
-{
-  return std::uint64_t(LoadU32(p)) | (std::uint64_t(LoadU32(p + 4)) << 32);
-}
-
 void StoreU32(unsigned char* p, std::uint32_t v)
 {
   for (int i = 0; i < 4; ++i)
@@ -186,8 +175,8 @@ void ParseExtensions(PackedSpz& p, const std::string& name, const unsigned char*
   std::size_t at = 0;
   while (n - at >= 8)
   {
-    const std::uint32_t type = LoadU32(b + at);
-    const std::uint32_t length = LoadU32(b + at + 4);
+    const std::uint32_t type = detail::LoadLE32(b + at);
+    const std::uint32_t length = detail::LoadLE32(b + at + 4);
     at += 8;
     if (length > n - at)
     {
@@ -197,7 +186,7 @@ void ParseExtensions(PackedSpz& p, const std::string& name, const unsigned char*
     }
     if (type == ExtensionCoordinateSystem && length >= 4)
     {
-      const std::uint32_t system = LoadU32(b + at);
+      const std::uint32_t system = detail::LoadLE32(b + at);
       if (system > 8)
       {
         throw std::runtime_error(name + ": the SPZ data is stored in coordinate system " +
@@ -277,10 +266,10 @@ void InflateLegacy(PackedSpz& p, const std::string& name, const unsigned char* s
   {
     throw std::runtime_error(name + ": the SPZ gzip stream ends inside the 16-byte header");
   }
-  p.Version = LoadU32(header + 4);
+  p.Version = detail::LoadLE32(header + 4);
   p.FractionalBits = header[13];
   p.Flags = header[14];
-  CheckHeader(p, name, LoadU32(header), LoadU32(header + 8), header[12], n);
+  CheckHeader(p, name, detail::LoadLE32(header), detail::LoadLE32(header + 8), header[12], n);
   p.Data.resize(TotalSize(p));
   const std::size_t got = inflateInto(p.Data.data(), p.Data.size());
   if (got != p.Data.size())
@@ -308,17 +297,17 @@ void DecompressNgsp(PackedSpz& p, const std::string& name, const unsigned char* 
   {
     throw std::runtime_error(name + ": SPZ v4 file shorter than its 32-byte header");
   }
-  p.Version = LoadU32(src + 4);
+  p.Version = detail::LoadLE32(src + 4);
   p.FractionalBits = src[13];
   p.Flags = src[14];
   const int numStreams = src[15];
-  const std::uint64_t toc = LoadU32(src + 16);
+  const std::uint64_t toc = detail::LoadLE32(src + 16);
   if (p.Version < 4)
   {
     throw std::runtime_error(name + ": an uncompressed NGSP header with version " +
       std::to_string(p.Version) + " (versions 2 and 3 are gzip streams)");
   }
-  CheckHeader(p, name, LoadU32(src), LoadU32(src + 8), src[12], n);
+  CheckHeader(p, name, detail::LoadLE32(src), detail::LoadLE32(src + 8), src[12], n);
   const int expectedStreams = p.ShDegree > 0 ? 6 : 5;
   if (numStreams != expectedStreams)
   {
@@ -336,8 +325,8 @@ void DecompressNgsp(PackedSpz& p, const std::string& name, const unsigned char* 
   std::uint64_t compressed[6] = {};
   for (int i = 0; i < numStreams; ++i)
   {
-    compressed[i] = LoadU64(src + toc + 16 * i);
-    const std::uint64_t raw = LoadU64(src + toc + 16 * i + 8);
+    compressed[i] = detail::LoadLE64(src + toc + 16 * i);
+    const std::uint64_t raw = detail::LoadLE64(src + toc + 16 * i + 8);
     if (raw != p.Sizes[i])
     {
       throw std::runtime_error(name + ": SPZ stream " + std::to_string(i) + " claims " +
@@ -386,7 +375,7 @@ PackedSpz Unpack(const unsigned char* src, std::size_t n, const std::string& nam
   {
     InflateLegacy(p, name, src, n);
   }
-  else if (n >= 4 && LoadU32(src) == NgspMagic)
+  else if (n >= 4 && detail::LoadLE32(src) == NgspMagic)
   {
     DecompressNgsp(p, name, src, n);
   }
@@ -439,7 +428,7 @@ void DecodeRotation(const unsigned char* b, bool smallestThree, double q[4])
   double xyzw[4];
   if (smallestThree)
   {
-    std::uint32_t comp = LoadU32(b);
+    std::uint32_t comp = detail::LoadLE32(b);
     const int largest = static_cast<int>(comp >> 30);
     double sum = 0;
     for (int i = 3; i >= 0; --i)
@@ -552,29 +541,7 @@ GaussianCloud ReadSpzBytes(const unsigned char* data,
   }
   const int degree = std::min({ p.ShDegree, std::max(0, options.MaxShDegree), 3 });
   const std::size_t n = p.Count;
-  GaussianCloud cloud;
-  cloud.Count = n;
-  cloud.ShDegree = options.LoadSH ? degree : 0;
-  if (options.LoadPositions)
-  {
-    cloud.Positions.resize(3 * n);
-  }
-  if (options.LoadScales)
-  {
-    cloud.LogScales.resize(3 * n);
-  }
-  if (options.LoadRotations)
-  {
-    cloud.Rotations.resize(4 * n);
-  }
-  if (options.LoadOpacities)
-  {
-    cloud.OpacityLogits.resize(n);
-  }
-  if (options.LoadSH)
-  {
-    cloud.SH.resize(3 * static_cast<std::size_t>(cloud.ShCoefficientCount()) * n);
-  }
+  GaussianCloud cloud = detail::AllocateReadArrays(n, degree, options);
   const AxisFlips flips = FlipsToRdf(p.CoordinateSystem);
   const int restOut = cloud.ShCoefficientCount() - 1;
 #pragma omp parallel for schedule(static) if (n > 65536)
@@ -657,7 +624,7 @@ bool IsSpzFile(const std::string& path)
     detail::InputFile file(path);
     unsigned char b[4] = {};
     const std::size_t n = file.ReadSomeAt(0, b, 4);
-    return (n >= 2 && b[0] == 0x1f && b[1] == 0x8b) || (n == 4 && LoadU32(b) == NgspMagic);
+    return (n >= 2 && b[0] == 0x1f && b[1] == 0x8b) || (n == 4 && detail::LoadLE32(b) == NgspMagic);
   }
   catch (const std::runtime_error&)
   {
@@ -681,12 +648,8 @@ GaussianCloud ReadSpzFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  static const unsigned char empty = 0;
-  return ReadSpzBytes(data ? static_cast<const unsigned char*>(data) : &empty,
-    data ? size : 0,
-    name,
-    options,
-    report);
+  const detail::ByteSource src = detail::MemorySource(data, size, name);
+  return ReadSpzBytes(src.Memory, static_cast<std::size_t>(src.Size), name, options, report);
 }
 
 //------------------------------------------------------------------------------

@@ -99,6 +99,27 @@ void InputFile::ReadAt(std::uint64_t offset, void* buffer, std::size_t size) con
 }
 
 //------------------------------------------------------------------------------
+ByteSource FileSource(const InputFile& file)
+{
+  ByteSource src;
+  src.File = &file;
+  src.Size = file.Size();
+  src.Name = file.Path();
+  return src;
+}
+
+//------------------------------------------------------------------------------
+ByteSource MemorySource(const void* data, std::size_t size, const std::string& name)
+{
+  static const unsigned char empty = 0;
+  ByteSource src;
+  src.Memory = data ? static_cast<const unsigned char*>(data) : &empty;
+  src.Size = data ? size : 0;
+  src.Name = name;
+  return src;
+}
+
+//------------------------------------------------------------------------------
 std::vector<unsigned char> ReadWholeFile(const std::string& path)
 {
   InputFile file(path);

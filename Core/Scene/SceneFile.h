@@ -37,6 +37,29 @@ inline std::uint32_t ByteSwap32(std::uint32_t v)
   return __builtin_bswap32(v);
 }
 
+/// Little-endian loads from unaligned bytes, on any host (the binary scene formats store
+/// little-endian integers and floats: .splat, SPZ, .ksplat).
+inline std::uint16_t LoadLE16(const unsigned char* p)
+{
+  return static_cast<std::uint16_t>(p[0] | (p[1] << 8));
+}
+inline std::uint32_t LoadLE32(const unsigned char* p)
+{
+  return std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8) | (std::uint32_t(p[2]) << 16) |
+    (std::uint32_t(p[3]) << 24);
+}
+inline std::uint64_t LoadLE64(const unsigned char* p)
+{
+  return std::uint64_t(LoadLE32(p)) | (std::uint64_t(LoadLE32(p + 4)) << 32);
+}
+inline float LoadLEFloat(const unsigned char* p)
+{
+  const std::uint32_t bits = LoadLE32(p);
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
 /// True on little-endian hosts.
 inline bool HostIsLittleEndian()
 {
@@ -80,6 +103,10 @@ struct ByteSource
   std::uint64_t Size = 0;
   std::string Name; ///< file name used in error messages
 };
+
+/// A ByteSource over an open file, or over a caller's buffer (null @p data: an empty one).
+ByteSource FileSource(const InputFile& file);
+ByteSource MemorySource(const void* data, std::size_t size, const std::string& name);
 
 /**
  * Calls @p kernel(rows, firstRow, rowCount) over @p rowCount rows of @p rowSize bytes that

@@ -26,8 +26,10 @@
 
 #include "Camera.h"
 #include "GaussianCloud.h"
+#include "ImageIO.h"
 #include "TrainingLogTypes.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -118,6 +120,18 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };
+
+/**
+ * The training image of @p camera, prepared as PrepareTrainingImage() does (@p background
+ * behind transparent pixels): "/images/<name>" is read from @p log when no file of that path
+ * exists (the camera tables of a log name their images so, DESIGN §3), any other path from its
+ * file. False when there is neither (no image: the caller decides what that means); errors
+ * reading an image that exists throw, naming it.
+ */
+bool LoadCameraImage(const TrainingLogReader* log,
+  const Camera& camera,
+  Image& image,
+  const std::array<float, 3>& background = { 0, 0, 0 });
 
 } // namespace vis4gs
 

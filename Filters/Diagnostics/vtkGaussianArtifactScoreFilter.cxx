@@ -377,26 +377,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   if (needImages)
   {
     images = [background, log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
-    {
-      const std::string prefix = "/images/";
-      std::error_code ec;
-      if (log && camera.ImagePath.rfind(prefix, 0) == 0 &&
-        !std::filesystem::is_regular_file(camera.ImagePath, ec))
-      {
-        int width = 0, height = 0;
-        const std::vector<unsigned char> bytes =
-          log->ReadImage(camera.ImagePath.substr(prefix.size()), width, height);
-        image = vis4gs::PrepareTrainingImage(
-          vis4gs::ImageFromBytes(bytes.data(), width, height, 3), camera, background);
-        return true;
-      }
-      if (camera.ImagePath.empty() || !std::filesystem::is_regular_file(camera.ImagePath, ec))
-      {
-        return false;
-      }
-      image = vis4gs::LoadTrainingImage(camera, background);
-      return true;
-    };
+    { return vis4gs::LoadCameraImage(log.get(), camera, image, background); };
   }
   auto progress = [this](std::size_t done, std::size_t total)
   { this->UpdateProgress(total > 0 ? static_cast<double>(done) / total : 1.0); };
