@@ -8,16 +8,18 @@
  * Files are loaded in a worker thread (Vis4GSDocument::Load, a QThread); its progress is
  * posted to the GUI thread (queued calls), so the interface stays responsive and shows a
  * progress bar. Only the docks the file has data for are shown.
+ *
+ * The window is layout, menus, docks and panel C: view A is vtkGaussianSceneView (Views/Scene),
+ * B, D and the histogram the views of Views/Linked. The self-test and the benchmark mode drive
+ * it from outside (Vis4GSSelfTest.h, Vis4GSBenchmark.h) through the accessors below.
  */
 #ifndef Vis4GSMainWindow_h
 #define Vis4GSMainWindow_h
 
 #include <QMainWindow>
 
-#include <array>
+#include <functional>
 #include <memory>
-#include <string>
-#include <vector>
 
 class QCheckBox;
 class QComboBox;
@@ -31,11 +33,14 @@ class QProgressBar;
 class QSlider;
 class QTableWidget;
 class QVTKOpenGLNativeWidget;
+class Vis4GSCleanupPanel;
 struct Vis4GSDocument;
 class vtkGaussianHistogramView;
+class vtkGaussianSceneView;
 class vtkGaussianSelectionHub;
 class vtkGaussianTimelineView;
 class vtkGaussianTreeView;
+class vtkTable;
 
 class Vis4GSMainWindow : public QMainWindow
 {
@@ -52,24 +57,6 @@ public:
    * default, looks for cameras.json next to the scene, Vis4GSFindSceneCameras()).
    */
   void SetSceneCameras(const QString& cameras);
-
-  /// Runs the scripted end-to-end check once the file is loaded (used by tests), saving
-  /// screenshots of every view into @p directory; the application exits with 0 or 1.
-  void SetSelfTest(const QString& directory);
-
-  /**
-   * Compares the scene and tree screenshots of the self-test with the PNG baselines in
-   * @p directory (same names), allowing per-pixel differences up to @p tolerance (0..255) on
-   * at most @p fraction of the pixels. Used with SetSelfTest.
-   */
-  void SetBaseline(const QString& directory, int tolerance = 48, double fraction = 0.02);
-
-  /**
-   * Benchmark mode: after loading, prints the time from @p startSeconds (steady clock of the
-   * caller, process start) to all views drawn, wall and CPU, then measures tree pan/zoom
-   * frames per second and exits. No scores are computed in this mode.
-   */
-  void SetBenchmark(double startSeconds, double startCpuSeconds);
 
   /**
    * Level of detail of the scene view: at most @p splats Gaussians are drawn (every k-th in
@@ -91,31 +78,40 @@ public:
   /// the whole window ("window"). Returns false when it could not be written.
   bool SaveScreenshot(const QString& which, const QString& path);
 
+  ///@{
+  /**
+   * What the window shows, for the harnesses (Vis4GSSelfTest, Vis4GSBenchmark) and scripts:
+   * the hub, the views, the loaded document (nullptr before), the cameras the scores used
+   * (with their training images), a dock by name ("scene", "tree", "panel", "timeline",
+   * "histogram", "cleanup") and the clean-up panel. Panel C's controls are found by object
+   * name with findChild: "selection-mode", "cameras", "iteration", "overlay", "overlay-min",
+   * "overlay-max", "hide-outside" and "welcome" (the welcome text).
+   */
   vtkGaussianSelectionHub* GetHub();
+  vtkGaussianSceneView* GetSceneView();
   vtkGaussianTreeView* GetTreeView();
   vtkGaussianTimelineView* GetTimelineView();
-  /// Number of Gaussians highlighted in the scene view.
-  long long GetSceneHighlightCount() const;
-  /// Selects the Gaussian drawn at display pixel (x, y) of the scene view; returns its id.
-  long long PickInScene(int x, int y);
+  vtkGaussianHistogramView* GetHistogramView();
+  std::shared_ptr<Vis4GSDocument> GetDocument() const;
+  vtkTable* GetScoreCameras() const;
+  QDockWidget* GetDock(const QString& name) const;
+  Vis4GSCleanupPanel* GetCleanupPanel() const;
+  ///@}
 
-  /// Scene selection modes of panel C.
-  enum SceneSelectionModes
-  {
-    SINGLE = 0,
-    BRUSH = 1,
-    FRAME = 2,
-    RAY = 3
-  };
   /**
-   * Runs a scene selection in VTK display coordinates through vtkGaussianSelector and
-   * publishes it to the hub combined by @p combine (vtkGaussianSelectionHub::REPLACE, ADD,
-   * SUBTRACT). SINGLE/RAY use the first point, FRAME the first two (corners), BRUSH all (the
-   * stroke). Returns the number of Gaussians the mode picked, -1 on error.
+   * Hooks of a harness. @p stage is called as the window shows a loaded document: with
+   * nullptr when a sequence of steps starts (depth 0: the document, 1: its scene), then with
+   * the name of each step done. With @p loaded set, the window neither renders the views nor
+   * computes scores after loading (nor after a snapshot change) and calls it instead.
    */
-  long long SelectInScene(int mode, const std::vector<std::array<double, 2>>& points, int combine);
-  /// Ids of the last Ray selection, front to back.
-  std::vector<long long> GetLastRayHits() const;
+  void SetLoadHooks(std::function<void(int depth, const char* step)> stage,
+    std::function<void()> loaded);
+
+signals:
+  /// The scores of the document (or of its snapshot) are computed and shown.
+  void scoresComputed();
+  /// The file could not be loaded.
+  void loadFailed(const QString& error);
 
 protected:
   void dragEnterEvent(QDragEnterEvent* event) override;
@@ -133,17 +129,12 @@ private:
   /// Hands the document's scene to the views; @p render: render the scene view afterwards.
   void UpdateScene(bool render = true);
   void UpdateOverlay(bool render = true);
-  void UpdateFrustums();
   void StartScores();
-  void OnSceneMouse(unsigned long event, bool& abort);
-  void OnSceneClick();
   void OnCameraChosen(int row);
-  bool CompareBaselines();
-  void RunBenchmark();
   void ExportIds();
   void ExportPly(bool deleteSelection);
   void ScreenshotDialog();
-  bool RunSelfTest();
+  void Stage(int depth, const char* step);
 
   struct Internals;
   std::unique_ptr<Internals> d;

@@ -2,12 +2,15 @@
 # CMakeLists.txt after the vis4gs target exists. Without Qt5 or VTK::GUISupportQt the
 # program builds without the `view` command.
 find_package(Qt5 QUIET COMPONENTS Widgets)
-if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLinked)
+if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLinked AND
+    TARGET Vis4GS::ViewsScene)
   set_property(SOURCE Vis4GSMainWindow.h PROPERTY SKIP_AUTOMOC OFF)
   target_sources(vis4gs PRIVATE
     vis4gsViewCommand.cxx
     Vis4GSMainWindow.cxx
     Vis4GSMainWindow.h
+    Vis4GSSelfTest.cxx
+    Vis4GSBenchmark.cxx
     Vis4GSCleanupPanel.cxx
     Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `vis4gs view [FILE]`: the Qt5 application with the four linked views (DESIGN §5).
+#include "Vis4GSBenchmark.h"
 #include "Vis4GSCommand.h"
 #include "Vis4GSMainWindow.h"
+#include "Vis4GSSelfTest.h"
 
 #include "QVTKOpenGLNativeWidget.h"
 
@@ -98,9 +100,11 @@ int Run(const Vis4GSArguments& args)
       std::cerr << "vis4gs view: --benchmark needs a FILE\n";
       return 1;
     }
-    window.SetBenchmark(start, startCpu);
+    Vis4GSInstallBenchmark(&window, start, startCpu);
   }
   const std::string selfTest = args.Get("self-test");
+  Vis4GSSelfTestOptions selfTestOptions;
+  selfTestOptions.Directory = QString::fromStdString(selfTest);
   if (!args.Get("baseline").empty())
   {
     const std::vector<double> tolerance = args.GetNumbers("baseline-tolerance");
@@ -109,12 +113,13 @@ int Run(const Vis4GSArguments& args)
       std::cerr << "vis4gs view: --baseline-tolerance expects T,F\n";
       return 1;
     }
-    window.SetBaseline(
-      QString::fromStdString(args.Get("baseline")), static_cast<int>(tolerance[0]), tolerance[1]);
+    selfTestOptions.BaselineDirectory = QString::fromStdString(args.Get("baseline"));
+    selfTestOptions.Tolerance = static_cast<int>(tolerance[0]);
+    selfTestOptions.Fraction = tolerance[1];
   }
   if (!selfTest.empty())
   {
-    window.SetSelfTest(QString::fromStdString(selfTest));
+    Vis4GSInstallSelfTest(&window, selfTestOptions);
     if (args.GetPositional("FILE").empty())
     {
       std::cerr << "vis4gs view: --self-test needs a FILE\n";

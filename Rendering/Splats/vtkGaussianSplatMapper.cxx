@@ -73,13 +73,23 @@ double MsSince(std::chrono::steady_clock::time_point t0)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
+
+std::shared_ptr<const vis4gs::GaussianCloud> EmptyCloud()
+{
+  static const auto empty = std::make_shared<const vis4gs::GaussianCloud>();
+  return empty;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
 struct vtkGaussianSplatMapper::vtkInternals
 {
   // CPU side.
-  vis4gs::GaussianCloud Cloud;
+  // The Core form of the input: converted here, or shared (SetSharedGaussians). Never null.
+  std::shared_ptr<const vis4gs::GaussianCloud> Cloud = EmptyCloud();
+  std::shared_ptr<const vis4gs::GaussianCloud> Shared;
+  vtkPolyData* SharedInput = nullptr; // identity only
+  vtkMTimeType SharedInputTime = 0;
   bool HasSH = false;
   std::vector<float> Geometry;    // packed, 12 per Gaussian
   std::vector<float> TrueColors;  // 3 per Gaussian
@@ -173,7 +183,7 @@ struct vtkGaussianSplatMapper::vtkInternals
     vtkPolyData* input,
     vis4gs::SplatDisplayOptions& opt)
   {
-    const std::size_t n = this->Cloud.Count;
+    const std::size_t n = this->Cloud->Count;
     this->Scores.clear();
     const bool needScores = self->SplatColoring == SCORE || self->HideOutsideRange;
     if (needScores)
@@ -410,27 +420,25 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   if (input->GetMTime() != in.InputTime)
   {
     std::string error;
-    in.Cloud = vis4gs::GaussianCloud();
+    in.Cloud = EmptyCloud(); // (the old copy is released before a new one is made)
     in.InputTime = input->GetMTime();
     ++in.CloudVersion;
     in.RasterValid = false;
-    if (!vis4gs::PolyDataToGaussianCloud(input, in.Cloud, &error))
+    const bool shared = in.Shared && in.SharedInput == input && in.SharedInputTime == in.InputTime;
+    in.Cloud = shared ? in.Shared : ConvertScene(input, &error);
+    if (!shared)
+    {
+      in.Shared.reset();
+    }
+    if (!in.Cloud)
     {
       vtkErrorMacro("vtkGaussianSplatMapper: " << error);
-      in.Cloud = vis4gs::GaussianCloud();
+      in.Cloud = EmptyCloud();
       return;
     }
-    const std::size_t n = in.Cloud.Count;
-    if (in.Cloud.LogScales.size() != 3 * n || in.Cloud.Rotations.size() != 4 * n ||
-      in.Cloud.OpacityLogits.size() != n)
-    {
-      vtkErrorMacro("vtkGaussianSplatMapper: the input lacks LogScale, Rotation or "
-                    "OpacityLogit point arrays");
-      in.Cloud = vis4gs::GaussianCloud();
-      return;
-    }
-    in.HasSH =
-      in.Cloud.SH.size() == 3 * n * static_cast<std::size_t>(in.Cloud.ShCoefficientCount());
+    const vis4gs::GaussianCloud& cloud = *in.Cloud;
+    const std::size_t n = cloud.Count;
+    in.HasSH = cloud.SH.size() == 3 * n * static_cast<std::size_t>(cloud.ShCoefficientCount());
     in.IdToIndex.clear();
     vtkDataArray* ids = input->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
     if (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
@@ -447,7 +455,7 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     in.DisplayTime = 0;
     in.PackDirty = true;
   }
-  const std::size_t n = in.Cloud.Count;
+  const std::size_t n = in.Cloud->Count;
   if (n == 0)
   {
     return;
@@ -511,7 +519,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
 {
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* renWin = in.Window;
-  const std::size_t n = in.Cloud.Count;
+  const std::size_t n = in.Cloud->Count;
   const int threads = this->NumberOfThreads;
 
   // Resolution: reduced while interacting (VTK's desired update rate), full for still frames.
@@ -580,7 +588,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     try
     {
       vis4gs::ProjectGaussians(
-        in.Cloud, camera, settings, in.Work.Projection, in.Work.Prepared, in.CloudVersion);
+        *in.Cloud, camera, settings, in.Work.Projection, in.Work.Prepared, in.CloudVersion);
       vis4gs::ViewProjection<float>& projection = in.Work.Projection;
       drawn = projection.Counts.Visible;
       vis4gs::SplatDisplayOptions opt;
@@ -744,6 +752,47 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
 }
 
 //------------------------------------------------------------------------------
+std::shared_ptr<const vis4gs::GaussianCloud> vtkGaussianSplatMapper::ConvertScene(
+  vtkPolyData* scene,
+  std::string* error)
+{
+  auto cloud = std::make_shared<vis4gs::GaussianCloud>();
+  if (!vis4gs::PolyDataToGaussianCloud(scene, *cloud, error))
+  {
+    return nullptr;
+  }
+  const std::size_t n = cloud->Count;
+  if (cloud->LogScales.size() != 3 * n || cloud->Rotations.size() != 4 * n ||
+    cloud->OpacityLogits.size() != n)
+  {
+    if (error)
+    {
+      *error = "the scene lacks LogScale, Rotation or OpacityLogit point arrays";
+    }
+    return nullptr;
+  }
+  return cloud;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::SetSharedGaussians(vtkPolyData* input,
+  std::shared_ptr<const vis4gs::GaussianCloud> cloud)
+{
+  vtkInternals& in = *this->Internals;
+  in.Shared = std::move(cloud);
+  in.SharedInput = in.Shared ? input : nullptr;
+  in.SharedInputTime = in.Shared && input ? input->GetMTime() : 0;
+  if (in.Shared && input && input == this->GetInput() && in.InputTime == in.SharedInputTime &&
+    in.Cloud != in.Shared)
+  {
+    // The same Gaussians as drawn already: hold the shared copy so that the mapper's own is
+    // released (a new version: nothing derived keeps pointing into the old one).
+    in.Cloud = in.Shared;
+    ++in.CloudVersion;
+  }
+}
+
+//------------------------------------------------------------------------------
 const vis4gs::RasterWorkspace<float>* vtkGaussianSplatMapper::GetLastFullFrame(
   const vis4gs::Camera*& camera,
   vtkPolyData*& input,
@@ -772,7 +821,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* renWin = in.Window;
   (void)ren;
-  const std::size_t n = in.Cloud.Count;
+  const std::size_t n = in.Cloud->Count;
   const int threads = this->NumberOfThreads;
   std::array<double, 16> w2c{};
   std::copy(worldToCamera, worldToCamera + 16, w2c.begin());
@@ -783,7 +832,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   {
     try
     {
-      vis4gs::PackSplatGeometry(in.Cloud, this->ScaleModifier, in.Geometry, threads);
+      vis4gs::PackSplatGeometry(*in.Cloud, this->ScaleModifier, in.Geometry, threads);
       in.PackedScale = this->ScaleModifier;
     }
     catch (const std::exception& e)
@@ -799,14 +848,14 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   // 2. Colours: SH for the camera centre (only when it moved and the degree needs it).
   const auto tc = std::chrono::steady_clock::now();
   const int degree = in.HasSH
-    ? (this->ShDegree < 0 ? in.Cloud.ShDegree : std::min(this->ShDegree, in.Cloud.ShDegree))
+    ? (this->ShDegree < 0 ? in.Cloud->ShDegree : std::min(this->ShDegree, in.Cloud->ShDegree))
     : -1;
   bool colorsChanged = false;
   if (degree != in.ColoredDegree || (degree > 0 && center != in.ColoredCenter))
   {
     if (in.HasSH)
     {
-      vis4gs::EvaluateSplatColors(in.Cloud, center, degree, in.TrueColors, threads);
+      vis4gs::EvaluateSplatColors(*in.Cloud, center, degree, in.TrueColors, threads);
     }
     else
     {
@@ -842,7 +891,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
     this->MaximumNumberOfSplats != in.SortedBudget)
   {
     const auto ts = std::chrono::steady_clock::now();
-    vis4gs::ComputeViewDepths(in.Cloud.Positions.data(), n, w2c, in.Depths, threads);
+    vis4gs::ComputeViewDepths(in.Cloud->Positions.data(), n, w2c, in.Depths, threads);
     vis4gs::SplatSortOptions so;
     so.Keep = in.Keep.data();
     so.Threads = threads;

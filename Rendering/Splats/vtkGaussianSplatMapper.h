@@ -88,6 +88,7 @@
 #include "vtkPolyDataMapper.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
 class vtkIdTypeArray;
 class vtkLookupTable;
@@ -96,6 +97,7 @@ class vtkSelection;
 namespace vis4gs
 {
 struct Camera;
+struct GaussianCloud;
 template <typename T>
 struct RasterWorkspace;
 }
@@ -338,6 +340,22 @@ public:
   const vis4gs::RasterWorkspace<float>* GetLastFullFrame(const vis4gs::Camera*& camera,
     vtkPolyData*& input,
     vtkMTimeType& inputTime) const;
+
+  /**
+   * The Core form of @p scene that the mapper draws and vtkGaussianSelector selects in;
+   * nullptr, with a message in @p error, when the scene has no points or lacks the LogScale,
+   * Rotation or OpacityLogit arrays.
+   */
+  static std::shared_ptr<const vis4gs::GaussianCloud> ConvertScene(vtkPolyData* scene,
+    std::string* error);
+
+  /**
+   * Draws @p cloud, the Core form of @p input at its current MTime (ConvertScene), instead of
+   * converting the input itself: vtkGaussianSceneView converts its scene once and shares the
+   * copy with its selector. Used while the mapper's input is @p input with that MTime; after
+   * a change the mapper converts on its own again. nullptr forgets it.
+   */
+  void SetSharedGaussians(vtkPolyData* input, std::shared_ptr<const vis4gs::GaussianCloud> cloud);
 #endif
 
   ///@{

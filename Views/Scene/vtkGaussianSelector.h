@@ -56,7 +56,7 @@
 #ifndef vtkGaussianSelector_h
 #define vtkGaussianSelector_h
 
-#include "vis4gsFiltersSelectionModule.h" // For export macro
+#include "vis4gsViewsSceneModule.h" // For export macro
 #include "vtkObject.h"
 
 #include <memory> // For std::unique_ptr
@@ -65,6 +65,7 @@
 #ifndef __VTK_WRAP__
 namespace vis4gs
 {
+struct GaussianCloud;
 template <typename T>
 struct RasterWorkspace;
 }
@@ -79,7 +80,7 @@ class vtkPolyData;
 class vtkRenderer;
 class vtkSelection;
 
-class VIS4GSFILTERSSELECTION_EXPORT vtkGaussianSelector : public vtkObject
+class VIS4GSVIEWSSCENE_EXPORT vtkGaussianSelector : public vtkObject
 {
 public:
   static vtkGaussianSelector* New();
@@ -119,6 +120,17 @@ public:
   void SetSplatMapper(vtkGaussianSplatMapper* mapper);
   vtkGetObjectMacro(SplatMapper, vtkGaussianSplatMapper);
   ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * Selects in @p cloud, the Core form of @p scene at its current MTime
+   * (vtkGaussianSplatMapper::ConvertScene), instead of converting the scene itself:
+   * vtkGaussianSceneView shares one copy between its mapper and this selector. Used while the
+   * Scene is @p scene with that MTime; after a change the selector converts on its own again.
+   * nullptr forgets it.
+   */
+  void SetSharedGaussians(vtkPolyData* scene, std::shared_ptr<const vis4gs::GaussianCloud> cloud);
+#endif
 
   ///@{
   /**

@@ -35,6 +35,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <vector>
 
 namespace
@@ -76,8 +77,12 @@ const vis4gs::RasterWorkspace<float>* DrawnFrame(vtkGaussianSplatMapper* mapper,
 //------------------------------------------------------------------------------
 struct vtkGaussianSelector::vtkInternals
 {
-  vis4gs::GaussianCloud Cloud;
-  std::vector<std::int64_t> Ids; // GaussianId of each point
+  // The Core form of the scene (its GaussianIds included): converted here, or shared
+  // (SetSharedGaussians). Null until a scene is prepared.
+  std::shared_ptr<const vis4gs::GaussianCloud> Cloud;
+  std::shared_ptr<const vis4gs::GaussianCloud> Shared;
+  vtkPolyData* SharedScene = nullptr; // identity only
+  vtkMTimeType SharedSceneTime = 0;
   vtkMTimeType SceneTime = 0;
   vtkPolyData* SceneSeen = nullptr;
   bool SceneValid = false;
@@ -145,29 +150,21 @@ bool vtkGaussianSelector::PrepareView(bool needView)
     in.SceneTime = scene->GetMTime();
     in.ViewValid = false;
     in.OctreeValid = false;
-    in.Cloud = vis4gs::GaussianCloud();
+    in.View = vis4gs::SelectionView();
+    in.Cloud.reset(); // (the old copy is released before a new one is made)
     std::string error;
-    in.SceneValid = vis4gs::PolyDataToGaussianCloud(scene, in.Cloud, &error);
-    const std::size_t n = in.Cloud.Count;
-    if (in.SceneValid &&
-      (in.Cloud.LogScales.size() != 3 * n || in.Cloud.Rotations.size() != 4 * n ||
-        in.Cloud.OpacityLogits.size() != n))
+    const bool shared =
+      in.Shared && in.SharedScene == scene && in.SharedSceneTime == scene->GetMTime();
+    in.Cloud = shared ? in.Shared : vtkGaussianSplatMapper::ConvertScene(scene, &error);
+    if (!shared)
     {
-      in.SceneValid = false;
-      error = "the scene lacks LogScale, Rotation or OpacityLogit point arrays";
+      in.Shared.reset();
     }
+    in.SceneValid = in.Cloud != nullptr;
     if (!in.SceneValid)
     {
       vtkErrorWithObjectMacro(self, "vtkGaussianSelector: " << error);
       return false;
-    }
-    in.Ids.resize(n);
-    vtkDataArray* ids = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      in.Ids[i] = (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
-        ? static_cast<std::int64_t>(ids->GetComponent(static_cast<vtkIdType>(i), 0))
-        : static_cast<std::int64_t>(i);
     }
   }
   if (!in.SceneValid)
@@ -191,7 +188,7 @@ bool vtkGaussianSelector::PrepareView(bool needView)
     in.ViewCamera = cam;
     if (needView && !same)
     {
-      in.View = vis4gs::PrepareSelectionView(in.Cloud, cam, threads);
+      in.View = vis4gs::PrepareSelectionView(*in.Cloud, cam, threads);
       in.ViewValid = true;
     }
     else if (!same)
@@ -207,6 +204,25 @@ bool vtkGaussianSelector::PrepareView(bool needView)
   }
   prepareMs = MsSince(t0);
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSelector::SetSharedGaussians(vtkPolyData* scene,
+  std::shared_ptr<const vis4gs::GaussianCloud> cloud)
+{
+  vtkInternals& in = *this->Internals;
+  in.Shared = std::move(cloud);
+  in.SharedScene = in.Shared ? scene : nullptr;
+  in.SharedSceneTime = in.Shared && scene ? scene->GetMTime() : 0;
+  if (in.Shared && scene && scene == in.SceneSeen && in.SceneTime == in.SharedSceneTime &&
+    in.SceneValid && in.Cloud != in.Shared)
+  {
+    // The same Gaussians: hold the shared copy so that the selector's own is released (the
+    // cached projection was computed from equal values; the octree points into the copy).
+    in.Cloud = in.Shared;
+    in.OctreeValid = false;
+    in.Octree = vis4gs::GaussianOctree();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -287,7 +303,7 @@ void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indice
   ids.reserve(indices.size());
   for (std::uint32_t i : indices)
   {
-    ids.push_back(in.Ids[i]);
+    ids.push_back(in.Cloud->GetId(i));
   }
   in.Current = vis4gs::CombineSelection(
     in.Current, std::move(ids), static_cast<vis4gs::SelectionModifier>(modifier));
@@ -313,7 +329,7 @@ bool vtkGaussianSelector::PrepareViewOrFrame(const vis4gs::RasterWorkspace<float
   }
   if (!in.ViewValid)
   {
-    frame = DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud.Count);
+    frame = DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud->Count);
   }
   if (!frame && !this->PrepareView(true))
   {
@@ -427,7 +443,7 @@ vtkIdType vtkGaussianSelector::SelectFrame(double x0, double y0, double x1, doub
   {
     const vis4gs::RasterWorkspace<float>* frame = in.ViewValid
       ? nullptr
-      : DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud.Count);
+      : DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud->Count);
     this->LastSelectionReusedFrame = frame != nullptr;
     if (frame && !wantMaxima)
     {
@@ -490,7 +506,7 @@ vtkIdType vtkGaussianSelector::SelectRay(double x, double y)
         const auto tb = std::chrono::steady_clock::now();
         vis4gs::GaussianOctree::Options o;
         o.BoundSigmas = std::max(3.0, this->RaySigmas);
-        in.Octree.Build(in.Cloud, o);
+        in.Octree.Build(*in.Cloud, o);
         in.OctreeValid = true;
         this->LastPrepareTime += MsSince(tb);
       }
@@ -528,7 +544,7 @@ vtkIdType vtkGaussianSelector::SelectRay(double x, double y)
   {
     const vtkIdType t = static_cast<vtkIdType>(k);
     const std::uint32_t g = this->RayEllipsoid ? ellipsoidHits[k].Gaussian : hits[k].Gaussian;
-    in.RayIds->SetValue(t, static_cast<vtkIdType>(in.Ids[g]));
+    in.RayIds->SetValue(t, static_cast<vtkIdType>(in.Cloud->GetId(g)));
     if (this->RayEllipsoid)
     {
       in.RayDistances->SetValue(t, ellipsoidHits[k].Distance);

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Vis4GSBenchmark.h"
+
+#include "Vis4GSDocument.h"
+#include "Vis4GSMainWindow.h"
+
+#include "vtkDataArray.h"
+#include "vtkGaussianHistogramView.h"
+#include "vtkGaussianSceneView.h"
+#include "vtkGaussianSelectionHub.h"
+#include "vtkGaussianSplatMapper.h"
+#include "vtkGaussianTimelineView.h"
+#include "vtkGaussianTreeItem.h"
+#include "vtkGaussianTreeView.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkTree.h"
+
+#include <QApplication>
+#include <QTimer>
+
+#include <array>
+#include <chrono>
+#include <ctime>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+
+namespace
+{
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double CpuNow()
+{
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+// Prints the wall and CPU time since the previous step at each call.
+class StageTimer
+{
+public:
+  explicit StageTimer(std::string prefix)
+    : Prefix(std::move(prefix))
+  {
+  }
+  void Restart()
+  {
+    this->Start = Now();
+    this->Cpu = CpuNow();
+  }
+  void operator()(const char* what)
+  {
+    const double now = Now(), cpu = CpuNow();
+    std::cout << this->Prefix << what << ": " << now - this->Start << " s (" << cpu - this->Cpu
+              << " s CPU)" << std::endl;
+    this->Start = now;
+    this->Cpu = cpu;
+  }
+
+  double GetStart() const { return this->Start; }
+
+private:
+  std::string Prefix;
+  double Start = Now(), Cpu = CpuNow();
+};
+
+// The tree's pan/zoom frame rates after everything is shown, then exit.
+void RunBenchmark(Vis4GSMainWindow& w, double start, double startCpu)
+{
+  const std::shared_ptr<Vis4GSDocument> doc = w.GetDocument();
+  vtkGaussianTreeView* tree = w.GetTreeView();
+  vtkGaussianSelectionHub* hub = w.GetHub();
+  QApplication::processEvents(); // the docks paint what was rendered
+  tree->GetRenderWindow()->WaitForCompletion();
+  w.GetSceneView()->GetRenderWindow()->WaitForCompletion();
+  const double wall = Now() - start, cpu = CpuNow() - startCpu;
+  vtkPolyData* scene = doc ? doc->Scene.GetPointer() : nullptr;
+  std::cout << "benchmark: " << (scene ? scene->GetNumberOfPoints() : 0)
+            << " Gaussians in the last snapshot, "
+            << (doc->Tree ? doc->Tree->GetNumberOfVertices() - 1 : 0) << " in the genealogy\n"
+            << "benchmark: start to all views ready: " << wall << " s wall, " << cpu
+            << " s CPU (document load " << doc->Seconds << " s wall)" << std::endl;
+  {
+    const std::string& summary = doc->Summary;
+    const std::size_t at = summary.rfind("loaded in");
+    std::cout << "benchmark:   document " << summary.substr(at == std::string::npos ? 0 : at);
+  }
+  vtkGaussianTreeItem* item = tree->GetTreeItem();
+  auto measure = [&](const char* label, int frames)
+  {
+    double viewport[4];
+    const double w0 = Now(), c0 = CpuNow();
+    for (int k = 0; k < frames; ++k)
+    {
+      item->GetViewport(viewport);
+      if (k % 2 == 0)
+      {
+        item->Pan(0.02 * (viewport[1] - viewport[0]) * (k % 4 == 0 ? 1 : -1),
+          0.02 * (viewport[3] - viewport[2]));
+      }
+      else
+      {
+        item->ZoomRows(k % 4 == 1 ? 1.1 : 1 / 1.1, 0.5 * (viewport[2] + viewport[3]));
+      }
+      tree->Render();
+    }
+    tree->GetRenderWindow()->WaitForCompletion();
+    const double w = Now() - w0, c = CpuNow() - c0;
+    // The level-of-detail query alone (the part of a frame that depends on the tree size).
+    const double l0 = Now();
+    for (int k = 0; k < frames; ++k)
+    {
+      item->UpdateLevelOfDetail();
+    }
+    const double lod = (Now() - l0) / frames;
+    std::cout << "benchmark: tree pan/zoom " << label << ": " << frames / w << " frames/s wall ("
+              << 1000 * w / frames << " ms/frame), " << 1000 * c / frames << " ms CPU/frame, "
+              << item->GetNumberOfVisibleVertices() << " nodes drawn, level-of-detail query "
+              << 1000 * lod << " ms (" << item->GetLastLevelOfDetailWork()
+              << " node records visited)" << std::endl;
+  };
+  item->ResetViewport();
+  item->MergeLinesPerPixelRowOff();
+  tree->Render();
+  measure("at the overview, every line drawn (straightforward)", 30);
+  item->ResetViewport();
+  item->MergeLinesPerPixelRowOn();
+  tree->Render();
+  measure("at the overview", 60);
+  // Zoomed in on the lineage of one Gaussian of the last snapshot (the selection is always
+  // drawn), as after a selection in the scene.
+  vtkPolyData* last = doc->Scene;
+  vtkDataArray* ids = last ? last->GetPointData()->GetArray("GaussianId") : nullptr;
+  if (ids && last->GetNumberOfPoints() > 0)
+  {
+    const vtkIdType id =
+      static_cast<vtkIdType>(ids->GetComponent(last->GetNumberOfPoints() / 2, 0));
+    hub->RenderOnChangeOff();
+    hub->SelectIds(&id, 1);
+    hub->RenderOnChangeOn();
+    item->ZoomToSelection();
+  }
+  tree->Render();
+  std::ostringstream label;
+  label << "zoomed to a selected lineage (z = " << item->GetZoom() << ")";
+  measure(label.str().c_str(), 60);
+  QApplication::exit(0);
+}
+
+// The first render of each view, timed one by one (the window renders none itself).
+void RenderViews(Vis4GSMainWindow& w, StageTimer& stage)
+{
+  vtkGaussianSceneView* scene = w.GetSceneView();
+  const std::pair<vtkRenderWindow*, const char*> views[] = {
+    { scene->GetRenderWindow(), "first render: scene" },
+    { w.GetTreeView()->GetRenderWindow(), "first render: tree" },
+    { w.GetTimelineView()->GetRenderWindow(), "first render: timeline" },
+    { w.GetHistogramView()->GetRenderWindow(), "first render: histogram" },
+  };
+  for (const auto& view : views)
+  {
+    view.first->Render();
+    view.first->WaitForCompletion();
+    if (view.first == scene->GetRenderWindow())
+    {
+      vtkGaussianSplatMapper* mapper = scene->GetSplatMapper();
+      std::cout << "benchmark:   splats drawn " << mapper->GetLastDrawnCount() << " (budget "
+                << mapper->GetMaximumNumberOfSplats() << "), sort " << mapper->GetLastSortTime()
+                << " ms, colours " << mapper->GetLastColorTime() << " ms, upload "
+                << mapper->GetLastUploadTime() << " ms" << std::endl;
+    }
+    stage(view.second);
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSInstallBenchmark(Vis4GSMainWindow* window, double startSeconds, double startCpuSeconds)
+{
+  auto stages = std::make_shared<std::array<StageTimer, 2>>(
+    std::array<StageTimer, 2>{ StageTimer("benchmark:   "), StageTimer("benchmark:     ") });
+  window->SetLoadHooks(
+    [window, stages, startSeconds](int depth, const char* step)
+    {
+      StageTimer& stage = (*stages)[depth > 0 ? 1 : 0];
+      if (step)
+      {
+        stage(step);
+        return;
+      }
+      stage.Restart();
+      if (depth == 0)
+      {
+        std::cout << "benchmark:   document loaded (worker thread) after "
+                  << stage.GetStart() - startSeconds << " s: " << window->GetDocument()->Seconds
+                  << " s in Load" << std::endl;
+      }
+    },
+    [window, stages, startSeconds, startCpuSeconds]
+    {
+      RenderViews(*window, (*stages)[0]);
+      QTimer::singleShot(0,
+        window,
+        [window, startSeconds, startCpuSeconds]
+        { RunBenchmark(*window, startSeconds, startCpuSeconds); });
+    });
+  QObject::connect(
+    window, &Vis4GSMainWindow::loadFailed, window, [](const QString&) { QApplication::exit(1); });
+}
