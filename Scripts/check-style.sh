@@ -2,7 +2,7 @@
 # Project rules CTest checks on every run (see Documentation/dev/CODING_STYLE.md):
 #   layering  Core/ includes no VTK header (DESIGN §1);
 #   modules   VTK modules depend downwards only: IO < Filters < Rendering < Views
-#             (Documentation/dev/ARCHITECTURE.md), with the one known exception listed below;
+#             (Documentation/dev/ARCHITECTURE.md), no exception;
 #   format    our C++ follows VTK 9.1's .clang-format (Debian's clang-format 14).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -22,9 +22,6 @@ if [ "$check" = layering ] || [ "$check" = all ]; then
 fi
 
 if [ "$check" = modules ] || [ "$check" = all ]; then
-  # Known upward dependency, to go when the selector moves beside the scene view class (issue
-  # 22): the selector reads the splat mapper's last drawn frame.
-  allowed="Vis4GS::FiltersSelection->Vis4GS::RenderingSplats"
   rank() { case "$1" in IO*) echo 1 ;; Filters*) echo 2 ;; Rendering*) echo 3 ;; Views*) echo 4 ;; *) echo 9 ;; esac; }
   bad=()
   count=0
@@ -36,7 +33,7 @@ if [ "$check" = modules ] || [ "$check" = all ]; then
     for d in $deps; do
       count=$((count + 1))
       dRank=$(rank "${d#Vis4GS::}")
-      if [ "$dRank" -gt "$ownRank" ] && [ "$own->$d" != "$allowed" ]; then
+      if [ "$dRank" -gt "$ownRank" ]; then
         bad+=("$m: $own depends on $d, a higher layer")
       fi
     done
@@ -46,7 +43,7 @@ if [ "$check" = modules ] || [ "$check" = all ]; then
     printf '  %s\n' "${bad[@]}"
     status=1
   else
-    echo "modules: $count Vis4GS module dependencies point downwards (1 known exception)"
+    echo "modules: $count Vis4GS module dependencies point downwards"
   fi
 fi
 
