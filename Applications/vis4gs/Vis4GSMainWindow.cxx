@@ -2,7 +2,10 @@
 #include "Vis4GSMainWindow.h"
 
 #include "Vis4GSCleanupPanel.h"
+#include "Vis4GSControlPanel.h"
 #include "Vis4GSDocument.h"
+#include "Vis4GSSelectionExport.h"
+#include "Vis4GSSelectionTable.h"
 
 #include "GaussianIO.h"
 #include "TrainingLogReader.h"
@@ -36,12 +39,8 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QDragEnterEvent>
-#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
-#include <QHBoxLayout>
-#include <QHeaderView>
 #include <QInputDialog>
 #include <QLabel>
 #include <QListWidget>
@@ -54,9 +53,7 @@
 #include <QSlider>
 #include <QSpinBox>
 #include <QStatusBar>
-#include <QTableWidget>
 #include <QTemporaryDir>
-#include <QTextStream>
 #include <QThread>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -94,26 +91,9 @@ struct Vis4GSMainWindow::Internals
   vtkNew<vtkGenericOpenGLRenderWindow> HistogramWindow;
   vtkNew<vtkGaussianHistogramView> Histogram;
   // C: panel.
-  QComboBox* SelectionMode = nullptr;
-  QListWidget* CameraList = nullptr;
-  QCheckBox* ShowFrustums = nullptr;
-  QSlider* IterationSlider = nullptr;
-  QLabel* IterationLabel = nullptr;
-  QComboBox* Overlay = nullptr;
-  QDoubleSpinBox* OverlayMin = nullptr;
-  QDoubleSpinBox* OverlayMax = nullptr;
-  QCheckBox* HideOutside = nullptr;
-  QCheckBox* UseThreshold = nullptr;
-  QDoubleSpinBox* Threshold = nullptr;
-  QCheckBox* DimUnselected = nullptr;
-  QSpinBox* SplatBudget = nullptr;
-  QComboBox* HistogramArray = nullptr;
-  QPlainTextEdit* LogText = nullptr;
-  QTableWidget* Table = nullptr;
+  Vis4GSControlPanel* Panel = nullptr;
+  QComboBox* HistogramArray = nullptr; // (in the histogram dock)
   QProgressBar* Progress = nullptr;
-  QFormLayout* Form = nullptr;
-  QWidget* IterationRow = nullptr;
-  QWidget* Welcome = nullptr;
   std::string SceneCameras;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
@@ -312,29 +292,13 @@ void Vis4GSMainWindow::BuildUi()
   makeDock(4, "Attribute histogram", histogramPanel, Qt::BottomDockWidgetArea);
 
   // C: log and control panel.
-  auto* panel = new QWidget(this);
-  auto* form = new QFormLayout(panel);
-  d->Form = form;
-  d->SelectionMode = new QComboBox(panel);
-  d->SelectionMode->setObjectName("selection-mode");
-  d->SelectionMode->addItems({ "Single (click)", "Brush (drag)", "Frame (drag)", "Ray (click)" });
-  d->SelectionMode->setToolTip("Selection in the scene view (left button). Shift adds to the "
-                               "selection, Ctrl subtracts; Brush and Frame drag instead of "
-                               "rotating (rotate with the middle button then). Keys 1-4.");
-  form->addRow("Selection mode", d->SelectionMode);
-  d->CameraList = new QListWidget(panel);
-  d->CameraList->setObjectName("cameras");
-  d->CameraList->setMaximumHeight(90);
-  d->CameraList->setToolTip("Click a training camera to view the scene from it");
-  form->addRow("Cameras", d->CameraList);
-  d->ShowFrustums = new QCheckBox("Show frustums (colour: selected Gaussians seen)", panel);
-  d->ShowFrustums->setChecked(true);
-  form->addRow(d->ShowFrustums);
-  connect(d->CameraList,
+  auto* panel = new Vis4GSControlPanel(this);
+  d->Panel = panel;
+  connect(panel->CameraList,
     &QListWidget::currentRowChanged,
     this,
     [this](int row) { this->OnCameraChosen(row); });
-  connect(d->ShowFrustums,
+  connect(panel->ShowFrustums,
     &QCheckBox::toggled,
     this,
     [this](bool show)
@@ -342,64 +306,12 @@ void Vis4GSMainWindow::BuildUi()
       d->Scene->SetShowFrustums(show);
       d->Scene->Render();
     });
-  connect(d->SelectionMode,
+  connect(panel->SelectionMode,
     QOverload<int>::of(&QComboBox::currentIndexChanged),
     this,
     [this](int mode) { d->Scene->SetSelectionMode(mode); });
-  auto* itRow = new QWidget(panel);
-  auto* itLayout = new QHBoxLayout(itRow);
-  itLayout->setContentsMargins(0, 0, 0, 0);
-  d->IterationSlider = new QSlider(Qt::Horizontal, itRow);
-  d->IterationSlider->setObjectName("iteration");
-  d->IterationLabel = new QLabel("-", itRow);
-  itLayout->addWidget(d->IterationSlider, 1);
-  itLayout->addWidget(d->IterationLabel);
-  form->addRow("Iteration", itRow);
-  d->IterationRow = itRow;
-  d->Overlay = new QComboBox(panel);
-  d->Overlay->setObjectName("overlay");
-  d->Overlay->addItem("True colour");
-  form->addRow("Overlay", d->Overlay);
-  d->OverlayMin = new QDoubleSpinBox(panel);
-  d->OverlayMax = new QDoubleSpinBox(panel);
-  d->OverlayMin->setObjectName("overlay-min");
-  d->OverlayMax->setObjectName("overlay-max");
-  d->Threshold = new QDoubleSpinBox(panel);
-  for (QDoubleSpinBox* box : { d->OverlayMin, d->OverlayMax, d->Threshold })
-  {
-    box->setDecimals(4);
-    box->setRange(-1e9, 1e9);
-  }
-  auto* rangeRow = new QWidget(panel);
-  auto* rangeLayout = new QHBoxLayout(rangeRow);
-  rangeLayout->setContentsMargins(0, 0, 0, 0);
-  rangeLayout->addWidget(d->OverlayMin);
-  rangeLayout->addWidget(d->OverlayMax);
-  form->addRow("Range", rangeRow);
-  d->HideOutside = new QCheckBox("Hide Gaussians outside the range", panel);
-  d->HideOutside->setObjectName("hide-outside");
-  form->addRow(d->HideOutside);
-  auto* thresholdRow = new QWidget(panel);
-  auto* thresholdLayout = new QHBoxLayout(thresholdRow);
-  thresholdLayout->setContentsMargins(0, 0, 0, 0);
-  d->UseThreshold = new QCheckBox("hide below", thresholdRow);
-  thresholdLayout->addWidget(d->UseThreshold);
-  thresholdLayout->addWidget(d->Threshold, 1);
-  form->addRow("Threshold", thresholdRow);
-  d->DimUnselected = new QCheckBox("Dim unselected Gaussians", panel);
-  form->addRow(d->DimUnselected);
-  d->SplatBudget = new QSpinBox(panel);
-  d->SplatBudget->setRange(0, 100000000);
-  d->SplatBudget->setSingleStep(50000);
-  d->SplatBudget->setSpecialValueText("all");
-  d->SplatBudget->setValue(200000);
-  d->SplatBudget->setToolTip("Level of detail of the scene view on a hardware OpenGL: at most "
-                             "this many splats are drawn (every k-th in depth order); software "
-                             "OpenGL draws every Gaussian with the CPU rasteriser. Selection "
-                             "and scores always use every Gaussian");
-  d->Scene->SetMaximumNumberOfSplats(200000);
-  form->addRow("Splats drawn (max)", d->SplatBudget);
-  connect(d->SplatBudget,
+  d->Scene->SetMaximumNumberOfSplats(panel->SplatBudget->value());
+  connect(panel->SplatBudget,
     QOverload<int>::of(&QSpinBox::valueChanged),
     this,
     [this](int value)
@@ -407,43 +319,14 @@ void Vis4GSMainWindow::BuildUi()
       d->Scene->SetMaximumNumberOfSplats(value);
       d->Scene->Render();
     });
-  for (QCheckBox* box : { d->HideOutside, d->UseThreshold, d->DimUnselected })
+  for (QCheckBox* box : { panel->HideOutside, panel->UseThreshold, panel->DimUnselected })
   {
     connect(box, &QCheckBox::toggled, this, [this](bool) { this->UpdateOverlay(); });
   }
-  d->LogText = new QPlainTextEdit(panel);
-  d->LogText->setReadOnly(true);
-  d->LogText->setMaximumHeight(140);
-  form->addRow("Training log", d->LogText);
-  d->Table = new QTableWidget(panel);
-  d->Table->setColumnCount(10);
-  d->Table->setHorizontalHeaderLabels({ "GaussianId",
-    "x",
-    "y",
-    "z",
-    "Opacity",
-    "Scale",
-    "ViewCoverage",
-    "BlurScore",
-    "NeedleScore",
-    "NeedleShape" });
-  d->Table->setSortingEnabled(true);
-  d->Table->horizontalHeader()->setStretchLastSection(true);
-  form->addRow("Selected", d->Table);
-  auto* buttons = new QWidget(panel);
-  auto* bl = new QHBoxLayout(buttons);
-  bl->setContentsMargins(0, 0, 0, 0);
-  auto* exportIds = new QPushButton("Export ids (CSV)", buttons);
-  auto* exportPly = new QPushButton("Export PLY", buttons);
-  auto* deletePly = new QPushButton("Delete to new PLY", buttons);
-  bl->addWidget(exportIds);
-  bl->addWidget(exportPly);
-  bl->addWidget(deletePly);
-  form->addRow(buttons);
-  connect(exportIds, &QPushButton::clicked, this, [this] { this->ExportIds(); });
-  connect(exportPly, &QPushButton::clicked, this, [this] { this->ExportPly(false); });
-  connect(deletePly, &QPushButton::clicked, this, [this] { this->ExportPly(true); });
-  connect(d->IterationSlider,
+  connect(panel->ExportIds, &QPushButton::clicked, this, [this] { this->ExportIds(); });
+  connect(panel->ExportPly, &QPushButton::clicked, this, [this] { this->ExportPly(false); });
+  connect(panel->DeletePly, &QPushButton::clicked, this, [this] { this->ExportPly(true); });
+  connect(panel->IterationSlider,
     &QSlider::valueChanged,
     this,
     [this](int index)
@@ -453,14 +336,14 @@ void Vis4GSMainWindow::BuildUi()
         d->Hub->SetIteration(d->Doc->Snapshots[index]);
       }
     });
-  for (QDoubleSpinBox* box : { d->OverlayMin, d->OverlayMax, d->Threshold })
+  for (QDoubleSpinBox* box : { panel->OverlayMin, panel->OverlayMax, panel->Threshold })
   {
     connect(box,
       QOverload<double>::of(&QDoubleSpinBox::valueChanged),
       this,
       [this](double) { this->UpdateOverlay(); });
   }
-  connect(d->Overlay,
+  connect(panel->Overlay,
     &QComboBox::currentTextChanged,
     this,
     [this](const QString& name)
@@ -473,18 +356,7 @@ void Vis4GSMainWindow::BuildUi()
       {
         double range[2];
         array->GetRange(range);
-        for (QDoubleSpinBox* box : { d->OverlayMin, d->OverlayMax, d->Threshold })
-        {
-          box->blockSignals(true);
-          box->setSingleStep(std::max(1e-4, (range[1] - range[0]) / 100.0));
-        }
-        d->OverlayMin->setValue(range[0]);
-        d->OverlayMax->setValue(range[1]);
-        d->Threshold->setValue(range[0]);
-        for (QDoubleSpinBox* box : { d->OverlayMin, d->OverlayMax, d->Threshold })
-        {
-          box->blockSignals(false);
-        }
+        d->Panel->SetOverlayRange(range[0], range[1]);
       }
       this->UpdateOverlay();
     });
@@ -586,9 +458,9 @@ void Vis4GSMainWindow::BuildUi()
   for (int k = 0; k < 4; ++k)
   {
     select->addAction(
-      QString("Mode: ") + d->SelectionMode->itemText(k),
+      QString("Mode: ") + d->Panel->SelectionMode->itemText(k),
       this,
-      [this, k] { d->SelectionMode->setCurrentIndex(k); },
+      [this, k] { d->Panel->SelectionMode->setCurrentIndex(k); },
       QKeySequence(QString::number(k + 1)));
   }
   QMenu* view = this->menuBar()->addMenu("&View");
@@ -613,12 +485,12 @@ void Vis4GSMainWindow::BuildUi()
   view->addAction(
     "&Previous snapshot",
     this,
-    [this] { d->IterationSlider->setValue(d->IterationSlider->value() - 1); },
+    [this] { d->Panel->IterationSlider->setValue(d->Panel->IterationSlider->value() - 1); },
     QKeySequence(Qt::Key_Left));
   view->addAction(
     "&Next snapshot",
     this,
-    [this] { d->IterationSlider->setValue(d->IterationSlider->value() + 1); },
+    [this] { d->Panel->IterationSlider->setValue(d->Panel->IterationSlider->value() + 1); },
     QKeySequence(Qt::Key_Right));
   for (QDockWidget* dock : d->Docks)
   {
@@ -678,17 +550,9 @@ void Vis4GSMainWindow::LayoutForDocument()
   panel->show();
   histogram->show();
   // Panel rows without data are hidden (no empty camera list or dead slider).
-  auto showRow = [this](QWidget* field, bool visible)
-  {
-    field->setVisible(visible);
-    if (QWidget* label = d->Form->labelForField(field))
-    {
-      label->setVisible(visible);
-    }
-  };
-  showRow(d->CameraList, cameras);
-  showRow(d->ShowFrustums, cameras);
-  showRow(d->IterationRow, snapshots);
+  d->Panel->ShowRow(d->Panel->CameraList, cameras);
+  d->Panel->ShowRow(d->Panel->ShowFrustums, cameras);
+  d->Panel->ShowRow(d->Panel->IterationRow, snapshots);
   // Sizes: the scene about 55 % of the width; the timeline's three stacked charts 40 % of the
   // height (at least 300 pixels); the tree above the panel about half of the right column.
   // Applied again once the new dock arrangement is laid out (resizeDocks on docks that were
@@ -739,38 +603,7 @@ void Vis4GSMainWindow::ShowCleanup()
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::ShowWelcome()
 {
-  if (d->Welcome)
-  {
-    d->Welcome->show();
-    return;
-  }
-  // What the case study of the user guide does, as steps a newcomer can follow.
-  d->Welcome = new QWidget(this);
-  auto* layout = new QVBoxLayout(d->Welcome);
-  auto* text = new QLabel(d->Welcome);
-  text->setObjectName("welcome");
-  text->setWordWrap(true);
-  text->setTextFormat(Qt::RichText);
-  text->setText("<b>Welcome to Vis4GS.</b> This demo is a 2000-iteration training run with "
-                "planted floaters. Try the case study of the user guide:"
-                "<ol style='margin-left:-20px'>"
-                "<li><b>Find a floater:</b> set <i>Overlay</i> to <i>ViewCoverage</i> (when "
-                "the scores are computed, see the status bar) and tick <i>Hide Gaussians "
-                "outside the range</i> with the range 0 to 0.3: bright (yellow) splats are "
-                "the suspicious ones, seen by few training views.</li>"
-                "<li><b>Select it:</b> click one in the scene (Single mode, key 1). Its "
-                "training cameras turn red.</li>"
-                "<li><b>Its lineage:</b> the tree (B) draws its ancestors in yellow; press L "
-                "to zoom to them.</li>"
-                "<li><b>Its history:</b> the timeline (D) plots its opacity over the "
-                "snapshots; the slider or the Left/Right keys move through them.</li>"
-                "</ol>Rotate: left drag; zoom: wheel; R resets the camera.");
-  layout->addWidget(text);
-  auto* close = new QPushButton("Close this help", d->Welcome);
-  layout->addWidget(close, 0, Qt::AlignRight);
-  connect(close, &QPushButton::clicked, d->Welcome, &QWidget::hide);
-  d->Welcome->setStyleSheet("QWidget { background: #fff8d0; }");
-  d->Form->insertRow(0, d->Welcome);
+  d->Panel->ShowWelcome();
 }
 
 //------------------------------------------------------------------------------
@@ -865,7 +698,7 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Hub->RenderOnChangeOff();
   d->Hub->ClearSelection();
   this->setWindowTitle("Vis4GS - " + QFileInfo(QString::fromStdString(doc->Path)).fileName());
-  d->LogText->setPlainText(QString::fromStdString(doc->Summary));
+  d->Panel->LogText->setPlainText(QString::fromStdString(doc->Summary));
   this->LayoutForDocument();
   d->Tree->SetTree(doc->Tree);
   d->Tree->SetFamilyBands(doc->Bands);
@@ -874,20 +707,20 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Timeline->SetMetrics(doc->Metrics);
   d->Timeline->SetTestMetrics(doc->TestMetrics);
   this->Stage(0, "timeline input");
-  d->CameraList->clear();
+  d->Panel->CameraList->clear();
   if (doc->Cameras)
   {
     vtkAbstractArray* names = doc->Cameras->GetColumnByName(vis4gs::arrays::CameraName);
     for (vtkIdType r = 0; names && r < doc->Cameras->GetNumberOfRows(); ++r)
     {
-      d->CameraList->addItem(QString::fromStdString(names->GetVariantValue(r).ToString()));
+      d->Panel->CameraList->addItem(QString::fromStdString(names->GetVariantValue(r).ToString()));
     }
   }
-  d->IterationSlider->blockSignals(true);
-  d->IterationSlider->setRange(0, std::max(0, static_cast<int>(doc->Snapshots.size()) - 1));
-  d->IterationSlider->setValue(d->IterationSlider->maximum());
-  d->IterationSlider->setEnabled(doc->Snapshots.size() > 1);
-  d->IterationSlider->blockSignals(false);
+  d->Panel->IterationSlider->blockSignals(true);
+  d->Panel->IterationSlider->setRange(0, std::max(0, static_cast<int>(doc->Snapshots.size()) - 1));
+  d->Panel->IterationSlider->setValue(d->Panel->IterationSlider->maximum());
+  d->Panel->IterationSlider->setEnabled(doc->Snapshots.size() > 1);
+  d->Panel->IterationSlider->blockSignals(false);
   d->Scene->SetCameras(doc->Cameras);
   this->UpdateScene(false); // every view is rendered once below
   this->Stage(0, "scene, histogram and panel inputs");
@@ -896,9 +729,9 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Scene->ResetCamera();
   if (doc->Cameras && doc->Cameras->GetNumberOfRows() > 0)
   {
-    d->CameraList->blockSignals(true);
-    d->CameraList->setCurrentRow(0);
-    d->CameraList->blockSignals(false);
+    d->Panel->CameraList->blockSignals(true);
+    d->Panel->CameraList->setCurrentRow(0);
+    d->Panel->CameraList->blockSignals(false);
     d->Scene->JumpToCamera(0);
   }
   if (!d->LoadedHook) // (a harness renders the views itself)
@@ -928,12 +761,12 @@ void Vis4GSMainWindow::UpdateScene(bool render)
   this->Stage(1, "scene view input (its Gaussians for the mapper and the selector)");
   d->Histogram->SetInputData(scene);
   d->Cleanup->SetScene(scene, d->ScoreCameras);
-  const QString overlay = d->Overlay->currentText();
+  const QString overlay = d->Panel->Overlay->currentText();
   const QString hist = d->HistogramArray->currentText();
-  d->Overlay->blockSignals(true);
+  d->Panel->Overlay->blockSignals(true);
   d->HistogramArray->blockSignals(true);
-  d->Overlay->clear();
-  d->Overlay->addItem("True colour");
+  d->Panel->Overlay->clear();
+  d->Panel->Overlay->addItem("True colour");
   d->HistogramArray->clear();
   for (int a = 0; a < scene->GetPointData()->GetNumberOfArrays(); ++a)
   {
@@ -946,12 +779,12 @@ void Vis4GSMainWindow::UpdateScene(bool render)
     d->HistogramArray->addItem(array->GetName());
     if (array->GetNumberOfComponents() == 1)
     {
-      d->Overlay->addItem(array->GetName());
+      d->Panel->Overlay->addItem(array->GetName());
     }
   }
-  d->Overlay->setCurrentText(overlay);
+  d->Panel->Overlay->setCurrentText(overlay);
   d->HistogramArray->setCurrentText(hist.isEmpty() ? "Opacity" : hist);
-  d->Overlay->blockSignals(false);
+  d->Panel->Overlay->blockSignals(false);
   d->HistogramArray->blockSignals(false);
   d->Histogram->SetArrayName(d->HistogramArray->currentText().toUtf8().constData());
   d->Histogram->UpdateHistogram();
@@ -965,25 +798,25 @@ void Vis4GSMainWindow::UpdateScene(bool render)
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::UpdateOverlay(bool render)
 {
-  const QString name = d->Overlay->currentText();
+  const QString name = d->Panel->Overlay->currentText();
   const std::string array = name.toStdString();
   vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
   const bool score =
     scene && name != "True colour" && scene->GetPointData()->GetArray(array.c_str());
-  for (QWidget* w : { static_cast<QWidget*>(d->OverlayMin),
-         static_cast<QWidget*>(d->OverlayMax),
-         static_cast<QWidget*>(d->HideOutside),
-         static_cast<QWidget*>(d->UseThreshold),
-         static_cast<QWidget*>(d->Threshold) })
+  for (QWidget* w : { static_cast<QWidget*>(d->Panel->OverlayMin),
+         static_cast<QWidget*>(d->Panel->OverlayMax),
+         static_cast<QWidget*>(d->Panel->HideOutside),
+         static_cast<QWidget*>(d->Panel->UseThreshold),
+         static_cast<QWidget*>(d->Panel->Threshold) })
   {
     w->setEnabled(score);
   }
-  d->Scene->SetDimUnselected(d->DimUnselected->isChecked());
+  d->Scene->SetDimUnselected(d->Panel->DimUnselected->isChecked());
   d->Scene->SetOverlayArrayName(score ? array.c_str() : nullptr);
-  d->Scene->SetOverlayRange(d->OverlayMin->value(), d->OverlayMax->value());
-  d->Scene->SetHideOutsideRange(d->HideOutside->isChecked());
-  d->Scene->SetUseThreshold(d->UseThreshold->isChecked());
-  d->Scene->SetThreshold(d->Threshold->value());
+  d->Scene->SetOverlayRange(d->Panel->OverlayMin->value(), d->Panel->OverlayMax->value());
+  d->Scene->SetHideOutsideRange(d->Panel->HideOutside->isChecked());
+  d->Scene->SetUseThreshold(d->Panel->UseThreshold->isChecked());
+  d->Scene->SetThreshold(d->Panel->Threshold->value());
   if (render)
   {
     d->Scene->Render();
@@ -1103,63 +936,8 @@ void Vis4GSMainWindow::OnCameraChosen(int row)
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::OnSelectionChanged()
 {
-  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
   const auto& selected = d->Hub->GetSelectedIdVector();
-  d->Table->setSortingEnabled(false);
-  d->Table->setRowCount(0);
-  if (scene)
-  {
-    vtkNew<vtkIdTypeArray> rows;
-    vtkGaussianSelectionHub::IdsToIndices(selected.data(),
-      static_cast<vtkIdType>(selected.size()),
-      scene->GetPointData()->GetArray("GaussianId"),
-      rows);
-    vtkPointData* pd = scene->GetPointData();
-    vtkDataArray* columns[] = { pd->GetArray("GaussianId"),
-      nullptr,
-      nullptr,
-      nullptr,
-      pd->GetArray("Opacity"),
-      pd->GetArray("Scale"),
-      pd->GetArray(vis4gs::arrays::ViewCoverage),
-      pd->GetArray(vis4gs::arrays::BlurScore),
-      pd->GetArray(vis4gs::arrays::NeedleScore),
-      pd->GetArray(vis4gs::arrays::NeedleShape) };
-    const int shown = static_cast<int>(std::min<vtkIdType>(rows->GetNumberOfTuples(), 1000));
-    d->Table->setRowCount(shown);
-    for (int k = 0; k < shown; ++k)
-    {
-      const vtkIdType r = rows->GetValue(k);
-      double p[3];
-      scene->GetPoint(r, p);
-      auto number = [](double value)
-      {
-        auto* item = new QTableWidgetItem;
-        item->setData(Qt::DisplayRole, value);
-        return item;
-      };
-      for (int c = 0; c < 10; ++c)
-      {
-        double value = NAN;
-        if (c >= 1 && c <= 3)
-        {
-          value = p[c - 1];
-        }
-        else if (c == 5 && columns[5])
-        {
-          value = std::max({ columns[5]->GetComponent(r, 0),
-            columns[5]->GetComponent(r, 1),
-            columns[5]->GetComponent(r, 2) });
-        }
-        else if (columns[c])
-        {
-          value = columns[c]->GetComponent(r, 0);
-        }
-        d->Table->setItem(k, c, number(value));
-      }
-    }
-  }
-  d->Table->setSortingEnabled(true);
+  d->Panel->Table->Show(d->Doc ? d->Doc->Scene.GetPointer() : nullptr, selected);
   // History of the selection (first 16) for the timeline.
   if (d->Doc && d->Doc->Log)
   {
@@ -1184,14 +962,14 @@ void Vis4GSMainWindow::OnIterationChanged(int iteration)
   {
     return;
   }
-  d->IterationLabel->setText(QString::number(iteration));
+  d->Panel->IterationLabel->setText(QString::number(iteration));
   const auto& s = d->Doc->Snapshots;
   auto it = std::lower_bound(s.begin(), s.end(), d->Doc->Log->FindNearestSnapshot(iteration));
   if (it != s.end())
   {
-    d->IterationSlider->blockSignals(true);
-    d->IterationSlider->setValue(static_cast<int>(it - s.begin()));
-    d->IterationSlider->blockSignals(false);
+    d->Panel->IterationSlider->blockSignals(true);
+    d->Panel->IterationSlider->setValue(static_cast<int>(it - s.begin()));
+    d->Panel->IterationSlider->blockSignals(false);
   }
   if (d->Doc->Log->FindNearestSnapshot(iteration) != d->Doc->Iteration)
   {
@@ -1237,19 +1015,8 @@ void Vis4GSMainWindow::ExportIds()
   {
     return;
   }
-  QFile file(path);
-  if (!file.open(QIODevice::WriteOnly | QIODevice::Text))
-  {
-    this->statusBar()->showMessage(path + ": could not be written", 5000);
-    return;
-  }
-  QTextStream out(&file);
-  out << "GaussianId\n";
-  for (vtkIdType id : d->Hub->GetSelectedIdVector())
-  {
-    out << static_cast<long long>(id) << "\n";
-  }
-  this->statusBar()->showMessage(path + " written", 3000);
+  const Vis4GSExportReport report = Vis4GSWriteSelectedIds(path, d->Hub);
+  this->statusBar()->showMessage(report.Message, report.Milliseconds);
 }
 
 //------------------------------------------------------------------------------
@@ -1279,63 +1046,8 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   {
     return;
   }
-  // Keep (or drop) the selected Gaussians, then write through Core's PLY writer.
-  vtkDataArray* ids = scene->GetPointData()->GetArray("GaussianId");
-  vtkNew<vtkPolyData> subset;
-  vtkNew<vtkPoints> points;
-  subset->GetPointData()->CopyAllocate(scene->GetPointData());
-  for (vtkIdType i = 0; ids && i < scene->GetNumberOfPoints(); ++i)
-  {
-    if (d->Hub->IsSelected(static_cast<vtkIdType>(ids->GetComponent(i, 0))) != deleteSelection)
-    {
-      const vtkIdType j = points->InsertNextPoint(scene->GetPoint(i));
-      subset->GetPointData()->CopyData(scene->GetPointData(), i, j);
-    }
-  }
-  subset->SetPoints(points);
-  subset->GetFieldData()->ShallowCopy(scene->GetFieldData());
-  vis4gs::GaussianCloud cloud;
-  std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(subset, cloud, &error))
-  {
-    this->statusBar()->showMessage(QString::fromStdString(error), 5000);
-    return;
-  }
-  try
-  {
-    if (path.endsWith(".spz", Qt::CaseInsensitive))
-    {
-      // Lossy: say how much was lost and what could not be stored.
-      const vis4gs::SpzWriteReport r = vis4gs::WriteSpz(path.toStdString(), cloud);
-      this->statusBar()->showMessage(QString("%1: %2 Gaussians written as SPZ v4, %3 left out; "
-                                             "max error: position %4, log-scale %5, opacity %6, "
-                                             "colour %7, SH %8")
-                                       .arg(path)
-                                       .arg(r.Written)
-                                       .arg(r.LeftOut)
-                                       .arg(r.Position.Max, 0, 'g', 3)
-                                       .arg(r.LogScale.Max, 0, 'g', 3)
-                                       .arg(r.Opacity.Max, 0, 'g', 3)
-                                       .arg(r.Color.Max, 0, 'g', 3)
-                                       .arg(r.SH.Max, 0, 'g', 3),
-        10000);
-      return;
-    }
-    if (path.endsWith(".compressed.ply", Qt::CaseInsensitive))
-    {
-      const auto report = vis4gs::WriteCompressedPly(path.toStdString(), cloud);
-      this->statusBar()->showMessage(
-        path + ": " + QString::fromStdString(vis4gs::DescribeQuantisation(report)), 15000);
-      return;
-    }
-    vis4gs::WriteGaussianPly(path.toStdString(), cloud);
-    this->statusBar()->showMessage(
-      QString("%1: %2 Gaussians written").arg(path).arg(points->GetNumberOfPoints()), 5000);
-  }
-  catch (const std::exception& e)
-  {
-    this->statusBar()->showMessage(e.what(), 5000);
-  }
+  const Vis4GSExportReport report = Vis4GSWriteSelectedScene(path, scene, d->Hub, deleteSelection);
+  this->statusBar()->showMessage(report.Message, report.Milliseconds);
 }
 
 //------------------------------------------------------------------------------
@@ -1401,6 +1113,6 @@ void Vis4GSMainWindow::dropEvent(QDropEvent* event)
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::SetSplatBudget(long long splats)
 {
-  d->SplatBudget->setValue(static_cast<int>(std::min<long long>(splats, 100000000)));
+  d->Panel->SplatBudget->setValue(static_cast<int>(std::min<long long>(splats, 100000000)));
   d->Scene->SetMaximumNumberOfSplats(static_cast<vtkIdType>(splats));
 }

@@ -21,18 +21,7 @@
 #include <functional>
 #include <memory>
 
-class QCheckBox;
-class QComboBox;
-class QSpinBox;
-class QDoubleSpinBox;
 class QDockWidget;
-class QLabel;
-class QListWidget;
-class QPlainTextEdit;
-class QProgressBar;
-class QSlider;
-class QTableWidget;
-class QVTKOpenGLNativeWidget;
 class Vis4GSCleanupPanel;
 struct Vis4GSDocument;
 class vtkGaussianHistogramView;

@@ -11,6 +11,9 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     Vis4GSMainWindow.h
     Vis4GSSelfTest.cxx
     Vis4GSBenchmark.cxx
+    Vis4GSControlPanel.cxx
+    Vis4GSSelectionExport.cxx
+    Vis4GSSelectionTable.cxx
     Vis4GSCleanupPanel.cxx
     Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)

@@ -12,6 +12,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdTypeArray
 from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 import vtkmodules.vtkInteractionStyle  # noqa: F401  (the view's interactor style)
+import vtkmodules.vtkRenderingAnnotation  # noqa: F401  (the legend, a vtkScalarBarActor)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the render window)
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (the legend's text)
 
