@@ -46,10 +46,10 @@ if mode == "view":
     view.SetSelectionHub(hub)
     view.SetScene(scene)
     view.SetCameras(cameras)
-    view.JumpToCamera(0)
+    view.ResetCamera()  # the whole scene in view: the selections hit Gaussians
     view.Render()
     counts = [view.SelectSingle(x, y), view.SelectRay(x, y),
-              view.SelectFrame(x - 50, y - 50, x + 50, y + 50)]
+              view.SelectFrame(x - 150, y - 150, x + 150, y + 150)]
 elif mode == "separate":
     window = vtkRenderWindow()
     window.SetSize(width, height)
@@ -61,7 +61,7 @@ elif mode == "separate":
     actor = vtkActor()
     actor.SetMapper(mapper)
     renderer.AddActor(actor)
-    vis4gs.vtkGaussianCameraUtilities.JumpToCamera(renderer, cameras, 0)
+    renderer.ResetCamera()
     window.Render()
     selector = vis4gs.vtkGaussianSelector()
     selector.SetRenderer(renderer)
@@ -72,7 +72,7 @@ elif mode == "separate":
     frustums.SetInputData(1, scene)
     counts = []
     for select in (lambda: selector.SelectSingle(x, y), lambda: selector.SelectRay(x, y),
-                   lambda: selector.SelectFrame(x - 50, y - 50, x + 50, y + 50)):
+                   lambda: selector.SelectFrame(x - 150, y - 150, x + 150, y + 150)):
         counts.append(select())
         frustums.SetSelectedIds(selector.GetSelectedIds())
         frustums.Update()
