@@ -30,7 +30,7 @@ struct Vis4GSComparedState
   int Iteration = -1; ///< the logged snapshot's iteration; -1 for a scene file
   std::string Name;   ///< "demo.h5 @1000", "cleaned.ply"
   vtkSmartPointer<vtkPolyData> Scene;
-  vtkSmartPointer<vtkTable> Cameras;               ///< null when none were found
+  vtkSmartPointer<vtkTable> Cameras;              ///< null when none were found
   vtkSmartPointer<vtkTable> Metrics, TestMetrics; ///< a log's /metrics and /metrics/test
 };
 

@@ -3,12 +3,15 @@
 # program builds without the `view` command.
 find_package(Qt5 QUIET COMPONENTS Widgets)
 if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLinked)
-  set_property(SOURCE Vis4GSMainWindow.h PROPERTY SKIP_AUTOMOC OFF)
+  set_property(SOURCE Vis4GSMainWindow.h Vis4GSCompareWindow.h PROPERTY SKIP_AUTOMOC OFF)
   target_sources(vis4gs PRIVATE
     vis4gsViewCommand.cxx
     Vis4GSMainWindow.cxx
     Vis4GSMainWindow.h
     Vis4GSCleanupPanel.cxx
+    Vis4GSCompareWindow.cxx
+    Vis4GSCompareWindow.h
+    Vis4GSComparison.cxx
     Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
   target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
@@ -97,6 +100,50 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "${_vis4gs_cleanup_dir}")
   set_tests_properties(vis4gs-ViewCleanupMatchesAnalyze PROPERTIES
     FIXTURES_REQUIRED "vis4gsViewDemoShots;vis4gsViewCleanupAnalyze")
+  # The comparison window (issue 20), three ways: two iterations of the demo log, the demo
+  # log against the scene analyze --select="views<=3" --delete cleaned (a log and a scene of
+  # the same cameras: the deleted floaters died), and two synthetic logs (both runs' metric
+  # curves in the timeline). The self-test asserts the shared camera, the overlay, the
+  # selection in both views and the timeline; CheckCompareWindow.py runs `vis4gs compare` on
+  # the same states and compares its differences.csv with the sets the window showed.
+  set(_vis4gs_cleaned "${CMAKE_CURRENT_BINARY_DIR}/Testing/analyze-cleanup-floaters/cleaned.ply")
+  set(_vis4gs_demo_log "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5")
+  add_test(NAME vis4gs-ViewMakeLogB
+    COMMAND vis4gsMakeTestLog "${_vis4gs_view_dir}/synthetic-b.h5" 300 4)
+  set_tests_properties(vis4gs-ViewMakeLogB PROPERTIES LABELS "Application;GUI"
+    FIXTURES_SETUP vis4gsViewLogB)
+  foreach (_vis4gs_case
+      "Iterations|${_vis4gs_demo_log}|--iteration=1000|--compare=@2000|--compare-thresholds=0.001,0.01,0.05|CHECK|${_vis4gs_demo_log}|${_vis4gs_demo_log}|--iteration-a=1000|--iteration-b=2000|--move=0.001|--opacity=0.01|--scale=0.05"
+      "Cleaned|${_vis4gs_demo_log}|--compare=${_vis4gs_cleaned}|CHECK|${_vis4gs_demo_log}|${_vis4gs_cleaned}"
+      "Logs|${_vis4gs_view_dir}/synthetic.h5|--compare=${_vis4gs_view_dir}/synthetic-b.h5|CHECK|${_vis4gs_view_dir}/synthetic.h5|${_vis4gs_view_dir}/synthetic-b.h5")
+    string(REPLACE "|" ";" _vis4gs_case "${_vis4gs_case}")
+    list(POP_FRONT _vis4gs_case _vis4gs_name)
+    list(FIND _vis4gs_case CHECK _vis4gs_at)
+    list(SUBLIST _vis4gs_case 0 ${_vis4gs_at} _vis4gs_view_args)
+    math(EXPR _vis4gs_at "${_vis4gs_at} + 1")
+    list(SUBLIST _vis4gs_case ${_vis4gs_at} -1 _vis4gs_compare_args)
+    set(_vis4gs_shots "${_vis4gs_view_dir}/compare-${_vis4gs_name}")
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}
+      COMMAND vis4gs view ${_vis4gs_view_args} "--self-test=${_vis4gs_shots}"
+        --resolution=1280,800)
+    set_tests_properties(vis4gs-ViewCompare${_vis4gs_name} PROPERTIES LABELS "Application;GUI"
+      PASS_REGULAR_EXPRESSION "compare self-test passed" FAIL_REGULAR_EXPRESSION "FAILED"
+      FIXTURES_SETUP vis4gsViewCompare${_vis4gs_name})
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}MatchesCompare
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckCompareWindow.py"
+        "${_vis4gs_shots}/compare-sets.csv" $<TARGET_FILE:vis4gs> ${_vis4gs_compare_args})
+    set_tests_properties(vis4gs-ViewCompare${_vis4gs_name}MatchesCompare PROPERTIES
+      LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewCompare${_vis4gs_name}
+      PASS_REGULAR_EXPRESSION "the comparison window's sets equal vis4gs compare's"
+      FAIL_REGULAR_EXPRESSION "FAILED")
+  endforeach ()
+  set_tests_properties(vis4gs-ViewCompareCleaned PROPERTIES
+    FIXTURES_REQUIRED vis4gsCleanup-floaters)
+  set_tests_properties(vis4gs-ViewCompareLogs PROPERTIES
+    FIXTURES_REQUIRED "vis4gsViewLog;vis4gsViewLogB")
+  vis4gs_add_app_test(ViewCompareBadIteration ARGS view
+    "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@nope --self-test=${_vis4gs_view_dir}/compare-bad
+    STATUS 1 OUTPUT "@nope: no such file")
   # A scene file with cameras (issue 21): the demo's last snapshot as a PLY (analyze writes
   # it) with its training cameras as cameras.json beside it, found by the view on its own:
   # the layout without tree and timeline, View Coverage and the frustum check.
