@@ -8,6 +8,7 @@
 #include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineChart.h"
 #include "vtkGaussianTimelineView.h"
+#include "vtkGaussianTrainingLogReader.h"
 
 #include "QVTKOpenGLNativeWidget.h"
 #include "vtkActor.h"
@@ -125,6 +126,7 @@ struct Vis4GSCompareWindow::Internals
   vtkNew<vtkGaussianTimelineView> Timeline;
   vtkNew<vtkCallbackCommand> HubCommand;
   std::shared_ptr<Vis4GSComparison> Comparison;
+  vtkSmartPointer<vtkGaussianTrainingLogReader> HistoryLog; // A's log: the selection's history
   QThread* Worker = nullptr;
   QComboBox* Overlay = nullptr;
   QDoubleSpinBox* Thresholds[3] = { nullptr, nullptr, nullptr };
@@ -227,7 +229,8 @@ void Vis4GSCompareWindow::BuildUi()
   d->Sets = new QListWidget(panel);
   d->Sets->setToolTip("The Gaussians matched by id; click a set to select it in both views");
   d->Sets->setMinimumHeight(140);
-  form->addRow("Legend and sets", d->Sets);
+  form->addRow(new QLabel("Legend and sets (click to select):", panel));
+  form->addRow(d->Sets);
   d->DimUnselected = new QCheckBox("Dim unselected Gaussians", panel);
   d->DimUnselected->setChecked(true);
   form->addRow(d->DimUnselected);
@@ -413,6 +416,12 @@ void Vis4GSCompareWindow::OnLoaded(std::shared_ptr<Vis4GSComparison> c, const QS
   d->Timeline->SetComparisonMetrics(c->SameLog ? nullptr : c->B.Metrics.GetPointer());
   d->Timeline->SetComparisonTestMetrics(c->SameLog ? nullptr : c->B.TestMetrics.GetPointer());
   d->Hub->SetIteration(c->A.Iteration);
+  d->HistoryLog = nullptr;
+  if (c->A.Iteration >= 0)
+  {
+    d->HistoryLog = vtkSmartPointer<vtkGaussianTrainingLogReader>::New();
+    d->HistoryLog->SetFileName(c->A.Path.c_str());
+  }
   this->Recompare();
   // The first training camera when there is one (the states share the cameras), else a view
   // of the whole of A.
@@ -537,6 +546,17 @@ void Vis4GSCompareWindow::OnSelectionChanged()
 {
   vtkNew<vtkIdTypeArray> ids;
   d->Hub->GetSelectedIds(ids);
+  // The timeline's bottom chart: the history of the first selected Gaussians in A's log.
+  vtkNew<vtkTable> history;
+  if (d->HistoryLog && ids->GetNumberOfTuples() > 0)
+  {
+    vtkNew<vtkIdTypeArray> first;
+    first->SetArray(ids->GetPointer(0),
+      std::min<vtkIdType>(ids->GetNumberOfTuples(), d->Timeline->GetMaximumHistoryLines()),
+      1);
+    d->HistoryLog->GetPropertyHistory(first, history);
+  }
+  d->Timeline->SetHistory(history);
   for (CompareSceneView& v : d->Views)
   {
     v.Mapper->SetSelectedIds(ids->GetNumberOfTuples() > 0 ? ids.GetPointer() : nullptr);
@@ -656,6 +676,10 @@ bool Vis4GSCompareWindow::RunSelfTest()
     const QImage here = grab(side), there = grab(1 - side);
     save(here,
       QString("compare-%1-%2.png").arg(side == 0 ? "a" : "b").arg(Vis4GSComparison::SetName(set)));
+    save(there,
+      QString("compare-%1-%2-other-view.png")
+        .arg(side == 0 ? "a" : "b")
+        .arg(Vis4GSComparison::SetName(set)));
     const long long pixels = CountPixels(here, Vis4GSComparison::SetColor(set))[0];
     const long long other = CountPixels(there, Vis4GSComparison::SetColor(set))[0];
     check(pixels > 20 && pixels > 4 * other,
@@ -726,6 +750,14 @@ bool Vis4GSCompareWindow::RunSelfTest()
       named += label.find("[B: " + c.B.Name + "]") != std::string::npos;
     }
     check(c.B.Metrics == nullptr || named > 0, "the legend names run B");
+  }
+  this->SelectSet(both);
+  if (d->HistoryLog)
+  {
+    check(t->GetNumberOfHistoryLines() ==
+        std::min<int>(static_cast<int>(c.Ids[both].size()), t->GetMaximumHistoryLines()),
+      "the timeline draws the history of the selected Gaussians (" +
+        std::to_string(t->GetNumberOfHistoryLines()) + " lines)");
   }
   std::cout << "timeline: " << t->GetNumberOfMetricPlots() << " metric plots, " << comparison
             << " of run B" << std::endl;

@@ -113,7 +113,7 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
   set_tests_properties(vis4gs-ViewMakeLogB PROPERTIES LABELS "Application;GUI"
     FIXTURES_SETUP vis4gsViewLogB)
   foreach (_vis4gs_case
-      "Iterations|${_vis4gs_demo_log}|--iteration=1000|--compare=@2000|--compare-thresholds=0.001,0.01,0.05|CHECK|${_vis4gs_demo_log}|${_vis4gs_demo_log}|--iteration-a=1000|--iteration-b=2000|--move=0.001|--opacity=0.01|--scale=0.05"
+      "Iterations|${_vis4gs_demo_log}|--iteration=1000|--compare=@2000|--compare-thresholds=0.01,0.05,0.2|CHECK|${_vis4gs_demo_log}|${_vis4gs_demo_log}|--iteration-a=1000|--iteration-b=2000|--move=0.01|--opacity=0.05|--scale=0.2"
       "Cleaned|${_vis4gs_demo_log}|--compare=${_vis4gs_cleaned}|CHECK|${_vis4gs_demo_log}|${_vis4gs_cleaned}"
       "Logs|${_vis4gs_view_dir}/synthetic.h5|--compare=${_vis4gs_view_dir}/synthetic-b.h5|CHECK|${_vis4gs_view_dir}/synthetic.h5|${_vis4gs_view_dir}/synthetic-b.h5")
     string(REPLACE "|" ";" _vis4gs_case "${_vis4gs_case}")
@@ -141,6 +141,30 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     FIXTURES_REQUIRED vis4gsCleanup-floaters)
   set_tests_properties(vis4gs-ViewCompareLogs PROPERTIES
     FIXTURES_REQUIRED "vis4gsViewLog;vis4gsViewLogB")
+  # The died (born) Gaussians framed by the self-test's "Zoom to selection", against baselines
+  # strictly inside masks around their overlay colour; the other state's view at the same
+  # camera, which lacks them, must fail there.
+  foreach (_vis4gs_masked "Cleaned|a-died|214,39,40" "Logs|b-born|44,160,44")
+    string(REPLACE "|" ";" _vis4gs_masked "${_vis4gs_masked}")
+    list(GET _vis4gs_masked 0 _vis4gs_name)
+    list(GET _vis4gs_masked 1 _vis4gs_shot)
+    list(GET _vis4gs_masked 2 _vis4gs_colour)
+    string(TOLOWER "${_vis4gs_name}" _vis4gs_lower)
+    set(_vis4gs_shots "${_vis4gs_view_dir}/compare-${_vis4gs_name}")
+    set(_vis4gs_masked_args "${_vis4gs_baselines}/compare-${_vis4gs_lower}-${_vis4gs_shot}.png")
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}MaskedBaseline
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${_vis4gs_compare}" ${_vis4gs_masked_args}
+        "${_vis4gs_shots}/compare-${_vis4gs_shot}.png" "--highlight=${_vis4gs_colour}"
+        --colour-tolerance=80 "--diff=${_vis4gs_shots}/compare-${_vis4gs_shot}-masked-diff.png")
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}MaskedBaselineNeedsColour
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${_vis4gs_compare}" ${_vis4gs_masked_args}
+        "${_vis4gs_shots}/compare-${_vis4gs_shot}-other-view.png" "--highlight=${_vis4gs_colour}"
+        --colour-tolerance=80 --expect-mismatch)
+    set_tests_properties(vis4gs-ViewCompare${_vis4gs_name}MaskedBaseline
+      vis4gs-ViewCompare${_vis4gs_name}MaskedBaselineNeedsColour PROPERTIES
+      LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewCompare${_vis4gs_name}
+      FAIL_REGULAR_EXPRESSION "FAILED:")
+  endforeach ()
   vis4gs_add_app_test(ViewCompareBadIteration ARGS view
     "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@nope --self-test=${_vis4gs_view_dir}/compare-bad
     STATUS 1 OUTPUT "@nope: no such file")
