@@ -416,6 +416,7 @@ void Vis4GSCompareWindow::OnLoaded(std::shared_ptr<Vis4GSComparison> c, const QS
   d->Timeline->SetComparisonMetrics(c->SameLog ? nullptr : c->B.Metrics.GetPointer());
   d->Timeline->SetComparisonTestMetrics(c->SameLog ? nullptr : c->B.TestMetrics.GetPointer());
   d->Hub->SetIteration(c->A.Iteration);
+  d->Timeline->SetComparisonIteration(c->B.Iteration);
   d->HistoryLog = nullptr;
   if (c->A.Iteration >= 0)
   {
@@ -562,6 +563,10 @@ void Vis4GSCompareWindow::OnSelectionChanged()
     v.Mapper->SetSelectedIds(ids->GetNumberOfTuples() > 0 ? ids.GetPointer() : nullptr);
     v.Mapper->SetDimUnselected(d->DimUnselected->isChecked());
     v.Window->Render();
+  }
+  if (ids->GetNumberOfTuples() == 0)
+  {
+    d->Sets->clearSelection();
   }
   this->statusBar()->showMessage(
     QString("%1 Gaussians selected").arg(d->Hub->GetNumberOfSelectedIds()));
@@ -751,6 +756,9 @@ bool Vis4GSCompareWindow::RunSelfTest()
     }
     check(c.B.Metrics == nullptr || named > 0, "the legend names run B");
   }
+  check(t->GetIteration() == c.A.Iteration && t->GetComparisonIteration() == c.B.Iteration,
+    "the timeline's cursors mark A's and B's iterations (" + std::to_string(t->GetIteration()) +
+      ", " + std::to_string(t->GetComparisonIteration()) + ")");
   this->SelectSet(both);
   if (d->HistoryLog)
   {

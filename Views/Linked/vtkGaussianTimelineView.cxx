@@ -78,6 +78,7 @@ struct vtkGaussianTimelineView::vtkInternals
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkNew<vtkCallbackCommand> ClickCommand;
   int Iteration = -1;
+  int ComparisonIteration = -1;
   int HistoryLines = 0;
   int MetricPlots = 0;
   int ComparisonPlots = 0;
@@ -278,6 +279,25 @@ void vtkGaussianTimelineView::SetIteration(int iteration)
 int vtkGaussianTimelineView::GetIteration()
 {
   return this->Internals->Iteration;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetComparisonIteration(int iteration)
+{
+  auto& in = *this->Internals;
+  in.ComparisonIteration = iteration;
+  for (auto& chart : in.Charts)
+  {
+    chart->SetComparisonCursorIteration(iteration);
+  }
+  this->GetScene()->SetDirty(true);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::GetComparisonIteration()
+{
+  return this->Internals->ComparisonIteration;
 }
 
 //------------------------------------------------------------------------------
@@ -546,4 +566,5 @@ void vtkGaussianTimelineView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HistoryIdColumn: " << str(this->HistoryIdColumn) << "\n";
   os << indent << "SelectionHub: " << in.Hub.GetPointer() << "\n";
   os << indent << "Iteration: " << in.Iteration << "\n";
+  os << indent << "ComparisonIteration: " << in.ComparisonIteration << "\n";
 }

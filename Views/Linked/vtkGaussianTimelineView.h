@@ -24,6 +24,7 @@
  * quality and count charts in the same colours as the first run's, dotted (dash-dotted for
  * its test metrics), and every metric's legend entry names its run (RunName,
  * ComparisonRunName), e.g. "PSNR [A: iteration 1000]". The iteration axis spans both runs.
+ * A second, dashed cursor (SetComparisonIteration) marks the other state's iteration.
  *
  * Every chart shows the iteration cursor (the hub's iteration). A click on a chart invokes
  * IterationSelectedEvent (call data int*, snapped to the nearest metrics iteration) and, when
@@ -159,6 +160,15 @@ public:
    */
   void SetIteration(int iteration);
   int GetIteration();
+  ///@}
+
+  ///@{
+  /**
+   * A second iteration cursor (dashed): the other state of a comparison, e.g. the second
+   * iteration of one log. Negative hides it. Default -1.
+   */
+  void SetComparisonIteration(int iteration);
+  int GetComparisonIteration();
   ///@}
 
   /// Rebuilds the plots from the tables and the selection (done on every change).

@@ -2,7 +2,8 @@
 // The timeline view with a second run (issue 20): both runs' metric plots, the second run's
 // dotted (dash-dotted for test metrics), legend entries naming the runs, the iteration axis
 // spanning both runs; and in the rendered picture, the second run's PSNR curve where only it
-// has iterations (the control: the same second run without PSNR draws nothing there).
+// has iterations (the control: the same second run without PSNR draws nothing there), and the
+// second iteration cursor.
 #include "vtkGaussianTimelineChart.h"
 #include "vtkGaussianTimelineView.h"
 
@@ -17,6 +18,7 @@
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -59,22 +61,28 @@ vtkSmartPointer<vtkTable> MakeMetrics(int rows, int step, double psnr0, bool wit
   return table;
 }
 
-// Pixels of @p view's picture near the PSNR colour (31, 119, 180) inside the box [x0, x1) x
-// [y0, y1) given as fractions of the window (y up).
-int PsnrPixels(vtkGaussianTimelineView* view, double x0, double x1, double y0, double y1)
+// Pixels of @p view's picture near the colour @p rgb inside the box [x0, x1) x [y0, y1) given
+// as fractions of the window (y up).
+int Pixels(vtkGaussianTimelineView* view,
+  const std::array<int, 3>& rgb,
+  double x0,
+  double x1,
+  double y0,
+  double y1)
 {
   vtkRenderWindow* window = view->GetRenderWindow();
   view->Render();
   const int* size = window->GetSize();
-  vtkNew<vtkUnsignedCharArray> rgb;
-  window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 1, rgb);
+  vtkNew<vtkUnsignedCharArray> picture;
+  window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 1, picture);
   int found = 0;
   for (int y = static_cast<int>(y0 * size[1]); y < static_cast<int>(y1 * size[1]); ++y)
   {
     for (int x = static_cast<int>(x0 * size[0]); x < static_cast<int>(x1 * size[0]); ++x)
     {
-      const unsigned char* p = rgb->GetPointer(3 * (static_cast<vtkIdType>(y) * size[0] + x));
-      found += std::abs(p[0] - 31) + std::abs(p[1] - 119) + std::abs(p[2] - 180) < 60 ? 1 : 0;
+      const unsigned char* p = picture->GetPointer(3 * (static_cast<vtkIdType>(y) * size[0] + x));
+      found +=
+        std::abs(p[0] - rgb[0]) + std::abs(p[1] - rgb[1]) + std::abs(p[2] - rgb[2]) < 60 ? 1 : 0;
     }
   }
   return found;
@@ -144,14 +152,29 @@ int TestGaussianTimelineViewComparison(int, char*[])
   // Pictures: the right half of the quality chart (iterations 1000..2000, top third of the
   // window) holds PSNR-coloured pixels only when the second run has PSNR values.
   quality->SetShowLegend(false);
-  const int with = PsnrPixels(view, 0.6, 0.95, 0.7, 0.95);
+  const std::array<int, 3> psnrColour{ 31, 119, 180 };
+  const int with = Pixels(view, psnrColour, 0.6, 0.95, 0.7, 0.95);
   view->SetComparisonMetrics(MakeMetrics(21, 100, 22.0, false));
   view->SetComparisonTestMetrics(nullptr);
   Check(view->GetNumberOfComparisonPlots() == 2, "without PSNR: the SSIM and count plots");
-  const int without = PsnrPixels(view, 0.6, 0.95, 0.7, 0.95);
+  const int without = Pixels(view, psnrColour, 0.6, 0.95, 0.7, 0.95);
   Check(with > 20 && without == 0,
     "the second run's PSNR is drawn beyond the first run (" + std::to_string(with) +
       " pixels; without its PSNR " + std::to_string(without) + ")");
+
+  // The second cursor: dashed magenta at the other state's iteration, in every chart.
+  const int magentaBefore = Pixels(view, { 200, 40, 200 }, 0, 1, 0, 1);
+  view->SetComparisonIteration(1500);
+  const int magenta = Pixels(view, { 200, 40, 200 }, 0, 1, 0, 1);
+  for (int chart = 0; chart < 3; ++chart)
+  {
+    Check(view->GetChart(chart)->GetComparisonCursorIteration() == 1500,
+      "chart " + std::to_string(chart) + " has the second cursor");
+  }
+  Check(magentaBefore == 0 && magenta > 30,
+    "the second cursor is drawn (" + std::to_string(magenta) + " pixels)");
+  view->SetComparisonIteration(-1);
+  Check(Pixels(view, { 200, 40, 200 }, 0, 1, 0, 1) == 0, "a negative iteration hides it");
 
   // Back to one run: the names leave the legend.
   view->SetComparisonMetrics(nullptr);
