@@ -462,6 +462,9 @@ void Vis4GSCompareWindow::Recompare()
     std::cerr << "vis4gs view --compare: " << e.what() << std::endl;
     return;
   }
+  std::cout << "vis4gs view --compare: loaded both states in " << c->LoadSeconds << " s ("
+            << c->LoadCpuSeconds << " s CPU), compared in " << c->CompareSeconds << " s ("
+            << c->CompareCpuSeconds << " s CPU)" << std::endl;
   d->Sets->clear();
   for (int set = 0; set < Vis4GSComparison::NUMBER_OF_SETS; ++set)
   {

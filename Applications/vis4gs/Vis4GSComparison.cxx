@@ -16,13 +16,27 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <stdexcept>
 
 namespace
 {
 namespace fs = std::filesystem;
+
+// Measures wall and process CPU seconds from construction to Stop().
+struct Stopwatch
+{
+  std::chrono::steady_clock::time_point Wall = std::chrono::steady_clock::now();
+  std::clock_t Cpu = std::clock();
+  void Stop(double& wall, double& cpu) const
+  {
+    wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Wall).count();
+    cpu = static_cast<double>(std::clock() - this->Cpu) / CLOCKS_PER_SEC;
+  }
+};
 
 bool IsLogPath(const std::string& path)
 {
@@ -194,6 +208,7 @@ std::shared_ptr<Vis4GSComparison> Vis4GSComparison::Load(const std::string& a,
   const std::string& b,
   const std::string& cameras)
 {
+  const Stopwatch watch;
   auto c = std::make_shared<Vis4GSComparison>();
   c->A = ReadState(a, iterationA, cameras);
   std::string pathB;
@@ -215,12 +230,14 @@ std::shared_ptr<Vis4GSComparison> Vis4GSComparison::Load(const std::string& a,
   {
     c->B.Cameras = c->A.Cameras;
   }
+  watch.Stop(c->LoadSeconds, c->LoadCpuSeconds);
   return c;
 }
 
 //------------------------------------------------------------------------------
 void Vis4GSComparison::Compare(const vis4gs::StateThresholds& thresholds)
 {
+  const Stopwatch watch;
   this->Thresholds = thresholds;
   vtkNew<vtkGaussianStateComparisonFilter> filter;
   filter->SetInputData(0, this->A.Scene);
@@ -261,6 +278,7 @@ void Vis4GSComparison::Compare(const vis4gs::StateThresholds& thresholds)
       this->Ids[UNCHANGED].push_back(id);
     }
   }
+  watch.Stop(this->CompareSeconds, this->CompareCpuSeconds);
 }
 
 //------------------------------------------------------------------------------

@@ -60,6 +60,8 @@ struct Vis4GSComparison
   vtkSmartPointer<vtkTable> Differences;
   /// Sorted ids of each set (after Compare()).
   std::array<std::vector<vtkIdType>, NUMBER_OF_SETS> Ids;
+  /// Wall and process CPU seconds of Load() and of the last Compare().
+  double LoadSeconds = 0, LoadCpuSeconds = 0, CompareSeconds = 0, CompareCpuSeconds = 0;
 
   /**
    * Loads state A from @p a (a training log's snapshot nearest @p iterationA, -1 the last, or
