@@ -400,7 +400,7 @@ void Vis4GSCompareWindow::OnLoaded(std::shared_ptr<Vis4GSComparison> c, const QS
   }
   d->Comparison = c;
   this->setWindowTitle(QString::fromStdString("Vis4GS: " + c->A.Name + " vs " + c->B.Name));
-  const Vis4GSComparedState* states[2] = { &c->A, &c->B };
+  const Vis4GSComparison::State* states[2] = { &c->A, &c->B };
   for (int side = 0; side < 2; ++side)
   {
     d->Views[side].Title->setText(

@@ -116,13 +116,15 @@ vtkSmartPointer<vtkTable> MetricRows(vtkTable* merged, const std::string& prefix
   return table->GetNumberOfRows() > 0 ? table : nullptr;
 }
 
-Vis4GSComparedState ReadState(const std::string& path, int iteration, const std::string& cameras)
+Vis4GSComparison::State ReadState(const std::string& path,
+  int iteration,
+  const std::string& cameras)
 {
   if (!fs::exists(path))
   {
     throw std::runtime_error(path + ": no such file");
   }
-  Vis4GSComparedState s;
+  Vis4GSComparison::State s;
   s.Path = path;
   s.Name = fs::path(path).filename().string();
   if (IsLogPath(path))

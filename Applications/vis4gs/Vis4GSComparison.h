@@ -23,19 +23,19 @@
 class vtkPolyData;
 class vtkTable;
 
-/// One side of a comparison.
-struct Vis4GSComparedState
-{
-  std::string Path;
-  int Iteration = -1; ///< the logged snapshot's iteration; -1 for a scene file
-  std::string Name;   ///< "demo.h5 @1000", "cleaned.ply"
-  vtkSmartPointer<vtkPolyData> Scene;
-  vtkSmartPointer<vtkTable> Cameras;              ///< null when none were found
-  vtkSmartPointer<vtkTable> Metrics, TestMetrics; ///< a log's /metrics and /metrics/test
-};
-
 struct Vis4GSComparison
 {
+  /// One side of a comparison.
+  struct State
+  {
+    std::string Path;
+    int Iteration = -1; ///< the logged snapshot's iteration; -1 for a scene file
+    std::string Name;   ///< "demo.h5 @1000", "cleaned.ply"
+    vtkSmartPointer<vtkPolyData> Scene;
+    vtkSmartPointer<vtkTable> Cameras;              ///< null when none were found
+    vtkSmartPointer<vtkTable> Metrics, TestMetrics; ///< a log's /metrics and /metrics/test
+  };
+
   /// The sets of ids the window lists; a Gaussian of both states may be in several of
   /// MOVED, OPACITY and SCALE (the flags of `vis4gs compare`'s status, e.g. "moved+scale").
   enum Sets
@@ -53,7 +53,7 @@ struct Vis4GSComparison
   /// The set's colour in the difference overlay (0-255 RGB).
   static std::array<unsigned char, 3> SetColor(int set);
 
-  Vis4GSComparedState A, B;
+  State A, B;
   bool SameLog = false; ///< A and B are iterations of one log (one metrics curve)
   vis4gs::StateThresholds Thresholds;
   /// vtkGaussianStateComparisonFilter's table: one row per id of either state.
