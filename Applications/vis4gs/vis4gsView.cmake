@@ -165,6 +165,9 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewCompare${_vis4gs_name}
       FAIL_REGULAR_EXPRESSION "FAILED:")
   endforeach ()
+  vis4gs_add_app_test(ViewCompareBadThreshold ARGS view
+    "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@1000
+    --compare-thresholds=0,-1,0 STATUS 1 OUTPUT "--compare-thresholds M,O,S >= 0")
   vis4gs_add_app_test(ViewCompareBadIteration ARGS view
     "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@nope --self-test=${_vis4gs_view_dir}/compare-bad
     STATUS 1 OUTPUT "@nope: no such file")

@@ -10,6 +10,7 @@
 #include <QSurfaceFormat>
 #include <QTimer>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
@@ -95,9 +96,10 @@ int Run(const Vis4GSArguments& args)
   if (!args.Get("compare").empty())
   {
     const std::vector<double> t = args.GetNumbers("compare-thresholds");
-    if (args.GetPositional("FILE").empty() || t.size() != 3)
+    if (args.GetPositional("FILE").empty() || t.size() != 3 ||
+      !std::all_of(t.begin(), t.end(), [](double v) { return v >= 0; }))
     {
-      std::cerr << "vis4gs view: --compare needs a FILE and --compare-thresholds M,O,S\n";
+      std::cerr << "vis4gs view: --compare needs a FILE and --compare-thresholds M,O,S >= 0\n";
       return 1;
     }
     Vis4GSCompareWindow compare;
