@@ -165,6 +165,28 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewCompare${_vis4gs_name}
       FAIL_REGULAR_EXPRESSION "FAILED:")
   endforeach ()
+  # Two third-party scenes of one capture (an INRIA PLY and a .splat, matched by index as
+  # `vis4gs compare` matches scenes without ids), from the shared data.
+  set(_vis4gs_inria_dir "${VIS4GS_SHARED_DATA_DIR}/inria_ply_tiny_kacytran")
+  set(_vis4gs_shots "${_vis4gs_view_dir}/compare-SharedScenes")
+  add_test(NAME vis4gs-ViewCompareSharedScenes
+    COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/Testing/RunIfPresent.sh" "${_vis4gs_inria_dir}"
+      $<TARGET_FILE:vis4gs> view "${_vis4gs_inria_dir}/point_cloud/iteration_7000/point_cloud.ply"
+      "--compare=${_vis4gs_inria_dir}/model_1.splat" --compare-thresholds=0.001,0.01,0.01
+      "--self-test=${_vis4gs_shots}" --resolution=1280,800)
+  add_test(NAME vis4gs-ViewCompareSharedScenesMatchesCompare
+    COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/Testing/RunIfPresent.sh" "${_vis4gs_inria_dir}"
+      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckCompareWindow.py"
+      "${_vis4gs_shots}/compare-sets.csv" $<TARGET_FILE:vis4gs>
+      "${_vis4gs_inria_dir}/point_cloud/iteration_7000/point_cloud.ply"
+      "${_vis4gs_inria_dir}/model_1.splat" --move=0.001 --opacity=0.01 --scale=0.01)
+  set_tests_properties(vis4gs-ViewCompareSharedScenes PROPERTIES LABELS "Application;GUI"
+    FAIL_REGULAR_EXPRESSION "FAILED" FIXTURES_SETUP vis4gsViewCompareSharedScenes)
+  set_tests_properties(vis4gs-ViewCompareSharedScenesMatchesCompare PROPERTIES
+    LABELS "Application;GUI;Python" FAIL_REGULAR_EXPRESSION "FAILED"
+    FIXTURES_REQUIRED vis4gsViewCompareSharedScenes)
+  vis4gs_shared_data_tests(vis4gs-ViewCompareSharedScenes
+    vis4gs-ViewCompareSharedScenesMatchesCompare)
   vis4gs_add_app_test(ViewCompareBadThreshold ARGS view
     "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@1000
     --compare-thresholds=0,-1,0 STATUS 1 OUTPUT "--compare-thresholds M,O,S >= 0")
