@@ -35,7 +35,6 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
-#include <QHBoxLayout>
 #include <QImage>
 #include <QInputDialog>
 #include <QLabel>
