@@ -187,6 +187,11 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     FIXTURES_REQUIRED vis4gsViewCompareSharedScenes)
   vis4gs_shared_data_tests(vis4gs-ViewCompareSharedScenes
     vis4gs-ViewCompareSharedScenesMatchesCompare)
+  vis4gs_add_app_test(ViewCompareSceneIteration ARGS view "${_vis4gs_cleaned}" --compare=@1000
+    "--self-test=${_vis4gs_view_dir}/compare-scene-iteration" STATUS 1
+    OUTPUT "@1000: @ITERATION compares two iterations of a training log, but .*cleaned.ply is a scene file")
+  set_tests_properties(vis4gs-ViewCompareSceneIteration PROPERTIES
+    FIXTURES_REQUIRED vis4gsCleanup-floaters)
   vis4gs_add_app_test(ViewCompareBadThreshold ARGS view
     "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@1000
     --compare-thresholds=0,-1,0 STATUS 1 OUTPUT "--compare-thresholds M,O,S >= 0")
