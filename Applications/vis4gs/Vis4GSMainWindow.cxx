@@ -2,6 +2,7 @@
 #include "Vis4GSMainWindow.h"
 
 #include "Vis4GSCleanupPanel.h"
+#include "Vis4GSCompareWindow.h"
 #include "Vis4GSControlPanel.h"
 #include "Vis4GSDocument.h"
 #include "Vis4GSSelectionExport.h"
@@ -430,6 +431,19 @@ void Vis4GSMainWindow::BuildUi()
       }
     },
     QKeySequence::Open);
+  file->addAction("C&ompare with...", // issue 20: the open state side by side with another
+    this,
+    [this]
+    {
+      if (d->Doc)
+      {
+        Vis4GSCompareWindow::AskAndOpen(this,
+          QString::fromStdString(d->Doc->Path),
+          d->Doc->Iteration,
+          d->Doc->Snapshots,
+          QString::fromStdString(d->SceneCameras));
+      }
+    });
   file->addAction(
     "&Screenshot...", this, [this] { this->ScreenshotDialog(); }, QKeySequence("Ctrl+S"));
   file->addAction(

@@ -4,7 +4,7 @@
 find_package(Qt5 QUIET COMPONENTS Widgets)
 if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLinked AND
     TARGET Vis4GS::ViewsScene)
-  set_property(SOURCE Vis4GSMainWindow.h PROPERTY SKIP_AUTOMOC OFF)
+  set_property(SOURCE Vis4GSMainWindow.h Vis4GSCompareWindow.h PROPERTY SKIP_AUTOMOC OFF)
   target_sources(vis4gs PRIVATE
     vis4gsViewCommand.cxx
     Vis4GSMainWindow.cxx
@@ -15,6 +15,9 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     Vis4GSSelectionExport.cxx
     Vis4GSSelectionTable.cxx
     Vis4GSCleanupPanel.cxx
+    Vis4GSCompareWindow.cxx
+    Vis4GSCompareWindow.h
+    Vis4GSComparison.cxx
     Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
   target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
@@ -103,6 +106,104 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "${_vis4gs_cleanup_dir}")
   set_tests_properties(vis4gs-ViewCleanupMatchesAnalyze PROPERTIES
     FIXTURES_REQUIRED "vis4gsViewDemoShots;vis4gsViewCleanupAnalyze")
+  # The comparison window (issue 20), three ways: two iterations of the demo log, the demo
+  # log against the scene analyze --select="views<=3" --delete cleaned (a log and a scene of
+  # the same cameras: the deleted floaters died), and two synthetic logs (both runs' metric
+  # curves in the timeline). The self-test asserts the shared camera, the overlay, the
+  # selection in both views and the timeline; CheckCompareWindow.py runs `vis4gs compare` on
+  # the same states and compares its differences.csv with the sets the window showed.
+  set(_vis4gs_cleaned "${CMAKE_CURRENT_BINARY_DIR}/Testing/analyze-cleanup-floaters/cleaned.ply")
+  set(_vis4gs_demo_log "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5")
+  add_test(NAME vis4gs-ViewMakeLogB
+    COMMAND vis4gsMakeTestLog "${_vis4gs_view_dir}/synthetic-b.h5" 300 4)
+  set_tests_properties(vis4gs-ViewMakeLogB PROPERTIES LABELS "Application;GUI"
+    FIXTURES_SETUP vis4gsViewLogB)
+  foreach (_vis4gs_case
+      "Iterations|${_vis4gs_demo_log}|--iteration=1000|--compare=@2000|--compare-thresholds=0.01,0.05,0.2|CHECK|${_vis4gs_demo_log}|${_vis4gs_demo_log}|--iteration-a=1000|--iteration-b=2000|--move=0.01|--opacity=0.05|--scale=0.2"
+      "Cleaned|${_vis4gs_demo_log}|--compare=${_vis4gs_cleaned}|CHECK|${_vis4gs_demo_log}|${_vis4gs_cleaned}"
+      "Logs|${_vis4gs_view_dir}/synthetic.h5|--compare=${_vis4gs_view_dir}/synthetic-b.h5|CHECK|${_vis4gs_view_dir}/synthetic.h5|${_vis4gs_view_dir}/synthetic-b.h5")
+    string(REPLACE "|" ";" _vis4gs_case "${_vis4gs_case}")
+    list(POP_FRONT _vis4gs_case _vis4gs_name)
+    list(FIND _vis4gs_case CHECK _vis4gs_at)
+    list(SUBLIST _vis4gs_case 0 ${_vis4gs_at} _vis4gs_view_args)
+    math(EXPR _vis4gs_at "${_vis4gs_at} + 1")
+    list(SUBLIST _vis4gs_case ${_vis4gs_at} -1 _vis4gs_compare_args)
+    set(_vis4gs_shots "${_vis4gs_view_dir}/compare-${_vis4gs_name}")
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}
+      COMMAND vis4gs view ${_vis4gs_view_args} "--self-test=${_vis4gs_shots}"
+        --resolution=1280,800)
+    set_tests_properties(vis4gs-ViewCompare${_vis4gs_name} PROPERTIES LABELS "Application;GUI"
+      PASS_REGULAR_EXPRESSION "compare self-test passed" FAIL_REGULAR_EXPRESSION "FAILED"
+      FIXTURES_SETUP vis4gsViewCompare${_vis4gs_name})
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}MatchesCompare
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckCompareWindow.py"
+        "${_vis4gs_shots}/compare-sets.csv" $<TARGET_FILE:vis4gs> ${_vis4gs_compare_args})
+    set_tests_properties(vis4gs-ViewCompare${_vis4gs_name}MatchesCompare PROPERTIES
+      LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewCompare${_vis4gs_name}
+      PASS_REGULAR_EXPRESSION "the comparison window's sets equal vis4gs compare's"
+      FAIL_REGULAR_EXPRESSION "FAILED")
+  endforeach ()
+  set_tests_properties(vis4gs-ViewCompareCleaned PROPERTIES
+    FIXTURES_REQUIRED vis4gsCleanup-floaters)
+  set_tests_properties(vis4gs-ViewCompareLogs PROPERTIES
+    FIXTURES_REQUIRED "vis4gsViewLog;vis4gsViewLogB")
+  # The died (born) Gaussians framed by the self-test's "Zoom to selection", against baselines
+  # strictly inside masks around their overlay colour; the other state's view at the same
+  # camera, which lacks them, must fail there.
+  foreach (_vis4gs_masked "Cleaned|a-died|214,39,40" "Logs|b-born|44,160,44")
+    string(REPLACE "|" ";" _vis4gs_masked "${_vis4gs_masked}")
+    list(GET _vis4gs_masked 0 _vis4gs_name)
+    list(GET _vis4gs_masked 1 _vis4gs_shot)
+    list(GET _vis4gs_masked 2 _vis4gs_colour)
+    string(TOLOWER "${_vis4gs_name}" _vis4gs_lower)
+    set(_vis4gs_shots "${_vis4gs_view_dir}/compare-${_vis4gs_name}")
+    set(_vis4gs_masked_args "${_vis4gs_baselines}/compare-${_vis4gs_lower}-${_vis4gs_shot}.png")
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}MaskedBaseline
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${_vis4gs_compare}" ${_vis4gs_masked_args}
+        "${_vis4gs_shots}/compare-${_vis4gs_shot}.png" "--highlight=${_vis4gs_colour}"
+        --colour-tolerance=80 "--diff=${_vis4gs_shots}/compare-${_vis4gs_shot}-masked-diff.png")
+    add_test(NAME vis4gs-ViewCompare${_vis4gs_name}MaskedBaselineNeedsColour
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${_vis4gs_compare}" ${_vis4gs_masked_args}
+        "${_vis4gs_shots}/compare-${_vis4gs_shot}-other-view.png" "--highlight=${_vis4gs_colour}"
+        --colour-tolerance=80 --expect-mismatch)
+    set_tests_properties(vis4gs-ViewCompare${_vis4gs_name}MaskedBaseline
+      vis4gs-ViewCompare${_vis4gs_name}MaskedBaselineNeedsColour PROPERTIES
+      LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewCompare${_vis4gs_name}
+      FAIL_REGULAR_EXPRESSION "FAILED:")
+  endforeach ()
+  # Two third-party scenes of one capture (an INRIA PLY and a .splat, matched by index as
+  # `vis4gs compare` matches scenes without ids), from the shared data.
+  set(_vis4gs_inria_dir "${VIS4GS_SHARED_DATA_DIR}/inria_ply_tiny_kacytran")
+  set(_vis4gs_shots "${_vis4gs_view_dir}/compare-SharedScenes")
+  add_test(NAME vis4gs-ViewCompareSharedScenes
+    COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/Testing/RunIfPresent.sh" "${_vis4gs_inria_dir}"
+      $<TARGET_FILE:vis4gs> view "${_vis4gs_inria_dir}/point_cloud/iteration_7000/point_cloud.ply"
+      "--compare=${_vis4gs_inria_dir}/model_1.splat" --compare-thresholds=0.001,0.01,0.01
+      "--self-test=${_vis4gs_shots}" --resolution=1280,800)
+  add_test(NAME vis4gs-ViewCompareSharedScenesMatchesCompare
+    COMMAND sh "${CMAKE_CURRENT_SOURCE_DIR}/Testing/RunIfPresent.sh" "${_vis4gs_inria_dir}"
+      "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckCompareWindow.py"
+      "${_vis4gs_shots}/compare-sets.csv" $<TARGET_FILE:vis4gs>
+      "${_vis4gs_inria_dir}/point_cloud/iteration_7000/point_cloud.ply"
+      "${_vis4gs_inria_dir}/model_1.splat" --move=0.001 --opacity=0.01 --scale=0.01)
+  set_tests_properties(vis4gs-ViewCompareSharedScenes PROPERTIES LABELS "Application;GUI"
+    FAIL_REGULAR_EXPRESSION "FAILED" FIXTURES_SETUP vis4gsViewCompareSharedScenes)
+  set_tests_properties(vis4gs-ViewCompareSharedScenesMatchesCompare PROPERTIES
+    LABELS "Application;GUI;Python" FAIL_REGULAR_EXPRESSION "FAILED"
+    FIXTURES_REQUIRED vis4gsViewCompareSharedScenes)
+  vis4gs_shared_data_tests(vis4gs-ViewCompareSharedScenes
+    vis4gs-ViewCompareSharedScenesMatchesCompare)
+  vis4gs_add_app_test(ViewCompareSceneIteration ARGS view "${_vis4gs_cleaned}" --compare=@1000
+    "--self-test=${_vis4gs_view_dir}/compare-scene-iteration" STATUS 1
+    OUTPUT "@1000: @ITERATION compares two iterations of a training log, but .*cleaned.ply is a scene file")
+  set_tests_properties(vis4gs-ViewCompareSceneIteration PROPERTIES
+    FIXTURES_REQUIRED vis4gsCleanup-floaters)
+  vis4gs_add_app_test(ViewCompareBadThreshold ARGS view
+    "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@1000
+    --compare-thresholds=0,-1,0 STATUS 1 OUTPUT "--compare-thresholds M,O,S >= 0")
+  vis4gs_add_app_test(ViewCompareBadIteration ARGS view
+    "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --compare=@nope --self-test=${_vis4gs_view_dir}/compare-bad
+    STATUS 1 OUTPUT "@nope: no such file")
   # A scene file with cameras (issue 21): the demo's last snapshot as a PLY (analyze writes
   # it) with its training cameras as cameras.json beside it, found by the view on its own:
   # the layout without tree and timeline, View Coverage and the frustum check.

@@ -2,6 +2,7 @@
 // `vis4gs view [FILE]`: the Qt5 application with the four linked views (DESIGN §5).
 #include "Vis4GSBenchmark.h"
 #include "Vis4GSCommand.h"
+#include "Vis4GSCompareWindow.h"
 #include "Vis4GSMainWindow.h"
 #include "Vis4GSSelfTest.h"
 
@@ -11,6 +12,7 @@
 #include <QSurfaceFormat>
 #include <QTimer>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
@@ -59,6 +61,18 @@ void Define(Vis4GSArguments& args)
     "COLMAP dataset folder or a transforms*.json (file or folder). Default: cameras.json next to "
     "the scene or two folders up (the "
     "INRIA model layout); none found, no cameras.");
+  args.AddOption("compare",
+    "B",
+    "",
+    "Open the comparison window instead (issue 20): FILE side by side with B, another snapshot "
+    "of FILE's log (@ITERATION), a training log (its last snapshot, or LOG@ITERATION) or a "
+    "scene of the same cameras; with --self-test, its scripted check.");
+  args.AddOption(
+    "iteration", "N", "-1", "With --compare: FILE's snapshot nearest N; -1: the last.");
+  args.AddOption("compare-thresholds",
+    "M,O,S",
+    "0,0,0",
+    "With --compare: the move, opacity and log-scale thresholds of `vis4gs compare`.");
   args.AddFlag("welcome",
     false,
     "Show the welcome panel (what to try first: the user guide's case study) at the top of "
@@ -81,6 +95,33 @@ int Run(const Vis4GSArguments& args)
   static char name[] = "vis4gs";
   static char* argv[] = { name, nullptr };
   QApplication app(argc, argv);
+  if (!args.Get("compare").empty())
+  {
+    const std::vector<double> t = args.GetNumbers("compare-thresholds");
+    if (args.GetPositional("FILE").empty() || t.size() != 3 ||
+      !std::all_of(t.begin(), t.end(), [](double v) { return v >= 0; }))
+    {
+      std::cerr << "vis4gs view: --compare needs a FILE and --compare-thresholds M,O,S >= 0\n";
+      return 1;
+    }
+    Vis4GSCompareWindow compare;
+    const std::vector<double> size = args.GetNumbers("resolution");
+    if (size.size() == 2)
+    {
+      compare.resize(static_cast<int>(size[0]), static_cast<int>(size[1]));
+    }
+    compare.SetThresholds(t[0], t[1], t[2]);
+    if (!args.Get("self-test").empty())
+    {
+      compare.SetSelfTest(QString::fromStdString(args.Get("self-test")));
+    }
+    compare.show();
+    compare.Open(QString::fromStdString(args.GetPositional("FILE")),
+      args.GetInt("iteration"),
+      QString::fromStdString(args.Get("compare")),
+      QString::fromStdString(args.Get("cameras")));
+    return app.exec();
+  }
   Vis4GSMainWindow window;
   const std::vector<double> size = args.GetNumbers("resolution");
   if (size.size() == 2)

@@ -51,15 +51,19 @@ bool vtkGaussianTimelineChart::Paint(vtkContext2D* painter)
   const bool result = this->Superclass::Paint(painter);
   vtkAxis* bottom = this->GetAxis(vtkAxis::BOTTOM);
   vtkAxis* left = this->GetAxis(vtkAxis::LEFT);
-  if (this->CursorIteration >= bottom->GetMinimum() &&
-    this->CursorIteration <= bottom->GetMaximum())
+  for (const bool second : { false, true })
   {
-    const float x = this->IterationToScene(this->CursorIteration);
-    vtkNew<vtkPen> pen;
-    pen->SetColor(220, 40, 40, 255);
-    pen->SetWidth(2.f);
-    painter->ApplyPen(pen);
-    painter->DrawLine(x, left->GetPoint1()[1], x, left->GetPoint2()[1]);
+    const double iteration = second ? this->ComparisonCursorIteration : this->CursorIteration;
+    if (iteration >= 0 && iteration >= bottom->GetMinimum() && iteration <= bottom->GetMaximum())
+    {
+      const float x = this->IterationToScene(iteration);
+      vtkNew<vtkPen> pen;
+      pen->SetColor(second ? 200 : 220, 40 * !second, second ? 200 : 40, 255);
+      pen->SetWidth(2.f);
+      pen->SetLineType(second ? vtkPen::DASH_LINE : vtkPen::SOLID_LINE);
+      painter->ApplyPen(pen);
+      painter->DrawLine(x, left->GetPoint1()[1], x, left->GetPoint2()[1]);
+    }
   }
   return result;
 }
@@ -103,4 +107,5 @@ void vtkGaussianTimelineChart::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "CursorIteration: " << this->CursorIteration << "\n";
+  os << indent << "ComparisonCursorIteration: " << this->ComparisonCursorIteration << "\n";
 }

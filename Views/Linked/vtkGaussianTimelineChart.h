@@ -45,6 +45,15 @@ public:
   vtkGetMacro(CursorIteration, double);
   ///@}
 
+  ///@{
+  /**
+   * Iteration of a second cursor, dashed magenta: the other state of a comparison (issue 20);
+   * negative hides it. Default -1.
+   */
+  vtkSetMacro(ComparisonCursorIteration, double);
+  vtkGetMacro(ComparisonCursorIteration, double);
+  ///@}
+
   /// The iteration (data x) under a scene position, from the bottom axis.
   double SceneToIteration(float sceneX);
   /// The scene x of an iteration.
@@ -59,6 +68,7 @@ protected:
   ~vtkGaussianTimelineChart() override = default;
 
   double CursorIteration = -1;
+  double ComparisonCursorIteration = -1;
   float PressX = 0.f;
   float PressY = 0.f;
   bool LeftPressed = false;

@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -70,14 +71,17 @@ struct vtkGaussianTimelineView::vtkInternals
   vtkNew<vtkChartMatrix> Matrix;
   vtkNew<vtkGaussianTimelineChart> Charts[3];
   vtkSmartPointer<vtkTable> Metrics, TestMetrics, History;
+  vtkSmartPointer<vtkTable> ComparisonMetrics, ComparisonTestMetrics;
   vtkNew<vtkTable> Wide;
   vtkWeakPointer<vtkGaussianSelectionHub> Hub;
   unsigned long SelectionObserver = 0, IterationObserver = 0;
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkNew<vtkCallbackCommand> ClickCommand;
   int Iteration = -1;
+  int ComparisonIteration = -1;
   int HistoryLines = 0;
   int MetricPlots = 0;
+  int ComparisonPlots = 0;
 };
 
 //------------------------------------------------------------------------------
@@ -85,6 +89,8 @@ vtkGaussianTimelineView::vtkGaussianTimelineView()
   : Internals(new vtkInternals)
 {
   this->SetHistoryProperty("Opacity");
+  this->RunName = strcpy(new char[2], "A");
+  this->ComparisonRunName = strcpy(new char[2], "B");
   this->SetIterationColumn(vis4gs::arrays::MetricIteration);
   this->SetCountColumn(vis4gs::arrays::MetricGaussians);
   this->SetPSNRColumn(vis4gs::arrays::MetricPSNR);
@@ -134,6 +140,8 @@ vtkGaussianTimelineView::~vtkGaussianTimelineView()
 {
   this->SetSelectionHub(nullptr);
   this->SetHistoryProperty(nullptr);
+  delete[] this->RunName;
+  delete[] this->ComparisonRunName;
   this->SetIterationColumn(nullptr);
   this->SetCountColumn(nullptr);
   this->SetPSNRColumn(nullptr);
@@ -167,6 +175,46 @@ void vtkGaussianTimelineView::SetTestMetrics(vtkTable* metrics)
 vtkTable* vtkGaussianTimelineView::GetTestMetrics()
 {
   return this->Internals->TestMetrics;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetComparisonMetrics(vtkTable* metrics)
+{
+  this->Internals->ComparisonMetrics = metrics;
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkGaussianTimelineView::GetComparisonMetrics()
+{
+  return this->Internals->ComparisonMetrics;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetComparisonTestMetrics(vtkTable* metrics)
+{
+  this->Internals->ComparisonTestMetrics = metrics;
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkGaussianTimelineView::GetComparisonTestMetrics()
+{
+  return this->Internals->ComparisonTestMetrics;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetRunName(const char* name)
+{
+  vtkSetStringBodyMacro(RunName, name);
+  this->UpdatePlots();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetComparisonRunName(const char* name)
+{
+  vtkSetStringBodyMacro(ComparisonRunName, name);
+  this->UpdatePlots();
 }
 
 //------------------------------------------------------------------------------
@@ -234,6 +282,25 @@ int vtkGaussianTimelineView::GetIteration()
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetComparisonIteration(int iteration)
+{
+  auto& in = *this->Internals;
+  in.ComparisonIteration = iteration;
+  for (auto& chart : in.Charts)
+  {
+    chart->SetComparisonCursorIteration(iteration);
+  }
+  this->GetScene()->SetDirty(true);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::GetComparisonIteration()
+{
+  return this->Internals->ComparisonIteration;
+}
+
+//------------------------------------------------------------------------------
 vtkGaussianTimelineChart* vtkGaussianTimelineView::GetChart(int which)
 {
   return (which >= 0 && which < 3) ? this->Internals->Charts[which].GetPointer() : nullptr;
@@ -249,6 +316,12 @@ int vtkGaussianTimelineView::GetNumberOfHistoryLines()
 int vtkGaussianTimelineView::GetNumberOfMetricPlots()
 {
   return this->Internals->MetricPlots;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianTimelineView::GetNumberOfComparisonPlots()
+{
+  return this->Internals->ComparisonPlots;
 }
 
 //------------------------------------------------------------------------------
@@ -297,16 +370,22 @@ void vtkGaussianTimelineView::UpdatePlots()
     chart->ClearPlots();
   }
   in.MetricPlots = 0;
+  in.ComparisonPlots = 0;
   in.HistoryLines = 0;
   double xmin = std::numeric_limits<double>::max(), xmax = std::numeric_limits<double>::lowest();
 
+  // With a second run, both runs' entries carry the run's name and the second run's lines are
+  // dotted (its test metrics dash-dotted), so the two runs differ by style, the metrics by
+  // colour.
+  const bool comparing = in.ComparisonMetrics || in.ComparisonTestMetrics;
   auto addMetric = [&](vtkTable* table,
                      const char* column,
                      int chart,
                      int corner,
                      const unsigned char* color,
-                     bool dashed,
-                     const char* label)
+                     int lineType,
+                     const char* label,
+                     bool second)
   {
     if (!table || !column)
     {
@@ -326,24 +405,39 @@ void vtkGaussianTimelineView::UpdatePlots()
     plot->SetInputData(table, this->IterationColumn, column);
     plot->SetColor(color[0], color[1], color[2], 255);
     plot->SetWidth(2.f);
-    plot->SetLabel(label);
-    if (dashed)
-    {
-      plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
-    }
+    const char* run = second ? this->ComparisonRunName : this->RunName;
+    plot->SetLabel(comparing ? std::string(label) + " [" + (run ? run : "") + "]" : label);
+    plot->GetPen()->SetLineType(lineType);
     if (corner)
     {
       in.Charts[chart]->SetPlotCorner(plot, corner);
     }
     ++in.MetricPlots;
+    in.ComparisonPlots += second ? 1 : 0;
   };
-  addMetric(in.Metrics, this->PSNRColumn, QUALITY, 0, Palette[0], false, "PSNR");
-  addMetric(in.Metrics, this->SSIMColumn, QUALITY, 1, Palette[1], false, "SSIM");
-  addMetric(in.Metrics, this->LPIPSColumn, QUALITY, 1, Palette[2], false, "LPIPS");
-  addMetric(in.TestMetrics, this->PSNRColumn, QUALITY, 0, Palette[0], true, "PSNR test");
-  addMetric(in.TestMetrics, this->SSIMColumn, QUALITY, 1, Palette[1], true, "SSIM test");
-  addMetric(in.TestMetrics, this->LPIPSColumn, QUALITY, 1, Palette[2], true, "LPIPS test");
-  addMetric(in.Metrics, this->CountColumn, COUNT, 0, Palette[4], false, "Gaussians");
+  const int solid = vtkPen::SOLID_LINE, dashed = vtkPen::DASH_LINE;
+  for (const bool second : { false, true })
+  {
+    vtkTable* train = second ? in.ComparisonMetrics : in.Metrics;
+    vtkTable* test = second ? in.ComparisonTestMetrics : in.TestMetrics;
+    const int trainLine = second ? static_cast<int>(vtkPen::DOT_LINE) : solid;
+    const int testLine = second ? static_cast<int>(vtkPen::DASH_DOT_LINE) : dashed;
+    addMetric(train, this->PSNRColumn, QUALITY, 0, Palette[0], trainLine, "PSNR", second);
+    addMetric(train, this->SSIMColumn, QUALITY, 1, Palette[1], trainLine, "SSIM", second);
+    addMetric(train, this->LPIPSColumn, QUALITY, 1, Palette[2], trainLine, "LPIPS", second);
+    addMetric(test, this->PSNRColumn, QUALITY, 0, Palette[0], testLine, "PSNR test", second);
+    addMetric(test, this->SSIMColumn, QUALITY, 1, Palette[1], testLine, "SSIM test", second);
+    addMetric(test, this->LPIPSColumn, QUALITY, 1, Palette[2], testLine, "LPIPS test", second);
+  }
+  addMetric(in.Metrics, this->CountColumn, COUNT, 0, Palette[4], solid, "Gaussians", false);
+  addMetric(in.ComparisonMetrics,
+    this->CountColumn,
+    COUNT,
+    0,
+    Palette[4],
+    vtkPen::DOT_LINE,
+    "Gaussians",
+    true);
   in.Charts[QUALITY]->GetAxis(vtkAxis::LEFT)->SetTitle("PSNR (dB)");
   in.Charts[QUALITY]->GetAxis(vtkAxis::RIGHT)->SetTitle("SSIM, LPIPS");
   in.Charts[COUNT]->GetAxis(vtkAxis::LEFT)->SetTitle("count");
@@ -456,6 +550,10 @@ void vtkGaussianTimelineView::PrintSelf(ostream& os, vtkIndent indent)
   auto str = [](const char* s) { return s ? s : "(none)"; };
   os << indent << "Metrics: " << in.Metrics.GetPointer() << "\n";
   os << indent << "TestMetrics: " << in.TestMetrics.GetPointer() << "\n";
+  os << indent << "ComparisonMetrics: " << in.ComparisonMetrics.GetPointer() << "\n";
+  os << indent << "ComparisonTestMetrics: " << in.ComparisonTestMetrics.GetPointer() << "\n";
+  os << indent << "RunName: " << str(this->RunName) << "\n";
+  os << indent << "ComparisonRunName: " << str(this->ComparisonRunName) << "\n";
   os << indent << "History: " << in.History.GetPointer() << "\n";
   os << indent << "HistoryProperty: " << str(this->HistoryProperty) << "\n";
   os << indent << "MaximumHistoryLines: " << this->MaximumHistoryLines << "\n";
@@ -468,4 +566,5 @@ void vtkGaussianTimelineView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HistoryIdColumn: " << str(this->HistoryIdColumn) << "\n";
   os << indent << "SelectionHub: " << in.Hub.GetPointer() << "\n";
   os << indent << "Iteration: " << in.Iteration << "\n";
+  os << indent << "ComparisonIteration: " << in.ComparisonIteration << "\n";
 }

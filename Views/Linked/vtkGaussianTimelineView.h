@@ -19,6 +19,13 @@
  * - the selected Gaussians' HistoryProperty over iterations (bottom): one line per selected
  *   Gaussian (at most MaximumHistoryLines; the first ids) from the History table.
  *
+ * A second run (another training log of the same scene, issue 20) can be set beside the
+ * first (SetComparisonMetrics, SetComparisonTestMetrics): its metrics are drawn in the
+ * quality and count charts in the same colours as the first run's, dotted (dash-dotted for
+ * its test metrics), and every metric's legend entry names its run (RunName,
+ * ComparisonRunName), e.g. "PSNR [A: iteration 1000]". The iteration axis spans both runs.
+ * A second, dashed cursor (SetComparisonIteration) marks the other state's iteration.
+ *
  * Every chart shows the iteration cursor (the hub's iteration). A click on a chart invokes
  * IterationSelectedEvent (call data int*, snapped to the nearest metrics iteration) and, when
  * a hub is linked, sets the hub's iteration, which moves every view.
@@ -78,6 +85,28 @@ public:
 
   ///@{
   /**
+   * A second run's training and test metrics tables (same columns), drawn dotted and
+   * dash-dotted beside the first run's. Default none.
+   */
+  void SetComparisonMetrics(vtkTable* metrics);
+  vtkTable* GetComparisonMetrics();
+  void SetComparisonTestMetrics(vtkTable* metrics);
+  vtkTable* GetComparisonTestMetrics();
+  ///@}
+
+  ///@{
+  /**
+   * Names of the first and the second run in the legend entries, used while comparison
+   * metrics are set. Defaults "A" and "B".
+   */
+  void SetRunName(const char* name);
+  vtkGetStringMacro(RunName);
+  void SetComparisonRunName(const char* name);
+  vtkGetStringMacro(ComparisonRunName);
+  ///@}
+
+  ///@{
+  /**
    * History of Gaussians in long format. Default none.
    */
   void SetHistory(vtkTable* history);
@@ -133,6 +162,15 @@ public:
   int GetIteration();
   ///@}
 
+  ///@{
+  /**
+   * A second iteration cursor (dashed): the other state of a comparison, e.g. the second
+   * iteration of one log. Negative hides it. Default -1.
+   */
+  void SetComparisonIteration(int iteration);
+  int GetComparisonIteration();
+  ///@}
+
   /// Rebuilds the plots from the tables and the selection (done on every change).
   void UpdatePlots();
 
@@ -143,6 +181,8 @@ public:
   int GetNumberOfHistoryLines();
   /// Number of metric plots drawn in the quality and count charts.
   int GetNumberOfMetricPlots();
+  /// Number of those that draw the comparison run's metrics.
+  int GetNumberOfComparisonPlots();
 
   /// The metrics iteration nearest @p iteration (itself when there are no metrics).
   int SnapIteration(int iteration);
@@ -154,6 +194,8 @@ protected:
   void OnChartClicked(int iteration);
 
   char* HistoryProperty = nullptr;
+  char* RunName = nullptr;
+  char* ComparisonRunName = nullptr;
   int MaximumHistoryLines = 16;
   char* IterationColumn = nullptr;
   char* CountColumn = nullptr;

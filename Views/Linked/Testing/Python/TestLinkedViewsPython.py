@@ -84,4 +84,15 @@ if timeline.GetIteration() != 480:
     fail("the timeline cursor did not follow the hub")
 if timeline.SnapIteration(480) != 500:
     fail("snap to the nearest logged iteration")
+# A second run (issue 20): its PSNR beside the first's, both named in the legend.
+timeline.SetRunName("A: run 1")
+timeline.SetComparisonRunName("B: run 2")
+timeline.SetComparisonMetrics(metrics)
+timeline.SetComparisonIteration(750)
+quality = timeline.GetChart(vis4gs.vtkGaussianTimelineView.QUALITY)
+labels = sorted(quality.GetPlot(k).GetLabel() for k in range(quality.GetNumberOfPlots()))
+if timeline.GetNumberOfComparisonPlots() != 1 or labels != ["PSNR [A: run 1]", "PSNR [B: run 2]"]:
+    fail("the second run's PSNR should be named beside the first's, got %s" % labels)
+if quality.GetComparisonCursorIteration() != 750:
+    fail("the second cursor should be at 750")
 print("linked views from Python: OK")
