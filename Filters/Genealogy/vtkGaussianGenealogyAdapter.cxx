@@ -25,11 +25,13 @@
 #include "vtkSelectionNode.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
+#include "vtkTypeInt32Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -100,6 +102,22 @@ vtkSmartPointer<ArrayT> VertexArray(const char* name,
     p[i + 1] = static_cast<Value>(in[i]);
   }
   return a;
+}
+
+//------------------------------------------------------------------------------
+// A vertex array of node indices or counts (values in [-1, n]): 32-bit while n fits, which
+// halves these arrays (at 10M vertices, 40 MB each instead of 80).
+template <typename In>
+vtkSmartPointer<vtkDataArray> IndexVertexArray(const char* name,
+  const std::vector<In>& values,
+  std::int64_t rootValue,
+  std::int64_t n)
+{
+  if (n < std::numeric_limits<std::int32_t>::max())
+  {
+    return VertexArray<vtkTypeInt32Array>(name, values, static_cast<std::int32_t>(rootValue));
+  }
+  return VertexArray<vtkIdTypeArray>(name, values, static_cast<vtkIdType>(rootValue));
 }
 
 //------------------------------------------------------------------------------
@@ -411,13 +429,12 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vd->AddArray(VertexArray<vtkIntArray>("DeathIteration", g.GetDeathIterations(), -1));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("BirthKind", g.GetBirthKinds(), VirtualRootKind));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("Pruned", g.GetPruned(), 0));
-  vd->AddArray(VertexArray<vtkIdTypeArray>("FamilyId", g.GetFamilyIds(), -1));
-  vd->AddArray(VertexArray<vtkIdTypeArray>("DescendantCount", g.GetDescendantCounts(), n));
+  vd->AddArray(IndexVertexArray("FamilyId", g.GetFamilyIds(), -1, n));
+  vd->AddArray(IndexVertexArray("DescendantCount", g.GetDescendantCounts(), n, n));
   vd->AddArray(VertexArray<vtkIntArray>("Lifespan", g.GetLifespans(), 0));
   vd->AddArray(VertexArray<vtkDoubleArray>("PerceptionValue", g.GetPerceptionValues(), 1.0));
-  vd->AddArray(VertexArray<vtkDoubleArray>(
-    "LayoutX", g.GetBirthIterations(), static_cast<double>(firstBirth)));
-  vd->AddArray(VertexArray<vtkDoubleArray>("LayoutY", g.GetRows(), -1.0));
+  vd->AddArray(VertexArray<vtkIntArray>("LayoutX", g.GetBirthIterations(), firstBirth));
+  vd->AddArray(IndexVertexArray("LayoutY", g.GetRows(), -1, n));
 
   vtkNew<vtkDataSetAttributes> ed;
   vtkNew<vtkUnsignedCharArray> edgeKind;
