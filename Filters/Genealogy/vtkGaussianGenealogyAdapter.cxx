@@ -34,6 +34,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -71,6 +72,42 @@ void CopyColumn(vtkDataArray* a, std::vector<Out>& out)
   {
     out[i] = static_cast<Out>(a->GetComponent(i, 0));
   }
+}
+
+//------------------------------------------------------------------------------
+// The values of a one-component array whose values are stored as T (an integer type of that
+// size and signedness) in one contiguous block; null otherwise.
+template <typename T>
+const T* Contiguous(vtkDataArray* a)
+{
+  bool isSigned = false, isUnsigned = false;
+  switch (a->GetDataType())
+  {
+    case VTK_SIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_INT:
+    case VTK_LONG:
+    case VTK_LONG_LONG:
+    case VTK_ID_TYPE:
+      isSigned = true;
+      break;
+    case VTK_UNSIGNED_CHAR:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_UNSIGNED_INT:
+    case VTK_UNSIGNED_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+      isUnsigned = true;
+      break;
+    default:
+      break;
+  }
+  if (a->GetNumberOfComponents() != 1 || !a->HasStandardMemoryLayout() ||
+    a->GetDataTypeSize() != static_cast<int>(sizeof(T)) ||
+    !(std::is_signed<T>::value ? isSigned : isUnsigned))
+  {
+    return nullptr;
+  }
+  return a->GetNumberOfTuples() > 0 ? static_cast<const T*>(a->GetVoidPointer(0)) : nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -331,7 +368,8 @@ double vtkGaussianGenealogyAdapter::ProcessCpuSeconds()
 }
 //------------------------------------------------------------------------------
 bool vtkGaussianGenealogyAdapter::EventsFromTable(vtkTable* table,
-  vis4gs::EventTable& events,
+  vis4gs::EventTable& storage,
+  vis4gs::EventColumns& events,
   std::string& error)
 {
   vtkDataArray* it = Column(table, "Iteration", "iteration");
@@ -346,10 +384,36 @@ bool vtkGaussianGenealogyAdapter::EventsFromTable(vtkTable* table,
     error = s.str();
     return false;
   }
-  CopyColumn(it, events.Iteration);
-  CopyColumn(kind, events.Kind);
-  CopyColumn(parent, events.Parent);
-  CopyColumn(child, events.Child);
+  storage = vis4gs::EventTable();
+  const vtkIdType e = it->GetNumberOfTuples();
+  const bool sameLength = kind->GetNumberOfTuples() == e && parent->GetNumberOfTuples() == e &&
+    child->GetNumberOfTuples() == e;
+  const auto* it32 = Contiguous<std::int32_t>(it);
+  const auto* kind8 = Contiguous<std::uint8_t>(kind);
+  const auto* parent64 = Contiguous<std::int64_t>(parent);
+  const auto* child64 = Contiguous<std::int64_t>(child);
+  if (sameLength && it32 && kind8 && parent64 && child64)
+  {
+    events.Iteration = it32;
+    events.Kind = kind8;
+    events.Parent = parent64;
+    events.Child = child64;
+    events.Size = static_cast<std::size_t>(e);
+    return true;
+  }
+  CopyColumn(it, storage.Iteration);
+  CopyColumn(kind, storage.Kind);
+  CopyColumn(parent, storage.Parent);
+  CopyColumn(child, storage.Child);
+  try
+  {
+    events = vis4gs::EventColumns::Of(storage);
+  }
+  catch (const std::exception& x)
+  {
+    error = x.what();
+    return false;
+  }
   return true;
 }
 
