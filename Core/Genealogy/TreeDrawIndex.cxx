@@ -19,8 +19,8 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
 {
   const std::int64_t n = static_cast<std::int64_t>(ids.size());
   const std::size_t un = ids.size();
-  if (this->Birth.size() != un || this->End.size() != un || this->Row.size() != un ||
-    this->P.size() != un)
+  if ((!this->BirthView && this->Birth.size() != un) || this->End.size() != un ||
+    this->Row.size() != un || (!this->PView && this->P.size() != un))
   {
     throw std::invalid_argument("TreeDrawIndex: the birth, end, row and P columns need one value "
                                 "per vertex");
@@ -38,7 +38,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
   {
     const std::int64_t* idp = ids.data();
     std::uint8_t* validp = this->Valid.data();
-    const std::int32_t* birthp = this->Birth.data();
+    const std::int32_t* birthp = this->BirthData();
     const std::int32_t* endp = this->End.data();
 #pragma omp parallel for schedule(static) reduction(max : last, idMax, shiftMax)                 \
   reduction(min : idMin, shiftMin) reduction(+ : valid) if (n > 65536)
@@ -66,7 +66,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
   double maxX = std::numeric_limits<double>::lowest(), maxY = maxX;
   {
     const std::uint8_t* validp = this->Valid.data();
-    const std::int32_t* birthp = this->Birth.data();
+    const std::int32_t* birthp = this->BirthData();
     std::int32_t* endp = this->End.data();
     const double* rowp = this->Row.data();
 #pragma omp parallel for schedule(static) reduction(min                                            \
@@ -104,7 +104,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
   // order inside each bucket.
   const int levels = 1 << 18;
   const int buckets = levels + 1;
-  const double* pv = this->P.data();
+  const double* pv = this->PData();
   auto key = [pv](std::int64_t v) -> int
   {
     const double p = pv[v];
@@ -318,8 +318,8 @@ std::int64_t TreeDrawIndex::QueryVisible(double tau,
     return 0;
   }
   const double* row = this->Row.data();
-  const double* p = this->P.data();
-  const std::int32_t* birth = this->Birth.data();
+  const double* p = this->PData();
+  const std::int32_t* birth = this->BirthData();
   const std::int32_t* end = this->End.data();
   auto rowLess = [row](std::int64_t v, double r) { return row[v] < r; };
   auto k0 = std::lower_bound(this->ByRow.begin(), this->ByRow.end(), rowLo, rowLess);

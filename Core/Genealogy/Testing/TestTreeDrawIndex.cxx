@@ -206,6 +206,42 @@ TEST(TreeDrawIndex, OrdersBoundsAndLookupEqualBruteForce)
   }
 }
 
+TEST(TreeDrawIndex, ColumnsReadInPlaceEqualCopies)
+{
+  for (int rowMode = 0; rowMode < 3; ++rowMode)
+  {
+    Case copies = MakeCase(2001, rowMode, rowMode, 40u + rowMode);
+    Case views = copies;
+    const std::vector<std::int32_t> birth = views.Index.Birth;
+    const std::vector<double> p = views.Index.P;
+    views.Index.Birth.clear();
+    views.Index.P.clear();
+    views.Index.BirthView = birth.data();
+    views.Index.PView = p.data();
+    copies.Index.Build(copies.Ids);
+    views.Index.Build(views.Ids);
+    EXPECT_EQ(views.Index.BirthData(), birth.data());
+    EXPECT_EQ(views.Index.PData(), p.data());
+    EXPECT_EQ(views.Index.ByP, copies.Index.ByP);
+    EXPECT_EQ(views.Index.ByRow, copies.Index.ByRow);
+    EXPECT_EQ(views.Index.End, copies.Index.End);
+    EXPECT_EQ(views.Index.DataMinX, copies.Index.DataMinX);
+    EXPECT_EQ(views.Index.DataMaxX, copies.Index.DataMaxX);
+    for (double tau : { 0.0, 0.5, 0.95 })
+    {
+      std::vector<std::int64_t> a, b;
+      const double lo = copies.Index.DataMinY, hi = copies.Index.DataMaxY;
+      EXPECT_EQ(views.Index.QueryVisible(tau, 500, 2500, lo, lo + 0.4 * (hi - lo), nullptr, a),
+        copies.Index.QueryVisible(tau, 500, 2500, lo, lo + 0.4 * (hi - lo), nullptr, b));
+      EXPECT_EQ(a, b) << "tau " << tau;
+      EXPECT_FALSE(a.empty());
+    }
+    // A view stands in for its column in the length check too.
+    views.Index.BirthView = nullptr;
+    EXPECT_THROW(views.Index.Build(views.Ids), std::invalid_argument);
+  }
+}
+
 TEST(TreeDrawIndex, EmptyAndBadInput)
 {
   TreeDrawIndex x;
