@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Heap trace for whole-process memory breakdowns (issue 21), preloaded into a program:
 //   cc -O2 -shared -fPIC -o heap-trace.so Scripts/heap-trace.c -ldl -lpthread
-//   xvfb-run -a env HEAP_TRACE_OUT=trace.txt LD_PRELOAD=$PWD/heap-trace.so \
-//     build/bin/vis4gs view LOG --benchmark   (preload the program, not Xvfb)
+//   xvfb-run -a env HEAP_TRACE_OUT=trace.txt LD_PRELOAD=$PWD/heap-trace.so
+//     build/bin/vis4gs view LOG --benchmark        (one line; preload the program, not Xvfb)
 //   python3 Scripts/heap-trace-report.py trace.txt [block|alloc]
 // It counts the live heap bytes (malloc_usable_size), samples them with VmRSS and VmHWM every
 // 200 ms ("sample" lines), and records every block of 4 MiB or more with its callers: those
