@@ -8,7 +8,7 @@
 // 200 ms ("sample" lines), and records every block of 4 MiB or more with its callers: those
 // live at the peak of the live heap ("block" lines) and all of them ("alloc" lines, the
 // fresh memory a run asks for). Small blocks are counted but not attributed. Fast enough for
-// a 10M-Gaussian start-up (heaptrack and massif are not). Not part of the build.
+// a 10M-Gaussian start-up (heaptrack and massif were not tried at that size). Not built.
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <execinfo.h>
