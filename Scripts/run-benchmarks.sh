@@ -39,11 +39,17 @@ run "$bin/BenchmarkRemovalEffect" 1000000 4 1920 1080 2 3 3
 # Scene view on software OpenGL: interactive frames at half resolution, then auto-adjusted.
 run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper" 1000000 1280 720 5 0 2 1 0 2 2
 run xvfb-run -a "$bin/BenchmarkGaussianSplatMapper" 1000000 1280 720 5 0 2 1 0 2 0
-# Application start-up on SYNTHETIC logs of 1.06M and 4.89M final Gaussians.
-for n in 1060000 4890000; do
+# Application start-up (whole process: wall, CPU, peak RSS, page faults) on SYNTHETIC logs of
+# 1.06M, 4.89M and 10M final Gaussians (issue 21: 10M is 20M genealogy nodes) and on a
+# bicycle-sized SYNTHETIC PLY (6.1M Gaussians, SH degree 3).
+for n in 1060000 4890000 10000000; do
   [ -f "$dir/vis4gs-bench-$n.h5" ] || "$build/bin/vis4gsMakeTestLog" "$dir/vis4gs-bench-$n.h5" "$n" 4
-  run xvfb-run -a "$build/bin/vis4gs" view "$dir/vis4gs-bench-$n.h5" --benchmark --resolution=1400,900
+  run xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -v "$build/bin/vis4gs" view \
+    "$dir/vis4gs-bench-$n.h5" --benchmark --resolution=1280,800
 done
+[ -f "$dir/vis4gs-bench-6.1M.ply" ] || "$bin/MakeBenchmarkPly" "$dir/vis4gs-bench-6.1M.ply" 6100000 3
+run xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -v "$build/bin/vis4gs" view \
+  "$dir/vis4gs-bench-6.1M.ply" --benchmark --resolution=1280,800
 # The demo's training run (Data/Demo/README.md), into a temporary file.
 run "$build/bin/vis4gs" train "$root/Data/Scenes/demo.json" "--output=$dir/vis4gs-bench-demo.h5" \
   --iterations=2000 --schedule-scale --snapshot-interval=200 --snapshot-sh-degree=0 \

@@ -88,7 +88,7 @@ double ZoomThreshold(double z, const ZoomParameters& p)
 class GenealogyBuilder
 {
 public:
-  GenealogyBuilder(Genealogy& g, const EventTable& events, const GenealogyOptions& options)
+  GenealogyBuilder(Genealogy& g, const EventColumns& events, const GenealogyOptions& options)
     : G(g)
     , Events(events)
     , Options(options)
@@ -123,7 +123,7 @@ private:
   }
 
   Genealogy& G;
-  const EventTable& Events;
+  const EventColumns Events;
   GenealogyOptions Options;
   std::int32_t Last = 0;
   std::vector<std::int64_t> Permutation; // processing order (empty: table order)
@@ -155,14 +155,11 @@ void GenealogyBuilder::Warn(const std::string& text, std::size_t& counter, const
 //------------------------------------------------------------------------------
 void GenealogyBuilder::ValidateRows(std::int32_t& lastIteration)
 {
-  const EventTable& ev = this->Events;
-  const std::size_t e = ev.Iteration.size();
-  if (ev.Kind.size() != e || ev.Parent.size() != e || ev.Child.size() != e)
+  const EventColumns& ev = this->Events;
+  const std::size_t e = ev.Size;
+  if (e > 0 && !(ev.Iteration && ev.Kind && ev.Parent && ev.Child))
   {
-    std::ostringstream s;
-    s << "genealogy: event table columns have different lengths (iteration " << e << ", kind "
-      << ev.Kind.size() << ", parent " << ev.Parent.size() << ", child " << ev.Child.size() << ")";
-    throw std::runtime_error(s.str());
+    throw std::runtime_error("genealogy: event columns without data");
   }
   if (this->Options.CoarsenInterval < 0)
   {
@@ -235,8 +232,8 @@ void GenealogyBuilder::ValidateRows(std::int32_t& lastIteration)
 //------------------------------------------------------------------------------
 void GenealogyBuilder::Order()
 {
-  const std::vector<std::int32_t>& it = this->Events.Iteration;
-  const std::size_t e = it.size();
+  const std::int32_t* it = this->Events.Iteration;
+  const std::size_t e = this->Events.Size;
   std::size_t firstBad = 0;
   std::size_t badCount = 0;
   for (std::size_t r = 1; r < e; ++r)
@@ -269,14 +266,14 @@ void GenealogyBuilder::Order()
   std::iota(this->Permutation.begin(), this->Permutation.end(), std::int64_t(0));
   std::stable_sort(this->Permutation.begin(),
     this->Permutation.end(),
-    [&it](std::int64_t a, std::int64_t b) { return it[a] < it[b]; });
+    [it](std::int64_t a, std::int64_t b) { return it[a] < it[b]; });
 }
 
 //------------------------------------------------------------------------------
 void GenealogyBuilder::PrepareIndex(const std::vector<std::int64_t>* initialIds,
   std::int64_t numberOfInitial)
 {
-  const EventTable& ev = this->Events;
+  const EventColumns& ev = this->Events;
   std::int64_t lo = std::numeric_limits<std::int64_t>::max();
   std::int64_t hi = std::numeric_limits<std::int64_t>::min();
   if (initialIds)
@@ -300,7 +297,7 @@ void GenealogyBuilder::PrepareIndex(const std::vector<std::int64_t>* initialIds,
     hi = numberOfInitial - 1;
   }
   std::int64_t births = 0;
-  for (std::size_t r = 0; r < ev.Size(); ++r)
+  for (std::size_t r = 0; r < ev.Size; ++r)
   {
     lo = std::min(lo, ev.Parent[r]);
     hi = std::max(hi, ev.Parent[r]);
@@ -314,7 +311,7 @@ void GenealogyBuilder::PrepareIndex(const std::vector<std::int64_t>* initialIds,
   const std::int64_t initialCount =
     initialIds ? static_cast<std::int64_t>(initialIds->size()) : numberOfInitial;
   // Upper bound on the nodes: initial + births + orphans (at most one per event row).
-  const std::int64_t maxNodes = initialCount + births + static_cast<std::int64_t>(ev.Size());
+  const std::int64_t maxNodes = initialCount + births + static_cast<std::int64_t>(ev.Size);
   const std::size_t expected = static_cast<std::size_t>(initialCount + births);
   Genealogy& g = this->G;
   g.Ids.reserve(expected);
@@ -422,8 +419,8 @@ std::int64_t GenealogyBuilder::AddNode(std::int64_t id,
 void GenealogyBuilder::ProcessEvents()
 {
   Genealogy& g = this->G;
-  const EventTable& ev = this->Events;
-  const std::size_t e = ev.Size();
+  const EventColumns& ev = this->Events;
+  const std::size_t e = ev.Size;
   const bool coarse = this->Options.CoarsenInterval > 0;
   std::int32_t currentBucket = std::numeric_limits<std::int32_t>::min();
   std::int64_t bucketFirstNode = g.GetNumberOfNodes();
@@ -774,8 +771,46 @@ void GenealogyBuilder::Run(const std::vector<std::int64_t>* initialIds,
 }
 
 //------------------------------------------------------------------------------
+EventColumns EventColumns::Of(const EventTable& t)
+{
+  const std::size_t e = t.Iteration.size();
+  if (t.Kind.size() != e || t.Parent.size() != e || t.Child.size() != e)
+  {
+    std::ostringstream s;
+    s << "genealogy: event table columns have different lengths (iteration " << e << ", kind "
+      << t.Kind.size() << ", parent " << t.Parent.size() << ", child " << t.Child.size() << ")";
+    throw std::runtime_error(s.str());
+  }
+  EventColumns c;
+  c.Iteration = t.Iteration.data();
+  c.Kind = t.Kind.data();
+  c.Parent = t.Parent.data();
+  c.Child = t.Child.data();
+  c.Size = e;
+  return c;
+}
+
+//------------------------------------------------------------------------------
 Genealogy Genealogy::Build(const std::vector<std::int64_t>& initialIds,
   const EventTable& events,
+  std::int32_t lastIteration,
+  const GenealogyOptions& options)
+{
+  return Build(initialIds, EventColumns::Of(events), lastIteration, options);
+}
+
+//------------------------------------------------------------------------------
+Genealogy Genealogy::Build(std::int64_t numberOfInitial,
+  const EventTable& events,
+  std::int32_t lastIteration,
+  const GenealogyOptions& options)
+{
+  return Build(numberOfInitial, EventColumns::Of(events), lastIteration, options);
+}
+
+//------------------------------------------------------------------------------
+Genealogy Genealogy::Build(const std::vector<std::int64_t>& initialIds,
+  const EventColumns& events,
   std::int32_t lastIteration,
   const GenealogyOptions& options)
 {
@@ -786,7 +821,7 @@ Genealogy Genealogy::Build(const std::vector<std::int64_t>& initialIds,
 
 //------------------------------------------------------------------------------
 Genealogy Genealogy::Build(std::int64_t numberOfInitial,
-  const EventTable& events,
+  const EventColumns& events,
   std::int32_t lastIteration,
   const GenealogyOptions& options)
 {
@@ -889,8 +924,7 @@ Genealogy Genealogy::Assemble(GenealogyNodes nodes, std::int32_t lastIteration, 
   {
     throw std::runtime_error("genealogy: Alpha must lie in [0, 1]");
   }
-  const EventTable none;
-  GenealogyBuilder(g, none, options).AssembleFrom(nodes, lastIteration);
+  GenealogyBuilder(g, EventColumns(), options).AssembleFrom(nodes, lastIteration);
   return g;
 }
 

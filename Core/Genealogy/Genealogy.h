@@ -109,6 +109,23 @@ struct GenealogyOptions
   std::int32_t InitialIteration = 0;
 };
 
+/**
+ * The columns of an event table as read-only arrays of Size values each, so that Build reads
+ * events held elsewhere (e.g. a VTK table's arrays) without copying them (at 12M events a copy
+ * is 250 MB of fresh memory).
+ */
+struct EventColumns
+{
+  const std::int32_t* Iteration = nullptr;
+  const std::uint8_t* Kind = nullptr;
+  const std::int64_t* Parent = nullptr;
+  const std::int64_t* Child = nullptr;
+  std::size_t Size = 0;
+
+  /// The columns of @p table; throws std::runtime_error when their lengths differ.
+  static EventColumns Of(const EventTable& table);
+};
+
 /// One family (a root and its descendants): a row of the family bands table.
 struct FamilyBand
 {
@@ -171,6 +188,16 @@ public:
     const EventTable& events,
     std::int32_t lastIteration,
     const GenealogyOptions& options = GenealogyOptions());
+  ///@{ The same on event columns held elsewhere (no copy; see EventColumns).
+  static Genealogy Build(const std::vector<std::int64_t>& initialIds,
+    const EventColumns& events,
+    std::int32_t lastIteration,
+    const GenealogyOptions& options = GenealogyOptions());
+  static Genealogy Build(std::int64_t numberOfInitial,
+    const EventColumns& events,
+    std::int32_t lastIteration,
+    const GenealogyOptions& options = GenealogyOptions());
+  ///@}
 
   /**
    * Rebuilds a genealogy from per-node arrays in creation order (every parent index lower

@@ -19,22 +19,29 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
 {
   const std::int64_t n = static_cast<std::int64_t>(ids.size());
   const std::size_t un = ids.size();
-  if (this->Birth.size() != un || this->End.size() != un || this->Row.size() != un ||
-    this->P.size() != un)
+  if ((!this->BirthView && this->Birth.size() != un) || this->End.size() != un ||
+    this->Row.size() != un || (!this->PView && this->P.size() != un))
   {
     throw std::invalid_argument("TreeDrawIndex: the birth, end, row and P columns need one value "
                                 "per vertex");
   }
+  if (n > std::numeric_limits<std::int32_t>::max())
+  {
+    throw std::length_error("TreeDrawIndex: more than INT32_MAX vertices");
+  }
   this->Valid.resize(un);
   std::int32_t last = std::numeric_limits<std::int32_t>::min();
   std::int64_t idMin = std::numeric_limits<std::int64_t>::max(), idMax = -1, valid = 0;
+  // id - vertex over the drawn vertices: one value when the ids follow the vertex order.
+  std::int64_t shiftMin = std::numeric_limits<std::int64_t>::max();
+  std::int64_t shiftMax = std::numeric_limits<std::int64_t>::min();
   {
     const std::int64_t* idp = ids.data();
     std::uint8_t* validp = this->Valid.data();
-    const std::int32_t* birthp = this->Birth.data();
+    const std::int32_t* birthp = this->BirthData();
     const std::int32_t* endp = this->End.data();
-#pragma omp parallel for schedule(static) reduction(max : last, idMax)                           \
-  reduction(min : idMin) reduction(+ : valid) if (n > 65536)
+#pragma omp parallel for schedule(static) reduction(max : last, idMax, shiftMax)                 \
+  reduction(min : idMin, shiftMin) reduction(+ : valid) if (n > 65536)
     for (std::int64_t v = 0; v < n; ++v)
     {
       const std::int64_t id = idp[v];
@@ -45,6 +52,8 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
         last = std::max({ last, birthp[v], endp[v] });
         idMin = std::min(idMin, id);
         idMax = std::max(idMax, id);
+        shiftMin = std::min(shiftMin, id - v);
+        shiftMax = std::max(shiftMax, id - v);
       }
     }
   }
@@ -57,7 +66,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
   double maxX = std::numeric_limits<double>::lowest(), maxY = maxX;
   {
     const std::uint8_t* validp = this->Valid.data();
-    const std::int32_t* birthp = this->Birth.data();
+    const std::int32_t* birthp = this->BirthData();
     std::int32_t* endp = this->End.data();
     const double* rowp = this->Row.data();
 #pragma omp parallel for schedule(static) reduction(min                                            \
@@ -95,7 +104,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
   // order inside each bucket.
   const int levels = 1 << 18;
   const int buckets = levels + 1;
-  const double* pv = this->P.data();
+  const double* pv = this->PData();
   auto key = [pv](std::int64_t v) -> int
   {
     const double p = pv[v];
@@ -135,14 +144,14 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
     {
       if (keys[v] >= 0)
       {
-        this->ByP[pos[keys[v]]++] = v;
+        this->ByP[pos[keys[v]]++] = static_cast<std::int32_t>(v);
       }
     }
   }
   keys = std::vector<std::int32_t>();
   {
     // Buckets are sorted independently (same result as one after the other).
-    std::int64_t* byP = this->ByP.data();
+    std::int32_t* byP = this->ByP.data();
     const std::int64_t* c = count.data();
 #pragma omp parallel for schedule(dynamic, 256) if (valid > 65536)
     for (int b = 0; b < buckets; ++b)
@@ -151,7 +160,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
       {
         std::sort(byP + c[b],
           byP + c[b + 1],
-          [pv](std::int64_t a, std::int64_t d) { return pv[a] > pv[d]; });
+          [pv](std::int32_t a, std::int32_t d) { return pv[a] > pv[d]; });
       }
     }
   }
@@ -177,7 +186,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
       }
       else
       {
-        this->ByRow[k] = v;
+        this->ByRow[k] = static_cast<std::int32_t>(v);
       }
     }
   }
@@ -188,14 +197,14 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
     {
       if (this->Valid[v])
       {
-        this->ByRow.push_back(v);
+        this->ByRow.push_back(static_cast<std::int32_t>(v));
       }
     }
     // Counting sort only for integer rows: a fractional row would be ordered by its bucket
     // only (the tree item did that before this index was tested against a stable sort).
     const double rowSpan = maxY - minY + 1;
     bool integers = true;
-    for (std::int64_t v : this->ByRow)
+    for (const std::int32_t v : this->ByRow)
     {
       if (this->Row[v] != std::floor(this->Row[v]))
       {
@@ -206,7 +215,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
     if (valid > 0 && integers && rowSpan <= 2.0 * valid + 16)
     {
       std::vector<std::int64_t> rc(static_cast<std::size_t>(rowSpan) + 1, 0);
-      for (std::int64_t v : this->ByRow)
+      for (const std::int32_t v : this->ByRow)
       {
         ++rc[static_cast<std::size_t>(this->Row[v] - minY) + 1];
       }
@@ -214,8 +223,8 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
       {
         rc[b + 1] += rc[b];
       }
-      std::vector<std::int64_t> sorted(this->ByRow.size());
-      for (std::int64_t v : this->ByRow)
+      std::vector<std::int32_t> sorted(this->ByRow.size());
+      for (const std::int32_t v : this->ByRow)
       {
         sorted[rc[static_cast<std::size_t>(this->Row[v] - minY)]++] = v;
       }
@@ -226,17 +235,23 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
       const double* rowp = this->Row.data();
       std::stable_sort(this->ByRow.begin(),
         this->ByRow.end(),
-        [rowp](std::int64_t a, std::int64_t b) { return rowp[a] < rowp[b]; });
+        [rowp](std::int32_t a, std::int32_t b) { return rowp[a] < rowp[b]; });
     }
   }
   // GaussianId -> vertex.
   this->DenseIdToVertex.clear();
   this->SortedIdToVertex.clear();
-  if (valid > 0 && idMax - idMin < 4 * valid + 1024)
+  this->IdentityIds = valid > 0 && shiftMin == shiftMax;
+  this->IdShift = this->IdentityIds ? shiftMin : 0;
+  if (this->IdentityIds)
+  {
+    // No table: VertexOfId(id) = id - IdShift.
+  }
+  else if (valid > 0 && idMax - idMin < 4 * valid + 1024)
   {
     this->IdMin = idMin;
     this->DenseIdToVertex.assign(static_cast<std::size_t>(idMax - idMin + 1), -1);
-    std::int64_t* dense = this->DenseIdToVertex.data();
+    std::int32_t* dense = this->DenseIdToVertex.data();
     const std::int64_t* idp = ids.data();
     const std::uint8_t* validp = this->Valid.data();
     // Ids are unique (pedigree ids), so the threads write distinct entries.
@@ -245,7 +260,7 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
     {
       if (validp[v])
       {
-        dense[idp[v] - idMin] = v;
+        dense[idp[v] - idMin] = static_cast<std::int32_t>(v);
       }
     }
   }
@@ -265,6 +280,17 @@ void TreeDrawIndex::Build(const std::vector<std::int64_t>& ids, std::int32_t las
 //------------------------------------------------------------------------------
 std::int64_t TreeDrawIndex::VertexOfId(std::int64_t id) const
 {
+  if (this->IdentityIds)
+  {
+    if (id < this->IdShift)
+    {
+      return -1;
+    }
+    // Unsigned: id - IdShift may exceed INT64_MAX (a negative shift).
+    const std::uint64_t v =
+      static_cast<std::uint64_t>(id) - static_cast<std::uint64_t>(this->IdShift);
+    return v < this->Valid.size() && this->Valid[v] ? static_cast<std::int64_t>(v) : -1;
+  }
   if (!this->DenseIdToVertex.empty())
   {
     const std::int64_t k = id - this->IdMin;
@@ -292,8 +318,8 @@ std::int64_t TreeDrawIndex::QueryVisible(double tau,
     return 0;
   }
   const double* row = this->Row.data();
-  const double* p = this->P.data();
-  const std::int32_t* birth = this->Birth.data();
+  const double* p = this->PData();
+  const std::int32_t* birth = this->BirthData();
   const std::int32_t* end = this->End.data();
   auto rowLess = [row](std::int64_t v, double r) { return row[v] < r; };
   auto k0 = std::lower_bound(this->ByRow.begin(), this->ByRow.end(), rowLo, rowLess);

@@ -42,8 +42,16 @@ public:
   /// CPU time of the whole process (all threads) in seconds.
   static double ProcessCpuSeconds();
 
-  /// Events from a table (columns Iteration, Kind, Parent, Child; lower-case accepted).
-  static bool EventsFromTable(vtkTable* table, vis4gs::EventTable& events, std::string& error);
+  /**
+   * Events from a table (columns Iteration, Kind, Parent, Child; lower-case accepted) as
+   * columns: the table's own arrays when they hold the log's types (32-bit int, unsigned
+   * char, 64-bit int, 64-bit int, one component, contiguous), without a copy; otherwise
+   * converted copies kept in @p storage. @p events is valid while both live.
+   */
+  static bool EventsFromTable(vtkTable* table,
+    vis4gs::EventTable& storage,
+    vis4gs::EventColumns& events,
+    std::string& error);
 
   /**
    * Fills @p tree (vertex and edge arrays, pedigree ids, field data LastIteration and

@@ -104,8 +104,9 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   }
 
   std::string error;
-  vis4gs::EventTable events;
-  if (!vtkGaussianGenealogyAdapter::EventsFromTable(input, events, error))
+  vis4gs::EventTable copied; // only when the columns are not of the log's types
+  vis4gs::EventColumns events;
+  if (!vtkGaussianGenealogyAdapter::EventsFromTable(input, copied, events, error))
   {
     vtkErrorMacro("" << error);
     return 0;
@@ -176,7 +177,7 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   timer->StopTimer();
   this->GenealogySeconds = timer->GetElapsedTime();
   this->GenealogyCPUSeconds = vtkGaussianGenealogyAdapter::ProcessCpuSeconds() - cpu;
-  events = vis4gs::EventTable();
+  copied = vis4gs::EventTable();
 
   std::ostringstream warnings;
   for (const std::string& w : genealogy.GetWarnings())

@@ -28,10 +28,13 @@
  * - `BirthIteration`, `DeathIteration` (int; death -1 while alive) [first birth, -1]
  * - `BirthKind` (unsigned char: 0 root, 1 clone, 2 split, 4 clone-split) [255]
  * - `Pruned` (unsigned char 0/1) [0]
- * - `FamilyId` (vtkIdType: row of the family bands table) [-1]
- * - `DescendantCount` D, `Lifespan` T, `PerceptionValue` P (DESIGN §4) [N, 0, 1]
- * - `LayoutX` (= BirthIteration) and `LayoutY` (unique row; pre-order within a family with
- *   children in creation order, families stacked in FamilyId order) [first birth, -1]
+ * - `FamilyId` (row of the family bands table) [-1]
+ * - `DescendantCount` D, `Lifespan` T (int), `PerceptionValue` P (double) (DESIGN §4) [N, 0, 1]
+ * - `LayoutX` (int, = BirthIteration) and `LayoutY` (unique row; pre-order within a family
+ *   with children in creation order, families stacked in FamilyId order) [first birth, -1]
+ * FamilyId, DescendantCount and LayoutY are 32-bit ints (vtkTypeInt32Array) below 2^31 - 1
+ * vertices, vtkIdType beyond: read them as vtkDataArray. (Narrower than the vtkIdType and
+ * double arrays they were: 160 MB less at 10M vertices.)
  * Edge array `EventKind` (unsigned char: the child's birth kind; 255 for virtual-root edges).
  * Field data: `LastIteration`, `PerceptionAlpha`.
  * Output port 1, a vtkTable with one row per family: FamilyId, RootVertex, RootGaussianId,

@@ -29,6 +29,7 @@
 #include "vtkTable.h"
 #include "vtkTextProperty.h"
 #include "vtkTree.h"
+#include "vtkTypeTraits.h"
 #include "vtkWeakPointer.h"
 
 #include "Genealogy.h" // vis4gs::ZoomThreshold (DESIGN §4)
@@ -104,6 +105,17 @@ void ReadColumn(vtkDataArray* a, vtkIdType n, std::vector<T>& out)
   }
 }
 
+// The values of @p a when it holds n or more values of type T, one component, contiguous:
+// the index reads them in place (no copy); null otherwise.
+template <typename T>
+const T* InPlace(vtkDataArray* a, vtkIdType n)
+{
+  return a->GetDataType() == vtkTypeTraits<T>::VTK_TYPE_ID && a->GetNumberOfComponents() == 1 &&
+      a->HasStandardMemoryLayout() && a->GetNumberOfTuples() >= n && n > 0
+    ? static_cast<const T*>(a->GetVoidPointer(0))
+    : nullptr;
+}
+
 constexpr float MarginLeft = 8.f;
 constexpr float MarginRight = 8.f;
 constexpr float MarginBottom = 26.f;
@@ -145,6 +157,8 @@ struct vtkGaussianTreeItem::vtkInternals
   // slot and pruned flag here.
   vtkSmartPointer<vtkDataArray> IdArray;
   vis4gs::TreeDrawIndex Index;
+  // The tree's arrays that Index reads in place (BirthView, PView), held while it does.
+  vtkSmartPointer<vtkDataArray> BirthArray, PArray;
   std::vector<std::uint8_t> Kind, Pruned;
 
   std::vector<float> BandMinX, BandMaxX, BandMinY, BandMaxY;
@@ -272,6 +286,8 @@ void vtkGaussianTreeItem::BuildIndex()
   if (!tree)
   {
     in.Index.Clear();
+    in.BirthArray = nullptr;
+    in.PArray = nullptr;
     in.Kind.clear();
     in.Pruned.clear();
     in.InLineage.clear();
@@ -307,13 +323,33 @@ void vtkGaussianTreeItem::BuildIndex()
       return;
     }
     in.IdArray = ids;
-    // Typed, parallel copies of the vertex arrays (10M vertices: a few hundred ms).
+    // Typed, parallel copies of the vertex arrays (10M vertices: a few hundred ms), except
+    // birth and P when the tree holds them as the index's types (the genealogy filter's
+    // LayoutX and PerceptionValue): those are read in place.
     std::vector<std::int64_t> idValues;
     ReadColumn(ids, n, idValues);
-    ReadColumn(xs, n, in.Index.Birth);
+    in.Index.BirthView = InPlace<std::int32_t>(xs, n);
+    in.BirthArray = in.Index.BirthView ? xs : nullptr;
+    if (in.Index.BirthView)
+    {
+      in.Index.Birth = std::vector<std::int32_t>();
+    }
+    else
+    {
+      ReadColumn(xs, n, in.Index.Birth);
+    }
     ReadColumn(death, n, in.Index.End);
     ReadColumn(ys, n, in.Index.Row);
-    ReadColumn(ps, n, in.Index.P);
+    in.Index.PView = InPlace<double>(ps, n);
+    in.PArray = in.Index.PView ? ps : nullptr;
+    if (in.Index.PView)
+    {
+      in.Index.P = std::vector<double>();
+    }
+    else
+    {
+      ReadColumn(ps, n, in.Index.P);
+    }
     ReadColumn(kinds, n, in.Kind);
     if (pruned)
     {
@@ -641,7 +677,7 @@ vtkIdType vtkGaussianTreeItem::UpdateLevelOfDetail()
   const auto& index = in.Index;
   auto inView = [&](vtkIdType v)
   {
-    return index.Row[v] >= in.VY0 && index.Row[v] <= in.VY1 && index.Birth[v] <= in.VX1 &&
+    return index.Row[v] >= in.VY0 && index.Row[v] <= in.VY1 && index.BirthData()[v] <= in.VX1 &&
       index.End[v] >= in.VX0;
   };
   for (vtkIdType v : in.Lineage)
@@ -733,7 +769,7 @@ void vtkGaussianTreeItem::GetVertexPosition(vtkIdType vertex, float position[2])
   position[0] = position[1] = 0.f;
   if (vertex >= 0 && vertex < static_cast<vtkIdType>(in.Index.Row.size()))
   {
-    position[0] = map.X(in.Index.Birth[vertex]);
+    position[0] = map.X(in.Index.BirthData()[vertex]);
     position[1] = map.Y(in.Index.Row[vertex]);
   }
 }
@@ -753,7 +789,7 @@ vtkIdType vtkGaussianTreeItem::PickVertex(float x, float y, float tolerance)
     {
       continue;
     }
-    const float sx0 = map.X(in.Index.Birth[v]), sx1 = map.X(in.Index.End[v]);
+    const float sx0 = map.X(in.Index.BirthData()[v]), sx1 = map.X(in.Index.End[v]);
     float dx = 0.f;
     if (x < sx0)
     {
@@ -896,7 +932,7 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   for (vtkIdType v : in.Visible)
   {
     const float y = map.Y(in.Index.Row[v]);
-    const float x0 = map.X(in.Index.Birth[v]);
+    const float x0 = map.X(in.Index.BirthData()[v]);
     pts.insert(pts.end(), { x0, y, std::max(map.X(in.Index.End[v]), x0 + 1.f), y });
     const unsigned char* c = KindColors[in.Kind[v]];
     for (int k = 0; k < 2; ++k)
@@ -939,7 +975,7 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
         continue;
       }
       const float y = map.Y(in.Index.Row[v]);
-      const float x0 = map.X(in.Index.Birth[v]);
+      const float x0 = map.X(in.Index.BirthData()[v]);
       pts.insert(pts.end(), { x0, y, std::max(map.X(in.Index.End[v]), x0 + 1.f), y });
       const vtkIdType parent = tree->GetParent(v);
       if (parent >= 0 && in.Index.Valid[parent] && in.InLineage[parent])
@@ -961,7 +997,7 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   cols.clear();
   for (vtkIdType v : in.Visible)
   {
-    pts.insert(pts.end(), { map.X(in.Index.Birth[v]), map.Y(in.Index.Row[v]) });
+    pts.insert(pts.end(), { map.X(in.Index.BirthData()[v]), map.Y(in.Index.Row[v]) });
     const unsigned char* c = KindColors[in.Kind[v]];
     cols.insert(cols.end(), { c[0], c[1], c[2], 255 });
     if (in.Pruned[v])
@@ -984,7 +1020,7 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
     {
       if (in.Index.Row[v] >= in.VY0 && in.Index.Row[v] <= in.VY1)
       {
-        pts.insert(pts.end(), { map.X(in.Index.Birth[v]), map.Y(in.Index.Row[v]) });
+        pts.insert(pts.end(), { map.X(in.Index.BirthData()[v]), map.Y(in.Index.Row[v]) });
       }
     }
     pen->SetWidth(9.f);

@@ -24,8 +24,10 @@ struct Case
 };
 
 // n vertices; vertex 0 is a virtual root (id -1). Rows: a permutation (as the genealogy
-// filter lays out), integers with repeats, or non-integers; ids dense or sparse.
-Case MakeCase(int n, int rowMode, bool sparseIds, unsigned seed)
+// filter lays out), integers with repeats, or non-integers. Ids (idMode): 0 in vertex order
+// (vertex + 499, as the genealogy filter gives for a trainer's log), 1 sparse, 2 dense but
+// shuffled.
+Case MakeCase(int n, int rowMode, int idMode, unsigned seed)
 {
   std::mt19937 rng(seed);
   Case c;
@@ -36,12 +38,21 @@ Case MakeCase(int n, int rowMode, bool sparseIds, unsigned seed)
     perm[i] = 10 + i;
   }
   std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<std::int64_t> shuffled(n - 1);
+  for (int i = 0; i < n - 1; ++i)
+  {
+    shuffled[i] = 500 + i;
+  }
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
   std::uniform_int_distribution<int> it(0, 3000);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int v = 0; v < n; ++v)
   {
     const bool root = v == 0;
-    c.Ids.push_back(root ? -1 : (sparseIds ? 1000 * v + 7 : 500 + v));
+    c.Ids.push_back(root ? -1
+        : idMode == 0    ? 499 + v
+        : idMode == 1    ? 1000 * v + 7
+                         : shuffled[v - 1]);
     const int b = it(rng);
     x.Birth.push_back(b);
     x.End.push_back(u(rng) < 0.3 ? -1 : b + it(rng) / 4);
@@ -82,15 +93,16 @@ TEST(TreeDrawIndex, OrdersBoundsAndLookupEqualBruteForce)
 {
   for (int rowMode = 0; rowMode < 3; ++rowMode)
   {
-    for (bool sparse : { false, true })
+    for (int idMode : { 0, 1, 2 })
     {
+      const bool sparse = idMode == 1;
       const int n = 3001;
-      Case c = MakeCase(n, rowMode, sparse, 11u + rowMode * 2 + sparse);
+      Case c = MakeCase(n, rowMode, idMode, 11u + rowMode * 3 + idMode);
       const std::vector<std::int32_t> endIn = c.Index.End;
       const std::vector<double> rows = c.Index.Row;
       c.Index.Build(c.Ids);
       const TreeDrawIndex& x = c.Index;
-      SCOPED_TRACE(testing::Message() << "rows " << rowMode << " sparse " << sparse);
+      SCOPED_TRACE(testing::Message() << "rows " << rowMode << " ids " << idMode);
 
       // Last iteration and alive ends, bounds, drawn count.
       std::int32_t last = std::numeric_limits<std::int32_t>::min();
@@ -135,14 +147,14 @@ TEST(TreeDrawIndex, OrdersBoundsAndLookupEqualBruteForce)
         }
       }
       // ByRow: std::stable_sort of the drawn vertices by row.
-      std::vector<std::int64_t> byRow;
+      std::vector<std::int32_t> byRow;
       for (int v = 1; v < n; ++v)
       {
         byRow.push_back(v);
       }
       std::stable_sort(byRow.begin(),
         byRow.end(),
-        [&](std::int64_t a, std::int64_t b) { return rows[a] < rows[b]; });
+        [&](std::int32_t a, std::int32_t b) { return rows[a] < rows[b]; });
       EXPECT_EQ(x.ByRow, byRow);
 
       // Id lookup, including ids that are absent.
@@ -154,8 +166,11 @@ TEST(TreeDrawIndex, OrdersBoundsAndLookupEqualBruteForce)
         }
       }
       EXPECT_EQ(x.VertexOfId(-1), -1);
-      EXPECT_EQ(x.VertexOfId(sparse ? 1001 : 499), -1);
+      EXPECT_EQ(x.VertexOfId(sparse ? 1001 : 499), -1) << "the virtual root's place";
+      EXPECT_EQ(x.VertexOfId(sparse ? 1000 * n + 7 : 499 + n), -1) << "past the last vertex";
+      EXPECT_EQ(x.VertexOfId(498), -1);
       EXPECT_EQ(x.VertexOfId(std::numeric_limits<std::int64_t>::max()), -1);
+      EXPECT_EQ(x.VertexOfId(std::numeric_limits<std::int64_t>::min()), -1);
 
       // The visible-node query for windows and thresholds that favour either walk.
       std::vector<std::uint8_t> excluded(n, 0);
@@ -188,6 +203,42 @@ TEST(TreeDrawIndex, OrdersBoundsAndLookupEqualBruteForce)
         }
       }
     }
+  }
+}
+
+TEST(TreeDrawIndex, ColumnsReadInPlaceEqualCopies)
+{
+  for (int rowMode = 0; rowMode < 3; ++rowMode)
+  {
+    Case copies = MakeCase(2001, rowMode, rowMode, 40u + rowMode);
+    Case views = copies;
+    const std::vector<std::int32_t> birth = views.Index.Birth;
+    const std::vector<double> p = views.Index.P;
+    views.Index.Birth.clear();
+    views.Index.P.clear();
+    views.Index.BirthView = birth.data();
+    views.Index.PView = p.data();
+    copies.Index.Build(copies.Ids);
+    views.Index.Build(views.Ids);
+    EXPECT_EQ(views.Index.BirthData(), birth.data());
+    EXPECT_EQ(views.Index.PData(), p.data());
+    EXPECT_EQ(views.Index.ByP, copies.Index.ByP);
+    EXPECT_EQ(views.Index.ByRow, copies.Index.ByRow);
+    EXPECT_EQ(views.Index.End, copies.Index.End);
+    EXPECT_EQ(views.Index.DataMinX, copies.Index.DataMinX);
+    EXPECT_EQ(views.Index.DataMaxX, copies.Index.DataMaxX);
+    for (double tau : { 0.0, 0.5, 0.95 })
+    {
+      std::vector<std::int64_t> a, b;
+      const double lo = copies.Index.DataMinY, hi = copies.Index.DataMaxY;
+      EXPECT_EQ(views.Index.QueryVisible(tau, 500, 2500, lo, lo + 0.4 * (hi - lo), nullptr, a),
+        copies.Index.QueryVisible(tau, 500, 2500, lo, lo + 0.4 * (hi - lo), nullptr, b));
+      EXPECT_EQ(a, b) << "tau " << tau;
+      EXPECT_FALSE(a.empty());
+    }
+    // A view stands in for its column in the length check too.
+    views.Index.BirthView = nullptr;
+    EXPECT_THROW(views.Index.Build(views.Ids), std::invalid_argument);
   }
 }
 
@@ -224,4 +275,30 @@ TEST(TreeDrawIndex, EmptyAndBadInput)
   EXPECT_EQ(x.End[0], 900);
   EXPECT_EQ(x.LastIteration, 900);
   EXPECT_EQ(x.VertexOfId(3), 0);
+}
+
+TEST(TreeDrawIndex, IdsInVertexOrderWithGaps)
+{
+  // id = vertex - 1 for the drawn vertices (no table), with vertices 0 and 3 not drawn.
+  TreeDrawIndex x;
+  x.Birth = { 0, 0, 1, 2, 3 };
+  x.End = { -1, -1, -1, -1, -1 };
+  x.Row = { -1, 0, 1, 2, 3 };
+  x.P = { 1, 1, 0.5, 0.5, 0.2 };
+  x.Build({ -1, 0, 1, -1, 3 });
+  EXPECT_EQ(x.NumberOfRows, 3);
+  EXPECT_EQ(x.VertexOfId(0), 1);
+  EXPECT_EQ(x.VertexOfId(1), 2);
+  EXPECT_EQ(x.VertexOfId(2), -1) << "vertex 3 is not drawn";
+  EXPECT_EQ(x.VertexOfId(3), 4);
+  EXPECT_EQ(x.VertexOfId(4), -1);
+  EXPECT_EQ(x.VertexOfId(-1), -1) << "vertex 0 is not drawn";
+  EXPECT_EQ(x.VertexOfId(-2), -1);
+  EXPECT_EQ(x.VertexOfId(std::numeric_limits<std::int64_t>::max()), -1);
+  EXPECT_EQ(x.VertexOfId(std::numeric_limits<std::int64_t>::min()), -1);
+  // One id out of order: the same lookups through the table.
+  x.Build({ -1, 0, 5, -1, 3 });
+  EXPECT_EQ(x.VertexOfId(5), 2);
+  EXPECT_EQ(x.VertexOfId(1), -1);
+  EXPECT_EQ(x.VertexOfId(3), 4);
 }

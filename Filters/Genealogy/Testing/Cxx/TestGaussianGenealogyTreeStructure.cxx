@@ -16,9 +16,11 @@
 
 #include "vtkAbstractArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
+#include "vtkTable.h"
 #include "vtkTree.h"
 #include "vtkVariant.h"
 
@@ -150,6 +152,30 @@ vtkSmartPointer<vtkTree> CompareAll(const vis4gs::EventTable& e,
   GT_CHECK(fast->GetNumberOfVertices() == expectedVertices);
   GT_CHECK(fast->GetRoot() == 0);
   GT_CHECK(SameTree(fast, checked, what + " (fast vs validated)"));
+  // The log's column types are read in place; other types through converted copies.
+  {
+    vis4gs::EventTable storage;
+    vis4gs::EventColumns columns;
+    std::string error;
+    GT_CHECK(vtkGaussianGenealogyAdapter::EventsFromTable(table, storage, columns, error));
+    GT_CHECK(columns.Size == e.Size() && storage.Size() == 0);
+    GT_CHECK(
+      e.Size() == 0 || columns.Parent == table->GetColumnByName("Parent")->GetVoidPointer(0));
+    auto converted = vtkSmartPointer<vtkTable>::New();
+    const char* names[4] = { "Iteration", "Kind", "Parent", "Child" };
+    for (int c = 0; c < 4; ++c)
+    {
+      vtkNew<vtkDoubleArray> d;
+      d->DeepCopy(vtkDataArray::SafeDownCast(table->GetColumnByName(names[c])));
+      d->SetName(names[c]);
+      converted->AddColumn(d);
+    }
+    GT_CHECK(vtkGaussianGenealogyAdapter::EventsFromTable(converted, storage, columns, error));
+    GT_CHECK(columns.Size == e.Size() && storage.Size() == e.Size());
+    GT_CHECK(e.Size() == 0 || columns.Parent == storage.Parent.data());
+    auto fromCopies = RunFilter(converted, initial, last, false, false);
+    GT_CHECK(SameTree(fast, fromCopies, what + " (columns read in place vs converted)"));
+  }
   if (naive)
   {
     auto slow = RunFilter(table, initial, last, false, true);
