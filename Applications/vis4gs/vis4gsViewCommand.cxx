@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `vis4gs view [FILE]`: the Qt5 application with the four linked views (DESIGN §5).
 #include "Vis4GSCommand.h"
+#include "Vis4GSDocument.h"
 #include "Vis4GSMainWindow.h"
 
 #include "QVTKOpenGLNativeWidget.h"
@@ -57,6 +58,13 @@ void Define(Vis4GSArguments& args)
     "COLMAP dataset folder or a transforms*.json (file or folder). Default: cameras.json next to "
     "the scene or two folders up (the "
     "INRIA model layout); none found, no cameras.");
+  args.AddOption("dump-inputs",
+    "DIR",
+    "",
+    "Load FILE and compute its scores as the window does, write the views' inputs into DIR "
+    "(scene.vtp with the scores; metrics, tree-vertices, tree-edges and bands as "
+    ".vtt) and exit without a window, for comparing with a VTK script "
+    "(Documentation/dev/ARCHITECTURE.md).");
   args.AddFlag("welcome",
     false,
     "Show the welcome panel (what to try first: the user guide's case study) at the top of "
@@ -68,6 +76,17 @@ int Run(const Vis4GSArguments& args)
   const double start =
     std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   const double startCpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  if (!args.Get("dump-inputs").empty())
+  {
+    if (args.GetPositional("FILE").empty())
+    {
+      std::cerr << "vis4gs view: --dump-inputs needs a FILE\n";
+      return 1;
+    }
+    Vis4GSDocument::LoadAndDumpInputs(
+      args.GetPositional("FILE"), args.Get("cameras"), args.Get("dump-inputs"));
+    return 0;
+  }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
   {
     std::cerr << "vis4gs view: no display (set DISPLAY, or run under xvfb-run)\n";

@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianGenealogyAdapter.h"
 
+#include "Vis4GSDataModel.h"
+
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
@@ -316,10 +318,10 @@ bool vtkGaussianGenealogyAdapter::EventsFromTable(vtkTable* table,
   vis4gs::EventTable& events,
   std::string& error)
 {
-  vtkDataArray* it = Column(table, "Iteration", "iteration");
-  vtkDataArray* kind = Column(table, "Kind", "kind");
-  vtkDataArray* parent = Column(table, "Parent", "parent");
-  vtkDataArray* child = Column(table, "Child", "child");
+  vtkDataArray* it = Column(table, vis4gs::arrays::EventIteration, "iteration");
+  vtkDataArray* kind = Column(table, vis4gs::arrays::EventKind, "kind");
+  vtkDataArray* parent = Column(table, vis4gs::arrays::EventParent, "parent");
+  vtkDataArray* child = Column(table, vis4gs::arrays::EventChild, "child");
   if (!it || !kind || !parent || !child)
   {
     std::ostringstream s;

@@ -21,6 +21,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianTimelineChart.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPen.h"
 #include "vtkPlot.h"
@@ -63,6 +64,18 @@ bool HasFiniteValue(vtkDataArray* a)
   }
   return false;
 }
+
+bool AllFinite(vtkDataArray* a)
+{
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    if (!std::isfinite(a->GetComponent(i, 0)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
 }
 
 struct vtkGaussianTimelineView::vtkInternals
@@ -70,6 +83,8 @@ struct vtkGaussianTimelineView::vtkInternals
   vtkNew<vtkChartMatrix> Matrix;
   vtkNew<vtkGaussianTimelineChart> Charts[3];
   vtkSmartPointer<vtkTable> Metrics, TestMetrics, History;
+  /// The finite rows of metric columns that have NaN (a merged train/test table).
+  std::vector<vtkSmartPointer<vtkTable>> FiniteRows;
   vtkNew<vtkTable> Wide;
   vtkWeakPointer<vtkGaussianSelectionHub> Hub;
   unsigned long SelectionObserver = 0, IterationObserver = 0;
@@ -90,8 +105,8 @@ vtkGaussianTimelineView::vtkGaussianTimelineView()
   this->SetPSNRColumn(vis4gs::arrays::MetricPSNR);
   this->SetSSIMColumn(vis4gs::arrays::MetricSSIM);
   this->SetLPIPSColumn(vis4gs::arrays::MetricLPIPS);
-  this->SetHistoryIterationColumn("Iteration");
-  this->SetHistoryIdColumn("GaussianId");
+  this->SetHistoryIterationColumn(vis4gs::arrays::HistoryIteration);
+  this->SetHistoryIdColumn(vis4gs::arrays::GaussianId);
   auto& in = *this->Internals;
   in.Matrix->SetSize(vtkVector2i(1, 3));
   in.Matrix->SetGutter(vtkVector2f(30.f, 30.f));
@@ -298,6 +313,7 @@ void vtkGaussianTimelineView::UpdatePlots()
   }
   in.MetricPlots = 0;
   in.HistoryLines = 0;
+  in.FiniteRows.clear();
   double xmin = std::numeric_limits<double>::max(), xmax = std::numeric_limits<double>::lowest();
 
   auto addMetric = [&](vtkTable* table,
@@ -317,6 +333,30 @@ void vtkGaussianTimelineView::UpdatePlots()
     if (!x || !y || !HasFiniteValue(y))
     {
       return;
+    }
+    if (!AllFinite(y))
+    {
+      // A line through NaN breaks at every gap: the test columns of the log reader's merged
+      // table (NaN where the test set was not measured) would draw as scattered dots.
+      vtkNew<vtkTable> finite;
+      vtkSmartPointer<vtkDataArray> fx, fy;
+      fx.TakeReference(x->NewInstance());
+      fy.TakeReference(y->NewInstance());
+      fx->SetName(x->GetName());
+      fy->SetName(y->GetName());
+      for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
+      {
+        if (std::isfinite(y->GetComponent(i, 0)))
+        {
+          fx->InsertNextTuple1(x->GetComponent(i, 0));
+          fy->InsertNextTuple1(y->GetComponent(i, 0));
+        }
+      }
+      finite->AddColumn(fx);
+      finite->AddColumn(fy);
+      in.FiniteRows.emplace_back(finite);
+      table = finite;
+      x = fx;
     }
     double range[2];
     x->GetRange(range);
@@ -340,9 +380,20 @@ void vtkGaussianTimelineView::UpdatePlots()
   addMetric(in.Metrics, this->PSNRColumn, QUALITY, 0, Palette[0], false, "PSNR");
   addMetric(in.Metrics, this->SSIMColumn, QUALITY, 1, Palette[1], false, "SSIM");
   addMetric(in.Metrics, this->LPIPSColumn, QUALITY, 1, Palette[2], false, "LPIPS");
-  addMetric(in.TestMetrics, this->PSNRColumn, QUALITY, 0, Palette[0], true, "PSNR test");
-  addMetric(in.TestMetrics, this->SSIMColumn, QUALITY, 1, Palette[1], true, "SSIM test");
-  addMetric(in.TestMetrics, this->LPIPSColumn, QUALITY, 1, Palette[2], true, "LPIPS test");
+  // Test metrics: their own table, else the Test-prefixed columns of a merged table (the log
+  // reader's metrics port).
+  vtkTable* test = in.TestMetrics ? in.TestMetrics.Get() : in.Metrics.Get();
+  auto testColumn = [&](const char* column) -> std::string
+  {
+    return in.TestMetrics || !column ? std::string(column ? column : "")
+                                     : vis4gs::arrays::MetricTestPrefix + std::string(column);
+  };
+  const std::string testPSNR = testColumn(this->PSNRColumn);
+  const std::string testSSIM = testColumn(this->SSIMColumn);
+  const std::string testLPIPS = testColumn(this->LPIPSColumn);
+  addMetric(test, testPSNR.c_str(), QUALITY, 0, Palette[0], true, "PSNR test");
+  addMetric(test, testSSIM.c_str(), QUALITY, 1, Palette[1], true, "SSIM test");
+  addMetric(test, testLPIPS.c_str(), QUALITY, 1, Palette[2], true, "LPIPS test");
   addMetric(in.Metrics, this->CountColumn, COUNT, 0, Palette[4], false, "Gaussians");
   in.Charts[QUALITY]->GetAxis(vtkAxis::LEFT)->SetTitle("PSNR (dB)");
   in.Charts[QUALITY]->GetAxis(vtkAxis::RIGHT)->SetTitle("SSIM, LPIPS");
