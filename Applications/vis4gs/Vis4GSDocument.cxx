@@ -7,8 +7,8 @@
 #include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
-#include "vtkDataSetAttributes.h"
 #include "vtkCallbackCommand.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkGaussianArtifactScoreFilter.h"

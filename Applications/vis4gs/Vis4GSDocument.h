@@ -43,7 +43,7 @@ struct Vis4GSDocument
   /// Separate test metrics for vtkGaussianTimelineView::SetTestMetrics; null, since Metrics
   /// holds them (the view draws its Test-prefixed columns).
   vtkSmartPointer<vtkTable> TestMetrics;
-  vtkSmartPointer<vtkTree> Tree; ///< genealogy filter output (null when the log has no events)
+  vtkSmartPointer<vtkTree> Tree;   ///< genealogy filter output (null when the log has no events)
   vtkSmartPointer<vtkTable> Bands; ///< the genealogy filter's family bands
   /// The reader whose Gaussians port gives Scene (snapshots of a log).
   vtkSmartPointer<vtkGaussianTrainingLogReader> Reader;

@@ -135,7 +135,8 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   int last = this->LastIteration;
   if (last < 0 && fd)
   {
-    vtkDataArray* a = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vis4gs::arrays::EventLastIteration));
+    vtkDataArray* a =
+      vtkDataArray::SafeDownCast(fd->GetAbstractArray(vis4gs::arrays::EventLastIteration));
     if (a && a->GetNumberOfTuples() > 0)
     {
       last = static_cast<int>(a->GetComponent(0, 0));

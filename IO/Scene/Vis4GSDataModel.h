@@ -122,7 +122,8 @@ template <typename ArrayT, typename T>
 vtkSmartPointer<ArrayT> AdoptVector(const char* name, std::vector<T>&& values, int components = 1)
 {
   using V = typename ArrayT::ValueType;
-  static_assert(sizeof(V) == sizeof(T) && std::is_integral<V>::value == std::is_integral<T>::value &&
+  static_assert(sizeof(V) == sizeof(T) &&
+      std::is_integral<V>::value == std::is_integral<T>::value &&
       std::is_signed<V>::value == std::is_signed<T>::value,
     "the array's value type must have the vector's representation");
   auto array = vtkSmartPointer<ArrayT>::New();

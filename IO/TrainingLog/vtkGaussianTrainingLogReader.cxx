@@ -436,8 +436,8 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
         names::MetricElapsed };
       for (int c = 0; c < 11; ++c)
       {
-        const std::string name = c < 6 ? std::string(measured[c])
-                                        : std::string(names::MetricTestPrefix) + measured[c - 6];
+        const std::string name =
+          c < 6 ? std::string(measured[c]) : std::string(names::MetricTestPrefix) + measured[c - 6];
         output->AddColumn(MakeColumn<vtkDoubleArray>(name.c_str(), columns[c]));
       }
     }
