@@ -4,6 +4,7 @@
 #include "GaussianMath.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
@@ -45,44 +46,6 @@
 
 namespace
 {
-/// Collects the error messages an algorithm reports while it is observed (VTK filters report
-/// errors, they do not throw); they still go to VTK's output window too.
-class ErrorCollector
-{
-public:
-  explicit ErrorCollector(vtkAlgorithm* algorithm)
-    : Algorithm(algorithm)
-  {
-    this->Callback->SetClientData(&this->Messages);
-    this->Callback->SetCallback(
-      [](vtkObject*, unsigned long, void* client, void* callData)
-      {
-        auto* messages = static_cast<std::string*>(client);
-        const char* text = static_cast<const char*>(callData);
-        *messages += (messages->empty() ? "" : "; ") + std::string(text ? text : "error");
-      });
-    this->Tag = algorithm->AddObserver(vtkCommand::ErrorEvent, this->Callback);
-  }
-  ~ErrorCollector() { this->Algorithm->RemoveObserver(this->Tag); }
-  ErrorCollector(const ErrorCollector&) = delete;
-  ErrorCollector& operator=(const ErrorCollector&) = delete;
-  const std::string& GetMessages() const { return this->Messages; }
-
-private:
-  vtkAlgorithm* Algorithm;
-  vtkNew<vtkCallbackCommand> Callback;
-  unsigned long Tag = 0;
-  std::string Messages;
-};
-
-/// Updates output @p port of @p algorithm; the error messages it reported (empty: success).
-std::string UpdatePort(vtkAlgorithm* algorithm, int port)
-{
-  ErrorCollector errors(algorithm);
-  algorithm->Update(port);
-  return errors.GetMessages();
-}
-
 /// Forwards the ProgressEvents of @p algorithm to @p progress, mapped into [from, to].
 class ProgressForwarder
 {
@@ -177,9 +140,9 @@ std::string BuildGenealogy(const std::string& path,
   vtkNew<vtkGaussianGenealogyTreeFilter> filter;
   filter->SetInputConnection(events->GetOutputPort(3));
   filter->SetRepairUnknownParents(true);
-  ErrorCollector readErrors(events);
+  Vis4GSErrorCollector readErrors(events);
   ProgressForwarder forward(filter, progress, 0.6, 0.95, "building the genealogy");
-  const std::string errors = UpdatePort(filter, 0);
+  const std::string errors = Vis4GSUpdate(filter, 0);
   readError = readErrors.GetMessages();
   if (!readError.empty())
   {
@@ -245,7 +208,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     report(-1.0, what.str()); // the scene parsers report no fraction
     vtkNew<vtkGaussianSceneReader> reader;
     reader->SetFileName(path.c_str());
-    const std::string errors = UpdatePort(reader, 0);
+    const std::string errors = Vis4GSUpdate(reader, 0);
     if (!errors.empty())
     {
       throw std::runtime_error(errors);
@@ -284,7 +247,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     if (log.HasMetrics())
     {
       report(0.1, "reading the metrics");
-      const std::string errors = UpdatePort(doc->Reader, 2);
+      const std::string errors = Vis4GSUpdate(doc->Reader, 2);
       if (!errors.empty())
       {
         throw std::runtime_error(errors);
@@ -294,7 +257,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     }
     if (log.HasCameras())
     {
-      const std::string errors = UpdatePort(doc->Reader, 1);
+      const std::string errors = Vis4GSUpdate(doc->Reader, 1);
       if (!errors.empty())
       {
         throw std::runtime_error(errors);
@@ -397,7 +360,7 @@ int Vis4GSDocument::LoadIteration(int iteration)
   this->Reader->SetIteration(nearest);
   this->Reader->SetLoadSHRest(
     static_cast<std::size_t>(this->Reader->GetSnapshotSize(nearest)) <= FullShLimit);
-  const std::string errors = UpdatePort(this->Reader, 0);
+  const std::string errors = Vis4GSUpdate(this->Reader, 0);
   if (!errors.empty())
   {
     throw std::runtime_error(errors);
@@ -505,7 +468,7 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   filter->SetComputeNeedleScore(haveCameras && withImages);
   filter->SetComputeNeedleShape(true);
   ProgressForwarder forward(filter, progress, 0.0, 1.0, "computing the scores");
-  const std::string errors = UpdatePort(filter, 0);
+  const std::string errors = Vis4GSUpdate(filter, 0);
   if (!errors.empty() || !filter->GetOutput())
   {
     throw std::runtime_error("the score filter failed: " + errors);
