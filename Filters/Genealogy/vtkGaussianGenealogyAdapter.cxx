@@ -401,7 +401,7 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
 {
   const std::int64_t n = g.GetNumberOfNodes();
   vtkNew<vtkDataSetAttributes> vd;
-  auto ids = VertexArray<vtkIdTypeArray>("GaussianId", g.GetGaussianIds(), -1);
+  auto ids = VertexArray<vtkIdTypeArray>(vis4gs::arrays::TreeGaussianId, g.GetGaussianIds(), -1);
   vd->AddArray(ids);
   vd->SetPedigreeIds(ids);
   std::int32_t firstBirth = 0;
@@ -413,13 +413,13 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vd->AddArray(VertexArray<vtkIntArray>("DeathIteration", g.GetDeathIterations(), -1));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("BirthKind", g.GetBirthKinds(), VirtualRootKind));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("Pruned", g.GetPruned(), 0));
-  vd->AddArray(VertexArray<vtkIdTypeArray>("FamilyId", g.GetFamilyIds(), -1));
+  vd->AddArray(VertexArray<vtkIdTypeArray>(vis4gs::arrays::TreeFamilyId, g.GetFamilyIds(), -1));
   vd->AddArray(VertexArray<vtkIdTypeArray>("DescendantCount", g.GetDescendantCounts(), n));
   vd->AddArray(VertexArray<vtkIntArray>("Lifespan", g.GetLifespans(), 0));
   vd->AddArray(VertexArray<vtkDoubleArray>("PerceptionValue", g.GetPerceptionValues(), 1.0));
   vd->AddArray(VertexArray<vtkDoubleArray>(
-    "LayoutX", g.GetBirthIterations(), static_cast<double>(firstBirth)));
-  vd->AddArray(VertexArray<vtkDoubleArray>("LayoutY", g.GetRows(), -1.0));
+    vis4gs::arrays::TreeLayoutX, g.GetBirthIterations(), static_cast<double>(firstBirth)));
+  vd->AddArray(VertexArray<vtkDoubleArray>(vis4gs::arrays::TreeLayoutY, g.GetRows(), -1.0));
 
   vtkNew<vtkDataSetAttributes> ed;
   vtkNew<vtkUnsignedCharArray> edgeKind;
@@ -537,7 +537,8 @@ std::shared_ptr<vis4gs::Genealogy> vtkGaussianGenealogyAdapter::FromTree(vtkTree
     return nullptr;
   }
   vtkDataSetAttributes* vd = tree->GetVertexData();
-  vtkDataArray* ids = vtkDataArray::SafeDownCast(vd->GetAbstractArray("GaussianId"));
+  vtkDataArray* ids =
+    vtkDataArray::SafeDownCast(vd->GetAbstractArray(vis4gs::arrays::TreeGaussianId));
   vtkDataArray* birth = vtkDataArray::SafeDownCast(vd->GetAbstractArray("BirthIteration"));
   vtkDataArray* death = vtkDataArray::SafeDownCast(vd->GetAbstractArray("DeathIteration"));
   vtkDataArray* kind = vtkDataArray::SafeDownCast(vd->GetAbstractArray("BirthKind"));
