@@ -21,10 +21,8 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLTableWriter.h"
 
@@ -34,7 +32,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <ctime>
 #include <exception>
 #include <filesystem>
