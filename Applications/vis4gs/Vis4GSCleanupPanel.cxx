@@ -3,18 +3,20 @@
 
 #include "RemovalEffect.h"
 #include "SelectionRule.h"
+#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
-#include "Vis4GSSceneCameras.h"
 #include "vtkGaussianRuleSelectionFilter.h"
 #include "vtkGaussianSelectionHub.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 
 #include <QApplication>
@@ -191,6 +193,7 @@ struct Vis4GSCleanupPanel::Internals
     std::shared_ptr<vis4gs::GaussianCloud> Cloud;
     std::vector<std::uint8_t> Removed;
     std::vector<vis4gs::Camera> Cameras;
+    vis4gs::TrainingImageProvider Images;
     vis4gs::RemovalEffect Effect;
     std::vector<vis4gs::ViewMetrics> Baseline;
     double BaselineSeconds = -1; ///< < 0: the baseline was reused
@@ -603,6 +606,27 @@ void Vis4GSCleanupPanel::MeasureRemoval()
     d->MeasureLabel->setText(QString::fromStdString(error));
     return;
   }
+  // The training images as the score filter reads them: "/images/<name>" from the log that
+  // the camera table names (vtkGaussianTrainingLogReader's cameras port), others from files.
+  std::shared_ptr<const vis4gs::TrainingLogReader> log;
+  if (auto* logFile = vtkStringArray::SafeDownCast(
+        d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
+  {
+    try
+    {
+      if (logFile->GetNumberOfValues() == 1)
+      {
+        log = std::make_shared<const vis4gs::TrainingLogReader>(logFile->GetValue(0));
+      }
+    }
+    catch (const std::exception& e)
+    {
+      d->MeasureLabel->setText(QString::fromStdString(e.what()));
+      return;
+    }
+  }
+  job->Images = [log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
+  { return vis4gs::LoadCameraImage(log.get(), camera, image); };
   job->Removed.assign(job->Cloud->Count, 0);
   std::size_t removed = 0;
   for (std::size_t i = 0; i < job->Cloud->Count; ++i)
@@ -643,7 +667,7 @@ void Vis4GSCleanupPanel::MeasureRemoval()
         {
           const auto t0 = std::chrono::steady_clock::now();
           job->Baseline =
-            vis4gs::MeasureViewMetrics(*job->Cloud, job->Cameras, options, Vis4GSLoadViewImage);
+            vis4gs::MeasureViewMetrics(*job->Cloud, job->Cameras, options, job->Images);
           job->BaselineSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           QMetaObject::invokeMethod(
@@ -659,7 +683,7 @@ void Vis4GSCleanupPanel::MeasureRemoval()
         }
         options.Baseline = job->Baseline;
         job->Effect = vis4gs::MeasureRemovalEffect(
-          *job->Cloud, job->Removed, job->Cameras, options, Vis4GSLoadViewImage);
+          *job->Cloud, job->Removed, job->Cameras, options, job->Images);
       }
       catch (const std::exception& e)
       {

@@ -1,29 +1,30 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSDocument.h"
 
-#include "GaussianIO.h"
 #include "GaussianMath.h"
-#include "ImageIO.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianSceneReader.h"
+#include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
-#include "vtkTypeInt32Array.h"
-#include "vtkTypeInt64Array.h"
-#include "vtkTypeUInt8Array.h"
-#include "vtkUnsignedCharArray.h"
+#include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLTableWriter.h"
 
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
 #include "vtkGaussianGenealogyTreeFilter.h"
@@ -31,10 +32,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <ctime>
 #include <exception>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -42,47 +43,58 @@
 
 namespace
 {
-// Updates @p algorithm; false when it reported an error (VTK filters report, not throw).
-bool UpdateReportingErrors(vtkAlgorithm* algorithm)
+/// Forwards the ProgressEvents of @p algorithm to @p progress, mapped into [from, to].
+class ProgressForwarder
 {
-  vtkNew<vtkCallbackCommand> errors;
-  bool failed = false;
-  errors->SetClientData(&failed);
-  errors->SetCallback(
-    [](vtkObject*, unsigned long, void* client, void*) { *static_cast<bool*>(client) = true; });
-  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, errors);
-  algorithm->Update();
-  algorithm->RemoveObserver(tag);
-  return !failed;
-}
-
-vtkSmartPointer<vtkTable> MetricsToTable(const vis4gs::MetricsTable& m)
-{
-  auto table = vtkSmartPointer<vtkTable>::New();
-  vtkNew<vtkIntArray> it;
-  it->SetName(vis4gs::arrays::MetricIteration);
-  for (auto v : m.Iteration)
+public:
+  ProgressForwarder(vtkAlgorithm* algorithm,
+    const Vis4GSDocument::Progress& progress,
+    double from,
+    double to,
+    const std::string& message)
+    : Algorithm(algorithm)
+    , Report(progress)
+    , From(from)
+    , To(to)
+    , Message(message)
   {
-    it->InsertNextValue(v);
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(
+      [](vtkObject* caller, unsigned long, void* client, void*)
+      {
+        const auto* self = static_cast<const ProgressForwarder*>(client);
+        if (self->Report)
+        {
+          const double f = static_cast<vtkAlgorithm*>(caller)->GetProgress();
+          self->Report(self->From + f * (self->To - self->From), self->Message);
+        }
+      });
+    this->Tag = algorithm->AddObserver(vtkCommand::ProgressEvent, this->Callback);
   }
-  table->AddColumn(it);
-  auto add = [&](const char* name, const std::vector<double>& values)
+  ~ProgressForwarder() { this->Algorithm->RemoveObserver(this->Tag); }
+  ProgressForwarder(const ProgressForwarder&) = delete;
+  ProgressForwarder& operator=(const ProgressForwarder&) = delete;
+
+private:
+  vtkAlgorithm* Algorithm;
+  const Vis4GSDocument::Progress& Report;
+  double From, To;
+  std::string Message;
+  vtkNew<vtkCallbackCommand> Callback;
+  unsigned long Tag = 0;
+};
+
+/// A new data object sharing the arrays of @p output: the document keeps it while the
+/// algorithm re-executes into @p output (a new snapshot) in another thread.
+template <typename T>
+vtkSmartPointer<T> Detach(T* output)
+{
+  auto copy = vtkSmartPointer<T>::New();
+  if (output)
   {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    for (double v : values)
-    {
-      a->InsertNextValue(v);
-    }
-    table->AddColumn(a);
-  };
-  std::vector<double> count(m.NumGaussians.begin(), m.NumGaussians.end());
-  add(vis4gs::arrays::MetricGaussians, count);
-  add(vis4gs::arrays::MetricLoss, m.Loss);
-  add(vis4gs::arrays::MetricPSNR, m.Psnr);
-  add(vis4gs::arrays::MetricSSIM, m.Ssim);
-  add(vis4gs::arrays::MetricLPIPS, m.Lpips);
-  return table;
+    copy->ShallowCopy(output);
+  }
+  return copy;
 }
 
 double WallNow()
@@ -106,54 +118,41 @@ double ThreadCpuNow()
 }
 
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
-/// Wraps a std::vector's memory in a VTK array without copying (the vector must outlive it).
-template <typename ArrayT, typename T>
-vtkSmartPointer<ArrayT> WrapColumn(const char* name, const std::vector<T>& values)
-{
-  static_assert(sizeof(typename ArrayT::ValueType) == sizeof(T), "same value size");
-  auto a = vtkSmartPointer<ArrayT>::New();
-  a->SetName(name);
-  // save = 1: VTK never frees (nor writes) this memory.
-  a->SetArray(reinterpret_cast<typename ArrayT::ValueType*>(const_cast<T*>(values.data())),
-    static_cast<vtkIdType>(values.size()),
-    1);
-  return a;
-}
-
-/// The genealogy filter on Core events (no copy into VTK arrays: the table wraps them).
-void BuildGenealogy(const vis4gs::EventTable& events,
-  const std::vector<std::int64_t>& initialIds,
-  int lastIteration,
+/**
+ * The genealogy as a script builds it: a log reader's events port into
+ * vtkGaussianGenealogyTreeFilter (initial ids and last iteration from the events table's field
+ * data). Its own reader, so that it runs in a second thread beside the snapshot read; the
+ * reader and its events table go when this returns (the tree and the bands stay). Returns the
+ * filter's error messages (empty: success); the reader's go to @p readError too.
+ */
+std::string BuildGenealogy(const std::string& path,
+  const Vis4GSDocument::Progress& progress,
   vtkSmartPointer<vtkTree>& tree,
-  vtkSmartPointer<vtkTable>& bands)
+  vtkSmartPointer<vtkTable>& bands,
+  std::size_t& eventCount,
+  std::string& readError)
 {
-  vtkNew<vtkTable> table;
-  table->AddColumn(WrapColumn<vtkTypeInt32Array>("Iteration", events.Iteration));
-  table->AddColumn(WrapColumn<vtkTypeUInt8Array>("Kind", events.Kind));
-  table->AddColumn(WrapColumn<vtkTypeInt64Array>("Parent", events.Parent));
-  table->AddColumn(WrapColumn<vtkTypeInt64Array>("Child", events.Child));
+  vtkNew<vtkGaussianTrainingLogReader> events;
+  events->SetFileName(path.c_str());
   vtkNew<vtkGaussianGenealogyTreeFilter> filter;
-  filter->SetInputData(table);
-  if (!initialIds.empty())
-  {
-    vtkNew<vtkIdTypeArray> initial;
-    initial->SetNumberOfTuples(static_cast<vtkIdType>(initialIds.size()));
-    std::copy(initialIds.begin(), initialIds.end(), initial->GetPointer(0));
-    filter->SetInitialIds(initial);
-  }
-  else
-  {
-    filter->SetNumberOfInitialGaussians(0);
-  }
-  filter->SetLastIteration(lastIteration);
+  filter->SetInputConnection(events->GetOutputPort(3));
   filter->SetRepairUnknownParents(true);
-  const bool failed = !UpdateReportingErrors(filter);
-  if (failed)
+  Vis4GSErrorCollector readErrors(events);
+  ProgressForwarder forward(filter, progress, 0.6, 0.95, "building the genealogy");
+  const std::string errors = Vis4GSUpdate(filter, 0);
+  readError = readErrors.GetMessages();
+  if (!readError.empty())
   {
-    throw std::runtime_error("vtkGaussianGenealogyTreeFilter failed (see the error output)");
+    return readError;
   }
+  if (!errors.empty())
+  {
+    return errors;
+  }
+  eventCount = static_cast<std::size_t>(events->GetEventsOutput()->GetNumberOfRows());
   tree = vtkTree::SafeDownCast(filter->GetOutputDataObject(0));
   bands = filter->GetFamilyBands();
+  return std::string();
 }
 #endif
 }
@@ -203,11 +202,17 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     {
       what << " (" << static_cast<double>(bytes) / 1e6 << " MB)";
     }
-    report(-1.0, what.str()); // the Core readers report no fraction
-    vis4gs::GaussianCloud cloud = vis4gs::ReadGaussianScene(path);
-    doc->Scene = vtkSmartPointer<vtkPolyData>::New();
-    vis4gs::GaussianCloudToPolyData(cloud, doc->Scene);
-    text << path << ": " << cloud.Count << " Gaussians (a scene file: no training history)\n";
+    report(-1.0, what.str()); // the scene parsers report no fraction
+    vtkNew<vtkGaussianSceneReader> reader;
+    reader->SetFileName(path.c_str());
+    const std::string errors = Vis4GSUpdate(reader, 0);
+    if (!errors.empty())
+    {
+      throw std::runtime_error(errors);
+    }
+    doc->Scene = reader->GetOutput();
+    text << path << ": " << doc->Scene->GetNumberOfPoints()
+         << " Gaussians (a scene file: no training history)\n";
     stage("scene file");
     report(0.8, "reading the cameras");
     const std::vector<vis4gs::Camera> cameras = Vis4GSFindSceneCameras(path, cameraPath);
@@ -234,81 +239,51 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     {
       text << "lacks: " << lack << "\n";
     }
+    doc->Reader = vtkSmartPointer<vtkGaussianTrainingLogReader>::New();
+    doc->Reader->SetFileName(path.c_str());
     if (log.HasMetrics())
     {
       report(0.1, "reading the metrics");
-      doc->Metrics = MetricsToTable(log.ReadMetrics());
-      text << "metrics rows: " << doc->Metrics->GetNumberOfRows() << "\n";
-      if (log.HasTestMetrics())
+      const std::string errors = Vis4GSUpdate(doc->Reader, 2);
+      if (!errors.empty())
       {
-        doc->TestMetrics = MetricsToTable(log.ReadMetrics(true));
+        throw std::runtime_error(errors);
       }
+      doc->Metrics = Detach(doc->Reader->GetMetricsOutput());
+      text << "metrics rows: " << doc->Metrics->GetNumberOfRows() << "\n";
     }
     if (log.HasCameras())
     {
-      doc->Cameras = vtkSmartPointer<vtkTable>::New();
-      vis4gs::CamerasToTable(log.ReadCameras(), doc->Cameras);
+      const std::string errors = Vis4GSUpdate(doc->Reader, 1);
+      if (!errors.empty())
+      {
+        throw std::runtime_error(errors);
+      }
+      doc->Cameras = Detach(doc->Reader->GetCamerasOutput());
       text << "cameras: " << doc->Cameras->GetNumberOfRows() << "\n";
     }
     stage("header, metrics, cameras");
-    // The genealogy (events, initial ids, then vtkGaussianGenealogyTreeFilter) is built in a
-    // second thread while this one reads the last snapshot, so the two largest steps overlap
-    // on two cores. Both threads read the log: the reader's const methods keep no shared
-    // state, and the HDF5 library is built thread-safe (it serialises its own calls; the
-    // chunk decoding of the reader runs outside it).
+    // The genealogy (its own log reader's events port into the genealogy filter) is built in
+    // a second thread while this one reads the last snapshot, so the two largest steps
+    // overlap on two cores. The HDF5 library is built thread-safe (it serialises its own
+    // calls; the chunk decoding of the Core reader runs outside it).
     std::thread genealogyThread;
-    std::string genealogyError, genealogyTimes;
-    std::exception_ptr readError;
+    std::string genealogyError, readError, genealogyTimes;
     std::size_t eventCount = 0;
     if (log.HasEvents())
     {
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
-      const int last =
-        std::max(header.Iterations, doc->Snapshots.empty() ? 0 : doc->Snapshots.back());
       Vis4GSDocument* target = doc.get();
       genealogyThread = std::thread(
-        [target, last, &genealogyError, &genealogyTimes, &readError, &eventCount]
+        [target, &progress, &genealogyError, &readError, &genealogyTimes, &eventCount]
         {
-          const vis4gs::TrainingLogReader& reader = *target->Log;
-          vis4gs::EventTable events;
-          std::vector<std::int64_t> initial;
           const double w0 = WallNow(), c0 = ThreadCpuNow();
-          try
-          {
-            events = reader.ReadEvents();
-            eventCount = events.Size();
-            if (!target->Snapshots.empty())
-            {
-              vis4gs::SnapshotReadOptions ids;
-              ids.Arrays = vis4gs::SnapshotIds;
-              const auto first = reader.ReadSnapshot(target->Snapshots.front(), ids);
-              initial.resize(first.Count);
-              for (std::size_t i = 0; i < first.Count; ++i)
-              {
-                initial[i] = first.GetId(i);
-              }
-            }
-          }
-          catch (...)
-          {
-            readError = std::current_exception();
-            return;
-          }
-          const double w1 = WallNow(), c1 = ThreadCpuNow();
+          genealogyError = BuildGenealogy(
+            target->Path, progress, target->Tree, target->Bands, eventCount, readError);
           std::ostringstream t;
           t.precision(3);
-          t << " second thread: events and initial ids " << w1 - w0 << " s (" << c1 - c0
-            << " s CPU of that thread), " << events.Size() << " events;";
-          try
-          {
-            BuildGenealogy(events, initial, last, target->Tree, target->Bands);
-            t << " genealogy filter " << WallNow() - w1 << " s (" << ThreadCpuNow() - c1
-              << " s CPU of that thread);";
-          }
-          catch (const std::exception& e)
-          {
-            genealogyError = e.what();
-          }
+          t << " second thread: events and genealogy filter " << WallNow() - w0 << " s ("
+            << ThreadCpuNow() - c0 << " s CPU of that thread);";
           genealogyTimes = t.str();
         });
 #else
@@ -338,9 +313,9 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       genealogyThread.join();
       stage("waiting for the genealogy");
       timings << genealogyTimes;
-      if (readError)
+      if (!readError.empty())
       {
-        std::rethrow_exception(readError);
+        throw std::runtime_error(readError);
       }
       text << "events: " << eventCount << "\n";
       if (!genealogyError.empty())
@@ -373,21 +348,23 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
 //------------------------------------------------------------------------------
 int Vis4GSDocument::LoadIteration(int iteration)
 {
-  if (!this->Log || this->Snapshots.empty())
+  if (!this->Reader || this->Snapshots.empty())
   {
     return this->Iteration;
   }
-  vis4gs::SnapshotReadOptions options;
-  options.Arrays = vis4gs::SnapshotParameters;
-  const int nearest = this->Log->FindNearestSnapshot(iteration);
-  options.ShDegree = this->Log->GetSnapshotSize(nearest) <= FullShLimit ? -1 : 0;
-  int logged = -1;
-  const vis4gs::GaussianCloud cloud = this->Log->ReadNearestSnapshot(iteration, options, &logged);
-  auto scene = vtkSmartPointer<vtkPolyData>::New();
-  vis4gs::GaussianCloudToPolyData(cloud, scene);
-  this->Scene = scene;
-  this->Iteration = logged;
-  return logged;
+  this->Reader->UpdateInformation(); // the snapshot list, for the sizes below
+  const int nearest = this->Reader->FindNearestSnapshot(iteration);
+  this->Reader->SetIteration(nearest);
+  this->Reader->SetLoadSHRest(
+    static_cast<std::size_t>(this->Reader->GetSnapshotSize(nearest)) <= FullShLimit);
+  const std::string errors = Vis4GSUpdate(this->Reader, 0);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  this->Scene = Detach(this->Reader->GetGaussiansOutput());
+  this->Iteration = this->Reader->GetLoadedIteration();
+  return this->Iteration;
 }
 
 //------------------------------------------------------------------------------
@@ -395,15 +372,15 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t
 {
   auto table = vtkSmartPointer<vtkTable>::New();
   vtkNew<vtkIntArray> it;
-  it->SetName("Iteration");
+  it->SetName(vis4gs::arrays::HistoryIteration);
   vtkNew<vtkIdTypeArray> id;
-  id->SetName("GaussianId");
+  id->SetName(vis4gs::arrays::GaussianId);
   vtkNew<vtkDoubleArray> opacity, scale, px, py, pz;
-  opacity->SetName("Opacity");
-  scale->SetName("Scale");
-  px->SetName("PositionX");
-  py->SetName("PositionY");
-  pz->SetName("PositionZ");
+  opacity->SetName(vis4gs::arrays::Opacity);
+  scale->SetName(vis4gs::arrays::Scale);
+  px->SetName(vis4gs::arrays::HistoryPositionX);
+  py->SetName(vis4gs::arrays::HistoryPositionY);
+  pz->SetName(vis4gs::arrays::HistoryPositionZ);
   if (this->Log && !ids.empty())
   {
     const vis4gs::PropertyHistory h = this->Log->ReadPropertyHistory(
@@ -435,44 +412,33 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string& folder)
+vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
 {
   this->CamerasWithImages = 0;
   if (!this->Cameras || !this->Log)
   {
     return this->Cameras;
   }
-  std::vector<vis4gs::Camera> cameras = this->Log->ReadCameras();
-  namespace fs = std::filesystem;
-  const fs::path logDir = fs::path(this->Path).parent_path();
-  const std::string prefix = "/images/";
-  for (vis4gs::Camera& c : cameras)
+  std::vector<vis4gs::Camera> cameras;
+  std::string error;
+  if (!vis4gs::TableToCameras(this->Cameras, cameras, &error))
   {
-    if (c.ImagePath.rfind(prefix, 0) == 0)
-    {
-      int width = 0, height = 0;
-      const std::string name = c.ImagePath.substr(prefix.size());
-      const std::vector<unsigned char> pixels = this->Log->ReadImage(name, width, height);
-      const fs::path file = fs::path(folder) / (name + ".png");
-      fs::create_directories(file.parent_path());
-      if (!fs::exists(file))
-      {
-        vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
-      }
-      c.ImagePath = file.string();
-    }
-    else if (!c.ImagePath.empty() && fs::path(c.ImagePath).is_relative())
-    {
-      c.ImagePath = (logDir / c.ImagePath).string();
-    }
-    if (!c.ImagePath.empty() && fs::exists(c.ImagePath))
+    throw std::runtime_error(this->Path + ": " + error);
+  }
+  const std::vector<std::string> names = this->Log->GetImageNames();
+  const std::set<std::string> embedded(names.begin(), names.end());
+  const std::string prefix = "/images/";
+  for (const vis4gs::Camera& c : cameras)
+  {
+    // As vis4gs::LoadCameraImage finds them: a file of that path, else the log's image.
+    if (!c.ImagePath.empty() &&
+      (std::filesystem::exists(c.ImagePath) ||
+        (c.ImagePath.rfind(prefix, 0) == 0 && embedded.count(c.ImagePath.substr(prefix.size())))))
     {
       ++this->CamerasWithImages;
     }
   }
-  auto table = vtkSmartPointer<vtkTable>::New();
-  vis4gs::CamerasToTable(cameras, table);
-  return table;
+  return this->Cameras;
 }
 
 //------------------------------------------------------------------------------
@@ -498,29 +464,18 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   filter->SetComputeBlurScore(haveCameras && withImages);
   filter->SetComputeNeedleScore(haveCameras && withImages);
   filter->SetComputeNeedleShape(true);
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetClientData(const_cast<Progress*>(&progress));
-  observer->SetCallback(
-    [](vtkObject* caller, unsigned long, void* client, void*)
-    {
-      const auto* p = static_cast<const Progress*>(client);
-      if (*p)
-      {
-        (*p)(static_cast<vtkAlgorithm*>(caller)->GetProgress(), "computing the scores");
-      }
-    });
-  filter->AddObserver(vtkCommand::ProgressEvent, observer);
-  const bool failed = !UpdateReportingErrors(filter);
-  if (failed || !filter->GetOutput())
+  ProgressForwarder forward(filter, progress, 0.0, 1.0, "computing the scores");
+  const std::string errors = Vis4GSUpdate(filter, 0);
+  if (!errors.empty() || !filter->GetOutput())
   {
-    throw std::runtime_error("the score filter failed (see the error output)");
+    throw std::runtime_error("the score filter failed: " + errors);
   }
   auto result = vtkSmartPointer<vtkPolyData>::New();
   for (const char* name : { vis4gs::arrays::ViewCoverage,
          vis4gs::arrays::BlurScore,
          vis4gs::arrays::NeedleScore,
          vis4gs::arrays::NeedleShape,
-         "NoVisibleView" })
+         vis4gs::arrays::NoVisibleView })
   {
     if (vtkAbstractArray* a = filter->GetOutput()->GetPointData()->GetAbstractArray(name))
     {
@@ -528,4 +483,99 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
     }
   }
   return result;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSDocument::DumpInputs(const std::string& folder, vtkPolyData* scores) const
+{
+  namespace fs = std::filesystem;
+  fs::create_directories(folder);
+  auto write = [&](vtkXMLWriter* writer, vtkDataObject* data, const std::string& name)
+  {
+    const fs::path file = fs::path(folder) / name;
+    const fs::path partial = fs::path(folder) / (name + ".partial");
+    // Cached ranges in the arrays' information would be written as keys that VTK 9.1's XML
+    // readers fail to read back (L2_NORM_RANGE); they are only caches.
+    vtkDataObject* copy = data->NewInstance();
+    copy->ShallowCopy(data);
+    for (int kind = 0; kind < vtkDataObject::NUMBER_OF_ATTRIBUTE_TYPES; ++kind)
+    {
+      vtkFieldData* fields = copy->GetAttributesAsFieldData(kind);
+      for (int a = 0; fields && a < fields->GetNumberOfArrays(); ++a)
+      {
+        if (vtkAbstractArray* array = fields->GetAbstractArray(a))
+        {
+          if (array->HasInformation())
+          {
+            array->GetInformation()->Clear();
+          }
+        }
+      }
+    }
+    writer->SetInputDataObject(copy);
+    copy->Delete();
+    writer->SetFileName(partial.string().c_str());
+    writer->SetDataModeToBinary();
+    if (writer->Write() != 1)
+    {
+      throw std::runtime_error(file.string() + ": could not be written");
+    }
+    fs::rename(partial, file);
+  };
+  if (this->Scene)
+  {
+    vtkNew<vtkPolyData> scene;
+    scene->ShallowCopy(this->Scene);
+    for (int a = 0; scores && a < scores->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      scene->GetPointData()->AddArray(scores->GetPointData()->GetAbstractArray(a));
+    }
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    write(writer, scene, "scene.vtp");
+  }
+  vtkNew<vtkXMLTableWriter> tables;
+  // (No cameras: the NaN padding of their Distortion column gives a range key that VTK 9.1's
+  // XML reader cannot read back; the scores compare what they fed.)
+  const std::pair<vtkTable*, const char*> named[] = { { this->Metrics, "metrics.vtt" },
+    { this->TestMetrics, "test-metrics.vtt" },
+    { this->Bands, "bands.vtt" } };
+  for (const auto& [table, name] : named)
+  {
+    if (table)
+    {
+      write(tables, table, name);
+    }
+  }
+  if (this->Tree)
+  {
+    vtkNew<vtkTable> vertices;
+    vertices->GetRowData()->ShallowCopy(this->Tree->GetVertexData());
+    vtkNew<vtkIdTypeArray> parent;
+    parent->SetName("ParentVertex");
+    parent->SetNumberOfTuples(this->Tree->GetNumberOfVertices());
+    for (vtkIdType v = 0; v < this->Tree->GetNumberOfVertices(); ++v)
+    {
+      parent->SetValue(v, this->Tree->GetParent(v));
+    }
+    vertices->AddColumn(parent);
+    write(tables, vertices, "tree-vertices.vtt");
+    vtkNew<vtkTable> edges;
+    edges->GetRowData()->ShallowCopy(this->Tree->GetEdgeData());
+    write(tables, edges, "tree-edges.vtt");
+  }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSDocument::LoadAndDumpInputs(const std::string& path,
+  const std::string& cameras,
+  const std::string& folder)
+{
+  const std::shared_ptr<Vis4GSDocument> doc = Load(path, Progress(), cameras);
+  vtkSmartPointer<vtkTable> scoreCameras = doc->ScoreCameras();
+  vtkSmartPointer<vtkPolyData> scores;
+  if (doc->Scene)
+  {
+    scores = ComputeScores(doc->Scene, scoreCameras, doc->CamerasWithImages > 0, Progress());
+  }
+  doc->DumpInputs(folder, scores);
 }

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Vis4GSDocument.h
- * @brief What `vis4gs view` opens: a training log (.h5) or a Gaussian scene (.ply/.splat),
- * converted to the VTK data of the linked views (scene polydata, cameras, metrics, genealogy
- * tree and family bands, log summary). No Qt here: the main window runs Load() in a worker
- * thread and hands the result to the views in the GUI thread.
+ * @brief What `vis4gs view` opens: a training log (.h5) or a Gaussian scene, read through the
+ * same VTK pipeline a Python script or a ParaView state builds (vtkGaussianTrainingLogReader
+ * or vtkGaussianSceneReader, vtkGaussianGenealogyTreeFilter on the reader's events port,
+ * vtkGaussianArtifactScoreFilter on its Gaussians and cameras ports), so that the views get
+ * the arrays a script computes (Documentation/dev/ARCHITECTURE.md, "The application's data
+ * flow"). No Qt here: the main window runs Load() in a worker thread (the filters' progress
+ * events feed its progress callback) and hands the result to the views in the GUI thread.
  */
 #ifndef Vis4GSDocument_h
 #define Vis4GSDocument_h
@@ -17,6 +20,7 @@
 #include <string>
 #include <vector>
 
+class vtkGaussianTrainingLogReader;
 class vtkPolyData;
 class vtkTable;
 class vtkTree;
@@ -30,11 +34,20 @@ struct Vis4GSDocument
 {
   std::string Path;
   bool IsLog = false;
-  vtkSmartPointer<vtkPolyData> Scene; ///< Gaussians at Iteration (or the PLY)
+  vtkSmartPointer<vtkPolyData> Scene; ///< Gaussians at Iteration (or the scene file)
+  /// Cameras: the log reader's cameras port (images inside the log named "/images/<name>",
+  /// the log in its TrainingLogFile field data), or the scene file's cameras.
   vtkSmartPointer<vtkTable> Cameras;
-  vtkSmartPointer<vtkTable> Metrics, TestMetrics;
-  vtkSmartPointer<vtkTree> Tree; ///< genealogy (null when the log has no events)
-  vtkSmartPointer<vtkTable> Bands;
+  /// The log reader's metrics port: train and test columns merged by iteration (TestPSNR...).
+  vtkSmartPointer<vtkTable> Metrics;
+  /// Separate test metrics for vtkGaussianTimelineView::SetTestMetrics; null, since Metrics
+  /// holds them (the view draws its Test-prefixed columns).
+  vtkSmartPointer<vtkTable> TestMetrics;
+  vtkSmartPointer<vtkTree> Tree;   ///< genealogy filter output (null when the log has no events)
+  vtkSmartPointer<vtkTable> Bands; ///< the genealogy filter's family bands
+  /// The reader whose Gaussians port gives Scene (snapshots of a log).
+  vtkSmartPointer<vtkGaussianTrainingLogReader> Reader;
+  /// Header, snapshot sizes and property history queries (the text of panel C, History()).
   std::shared_ptr<vis4gs::TrainingLogReader> Log;
   std::vector<int> Snapshots;
   int Iteration = -1;   ///< iteration of Scene (-1 for a PLY)
@@ -64,13 +77,14 @@ struct Vis4GSDocument
   vtkSmartPointer<vtkTable> History(const std::vector<std::int64_t>& ids) const;
 
   /**
-   * The camera table for vtkGaussianArtifactScoreFilter: a copy of Cameras whose Image column
-   * names readable files. Images embedded in the log ("/images/<name>") are written once as
-   * PNG into @p folder; relative paths are made relative to the log. Null without cameras.
-   * Reads the log (HDF5): call it from the thread that owns the document.
+   * The camera table for vtkGaussianArtifactScoreFilter: Cameras itself (the filter reads the
+   * images inside the log through the table's TrainingLogFile, as in a script), after counting
+   * the cameras with an image into CamerasWithImages (0 for a scene file: the application
+   * computes no blur or needle score there). Null without cameras. @p unusedFolder is what
+   * embedded images used to be extracted to; ignored.
    */
-  vtkSmartPointer<vtkTable> ScoreCameras(const std::string& folder);
-  /// Number of cameras of ScoreCameras() with an image file (after it ran).
+  vtkSmartPointer<vtkTable> ScoreCameras(const std::string& unusedFolder = std::string());
+  /// Number of cameras of ScoreCameras() with an image in the log or on disk (after it ran).
   int CamerasWithImages = 0;
 
   /**
@@ -83,6 +97,24 @@ struct Vis4GSDocument
     vtkTable* cameras,
     bool withImages,
     const Progress& progress);
+
+  /**
+   * Writes the views' inputs into @p folder, for comparing the application with a script
+   * (`vis4gs view --dump-inputs`): scene.vtp (Scene with the score arrays of @p scores), and
+   * as .vtt tables metrics, tree-vertices (the tree's vertex data plus ParentVertex),
+   * tree-edges (edge data) and bands, each when present. Throws std::runtime_error naming
+   * the file on failure.
+   */
+  void DumpInputs(const std::string& folder, vtkPolyData* scores) const;
+
+  /**
+   * `vis4gs view FILE --dump-inputs=DIR`: loads @p path as the window does, computes the
+   * scores the window computes (ScoreCameras, ComputeScores) and writes DumpInputs(). Throws
+   * std::runtime_error on failure.
+   */
+  static void LoadAndDumpInputs(const std::string& path,
+    const std::string& cameras,
+    const std::string& folder);
 
   /// Snapshots with at most this many Gaussians are read with every SH degree (view-dependent
   /// colour and exact blur/needle scores); larger ones with degree 0 only (memory).

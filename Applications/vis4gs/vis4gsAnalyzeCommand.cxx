@@ -22,8 +22,10 @@
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSMPI.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 #include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -124,13 +126,16 @@ std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSAr
 
 // The snapshot of a training log, its cameras, and its training images: embedded ones
 // ("/images/<name>") are written once to <output>/images so the score filter reads them like
-// any dataset; others are paths relative to the log.
+// any dataset; others are paths relative to the log. The Gaussians are read as a script reads
+// them, by vtkGaussianTrainingLogReader (every SH degree) into @p gaussians, the score filter's
+// input; the cloud returned is their copy for the Core steps after the scores.
 vis4gs::GaussianCloud ReadLogScene(const std::string& path,
   const Vis4GSArguments& args,
   const fs::path& output,
   bool needCameras,
   std::vector<vis4gs::Camera>& cameras,
-  bool writeImages)
+  bool writeImages,
+  vtkPolyData* gaussians)
 {
   const vis4gs::TrainingLogReader log(path);
   for (const std::string& lack : log.GetLacks())
@@ -143,11 +148,22 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
     throw std::runtime_error(path + ": the training log holds no snapshot to analyze");
   }
   const int wanted = args.GetInt("iteration");
-  vis4gs::SnapshotReadOptions options;
-  options.ShDegree = -1;
-  int logged = 0;
-  vis4gs::GaussianCloud cloud =
-    log.ReadNearestSnapshot(wanted < 0 ? iterations.back() : wanted, options, &logged);
+  vtkNew<vtkGaussianTrainingLogReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetIteration(wanted < 0 ? iterations.back() : wanted);
+  const std::string errors = Vis4GSUpdate(reader, 0);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  const int logged = reader->GetLoadedIteration();
+  gaussians->ShallowCopy(reader->GetGaussiansOutput());
+  vis4gs::GaussianCloud cloud;
+  std::string error;
+  if (!vis4gs::PolyDataToGaussianCloud(gaussians, cloud, &error))
+  {
+    throw std::runtime_error(path + ": " + error);
+  }
   std::cout << "vis4gs analyze: " << path << ": snapshot of iteration " << logged << ", "
             << cloud.Count << " Gaussians\n";
   if (!needCameras)
@@ -617,9 +633,10 @@ int Run(const Vis4GSArguments& args)
   const bool needCameras = want["coverage"] || want["blur"] || want["needle"] || measure;
   vis4gs::GaussianCloud cloud;
   std::vector<vis4gs::Camera> cameras;
+  vtkNew<vtkPolyData> polyData; // the score filter's input
   if (isLog)
   {
-    cloud = ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0);
+    cloud = ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0, polyData);
   }
   else
   {
@@ -633,6 +650,7 @@ int Run(const Vis4GSArguments& args)
     {
       cameras = LoadCameras(scene, args);
     }
+    vis4gs::GaussianCloudToPolyData(cloud, polyData);
   }
   if (mpi.Rank() == 0)
   {
@@ -666,8 +684,6 @@ int Run(const Vis4GSArguments& args)
 
   // Scores, through the VTK filter.
   t0 = Clock::now();
-  vtkNew<vtkPolyData> polyData;
-  vis4gs::GaussianCloudToPolyData(cloud, polyData);
   vtkNew<vtkTable> table;
   vis4gs::CamerasToTable(cameras, table);
   vtkNew<vtkGaussianArtifactScoreFilter> filter;

@@ -24,7 +24,8 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     vis4gs::CoreTrainingLog vis4gs::CoreScene VTK::RenderingCore VTK::RenderingOpenGL2
     VTK::InteractionStyle VTK::RenderingContext2D VTK::ChartsCore VTK::ViewsCore
     VTK::ViewsContext2D VTK::CommonExecutionModel VTK::RenderingFreeType
-    VTK::RenderingContextOpenGL2 VTK::RenderingAnnotation)
+    VTK::RenderingContextOpenGL2 VTK::RenderingAnnotation
+    VTK::IOXML) # --dump-inputs
   if (TARGET Vis4GS::FiltersGenealogy)
     target_compile_definitions(vis4gs PRIVATE VIS4GS_HAVE_GENEALOGY_FILTER)
   endif ()
@@ -293,4 +294,14 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       --resolution=800,600)
   set_tests_properties(vis4gs-ViewBenchmarkMode PROPERTIES FIXTURES_REQUIRED vis4gsViewLog)
   vis4gs_add_app_test(ViewHelp ARGS view --help OUTPUT "--self-test=DIR")
+  # One pipeline (issue 22): the inputs the window gives its views (--dump-inputs, no window)
+  # equal those of the four views built from the VTK classes in Python, array for array, and
+  # the log as h5py reads it.
+  vis4gs_add_checked_test(vis4gs-ViewInputsMatchScript LABELS "Application;Python"
+    OUTPUT "the application's view inputs equal the script's"
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}"
+      "${CMAKE_CURRENT_SOURCE_DIR}/Testing/ViewInputsMatchScript.py" "$<TARGET_FILE:vis4gs>"
+      "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" "${_vis4gs_view_dir}/dump-inputs")
+  set_tests_properties(vis4gs-ViewInputsMatchScript PROPERTIES
+    ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH};PYTHONDONTWRITEBYTECODE=1")
 endif ()

@@ -3,6 +3,7 @@
 #include "Vis4GSBenchmark.h"
 #include "Vis4GSCommand.h"
 #include "Vis4GSCompareWindow.h"
+#include "Vis4GSDocument.h"
 #include "Vis4GSMainWindow.h"
 #include "Vis4GSSelfTest.h"
 
@@ -73,6 +74,13 @@ void Define(Vis4GSArguments& args)
     "M,O,S",
     "0,0,0",
     "With --compare: the move, opacity and log-scale thresholds of `vis4gs compare`.");
+  args.AddOption("dump-inputs",
+    "DIR",
+    "",
+    "Load FILE and compute its scores as the window does, write the views' inputs into DIR "
+    "(scene.vtp with the scores; metrics, tree-vertices, tree-edges and bands as "
+    ".vtt) and exit without a window, for comparing with a VTK script "
+    "(Documentation/dev/ARCHITECTURE.md).");
   args.AddFlag("welcome",
     false,
     "Show the welcome panel (what to try first: the user guide's case study) at the top of "
@@ -84,6 +92,17 @@ int Run(const Vis4GSArguments& args)
   const double start =
     std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   const double startCpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  if (!args.Get("dump-inputs").empty())
+  {
+    if (args.GetPositional("FILE").empty())
+    {
+      std::cerr << "vis4gs view: --dump-inputs needs a FILE\n";
+      return 1;
+    }
+    Vis4GSDocument::LoadAndDumpInputs(
+      args.GetPositional("FILE"), args.Get("cameras"), args.Get("dump-inputs"));
+    return 0;
+  }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
   {
     std::cerr << "vis4gs view: no display (set DISPLAY, or run under xvfb-run)\n";

@@ -358,8 +358,8 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   std::shared_ptr<const vis4gs::TrainingLogReader> log;
   if (needImages && table)
   {
-    auto* name =
-      vtkStringArray::SafeDownCast(table->GetFieldData()->GetAbstractArray("TrainingLogFile"));
+    auto* name = vtkStringArray::SafeDownCast(
+      table->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile));
     if (name && name->GetNumberOfValues() == 1)
     {
       try
@@ -450,7 +450,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   if (needCameras)
   {
     vtkNew<vtkUnsignedCharArray> flags;
-    flags->SetName("NoVisibleView");
+    flags->SetName(vis4gs::arrays::NoVisibleView);
     flags->SetNumberOfTuples(static_cast<vtkIdType>(scores.Flags.size()));
     for (std::size_t i = 0; i < scores.Flags.size(); ++i)
     {

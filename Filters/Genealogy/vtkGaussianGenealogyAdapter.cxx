@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianGenealogyAdapter.h"
 
+#include "Vis4GSDataModel.h"
+
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
@@ -372,10 +374,10 @@ bool vtkGaussianGenealogyAdapter::EventsFromTable(vtkTable* table,
   vis4gs::EventColumns& events,
   std::string& error)
 {
-  vtkDataArray* it = Column(table, "Iteration", "iteration");
-  vtkDataArray* kind = Column(table, "Kind", "kind");
-  vtkDataArray* parent = Column(table, "Parent", "parent");
-  vtkDataArray* child = Column(table, "Child", "child");
+  vtkDataArray* it = Column(table, vis4gs::arrays::EventIteration, "iteration");
+  vtkDataArray* kind = Column(table, vis4gs::arrays::EventKind, "kind");
+  vtkDataArray* parent = Column(table, vis4gs::arrays::EventParent, "parent");
+  vtkDataArray* child = Column(table, vis4gs::arrays::EventChild, "child");
   if (!it || !kind || !parent || !child)
   {
     std::ostringstream s;
@@ -481,7 +483,7 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
 {
   const std::int64_t n = g.GetNumberOfNodes();
   vtkNew<vtkDataSetAttributes> vd;
-  auto ids = VertexArray<vtkIdTypeArray>("GaussianId", g.GetGaussianIds(), -1);
+  auto ids = VertexArray<vtkIdTypeArray>(vis4gs::arrays::TreeGaussianId, g.GetGaussianIds(), -1);
   vd->AddArray(ids);
   vd->SetPedigreeIds(ids);
   std::int32_t firstBirth = 0;
@@ -493,12 +495,13 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vd->AddArray(VertexArray<vtkIntArray>("DeathIteration", g.GetDeathIterations(), -1));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("BirthKind", g.GetBirthKinds(), VirtualRootKind));
   vd->AddArray(VertexArray<vtkUnsignedCharArray>("Pruned", g.GetPruned(), 0));
-  vd->AddArray(IndexVertexArray("FamilyId", g.GetFamilyIds(), -1, n));
+  vd->AddArray(IndexVertexArray(vis4gs::arrays::TreeFamilyId, g.GetFamilyIds(), -1, n));
   vd->AddArray(IndexVertexArray("DescendantCount", g.GetDescendantCounts(), n, n));
   vd->AddArray(VertexArray<vtkIntArray>("Lifespan", g.GetLifespans(), 0));
   vd->AddArray(VertexArray<vtkDoubleArray>("PerceptionValue", g.GetPerceptionValues(), 1.0));
-  vd->AddArray(VertexArray<vtkIntArray>("LayoutX", g.GetBirthIterations(), firstBirth));
-  vd->AddArray(IndexVertexArray("LayoutY", g.GetRows(), -1, n));
+  vd->AddArray(
+    VertexArray<vtkIntArray>(vis4gs::arrays::TreeLayoutX, g.GetBirthIterations(), firstBirth));
+  vd->AddArray(IndexVertexArray(vis4gs::arrays::TreeLayoutY, g.GetRows(), -1, n));
 
   vtkNew<vtkDataSetAttributes> ed;
   vtkNew<vtkUnsignedCharArray> edgeKind;
@@ -616,7 +619,8 @@ std::shared_ptr<vis4gs::Genealogy> vtkGaussianGenealogyAdapter::FromTree(vtkTree
     return nullptr;
   }
   vtkDataSetAttributes* vd = tree->GetVertexData();
-  vtkDataArray* ids = vtkDataArray::SafeDownCast(vd->GetAbstractArray("GaussianId"));
+  vtkDataArray* ids =
+    vtkDataArray::SafeDownCast(vd->GetAbstractArray(vis4gs::arrays::TreeGaussianId));
   vtkDataArray* birth = vtkDataArray::SafeDownCast(vd->GetAbstractArray("BirthIteration"));
   vtkDataArray* death = vtkDataArray::SafeDownCast(vd->GetAbstractArray("DeathIteration"));
   vtkDataArray* kind = vtkDataArray::SafeDownCast(vd->GetAbstractArray("BirthKind"));

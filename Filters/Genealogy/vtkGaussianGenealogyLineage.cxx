@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianGenealogyLineage.h"
 
+#include "Vis4GSDataModel.h" // vis4gs::arrays
+
 #include "vtkGaussianGenealogyAdapter.h"
 
 #include "vtkDataArray.h"
@@ -226,7 +228,7 @@ bool vtkGaussianGenealogyLineage::TraceToRoot(vtkIdType gaussianId, vtkTable* re
   vtkNew<vtkIntArray> birth, death, snapshot;
   vtkNew<vtkUnsignedCharArray> kind;
   vtkNew<vtkDoubleArray> value;
-  ids->SetName("GaussianId");
+  ids->SetName(vis4gs::arrays::TreeGaussianId);
   vertex->SetName("Vertex");
   birth->SetName("BirthIteration");
   death->SetName("DeathIteration");

@@ -10,6 +10,7 @@
 =========================================================================*/
 #include "vtkGaussianGenealogyTreeFilter.h"
 
+#include "Vis4GSDataModel.h"
 #include "vtkGaussianGenealogyAdapter.h"
 
 #include "vtkDataArray.h"
@@ -118,9 +119,9 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   vtkIdType n0 = this->NumberOfInitialGaussians;
   if (!ids && n0 < 0 && fd)
   {
-    ids = vtkDataArray::SafeDownCast(fd->GetAbstractArray("InitialIds"));
+    ids = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vis4gs::arrays::EventInitialIds));
     vtkDataArray* count =
-      vtkDataArray::SafeDownCast(fd->GetAbstractArray("NumberOfInitialGaussians"));
+      vtkDataArray::SafeDownCast(fd->GetAbstractArray(vis4gs::arrays::EventInitialCount));
     if (!ids && count && count->GetNumberOfTuples() > 0)
     {
       n0 = static_cast<vtkIdType>(count->GetComponent(0, 0));
@@ -135,7 +136,8 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   int last = this->LastIteration;
   if (last < 0 && fd)
   {
-    vtkDataArray* a = vtkDataArray::SafeDownCast(fd->GetAbstractArray("LastIteration"));
+    vtkDataArray* a =
+      vtkDataArray::SafeDownCast(fd->GetAbstractArray(vis4gs::arrays::EventLastIteration));
     if (a && a->GetNumberOfTuples() > 0)
     {
       last = static_cast<int>(a->GetComponent(0, 0));

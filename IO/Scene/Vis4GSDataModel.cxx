@@ -34,19 +34,68 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <set>
+#include <unordered_map>
 
 namespace vis4gs
 {
+namespace detail
+{
+namespace
+{
+// The owners of adopted buffers by address. VTK's free function is a plain function pointer
+// with no client data, hence the table. Never destroyed: arrays may be freed at exit.
+struct AdoptedBuffers
+{
+  std::mutex Mutex;
+  std::unordered_map<void*, std::shared_ptr<void>> Owners;
+};
+AdoptedBuffers& Adopted()
+{
+  static auto* buffers = new AdoptedBuffers;
+  return *buffers;
+}
+void ReleaseAdopted(void* data)
+{
+  std::shared_ptr<void> owner;
+  {
+    std::lock_guard<std::mutex> lock(Adopted().Mutex);
+    auto it = Adopted().Owners.find(data);
+    if (it == Adopted().Owners.end())
+    {
+      return;
+    }
+    owner = std::move(it->second);
+    Adopted().Owners.erase(it);
+  }
+  // owner (the vector) is freed here, outside the lock.
+}
+}
+
+void (*AdoptBuffer(void* data, std::shared_ptr<void> owner))(void*)
+{
+  std::lock_guard<std::mutex> lock(Adopted().Mutex);
+  Adopted().Owners[data] = std::move(owner);
+  return &ReleaseAdopted;
+}
+}
+
 namespace
 {
 constexpr int MaxDistortion = 12;
 
 //------------------------------------------------------------------------------
+// A float array of @p values: adopted (no copy) when @p adopt, else copied.
 vtkSmartPointer<vtkFloatArray> MakeFloatArray(const char* name,
   int components,
-  const std::vector<float>& values)
+  std::vector<float>& values,
+  bool adopt)
 {
+  if (adopt)
+  {
+    return AdoptVector<vtkFloatArray>(name, std::move(values), components);
+  }
   auto a = vtkSmartPointer<vtkFloatArray>::New();
   a->SetName(name);
   a->SetNumberOfComponents(components);
@@ -182,73 +231,97 @@ vtkDataArray* NewArrayFromExtra(const ExtraProperty& extra)
   return a;
 }
 
+namespace
+{
 //------------------------------------------------------------------------------
-void GaussianCloudToPolyData(const GaussianCloud& cloud,
+// GaussianCloudToPolyData; @p adopt moves the vectors of @p cloud into the arrays (the caller
+// gave up @p cloud), otherwise @p cloud is only read.
+void FillPolyData(GaussianCloud& cloud,
   vtkPolyData* output,
-  const PolyDataOptions& options)
+  const PolyDataOptions& options,
+  bool adopt)
 {
   output->Initialize();
   const std::size_t n = cloud.Count;
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
   if (cloud.Positions.size() == 3 * n && n > 0)
   {
-    std::memcpy(static_cast<vtkFloatArray*>(points->GetData())->GetPointer(0),
-      cloud.Positions.data(),
-      3 * n * sizeof(float));
+    points->SetData(MakeFloatArray(nullptr, 3, cloud.Positions, adopt));
+  }
+  else
+  {
+    points->SetNumberOfPoints(static_cast<vtkIdType>(n));
   }
   output->SetPoints(points);
 
   vtkPointData* pd = output->GetPointData();
-  vtkNew<vtkIdTypeArray> ids;
-  ids->SetName(arrays::GaussianId);
-  ids->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  for (std::size_t i = 0; i < n; ++i)
+  vtkSmartPointer<vtkIdTypeArray> ids;
+  if (adopt && cloud.Ids.size() == n && n > 0)
   {
-    ids->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(cloud.GetId(i)));
+    ids = AdoptVector<vtkIdTypeArray>(arrays::GaussianId, std::move(cloud.Ids));
+  }
+  else
+  {
+    ids = vtkSmartPointer<vtkIdTypeArray>::New();
+    ids->SetName(arrays::GaussianId);
+    ids->SetNumberOfTuples(static_cast<vtkIdType>(n));
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      ids->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(cloud.GetId(i)));
+    }
   }
   pd->SetPedigreeIds(ids);
 
-  if (cloud.LogScales.size() == 3 * n)
-  {
-    pd->AddArray(MakeFloatArray(arrays::LogScale, 3, cloud.LogScales));
-  }
-  if (cloud.Rotations.size() == 4 * n)
-  {
-    pd->AddArray(MakeFloatArray(arrays::Rotation, 4, cloud.Rotations));
-  }
-  if (cloud.OpacityLogits.size() == n)
-  {
-    pd->AddArray(MakeFloatArray(arrays::OpacityLogit, 1, cloud.OpacityLogits));
-  }
-  const int shComponents = 3 * cloud.ShCoefficientCount();
-  if (n > 0 && cloud.SH.size() == n * static_cast<std::size_t>(shComponents))
-  {
-    pd->AddArray(MakeFloatArray(arrays::SH, shComponents, cloud.SH));
-  }
-
+  // The activated values first: they read the raw vectors that adopting moves away.
+  const bool hasOpacity = cloud.OpacityLogits.size() == n;
+  std::vector<float> opacity, scale;
   if (options.ActivatedArrays)
   {
-    if (cloud.OpacityLogits.size() == n)
+    if (hasOpacity)
     {
-      std::vector<float> opacity(n);
+      opacity.resize(n);
       for (std::size_t i = 0; i < n; ++i)
       {
         opacity[i] = Sigmoid(cloud.OpacityLogits[i]);
       }
-      pd->AddArray(MakeFloatArray(arrays::Opacity, 1, opacity));
     }
     if (cloud.LogScales.size() == 3 * n)
     {
-      std::vector<float> scale(3 * n);
+      scale.resize(3 * n);
       for (std::size_t i = 0; i < 3 * n; ++i)
       {
         scale[i] = ActivatedScale(cloud.LogScales[i]);
       }
-      pd->AddArray(MakeFloatArray(arrays::Scale, 3, scale));
     }
+  }
+
+  if (cloud.LogScales.size() == 3 * n)
+  {
+    pd->AddArray(MakeFloatArray(arrays::LogScale, 3, cloud.LogScales, adopt));
+  }
+  if (cloud.Rotations.size() == 4 * n)
+  {
+    pd->AddArray(MakeFloatArray(arrays::Rotation, 4, cloud.Rotations, adopt));
+  }
+  if (hasOpacity)
+  {
+    pd->AddArray(MakeFloatArray(arrays::OpacityLogit, 1, cloud.OpacityLogits, adopt));
+  }
+  const int shComponents = 3 * cloud.ShCoefficientCount();
+  if (n > 0 && cloud.SH.size() == n * static_cast<std::size_t>(shComponents))
+  {
+    pd->AddArray(MakeFloatArray(arrays::SH, shComponents, cloud.SH, adopt));
+  }
+
+  if (options.ActivatedArrays && hasOpacity)
+  {
+    pd->AddArray(MakeFloatArray(arrays::Opacity, 1, opacity, true));
+  }
+  if (options.ActivatedArrays && scale.size() == 3 * n)
+  {
+    pd->AddArray(MakeFloatArray(arrays::Scale, 3, scale, true));
   }
 
   for (const auto& extra : cloud.Extra)
@@ -262,6 +335,24 @@ void GaussianCloudToPolyData(const GaussianCloud& cloud,
   degree->SetName(arrays::SHDegree);
   degree->InsertNextValue(cloud.ShDegree);
   output->GetFieldData()->AddArray(degree);
+}
+}
+
+//------------------------------------------------------------------------------
+void GaussianCloudToPolyData(const GaussianCloud& cloud,
+  vtkPolyData* output,
+  const PolyDataOptions& options)
+{
+  FillPolyData(const_cast<GaussianCloud&>(cloud), output, options, false);
+}
+
+//------------------------------------------------------------------------------
+void GaussianCloudToPolyData(GaussianCloud&& cloud,
+  vtkPolyData* output,
+  const PolyDataOptions& options)
+{
+  FillPolyData(cloud, output, options, true);
+  cloud = GaussianCloud();
 }
 
 //------------------------------------------------------------------------------

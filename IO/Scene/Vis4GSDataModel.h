@@ -25,7 +25,12 @@
 #include "Camera.h"        // For vis4gs::Camera
 #include "GaussianCloud.h" // For vis4gs::GaussianCloud
 
+#include "vtkAbstractArray.h" // For VTK_DATA_ARRAY_USER_DEFINED
+#include "vtkSmartPointer.h"  // For vtkSmartPointer
+
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 class vtkDataArray;
@@ -48,6 +53,8 @@ constexpr const char* ViewCoverage = "ViewCoverage";
 constexpr const char* BlurScore = "BlurScore";
 constexpr const char* NeedleScore = "NeedleScore";
 constexpr const char* NeedleShape = "NeedleShape";
+/// 1 where no training view sees the Gaussian (vtkGaussianArtifactScoreFilter).
+constexpr const char* NoVisibleView = "NoVisibleView";
 // Gaussian field data
 constexpr const char* SHDegree = "SHDegree";
 // Metrics table columns: one spelling everywhere (the training-log reader's metrics port, the
@@ -75,6 +82,63 @@ constexpr const char* CameraWorldToCamera = "WorldToCamera";
 constexpr const char* CameraImage = "Image";
 constexpr const char* CameraModel = "Model";
 constexpr const char* CameraDistortion = "Distortion";
+/// Camera table field data: the training log holding the "/images/<name>" images.
+constexpr const char* CameraTrainingLogFile = "TrainingLogFile";
+// Events table columns (DESIGN §3 /events; Kind values are vis4gs::EventKind) and the field
+// data the genealogy filter reads from it.
+constexpr const char* EventIteration = "Iteration";
+constexpr const char* EventKind = "Kind";
+constexpr const char* EventParent = "Parent";
+constexpr const char* EventChild = "Child";
+constexpr const char* EventInitialIds = "InitialIds";
+constexpr const char* EventInitialCount = "NumberOfInitialGaussians";
+constexpr const char* EventLastIteration = "LastIteration";
+// Property history (long format, one row per Gaussian and snapshot): the timeline view's
+// history table, as the application and vtkGaussianTrainingLogReader::GetPropertyHistory give it.
+constexpr const char* HistoryIteration = "Iteration";
+constexpr const char* HistoryPosition = "Position";
+constexpr const char* HistoryPositionX = "PositionX";
+constexpr const char* HistoryPositionY = "PositionY";
+constexpr const char* HistoryPositionZ = "PositionZ";
+constexpr const char* HistorySHDC = "SHDC";
+// Genealogy tree (vtkGaussianGenealogyTreeFilter) vertex data read by the views
+constexpr const char* TreeGaussianId = "GaussianId";
+constexpr const char* TreeLayoutX = "LayoutX";
+constexpr const char* TreeLayoutY = "LayoutY";
+constexpr const char* TreeFamilyId = "FamilyId";
+}
+
+namespace detail
+{
+/// Registers @p owner to live until VTK frees @p data; returns the free function to give VTK.
+VIS4GSIOSCENE_EXPORT void (*AdoptBuffer(void* data, std::shared_ptr<void> owner))(void*);
+}
+
+/**
+ * A VTK array named @p name that takes over the memory of @p values (no copy): VTK frees it
+ * with the array. How the readers hand Core's large vectors to VTK without holding two copies.
+ */
+template <typename ArrayT, typename T>
+vtkSmartPointer<ArrayT> AdoptVector(const char* name, std::vector<T>&& values, int components = 1)
+{
+  using V = typename ArrayT::ValueType;
+  static_assert(sizeof(V) == sizeof(T) &&
+      std::is_integral<V>::value == std::is_integral<T>::value &&
+      std::is_signed<V>::value == std::is_signed<T>::value,
+    "the array's value type must have the vector's representation");
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  if (values.empty())
+  {
+    return array;
+  }
+  auto owner = std::make_shared<std::vector<T>>(std::move(values));
+  V* data = reinterpret_cast<V*>(owner->data());
+  array->SetArray(
+    data, static_cast<vtkIdType>(owner->size()), 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+  array->SetArrayFreeFunction(detail::AdoptBuffer(data, std::move(owner)));
+  return array;
 }
 
 /// What GaussianCloudToPolyData adds besides the raw parameters.
@@ -91,6 +155,11 @@ struct PolyDataOptions
  * bit-exactly.
  */
 VIS4GSIOSCENE_EXPORT void GaussianCloudToPolyData(const GaussianCloud& cloud,
+  vtkPolyData* output,
+  const PolyDataOptions& options = {});
+
+/// The same, taking over the parameter vectors of @p cloud without copying (AdoptVector).
+VIS4GSIOSCENE_EXPORT void GaussianCloudToPolyData(GaussianCloud&& cloud,
   vtkPolyData* output,
   const PolyDataOptions& options = {});
 

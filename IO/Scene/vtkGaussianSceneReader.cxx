@@ -73,7 +73,7 @@ int vtkGaussianSceneReader::RequestData(vtkInformation* vtkNotUsed(request),
   this->UpdateProgress(0.8);
   vis4gs::PolyDataOptions pdOptions;
   pdOptions.ActivatedArrays = this->ActivatedArrays;
-  vis4gs::GaussianCloudToPolyData(cloud, output, pdOptions);
+  vis4gs::GaussianCloudToPolyData(std::move(cloud), output, pdOptions); // no copy
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -135,6 +135,19 @@ int vtkGaussianTrainingLogReader::GetSnapshotIteration(int i)
   const auto& its = this->Internals->Iterations;
   return i >= 0 && i < static_cast<int>(its.size()) ? its[static_cast<std::size_t>(i)] : -1;
 }
+int vtkGaussianTrainingLogReader::FindNearestSnapshot(int iteration)
+{
+  return this->Internals->Log ? this->Internals->Log->FindNearestSnapshot(iteration) : -1;
+}
+vtkIdType vtkGaussianTrainingLogReader::GetSnapshotSize(int iteration)
+{
+  const auto& its = this->Internals->Iterations;
+  if (!this->Internals->Log || !std::binary_search(its.begin(), its.end(), iteration))
+  {
+    return 0;
+  }
+  return static_cast<vtkIdType>(this->Internals->Log->GetSnapshotSize(iteration));
+}
 int vtkGaussianTrainingLogReader::GetNumberOfLacks()
 {
   return static_cast<int>(this->Internals->Lacks.size());
@@ -296,7 +309,7 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
         options.ShDegree = this->LoadSHRest ? -1 : 0;
         vis4gs::GaussianCloud cloud = d.Log->ReadSnapshot(iteration, options);
         ++this->SnapshotReads;
-        vis4gs::GaussianCloudToPolyData(cloud, output);
+        vis4gs::GaussianCloudToPolyData(std::move(cloud), output); // no copy
         output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), iteration);
       }
     }
@@ -320,7 +333,7 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
       }
       vis4gs::CamerasToTable(cameras, output);
       vtkNew<vtkStringArray> source;
-      source->SetName("TrainingLogFile");
+      source->SetName(vis4gs::arrays::CameraTrainingLogFile);
       source->InsertNextValue(logFile.string());
       output->GetFieldData()->AddArray(source);
     }
@@ -412,40 +425,41 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
           }
         }
       }
-      output->AddColumn(MakeColumn<vtkIntArray>("Iteration", iterations));
-      output->AddColumn(MakeColumn<vtkIdTypeArray>("NumGaussians", counts));
-      const char* names[11] = { "Loss",
-        "L1",
-        "PSNR",
-        "SSIM",
-        "LPIPS",
-        "ElapsedSeconds",
-        "TestLoss",
-        "TestL1",
-        "TestPSNR",
-        "TestSSIM",
-        "TestLPIPS" };
+      namespace names = vis4gs::arrays;
+      output->AddColumn(MakeColumn<vtkIntArray>(names::MetricIteration, iterations));
+      output->AddColumn(MakeColumn<vtkIdTypeArray>(names::MetricGaussians, counts));
+      const char* measured[6] = { names::MetricLoss,
+        names::MetricL1,
+        names::MetricPSNR,
+        names::MetricSSIM,
+        names::MetricLPIPS,
+        names::MetricElapsed };
       for (int c = 0; c < 11; ++c)
       {
-        output->AddColumn(MakeColumn<vtkDoubleArray>(names[c], columns[c]));
+        const std::string name =
+          c < 6 ? std::string(measured[c]) : std::string(names::MetricTestPrefix) + measured[c - 6];
+        output->AddColumn(MakeColumn<vtkDoubleArray>(name.c_str(), columns[c]));
       }
     }
     if (wanted(3))
     {
       vtkTable* output = vtkTable::GetData(outInfo->GetInformationObject(3));
       output->Initialize();
-      const vis4gs::EventTable e = d.Log->ReadEvents();
-      output->AddColumn(MakeColumn<vtkIntArray>("Iteration", e.Iteration));
-      output->AddColumn(MakeColumn<vtkUnsignedCharArray>("Kind", e.Kind));
-      output->AddColumn(MakeColumn<vtkIdTypeArray>("Parent", e.Parent));
-      output->AddColumn(MakeColumn<vtkIdTypeArray>("Child", e.Child));
+      // The columns take over the event vectors (a large log has tens of millions of events).
+      vis4gs::EventTable e = d.Log->ReadEvents();
+      using vis4gs::AdoptVector;
+      namespace names = vis4gs::arrays;
+      output->AddColumn(AdoptVector<vtkIntArray>(names::EventIteration, std::move(e.Iteration)));
+      output->AddColumn(AdoptVector<vtkUnsignedCharArray>(names::EventKind, std::move(e.Kind)));
+      output->AddColumn(AdoptVector<vtkIdTypeArray>(names::EventParent, std::move(e.Parent)));
+      output->AddColumn(AdoptVector<vtkIdTypeArray>(names::EventChild, std::move(e.Child)));
       // What vtkGaussianGenealogyTreeFilter needs besides the rows, so that connecting this
       // port to it needs no glue: the initial Gaussians (the ids of the first snapshot, as the
       // application takes them) and the last iteration (the planned one, or the last snapshot
       // when training went on longer).
       const std::vector<int>& snapshots = d.Log->GetSnapshotIterations();
       vtkNew<vtkIdTypeArray> initial;
-      initial->SetName("InitialIds");
+      initial->SetName(vis4gs::arrays::EventInitialIds);
       if (!snapshots.empty())
       {
         vis4gs::SnapshotReadOptions idsOnly;
@@ -459,7 +473,7 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
       }
       output->GetFieldData()->AddArray(initial);
       vtkNew<vtkIntArray> last;
-      last->SetName("LastIteration");
+      last->SetName(vis4gs::arrays::EventLastIteration);
       last->InsertNextValue(
         std::max(d.Log->GetHeader().Iterations, snapshots.empty() ? 0 : snapshots.back()));
       output->GetFieldData()->AddArray(last);
@@ -507,12 +521,12 @@ int vtkGaussianTrainingLogReader::GetPropertyHistory(vtkIdTypeArray* ids, vtkTab
   d.Repairs = d.Log->GetRepairs();
   output->Initialize();
   output->AddColumn(MakeColumn<vtkIdTypeArray>(vis4gs::arrays::GaussianId, h.Id));
-  output->AddColumn(MakeColumn<vtkIntArray>("Iteration", h.Iteration));
-  output->AddColumn(MakeColumn<vtkFloatArray>("Position", h.Positions, 3));
+  output->AddColumn(MakeColumn<vtkIntArray>(vis4gs::arrays::HistoryIteration, h.Iteration));
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::HistoryPosition, h.Positions, 3));
   output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::LogScale, h.LogScales, 3));
   output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::Rotation, h.Rotations, 4));
   output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::OpacityLogit, h.OpacityLogits));
-  output->AddColumn(MakeColumn<vtkFloatArray>("SHDC", h.SHDC, 3));
+  output->AddColumn(MakeColumn<vtkFloatArray>(vis4gs::arrays::HistorySHDC, h.SHDC, 3));
   std::vector<float> opacity(h.Size()), scale(3 * h.Size());
   for (std::size_t i = 0; i < h.Size(); ++i)
   {

@@ -111,6 +111,10 @@ public:
   /// Logged snapshot iterations (valid after UpdateInformation()).
   int GetNumberOfSnapshots();
   int GetSnapshotIteration(int i);
+  /// The logged snapshot nearest @p iteration (-1 without snapshots).
+  int FindNearestSnapshot(int iteration);
+  /// Number of Gaussians in the snapshot of @p iteration (0 when there is none).
+  vtkIdType GetSnapshotSize(int iteration);
   ///@}
 
   ///@{

@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianHistogramView.h"
 
+#include "Vis4GSDataModel.h" // vis4gs::arrays
+
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChartXY.h"
@@ -57,7 +59,7 @@ vtkGaussianHistogramView::vtkGaussianHistogramView()
   : Internals(new vtkInternals)
 {
   this->SetArrayName("Opacity");
-  this->SetIdArrayName("GaussianId");
+  this->SetIdArrayName(vis4gs::arrays::GaussianId);
   auto& in = *this->Internals;
   this->GetScene()->AddItem(in.Chart);
   this->GetRenderer()->SetBackground(1, 1, 1);

@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianSelectionHub.h"
 
+#include "Vis4GSDataModel.h" // vis4gs::arrays
+
 #include "vtkAbstractArray.h"
 #include "vtkAnnotationLink.h"
 #include "vtkCallbackCommand.h"
@@ -587,7 +589,7 @@ vtkSmartPointer<vtkSelection> vtkGaussianSelectionHub::MakePedigreeSelection(vtk
   {
     list->DeepCopy(ids);
   }
-  list->SetName("GaussianId");
+  list->SetName(vis4gs::arrays::GaussianId);
   node->SetSelectionList(list);
   auto selection = vtkSmartPointer<vtkSelection>::New();
   selection->AddNode(node);

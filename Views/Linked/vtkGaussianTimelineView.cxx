@@ -21,6 +21,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianTimelineChart.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPen.h"
 #include "vtkPlot.h"
@@ -64,6 +65,18 @@ bool HasFiniteValue(vtkDataArray* a)
   }
   return false;
 }
+
+bool AllFinite(vtkDataArray* a)
+{
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    if (!std::isfinite(a->GetComponent(i, 0)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
 }
 
 struct vtkGaussianTimelineView::vtkInternals
@@ -72,6 +85,8 @@ struct vtkGaussianTimelineView::vtkInternals
   vtkNew<vtkGaussianTimelineChart> Charts[3];
   vtkSmartPointer<vtkTable> Metrics, TestMetrics, History;
   vtkSmartPointer<vtkTable> ComparisonMetrics, ComparisonTestMetrics;
+  /// The finite rows of metric columns that have NaN (a merged train/test table).
+  std::vector<vtkSmartPointer<vtkTable>> FiniteRows;
   vtkNew<vtkTable> Wide;
   vtkWeakPointer<vtkGaussianSelectionHub> Hub;
   unsigned long SelectionObserver = 0, IterationObserver = 0;
@@ -96,8 +111,8 @@ vtkGaussianTimelineView::vtkGaussianTimelineView()
   this->SetPSNRColumn(vis4gs::arrays::MetricPSNR);
   this->SetSSIMColumn(vis4gs::arrays::MetricSSIM);
   this->SetLPIPSColumn(vis4gs::arrays::MetricLPIPS);
-  this->SetHistoryIterationColumn("Iteration");
-  this->SetHistoryIdColumn("GaussianId");
+  this->SetHistoryIterationColumn(vis4gs::arrays::HistoryIteration);
+  this->SetHistoryIdColumn(vis4gs::arrays::GaussianId);
   auto& in = *this->Internals;
   in.Matrix->SetSize(vtkVector2i(1, 3));
   in.Matrix->SetGutter(vtkVector2f(30.f, 30.f));
@@ -372,6 +387,7 @@ void vtkGaussianTimelineView::UpdatePlots()
   in.MetricPlots = 0;
   in.ComparisonPlots = 0;
   in.HistoryLines = 0;
+  in.FiniteRows.clear();
   double xmin = std::numeric_limits<double>::max(), xmax = std::numeric_limits<double>::lowest();
 
   // With a second run, both runs' entries carry the run's name and the second run's lines are
@@ -397,6 +413,30 @@ void vtkGaussianTimelineView::UpdatePlots()
     {
       return;
     }
+    if (!AllFinite(y))
+    {
+      // A line through NaN breaks at every gap: the test columns of the log reader's merged
+      // table (NaN where the test set was not measured) would draw as scattered dots.
+      vtkNew<vtkTable> finite;
+      vtkSmartPointer<vtkDataArray> fx, fy;
+      fx.TakeReference(x->NewInstance());
+      fy.TakeReference(y->NewInstance());
+      fx->SetName(x->GetName());
+      fy->SetName(y->GetName());
+      for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
+      {
+        if (std::isfinite(y->GetComponent(i, 0)))
+        {
+          fx->InsertNextTuple1(x->GetComponent(i, 0));
+          fy->InsertNextTuple1(y->GetComponent(i, 0));
+        }
+      }
+      finite->AddColumn(fx);
+      finite->AddColumn(fy);
+      in.FiniteRows.emplace_back(finite);
+      table = finite;
+      x = fx;
+    }
     double range[2];
     x->GetRange(range);
     xmin = std::min(xmin, range[0]);
@@ -419,15 +459,26 @@ void vtkGaussianTimelineView::UpdatePlots()
   for (const bool second : { false, true })
   {
     vtkTable* train = second ? in.ComparisonMetrics : in.Metrics;
-    vtkTable* test = second ? in.ComparisonTestMetrics : in.TestMetrics;
+    // Test metrics: their own table, else the Test-prefixed columns of a merged table (the log
+    // reader's metrics port).
+    vtkTable* ownTest = second ? in.ComparisonTestMetrics : in.TestMetrics;
+    vtkTable* test = ownTest ? ownTest : train;
+    auto testColumn = [&](const char* column) -> std::string
+    {
+      return ownTest || !column ? std::string(column ? column : "")
+                                : vis4gs::arrays::MetricTestPrefix + std::string(column);
+    };
+    const std::string testPSNR = testColumn(this->PSNRColumn);
+    const std::string testSSIM = testColumn(this->SSIMColumn);
+    const std::string testLPIPS = testColumn(this->LPIPSColumn);
     const int trainLine = second ? static_cast<int>(vtkPen::DOT_LINE) : solid;
     const int testLine = second ? static_cast<int>(vtkPen::DASH_DOT_LINE) : dashed;
     addMetric(train, this->PSNRColumn, QUALITY, 0, Palette[0], trainLine, "PSNR", second);
     addMetric(train, this->SSIMColumn, QUALITY, 1, Palette[1], trainLine, "SSIM", second);
     addMetric(train, this->LPIPSColumn, QUALITY, 1, Palette[2], trainLine, "LPIPS", second);
-    addMetric(test, this->PSNRColumn, QUALITY, 0, Palette[0], testLine, "PSNR test", second);
-    addMetric(test, this->SSIMColumn, QUALITY, 1, Palette[1], testLine, "SSIM test", second);
-    addMetric(test, this->LPIPSColumn, QUALITY, 1, Palette[2], testLine, "LPIPS test", second);
+    addMetric(test, testPSNR.c_str(), QUALITY, 0, Palette[0], testLine, "PSNR test", second);
+    addMetric(test, testSSIM.c_str(), QUALITY, 1, Palette[1], testLine, "SSIM test", second);
+    addMetric(test, testLPIPS.c_str(), QUALITY, 1, Palette[2], testLine, "LPIPS test", second);
   }
   addMetric(in.Metrics, this->CountColumn, COUNT, 0, Palette[4], solid, "Gaussians", false);
   addMetric(in.ComparisonMetrics,

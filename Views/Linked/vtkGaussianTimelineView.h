@@ -33,7 +33,9 @@
  * Tables (column names settable):
  * - metrics (SetMetrics, SetTestMetrics): Iteration, NumGaussians, PSNR, SSIM, LPIPS (the
  *   spelling of vtkGaussianTrainingLogReader's metrics port, vis4gs::arrays::Metric*)
- *   (DESIGN §3 /metrics);
+ *   (DESIGN §3 /metrics). Without test metrics, the Test-prefixed columns of the metrics
+ *   table (TestPSNR, ...: the log reader's merged table) are the test metrics, so the reader's
+ *   port plugs in directly; each line is drawn through its column's finite rows;
  * - history (SetHistory): long format, one row per (iteration, Gaussian): Iteration,
  *   GaussianId and one column per property or score (Opacity, ViewCoverage, ...), as the log
  *   reader's history query gives it. Only rows of selected ids are drawn when a hub is linked.

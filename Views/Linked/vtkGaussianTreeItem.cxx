@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianTreeItem.h"
 
+#include "Vis4GSDataModel.h" // vis4gs::arrays
+
 #include "TreeDrawIndex.h"
 
 #include "vtkGaussianSelectionHub.h"
@@ -187,9 +189,9 @@ struct vtkGaussianTreeItem::vtkInternals
 vtkGaussianTreeItem::vtkGaussianTreeItem()
   : Internals(new vtkInternals)
 {
-  this->SetIdArrayName("GaussianId");
-  this->SetXArrayName("LayoutX");
-  this->SetYArrayName("LayoutY");
+  this->SetIdArrayName(vis4gs::arrays::TreeGaussianId);
+  this->SetXArrayName(vis4gs::arrays::TreeLayoutX);
+  this->SetYArrayName(vis4gs::arrays::TreeLayoutY);
   this->SetDeathArrayName("DeathIteration");
   this->SetPerceptionArrayName("PerceptionValue");
   this->SetKindArrayName("BirthKind");

@@ -12,8 +12,10 @@
 #include "Vis4GSDataModel.h"
 
 #include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
@@ -85,6 +87,52 @@ int TestVis4GSDataModel(int, char*[])
   Check(back.Extra.size() == 1 && back.Extra[0].Bytes == nx.Bytes &&
       back.Extra[0].Type == vis4gs::ScalarType::UInt8,
     "extra property kept with its type");
+
+  // Adopting (the readers' way): the same arrays, bit for bit and in the same order, in the
+  // very memory of the cloud's vectors (no copy), freed with the arrays.
+  {
+    vis4gs::GaussianCloud moved = cloud;
+    const float* positions = moved.Positions.data();
+    const float* sh = moved.SH.data();
+    const std::int64_t* ids = moved.Ids.data();
+    vtkNew<vtkPolyData> adopted;
+    vis4gs::GaussianCloudToPolyData(std::move(moved), adopted);
+    Check(adopted->GetPoints()->GetData()->GetVoidPointer(0) == positions &&
+        adopted->GetPointData()->GetArray("SH")->GetVoidPointer(0) == sh &&
+        adopted->GetPointData()->GetArray("GaussianId")->GetVoidPointer(0) == ids,
+      "the positions, SH and ids are adopted, not copied");
+    Check(moved.Count == 0 && moved.Positions.empty(), "the moved-from cloud is empty");
+    Check(adopted->GetPointData()->GetNumberOfArrays() == pd->GetPointData()->GetNumberOfArrays(),
+      "adopting gives as many arrays");
+    for (int a = 0; a < pd->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* copied = pd->GetPointData()->GetArray(a);
+      vtkDataArray* taken = adopted->GetPointData()->GetArray(a);
+      const bool same = taken && !std::strcmp(copied->GetName(), taken->GetName()) &&
+        copied->GetDataType() == taken->GetDataType() &&
+        copied->GetNumberOfComponents() == taken->GetNumberOfComponents() &&
+        copied->GetNumberOfTuples() == taken->GetNumberOfTuples() &&
+        !std::memcmp(copied->GetVoidPointer(0),
+          taken->GetVoidPointer(0),
+          static_cast<std::size_t>(copied->GetDataSize()) *
+            static_cast<std::size_t>(copied->GetDataTypeSize()));
+      Check(same, copied->GetName());
+    }
+    // The memory lives as long as the array, not the cloud; shallow copies share it.
+    vtkNew<vtkPolyData> copy;
+    copy->ShallowCopy(adopted);
+    adopted->Initialize();
+    vis4gs::GaussianCloud again;
+    Check(vis4gs::PolyDataToGaussianCloud(copy, again, &error, true) &&
+        SameBits(again.Positions, cloud.Positions) && SameBits(again.SH, cloud.SH) &&
+        again.Ids == cloud.Ids,
+      "adopted values survive their first owner");
+    std::vector<std::int64_t> big(1000, 5);
+    auto ints = vis4gs::AdoptVector<vtkIdTypeArray>("Parent", std::move(big), 2);
+    Check(ints->GetNumberOfTuples() == 500 && ints->GetNumberOfComponents() == 2 &&
+        ints->GetValue(999) == 5 && big.empty(),
+      "AdoptVector: tuples of the given components");
+  }
 
   // A wrong component count is refused with a message naming the array.
   pd->GetPointData()->GetArray("Rotation")->SetNumberOfComponents(3);

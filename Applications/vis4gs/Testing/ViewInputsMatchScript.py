@@ -1,0 +1,201 @@
+"""The application and a VTK Python script are one program (issue 22): `vis4gs view LOG
+--dump-inputs=DIR` writes what the window gives its views (the scene with its scores, the
+genealogy tree and family bands, the metrics table); this script builds the four views from
+the same VTK classes a user connects (training-log reader, genealogy filter on its events
+port, score filter on its Gaussians and cameras ports, tree / timeline / histogram views) and
+requires every array to be equal, value for value (NaN equal to NaN) and name for name.
+Independently of both, the Gaussians and the metrics are compared with the log read by h5py
+and the tree's size with the log's events.
+
+Usage: ViewInputsMatchScript.py VIS4GS LOG OUTPUT_DIR"""
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLTableReader
+
+import vis4gs
+
+program, log, output = sys.argv[1:4]
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+
+
+def values(array):
+    if array is None:
+        return None
+    if array.IsA("vtkStringArray"):
+        return np.array([array.GetValue(i) for i in range(array.GetNumberOfValues())])
+    return vtk_to_numpy(array)
+
+
+def same(a, b):
+    """Equal shapes and values, NaN equal to NaN (integers compared exactly too)."""
+    if a is None or b is None or a.shape != b.shape:
+        return False
+    if a.dtype.kind == "f" or b.dtype.kind == "f":
+        return np.array_equal(a.astype(np.float64), b.astype(np.float64), equal_nan=True)
+    return np.array_equal(a, b)
+
+
+def compare_fields(what, app, script, names=None):
+    """Every array of the application's field data equals the script's of the same name."""
+    app_names = [app.GetArrayName(i) for i in range(app.GetNumberOfArrays())]
+    script_names = [script.GetArrayName(i) for i in range(script.GetNumberOfArrays())]
+    if names is None:
+        check(sorted(app_names) == sorted(script_names),
+              f"{what}: the application has {app_names}, the script {script_names}")
+        names = app_names
+    for name in names:
+        a = values(app.GetAbstractArray(name))
+        b = values(script.GetAbstractArray(name))
+        ok = same(a, b)
+        detail = ""
+        if not ok and a is not None and b is not None and a.shape == b.shape:
+            detail = f" ({int(np.sum(~((a == b) | (a != a) & (b != b))))} values differ)"
+        check(ok, f"{what}: array {name} differs between the application and the script{detail}")
+
+
+def read_table(name):
+    reader = vtkXMLTableReader()
+    reader.SetFileName(os.path.join(output, name))
+    reader.Update()
+    return reader.GetOutput()
+
+
+# The log as h5py reads it, before any VTK reader opens it (they keep the file open with
+# other HDF5 locking flags).
+with h5py.File(log, "r") as h5:
+    names = sorted(h5["snapshots"].keys())
+    h5_log = {"last": names[-1],
+              "position": h5["snapshots"][names[-1]]["position"][()],
+              "id": h5["snapshots"][names[-1]]["id"][()]}
+    for dataset in ("metrics/psnr", "metrics/test/psnr", "metrics/ssim", "metrics/iteration"):
+        h5_log[dataset] = h5[dataset][()]
+    h5_log["plots"] = 1 + sum(
+        int(np.any(np.isfinite(h5[f"metrics/{test}{m}"][()])))
+        for test in ("", "test/") for m in ("psnr", "ssim", "lpips"))
+    kinds = h5["events/kind"][()]
+    births = int(np.sum((kinds == 1) | (kinds == 2)))
+    h5_log["vertices"] = 1 + h5["snapshots"][names[0]]["id"].shape[0] + births
+
+# The application's inputs.
+shutil.rmtree(output, ignore_errors=True)
+run = subprocess.run([program, "view", log, f"--dump-inputs={output}"],
+                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+if run.returncode != 0:
+    print(run.stdout)
+    print(f"FAILED: vis4gs view --dump-inputs exited with {run.returncode}")
+    sys.exit(1)
+for name in ("scene.vtp", "metrics.vtt", "tree-vertices.vtt", "tree-edges.vtt", "bands.vtt"):
+    check(os.path.isfile(os.path.join(output, name)), f"--dump-inputs wrote no {name}")
+if failures:
+    print("FAILED: " + "; ".join(failures))
+    sys.exit(1)
+scene_reader = vtkXMLPolyDataReader()
+scene_reader.SetFileName(os.path.join(output, "scene.vtp"))
+scene_reader.Update()
+app_scene = scene_reader.GetOutput()
+
+# The script: the pipeline a user builds, and the four views fed from it.
+reader = vis4gs.vtkGaussianTrainingLogReader()
+reader.SetFileName(log)
+scores = vis4gs.vtkGaussianArtifactScoreFilter()
+scores.SetInputConnection(reader.GetOutputPort(0))
+scores.SetCamerasConnection(reader.GetOutputPort(1))
+for score in ("ViewCoverage", "BlurScore", "NeedleScore", "NeedleShape"):
+    getattr(scores, f"SetCompute{score}")(True)
+genealogy = vis4gs.vtkGaussianGenealogyTreeFilter()
+genealogy.SetInputConnection(reader.GetOutputPort(3))
+genealogy.SetRepairUnknownParents(True)
+scores.Update()
+genealogy.Update()
+reader.Update(2)
+script_scene = scores.GetOutput()
+tree = genealogy.GetOutput()
+bands = genealogy.GetFamilyBands()
+metrics = reader.GetMetricsOutput()
+
+tree_view = vis4gs.vtkGaussianTreeView()
+tree_view.SetTree(tree)
+tree_view.SetFamilyBands(bands)
+timeline = vis4gs.vtkGaussianTimelineView()
+timeline.SetMetrics(metrics)
+timeline.UpdatePlots()
+# Train and test PSNR, SSIM, LPIPS (those the log measured) and the count: the reader's
+# merged table plugs in as is.
+check(timeline.GetNumberOfMetricPlots() == h5_log["plots"],
+      f"the timeline draws {timeline.GetNumberOfMetricPlots()} metric plots from the log "
+      f"reader's metrics port, expected {h5_log['plots']} (the measured train and test PSNR, "
+      "SSIM, LPIPS; Gaussians)")
+check(tree_view.GetTree() is tree, "the tree view holds the genealogy filter's output")
+
+# Scene (the splat mapper's and the selector's input): points and every point-data array.
+check(same(vtk_to_numpy(app_scene.GetPoints().GetData()),
+           vtk_to_numpy(script_scene.GetPoints().GetData())), "scene: positions differ")
+compare_fields("scene", app_scene.GetPointData(), script_scene.GetPointData())
+for score in ("ViewCoverage", "BlurScore", "NeedleScore", "NeedleShape"):
+    a = values(app_scene.GetPointData().GetArray(score))
+    check(a is not None and np.count_nonzero(np.nan_to_num(a)) > 0.5 * a.size,
+          f"scene: the application's {score} is computed (mostly non-zero)")
+
+# Histograms of the same arrays from both inputs: the same bins.
+for score in ("BlurScore", "ViewCoverage", "Opacity"):
+    counts = []
+    for data in (app_scene, script_scene):
+        view = vis4gs.vtkGaussianHistogramView()
+        view.SetInputData(data)
+        view.SetArrayName(score)
+        view.UpdateHistogram()
+        counts.append([view.GetBinCount(b) for b in range(view.GetNumberOfBins())])
+    check(counts[0] == counts[1] and sum(counts[0]) == app_scene.GetNumberOfPoints(),
+          f"histogram of {score}: the application's bins {counts[0]} vs the script's {counts[1]}")
+
+# Tree (view B): vertex data, parents, edge data, family bands.
+app_vertices = read_table("tree-vertices.vtt")
+compare_fields("tree vertices", app_vertices.GetRowData(), tree.GetVertexData(),
+               [n for n in (app_vertices.GetColumnName(i)
+                            for i in range(app_vertices.GetNumberOfColumns()))
+                if n != "ParentVertex"])
+check(app_vertices.GetNumberOfRows() == tree.GetNumberOfVertices(),
+      "tree: the same number of vertices")
+parents = np.array([tree.GetParent(v) for v in range(tree.GetNumberOfVertices())])
+check(same(values(app_vertices.GetColumnByName("ParentVertex")), parents),
+      "tree: the same parent of every vertex")
+compare_fields("tree edges", read_table("tree-edges.vtt").GetRowData(), tree.GetEdgeData())
+compare_fields("family bands", read_table("bands.vtt").GetRowData(), bands.GetRowData())
+
+# Metrics (view D): one table, the reader's column names.
+app_metrics = read_table("metrics.vtt")
+compare_fields("metrics", app_metrics.GetRowData(), metrics.GetRowData())
+check(not os.path.exists(os.path.join(output, "test-metrics.vtt")),
+      "the application has no separate test-metrics table (its metrics hold TestPSNR...)")
+
+# Independently of VTK: the log as h5py reads it (read first, see above).
+check(same(vtk_to_numpy(app_scene.GetPoints().GetData()), h5_log["position"]),
+      f"scene: positions are those of the last snapshot ({h5_log['last']})")
+check(same(values(app_scene.GetPointData().GetArray("GaussianId")), h5_log["id"]),
+      "scene: GaussianId is the last snapshot's id")
+for column, dataset in (("PSNR", "metrics/psnr"), ("TestPSNR", "metrics/test/psnr"),
+                        ("SSIM", "metrics/ssim"), ("Iteration", "metrics/iteration")):
+    check(same(values(app_metrics.GetColumnByName(column)), h5_log[dataset]),
+          f"metrics: {column} is the log's {dataset}")
+check(app_vertices.GetNumberOfRows() == h5_log["vertices"],
+      f"tree: {app_vertices.GetNumberOfRows()} vertices, expected 1 + initial + births = "
+      f"{h5_log['vertices']}")
+
+if failures:
+    for f in failures:
+        print("FAILED: " + f)
+    sys.exit(1)
+print(f"the application's view inputs equal the script's: {app_scene.GetNumberOfPoints()} "
+      f"Gaussians with {app_scene.GetPointData().GetNumberOfArrays()} arrays, "
+      f"{tree.GetNumberOfVertices()} tree vertices, {app_metrics.GetNumberOfRows()} metrics rows")

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Vis4GSPipeline.h
+ * @brief Running the VTK readers and filters from the commands: VTK algorithms report errors
+ * (ErrorEvent) rather than throw, so the commands collect the messages to throw or show them.
+ */
+#ifndef Vis4GSPipeline_h
+#define Vis4GSPipeline_h
+
+#include "vtkCallbackCommand.h"
+#include "vtkNew.h"
+
+#include <string>
+
+class vtkAlgorithm;
+
+/// Collects the error messages @p algorithm reports while this lives (they still go to VTK's
+/// output window too).
+class Vis4GSErrorCollector
+{
+public:
+  explicit Vis4GSErrorCollector(vtkAlgorithm* algorithm);
+  ~Vis4GSErrorCollector();
+  Vis4GSErrorCollector(const Vis4GSErrorCollector&) = delete;
+  Vis4GSErrorCollector& operator=(const Vis4GSErrorCollector&) = delete;
+  /// The messages so far, separated by "; " (empty: none).
+  const std::string& GetMessages() const { return this->Messages; }
+
+private:
+  vtkAlgorithm* Algorithm;
+  vtkNew<vtkCallbackCommand> Callback;
+  unsigned long Tag = 0;
+  std::string Messages;
+};
+
+/// Updates output @p port of @p algorithm; returns the errors it reported (empty: success).
+std::string Vis4GSUpdate(vtkAlgorithm* algorithm, int port = 0);
+
+#endif
