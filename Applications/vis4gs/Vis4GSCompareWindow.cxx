@@ -3,7 +3,7 @@
 
 #include "Vis4GSComparison.h"
 
-#include "vtkGaussianCameraUtilities.h"
+#include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineChart.h"
@@ -11,10 +11,10 @@
 #include "vtkGaussianTrainingLogReader.h"
 
 #include "QVTKOpenGLNativeWidget.h"
-#include "vtkActor.h"
 #include "vtkBoundingBox.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkDataArray.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInteractorStyleTrackballCamera.h"
@@ -56,41 +56,15 @@
 
 namespace
 {
-// One scene view of the comparison: its widget, render window, renderer and splat mapper.
-// Kept to this one struct so that a reusable scene view class can replace it.
-struct CompareSceneView
+// One side of the comparison: its title and widget, drawn by a scene view.
+struct CompareSide
 {
-  QVTKOpenGLNativeWidget* Widget = nullptr;
   QLabel* Title = nullptr;
+  QVTKOpenGLNativeWidget* Widget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> Window;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkGaussianSplatMapper> Mapper;
-  vtkNew<vtkActor> Actor;
+  vtkNew<vtkGaussianSceneView> View;
   vtkMTimeType RenderedCamera = 0; ///< the shared camera's MTime when this view last rendered
   int Renders = 0;
-
-  QWidget* Setup(QWidget* parent, vtkCamera* shared)
-  {
-    auto* box = new QWidget(parent);
-    auto* layout = new QVBoxLayout(box);
-    layout->setContentsMargins(0, 0, 0, 0);
-    this->Title = new QLabel(box);
-    this->Widget = new QVTKOpenGLNativeWidget(box);
-    this->Widget->setRenderWindow(this->Window);
-    this->Widget->setMinimumSize(200, 150);
-    this->Window->SetMultiSamples(0);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0, 0, 0);
-    this->Renderer->SetActiveCamera(shared);
-    this->Actor->SetMapper(this->Mapper);
-    this->Renderer->AddActor(this->Actor);
-    this->Mapper->SetHighlightColor(1.0, 0.9, 0.0); // no overlay colour is yellow
-    vtkNew<vtkInteractorStyleTrackballCamera> style;
-    this->Window->GetInteractor()->SetInteractorStyle(style);
-    layout->addWidget(this->Title);
-    layout->addWidget(this->Widget, 1);
-    return box;
-  }
 };
 
 // Pixels of @p image whose strongest channel is @p rgb's by a margin (blending keeps the hue
@@ -117,8 +91,8 @@ std::array<long long, 2> CountPixels(const QImage& image, const std::array<unsig
 struct Vis4GSCompareWindow::Internals
 {
   vtkNew<vtkGaussianSelectionHub> Hub;
-  vtkNew<vtkCamera> Camera; // the one camera of both scene views
-  CompareSceneView Views[2];
+  CompareSide Views[2];
+  vtkCamera* Camera = nullptr; // the one camera of both scene views (view A's)
   bool Syncing = false;
   QVTKOpenGLNativeWidget* TimelineWidget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> TimelineWindow;
@@ -131,6 +105,7 @@ struct Vis4GSCompareWindow::Internals
   QDoubleSpinBox* Thresholds[3] = { nullptr, nullptr, nullptr };
   QListWidget* Sets = nullptr;
   QCheckBox* DimUnselected = nullptr;
+  QCheckBox* Frustums = nullptr;
   QLabel* Summary = nullptr;
   bool SelfTest = false;
   QString SelfTestDir;
@@ -161,10 +136,37 @@ void Vis4GSCompareWindow::BuildUi()
   auto* views = new QSplitter(Qt::Horizontal);
   for (int side = 0; side < 2; ++side)
   {
-    CompareSceneView& v = d->Views[side];
-    views->addWidget(v.Setup(views, d->Camera));
-    v.Title->setText(side == 0 ? "A" : "B");
-    d->Hub->AddRenderWindow(v.Window);
+    CompareSide& v = d->Views[side];
+    auto* box = new QWidget(views);
+    auto* layout = new QVBoxLayout(box);
+    layout->setContentsMargins(0, 0, 0, 0);
+    v.Title = new QLabel(side == 0 ? "A" : "B", box);
+    v.Widget = new QVTKOpenGLNativeWidget(box);
+    v.Widget->setRenderWindow(v.Window);
+    v.Widget->setMinimumSize(200, 150);
+    v.Window->SetMultiSamples(0);
+    vtkNew<vtkInteractorStyleTrackballCamera> style;
+    v.Window->GetInteractor()->SetInteractorStyle(style);
+    layout->addWidget(v.Title);
+    layout->addWidget(v.Widget, 1);
+    views->addWidget(box);
+    vtkGaussianSceneView* view = v.View;
+    view->SetRenderWindow(v.Window);
+    view->SetInteractor(v.Window->GetInteractor());
+    view->SetSelectionHub(d->Hub);
+    view->SetMaximumNumberOfSplats(0); // both states in full, as compared
+    view->SetDimUnselected(true);
+    view->SetShowFrustums(false);
+    view->GetSplatMapper()->SetHighlightColor(1.0, 0.9, 0.0); // no overlay colour is yellow
+    if (side == 0)
+    {
+      d->Camera = view->GetRenderer()->GetActiveCamera();
+    }
+    else // (the markers' layer draws through the same camera)
+    {
+      view->GetRenderer()->SetActiveCamera(d->Camera);
+      view->GetMarkerRenderer()->SetActiveCamera(d->Camera);
+    }
     // The camera is shared; a view that rendered a camera change renders the other view too
     // (once: the other view's render does not call back while syncing).
     vtkNew<vtkCallbackCommand> sync;
@@ -175,7 +177,7 @@ void Vis4GSCompareWindow::BuildUi()
         auto* self = static_cast<Vis4GSCompareWindow*>(client);
         Internals& in = *self->d;
         const int from = caller == in.Views[0].Window.GetPointer() ? 0 : 1;
-        CompareSceneView& other = in.Views[1 - from];
+        CompareSide& other = in.Views[1 - from];
         in.Views[from].RenderedCamera = in.Camera->GetMTime();
         ++in.Views[from].Renders;
         if (!in.Syncing && other.RenderedCamera < in.Camera->GetMTime())
@@ -233,6 +235,15 @@ void Vis4GSCompareWindow::BuildUi()
   d->DimUnselected = new QCheckBox("Dim unselected Gaussians", panel);
   d->DimUnselected->setChecked(true);
   form->addRow(d->DimUnselected);
+  auto* mode = new QComboBox(panel);
+  mode->addItems({ "Single (click)", "Brush (drag)", "Frame (drag)", "Ray (click)" });
+  mode->setToolTip("The mouse's selection in either view (Shift adds, Ctrl subtracts); it "
+                   "selects the same Gaussians (by id) in both");
+  form->addRow("Select", mode);
+  d->Frustums = new QCheckBox("Training cameras", panel);
+  d->Frustums->setToolTip("The frustums of the training cameras, coloured by how many selected "
+                          "Gaussians each one sees");
+  form->addRow(d->Frustums);
   auto* clear = new QPushButton("Clear selection", panel);
   auto* reset = new QPushButton("Reset camera", panel);
   auto* zoom = new QPushButton("Zoom to selection", panel);
@@ -248,7 +259,38 @@ void Vis4GSCompareWindow::BuildUi()
 
   connect(apply, &QPushButton::clicked, this, [this] { this->Recompare(); });
   connect(d->Overlay, &QComboBox::currentTextChanged, this, [this] { this->UpdateOverlay(); });
-  connect(d->DimUnselected, &QCheckBox::toggled, this, [this] { this->OnSelectionChanged(); });
+  connect(d->DimUnselected,
+    &QCheckBox::toggled,
+    this,
+    [this](bool dim)
+    {
+      for (CompareSide& v : d->Views)
+      {
+        v.View->SetDimUnselected(dim);
+        v.View->Render();
+      }
+    });
+  connect(d->Frustums,
+    &QCheckBox::toggled,
+    this,
+    [this](bool show)
+    {
+      for (CompareSide& v : d->Views)
+      {
+        v.View->SetShowFrustums(show);
+        v.View->Render();
+      }
+    });
+  connect(mode,
+    QOverload<int>::of(&QComboBox::currentIndexChanged),
+    this,
+    [this](int k)
+    {
+      for (CompareSide& v : d->Views)
+      {
+        v.View->SetSelectionMode(k);
+      }
+    });
   connect(d->Sets,
     &QListWidget::itemClicked,
     this,
@@ -260,8 +302,8 @@ void Vis4GSCompareWindow::BuildUi()
     this,
     [this]
     {
-      d->Views[0].Renderer->ResetCamera();
-      d->Views[0].Window->Render();
+      d->Views[0].View->GetRenderer()->ResetCamera();
+      d->Views[0].View->Render();
     });
   d->HubCommand->SetClientData(this);
   d->HubCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
@@ -375,9 +417,9 @@ vtkGaussianTimelineView* Vis4GSCompareWindow::GetTimelineView()
 }
 
 //------------------------------------------------------------------------------
-vtkRenderer* Vis4GSCompareWindow::GetRenderer(int side)
+vtkGaussianSceneView* Vis4GSCompareWindow::GetSceneView(int side)
 {
-  return d->Views[side == 0 ? 0 : 1].Renderer;
+  return d->Views[side == 0 ? 0 : 1].View;
 }
 
 //------------------------------------------------------------------------------
@@ -424,21 +466,29 @@ void Vis4GSCompareWindow::OnLoaded(std::shared_ptr<Vis4GSComparison> c, const QS
     d->HistoryLog = vtkSmartPointer<vtkGaussianTrainingLogReader>::New();
     d->HistoryLog->SetFileName(c->A.Path.c_str());
   }
+  // The states share the cameras; B's when A has none.
+  d->Views[0].View->SetCameras(c->A.Cameras ? c->A.Cameras : c->B.Cameras);
+  d->Views[1].View->SetCameras(c->B.Cameras ? c->B.Cameras : c->A.Cameras);
   this->Recompare();
-  // The first training camera when there is one (the states share the cameras), else a view
-  // of the whole of A.
-  if (!c->A.Cameras ||
-    !vtkGaussianCameraUtilities::JumpToCamera(d->Views[0].Renderer, c->A.Cameras, 0))
-  {
-    d->Views[0].Renderer->ResetCamera();
-  }
-  d->Views[0].Renderer->ResetCameraClippingRange();
-  d->Views[0].Window->Render();
+  this->ShowFirstCamera();
   d->TimelineWindow->Render();
   if (d->SelfTest)
   {
     QTimer::singleShot(200, this, [this] { QApplication::exit(this->RunSelfTest() ? 0 : 1); });
   }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCompareWindow::ShowFirstCamera()
+{
+  // The first training camera when there is one, else a view of the whole of A.
+  vtkGaussianSceneView* view = d->Views[0].View;
+  if (!view->JumpToCamera(0))
+  {
+    view->GetRenderer()->ResetCamera();
+    view->GetRenderer()->ResetCameraClippingRange();
+  }
+  view->Render();
 }
 
 //------------------------------------------------------------------------------
@@ -496,10 +546,10 @@ void Vis4GSCompareWindow::UpdateOverlay()
   const bool differences = d->Overlay->currentIndex() == 0;
   for (int side = 0; side < 2; ++side)
   {
-    d->Views[side].Mapper->SetInputData(
+    d->Views[side].View->SetScene(
       differences ? c->Overlay(side) : (side == 0 ? c->A.Scene : c->B.Scene));
+    d->Views[side].View->Render();
   }
-  this->OnSelectionChanged();
 }
 
 //------------------------------------------------------------------------------
@@ -540,9 +590,10 @@ bool Vis4GSCompareWindow::ZoomToSelection()
   }
   double bounds[6];
   box.GetBounds(bounds);
-  d->Views[0].Renderer->ResetCamera(bounds); // keeps the direction of view
-  d->Views[0].Renderer->ResetCameraClippingRange();
-  d->Views[0].Window->Render();
+  vtkRenderer* renderer = d->Views[0].View->GetRenderer();
+  renderer->ResetCamera(bounds); // keeps the direction of view
+  renderer->ResetCameraClippingRange();
+  d->Views[0].View->Render();
   return true;
 }
 
@@ -562,12 +613,6 @@ void Vis4GSCompareWindow::OnSelectionChanged()
     d->HistoryLog->GetPropertyHistory(first, history);
   }
   d->Timeline->SetHistory(history);
-  for (CompareSceneView& v : d->Views)
-  {
-    v.Mapper->SetSelectedIds(ids->GetNumberOfTuples() > 0 ? ids.GetPointer() : nullptr);
-    v.Mapper->SetDimUnselected(d->DimUnselected->isChecked());
-    v.Window->Render();
-  }
   if (ids->GetNumberOfTuples() == 0)
   {
     d->Sets->clearSelection();
@@ -621,8 +666,10 @@ bool Vis4GSCompareWindow::RunSelfTest()
 
   // 2. One camera: a drag in view A moves view B's camera and renders B.
   {
-    check(d->Views[0].Renderer->GetActiveCamera() == d->Views[1].Renderer->GetActiveCamera(),
-      "both scene views draw through one camera");
+    vtkCamera* camera = d->Views[0].View->GetRenderer()->GetActiveCamera();
+    check(camera == d->Camera && d->Views[1].View->GetRenderer()->GetActiveCamera() == camera &&
+        d->Views[1].View->GetMarkerRenderer()->GetActiveCamera() == camera,
+      "both scene views (and their markers) draw through one camera");
     const QImage before = grab(1);
     double position[3];
     d->Camera->GetPosition(position);
@@ -639,7 +686,7 @@ bool Vis4GSCompareWindow::RunSelfTest()
     }
     iren->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
     double moved[3];
-    d->Views[1].Renderer->GetActiveCamera()->GetPosition(moved);
+    d->Views[1].View->GetRenderer()->GetActiveCamera()->GetPosition(moved);
     const double distance =
       std::hypot(moved[0] - position[0], moved[1] - position[1], moved[2] - position[2]);
     check(distance > 0,
@@ -649,12 +696,7 @@ bool Vis4GSCompareWindow::RunSelfTest()
     const QImage after = grab(1);
     check(before.size() == after.size() && before != after, "view B's picture changed");
     // Back to the first view for the pictures.
-    if (!c.A.Cameras ||
-      !vtkGaussianCameraUtilities::JumpToCamera(d->Views[0].Renderer, c.A.Cameras, 0))
-    {
-      d->Views[0].Renderer->ResetCamera();
-    }
-    d->Views[0].Window->Render();
+    this->ShowFirstCamera();
   }
 
   // 3. The overlay: each view shows the colours of its sets; true colour differs.
@@ -696,12 +738,7 @@ bool Vis4GSCompareWindow::RunSelfTest()
         (side == 0 ? "A" : "B") + " (" + std::to_string(pixels) + " pixels, " +
         std::to_string(other) + " in the other view)");
   }
-  if (!c.A.Cameras ||
-    !vtkGaussianCameraUtilities::JumpToCamera(d->Views[0].Renderer, c.A.Cameras, 0))
-  {
-    d->Views[0].Renderer->ResetCamera();
-  }
-  d->Views[0].Window->Render();
+  this->ShowFirstCamera();
   d->Overlay->setCurrentIndex(1);
   const QImage trueA = grab(0);
   save(trueA, "compare-a-true-colour.png");
@@ -724,7 +761,7 @@ bool Vis4GSCompareWindow::RunSelfTest()
   this->SelectSet(both);
   for (int side = 0; side < 2; ++side)
   {
-    vtkIdTypeArray* ids = d->Views[side].Mapper->GetSelectedIds();
+    vtkIdTypeArray* ids = d->Views[side].View->GetSplatMapper()->GetSelectedIds();
     check(ids && static_cast<std::size_t>(ids->GetNumberOfTuples()) == c.Ids[both].size(),
       std::string("view ") + (side == 0 ? "A" : "B") + " highlights the " +
         Vis4GSComparison::SetName(both) + " set");
@@ -737,7 +774,32 @@ bool Vis4GSCompareWindow::RunSelfTest()
       std::string("view ") + (side == 0 ? "A" : "B") + "'s picture shows the selection");
   }
 
-  // 5. The timeline holds the runs' metric curves, named in the legend (hidden without any).
+  // 5. The scene views' selection modes go through the hub: a frame over the whole of view B
+  // selects what B draws, and view A highlights those of its Gaussians that have the same ids.
+  {
+    d->Hub->ClearSelection();
+    vtkGaussianSceneView* a = d->Views[0].View;
+    vtkGaussianSceneView* b = d->Views[1].View;
+    const int* size = b->GetRenderWindow()->GetSize();
+    const vtkIdType picked = b->SelectFrame(0, 0, size[0] - 1, size[1] - 1);
+    check(
+      picked > 0 && d->Hub->GetNumberOfSelectedIds() == picked && b->GetHighlightCount() == picked,
+      "a frame over view B selects the " + std::to_string(picked) + " Gaussians it draws");
+    vtkDataArray* idsA = c.A.Scene->GetPointData()->GetArray("GaussianId");
+    vtkIdType inA = 0;
+    for (vtkIdType row = 0; idsA && row < idsA->GetNumberOfTuples(); ++row)
+    {
+      inA += d->Hub->IsSelected(static_cast<vtkIdType>(idsA->GetTuple1(row)));
+    }
+    check(inA > 0 && a->GetHighlightCount() == inA,
+      "view A highlights the " + std::to_string(inA) + " of them that state A has");
+    const vtkIdType marked = a->GetMarkers()->GetNumberOfPoints();
+    check(marked == (inA <= a->GetMaximumNumberOfMarkers() ? inA : 0),
+      "view A marks a small selection's centres (" + std::to_string(marked) + " markers)");
+    d->Hub->ClearSelection();
+  }
+
+  // 6. The timeline holds the runs' metric curves, named in the legend (hidden without any).
   vtkGaussianTimelineView* t = d->Timeline;
   const bool curves = c.A.Metrics || c.B.Metrics;
   check(d->TimelineWidget->isVisible() == curves,

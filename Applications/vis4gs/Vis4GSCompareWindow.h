@@ -8,9 +8,9 @@
  * select their Gaussians in both views through one vtkGaussianSelectionHub, and the metric
  * curves of both runs in the timeline view.
  *
- * A thin Qt shell: the states and sets are Vis4GSComparison's; each scene view is one small
- * struct (render window, renderer, splat mapper) meant to be replaced by a reusable scene
- * view class.
+ * A thin Qt shell: the states and sets are Vis4GSComparison's; each state is drawn by a
+ * vtkGaussianSceneView (the main window's view A) on the window's hub, so the selection modes,
+ * markers, dimming and camera frustums are the scene view's.
  */
 #ifndef Vis4GSCompareWindow_h
 #define Vis4GSCompareWindow_h
@@ -21,9 +21,9 @@
 #include <vector>
 
 struct Vis4GSComparison;
+class vtkGaussianSceneView;
 class vtkGaussianSelectionHub;
 class vtkGaussianTimelineView;
-class vtkRenderer;
 
 class Vis4GSCompareWindow : public QMainWindow
 {
@@ -65,12 +65,13 @@ public:
 
   vtkGaussianSelectionHub* GetHub();
   vtkGaussianTimelineView* GetTimelineView();
-  /// The scene view of state @p side (0: A, 1: B).
-  vtkRenderer* GetRenderer(int side);
+  /// The scene view of state @p side (0: A, 1: B); both draw through view A's camera.
+  vtkGaussianSceneView* GetSceneView(int side);
 
 private:
   void BuildUi();
   void OnLoaded(std::shared_ptr<Vis4GSComparison> comparison, const QString& error);
+  void ShowFirstCamera();
   void Recompare();
   void UpdateOverlay();
   void OnSelectionChanged();
