@@ -2,7 +2,7 @@
 /**
  * @file MultiViewData.h
  * @brief Internal to Core/Render: the buffers of MultiViewRenderer, shared by its projection
- * and compositing (Rasterizer.cxx) and its footprint pass (Footprint.cxx). Not installed.
+ * and compositing (RasterCompositing.cxx) and its footprint pass (Footprint.cxx). Not installed.
  */
 #ifndef vis4gs_MultiViewData_h
 #define vis4gs_MultiViewData_h
@@ -22,16 +22,6 @@ struct MultiViewPrepared
   std::vector<float> X, Y, Z, S00, S01, S02, S11, S12, S22, Opacity;
   std::vector<float> Color; ///< 3 per Gaussian when the colour is view-independent (degree 0)
   std::vector<std::int32_t> Valid; ///< -1 finite parameters, 0 not (or padding)
-};
-
-/// The rasteriser's float parameters of a view.
-struct MultiViewCamera
-{
-  int W, H, Gx, Gy;
-  float V[12];
-  float F0[4], F1[4], F3[4];
-  float LimX, LimY, FocalX, FocalY;
-  float Center[3];
 };
 
 /// Per-Gaussian projection of one view (index order, padded to 16).
@@ -58,7 +48,7 @@ struct MultiViewRenderer::Data
   bool Colors = true;
   bool ViewIndependentColor = true;
   MultiViewPrepared Prepared;
-  MultiViewCamera Camera{};
+  PreparedView Camera{};
   ViewProjection<float> Frame; ///< the view's parameters (no Gaussians)
   MultiViewProjected Projected;
   ProjectionCounts Counts;
