@@ -18,6 +18,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <string>
 
 namespace vis4gs
 {
@@ -322,8 +323,8 @@ TEST_F(DemoLogRemoval, FloaterInFrontOfATestView)
   const RemovalEffect all = this->Measure(this->Rule("views<=3"));
   const RemovalViewEffect& gain = all.Views.back();
   ASSERT_EQ(gain.Split, CameraSplit::Test);
-  const std::vector<std::uint8_t> seen = VisibleInView(
-    this->Cloud, this->Cameras[gain.CameraIndex], FootprintMode::Rasterizer, 0);
+  const std::vector<std::uint8_t> seen =
+    VisibleInView(this->Cloud, this->Cameras[gain.CameraIndex], FootprintMode::Rasterizer, 0);
   const std::vector<std::uint8_t> weak = this->Rule("views<=3 and opacity>=0.1");
   std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < this->Cloud.Count; ++i)
@@ -358,9 +359,7 @@ TEST_F(DemoLogRemoval, FloaterInFrontOfATestView)
   }
   ASSERT_GE(bestId, 0);
   const RemovalEffect e = this->Measure(bestMask);
-  std::cout << "Gaussian " << bestId << " in front of " << gain.Name << ", "
-            << this->Scores.ViewsUsed << " training views used: ";
-  Print("", e);
+  Print(("Gaussian " + std::to_string(bestId) + " in front of " + gain.Name).c_str(), e);
   ASSERT_EQ(e.Removed, 1u);
   const RemovalViewEffect* test = Find(e, gain.Name);
   ASSERT_TRUE(test && test->Affected);
@@ -399,9 +398,10 @@ TEST_F(DemoLogRemoval, CaseStudyFloaterIsFittedToItsViews)
   std::vector<std::uint8_t> mask(this->Cloud.Count, 0);
   mask[floater] = 1;
   const RemovalEffect e = this->Measure(mask);
-  std::cout << "Gaussian " << this->Cloud.GetId(floater) << ", View Coverage "
-            << coverage[floater] << ": ";
-  Print("", e);
+  Print(("Gaussian " + std::to_string(this->Cloud.GetId(floater)) + ", View Coverage " +
+          std::to_string(coverage[floater]))
+          .c_str(),
+    e);
   ASSERT_EQ(e.Removed, 1u);
   const std::size_t views =
     static_cast<std::size_t>(std::lround(coverage[floater] * this->Scores.ViewsUsed));
