@@ -6,7 +6,7 @@ holds exactly the Gaussians not selected, before-after.csv has the direction the
 expects, its rows are sorted worst change first, unchanged views are identical, and the
 report embeds the before/after images (valid PNGs of the views' size).
 
-Usage: CleanupReport.py OUTPUT_DIR CASE   CASE: floaters | surface
+Usage: CleanupReport.py OUTPUT_DIR CASE LOG   CASE: floaters | surface; LOG: the analysed log
   floaters  rule "views<=3": training PSNR down, test PSNR up (Gaussians fitted to few views)
   surface   rule "coverage>=0.9 and opacity>=0.9" (the opaque Gaussians nearly every training
             view sees: the surfaces): training and test PSNR down, training L1 up
@@ -18,6 +18,7 @@ import re
 import struct
 import sys
 
+import h5py
 import numpy as np
 
 
@@ -39,7 +40,7 @@ def png_size(raw):
     return struct.unpack(">II", raw[16:24])
 
 
-def main(folder, case):
+def main(folder, case, log):
     problems = []
 
     def check(ok, what):
@@ -103,9 +104,11 @@ def main(folder, case):
     images = re.findall(r'src="data:image/png;base64,([^"]+)"', section)
     check(len(images) >= 4 and len(images) % 4 == 0,
           f"the report embeds image/before/after/change per view ({len(images)} images)")
+    with h5py.File(log, "r") as f:
+        sizes = set(zip(f["cameras/width"][()].tolist(), f["cameras/height"][()].tolist()))
     for raw in images:
-        if png_size(base64.b64decode(raw)) != (128, 128):
-            check(False, "an embedded image is not a 128x128 PNG")
+        if png_size(base64.b64decode(raw)) not in sizes:
+            check(False, f"an embedded image is not a PNG of a view's size {sorted(sizes)}")
             break
     for name in os.listdir(folder):
         if name.startswith("cleanup-") and name.endswith(".png"):
@@ -118,4 +121,4 @@ def main(folder, case):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1], sys.argv[2]))
+    sys.exit(main(sys.argv[1], sys.argv[2], sys.argv[3]))

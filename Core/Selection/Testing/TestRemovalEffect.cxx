@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Before / after measurement of a removal (issue 20): planted cases whose direction is known.
 // A hand-built scene (a wall, a floater in front of it in one view, targets rendered without
-// the floater) and the embedded demo log (the floater 6995 of the user guide's case study, and
-// a Gaussian of a well-covered surface). Figures are checked against a plain PSNR loop.
+// the floater) and the embedded demo log (the floater of the user guide's case study, a floater
+// in front of a test view, the weakly seen Gaussians and a Gaussian of a well-covered surface,
+// each found by its scores).
+// Figures are checked against a plain PSNR loop.
+#include "FastCoverage.h"
 #include "RemovalEffect.h"
 #include "SelectionRule.h"
 #include "TrainingLogReader.h"
@@ -16,6 +19,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <string>
 
 namespace vis4gs
 {
@@ -200,8 +204,9 @@ TEST(RemovalEffect, PlantedFloaterAndSurface)
     MeasureRemovalEffect(s.Cloud, wall, s.Cameras, options, images), std::invalid_argument);
 }
 
-// Planted cases of the embedded demo log (last snapshot, 5226 Gaussians, 29 training and 6 test
-// views with their images).
+// Planted cases of the embedded demo log (last snapshot, 29 training and 6 test views with
+// their images), found by their scores rather than by id, so that a regenerated demo keeps
+// the tests.
 class DemoLogRemoval : public ::testing::Test
 {
 protected:
@@ -307,50 +312,122 @@ const RemovalViewEffect* Find(const RemovalEffect& e, const std::string& name)
   return nullptr;
 }
 
-// Gaussian 4310 (2 of 29 training views, opacity 0.26) hangs in front of the held-out view
-// test_030: deleting it raises that view's PSNR and SSIM and lowers its L1, and no view it
-// takes part in gets worse (measured: test_030 +0.050 dB; train_022, train_023 +0.0001,
-// +0.0003 dB; train_007 unchanged to 1e-4 dB).
+// The Gaussian of the weakly seen ones (at most 3 training views, opacity >= 0.1) whose
+// deletion helps a held-out view most, found by evidence: the test view that gains most when
+// the whole rule "views<=3" is deleted, then, among the rule's most opaque Gaussians that this
+// view sees, the one whose own deletion raises its PSNR most. It hangs in front of that test
+// view: deleting it raises the view's PSNR and SSIM and lowers its L1, and leaves the training
+// views it takes part in unchanged to 0.01 dB (figures printed by the test; the user guide
+// quotes them).
 TEST_F(DemoLogRemoval, FloaterInFrontOfATestView)
 {
-  const RemovalEffect e = this->Measure(this->Ids({ 4310 }));
-  Print("Gaussian 4310", e);
+  const RemovalEffect all = this->Measure(this->Rule("views<=3"));
+  const RemovalViewEffect& gain = all.Views.back();
+  ASSERT_EQ(gain.Split, CameraSplit::Test);
+  const std::vector<std::uint8_t> seen =
+    VisibleInView(this->Cloud, this->Cameras[gain.CameraIndex], FootprintMode::Rasterizer, 0);
+  const std::vector<std::uint8_t> weak = this->Rule("views<=3 and opacity>=0.1");
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < this->Cloud.Count; ++i)
+  {
+    if (weak[i] && seen[i])
+    {
+      candidates.push_back(i);
+    }
+  }
+  ASSERT_FALSE(candidates.empty());
+  std::stable_sort(candidates.begin(),
+    candidates.end(),
+    [this](std::size_t a, std::size_t b)
+    { return this->Cloud.OpacityLogits[a] > this->Cloud.OpacityLogits[b]; });
+  candidates.resize(std::min<std::size_t>(candidates.size(), 8));
+  double best = -1e300;
+  std::vector<std::uint8_t> bestMask;
+  std::int64_t bestId = -1;
+  for (std::size_t i : candidates)
+  {
+    std::vector<std::uint8_t> mask(this->Cloud.Count, 0);
+    mask[i] = 1;
+    const RemovalEffect e =
+      MeasureRemovalEffect(this->Cloud, mask, this->Cameras, this->Options, this->Images);
+    const RemovalViewEffect* test = Find(e, gain.Name);
+    if (test && test->PsnrChange() > best)
+    {
+      best = test->PsnrChange();
+      bestMask = mask;
+      bestId = this->Cloud.GetId(i);
+    }
+  }
+  ASSERT_GE(bestId, 0);
+  const RemovalEffect e = this->Measure(bestMask);
+  Print(("Gaussian " + std::to_string(bestId) + " in front of " + gain.Name).c_str(), e);
   ASSERT_EQ(e.Removed, 1u);
-  const RemovalViewEffect* test = Find(e, "test_030");
+  const RemovalViewEffect* test = Find(e, gain.Name);
   ASSERT_TRUE(test && test->Affected);
   EXPECT_GT(test->PsnrChange(), 0.01);
   EXPECT_GT(test->After.Ssim, test->Before.Ssim);
   EXPECT_LT(test->After.L1, test->Before.L1);
-  EXPECT_EQ(e.Test.AffectedViews, 1u);
   EXPECT_GT(e.Test.After.Psnr, e.Test.Before.Psnr);
-  EXPECT_EQ(e.Views.back().Name, "test_030"); // the largest gain is listed last
+  EXPECT_EQ(e.Views.back().Name, gain.Name); // the largest gain is listed last
   for (const RemovalViewEffect& v : e.Views)
   {
-    EXPECT_GE(v.PsnrChange(), -1e-4) << v.Name;
+    EXPECT_GE(v.PsnrChange(), -0.01) << v.Name;
   }
 }
 
-// The case study's floater, Gaussian 6995 (user guide): only train_028 sees it, and the trainer
-// fitted it to that view; no held-out view sees it. Deleting it changes nothing but train_028,
-// which loses a little (measured: 26.4316 -> 26.4005 dB): what the view that constrains a
-// floater says about it, and why the held-out views are the ones to judge a clean-up by.
-TEST_F(DemoLogRemoval, CaseStudyFloaterIsFittedToItsOnlyView)
+// The case study's floater (user guide, `vis4gs demo`'s root-cause trace): the visible
+// Gaussian (opacity >= 0.1) of lowest non-zero View Coverage, the first of the lowest. Few
+// training views see it and none of them needs it: deleting it changes no training view by
+// more than 0.01 dB, leaves every view that does not see it unchanged bit for bit, and a
+// held-out view gains: a floater that only a novel view reveals, and why the held-out views
+// are the ones to judge a clean-up by (figures printed; the user guide quotes them).
+TEST_F(DemoLogRemoval, CaseStudyFloaterSpoilsAHeldOutView)
 {
-  const RemovalEffect e = this->Measure(this->Ids({ 6995 }));
-  Print("Gaussian 6995", e);
+  (void)this->Rule("views<=3"); // computes the scores
+  const std::vector<double>& coverage = this->Scores.ViewCoverage;
+  std::size_t floater = this->Cloud.Count;
+  for (std::size_t i = 0; i < this->Cloud.Count; ++i)
+  {
+    const double opacity = 1.0 / (1.0 + std::exp(-this->Cloud.OpacityLogits[i]));
+    if (opacity >= 0.1 && coverage[i] > 0 &&
+      (floater == this->Cloud.Count || coverage[i] < coverage[floater]))
+    {
+      floater = i;
+    }
+  }
+  ASSERT_LT(floater, this->Cloud.Count);
+  ASSERT_LE(std::lround(coverage[floater] * this->Scores.ViewsUsed), 3);
+  std::vector<std::uint8_t> mask(this->Cloud.Count, 0);
+  mask[floater] = 1;
+  const RemovalEffect e = this->Measure(mask);
+  Print(("Gaussian " + std::to_string(this->Cloud.GetId(floater)) + ", View Coverage " +
+          std::to_string(coverage[floater]))
+          .c_str(),
+    e);
   ASSERT_EQ(e.Removed, 1u);
-  EXPECT_EQ(e.Train.AffectedViews, 1u);
-  EXPECT_EQ(e.Test.AffectedViews, 0u);
-  EXPECT_EQ(e.Views.front().Name, "train_028");
-  EXPECT_LT(e.Views.front().PsnrChange(), 0);
-  EXPECT_GT(e.Views.front().PsnrChange(), -0.1);
-  EXPECT_EQ(e.Test.After.Psnr, e.Test.Before.Psnr); // bit for bit: not rendered again
-  EXPECT_EQ(e.ViewsRendered, 1u);
+  const RemovalViewEffect& gain = e.Views.back();
+  EXPECT_EQ(gain.Split, CameraSplit::Test);
+  EXPECT_GT(gain.PsnrChange(), 0.01);
+  EXPECT_GT(e.Test.After.Psnr, e.Test.Before.Psnr);
+  for (const RemovalViewEffect& v : e.Views)
+  {
+    const std::vector<std::uint8_t> seen =
+      VisibleInView(this->Cloud, this->Cameras[v.CameraIndex], FootprintMode::Rasterizer, 0);
+    if (!seen[floater])
+    {
+      EXPECT_EQ(v.After.Psnr, v.Before.Psnr) << v.Name; // bit for bit
+    }
+    if (v.Split == CameraSplit::Train)
+    {
+      EXPECT_LT(std::abs(v.PsnrChange()), 0.01) << v.Name;
+    }
+  }
 }
 
-// The rule "views<=3" (the Gaussians at most 3 of 29 training views see): deleting them lowers
-// the training PSNR (they were fitted to those views) and raises the test PSNR (they spoil the
-// novel views): measured train 28.5476 -> 28.5403 dB, test 21.3088 -> 21.3173 dB.
+// The rule "views<=3" (the Gaussians at most 3 of the 29 training views see): deleting them
+// lowers the training PSNR (they were fitted to those views) and raises the test PSNR (they
+// spoil the novel views); the view that loses most is a training view, the one that gains most
+// a test view (figures printed; the user guide quotes them).
 TEST_F(DemoLogRemoval, WeaklySeenGaussiansOverfitTheirViews)
 {
   const RemovalEffect e = this->Measure(this->Rule("views<=3"));
@@ -358,13 +435,14 @@ TEST_F(DemoLogRemoval, WeaklySeenGaussiansOverfitTheirViews)
   EXPECT_GT(e.Removed, 50u);
   EXPECT_LT(e.Train.After.Psnr, e.Train.Before.Psnr);
   EXPECT_GT(e.Test.After.Psnr, e.Test.Before.Psnr);
-  EXPECT_EQ(e.Views.front().Name, "train_028");
-  EXPECT_EQ(e.Views.back().Name, "test_030");
+  EXPECT_EQ(e.Views.front().Split, CameraSplit::Train);
+  EXPECT_EQ(e.Views.back().Split, CameraSplit::Test);
 }
 
 // A Gaussian of a well-covered surface: the first of "coverage>=0.9 and opacity>=0.9 and volume
 // top 5%" (seen by every training view, opaque, among the largest). Deleting it lowers the PSNR of
-// the views that see it, training and test.
+// every training view that sees it; the held-out views, which it takes part in too, change far
+// less (measured on the demo: training -0.014 dB, test +0.0003 dB).
 TEST_F(DemoLogRemoval, SurfaceGaussianIsNeeded)
 {
   std::vector<std::uint8_t> mask = this->Rule("coverage>=0.9 and opacity>=0.9 and volume top 5%");
@@ -375,10 +453,12 @@ TEST_F(DemoLogRemoval, SurfaceGaussianIsNeeded)
   Print("surface Gaussian", e);
   EXPECT_EQ(e.Removed, 1u);
   EXPECT_EQ(e.Train.AffectedViews, e.Train.Views);
+  EXPECT_EQ(e.Test.AffectedViews, e.Test.Views);
   EXPECT_LT(e.Train.After.Psnr, e.Train.Before.Psnr);
-  EXPECT_LT(e.Test.After.Psnr, e.Test.Before.Psnr);
   EXPECT_GT(e.Train.After.L1, e.Train.Before.L1);
   EXPECT_LT(e.Views.front().PsnrChange(), -0.01);
+  EXPECT_LT(std::abs(e.Test.After.Psnr - e.Test.Before.Psnr),
+    std::abs(e.Train.After.Psnr - e.Train.Before.Psnr));
 }
 
 } // namespace vis4gs

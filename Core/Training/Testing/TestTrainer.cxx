@@ -624,6 +624,13 @@ TEST(Trainer, EmbeddedDemoLogIsConsistent)
   EXPECT_EQ(r.GetSnapshotShDegree(2000), 3);
   EXPECT_EQ(r.GetSnapshotShDegree(1000), 0);
   EXPECT_EQ(r.GetImageNames().size(), 35u);
+  // What the demo promises (issue 21): views like a capture's, tens of thousands of Gaussians.
+  for (const Camera& camera : r.ReadCameras())
+  {
+    EXPECT_GE(camera.Width, 512) << camera.Name;
+    EXPECT_GE(camera.Height, 512) << camera.Name;
+  }
+  EXPECT_GE(r.ReadSnapshot(2000).Count, 20000u);
   const MetricsTable train = r.ReadMetrics(false), test = r.ReadMetrics(true);
   ASSERT_EQ(train.Size(), 21u);
   EXPECT_GT(train.Psnr.back(), 25.0);

@@ -3,7 +3,7 @@
     import vis4gs
     scene = vis4gs.open("Data/Demo/vis4gs-demo.h5", iteration=600)
     scores = scene.scores(["coverage", "blur", "needle"])   # numpy arrays by short name
-    for step in scene.lineage(6993): print(step)            # back to its root
+    for step in scene.lineage(25704): print(step)            # back to its root
     scene.select(mask=scores["coverage"] < 0.1).save("floaters.ply")
     scene.render("view.png", camera=0)
 

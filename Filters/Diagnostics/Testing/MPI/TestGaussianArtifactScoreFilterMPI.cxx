@@ -18,6 +18,7 @@
 
 #include "ArtifactScores.h"
 #include "ImageIO.h"
+#include "LossMap.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 
@@ -30,6 +31,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -138,6 +140,10 @@ Scene RandomStiffScene(const std::filesystem::path& folder)
   return s;
 }
 
+// The demo log's last snapshot with its views at a quarter of their size (512x512 -> 128x128,
+// Camera::Resized keeps the field of view; the images box-filtered): what is compared here is
+// the distribution over processes, not the resolution, and the full-size scores of every
+// configuration on 2 and 3 processes would take minutes.
 Scene DemoLog(const std::string& path, const std::filesystem::path& folder)
 {
   Scene s;
@@ -148,18 +154,22 @@ Scene DemoLog(const std::string& path, const std::filesystem::path& folder)
   int logged = 0;
   s.Cloud = log.ReadNearestSnapshot(log.GetSnapshotIterations().back(), options, &logged);
   s.Cameras = log.ReadCameras();
+  const int factor = 4;
   for (vis4gs::Camera& c : s.Cameras)
   {
-    const std::string prefix = "/images/";
-    if (c.ImagePath.rfind(prefix, 0) == 0)
+    const int width = std::max(1, c.Width / factor), height = std::max(1, c.Height / factor);
+    const std::string prefix = "/images/", image = c.ImagePath;
+    c = c.Resized(width, height);
+    if (image.rfind(prefix, 0) == 0)
     {
-      const std::string name = c.ImagePath.substr(prefix.size());
+      const std::string name = image.substr(prefix.size());
       const auto file = folder / ("demo-" + name + ".png");
       if (Rank == 0)
       {
-        int width = 0, height = 0;
-        const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
-        vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+        int w = 0, h = 0;
+        const std::vector<unsigned char> pixels = log.ReadImage(name, w, h);
+        vis4gs::WritePng(file.string(),
+          vis4gs::BoxDownsample(vis4gs::ImageFromBytes(pixels.data(), w, h, 3), width, height));
       }
       c.ImagePath = file.string();
     }
