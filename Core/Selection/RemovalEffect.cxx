@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "RemovalEffect.h"
 
-#include "Loss.h"
 #include "RasterInternal.h"
 
 #include <algorithm>
@@ -34,14 +33,13 @@ RasterSettings Settings(const RemovalEffectOptions& options)
   return s;
 }
 
-ViewMetrics Measure(const Image& render, const Image& target, int threads)
+// Every figure is measured per tile, so that a view re-measured in part (RemeasureViewTiles)
+// and one measured whole give the same bits.
+ViewMetrics Measure(const RasterImage<float>& render, const Image& target, int threads)
 {
-  ViewMetrics m;
-  const std::size_t count = render.Pixels.size();
-  m.Psnr = Psnr(render.Pixels.data(), target.Pixels.data(), count);
-  m.Ssim = Ssim(render.Pixels.data(), target.Pixels.data(), render.Width, render.Height, threads);
-  m.L1 = L1Loss(render.Pixels.data(), target.Pixels.data(), count);
-  return m;
+  return MeasureViewTiles(
+    render.Color.data(), target.Pixels.data(), render.Width, render.Height, threads)
+    .Metrics();
 }
 
 // The image of view @p index, or false; throws when its size is not the camera's.
@@ -97,6 +95,130 @@ void FinishTotals(RemovalTotals& totals)
       m->L1 /= n;
     }
   }
+}
+
+// Culls every visible Gaussian of @p projection whose tile rectangle meets no tile of
+// @p tiles: binned and composited, the chosen tiles' lists are then those of the full render
+// (same Gaussians, same order), so their pixels are the full render's, bit for bit.
+void KeepTiles(ViewProjection<float>& projection, const std::vector<std::uint8_t>& tiles)
+{
+  const int tx = projection.TilesX, ty = projection.TilesY;
+  // Summed-area table of the chosen tiles: one lookup per Gaussian.
+  std::vector<std::uint32_t> area(static_cast<std::size_t>(tx + 1) * (ty + 1), 0);
+  for (int y = 0; y < ty; ++y)
+  {
+    for (int x = 0; x < tx; ++x)
+    {
+      area[(y + 1) * static_cast<std::size_t>(tx + 1) + x + 1] =
+        (tiles[static_cast<std::size_t>(y) * tx + x] ? 1u : 0u) +
+        area[y * static_cast<std::size_t>(tx + 1) + x + 1] +
+        area[(y + 1) * static_cast<std::size_t>(tx + 1) + x] -
+        area[y * static_cast<std::size_t>(tx + 1) + x];
+    }
+  }
+  auto at = [&](int x, int y) { return area[y * static_cast<std::size_t>(tx + 1) + x]; };
+  std::size_t culled = 0;
+  for (ProjectedGaussian<float>& g : projection.Gaussians)
+  {
+    if (!g.IsVisible())
+    {
+      continue;
+    }
+    const int* r = g.TileRect;
+    if (at(r[2], r[3]) - at(r[0], r[3]) - at(r[2], r[1]) + at(r[0], r[1]) == 0)
+    {
+      g.Status = ProjectionStatus::OffScreen;
+      g.Radius = 0;
+      ++culled;
+    }
+  }
+  projection.Counts.Visible -= culled;
+  projection.Counts.OffScreen += culled;
+}
+
+// Rasterize() of the tiles where @p tiles is non-zero; other pixels hold a partial render.
+void RasterizeTiles(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  const std::vector<std::uint8_t>& tiles,
+  RasterWorkspace<float>& workspace)
+{
+  ProjectGaussians(
+    cloud, camera, settings, workspace.Projection, workspace.Prepared, workspace.CloudVersion);
+  KeepTiles(workspace.Projection, tiles);
+  BinGaussians(workspace.Projection, settings.Threads, workspace.Bins, workspace.Scratch);
+  CompositeTiles(workspace.Projection,
+    workspace.Bins,
+    settings,
+    workspace.Image,
+    nullptr,
+    nullptr,
+    &workspace.Composite,
+    false);
+}
+
+// The tiles whose lists hold a Gaussian visible in @p projection (the removed ones).
+std::vector<std::uint8_t> ListedTiles(const ViewProjection<float>& projection)
+{
+  std::vector<std::uint8_t> tiles(
+    static_cast<std::size_t>(projection.TilesX) * projection.TilesY, 0);
+  for (const ProjectedGaussian<float>& g : projection.Gaussians)
+  {
+    if (g.IsVisible())
+    {
+      for (int y = g.TileRect[1]; y < g.TileRect[3]; ++y)
+      {
+        std::fill_n(&tiles[static_cast<std::size_t>(y) * projection.TilesX + g.TileRect[0]],
+          g.TileRect[2] - g.TileRect[0],
+          std::uint8_t(1));
+      }
+    }
+  }
+  return tiles;
+}
+
+void CheckTileBaseline(const RemovalBaseline& baseline,
+  const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster)
+{
+  if (baseline.Views.empty())
+  {
+    return;
+  }
+  auto fail = [](const std::string& what)
+  { throw std::invalid_argument("MeasureRemovalEffect: the tile baseline " + what); };
+  if (baseline.Views.size() != cameras.size())
+  {
+    fail("has " + std::to_string(baseline.Views.size()) + " views for " +
+      std::to_string(cameras.size()) + " cameras");
+  }
+  if (baseline.Gaussians != cloud.Count)
+  {
+    fail("was measured on " + std::to_string(baseline.Gaussians) + " Gaussians, not " +
+      std::to_string(cloud.Count));
+  }
+  if (baseline.Background != raster.Background || baseline.ShDegree != raster.ShDegree ||
+    baseline.ScaleModifier != raster.ScaleModifier)
+  {
+    fail("was rendered with another background, SH degree or scale modifier");
+  }
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    const ViewTileSums& t = baseline.Views[v];
+    if (!t.Empty() && (t.Width != cameras[v].Width || t.Height != cameras[v].Height))
+    {
+      fail("of camera " + cameras[v].Name + " is " + std::to_string(t.Width) + "x" +
+        std::to_string(t.Height) + ", the camera " + std::to_string(cameras[v].Width) + "x" +
+        std::to_string(cameras[v].Height));
+    }
+  }
+}
+
+std::size_t CountTiles(const std::vector<std::uint8_t>& tiles)
+{
+  return static_cast<std::size_t>(
+    std::count_if(tiles.begin(), tiles.end(), [](std::uint8_t t) { return t != 0; }));
 }
 
 // The sort key: identical renders of a perfect view (PSNR +inf before and after) did not change.
@@ -200,9 +322,89 @@ std::vector<ViewMetrics> MeasureViewMetrics(const GaussianCloud& cloud,
       continue;
     }
     Rasterize(cloud, cameras[v], settings, workspace);
-    metrics[v] = Measure(ClampedImage(workspace.Image), target, threads);
+    metrics[v] = Measure(workspace.Image, target, threads);
   }
   return metrics;
+}
+
+//------------------------------------------------------------------------------
+std::size_t RemovalBaseline::MeasuredViews() const
+{
+  return static_cast<std::size_t>(std::count_if(
+    this->Views.begin(), this->Views.end(), [](const ViewTileSums& v) { return !v.Empty(); }));
+}
+
+namespace
+{
+RemovalBaseline EmptyBaseline(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster)
+{
+  RemovalBaseline baseline;
+  baseline.Views.assign(cameras.size(), ViewTileSums{});
+  baseline.Gaussians = cloud.Count;
+  baseline.Background = raster.Background;
+  baseline.ShDegree = raster.ShDegree;
+  baseline.ScaleModifier = raster.ScaleModifier;
+  return baseline;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+bool RecordRemovalBaseline(ScoreSettings& settings,
+  const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  RemovalBaseline& baseline)
+{
+  if (settings.LossResolution != 1)
+  {
+    return false;
+  }
+  baseline = EmptyBaseline(cloud, cameras, settings.Raster);
+  RemovalBaseline* out = &baseline;
+  const int threads = settings.Threads;
+  ScoreViewRendered earlier = settings.ViewRendered;
+  settings.ViewRendered =
+    [out, threads, earlier](
+      std::size_t index, const Camera& view, const RasterImage<float>& render, const Image& image)
+  {
+    if (earlier)
+    {
+      earlier(index, view, render, image);
+    }
+    if (index < out->Views.size() && render.Width == view.Width && render.Height == view.Height)
+    {
+      out->Views[index] = MeasureViewTiles(
+        render.Color.data(), image.Pixels.data(), view.Width, view.Height, threads);
+    }
+  };
+  return true;
+}
+
+//------------------------------------------------------------------------------
+RemovalBaseline MeasureRemovalBaseline(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RemovalEffectOptions& options,
+  const TrainingImageProvider& images)
+{
+  RemovalBaseline baseline = EmptyBaseline(cloud, cameras, options.Raster);
+  const RasterSettings settings = Settings(options);
+  RasterWorkspace<float> workspace;
+  Image target;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    if (!Wanted(cameras[v], options) || !LoadTarget(images, v, cameras[v], target))
+    {
+      continue;
+    }
+    Rasterize(cloud, cameras[v], settings, workspace);
+    baseline.Views[v] = MeasureViewTiles(workspace.Image.Color.data(),
+      target.Pixels.data(),
+      cameras[v].Width,
+      cameras[v].Height,
+      options.Threads);
+  }
+  return baseline;
 }
 
 //------------------------------------------------------------------------------
@@ -233,6 +435,8 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
   RasterSettings cull = settings;
   cull.ComputeColors = false;
 
+  CheckTileBaseline(options.TileBaseline, cloud, cameras, options.Raster);
+
   RasterWorkspace<float> workspace;
   ViewProjection<float> projection;
   Image target;
@@ -247,6 +451,11 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
     view.CameraIndex = v;
     view.Name = camera.Name;
     view.Split = camera.Split;
+    const ViewTileSums* tiled =
+      options.TileBaseline.Views.empty() || options.TileBaseline.Views[v].Empty()
+      ? nullptr
+      : &options.TileBaseline.Views[v];
+    const bool known = tiled || !options.Baseline.empty();
     auto t0 = Clock::now();
     if (gone.Count > 0)
     {
@@ -254,11 +463,12 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       view.Affected = projection.Counts.Visible > 0;
     }
     effect.SecondsAfter += Since(t0);
-    if (!options.Baseline.empty() && !view.Affected)
+    if (known && !view.Affected)
     {
       // Nothing to render or read: the baseline is this view's figures, before and after.
-      view.HasImage = !std::isnan(options.Baseline[v].Psnr);
-      view.Before = view.After = options.Baseline[v];
+      const ViewMetrics m = tiled ? tiled->Metrics() : options.Baseline[v];
+      view.HasImage = !std::isnan(m.Psnr);
+      view.Before = view.After = m;
       effect.ViewsWithoutImage += view.HasImage ? 0 : 1;
       effect.Views.push_back(std::move(view));
       continue;
@@ -271,27 +481,52 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       continue;
     }
     t0 = Clock::now();
-    if (options.Baseline.empty())
+    // The "before" per tile: given, or measured on this render.
+    ViewTileSums sums;
+    if (tiled)
     {
-      Rasterize(cloud, camera, settings, workspace);
-      ++effect.ViewsRendered;
-      view.Before = Measure(ClampedImage(workspace.Image), target, threads);
+      sums = *tiled;
+      view.Before = sums.Metrics();
     }
-    else
+    else if (!options.Baseline.empty())
     {
       view.Before = options.Baseline[v];
     }
+    else
+    {
+      Rasterize(cloud, camera, settings, workspace);
+      ++effect.ViewsRendered;
+      sums = MeasureViewTiles(
+        workspace.Image.Color.data(), target.Pixels.data(), camera.Width, camera.Height, threads);
+      view.Before = sums.Metrics();
+    }
     effect.SecondsBefore += Since(t0);
     t0 = Clock::now();
-    if (view.Affected)
+    if (!view.Affected)
     {
-      Rasterize(after, camera, settings, workspace);
+      view.After = view.Before;
+    }
+    else if (!sums.Empty() && options.ReuseTiles)
+    {
+      const std::vector<std::uint8_t> changed = ListedTiles(projection);
+      const std::vector<std::uint8_t> rendered =
+        DilateTiles(changed, projection.TilesX, projection.TilesY, 2);
+      RasterizeTiles(after, camera, settings, rendered, workspace);
       ++effect.ViewsRendered;
-      view.After = Measure(ClampedImage(workspace.Image), target, threads);
+      effect.TilesRendered += CountTiles(rendered);
+      effect.TilesOfTiledViews += sums.TileCount();
+      RemeasureViewTiles(sums,
+        workspace.Image.Color.data(),
+        target.Pixels.data(),
+        DilateTiles(changed, projection.TilesX, projection.TilesY, 1),
+        threads);
+      view.After = sums.Metrics();
     }
     else
     {
-      view.After = view.Before;
+      Rasterize(after, camera, settings, workspace);
+      ++effect.ViewsRendered;
+      view.After = Measure(workspace.Image, target, threads);
     }
     effect.SecondsAfter += Since(t0);
     effect.Views.push_back(std::move(view));
