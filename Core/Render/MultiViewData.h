@@ -2,7 +2,7 @@
 /**
  * @file MultiViewData.h
  * @brief Internal to Core/Render: the buffers of MultiViewRenderer, shared by its projection
- * and compositing (Rasterizer.cxx) and its footprint pass (Footprint.cxx). Not installed.
+ * and compositing (RasterCompositing.cxx) and its footprint pass (Footprint.cxx). Not installed.
  */
 #ifndef vis4gs_MultiViewData_h
 #define vis4gs_MultiViewData_h

@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 // MultiViewRenderer: the view-independent preparation, the per-view projection (16 lanes,
-// ProjectionLanes.inc through Rasterizer.cxx), the global (depth, index) sort, binning and
-// compositing (CompositeLanes.inc through Rasterizer.cxx). The footprint pass is in
+// ProjectionLanes.inc through RasterProjection.cxx), the global (depth, index) sort, binning and
+// compositing (CompositeLanes.inc through RasterCompositing.cxx). The footprint pass is in
 // Footprint.cxx.
 namespace vis4gs
 {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file RasterInternal.h
- * @brief Internal to Core/Render: the parts of Rasterizer.cxx that MultiViewRenderer.cxx
+ * @brief Internal to Core/Render: the parts of the Raster*.cxx files that MultiViewRenderer.cxx
  * runs too (one projection code, one compositing code), exported under
  * vis4gs::raster::internal. Not installed; no other module includes it.
  */

@@ -186,7 +186,7 @@ public:
   std::size_t Builds() const;
   std::size_t Reuses() const;
 
-  /// Internal (Rasterizer.cxx).
+  /// Internal (RasterProjection.cxx).
   struct Impl;
   Impl& Internal();
 

@@ -13,7 +13,7 @@
  *   texel 2: Syz, Szz, valid (1 or 0), 0
  *
  * The covariance R diag((m s)^2) R^T is computed in float with the operation order of the
- * Core rasteriser (Rasterizer.cxx), so both start from the same numbers. "valid" is 0 for a
+ * Core rasteriser (RasterProjection.cxx), so both start from the same numbers. "valid" is 0 for a
  * Gaussian with a NaN/Inf parameter or a covariance that overflows float (the rasteriser's
  * InvalidParameters and NonFinite cases); such Gaussians are never drawn.
  */

@@ -122,7 +122,7 @@ void ShBasisGradient(const T d[3], int degree, T dY[16][3])
 //    over its pixels in row-major order);
 //  - TileBackwardLanes(): 16 lanes = one tile row, with GCC vector extensions, compiled for
 //    baseline x86-64, AVX2 and AVX-512 and selected at run time like the forward's
-//    compositing (Core/Render/Rasterizer.cxx). Every lane performs exactly the scalar
+//    compositing (Core/Render/RasterCompositing.cxx). Every lane performs exactly the scalar
 //    operations (the library is built with -ffp-contract=off; KernelExpLanes equals
 //    KernelExp bit for bit), so each pixel's contribution is bit-identical to the scalar
 //    path's; only the order of the per-Gaussian sums differs: per lane over the rows, then a

@@ -1,0 +1,403 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// BinGaussians(): the per-tile lists in depth order (reference §2.5): the stable parallel
+// radix sort of (depth, index) keys and the tile lists of the sorted tile rectangles.
+#include "Rasterizer.h"
+
+#include "RasterInternal.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <omp.h>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace vis4gs
+{
+
+using raster::internal::ResizeKeep;
+
+namespace
+{
+
+// Stable parallel LSD radix sort of the n 64-bit keys at @p keys on bits [lo, hi) (the other
+// bits are equal in every key or irrelevant), in chunks of contiguous keys: per chunk and pass
+// a histogram, then bucket-major chunk-minor offsets, then each chunk scatters its keys in
+// order. @p tmp holds n keys; returns the buffer holding the sorted keys (keys or tmp).
+std::uint64_t* RadixSortKeys(std::uint64_t* keys,
+  std::uint64_t* tmp,
+  std::int64_t n,
+  int lo,
+  int hi,
+  int chunks)
+{
+  const int bits = hi - lo;
+  if (bits <= 0 || n < 2)
+  {
+    return keys;
+  }
+  const int passes = (bits + 10) / 11;
+  const int width = (bits + passes - 1) / passes;
+  const std::size_t buckets = std::size_t(1) << width;
+  const std::uint64_t mask = buckets - 1;
+  std::vector<std::uint64_t> hist(static_cast<std::size_t>(chunks) * buckets);
+  std::uint64_t* from = keys;
+  std::uint64_t* to = tmp;
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    const int shift = lo + pass * width;
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+    for (int c = 0; c < chunks; ++c)
+    {
+      std::uint64_t* h = &hist[static_cast<std::size_t>(c) * buckets];
+      std::fill(h, h + buckets, 0);
+      const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        ++h[(from[k] >> shift) & mask];
+      }
+    }
+    std::uint64_t running = 0;
+    for (std::size_t d = 0; d < buckets; ++d)
+    {
+      for (int c = 0; c < chunks; ++c)
+      {
+        std::uint64_t& h = hist[static_cast<std::size_t>(c) * buckets + d];
+        const std::uint64_t k = h;
+        h = running;
+        running += k;
+      }
+    }
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+    for (int c = 0; c < chunks; ++c)
+    {
+      std::uint64_t* h = &hist[static_cast<std::size_t>(c) * buckets];
+      const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+      for (std::int64_t k = b; k < e; ++k)
+      {
+        const std::uint64_t key = from[k];
+        to[h[(key >> shift) & mask]++] = key;
+      }
+    }
+    std::swap(from, to);
+  }
+  return from;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+// BinScratch: BinGaussians' intermediate buffers, uninitialised on growth (default-init
+// allocator: every element is written before it is read) and kept between calls.
+namespace
+{
+template <typename U>
+struct DefaultInitAllocator : std::allocator<U>
+{
+  template <typename V>
+  struct rebind
+  {
+    using other = DefaultInitAllocator<V>;
+  };
+  DefaultInitAllocator() = default;
+  template <typename V>
+  DefaultInitAllocator(const DefaultInitAllocator<V>&) noexcept
+  {
+  }
+  template <typename V>
+  void construct(V* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) V;
+  }
+  template <typename V, typename... A>
+  void construct(V* p, A&&... a)
+  {
+    ::new (static_cast<void*>(p)) V(std::forward<A>(a)...);
+  }
+};
+template <typename U>
+using RawVector = std::vector<U, DefaultInitAllocator<U>>;
+
+/// Resizes @p v to @p n without initialising; a new allocation gets 1/8 of slack and huge
+/// pages (as ResizeKeep). Returns the data pointer.
+template <typename U>
+U* GrowRaw(RawVector<U>& v, std::size_t n)
+{
+  if (v.capacity() < n)
+  {
+    RawVector<U>().swap(v);
+    v.reserve(n + n / 8);
+    raster::internal::HugePages(v.data(), (n + n / 8) * sizeof(U));
+  }
+  v.resize(n);
+  return v.data();
+}
+} // namespace
+
+struct BinScratch::Buffers
+{
+  RawVector<std::uint32_t> VisIds, Order;
+  RawVector<std::array<int, 4>> VisRects, Rects;
+  RawVector<std::uint64_t> Keys;
+  std::vector<std::int64_t> Diff;
+};
+
+BinScratch::BinScratch() = default;
+BinScratch::~BinScratch() = default;
+BinScratch::BinScratch(BinScratch&&) noexcept = default;
+BinScratch& BinScratch::operator=(BinScratch&&) noexcept = default;
+
+//------------------------------------------------------------------------------
+// Binning: (1) compact the visible Gaussians in index order; (2) sort them once, globally,
+// by (depth, index); (3) a stable counting scatter of that sequence into the tiles (per
+// chunk of the sorted sequence: tile counts from a 2D difference array of the tile
+// rectangles, tile-major chunk-minor offsets, scatter in order). Every tile's run is then a
+// subsequence of the global order: sorted by (depth, index) with no per-tile sort, exactly
+// the order of the reference's stable radix sort on (tile, depth) keys.
+template <typename T>
+void BinGaussians(const ViewProjection<T>& projection,
+  int threads,
+  TileBins& bins,
+  BinScratch& scratch)
+{
+  if (!scratch.Impl)
+  {
+    scratch.Impl.reset(new BinScratch::Buffers);
+  }
+  BinScratch::Buffers& buf = *scratch.Impl;
+  bins.TilesX = projection.TilesX;
+  bins.TilesY = projection.TilesY;
+  const auto& gs = projection.Gaussians;
+  const std::int64_t n = static_cast<std::int64_t>(gs.size());
+  const int chunks = raster::internal::Threads(threads);
+  const std::size_t gx = static_cast<std::size_t>(projection.TilesX);
+  const std::size_t gy = static_cast<std::size_t>(projection.TilesY);
+
+  // (1) Visible Gaussians, compacted in index order: ids, tile rectangles, sort keys. The
+  // compact position is monotonic in the index, so it breaks depth ties like the index.
+  std::vector<std::uint64_t> before(static_cast<std::size_t>(chunks) + 1, 0);
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+    std::uint64_t k = 0;
+    for (std::int64_t i = b; i < e; ++i)
+    {
+      k += gs[static_cast<std::size_t>(i)].IsVisible() ? 1 : 0;
+    }
+    before[static_cast<std::size_t>(c) + 1] = k;
+  }
+  for (int c = 0; c < chunks; ++c)
+  {
+    before[static_cast<std::size_t>(c) + 1] += before[static_cast<std::size_t>(c)];
+  }
+  const std::size_t visible = static_cast<std::size_t>(before[static_cast<std::size_t>(chunks)]);
+  const std::int64_t nv = static_cast<std::int64_t>(visible);
+  using Rect = std::array<int, 4>;
+  std::uint32_t* visIds = GrowRaw(buf.VisIds, visible);
+  Rect* visRects = GrowRaw(buf.VisRects, visible);
+  constexpr bool isFloat = std::is_same<T, float>::value;
+  // float: depth bits above the compact position (and room for the radix sort's buffer)
+  std::uint64_t* keys = GrowRaw(buf.Keys, isFloat ? 2 * visible : 0);
+  std::vector<std::pair<T, std::uint32_t>> pairs(isFloat ? 0 : visible); // double
+  std::uint32_t depthOr = 0, depthAnd = ~0u;
+#pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+    std::size_t k = static_cast<std::size_t>(before[static_cast<std::size_t>(c)]);
+    for (std::int64_t i = b; i < e; ++i)
+    {
+      const auto& g = gs[static_cast<std::size_t>(i)];
+      if (!g.IsVisible())
+      {
+        continue;
+      }
+      visIds[k] = static_cast<std::uint32_t>(i);
+      visRects[k] = { g.TileRect[0], g.TileRect[1], g.TileRect[2], g.TileRect[3] };
+      if constexpr (std::is_same<T, float>::value)
+      {
+        // depth > 0.2, so the bits order like the values.
+        std::uint32_t bits;
+        std::memcpy(&bits, &g.Depth, sizeof(bits));
+        depthOr |= bits;
+        depthAnd &= bits;
+        keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
+      }
+      else
+      {
+        pairs[k] = { g.Depth, static_cast<std::uint32_t>(k) };
+      }
+      ++k;
+    }
+  }
+
+  // (2) Global order by (depth, index). Float: stable radix sort on the depth bits that
+  // differ between Gaussians (the keys arrive in index order, so ties stay in index order).
+  std::uint32_t* order = GrowRaw(buf.Order, visible);
+  Rect* rects = GrowRaw(buf.Rects, visible);
+  if constexpr (std::is_same<T, float>::value)
+  {
+    const std::uint32_t differ = depthOr & ~depthAnd;
+    int hi = 0;
+    while (hi < 32 && (differ >> hi) != 0)
+    {
+      ++hi;
+    }
+    const std::uint64_t* sorted = RadixSortKeys(keys, keys + visible, nv, 32, 32 + hi, chunks);
+#pragma omp parallel for schedule(static) num_threads(chunks)
+    for (std::int64_t k = 0; k < nv; ++k)
+    {
+      const std::uint32_t pos = static_cast<std::uint32_t>(sorted[k]);
+      order[static_cast<std::size_t>(k)] = visIds[pos];
+      rects[static_cast<std::size_t>(k)] = visRects[pos];
+    }
+  }
+  else
+  {
+    std::sort(pairs.begin(), pairs.end());
+#pragma omp parallel for schedule(static) num_threads(chunks)
+    for (std::int64_t k = 0; k < nv; ++k)
+    {
+      const std::uint32_t pos = pairs[static_cast<std::size_t>(k)].second;
+      order[static_cast<std::size_t>(k)] = visIds[pos];
+      rects[static_cast<std::size_t>(k)] = visRects[pos];
+    }
+  }
+  std::vector<std::pair<T, std::uint32_t>>().swap(pairs);
+
+  // (3) The per-tile lists.
+  raster::internal::BinSortedRects(
+    rects, order, nv, static_cast<int>(gx), static_cast<int>(gy), chunks, buf.Diff, bins);
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+TileBins BinGaussians(const ViewProjection<T>& projection, int threads)
+{
+  TileBins bins;
+  BinScratch scratch;
+  BinGaussians(projection, threads, bins, scratch);
+  return bins;
+}
+
+//------------------------------------------------------------------------------
+// Internals shared with MultiViewRenderer.cxx (RasterInternal.h).
+namespace raster
+{
+namespace internal
+{
+void BinSortedRects(const std::array<int, 4>* rects,
+  const std::uint32_t* ids,
+  std::int64_t count,
+  int gxi,
+  int gyi,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins)
+{
+  using Rect = std::array<int, 4>;
+  const std::size_t gx = static_cast<std::size_t>(gxi), gy = static_cast<std::size_t>(gyi);
+  const std::size_t tiles = gx * gy;
+  const std::int64_t nv = count;
+  // Per chunk of the sorted sequence, per tile counts: a 2D difference array of the
+  // rectangles ((gx+1) x (gy+1)), integrated by rows then columns.
+  const std::size_t dx = gx + 1;
+  const std::size_t diffSize = dx * (gy + 1);
+  diff.assign(static_cast<std::size_t>(chunks) * diffSize, 0);
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* d = &diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::size_t x0 = static_cast<std::size_t>(r[0]), y0 = static_cast<std::size_t>(r[1]);
+      const std::size_t x1 = static_cast<std::size_t>(r[2]), y1 = static_cast<std::size_t>(r[3]);
+      ++d[y0 * dx + x0];
+      --d[y0 * dx + x1];
+      --d[y1 * dx + x0];
+      ++d[y1 * dx + x1];
+    }
+    for (std::size_t y = 0; y < gy; ++y)
+    {
+      std::int64_t* row = d + y * dx;
+      for (std::size_t x = 1; x < gx; ++x)
+      {
+        row[x] += row[x - 1];
+      }
+      if (y > 0)
+      {
+        const std::int64_t* up = row - dx;
+        for (std::size_t x = 0; x < gx; ++x)
+        {
+          row[x] += up[x];
+        }
+      }
+    }
+  }
+  // Offsets: tile-major, chunk-minor; the counts become each chunk's write cursors.
+  bins.Offsets.assign(tiles + 1, 0);
+  std::uint64_t running = 0;
+  for (std::size_t ty = 0; ty < gy; ++ty)
+  {
+    for (std::size_t tx = 0; tx < gx; ++tx)
+    {
+      bins.Offsets[ty * gx + tx] = running;
+      for (int c = 0; c < chunks; ++c)
+      {
+        std::int64_t& h = diff[static_cast<std::size_t>(c) * diffSize + ty * dx + tx];
+        const std::uint64_t k = static_cast<std::uint64_t>(h);
+        h = static_cast<std::int64_t>(running);
+        running += k;
+      }
+    }
+  }
+  bins.Offsets[tiles] = running;
+  ResizeKeep(bins.Ids, static_cast<std::size_t>(running));
+  std::uint32_t* out = bins.Ids.data();
+#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  for (int c = 0; c < chunks; ++c)
+  {
+    std::int64_t* cursor = &diff[static_cast<std::size_t>(c) * diffSize];
+    const std::int64_t b = nv * c / chunks, e = nv * (c + 1) / chunks;
+    for (std::int64_t k = b; k < e; ++k)
+    {
+      const Rect& r = rects[static_cast<std::size_t>(k)];
+      const std::uint32_t id =
+        ids ? ids[static_cast<std::size_t>(k)] : static_cast<std::uint32_t>(k);
+      for (int ty = r[1]; ty < r[3]; ++ty)
+      {
+        std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
+        for (int tx = r[0]; tx < r[2]; ++tx)
+        {
+          out[row[tx]++] = id;
+        }
+      }
+    }
+  }
+}
+
+const std::uint64_t* SortKeys(std::uint64_t* keys,
+  std::uint64_t* scratch,
+  std::int64_t n,
+  int lo,
+  int hi,
+  int chunks)
+{
+  return RadixSortKeys(keys, scratch, n, lo, hi, chunks);
+}
+} // namespace internal
+} // namespace raster
+
+template void BinGaussians<float>(const ViewProjection<float>&, int, TileBins&, BinScratch&);
+template void BinGaussians<double>(const ViewProjection<double>&, int, TileBins&, BinScratch&);
+template TileBins BinGaussians<float>(const ViewProjection<float>&, int);
+template TileBins BinGaussians<double>(const ViewProjection<double>&, int);
+
+} // namespace vis4gs

@@ -1,0 +1,411 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// CompositeTiles(): front-to-back blending of every tile (reference §2.6), with optional
+// per-Gaussian weight statistics and kept per-Gaussian data (CompositeData): the tile loop
+// of CompositeLanes.inc compiled once per instruction set, and the per-Gaussian kernel and
+// span records it reads (RasterBounds.h).
+#include "Rasterizer.h"
+
+#include "KernelIsa.h"
+#include "RasterBounds.h"
+#include "RasterInternal.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <immintrin.h>
+#include <limits>
+#include <memory>
+#include <new>
+#include <omp.h>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+namespace vis4gs
+{
+
+namespace
+{
+//------------------------------------------------------------------------------
+// Uninitialised buffer of a trivial type (first touched by the parallel loops that fill it).
+template <typename U>
+std::unique_ptr<U[]> RawBuffer(std::size_t n)
+{
+  static_assert(std::is_trivial<U>::value, "RawBuffer holds trivial types only");
+  std::unique_ptr<U[]> buffer(new U[n > 0 ? n : 1]);
+  raster::internal::HugePages(buffer.get(), n * sizeof(U));
+  return buffer;
+}
+
+using raster::internal::ResizeKeep;
+} // namespace
+
+namespace
+{
+
+//------------------------------------------------------------------------------
+// Compositing: 16 lanes = one tile row, with GCC vector extensions (CompositeLanes.inc,
+// compiled once per instruction set with every helper carrying the target attribute).
+template <typename T>
+struct Lanes;
+template <>
+struct Lanes<float>
+{
+  typedef float V __attribute__((vector_size(64)));
+  typedef std::int32_t I __attribute__((vector_size(64)));
+};
+template <>
+struct Lanes<double>
+{
+  typedef double V __attribute__((vector_size(128)));
+  typedef std::int64_t I __attribute__((vector_size(128)));
+};
+
+using raster::detail::KernelGaussian;
+
+template <typename T>
+struct CompositeContext
+{
+  int Width, Height, TilesX;
+  const TileBins* Bins;
+  const KernelGaussian<T>* Kernels;
+  const raster::detail::SpanBounds* Bounds;
+  RasterImage<T>* Image;
+  GaussianWeightStats* Weights;
+  T Background[3];
+  std::atomic<std::uint64_t>* KernelEvaluations;
+  std::atomic<std::uint64_t>* ReferenceEvaluations;
+};
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace composite_baseline
+{
+#define VIS4GS_COMPOSITE_TARGET
+#define VIS4GS_COMPOSITE_PACKED false
+#include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_PACKED
+#undef VIS4GS_COMPOSITE_TARGET
+} // namespace composite_baseline
+namespace composite_avx2
+{
+#define VIS4GS_COMPOSITE_TARGET VIS4GS_TARGET_AVX2
+#define VIS4GS_COMPOSITE_PACKED false
+#include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_PACKED
+#undef VIS4GS_COMPOSITE_TARGET
+} // namespace composite_avx2
+namespace composite_avx512
+{
+#define VIS4GS_COMPOSITE_TARGET VIS4GS_TARGET_AVX512
+#define VIS4GS_COMPOSITE_PACKED true
+#include "CompositeLanes.inc"
+#undef VIS4GS_COMPOSITE_PACKED
+#undef VIS4GS_COMPOSITE_TARGET
+} // namespace composite_avx512
+#pragma GCC diagnostic pop
+
+template <typename T>
+using TileFunction = void (*)(const CompositeContext<T>&, std::int64_t);
+
+VIS4GS_TARGET_AVX512 int RowColumnsOn512(const raster::detail::SpanBounds& sb,
+  int py0,
+  int X0,
+  int* lo,
+  int* hi)
+{
+  return static_cast<int>(composite_avx512::RowColumns8(sb, py0, X0, lo, hi));
+}
+
+template <typename T, bool Stats, bool Work, bool Depth>
+TileFunction<T> SelectTileFunction(int isa)
+{
+  switch (ResolveKernelIsa(isa))
+  {
+    case KernelIsa::Avx512:
+      return &composite_avx512::CompositeTile<T, Stats, Work, Depth>;
+    case KernelIsa::Avx2:
+      return &composite_avx2::CompositeTile<T, Stats, Work, Depth>;
+    default:
+      return &composite_baseline::CompositeTile<T, Stats, Work, Depth>;
+  }
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+namespace
+{
+// The per-Gaussian data of the compositing loop (CompositeData) for Gaussians [begin, end),
+// every element written.
+template <typename T>
+inline __attribute__((always_inline)) void FillCompositeRange(const ViewProjection<T>& projection,
+  std::size_t begin,
+  std::size_t end,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  using raster::detail::KernelGaussian;
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const auto& g = projection.Gaussians[i];
+    // Constructed in place (placement new of a prvalue: no temporary on the stack, whose
+    // copy into the large array cost store-forwarding stalls).
+    if (!g.IsVisible())
+    {
+      new (&kernels[i]) KernelGaussian<T>{};
+      new (&bounds[i]) raster::detail::SpanBounds();
+      continue;
+    }
+    new (&kernels[i]) KernelGaussian<T>{
+      g.U, g.V, g.ConicA, g.ConicB, g.ConicC, g.Opacity, g.Color[0], g.Color[1], g.Color[2], g.Depth
+    };
+    if (g.Opacity >= raster::MinAlpha<T>())
+    {
+      const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
+      new (&bounds[i]) raster::detail::SpanBounds(raster::detail::MakeSpanBounds<T>(
+        g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level)));
+    }
+    else
+    {
+      new (&bounds[i]) raster::detail::SpanBounds();
+    }
+  }
+}
+
+template <typename T>
+void FillCompositeRangeBaseline(const ViewProjection<T>& projection,
+  std::size_t begin,
+  std::size_t end,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  FillCompositeRange(projection, begin, end, kernels, bounds);
+}
+
+/// The same IEEE operations (no contraction: -ffp-contract=off) with AVX2 encodings (rounding
+/// instructions for floor/ceil instead of the baseline's emulation): the same bits, faster.
+template <typename T>
+VIS4GS_TARGET_AVX2 void FillCompositeRangeAvx2(const ViewProjection<T>& projection,
+  std::size_t begin,
+  std::size_t end,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  FillCompositeRange(projection, begin, end, kernels, bounds);
+}
+
+template <typename T>
+void FillCompositeData(const ViewProjection<T>& projection,
+  int threads,
+  raster::detail::KernelGaussian<T>* kernels,
+  raster::detail::SpanBounds* bounds)
+{
+  const std::size_t n = projection.Gaussians.size();
+  const auto fill = CpuHasAvx2() ? &FillCompositeRangeAvx2<T> : &FillCompositeRangeBaseline<T>;
+  constexpr std::size_t block = 4096;
+  const std::int64_t blocks = static_cast<std::int64_t>((n + block - 1) / block);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    const std::size_t begin = static_cast<std::size_t>(b) * block;
+    fill(projection, begin, std::min(n, begin + block), kernels, bounds);
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+template <typename T>
+void PrepareCompositeData(const ViewProjection<T>& projection, int threads, CompositeData<T>& data)
+{
+  const std::size_t n = projection.Gaussians.size();
+  ResizeKeep(data.Kernels, n);
+  ResizeKeep(data.Bounds, n);
+  FillCompositeData(
+    projection, raster::internal::Threads(threads), data.Kernels.data(), data.Bounds.data());
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void CompositeTiles(const ViewProjection<T>& projection,
+  const TileBins& bins,
+  const RasterSettings& settings,
+  RasterImage<T>& image,
+  GaussianWeightStats* weights,
+  RasterWorkCounts* work,
+  CompositeData<T>* keep,
+  bool depth)
+{
+  if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
+    bins.Offsets.size() != bins.TileCount() + 1)
+  {
+    throw std::invalid_argument("CompositeTiles: the tile bins do not belong to this projection");
+  }
+  if (!depth && (weights || work))
+  {
+    throw std::invalid_argument("CompositeTiles: weights and work counts need depth on");
+  }
+  const int threads = raster::internal::Threads(settings.Threads);
+  const std::size_t n = projection.Gaussians.size();
+  const std::size_t pixels = static_cast<std::size_t>(projection.Width) * projection.Height;
+  image.Width = projection.Width;
+  image.Height = projection.Height;
+  image.Color.resize(3 * pixels);
+  image.Alpha.resize(pixels);
+  image.Transmittance.resize(pixels);
+  if (depth)
+  {
+    image.Depth.resize(pixels);
+  }
+  else
+  {
+    image.Depth.clear();
+  }
+  image.Contributors.resize(pixels);
+
+  // Compact per-Gaussian kernel data and conservative spans (input order; culled Gaussians
+  // get zeros and no bound). Kept in *keep when given (its buffers are reused).
+  std::unique_ptr<KernelGaussian<T>[]> ownKernels;
+  std::unique_ptr<unsigned char[]> ownBounds; // raw storage of trivially copyable SpanBounds
+  KernelGaussian<T>* kernels;
+  raster::detail::SpanBounds* bounds;
+  if (keep)
+  {
+    ResizeKeep(keep->Kernels, n);
+    ResizeKeep(keep->Bounds, n);
+    kernels = keep->Kernels.data();
+    bounds = keep->Bounds.data();
+  }
+  else
+  {
+    // Uninitialised: the loop below writes every element (first touch in parallel).
+    ownKernels = RawBuffer<KernelGaussian<T>>(n);
+    static_assert(std::is_trivially_copyable<raster::detail::SpanBounds>::value, "");
+    ownBounds = RawBuffer<unsigned char>((n > 0 ? n : 1) * sizeof(raster::detail::SpanBounds));
+    kernels = ownKernels.get();
+    bounds = reinterpret_cast<raster::detail::SpanBounds*>(ownBounds.get());
+  }
+  FillCompositeData(projection, threads, kernels, bounds);
+  if (weights)
+  {
+    weights->MaxWeight.assign(n, 0.0f);
+    weights->WeightSum.assign(n, 0.0);
+    weights->BlendedPixels.assign(n, 0);
+  }
+  std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
+  CompositeContext<T> ctx{ projection.Width,
+    projection.Height,
+    projection.TilesX,
+    &bins,
+    kernels,
+    bounds,
+    &image,
+    weights,
+    { static_cast<T>(settings.Background[0]),
+      static_cast<T>(settings.Background[1]),
+      static_cast<T>(settings.Background[2]) },
+    &kernelEvals,
+    &referenceEvals };
+  TileFunction<T> fn;
+  const int isa = settings.KernelIsa;
+  if (!depth)
+  {
+    fn = SelectTileFunction<T, false, false, false>(isa);
+  }
+  else if (weights)
+  {
+    fn = work ? SelectTileFunction<T, true, true, true>(isa)
+              : SelectTileFunction<T, true, false, true>(isa);
+  }
+  else
+  {
+    fn = work ? SelectTileFunction<T, false, true, true>(isa)
+              : SelectTileFunction<T, false, false, true>(isa);
+  }
+  const std::int64_t tiles = static_cast<std::int64_t>(bins.TileCount());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (std::int64_t t = 0; t < tiles; ++t)
+  {
+    fn(ctx, t);
+  }
+  if (work)
+  {
+    work->TilePairs = bins.Ids.size();
+    work->KernelEvaluations = kernelEvals.load();
+    work->ReferenceEvaluations = referenceEvals.load();
+  }
+}
+
+//------------------------------------------------------------------------------
+// Internals shared with MultiViewRenderer.cxx (RasterInternal.h).
+namespace raster
+{
+namespace internal
+{
+int RowColumnsAvx512(const detail::SpanBounds& sb, int py0, int X0, int* lo, int* hi)
+{
+  if (!CpuHasAvx512())
+  {
+    return -1;
+  }
+  return RowColumnsOn512(sb, py0, X0, lo, hi);
+}
+
+void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
+{
+  const std::size_t pixels = static_cast<std::size_t>(in.Width) * in.Height;
+  image.Width = in.Width;
+  image.Height = in.Height;
+  image.Color.resize(3 * pixels);
+  image.Alpha.resize(pixels);
+  image.Transmittance.resize(pixels);
+  image.Depth.resize(pixels);
+  image.Contributors.resize(pixels);
+  std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
+  CompositeContext<float> ctx{ in.Width,
+    in.Height,
+    in.Bins->TilesX,
+    in.Bins,
+    in.Kernels,
+    in.Bounds,
+    &image,
+    nullptr,
+    { static_cast<float>(in.Background[0]),
+      static_cast<float>(in.Background[1]),
+      static_cast<float>(in.Background[2]) },
+    &kernelEvals,
+    &referenceEvals };
+  const TileFunction<float> fn = SelectTileFunction<float, false, false, true>(in.KernelIsa);
+  const std::int64_t tiles = static_cast<std::int64_t>(in.Bins->TileCount());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(in.Threads)
+  for (std::int64_t t = 0; t < tiles; ++t)
+  {
+    fn(ctx, t);
+  }
+}
+} // namespace internal
+} // namespace raster
+
+template void PrepareCompositeData<float>(const ViewProjection<float>&, int, CompositeData<float>&);
+template void PrepareCompositeData<double>(const ViewProjection<double>&,
+  int,
+  CompositeData<double>&);
+template void CompositeTiles<float>(const ViewProjection<float>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<float>&,
+  GaussianWeightStats*,
+  RasterWorkCounts*,
+  CompositeData<float>*,
+  bool);
+template void CompositeTiles<double>(const ViewProjection<double>&,
+  const TileBins&,
+  const RasterSettings&,
+  RasterImage<double>&,
+  GaussianWeightStats*,
+  RasterWorkCounts*,
+  CompositeData<double>*,
+  bool);
+
+} // namespace vis4gs

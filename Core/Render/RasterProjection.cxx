@@ -1,0 +1,1086 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// ProjectGaussians(): the per-Gaussian preprocessing of the reference forward pass
+// (reference §2.1-2.4): the scalar code (float and double), the 16-lane float code
+// (ProjectionLanes.inc, shared with MultiViewRenderer) and the kept view-independent
+// preparation (PreparedCloudCache).
+#include "Rasterizer.h"
+
+#include "GaussianMath.h"
+#include "KernelIsa.h"
+#include "MultiViewData.h"
+#include "RasterBounds.h"
+#include "RasterInternal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <immintrin.h>
+#include <limits>
+#include <memory>
+#include <omp.h>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace vis4gs
+{
+
+namespace
+{
+
+/// The projections' per-status tallies (indexed Visible, InvalidParameters, NearPlane,
+/// Degenerate, NonFinite, OffScreen) into ProjectionCounts.
+void StoreCounts(const std::size_t (&counts)[6], ProjectionCounts& out)
+{
+  out.Visible = counts[0];
+  out.InvalidParameters = counts[1];
+  out.NearPlane = counts[2];
+  out.Degenerate = counts[3];
+  out.NonFinite = counts[4];
+  out.OffScreen = counts[5];
+}
+
+//------------------------------------------------------------------------------
+using raster::internal::ResizeKeep;
+
+template <typename T>
+bool AllFinite(const T* v, std::size_t n)
+{
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!std::isfinite(v[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Float to int conversion without undefined behaviour: values are clamped to +-2^30 first.
+template <typename T>
+int ClampToInt(T x)
+{
+  const T big = T(1073741824.0);
+  return static_cast<int>(x < -big ? -big : (x > big ? big : x));
+}
+
+//------------------------------------------------------------------------------
+// The reference's ndc2Pix computes in double (its literals are double) and stores a float.
+template <typename T>
+T Ndc2Pix(T ndc, int size)
+{
+  return static_cast<T>(((static_cast<double>(ndc) + 1.0) * size - 1.0) * 0.5);
+}
+
+//------------------------------------------------------------------------------
+// SH colour, reference §2.4, in the reference's operation order.
+template <typename T>
+void ShColor(const float* shf, int degree, const T dir[3], T out[3])
+{
+  const T C0 = T(sh::C0), C1 = T(sh::C1);
+  T sh[16][3];
+  const int k = (degree + 1) * (degree + 1);
+  for (int i = 0; i < k; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sh[i][c] = static_cast<T>(shf[3 * i + c]);
+    }
+  }
+  T r[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    r[c] = C0 * sh[0][c];
+  }
+  if (degree > 0)
+  {
+    const T x = dir[0], y = dir[1], z = dir[2];
+    for (int c = 0; c < 3; ++c)
+    {
+      r[c] = r[c] - C1 * y * sh[1][c] + C1 * z * sh[2][c] - C1 * x * sh[3][c];
+    }
+    if (degree > 1)
+    {
+      const T xx = x * x, yy = y * y, zz = z * z;
+      const T xy = x * y, yz = y * z, xz = x * z;
+      for (int c = 0; c < 3; ++c)
+      {
+        r[c] = r[c] + T(sh::C2[0]) * xy * sh[4][c] + T(sh::C2[1]) * yz * sh[5][c] +
+          T(sh::C2[2]) * (T(2) * zz - xx - yy) * sh[6][c] + T(sh::C2[3]) * xz * sh[7][c] +
+          T(sh::C2[4]) * (xx - yy) * sh[8][c];
+      }
+      if (degree > 2)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          r[c] = r[c] + T(sh::C3[0]) * y * (T(3) * xx - yy) * sh[9][c] +
+            T(sh::C3[1]) * xy * z * sh[10][c] +
+            T(sh::C3[2]) * y * (T(4) * zz - xx - yy) * sh[11][c] +
+            T(sh::C3[3]) * z * (T(2) * zz - T(3) * xx - T(3) * yy) * sh[12][c] +
+            T(sh::C3[4]) * x * (T(4) * zz - xx - yy) * sh[13][c] +
+            T(sh::C3[5]) * z * (xx - yy) * sh[14][c] +
+            T(sh::C3[6]) * x * (xx - T(3) * yy) * sh[15][c];
+        }
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    out[c] = r[c] + T(0.5);
+  }
+}
+
+//------------------------------------------------------------------------------
+void CheckCamera(const Camera& camera)
+{
+  if (camera.Width <= 0 || camera.Height <= 0)
+  {
+    throw std::invalid_argument("camera '" + camera.Name + "': image size " +
+      std::to_string(camera.Width) + "x" + std::to_string(camera.Height) + " is not positive");
+  }
+  if (!(camera.Fx > 0) || !(camera.Fy > 0) || !std::isfinite(camera.Fx) ||
+    !std::isfinite(camera.Fy))
+  {
+    throw std::invalid_argument("camera '" + camera.Name + "': focal lengths " +
+      std::to_string(camera.Fx) + ", " + std::to_string(camera.Fy) +
+      " are not positive finite numbers");
+  }
+  if (!AllFinite(camera.WorldToCamera.data(), 16))
+  {
+    throw std::invalid_argument(
+      "camera '" + camera.Name + "': world-to-camera matrix is not finite");
+  }
+  if (static_cast<long long>(camera.Width) * camera.Height > (1LL << 30))
+  {
+    throw std::invalid_argument("camera '" + camera.Name + "': image of " +
+      std::to_string(camera.Width) + "x" + std::to_string(camera.Height) + " pixels is too large");
+  }
+}
+
+//------------------------------------------------------------------------------
+void CheckCloud(const GaussianCloud& cloud, bool colors)
+{
+  const std::size_t n = cloud.Count;
+  auto check = [&](const char* name, std::size_t size, std::size_t per)
+  {
+    if (size != n * per)
+    {
+      throw std::invalid_argument(std::string("Gaussian cloud: ") + name + " holds " +
+        std::to_string(size) + " values, expected " + std::to_string(n * per) + " for " +
+        std::to_string(n) + " Gaussians");
+    }
+  };
+  check("Positions", cloud.Positions.size(), 3);
+  check("LogScales", cloud.LogScales.size(), 3);
+  check("Rotations", cloud.Rotations.size(), 4);
+  check("OpacityLogits", cloud.OpacityLogits.size(), 1);
+  if (colors)
+  {
+    if (cloud.ShDegree < 0 || cloud.ShDegree > 3)
+    {
+      throw std::invalid_argument(
+        "Gaussian cloud: SH degree " + std::to_string(cloud.ShDegree) + " is not in 0..3");
+    }
+    check("SH", cloud.SH.size(), 3 * static_cast<std::size_t>(cloud.ShCoefficientCount()));
+  }
+  if (n > std::numeric_limits<std::uint32_t>::max())
+  {
+    throw std::invalid_argument("Gaussian cloud: " + std::to_string(n) +
+      " Gaussians exceed the rasteriser's limit of 2^32-1");
+  }
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+// The 16-lane per-view projection (ProjectionLanes.inc) of ProjectGaussians<float> and
+// MultiViewRenderer, and the view-independent preparation it reads.
+namespace
+{
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace mvgeneric
+{
+#define VIS4GS_LANES 16
+#define VIS4GS_TARGET "sse2"
+#define VIS4GS_GENERIC 1
+#include "ProjectionLanes.inc"
+#undef VIS4GS_GENERIC
+#undef VIS4GS_LANES
+#undef VIS4GS_TARGET
+} // namespace mvgeneric
+namespace mvavx2
+{
+#define VIS4GS_LANES 8
+#define VIS4GS_TARGET "avx2"
+#include "ProjectionLanes.inc"
+#undef VIS4GS_LANES
+#undef VIS4GS_TARGET
+} // namespace mvavx2
+namespace mvavx512
+{
+#define VIS4GS_LANES 16
+#define VIS4GS_TARGET VIS4GS_AVX512_FEATURES
+#include "ProjectionLanes.inc"
+#undef VIS4GS_LANES
+#undef VIS4GS_TARGET
+} // namespace mvavx512
+#pragma GCC diagnostic pop
+
+using ProjectBlock = raster::internal::ProjectBlockFunction;
+
+void ProjectBlockGeneric(const MultiViewPrepared& g,
+  std::size_t first,
+  const MultiViewCamera& w,
+  MultiViewProjected& out,
+  std::size_t at)
+{
+  mvgeneric::ProjectLanes(g, first, w, out, at);
+}
+void ProjectBlockAvx2(const MultiViewPrepared& g,
+  std::size_t first,
+  const MultiViewCamera& w,
+  MultiViewProjected& out,
+  std::size_t at)
+{
+  mvavx2::ProjectLanes(g, first, w, out, at);
+  mvavx2::ProjectLanes(g, first + 8, w, out, at + 8);
+}
+void ProjectBlockAvx512(const MultiViewPrepared& g,
+  std::size_t first,
+  const MultiViewCamera& w,
+  MultiViewProjected& out,
+  std::size_t at)
+{
+  mvavx512::ProjectLanes(g, first, w, out, at);
+}
+
+// KernelIsa.h: 1 (baseline) is the generic 16-lane vectors.
+ProjectBlock SelectProjectBlock(int isa)
+{
+  switch (ResolveKernelIsa(isa))
+  {
+    case KernelIsa::Avx512:
+      return &ProjectBlockAvx512;
+    case KernelIsa::Avx2:
+      return &ProjectBlockAvx2;
+    default:
+      return &ProjectBlockGeneric;
+  }
+}
+
+// View-independent part of ProjectGaussians<float> step 3 for Gaussian @p i (the same
+// operations in the same order) into slot @p k of @p p; Valid -1, or 0 (and zeros) when a
+// parameter it would use is not finite.
+inline void PrepareForLanes(const GaussianCloud& cloud,
+  std::size_t i,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  MultiViewPrepared& p,
+  std::size_t k)
+{
+  const float* pos = &cloud.Positions[3 * i];
+  const float* ls = &cloud.LogScales[3 * i];
+  const float* rot = &cloud.Rotations[4 * i];
+  const float logit = cloud.OpacityLogits[i];
+  const float* shf = colors ? &cloud.SH[i * shStride] : nullptr;
+  if (ClassifyGaussian(pos, ls, rot, logit) != GaussianClass::Drawn ||
+    (colors && !AllFinite(shf, static_cast<std::size_t>(shUsed))))
+  {
+    p.X[k] = p.Y[k] = p.Z[k] = 0.0f;
+    p.S00[k] = p.S01[k] = p.S02[k] = p.S11[k] = p.S12[k] = p.S22[k] = 0.0f;
+    p.Opacity[k] = 0.0f;
+    p.Valid[k] = 0;
+    return;
+  }
+  const float s[3] = { mod * std::exp(static_cast<float>(ls[0])),
+    mod * std::exp(static_cast<float>(ls[1])),
+    mod * std::exp(static_cast<float>(ls[2])) };
+  const float qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
+  const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(qraw));
+  float M[3][3];
+  for (int q = 0; q < 3; ++q)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      M[q][r] = s[q] * R[3 * r + q];
+    }
+  }
+  auto sig = [&](int r, int c)
+  { return M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c]; };
+  p.X[k] = pos[0];
+  p.Y[k] = pos[1];
+  p.Z[k] = pos[2];
+  p.S00[k] = sig(0, 0);
+  p.S01[k] = sig(0, 1);
+  p.S02[k] = sig(0, 2);
+  p.S11[k] = sig(1, 1);
+  p.S12[k] = sig(1, 2);
+  p.S22[k] = sig(2, 2);
+  p.Opacity[k] = Sigmoid(static_cast<float>(logit));
+  p.Valid[k] = -1;
+}
+
+// The lane projection's view parameters from the rasteriser's float view.
+inline MultiViewCamera MakeLaneCamera(const ViewProjection<float>& f)
+{
+  MultiViewCamera w{};
+  w.W = f.Width;
+  w.H = f.Height;
+  w.Gx = f.TilesX;
+  w.Gy = f.TilesY;
+  for (int i = 0; i < 12; ++i)
+  {
+    w.V[i] = f.ViewMatrix[i];
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    w.F0[i] = f.FullProjection[i];
+    w.F1[i] = f.FullProjection[4 + i];
+    w.F3[i] = f.FullProjection[12 + i];
+  }
+  w.LimX = float(raster::JacobianClamp) * f.TanFovX;
+  w.LimY = float(raster::JacobianClamp) * f.TanFovY;
+  w.FocalX = f.Fx;
+  w.FocalY = f.Fy;
+  for (int i = 0; i < 3; ++i)
+  {
+    w.Center[i] = f.CameraCenter[i];
+  }
+  return w;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+// PreparedCloudCache: the view-independent preparation of a whole cloud (PrepareForLanes of
+// every Gaussian, padded to 16), kept with everything it was computed from.
+struct PreparedCloudCache::Impl
+{
+  MultiViewPrepared Data;
+  bool Valid = false;
+  std::uint64_t Version = 0;
+  const GaussianCloud* Cloud = nullptr;
+  std::size_t Count = 0;
+  int ShDegree = 0;
+  const float* Arrays[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
+  std::size_t Sizes[5] = { 0, 0, 0, 0, 0 };
+  std::uint32_t ModBits = 0;
+  int ShUsed = 0;
+  bool Colors = false;
+  std::size_t Builds = 0, Reuses = 0;
+};
+
+PreparedCloudCache::PreparedCloudCache() = default;
+PreparedCloudCache::~PreparedCloudCache() = default;
+PreparedCloudCache::PreparedCloudCache(const PreparedCloudCache&) {}
+PreparedCloudCache& PreparedCloudCache::operator=(const PreparedCloudCache& other)
+{
+  if (this != &other)
+  {
+    this->P.reset();
+  }
+  return *this;
+}
+PreparedCloudCache::PreparedCloudCache(PreparedCloudCache&&) noexcept = default;
+PreparedCloudCache& PreparedCloudCache::operator=(PreparedCloudCache&&) noexcept = default;
+
+void PreparedCloudCache::Clear()
+{
+  if (this->P)
+  {
+    this->P->Valid = false;
+  }
+}
+
+std::size_t PreparedCloudCache::Builds() const
+{
+  return this->P ? this->P->Builds : 0;
+}
+
+std::size_t PreparedCloudCache::Reuses() const
+{
+  return this->P ? this->P->Reuses : 0;
+}
+
+PreparedCloudCache::Impl& PreparedCloudCache::Internal()
+{
+  if (!this->P)
+  {
+    this->P.reset(new Impl);
+  }
+  return *this->P;
+}
+
+namespace
+{
+// The kept preparation of @p cloud for these settings: reused when the key matches (after a
+// bit-exact spot check of 64 Gaussians, std::logic_error on a difference), else recomputed.
+const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
+  const GaussianCloud& cloud,
+  std::uint64_t version,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  int threads)
+{
+  PreparedCloudCache::Impl& c = cache.Internal();
+  const std::size_t n = cloud.Count;
+  const float* arrays[5] = { cloud.Positions.data(),
+    cloud.LogScales.data(),
+    cloud.Rotations.data(),
+    cloud.OpacityLogits.data(),
+    cloud.SH.data() };
+  const std::size_t sizes[5] = { cloud.Positions.size(),
+    cloud.LogScales.size(),
+    cloud.Rotations.size(),
+    cloud.OpacityLogits.size(),
+    cloud.SH.size() };
+  std::uint32_t modBits;
+  std::memcpy(&modBits, &mod, sizeof(modBits));
+  const bool same = c.Valid && c.Version == version && c.Cloud == &cloud && c.Count == n &&
+    c.ShDegree == cloud.ShDegree && std::equal(arrays, arrays + 5, c.Arrays) &&
+    std::equal(sizes, sizes + 5, c.Sizes) && c.ModBits == modBits && c.ShUsed == shUsed &&
+    c.Colors == colors;
+  MultiViewPrepared& d = c.Data;
+  if (same)
+  {
+    // Spot check: a cloud changed under an unchanged version must not pass silently.
+    MultiViewPrepared probe;
+    for (auto* v : { &probe.X,
+           &probe.Y,
+           &probe.Z,
+           &probe.S00,
+           &probe.S01,
+           &probe.S02,
+           &probe.S11,
+           &probe.S12,
+           &probe.S22,
+           &probe.Opacity })
+    {
+      v->assign(1, 0.0f);
+    }
+    probe.Valid.assign(1, 0);
+    const std::size_t samples = std::min<std::size_t>(64, n);
+    for (std::size_t j = 0; j < samples; ++j)
+    {
+      // Spread over the cloud, shifted at every reuse so that repeated frames cover more.
+      const std::size_t i = (j * n / samples + c.Reuses * 7919) % n;
+      PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, probe, 0);
+      const float kept[10] = { d.X[i],
+        d.Y[i],
+        d.Z[i],
+        d.S00[i],
+        d.S01[i],
+        d.S02[i],
+        d.S11[i],
+        d.S12[i],
+        d.S22[i],
+        d.Opacity[i] };
+      const float now[10] = { probe.X[0],
+        probe.Y[0],
+        probe.Z[0],
+        probe.S00[0],
+        probe.S01[0],
+        probe.S02[0],
+        probe.S11[0],
+        probe.S12[0],
+        probe.S22[0],
+        probe.Opacity[0] };
+      if (std::memcmp(kept, now, sizeof(kept)) != 0 || d.Valid[i] != probe.Valid[0])
+      {
+        c.Valid = false;
+        throw std::logic_error("ProjectGaussians: cloud version " + std::to_string(version) +
+          " was kept but the parameters of Gaussian " + std::to_string(i) +
+          " changed; the caller must change the version whenever the cloud changes");
+      }
+    }
+    ++c.Reuses;
+    return d;
+  }
+  c.Valid = false;
+  const std::size_t padded = (n + 15) / 16 * 16;
+  for (auto* v : { &d.X, &d.Y, &d.Z, &d.S00, &d.S01, &d.S02, &d.S11, &d.S12, &d.S22, &d.Opacity })
+  {
+    ResizeKeep(*v, padded);
+  }
+  ResizeKeep(d.Valid, padded);
+  const std::int64_t count = static_cast<std::int64_t>(padded);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t ii = 0; ii < count; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    if (i < n)
+    {
+      PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, d, i);
+    }
+    else
+    {
+      d.X[i] = d.Y[i] = d.Z[i] = 0.0f;
+      d.S00[i] = d.S01[i] = d.S02[i] = d.S11[i] = d.S12[i] = d.S22[i] = 0.0f;
+      d.Opacity[i] = 0.0f;
+      d.Valid[i] = 0;
+    }
+  }
+  c.Version = version;
+  c.Cloud = &cloud;
+  c.Count = n;
+  c.ShDegree = cloud.ShDegree;
+  std::copy(arrays, arrays + 5, c.Arrays);
+  std::copy(sizes, sizes + 5, c.Sizes);
+  c.ModBits = modBits;
+  c.ShUsed = shUsed;
+  c.Colors = colors;
+  c.Valid = true;
+  ++c.Builds;
+  return d;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+namespace
+{
+// ProjectGaussians<float> steps 1-7 with the 16-lane projection (ProjectionLanes.inc, the
+// code MultiViewRenderer runs), blocks of 16 Gaussians: the view-independent preparation per
+// Gaussian, the projection per block, then every field of ProjectedGaussian written exactly
+// as the scalar code writes it for the lane's status (bit-identical, tested).
+void ProjectFloatLanes(const GaussianCloud& cloud,
+  const RasterSettings& settings,
+  int threads,
+  ViewProjection<float>& p,
+  bool reset,
+  PreparedCloudCache* cache,
+  std::uint64_t version)
+{
+  const std::size_t n = cloud.Count;
+  const MultiViewCamera w = MakeLaneCamera(p);
+  const ProjectBlock block = SelectProjectBlock(settings.KernelIsa);
+  const bool colors = settings.ComputeColors;
+  const int shDegree = p.ShDegree;
+  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
+  const int shUsed = 3 * (shDegree + 1) * (shDegree + 1);
+  const float mod = static_cast<float>(settings.ScaleModifier);
+  const auto campos = p.CameraCenter;
+  const std::int64_t blocks = static_cast<std::int64_t>((n + 15) / 16);
+  // The whole cloud's preparation, kept between frames (or null: prepared per block).
+  const MultiViewPrepared* kept = cache && version != 0
+    ? &UsePreparedCloud(*cache, cloud, version, mod, shStride, shUsed, colors, threads)
+    : nullptr;
+  std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
+#pragma omp parallel num_threads(threads)
+  {
+    std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
+    MultiViewPrepared in;
+    for (auto* v :
+      { &in.X, &in.Y, &in.Z, &in.S00, &in.S01, &in.S02, &in.S11, &in.S12, &in.S22, &in.Opacity })
+    {
+      v->assign(16, 0.0f);
+    }
+    in.Valid.assign(16, 0);
+    MultiViewProjected out;
+    for (auto* v : { &out.U,
+           &out.V,
+           &out.A,
+           &out.B,
+           &out.C,
+           &out.Depth,
+           &out.T0,
+           &out.T1,
+           &out.CovA,
+           &out.CovB,
+           &out.CovC })
+    {
+      v->assign(16, 0.0f);
+    }
+    for (auto* v : { &out.Status, &out.Radius, &out.X0, &out.Y0, &out.X1, &out.Y1, &out.Reached })
+    {
+      v->assign(16, 0);
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t bb = 0; bb < blocks; ++bb)
+    {
+      const std::size_t first = static_cast<std::size_t>(bb) * 16;
+      const std::size_t count = std::min<std::size_t>(16, n - first);
+      if (kept)
+      {
+        block(*kept, first, w, out, 0);
+      }
+      else
+      {
+        for (std::size_t k = 0; k < count; ++k)
+        {
+          PrepareForLanes(cloud, first + k, mod, shStride, shUsed, colors, in, k);
+        }
+        for (std::size_t k = count; k < 16; ++k)
+        {
+          in.Valid[k] = 0; // padding of the last block (zeros from the assign above)
+        }
+        block(in, 0, w, out, 0);
+      }
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        ProjectedGaussian<float>& g = p.Gaussians[first + k];
+        if (reset)
+        {
+          g = ProjectedGaussian<float>();
+        }
+        const int status = out.Status[k];
+        ++local[status];
+        g.Status = static_cast<ProjectionStatus>(status);
+        if (g.Status == ProjectionStatus::InvalidParameters)
+        {
+          continue;
+        }
+        g.ViewPosition[0] = out.T0[k];
+        g.ViewPosition[1] = out.T1[k];
+        g.ViewPosition[2] = out.Depth[k];
+        g.Depth = out.Depth[k];
+        if (g.Status == ProjectionStatus::NearPlane)
+        {
+          continue;
+        }
+        g.Cov2D[0] = out.CovA[k];
+        g.Cov2D[1] = out.CovB[k];
+        g.Cov2D[2] = out.CovC[k];
+        if (out.Reached[k] == 0)
+        {
+          continue; // Degenerate, or NonFinite covariance or conic
+        }
+        g.U = out.U[k];
+        g.V = out.V[k];
+        g.ConicA = out.A[k];
+        g.ConicB = out.B[k];
+        g.ConicC = out.C[k];
+        g.TileRect[0] = out.X0[k];
+        g.TileRect[1] = out.Y0[k];
+        g.TileRect[2] = out.X1[k];
+        g.TileRect[3] = out.Y1[k];
+        g.Opacity = kept ? kept->Opacity[first + k] : in.Opacity[k];
+        if (g.Status != ProjectionStatus::Visible)
+        {
+          continue; // NonFinite pixel mean or OffScreen: Radius stays 0
+        }
+        g.Radius = out.Radius[k];
+        if (colors)
+        {
+          const std::size_t i = first + k;
+          const float* pos = &cloud.Positions[3 * i];
+          const float x = pos[0], y = pos[1], z = pos[2];
+          float dir[3] = { x - campos[0], y - campos[1], z - campos[2] };
+          const float len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+          for (auto& d : dir)
+          {
+            d = d / len;
+          }
+          float col[3];
+          ShColor<float>(&cloud.SH[i * shStride], shDegree, dir, col);
+          std::uint8_t clamped = 0;
+          for (int ch = 0; ch < 3; ++ch)
+          {
+            if (col[ch] < 0.0f)
+            {
+              clamped = static_cast<std::uint8_t>(clamped | (1u << ch));
+            }
+            g.Color[ch] = std::max(col[ch], 0.0f);
+          }
+          g.ClampedChannels = clamped;
+        }
+      }
+    }
+#pragma omp critical(vis4gsProjectLaneCounts)
+    for (int k = 0; k < 6; ++k)
+    {
+      counts[k] += local[k];
+    }
+  }
+  StoreCounts(counts, p.Counts);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+namespace
+{
+// ProjectGaussians into @p p. With @p reuse and enough capacity in p.Gaussians, its memory is
+// kept and every element is reset to ProjectedGaussian<T>() by the (parallel) projection loop
+// right before it is written, so the result is the same as in a fresh projection, field by
+// field; otherwise a fresh buffer is value-initialised as before.
+template <typename T>
+void ProjectInto(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<T>& p,
+  bool reuse,
+  PreparedCloudCache* cache = nullptr,
+  std::uint64_t version = 0)
+{
+  CheckCamera(camera);
+  CheckCloud(cloud, settings.ComputeColors);
+
+  p.Counts = ProjectionCounts();
+  p.Width = camera.Width;
+  p.Height = camera.Height;
+  p.TilesX = (camera.Width + raster::TileSize - 1) / raster::TileSize;
+  p.TilesY = (camera.Height + raster::TileSize - 1) / raster::TileSize;
+  p.ShDegree = settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree);
+  p.ShDegree = std::max(0, p.ShDegree);
+  // The reference passes tan(fov/2) as float and recomputes the focal lengths from it.
+  p.TanFovX = static_cast<T>(camera.Width / (2.0 * camera.Fx));
+  p.TanFovY = static_cast<T>(camera.Height / (2.0 * camera.Fy));
+  p.Fx = static_cast<T>(camera.Width) / (T(2) * p.TanFovX);
+  p.Fy = static_cast<T>(camera.Height) / (T(2) * p.TanFovY);
+  const auto& w2c = camera.WorldToCamera;
+  for (int i = 0; i < 16; ++i)
+  {
+    p.ViewMatrix[i] = static_cast<T>(w2c[i]);
+  }
+  {
+    // P (reference §2.2) times W2C, in double.
+    const double tx = camera.Width / (2.0 * camera.Fx), ty = camera.Height / (2.0 * camera.Fy);
+    const double n = raster::ProjectionZNear, f = raster::ProjectionZFar;
+    const double P[16] = {
+      1 / tx, 0, 0, 0, 0, 1 / ty, 0, 0, 0, 0, f / (f - n), -f * n / (f - n), 0, 0, 1, 0
+    };
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        double s = 0;
+        for (int k = 0; k < 4; ++k)
+        {
+          s += P[4 * r + k] * w2c[4 * k + c];
+        }
+        p.FullProjection[4 * r + c] = static_cast<T>(s);
+      }
+    }
+  }
+  const auto center = camera.Center();
+  for (int i = 0; i < 3; ++i)
+  {
+    p.CameraCenter[i] = static_cast<T>(center[i]);
+  }
+
+  const std::size_t n = cloud.Count;
+  const bool reset = reuse && p.Gaussians.capacity() >= n;
+  if (reset)
+  {
+    p.Gaussians.resize(n); // no reallocation; every element is reset below
+  }
+  else
+  {
+    std::vector<ProjectedGaussian<T>>().swap(p.Gaussians);
+    p.Gaussians.reserve(n);
+    raster::internal::HugePages(p.Gaussians.data(), n * sizeof(ProjectedGaussian<T>));
+    p.Gaussians.assign(n, ProjectedGaussian<T>());
+  }
+  if constexpr (std::is_same<T, float>::value)
+  {
+    if (settings.KernelIsa >= 0)
+    {
+      ProjectFloatLanes(
+        cloud, settings, raster::internal::Threads(settings.Threads), p, reset, cache, version);
+      return;
+    }
+  }
+  const int shDegree = p.ShDegree;
+  const int shStride = 3 * cloud.ShCoefficientCount();
+  const int shUsed = 3 * (shDegree + 1) * (shDegree + 1);
+  const bool colors = settings.ComputeColors;
+  const T mod = static_cast<T>(settings.ScaleModifier);
+  const int W = p.Width, H = p.Height, gx = p.TilesX, gy = p.TilesY;
+  const auto& V = p.ViewMatrix;
+  const auto& F = p.FullProjection;
+  const T limx = T(raster::JacobianClamp) * p.TanFovX;
+  const T limy = T(raster::JacobianClamp) * p.TanFovY;
+  const T focalX = p.Fx, focalY = p.Fy;
+  const auto campos = p.CameraCenter;
+
+  std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
+  const int threads = raster::internal::Threads(settings.Threads);
+  const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel num_threads(threads)
+  {
+    std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
+#pragma omp for schedule(static)
+    for (std::int64_t ii = 0; ii < count; ++ii)
+    {
+      const std::size_t i = static_cast<std::size_t>(ii);
+      ProjectedGaussian<T>& g = p.Gaussians[i];
+      if (reset)
+      {
+        g = ProjectedGaussian<T>();
+      }
+      const float* pos = &cloud.Positions[3 * i];
+      const float* ls = &cloud.LogScales[3 * i];
+      const float* rot = &cloud.Rotations[4 * i];
+      const float logit = cloud.OpacityLogits[i];
+      const float* shf = colors ? &cloud.SH[i * shStride] : nullptr;
+      g.Status = ProjectionStatus::InvalidParameters;
+      if (ClassifyGaussian(pos, ls, rot, logit) != GaussianClass::Drawn ||
+        (colors && !AllFinite(shf, static_cast<std::size_t>(shUsed))))
+      {
+        ++local[static_cast<int>(ProjectionStatus::InvalidParameters)];
+        continue;
+      }
+      const T x = pos[0], y = pos[1], z = pos[2];
+      // 1. View position and near cull.
+      const T t0 = V[0] * x + V[1] * y + V[2] * z + V[3];
+      const T t1 = V[4] * x + V[5] * y + V[6] * z + V[7];
+      const T t2 = V[8] * x + V[9] * y + V[10] * z + V[11];
+      g.ViewPosition[0] = t0;
+      g.ViewPosition[1] = t1;
+      g.ViewPosition[2] = t2;
+      g.Depth = t2;
+      if (t2 <= T(raster::NearPlane))
+      {
+        g.Status = ProjectionStatus::NearPlane;
+        ++local[static_cast<int>(g.Status)];
+        continue;
+      }
+      // 2. Clip coordinates.
+      const T hx = F[0] * x + F[1] * y + F[2] * z + F[3];
+      const T hy = F[4] * x + F[5] * y + F[6] * z + F[7];
+      const T hw = F[12] * x + F[13] * y + F[14] * z + F[15];
+      const T pw = T(1) / (hw + T(0.0000001));
+      const T ndcX = hx * pw, ndcY = hy * pw;
+      // 3. 3D covariance R diag(s^2) R^T.
+      const T s[3] = { mod * std::exp(static_cast<T>(ls[0])),
+        mod * std::exp(static_cast<T>(ls[1])),
+        mod * std::exp(static_cast<T>(ls[2])) };
+      const T qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
+      const auto R = QuaternionToMatrix<T>(NormalizeQuaternion<T>(qraw));
+      T M[3][3]; // M[k][i] = s_k R_ik
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int r = 0; r < 3; ++r)
+        {
+          M[k][r] = s[k] * R[3 * r + k];
+        }
+      }
+      T Sig[3][3];
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = r; c < 3; ++c)
+        {
+          Sig[r][c] = M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c];
+          Sig[c][r] = Sig[r][c];
+        }
+      }
+      // 4. EWA projection with the clamped Jacobian.
+      const T txtz = t0 / t2, tytz = t1 / t2;
+      const T tx = std::min(limx, std::max(-limx, txtz)) * t2;
+      const T ty = std::min(limy, std::max(-limy, tytz)) * t2;
+      const T J00 = focalX / t2, J02 = -(focalX * tx) / (t2 * t2);
+      const T J11 = focalY / t2, J12 = -(focalY * ty) / (t2 * t2);
+      T Tm[2][3]; // J * R_v
+      for (int c = 0; c < 3; ++c)
+      {
+        Tm[0][c] = J00 * V[c] + J02 * V[8 + c];
+        Tm[1][c] = J11 * V[4 + c] + J12 * V[8 + c];
+      }
+      T TS[2][3];
+      for (int r = 0; r < 2; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          TS[r][c] = Tm[r][0] * Sig[0][c] + Tm[r][1] * Sig[1][c] + Tm[r][2] * Sig[2][c];
+        }
+      }
+      const T cxx = TS[0][0] * Tm[0][0] + TS[0][1] * Tm[0][1] + TS[0][2] * Tm[0][2];
+      const T cxy = TS[0][0] * Tm[1][0] + TS[0][1] * Tm[1][1] + TS[0][2] * Tm[1][2];
+      const T cyy = TS[1][0] * Tm[1][0] + TS[1][1] * Tm[1][1] + TS[1][2] * Tm[1][2];
+      const T a = cxx + T(raster::Dilation);
+      const T b = cxy;
+      const T c = cyy + T(raster::Dilation);
+      g.Cov2D[0] = a;
+      g.Cov2D[1] = b;
+      g.Cov2D[2] = c;
+      if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
+      {
+        g.Status = ProjectionStatus::NonFinite;
+        ++local[static_cast<int>(g.Status)];
+        continue;
+      }
+      // 5. det cull, conic, radius.
+      const T det = a * c - b * b;
+      if (det == T(0))
+      {
+        g.Status = ProjectionStatus::Degenerate;
+        ++local[static_cast<int>(g.Status)];
+        continue;
+      }
+      const T detInv = T(1) / det;
+      const T conA = c * detInv, conB = -b * detInv, conC = a * detInv;
+      const T mid = T(0.5) * (a + c);
+      const T root = std::sqrt(std::max(T(0.1), mid * mid - det));
+      const T l1 = mid + root, l2 = mid - root;
+      const T radiusF = std::ceil(T(3) * std::sqrt(std::max(l1, l2)));
+      if (!std::isfinite(conA) || !std::isfinite(conB) || !std::isfinite(conC) ||
+        !std::isfinite(radiusF) || !std::isfinite(det))
+      {
+        g.Status = ProjectionStatus::NonFinite;
+        ++local[static_cast<int>(g.Status)];
+        continue;
+      }
+      // 6. Pixel-space mean and tile rectangle.
+      const T u = Ndc2Pix(ndcX, W), v = Ndc2Pix(ndcY, H);
+      const int radius = ClampToInt(radiusF);
+      const T rr = static_cast<T>(radius);
+      const T bs = T(raster::TileSize);
+      const int x0 = std::min(gx, std::max(0, ClampToInt((u - rr) / bs)));
+      const int y0 = std::min(gy, std::max(0, ClampToInt((v - rr) / bs)));
+      const int x1 = std::min(gx, std::max(0, ClampToInt((u + rr + bs - T(1)) / bs)));
+      const int y1 = std::min(gy, std::max(0, ClampToInt((v + rr + bs - T(1)) / bs)));
+      g.U = u;
+      g.V = v;
+      g.ConicA = conA;
+      g.ConicB = conB;
+      g.ConicC = conC;
+      g.Radius = radius;
+      g.TileRect[0] = x0;
+      g.TileRect[1] = y0;
+      g.TileRect[2] = x1;
+      g.TileRect[3] = y1;
+      g.Opacity = Sigmoid(static_cast<T>(logit));
+      if (!std::isfinite(u) || !std::isfinite(v))
+      {
+        g.Status = ProjectionStatus::NonFinite;
+        g.Radius = 0;
+        ++local[static_cast<int>(g.Status)];
+        continue;
+      }
+      if (static_cast<long long>(x1 - x0) * (y1 - y0) == 0)
+      {
+        g.Status = ProjectionStatus::OffScreen;
+        g.Radius = 0;
+        ++local[static_cast<int>(g.Status)];
+        continue;
+      }
+      // 7. Colour.
+      if (colors)
+      {
+        T dir[3] = { x - campos[0], y - campos[1], z - campos[2] };
+        const T len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        for (auto& d : dir)
+        {
+          d = d / len;
+        }
+        T col[3];
+        ShColor<T>(shf, shDegree, dir, col);
+        std::uint8_t clamped = 0;
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          if (col[ch] < T(0))
+          {
+            clamped = static_cast<std::uint8_t>(clamped | (1u << ch));
+          }
+          g.Color[ch] = std::max(col[ch], T(0));
+        }
+        g.ClampedChannels = clamped;
+      }
+      g.Status = ProjectionStatus::Visible;
+      ++local[0];
+    }
+#pragma omp critical(vis4gsProjectCounts)
+    for (int k = 0; k < 6; ++k)
+    {
+      counts[k] += local[k];
+    }
+  }
+  StoreCounts(counts, p.Counts);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+template <typename T>
+ViewProjection<T> ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings)
+{
+  ViewProjection<T> p;
+  ProjectInto(cloud, camera, settings, p, false);
+  return p;
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<T>& projection)
+{
+  ProjectInto(cloud, camera, settings, projection, true);
+}
+
+//------------------------------------------------------------------------------
+void ProjectGaussians(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache,
+  std::uint64_t cloudVersion)
+{
+  ProjectInto(cloud, camera, settings, projection, true, &cache, cloudVersion);
+}
+
+//------------------------------------------------------------------------------
+// Internals shared with MultiViewRenderer.cxx (RasterInternal.h).
+namespace raster
+{
+namespace internal
+{
+void ValidateCloud(const GaussianCloud& cloud, bool colors)
+{
+  CheckCloud(cloud, colors);
+}
+
+void ShColorFloat(const float* shf, int degree, const float dir[3], float out[3])
+{
+  ShColor<float>(shf, degree, dir, out);
+}
+
+void PrepareGaussianForLanes(const GaussianCloud& cloud,
+  std::size_t i,
+  float mod,
+  int shStride,
+  int shUsed,
+  bool colors,
+  MultiViewPrepared& p,
+  std::size_t k)
+{
+  PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, p, k);
+}
+
+MultiViewCamera LaneCamera(const ViewProjection<float>& frame)
+{
+  return MakeLaneCamera(frame);
+}
+
+ProjectBlockFunction SelectProjection(int isa)
+{
+  return SelectProjectBlock(isa);
+}
+} // namespace internal
+} // namespace raster
+
+template ViewProjection<float> ProjectGaussians<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&);
+template ViewProjection<double> ProjectGaussians<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&);
+template void ProjectGaussians<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  ViewProjection<float>&);
+template void ProjectGaussians<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  ViewProjection<double>&);
+
+} // namespace vis4gs
