@@ -97,66 +97,6 @@ void FinishTotals(RemovalTotals& totals)
   }
 }
 
-// Culls every visible Gaussian of @p projection whose tile rectangle meets no tile of
-// @p tiles: binned and composited, the chosen tiles' lists are then those of the full render
-// (same Gaussians, same order), so their pixels are the full render's, bit for bit.
-void KeepTiles(ViewProjection<float>& projection, const std::vector<std::uint8_t>& tiles)
-{
-  const int tx = projection.TilesX, ty = projection.TilesY;
-  // Summed-area table of the chosen tiles: one lookup per Gaussian.
-  std::vector<std::uint32_t> area(static_cast<std::size_t>(tx + 1) * (ty + 1), 0);
-  for (int y = 0; y < ty; ++y)
-  {
-    for (int x = 0; x < tx; ++x)
-    {
-      area[(y + 1) * static_cast<std::size_t>(tx + 1) + x + 1] =
-        (tiles[static_cast<std::size_t>(y) * tx + x] ? 1u : 0u) +
-        area[y * static_cast<std::size_t>(tx + 1) + x + 1] +
-        area[(y + 1) * static_cast<std::size_t>(tx + 1) + x] -
-        area[y * static_cast<std::size_t>(tx + 1) + x];
-    }
-  }
-  auto at = [&](int x, int y) { return area[y * static_cast<std::size_t>(tx + 1) + x]; };
-  std::size_t culled = 0;
-  for (ProjectedGaussian<float>& g : projection.Gaussians)
-  {
-    if (!g.IsVisible())
-    {
-      continue;
-    }
-    const int* r = g.TileRect;
-    if (at(r[2], r[3]) - at(r[0], r[3]) - at(r[2], r[1]) + at(r[0], r[1]) == 0)
-    {
-      g.Status = ProjectionStatus::OffScreen;
-      g.Radius = 0;
-      ++culled;
-    }
-  }
-  projection.Counts.Visible -= culled;
-  projection.Counts.OffScreen += culled;
-}
-
-// Rasterize() of the tiles where @p tiles is non-zero; other pixels hold a partial render.
-void RasterizeTiles(const GaussianCloud& cloud,
-  const Camera& camera,
-  const RasterSettings& settings,
-  const std::vector<std::uint8_t>& tiles,
-  RasterWorkspace<float>& workspace)
-{
-  ProjectGaussians(
-    cloud, camera, settings, workspace.Projection, workspace.Prepared, workspace.CloudVersion);
-  KeepTiles(workspace.Projection, tiles);
-  BinGaussians(workspace.Projection, settings.Threads, workspace.Bins, workspace.Scratch);
-  CompositeTiles(workspace.Projection,
-    workspace.Bins,
-    settings,
-    workspace.Image,
-    nullptr,
-    nullptr,
-    &workspace.Composite,
-    false);
-}
-
 // The tiles whose lists hold a Gaussian visible in @p projection (the removed ones).
 std::vector<std::uint8_t> ListedTiles(const ViewProjection<float>& projection)
 {
