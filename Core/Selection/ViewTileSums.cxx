@@ -156,10 +156,12 @@ void RemeasureViewTiles(ViewTileSums& sums,
         [](float v) { return std::min(1.0f, std::max(0.0f, v)); });
       std::copy(image + from, image + from + 3 * cw, cropImage.begin() + to);
     }
-    SsimMap(cropRender.data(), cropImage.data(), cw, ch, map, threads);
+    // A small crop is not worth a parallel region (their start dominates on a loaded machine).
+    const bool parallel = cp >= 65536;
+    SsimMap(cropRender.data(), cropImage.data(), cw, ch, map, parallel ? nthreads : 1);
 
     const std::int64_t count = static_cast<std::int64_t>(g.Tiles.size());
-#pragma omp parallel for schedule(dynamic, 4) num_threads(nthreads)
+#pragma omp parallel for schedule(dynamic, 4) num_threads(nthreads) if (parallel)
     for (std::int64_t k = 0; k < count; ++k)
     {
       const std::size_t t = g.Tiles[static_cast<std::size_t>(k)];
