@@ -291,6 +291,36 @@ RemovalBaseline EmptyBaseline(const GaussianCloud& cloud,
 } // namespace
 
 //------------------------------------------------------------------------------
+ScoreViewRendered RemovalBaselineRecorder(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster,
+  int threads,
+  RemovalBaseline& baseline)
+{
+  baseline = EmptyBaseline(cloud, cameras, raster);
+  RemovalBaseline* out = &baseline;
+  std::vector<std::array<int, 2>> sizes;
+  for (const Camera& c : cameras)
+  {
+    sizes.push_back({ c.Width, c.Height });
+  }
+  return
+    [out, threads, sizes](
+      std::size_t index, const Camera& view, const RasterImage<float>& render, const Image& image)
+  {
+    // Only a render at the camera's own size is the "before" of that view (a score pass at a
+    // reduced resolution renders smaller views).
+    const std::array<int, 2> size{ view.Width, view.Height };
+    if (index < out->Views.size() && size == sizes[index] && render.Width == view.Width &&
+      render.Height == view.Height && image.Width == view.Width && image.Height == view.Height)
+    {
+      out->Views[index] = MeasureViewTiles(
+        render.Color.data(), image.Pixels.data(), view.Width, view.Height, threads);
+    }
+  };
+}
+
+//------------------------------------------------------------------------------
 bool RecordRemovalBaseline(ScoreSettings& settings,
   const GaussianCloud& cloud,
   const std::vector<Camera>& cameras,
@@ -300,23 +330,18 @@ bool RecordRemovalBaseline(ScoreSettings& settings,
   {
     return false;
   }
-  baseline = EmptyBaseline(cloud, cameras, settings.Raster);
-  RemovalBaseline* out = &baseline;
-  const int threads = settings.Threads;
-  ScoreViewRendered earlier = settings.ViewRendered;
+  ScoreViewRendered record =
+    RemovalBaselineRecorder(cloud, cameras, settings.Raster, settings.Threads, baseline);
+  ScoreViewRendered earlier = std::move(settings.ViewRendered);
   settings.ViewRendered =
-    [out, threads, earlier](
+    [record, earlier](
       std::size_t index, const Camera& view, const RasterImage<float>& render, const Image& image)
   {
     if (earlier)
     {
       earlier(index, view, render, image);
     }
-    if (index < out->Views.size() && render.Width == view.Width && render.Height == view.Height)
-    {
-      out->Views[index] = MeasureViewTiles(
-        render.Color.data(), image.Pixels.data(), view.Width, view.Height, threads);
-    }
+    record(index, view, render, image);
   };
   return true;
 }

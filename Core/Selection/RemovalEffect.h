@@ -155,6 +155,17 @@ bool RecordRemovalBaseline(ScoreSettings& settings,
   const std::vector<Camera>& cameras,
   RemovalBaseline& baseline);
 
+/**
+ * The hook RecordRemovalBaseline() installs, for a caller that passes it on itself (the score
+ * filter's SetViewRendered): it resets @p baseline for @p cloud, @p cameras and the score pass's
+ * rasteriser settings @p raster, and measures every full-resolution render it is given into it.
+ */
+ScoreViewRendered RemovalBaselineRecorder(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster,
+  int threads,
+  RemovalBaseline& baseline);
+
 /// The "before" per tile of every wanted view with an image, rendered here (what the score
 /// pass gives for free at full resolution).
 RemovalBaseline MeasureRemovalBaseline(const GaussianCloud& cloud,

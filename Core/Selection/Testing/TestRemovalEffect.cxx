@@ -564,6 +564,16 @@ TEST_F(DemoLogRemoval, ScorePassBaselineAndTileReuse)
   RemovalBaseline fromScores;
   EXPECT_FALSE(RecordRemovalBaseline(settings, this->Cloud, this->Cameras, fromScores));
   EXPECT_FALSE(settings.ViewRendered);
+  // The recorder itself keeps nothing of a reduced-resolution pass.
+  ScoreSettings low = settings;
+  low.LossResolution = 2;
+  low.ViewStride = 10;
+  RemovalBaseline lowBaseline;
+  low.ViewRendered =
+    RemovalBaselineRecorder(this->Cloud, this->Cameras, low.Raster, 0, lowBaseline);
+  ComputeGaussianScores(this->Cloud, this->Cameras, low, this->Images);
+  EXPECT_EQ(lowBaseline.Views.size(), this->Cameras.size());
+  EXPECT_EQ(lowBaseline.MeasuredViews(), 0u);
   settings.LossResolution = 1;
   ASSERT_TRUE(RecordRemovalBaseline(settings, this->Cloud, this->Cameras, fromScores));
   this->Scores = ComputeGaussianScores(this->Cloud, this->Cameras, settings, this->Images);
