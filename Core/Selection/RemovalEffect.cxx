@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 
@@ -386,9 +387,6 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       " cameras");
   }
   RemovalEffect effect;
-  const GaussianCloud after = RemoveGaussians(cloud, removed);
-  effect.Kept = after.Count;
-  effect.Removed = cloud.Count - after.Count;
   const RasterSettings settings = Settings(options);
   const int threads = raster::internal::Threads(options.Threads);
 
@@ -397,8 +395,23 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
   std::transform(
     removed.begin(), removed.end(), kept.begin(), [](std::uint8_t r) { return r ? 0 : 1; });
   const GaussianCloud gone = RemoveGaussians(cloud, kept);
+  effect.Removed = gone.Count;
+  effect.Kept = cloud.Count - gone.Count;
   RasterSettings cull = settings;
   cull.ComputeColors = false;
+  // The cleaned cloud (a copy of every kept Gaussian), made when a view needs it whole.
+  std::unique_ptr<GaussianCloud> afterCloud;
+  auto after = [&]() -> const GaussianCloud&
+  {
+    if (!afterCloud)
+    {
+      afterCloud.reset(new GaussianCloud(RemoveGaussians(cloud, removed)));
+    }
+    return *afterCloud;
+  };
+  ViewProjection<float> reach;
+  PreparedCloudCache prepared;
+  std::vector<std::uint8_t> outside;
 
   CheckTileBaseline(options.TileBaseline, cloud, cameras, options.Raster);
 
@@ -476,7 +489,34 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       const std::vector<std::uint8_t> changed = ListedTiles(projection);
       const std::vector<std::uint8_t> rendered =
         DilateTiles(changed, projection.TilesX, projection.TilesY, 2);
-      RasterizeTiles(after, camera, settings, rendered, workspace);
+      // Only the kept Gaussians that reach those tiles are rendered, as a cloud of their own in
+      // their order (the same tile lists, so the same pixels). They are found by a projection
+      // without colours, the view-independent part kept between views; a Gaussian it keeps
+      // and the render culls (its SH not finite) only costs its copy.
+      ProjectGaussians(cloud, camera, cull, reach, prepared, 1);
+      for (std::size_t i = 0; i < cloud.Count; ++i)
+      {
+        if (removed[i])
+        {
+          reach.Gaussians[i].Status = ProjectionStatus::OffScreen;
+        }
+      }
+      KeepTiles(reach, rendered);
+      outside.resize(cloud.Count);
+      std::size_t inside = 0;
+      for (std::size_t i = 0; i < cloud.Count; ++i)
+      {
+        outside[i] = reach.Gaussians[i].IsVisible() ? 0 : 1;
+        inside += 1 - outside[i];
+      }
+      if (2 * inside > cloud.Count)
+      {
+        RasterizeTiles(after(), camera, settings, rendered, workspace);
+      }
+      else
+      {
+        RasterizeTiles(RemoveGaussians(cloud, outside), camera, settings, rendered, workspace);
+      }
       ++effect.ViewsRendered;
       effect.TilesRendered += CountTiles(rendered);
       effect.TilesOfTiledViews += sums.TileCount();
@@ -489,7 +529,7 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
     }
     else
     {
-      Rasterize(after, camera, settings, workspace);
+      Rasterize(after(), camera, settings, workspace);
       ++effect.ViewsRendered;
       view.After = Measure(workspace.Image, target, threads);
     }
