@@ -492,24 +492,30 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       // Only the kept Gaussians that reach those tiles are rendered, as a cloud of their own in
       // their order (the same tile lists, so the same pixels). They are found by a projection
       // without colours, the view-independent part kept between views; a Gaussian it keeps
-      // and the render culls (its SH not finite) only costs its copy.
-      ProjectGaussians(cloud, camera, cull, reach, prepared, 1);
-      for (std::size_t i = 0; i < cloud.Count; ++i)
+      // and the render culls (its SH not finite) only costs its copy. When most of the view is
+      // rendered again, most Gaussians reach it: the cleaned cloud is rendered directly.
+      bool whole = 2 * CountTiles(rendered) > rendered.size();
+      if (!whole)
       {
-        if (removed[i])
+        ProjectGaussians(cloud, camera, cull, reach, prepared, 1);
+        for (std::size_t i = 0; i < cloud.Count; ++i)
         {
-          reach.Gaussians[i].Status = ProjectionStatus::OffScreen;
+          if (removed[i])
+          {
+            reach.Gaussians[i].Status = ProjectionStatus::OffScreen;
+          }
         }
+        KeepTiles(reach, rendered);
+        outside.resize(cloud.Count);
+        std::size_t inside = 0;
+        for (std::size_t i = 0; i < cloud.Count; ++i)
+        {
+          outside[i] = reach.Gaussians[i].IsVisible() ? 0 : 1;
+          inside += 1 - outside[i];
+        }
+        whole = 2 * inside > cloud.Count;
       }
-      KeepTiles(reach, rendered);
-      outside.resize(cloud.Count);
-      std::size_t inside = 0;
-      for (std::size_t i = 0; i < cloud.Count; ++i)
-      {
-        outside[i] = reach.Gaussians[i].IsVisible() ? 0 : 1;
-        inside += 1 - outside[i];
-      }
-      if (2 * inside > cloud.Count)
+      if (whole)
       {
         RasterizeTiles(after(), camera, settings, rendered, workspace);
       }
