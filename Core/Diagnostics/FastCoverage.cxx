@@ -28,15 +28,6 @@ struct PreparedGaussian
   bool Valid;
 };
 
-// The rasteriser's float parameters of a view.
-struct PreparedView
-{
-  int W, H, Gx, Gy;
-  float V[12];
-  float F0[4], F1[4], F3[4];
-  float LimX, LimY, FocalX, FocalY;
-};
-
 PreparedGaussian Prepare(const GaussianCloud& cloud, std::size_t i, float mod)
 {
   PreparedGaussian p{};
@@ -52,67 +43,25 @@ PreparedGaussian Prepare(const GaussianCloud& cloud, std::size_t i, float mod)
   p.X = pos[0];
   p.Y = pos[1];
   p.Z = pos[2];
-  const float s[3] = { mod * std::exp(ls[0]), mod * std::exp(ls[1]), mod * std::exp(ls[2]) };
-  const float qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
-  const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(qraw));
-  float M[3][3];
-  for (int k = 0; k < 3; ++k)
-  {
-    for (int r = 0; r < 3; ++r)
-    {
-      M[k][r] = s[k] * R[3 * r + k];
-    }
-  }
-  auto sig = [&](int r, int c)
-  { return M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c]; };
-  p.S00 = sig(0, 0);
-  p.S01 = sig(0, 1);
-  p.S02 = sig(0, 2);
-  p.S11 = sig(1, 1);
-  p.S12 = sig(1, 2);
-  p.S22 = sig(2, 2);
+  const std::array<float, 6> sigma = GaussianCovariance<float>(ls, rot, mod);
+  p.S00 = sigma[0];
+  p.S01 = sigma[1];
+  p.S02 = sigma[2];
+  p.S11 = sigma[3];
+  p.S12 = sigma[4];
+  p.S22 = sigma[5];
   p.Opacity = Sigmoid(logit);
   return p;
 }
 
-PreparedView PrepareView(const Camera& camera)
+// The view as the rasteriser's float projection holds it.
+PreparedView ViewOf(const Camera& camera)
 {
   // An empty cloud validates the camera and yields the rasteriser's own float matrices.
   GaussianCloud empty;
   RasterSettings settings;
   settings.ComputeColors = false;
-  const ViewProjection<float> p = ProjectGaussians<float>(empty, camera, settings);
-  PreparedView v{};
-  v.W = p.Width;
-  v.H = p.Height;
-  v.Gx = p.TilesX;
-  v.Gy = p.TilesY;
-  for (int i = 0; i < 12; ++i)
-  {
-    v.V[i] = p.ViewMatrix[i];
-  }
-  for (int i = 0; i < 4; ++i)
-  {
-    v.F0[i] = p.FullProjection[i];
-    v.F1[i] = p.FullProjection[4 + i];
-    v.F3[i] = p.FullProjection[12 + i];
-  }
-  v.LimX = float(raster::JacobianClamp) * p.TanFovX;
-  v.LimY = float(raster::JacobianClamp) * p.TanFovY;
-  v.FocalX = p.Fx;
-  v.FocalY = p.Fy;
-  return v;
-}
-
-int ClampToInt(float x)
-{
-  const float big = 1073741824.0f;
-  return static_cast<int>(x < -big ? -big : (x > big ? big : x));
-}
-
-float Ndc2Pix(float ndc, int size)
-{
-  return static_cast<float>(((static_cast<double>(ndc) + 1.0) * size - 1.0) * 0.5);
+  return PrepareView(ProjectGaussians<float>(empty, camera, settings));
 }
 
 int NearestIn(float u, int lo, int hi)
@@ -194,18 +143,18 @@ bool Visible(const PreparedGaussian& g, const PreparedView& w, bool rasterMode)
   {
     return false;
   }
-  const float u = Ndc2Pix(ndcX, w.W), v = Ndc2Pix(ndcY, w.H);
+  const float u = raster::Ndc2Pix(ndcX, w.W), v = raster::Ndc2Pix(ndcY, w.H);
   if (!std::isfinite(u) || !std::isfinite(v))
   {
     return false;
   }
-  const int radius = ClampToInt(radiusF);
+  const int radius = raster::ClampToInt(radiusF);
   const float rr = static_cast<float>(radius);
   const float bs = float(raster::TileSize);
-  const int x0 = std::min(w.Gx, std::max(0, ClampToInt((u - rr) / bs)));
-  const int y0 = std::min(w.Gy, std::max(0, ClampToInt((v - rr) / bs)));
-  const int x1 = std::min(w.Gx, std::max(0, ClampToInt((u + rr + bs - 1.0f) / bs)));
-  const int y1 = std::min(w.Gy, std::max(0, ClampToInt((v + rr + bs - 1.0f) / bs)));
+  const int x0 = std::min(w.Gx, std::max(0, raster::ClampToInt((u - rr) / bs)));
+  const int y0 = std::min(w.Gy, std::max(0, raster::ClampToInt((v - rr) / bs)));
+  const int x1 = std::min(w.Gx, std::max(0, raster::ClampToInt((u + rr + bs - 1.0f) / bs)));
+  const int y1 = std::min(w.Gy, std::max(0, raster::ClampToInt((v + rr + bs - 1.0f) / bs)));
   if (static_cast<long long>(x1 - x0) * (y1 - y0) == 0)
   {
     return false;
@@ -303,19 +252,15 @@ struct GaussianBlock
 #pragma GCC diagnostic ignored "-Wpsabi"
 namespace avx2
 {
-#define VIS4GS_LANES 8
-#define VIS4GS_TARGET "avx2"
+#define VIS4GS_LANES_ISA 2
 #include "FastCoverageLanes.inc"
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace avx2
 namespace avx512
 {
-#define VIS4GS_LANES 16
-#define VIS4GS_TARGET VIS4GS_AVX512_FEATURES
+#define VIS4GS_LANES_ISA 3
 #include "FastCoverageLanes.inc"
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace avx512
 #pragma GCC diagnostic pop
 
@@ -370,7 +315,7 @@ void CountVisibleViews(const GaussianCloud& cloud,
   views.reserve(cameras.size());
   for (const Camera& camera : cameras)
   {
-    views.push_back(PrepareView(camera));
+    views.push_back(ViewOf(camera));
   }
   visibleViews.resize(n, 0);
   const bool rasterMode = mode == FootprintMode::Rasterizer;

@@ -31,9 +31,7 @@ namespace
 typedef float F8 __attribute__((vector_size(32)));
 typedef std::int32_t I8 __attribute__((vector_size(32)));
 
-#define VIS4GS_FP_AVX2 __attribute__((target(VIS4GS_AVX2_FEATURES), always_inline)) inline
-
-VIS4GS_FP_AVX2 F8 FootprintExp8(F8 x)
+VIS4GS_INLINE_AVX2 F8 FootprintExp8(F8 x)
 {
   return raster::KernelExpLanes<F8, I8>(x);
 }
@@ -45,7 +43,7 @@ VIS4GS_FP_AVX2 F8 FootprintExp8(F8 x)
 // power <= 0 and power >= level + 1e-4 are therefore in Omega, lanes with power > 0 or
 // power <= level - 1e-4 are not; when a lane falls in the band between (or is NaN) the
 // whole group is evaluated with the exact kernel arithmetic.
-VIS4GS_FP_AVX2 I8 AlphaTest8(F8 power, float opacity, float inside, float outside)
+VIS4GS_INLINE_AVX2 I8 AlphaTest8(F8 power, float opacity, float inside, float outside)
 {
   const I8 nonPositive = power <= 0.0f;
   const I8 surelyIn = nonPositive & (power >= inside);
@@ -200,29 +198,27 @@ VIS4GS_TARGET_AVX2 void FootprintBoxAvx2(const ProjectedGaussian<float>& g,
 // (j % w, j / w)), the same float operations per lane and the same alpha test as the AVX2
 // path, and the pixels found are summed in the same row-major order, so counts and sums are
 // bit-identical to it (and to the scalar and brute-force paths).
-#define VIS4GS_FP_AVX512_TARGET VIS4GS_AVX512_FEATURES
-#define VIS4GS_FP_AVX512 __attribute__((target(VIS4GS_FP_AVX512_TARGET), always_inline)) inline
 typedef float F16 __attribute__((vector_size(64)));
 typedef std::int32_t I16 __attribute__((vector_size(64)));
 
-VIS4GS_FP_AVX512 unsigned LaneBits16(I16 m)
+VIS4GS_INLINE_AVX512 unsigned LaneBits16(I16 m)
 {
   return static_cast<unsigned>(_mm512_movepi32_mask(reinterpret_cast<__m512i>(m)));
 }
 
-VIS4GS_FP_AVX512 F16 SelectF16(I16 m, F16 a, F16 b)
+VIS4GS_INLINE_AVX512 F16 SelectF16(I16 m, F16 a, F16 b)
 {
   return reinterpret_cast<F16>((reinterpret_cast<I16>(a) & m) | (reinterpret_cast<I16>(b) & ~m));
 }
 
-VIS4GS_FP_AVX512 F16 FootprintExp16(F16 x)
+VIS4GS_INLINE_AVX512 F16 FootprintExp16(F16 x)
 {
   // Called from here, the always-inlined comparisons take this function's instruction set.
   return raster::KernelExpLanes<F16, I16>(x);
 }
 
 // AlphaTest8 on 16 lanes (same decisions lane by lane), as a bit mask.
-VIS4GS_FP_AVX512 unsigned AlphaTest16(F16 power, float opacity, float inside, float outside)
+VIS4GS_INLINE_AVX512 unsigned AlphaTest16(F16 power, float opacity, float inside, float outside)
 {
   const I16 nonPositive = power <= 0.0f;
   const I16 surelyIn = nonPositive & (power >= inside);
@@ -238,8 +234,7 @@ VIS4GS_FP_AVX512 unsigned AlphaTest16(F16 power, float opacity, float inside, fl
 }
 
 template <typename Acc>
-__attribute__((target(VIS4GS_FP_AVX512_TARGET))) void FootprintBoxAvx512(
-  const ProjectedGaussian<float>& g,
+VIS4GS_TARGET_AVX512 void FootprintBoxAvx512(const ProjectedGaussian<float>& g,
   bool rasterMode,
   float inside,
   float outside,

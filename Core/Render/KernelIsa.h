@@ -33,6 +33,39 @@
 #define VIS4GS_AVX512_FEATURES "avx512f,avx512vl,avx512bw,avx512dq"
 #define VIS4GS_TARGET_AVX512 __attribute__((target(VIS4GS_AVX512_FEATURES)))
 
+/// An always-inlined helper of an AVX2 / AVX-512 kernel written out in a .cxx.
+#define VIS4GS_INLINE_AVX2 VIS4GS_TARGET_AVX2 inline __attribute__((always_inline))
+#define VIS4GS_INLINE_AVX512 VIS4GS_TARGET_AVX512 inline __attribute__((always_inline))
+
+/**
+ * The one protocol of the kernels compiled once per instruction set from a `*Lanes.inc`
+ * file (ProjectionLanes.inc, CompositeLanes.inc, FastCoverageLanes.inc,
+ * RasterBackwardLanes.inc). The includer opens a namespace per variant and defines
+ * VIS4GS_LANES_ISA to the variant's KernelIsa value around the include:
+ *
+ *     namespace composite_avx2
+ *     {
+ *     #define VIS4GS_LANES_ISA 2
+ *     #include "CompositeLanes.inc"
+ *     #undef VIS4GS_LANES_ISA
+ *     }
+ *
+ * and the .inc file writes its entry points with VIS4GS_LANES_TARGET, every helper with
+ * VIS4GS_LANES_FN (GCC 12 types a vector comparison by the instruction set of the function
+ * whose body holds it: a helper without the variant's attribute is lowered lane by lane with
+ * scalar branches even once inlined), and tests the variant with `#if VIS4GS_LANES_ISA == 3`
+ * or VIS4GS_LANES_NATIVE_BYTES (the width of a vector register: 16, 32, 64 bytes). These
+ * macros expand where they are used, so they follow VIS4GS_LANES_ISA include by include.
+ */
+#define VIS4GS_LANES_TARGET VIS4GS_LANES_TARGET_OF(VIS4GS_LANES_ISA)
+#define VIS4GS_LANES_FN VIS4GS_LANES_TARGET inline __attribute__((always_inline))
+#define VIS4GS_LANES_NATIVE_BYTES (VIS4GS_LANES_ISA == 3 ? 64 : (VIS4GS_LANES_ISA == 2 ? 32 : 16))
+#define VIS4GS_LANES_TARGET_OF(isa) VIS4GS_LANES_TARGET_OF2(isa)
+#define VIS4GS_LANES_TARGET_OF2(isa) VIS4GS_LANES_TARGET_##isa
+#define VIS4GS_LANES_TARGET_1
+#define VIS4GS_LANES_TARGET_2 VIS4GS_TARGET_AVX2
+#define VIS4GS_LANES_TARGET_3 VIS4GS_TARGET_AVX512
+
 namespace vis4gs
 {
 

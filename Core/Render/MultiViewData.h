@@ -24,16 +24,6 @@ struct MultiViewPrepared
   std::vector<std::int32_t> Valid; ///< -1 finite parameters, 0 not (or padding)
 };
 
-/// The rasteriser's float parameters of a view.
-struct MultiViewCamera
-{
-  int W, H, Gx, Gy;
-  float V[12];
-  float F0[4], F1[4], F3[4];
-  float LimX, LimY, FocalX, FocalY;
-  float Center[3];
-};
-
 /// Per-Gaussian projection of one view (index order, padded to 16).
 struct MultiViewProjected
 {
@@ -58,7 +48,7 @@ struct MultiViewRenderer::Data
   bool Colors = true;
   bool ViewIndependentColor = true;
   MultiViewPrepared Prepared;
-  MultiViewCamera Camera{};
+  PreparedView Camera{};
   ViewProjection<float> Frame; ///< the view's parameters (no Gaussians)
   MultiViewProjected Projected;
   ProjectionCounts Counts;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "MultiViewRenderer.h"
 
+#include "GaussianMath.h"
 #include "MultiViewData.h"
+#include "RadixSort.h"
 #include "RasterInternal.h"
 
 #include <algorithm>
@@ -58,7 +60,7 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
     {
       const float dir[3] = { 0, 0, 0 }; // unused at degree 0
       float col[3];
-      ShColorFloat(&cloud.SH[i * shStride], 0, dir, col);
+      ShColor<float>(&cloud.SH[i * shStride], 0, dir, col);
       for (int ch = 0; ch < 3; ++ch)
       {
         p.Color[3 * i + ch] = std::max(col[ch], 0.0f);
@@ -91,8 +93,8 @@ void MultiViewRenderer::Project(const Camera& camera)
     rs.ComputeColors = false;
     d.Frame = ProjectGaussians<float>(empty, camera, rs);
   }
-  d.Camera = LaneCamera(d.Frame);
-  const MultiViewCamera& w = d.Camera;
+  d.Camera = PrepareView(d.Frame);
+  const PreparedView& w = d.Camera;
 
   MultiViewProjected& out = d.Projected;
   for (auto* v : { &out.U, &out.V, &out.A, &out.B, &out.C, &out.Depth })
@@ -222,13 +224,8 @@ void MultiViewRenderer::Project(const Camera& camera)
   }
   // (3) Global (depth, index) order: stable radix sort on the depth bits that differ (as
   // BinGaussians<float>; depth > 0.2, so the bits order like the values).
-  const std::uint32_t differ = depthOr & ~depthAnd;
-  int hi = 0;
-  while (hi < 32 && (differ >> hi) != 0)
-  {
-    ++hi;
-  }
-  const std::uint64_t* sorted = SortKeys(keys, keys + visible, nv, 32, 32 + hi, chunks);
+  const std::uint64_t* sorted =
+    RadixSortKeys(keys, keys + visible, nv, 32, 32 + DifferingBits(depthOr, depthAnd), chunks);
 
   // (4) Per-Gaussian data in sorted order: kernel, colour, tile rectangle, alpha level, spans.
   ResizeKeep(d.Sorted, visible);
@@ -255,18 +252,15 @@ void MultiViewRenderer::Project(const Camera& camera)
     raster::detail::KernelGaussian<float> k = rec.Kernel;
     if (colors && !viewIndependent)
     {
-      const float* pos = &cloud.Positions[3 * static_cast<std::size_t>(id)];
-      float dir[3] = { pos[0] - w.Center[0], pos[1] - w.Center[1], pos[2] - w.Center[2] };
-      const float len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-      for (auto& v : dir)
-      {
-        v = v / len;
-      }
       float c3[3];
-      ShColorFloat(&cloud.SH[id * static_cast<std::size_t>(shStride)], shDegree, dir, c3);
-      k.R = std::max(c3[0], 0.0f);
-      k.G = std::max(c3[1], 0.0f);
-      k.Bl = std::max(c3[2], 0.0f);
+      ViewColor<float>(&cloud.SH[id * static_cast<std::size_t>(shStride)],
+        shDegree,
+        &cloud.Positions[3 * static_cast<std::size_t>(id)],
+        w.Center,
+        c3);
+      k.R = c3[0];
+      k.G = c3[1];
+      k.Bl = c3[2];
     }
     d.Kernels[s] = k;
     d.Rects[s] = { rec.Rect[0], rec.Rect[1], rec.Rect[2], rec.Rect[3] };

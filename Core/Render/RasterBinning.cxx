@@ -3,6 +3,7 @@
 // radix sort of (depth, index) keys and the tile lists of the sorted tile rectangles.
 #include "Rasterizer.h"
 
+#include "RadixSort.h"
 #include "RasterInternal.h"
 
 #include <algorithm>
@@ -20,75 +21,6 @@ namespace vis4gs
 {
 
 using raster::internal::ResizeKeep;
-
-namespace
-{
-
-// Stable parallel LSD radix sort of the n 64-bit keys at @p keys on bits [lo, hi) (the other
-// bits are equal in every key or irrelevant), in chunks of contiguous keys: per chunk and pass
-// a histogram, then bucket-major chunk-minor offsets, then each chunk scatters its keys in
-// order. @p tmp holds n keys; returns the buffer holding the sorted keys (keys or tmp).
-std::uint64_t* RadixSortKeys(std::uint64_t* keys,
-  std::uint64_t* tmp,
-  std::int64_t n,
-  int lo,
-  int hi,
-  int chunks)
-{
-  const int bits = hi - lo;
-  if (bits <= 0 || n < 2)
-  {
-    return keys;
-  }
-  const int passes = (bits + 10) / 11;
-  const int width = (bits + passes - 1) / passes;
-  const std::size_t buckets = std::size_t(1) << width;
-  const std::uint64_t mask = buckets - 1;
-  std::vector<std::uint64_t> hist(static_cast<std::size_t>(chunks) * buckets);
-  std::uint64_t* from = keys;
-  std::uint64_t* to = tmp;
-  for (int pass = 0; pass < passes; ++pass)
-  {
-    const int shift = lo + pass * width;
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-    for (int c = 0; c < chunks; ++c)
-    {
-      std::uint64_t* h = &hist[static_cast<std::size_t>(c) * buckets];
-      std::fill(h, h + buckets, 0);
-      const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
-      for (std::int64_t k = b; k < e; ++k)
-      {
-        ++h[(from[k] >> shift) & mask];
-      }
-    }
-    std::uint64_t running = 0;
-    for (std::size_t d = 0; d < buckets; ++d)
-    {
-      for (int c = 0; c < chunks; ++c)
-      {
-        std::uint64_t& h = hist[static_cast<std::size_t>(c) * buckets + d];
-        const std::uint64_t k = h;
-        h = running;
-        running += k;
-      }
-    }
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
-    for (int c = 0; c < chunks; ++c)
-    {
-      std::uint64_t* h = &hist[static_cast<std::size_t>(c) * buckets];
-      const std::int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
-      for (std::int64_t k = b; k < e; ++k)
-      {
-        const std::uint64_t key = from[k];
-        to[h[(key >> shift) & mask]++] = key;
-      }
-    }
-    std::swap(from, to);
-  }
-  return from;
-}
-
-} // namespace
 
 //------------------------------------------------------------------------------
 // BinScratch: BinGaussians' intermediate buffers, uninitialised on growth (default-init
@@ -242,13 +174,8 @@ void BinGaussians(const ViewProjection<T>& projection,
   Rect* rects = GrowRaw(buf.Rects, visible);
   if constexpr (std::is_same<T, float>::value)
   {
-    const std::uint32_t differ = depthOr & ~depthAnd;
-    int hi = 0;
-    while (hi < 32 && (differ >> hi) != 0)
-    {
-      ++hi;
-    }
-    const std::uint64_t* sorted = RadixSortKeys(keys, keys + visible, nv, 32, 32 + hi, chunks);
+    const std::uint64_t* sorted =
+      RadixSortKeys(keys, keys + visible, nv, 32, 32 + DifferingBits(depthOr, depthAnd), chunks);
 #pragma omp parallel for schedule(static) num_threads(chunks)
     for (std::int64_t k = 0; k < nv; ++k)
     {
@@ -383,15 +310,6 @@ void BinSortedRects(const std::array<int, 4>* rects,
   }
 }
 
-const std::uint64_t* SortKeys(std::uint64_t* keys,
-  std::uint64_t* scratch,
-  std::int64_t n,
-  int lo,
-  int hi,
-  int chunks)
-{
-  return RadixSortKeys(keys, scratch, n, lo, hi, chunks);
-}
 } // namespace internal
 } // namespace raster
 

@@ -82,27 +82,21 @@ struct CompositeContext
 #pragma GCC diagnostic ignored "-Wpsabi"
 namespace composite_baseline
 {
-#define VIS4GS_COMPOSITE_TARGET
-#define VIS4GS_COMPOSITE_PACKED false
+#define VIS4GS_LANES_ISA 1
 #include "CompositeLanes.inc"
-#undef VIS4GS_COMPOSITE_PACKED
-#undef VIS4GS_COMPOSITE_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace composite_baseline
 namespace composite_avx2
 {
-#define VIS4GS_COMPOSITE_TARGET VIS4GS_TARGET_AVX2
-#define VIS4GS_COMPOSITE_PACKED false
+#define VIS4GS_LANES_ISA 2
 #include "CompositeLanes.inc"
-#undef VIS4GS_COMPOSITE_PACKED
-#undef VIS4GS_COMPOSITE_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace composite_avx2
 namespace composite_avx512
 {
-#define VIS4GS_COMPOSITE_TARGET VIS4GS_TARGET_AVX512
-#define VIS4GS_COMPOSITE_PACKED true
+#define VIS4GS_LANES_ISA 3
 #include "CompositeLanes.inc"
-#undef VIS4GS_COMPOSITE_PACKED
-#undef VIS4GS_COMPOSITE_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace composite_avx512
 #pragma GCC diagnostic pop
 

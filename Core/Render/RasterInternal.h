@@ -53,9 +53,6 @@ void ResizeKeep(std::vector<U>& v, std::size_t n)
 /// ProjectGaussians()'s checks of the cloud's arrays (throws std::invalid_argument).
 void ValidateCloud(const GaussianCloud& cloud, bool colors);
 
-/// ProjectGaussians<float>'s SH colour (before the +0.5 clamp at 0 is applied by the caller).
-void ShColorFloat(const float* shf, int degree, const float dir[3], float out[3]);
-
 /// View-independent part of ProjectGaussians<float> step 3 for Gaussian @p i into slot @p k
 /// of @p p (Valid -1, or 0 and zeros when a parameter it would use is not finite).
 void PrepareGaussianForLanes(const GaussianCloud& cloud,
@@ -67,27 +64,15 @@ void PrepareGaussianForLanes(const GaussianCloud& cloud,
   MultiViewPrepared& p,
   std::size_t k);
 
-/// The lane projection's view parameters from the rasteriser's float view.
-MultiViewCamera LaneCamera(const ViewProjection<float>& frame);
-
 /// Projects the 16 prepared Gaussians [first, first + 16) into [at, at + 16) of the output
 /// (ProjectionLanes.inc).
 using ProjectBlockFunction = void (*)(const MultiViewPrepared&,
   std::size_t first,
-  const MultiViewCamera&,
+  const PreparedView&,
   MultiViewProjected&,
   std::size_t at);
 /// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
 ProjectBlockFunction SelectProjection(int isa);
-
-/// Stable parallel LSD radix sort of @p n 64-bit keys on bits [lo, hi); @p scratch holds n
-/// keys. Returns the buffer holding the sorted keys (@p keys or @p scratch).
-const std::uint64_t* SortKeys(std::uint64_t* keys,
-  std::uint64_t* scratch,
-  std::int64_t n,
-  int lo,
-  int hi,
-  int chunks);
 
 /// BinGaussians()'s step 3: the per-tile lists of @p count tile rectangles given in depth
 /// order (tile-major; depth order inside a tile). Each of @p chunks consecutive parts of the

@@ -102,6 +102,22 @@ __attribute__((always_inline)) inline V KernelExpLanes(V x)
   return inRange ? res : V{};
 }
 
+/// Float to int conversion without undefined behaviour: values are clamped to +-2^30 first
+/// (pixel means and tile rectangles of Gaussians far outside the view).
+template <typename T>
+inline int ClampToInt(T x)
+{
+  const T big = T(1073741824.0);
+  return static_cast<int>(x < -big ? -big : (x > big ? big : x));
+}
+
+/// The reference's ndc2Pix: computed in double (its literals are double), stored as T.
+template <typename T>
+inline T Ndc2Pix(T ndc, int size)
+{
+  return static_cast<T>(((static_cast<double>(ndc) + 1.0) * size - 1.0) * 0.5);
+}
+
 /// The Gaussian's exponent at pixel (px, py), in the reference's operation order.
 template <typename T>
 inline T KernelPower(T u, T v, T conicA, T conicB, T conicC, T px, T py)

@@ -58,81 +58,6 @@ bool AllFinite(const T* v, std::size_t n)
 }
 
 //------------------------------------------------------------------------------
-// Float to int conversion without undefined behaviour: values are clamped to +-2^30 first.
-template <typename T>
-int ClampToInt(T x)
-{
-  const T big = T(1073741824.0);
-  return static_cast<int>(x < -big ? -big : (x > big ? big : x));
-}
-
-//------------------------------------------------------------------------------
-// The reference's ndc2Pix computes in double (its literals are double) and stores a float.
-template <typename T>
-T Ndc2Pix(T ndc, int size)
-{
-  return static_cast<T>(((static_cast<double>(ndc) + 1.0) * size - 1.0) * 0.5);
-}
-
-//------------------------------------------------------------------------------
-// SH colour, reference §2.4, in the reference's operation order.
-template <typename T>
-void ShColor(const float* shf, int degree, const T dir[3], T out[3])
-{
-  const T C0 = T(sh::C0), C1 = T(sh::C1);
-  T sh[16][3];
-  const int k = (degree + 1) * (degree + 1);
-  for (int i = 0; i < k; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      sh[i][c] = static_cast<T>(shf[3 * i + c]);
-    }
-  }
-  T r[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    r[c] = C0 * sh[0][c];
-  }
-  if (degree > 0)
-  {
-    const T x = dir[0], y = dir[1], z = dir[2];
-    for (int c = 0; c < 3; ++c)
-    {
-      r[c] = r[c] - C1 * y * sh[1][c] + C1 * z * sh[2][c] - C1 * x * sh[3][c];
-    }
-    if (degree > 1)
-    {
-      const T xx = x * x, yy = y * y, zz = z * z;
-      const T xy = x * y, yz = y * z, xz = x * z;
-      for (int c = 0; c < 3; ++c)
-      {
-        r[c] = r[c] + T(sh::C2[0]) * xy * sh[4][c] + T(sh::C2[1]) * yz * sh[5][c] +
-          T(sh::C2[2]) * (T(2) * zz - xx - yy) * sh[6][c] + T(sh::C2[3]) * xz * sh[7][c] +
-          T(sh::C2[4]) * (xx - yy) * sh[8][c];
-      }
-      if (degree > 2)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          r[c] = r[c] + T(sh::C3[0]) * y * (T(3) * xx - yy) * sh[9][c] +
-            T(sh::C3[1]) * xy * z * sh[10][c] +
-            T(sh::C3[2]) * y * (T(4) * zz - xx - yy) * sh[11][c] +
-            T(sh::C3[3]) * z * (T(2) * zz - T(3) * xx - T(3) * yy) * sh[12][c] +
-            T(sh::C3[4]) * x * (T(4) * zz - xx - yy) * sh[13][c] +
-            T(sh::C3[5]) * z * (xx - yy) * sh[14][c] +
-            T(sh::C3[6]) * x * (xx - T(3) * yy) * sh[15][c];
-        }
-      }
-    }
-  }
-  for (int c = 0; c < 3; ++c)
-  {
-    out[c] = r[c] + T(0.5);
-  }
-}
-
-//------------------------------------------------------------------------------
 void CheckCamera(const Camera& camera)
 {
   if (camera.Width <= 0 || camera.Height <= 0)
@@ -204,29 +129,21 @@ namespace
 #pragma GCC diagnostic ignored "-Wpsabi"
 namespace mvgeneric
 {
-#define VIS4GS_LANES 16
-#define VIS4GS_TARGET "sse2"
-#define VIS4GS_GENERIC 1
+#define VIS4GS_LANES_ISA 1
 #include "ProjectionLanes.inc"
-#undef VIS4GS_GENERIC
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace mvgeneric
 namespace mvavx2
 {
-#define VIS4GS_LANES 8
-#define VIS4GS_TARGET "avx2"
+#define VIS4GS_LANES_ISA 2
 #include "ProjectionLanes.inc"
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace mvavx2
 namespace mvavx512
 {
-#define VIS4GS_LANES 16
-#define VIS4GS_TARGET VIS4GS_AVX512_FEATURES
+#define VIS4GS_LANES_ISA 3
 #include "ProjectionLanes.inc"
-#undef VIS4GS_LANES
-#undef VIS4GS_TARGET
+#undef VIS4GS_LANES_ISA
 } // namespace mvavx512
 #pragma GCC diagnostic pop
 
@@ -234,7 +151,7 @@ using ProjectBlock = raster::internal::ProjectBlockFunction;
 
 void ProjectBlockGeneric(const MultiViewPrepared& g,
   std::size_t first,
-  const MultiViewCamera& w,
+  const PreparedView& w,
   MultiViewProjected& out,
   std::size_t at)
 {
@@ -242,7 +159,7 @@ void ProjectBlockGeneric(const MultiViewPrepared& g,
 }
 void ProjectBlockAvx2(const MultiViewPrepared& g,
   std::size_t first,
-  const MultiViewCamera& w,
+  const PreparedView& w,
   MultiViewProjected& out,
   std::size_t at)
 {
@@ -251,7 +168,7 @@ void ProjectBlockAvx2(const MultiViewPrepared& g,
 }
 void ProjectBlockAvx512(const MultiViewPrepared& g,
   std::size_t first,
-  const MultiViewCamera& w,
+  const PreparedView& w,
   MultiViewProjected& out,
   std::size_t at)
 {
@@ -298,61 +215,18 @@ inline void PrepareForLanes(const GaussianCloud& cloud,
     p.Valid[k] = 0;
     return;
   }
-  const float s[3] = { mod * std::exp(static_cast<float>(ls[0])),
-    mod * std::exp(static_cast<float>(ls[1])),
-    mod * std::exp(static_cast<float>(ls[2])) };
-  const float qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
-  const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(qraw));
-  float M[3][3];
-  for (int q = 0; q < 3; ++q)
-  {
-    for (int r = 0; r < 3; ++r)
-    {
-      M[q][r] = s[q] * R[3 * r + q];
-    }
-  }
-  auto sig = [&](int r, int c)
-  { return M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c]; };
+  const std::array<float, 6> sigma = GaussianCovariance<float>(ls, rot, mod);
   p.X[k] = pos[0];
   p.Y[k] = pos[1];
   p.Z[k] = pos[2];
-  p.S00[k] = sig(0, 0);
-  p.S01[k] = sig(0, 1);
-  p.S02[k] = sig(0, 2);
-  p.S11[k] = sig(1, 1);
-  p.S12[k] = sig(1, 2);
-  p.S22[k] = sig(2, 2);
+  p.S00[k] = sigma[0];
+  p.S01[k] = sigma[1];
+  p.S02[k] = sigma[2];
+  p.S11[k] = sigma[3];
+  p.S12[k] = sigma[4];
+  p.S22[k] = sigma[5];
   p.Opacity[k] = Sigmoid(static_cast<float>(logit));
   p.Valid[k] = -1;
-}
-
-// The lane projection's view parameters from the rasteriser's float view.
-inline MultiViewCamera MakeLaneCamera(const ViewProjection<float>& f)
-{
-  MultiViewCamera w{};
-  w.W = f.Width;
-  w.H = f.Height;
-  w.Gx = f.TilesX;
-  w.Gy = f.TilesY;
-  for (int i = 0; i < 12; ++i)
-  {
-    w.V[i] = f.ViewMatrix[i];
-  }
-  for (int i = 0; i < 4; ++i)
-  {
-    w.F0[i] = f.FullProjection[i];
-    w.F1[i] = f.FullProjection[4 + i];
-    w.F3[i] = f.FullProjection[12 + i];
-  }
-  w.LimX = float(raster::JacobianClamp) * f.TanFovX;
-  w.LimY = float(raster::JacobianClamp) * f.TanFovY;
-  w.FocalX = f.Fx;
-  w.FocalY = f.Fy;
-  for (int i = 0; i < 3; ++i)
-  {
-    w.Center[i] = f.CameraCenter[i];
-  }
-  return w;
 }
 
 } // namespace
@@ -559,7 +433,7 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
   std::uint64_t version)
 {
   const std::size_t n = cloud.Count;
-  const MultiViewCamera w = MakeLaneCamera(p);
+  const PreparedView w = PrepareView(p);
   const ProjectBlock block = SelectProjectBlock(settings.KernelIsa);
   const bool colors = settings.ComputeColors;
   const int shDegree = p.ShDegree;
@@ -670,26 +544,8 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
         if (colors)
         {
           const std::size_t i = first + k;
-          const float* pos = &cloud.Positions[3 * i];
-          const float x = pos[0], y = pos[1], z = pos[2];
-          float dir[3] = { x - campos[0], y - campos[1], z - campos[2] };
-          const float len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-          for (auto& d : dir)
-          {
-            d = d / len;
-          }
-          float col[3];
-          ShColor<float>(&cloud.SH[i * shStride], shDegree, dir, col);
-          std::uint8_t clamped = 0;
-          for (int ch = 0; ch < 3; ++ch)
-          {
-            if (col[ch] < 0.0f)
-            {
-              clamped = static_cast<std::uint8_t>(clamped | (1u << ch));
-            }
-            g.Color[ch] = std::max(col[ch], 0.0f);
-          }
-          g.ClampedChannels = clamped;
+          g.ClampedChannels = static_cast<std::uint8_t>(ViewColor<float>(
+            &cloud.SH[i * shStride], shDegree, &cloud.Positions[3 * i], campos.data(), g.Color));
         }
       }
     }
@@ -849,28 +705,10 @@ void ProjectInto(const GaussianCloud& cloud,
       const T pw = T(1) / (hw + T(0.0000001));
       const T ndcX = hx * pw, ndcY = hy * pw;
       // 3. 3D covariance R diag(s^2) R^T.
-      const T s[3] = { mod * std::exp(static_cast<T>(ls[0])),
-        mod * std::exp(static_cast<T>(ls[1])),
-        mod * std::exp(static_cast<T>(ls[2])) };
-      const T qraw[4] = { rot[0], rot[1], rot[2], rot[3] };
-      const auto R = QuaternionToMatrix<T>(NormalizeQuaternion<T>(qraw));
-      T M[3][3]; // M[k][i] = s_k R_ik
-      for (int k = 0; k < 3; ++k)
-      {
-        for (int r = 0; r < 3; ++r)
-        {
-          M[k][r] = s[k] * R[3 * r + k];
-        }
-      }
-      T Sig[3][3];
-      for (int r = 0; r < 3; ++r)
-      {
-        for (int c = r; c < 3; ++c)
-        {
-          Sig[r][c] = M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c];
-          Sig[c][r] = Sig[r][c];
-        }
-      }
+      const std::array<T, 6> sigma = GaussianCovariance<T>(ls, rot, mod);
+      const T Sig[3][3] = { { sigma[0], sigma[1], sigma[2] },
+        { sigma[1], sigma[3], sigma[4] },
+        { sigma[2], sigma[4], sigma[5] } };
       // 4. EWA projection with the clamped Jacobian.
       const T txtz = t0 / t2, tytz = t1 / t2;
       const T tx = std::min(limx, std::max(-limx, txtz)) * t2;
@@ -928,14 +766,14 @@ void ProjectInto(const GaussianCloud& cloud,
         continue;
       }
       // 6. Pixel-space mean and tile rectangle.
-      const T u = Ndc2Pix(ndcX, W), v = Ndc2Pix(ndcY, H);
-      const int radius = ClampToInt(radiusF);
+      const T u = raster::Ndc2Pix(ndcX, W), v = raster::Ndc2Pix(ndcY, H);
+      const int radius = raster::ClampToInt(radiusF);
       const T rr = static_cast<T>(radius);
       const T bs = T(raster::TileSize);
-      const int x0 = std::min(gx, std::max(0, ClampToInt((u - rr) / bs)));
-      const int y0 = std::min(gy, std::max(0, ClampToInt((v - rr) / bs)));
-      const int x1 = std::min(gx, std::max(0, ClampToInt((u + rr + bs - T(1)) / bs)));
-      const int y1 = std::min(gy, std::max(0, ClampToInt((v + rr + bs - T(1)) / bs)));
+      const int x0 = std::min(gx, std::max(0, raster::ClampToInt((u - rr) / bs)));
+      const int y0 = std::min(gy, std::max(0, raster::ClampToInt((v - rr) / bs)));
+      const int x1 = std::min(gx, std::max(0, raster::ClampToInt((u + rr + bs - T(1)) / bs)));
+      const int y1 = std::min(gy, std::max(0, raster::ClampToInt((v + rr + bs - T(1)) / bs)));
       g.U = u;
       g.V = v;
       g.ConicA = conA;
@@ -964,24 +802,8 @@ void ProjectInto(const GaussianCloud& cloud,
       // 7. Colour.
       if (colors)
       {
-        T dir[3] = { x - campos[0], y - campos[1], z - campos[2] };
-        const T len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-        for (auto& d : dir)
-        {
-          d = d / len;
-        }
-        T col[3];
-        ShColor<T>(shf, shDegree, dir, col);
-        std::uint8_t clamped = 0;
-        for (int ch = 0; ch < 3; ++ch)
-        {
-          if (col[ch] < T(0))
-          {
-            clamped = static_cast<std::uint8_t>(clamped | (1u << ch));
-          }
-          g.Color[ch] = std::max(col[ch], T(0));
-        }
-        g.ClampedChannels = clamped;
+        g.ClampedChannels =
+          static_cast<std::uint8_t>(ViewColor<T>(shf, shDegree, pos, campos.data(), g.Color));
       }
       g.Status = ProjectionStatus::Visible;
       ++local[0];
@@ -1029,6 +851,35 @@ void ProjectGaussians(const GaussianCloud& cloud,
 }
 
 //------------------------------------------------------------------------------
+PreparedView PrepareView(const ViewProjection<float>& f)
+{
+  PreparedView w{};
+  w.W = f.Width;
+  w.H = f.Height;
+  w.Gx = f.TilesX;
+  w.Gy = f.TilesY;
+  for (int i = 0; i < 12; ++i)
+  {
+    w.V[i] = f.ViewMatrix[i];
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    w.F0[i] = f.FullProjection[i];
+    w.F1[i] = f.FullProjection[4 + i];
+    w.F3[i] = f.FullProjection[12 + i];
+  }
+  w.LimX = float(raster::JacobianClamp) * f.TanFovX;
+  w.LimY = float(raster::JacobianClamp) * f.TanFovY;
+  w.FocalX = f.Fx;
+  w.FocalY = f.Fy;
+  for (int i = 0; i < 3; ++i)
+  {
+    w.Center[i] = f.CameraCenter[i];
+  }
+  return w;
+}
+
+//------------------------------------------------------------------------------
 // Internals shared with MultiViewRenderer.cxx (RasterInternal.h).
 namespace raster
 {
@@ -1037,11 +888,6 @@ namespace internal
 void ValidateCloud(const GaussianCloud& cloud, bool colors)
 {
   CheckCloud(cloud, colors);
-}
-
-void ShColorFloat(const float* shf, int degree, const float dir[3], float out[3])
-{
-  ShColor<float>(shf, degree, dir, out);
 }
 
 void PrepareGaussianForLanes(const GaussianCloud& cloud,
@@ -1054,11 +900,6 @@ void PrepareGaussianForLanes(const GaussianCloud& cloud,
   std::size_t k)
 {
   PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, p, k);
-}
-
-MultiViewCamera LaneCamera(const ViewProjection<float>& frame)
-{
-  return MakeLaneCamera(frame);
 }
 
 ProjectBlockFunction SelectProjection(int isa)

@@ -156,6 +156,25 @@ void ProjectGaussians(const GaussianCloud& cloud,
   const RasterSettings& settings,
   ViewProjection<T>& projection);
 
+/**
+ * A view's parameters in float as every lane projection reads them (ProjectGaussians<float>,
+ * MultiViewRenderer, Core/Diagnostics' fast coverage): image and tile-grid size, the rows of
+ * the world-to-camera matrix, rows 0, 1 and 3 of the full projection, the Jacobian clamps
+ * 1.3 tan(fov/2), the focal lengths and the camera centre, all as the float projection holds
+ * them (the one per-view preparation; a copy with the same numbers is bit-identical).
+ */
+struct PreparedView
+{
+  int W, H, Gx, Gy;
+  float V[12];
+  float F0[4], F1[4], F3[4];
+  float LimX, LimY, FocalX, FocalY;
+  float Center[3];
+};
+
+/// The PreparedView of the float projection @p frame (its Gaussians are not read).
+PreparedView PrepareView(const ViewProjection<float>& frame);
+
 struct MultiViewPrepared; // internal (MultiViewData.h)
 
 /**

@@ -107,79 +107,6 @@ private:
   const std::string& Name;
 };
 
-//------------------------------------------------------------------------------
-// Text lines: skips blank and '#' lines, tracks line numbers.
-class Lines
-{
-public:
-  Lines(const void* data, std::size_t size)
-    : Text(static_cast<const char*>(data), size)
-  {
-  }
-
-  /// Next non-empty, non-comment line.
-  bool Next(std::string_view& line)
-  {
-    while (this->Raw(line))
-    {
-      const auto b = line.find_first_not_of(" \t\r");
-      if (b != std::string_view::npos && line[b] != '#')
-      {
-        return true;
-      }
-    }
-    return false;
-  }
-
-  /// Next line whatever it holds (the 2D-point line of an image may be empty).
-  bool Raw(std::string_view& line)
-  {
-    if (this->Pos >= this->Text.size())
-    {
-      return false;
-    }
-    std::size_t eol = this->Text.find('\n', this->Pos);
-    if (eol == std::string_view::npos)
-    {
-      eol = this->Text.size();
-    }
-    line = this->Text.substr(this->Pos, eol - this->Pos);
-    this->Pos = eol + 1;
-    ++this->LineNo;
-    return true;
-  }
-
-  std::size_t LineNumber() const { return this->LineNo; }
-
-private:
-  std::string_view Text;
-  std::size_t Pos = 0;
-  std::size_t LineNo = 0;
-};
-
-std::vector<std::string_view> Split(std::string_view line)
-{
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size())
-  {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-    {
-      ++i;
-    }
-    const std::size_t b = i;
-    while (i < line.size() && !(line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-    {
-      ++i;
-    }
-    if (i > b)
-    {
-      out.push_back(line.substr(b, i - b));
-    }
-  }
-  return out;
-}
-
 template <typename T>
 T ParseNumber(std::string_view s, const std::string& name, std::size_t lineNo, const char* what)
 {
@@ -277,13 +204,13 @@ std::vector<ColmapCamera> CamerasBinary(const void* data, std::size_t size, cons
 //------------------------------------------------------------------------------
 std::vector<ColmapCamera> CamerasText(const void* data, std::size_t size, const std::string& name)
 {
-  Lines lines(data, size);
+  detail::TextLines lines(std::string_view(static_cast<const char*>(data), size));
   std::string_view line;
   std::vector<ColmapCamera> cams;
-  while (lines.Next(line))
+  while (lines.Next(line, true)) // blank and '#' lines skipped
   {
     const std::size_t ln = lines.LineNumber();
-    const auto tok = Split(line);
+    const auto tok = detail::SplitWords(line);
     if (tok.size() < 4)
     {
       Fail(
@@ -371,13 +298,13 @@ std::vector<ColmapImage> ImagesText(const void* data,
   const std::string& name,
   bool observations)
 {
-  Lines lines(data, size);
+  detail::TextLines lines(std::string_view(static_cast<const char*>(data), size));
   std::string_view line;
   std::vector<ColmapImage> images;
-  while (lines.Next(line))
+  while (lines.Next(line, true)) // blank and '#' lines skipped
   {
     const std::size_t ln = lines.LineNumber();
-    const auto tok = Split(line);
+    const auto tok = detail::SplitWords(line);
     if (tok.size() < 10)
     {
       Fail(name,
@@ -407,7 +334,7 @@ std::vector<ColmapImage> ImagesText(const void* data,
     std::string_view pts;
     if (lines.Raw(pts))
     {
-      const auto ptok = Split(pts);
+      const auto ptok = detail::SplitWords(pts);
       if (ptok.size() % 3 != 0)
       {
         Fail(name,
@@ -481,13 +408,13 @@ std::vector<ColmapPoint3D> PointsText(const void* data,
   const std::string& name,
   bool observations)
 {
-  Lines lines(data, size);
+  detail::TextLines lines(std::string_view(static_cast<const char*>(data), size));
   std::string_view line;
   std::vector<ColmapPoint3D> points;
-  while (lines.Next(line))
+  while (lines.Next(line, true)) // blank and '#' lines skipped
   {
     const std::size_t ln = lines.LineNumber();
-    const auto tok = Split(line);
+    const auto tok = detail::SplitWords(line);
     if (tok.size() < 8 || (tok.size() - 8) % 2 != 0)
     {
       Fail(name,

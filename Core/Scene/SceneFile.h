@@ -14,6 +14,7 @@
 #include <cstring>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vis4gs
@@ -68,6 +69,85 @@ inline bool HostIsLittleEndian()
   std::memcpy(&b, &one, 1);
   return b == 1;
 }
+
+/// Whitespace-separated words (space, tab, CR) of one line of a text format: the PLY header
+/// and ASCII body and the COLMAP text files.
+inline std::vector<std::string_view> SplitWords(std::string_view line)
+{
+  auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < line.size())
+  {
+    while (i < line.size() && space(line[i]))
+    {
+      ++i;
+    }
+    const std::size_t b = i;
+    while (i < line.size() && !space(line[i]))
+    {
+      ++i;
+    }
+    if (i > b)
+    {
+      out.push_back(line.substr(b, i - b));
+    }
+  }
+  return out;
+}
+
+/// The lines of a text buffer, numbered from 1, for the text formats' error messages (the
+/// last line needs no '\n'). Lines are read from @p start, counted after @p linesBefore.
+class TextLines
+{
+public:
+  explicit TextLines(std::string_view text, std::size_t start = 0, std::size_t linesBefore = 0)
+    : Text(text)
+    , Pos(start)
+    , LineNo(linesBefore)
+  {
+  }
+
+  /// Next line whatever it holds; false at the end of the text.
+  bool Raw(std::string_view& line)
+  {
+    if (this->Pos >= this->Text.size())
+    {
+      return false;
+    }
+    std::size_t eol = this->Text.find('\n', this->Pos);
+    if (eol == std::string_view::npos)
+    {
+      eol = this->Text.size();
+    }
+    line = this->Text.substr(this->Pos, eol - this->Pos);
+    this->Pos = eol + 1;
+    ++this->LineNo;
+    return true;
+  }
+
+  /// Next line holding a word, and with @p comments also not starting with '#'.
+  bool Next(std::string_view& line, bool comments = false)
+  {
+    while (this->Raw(line))
+    {
+      const auto b = line.find_first_not_of(" \t\r");
+      if (b != std::string_view::npos && !(comments && line[b] == '#'))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Number of the line last read (1-based).
+  std::size_t LineNumber() const { return this->LineNo; }
+
+private:
+  std::string_view Text;
+  std::size_t Pos = 0;
+  std::size_t LineNo = 0;
+};
 
 /// A read-only file opened for positioned reads; every failure throws std::runtime_error
 /// naming the file.

@@ -41,58 +41,6 @@ bool AllFinite(const float* v, int n)
   return true;
 }
 
-// SH basis (reference §2.4) in float, the rasteriser's evaluation order.
-void ShColor(const float* sh, int degree, const float d[3], float out[3])
-{
-  const float C0 = static_cast<float>(sh::C0), C1 = static_cast<float>(sh::C1);
-  for (int c = 0; c < 3; ++c)
-  {
-    out[c] = C0 * sh[c];
-  }
-  if (degree > 0)
-  {
-    const float x = d[0], y = d[1], z = d[2];
-    for (int c = 0; c < 3; ++c)
-    {
-      out[c] = out[c] - C1 * y * sh[3 + c] + C1 * z * sh[6 + c] - C1 * x * sh[9 + c];
-    }
-    if (degree > 1)
-    {
-      const float xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
-      const float b[5] = { static_cast<float>(sh::C2[0]) * xy,
-        static_cast<float>(sh::C2[1]) * yz,
-        static_cast<float>(sh::C2[2]) * (2.0f * zz - xx - yy),
-        static_cast<float>(sh::C2[3]) * xz,
-        static_cast<float>(sh::C2[4]) * (xx - yy) };
-      for (int c = 0; c < 3; ++c)
-      {
-        out[c] = out[c] + b[0] * sh[12 + c] + b[1] * sh[15 + c] + b[2] * sh[18 + c] +
-          b[3] * sh[21 + c] + b[4] * sh[24 + c];
-      }
-      if (degree > 2)
-      {
-        const float e[7] = { static_cast<float>(sh::C3[0]) * y * (3.0f * xx - yy),
-          static_cast<float>(sh::C3[1]) * xy * z,
-          static_cast<float>(sh::C3[2]) * y * (4.0f * zz - xx - yy),
-          static_cast<float>(sh::C3[3]) * z * (2.0f * zz - 3.0f * xx - 3.0f * yy),
-          static_cast<float>(sh::C3[4]) * x * (4.0f * zz - xx - yy),
-          static_cast<float>(sh::C3[5]) * z * (xx - yy),
-          static_cast<float>(sh::C3[6]) * x * (xx - 3.0f * yy) };
-        for (int c = 0; c < 3; ++c)
-        {
-          out[c] = out[c] + e[0] * sh[27 + c] + e[1] * sh[30 + c] + e[2] * sh[33 + c] +
-            e[3] * sh[36 + c] + e[4] * sh[39 + c] + e[5] * sh[42 + c] + e[6] * sh[45 + c];
-        }
-      }
-    }
-  }
-  for (int c = 0; c < 3; ++c)
-  {
-    out[c] = out[c] + 0.5f;
-    out[c] = out[c] < 0.0f ? 0.0f : out[c];
-  }
-}
-
 // 17 samples (indices 0, 16, ..., 240, 255) of matplotlib's 256-entry viridis table (CC0).
 constexpr int ViridisSamples = 17;
 constexpr float ViridisIndex[ViridisSamples] = { 0,
@@ -158,34 +106,12 @@ void PackSplatGeometry(const GaussianCloud& cloud,
     {
       continue; // valid = 0
     }
-    const float s[3] = { mod * std::exp(ls[0]), mod * std::exp(ls[1]), mod * std::exp(ls[2]) };
-    const auto R = QuaternionToMatrix<float>(NormalizeQuaternion<float>(rot));
-    float M[3][3]; // M[k][r] = s_k R_rk
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int r = 0; r < 3; ++r)
-      {
-        M[k][r] = s[k] * R[3 * r + k];
-      }
-    }
-    float Sig[3][3];
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = r; c < 3; ++c)
-      {
-        Sig[r][c] = M[0][r] * M[0][c] + M[1][r] * M[1][c] + M[2][r] * M[2][c];
-      }
-    }
+    const std::array<float, 6> sigma = GaussianCovariance<float>(ls, rot, mod);
     out[0] = pos[0];
     out[1] = pos[1];
     out[2] = pos[2];
     out[3] = Sigmoid(logit);
-    out[4] = Sig[0][0];
-    out[5] = Sig[0][1];
-    out[6] = Sig[0][2];
-    out[7] = Sig[1][1];
-    out[8] = Sig[1][2];
-    out[9] = Sig[2][2];
+    std::copy(sigma.begin(), sigma.end(), out + 4);
     out[10] = AllFinite(out + 4, 6) ? 1.0f : 0.0f;
   }
 }
@@ -208,22 +134,15 @@ void EvaluateSplatColors(const GaussianCloud& cloud,
   CheckArray("SH", cloud.SH.size(), n, stride);
   const int degree = shDegree < 0 ? cloud.ShDegree : std::min(shDegree, cloud.ShDegree);
   rgb.resize(3 * n);
-  const float cx = static_cast<float>(cameraCenter[0]);
-  const float cy = static_cast<float>(cameraCenter[1]);
-  const float cz = static_cast<float>(cameraCenter[2]);
+  const float center[3] = { static_cast<float>(cameraCenter[0]),
+    static_cast<float>(cameraCenter[1]),
+    static_cast<float>(cameraCenter[2]) };
   const std::int64_t count = static_cast<std::int64_t>(n);
 #pragma omp parallel for num_threads(ThreadCount(threads)) schedule(static)
   for (std::int64_t ii = 0; ii < count; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
-    const float* p = &cloud.Positions[3 * i];
-    float d[3] = { p[0] - cx, p[1] - cy, p[2] - cz };
-    const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (auto& v : d)
-    {
-      v = len > 0.0f ? v / len : 0.0f;
-    }
-    ShColor(&cloud.SH[i * stride], degree, d, &rgb[3 * i]);
+    ViewColor<float>(&cloud.SH[i * stride], degree, &cloud.Positions[3 * i], center, &rgb[3 * i]);
   }
 }
 

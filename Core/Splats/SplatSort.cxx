@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SplatSort.h"
 
+#include "RadixSort.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -77,10 +79,12 @@ void SortBackToFront(const std::vector<float>& depths,
     static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(ThreadCount(options.Threads)),
       std::max<std::size_t>(1, n / 4096 + 1)));
 
-  // 1. Compaction of the drawable Gaussians into (key, index), in index order.
+  // 1. Compaction of the drawable Gaussians into keys (depth bits << 32 | index), in index
+  // order; the bits of positive depths order like the values.
   std::vector<std::size_t> kept(static_cast<std::size_t>(threads) + 1, 0);
-  std::vector<std::uint32_t> keys[2], ids[2];
-#pragma omp parallel num_threads(threads)
+  std::vector<std::uint64_t> keys; // keys, then the sort's scratch
+  std::uint32_t any = 0, all = ~0u;
+#pragma omp parallel num_threads(threads) reduction(| : any) reduction(& : all)
   {
     const int t = omp_get_thread_num();
     const std::size_t b = n * t / threads, e = n * (t + 1) / threads;
@@ -97,97 +101,37 @@ void SortBackToFront(const std::vector<float>& depths,
       {
         kept[k + 1] += kept[k];
       }
-      for (int k = 0; k < 2; ++k)
-      {
-        keys[k].resize(kept[threads]);
-        ids[k].resize(kept[threads]);
-      }
+      keys.resize(2 * kept[threads]);
     }
     std::size_t o = kept[t];
     for (std::size_t i = b; i < e; ++i)
     {
       if (Drawable(depths[i], i, options))
       {
-        keys[0][o] = FloatBits(depths[i]);
-        ids[0][o] = static_cast<std::uint32_t>(i);
-        ++o;
+        const std::uint32_t bits = FloatBits(depths[i]);
+        any |= bits;
+        all &= bits;
+        keys[o++] = (static_cast<std::uint64_t>(bits) << 32) | i;
       }
     }
   }
   const std::size_t m = kept[threads];
 
-  // 2. Stable LSD radix sort, 8-bit digits: ascending depth, ties in index order.
-  std::vector<std::size_t> hist(static_cast<std::size_t>(threads) * 256);
-  int src = 0;
-  for (int shift = 0; shift < 32; shift += 8)
-  {
-    std::fill(hist.begin(), hist.end(), 0);
-#pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num();
-      const std::size_t b = m * t / threads, e = m * (t + 1) / threads;
-      std::size_t* h = &hist[static_cast<std::size_t>(t) * 256];
-      const std::uint32_t* k = keys[src].data();
-      for (std::size_t i = b; i < e; ++i)
-      {
-        ++h[(k[i] >> shift) & 0xFFu];
-      }
-    }
-    // Skip a pass whose digit is the same for every key (common for the exponent byte).
-    bool constant = false;
-    for (int d = 0; d < 256 && !constant; ++d)
-    {
-      std::size_t s = 0;
-      for (int t = 0; t < threads; ++t)
-      {
-        s += hist[static_cast<std::size_t>(t) * 256 + d];
-      }
-      constant = (s == m);
-    }
-    if (constant || m == 0)
-    {
-      continue;
-    }
-    // Offsets: digit-major, thread-minor keeps the sort stable.
-    std::size_t running = 0;
-    for (int d = 0; d < 256; ++d)
-    {
-      for (int t = 0; t < threads; ++t)
-      {
-        std::size_t& h = hist[static_cast<std::size_t>(t) * 256 + d];
-        const std::size_t c = h;
-        h = running;
-        running += c;
-      }
-    }
-    const int dst = 1 - src;
-#pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num();
-      const std::size_t b = m * t / threads, e = m * (t + 1) / threads;
-      std::size_t* h = &hist[static_cast<std::size_t>(t) * 256];
-      const std::uint32_t* ks = keys[src].data();
-      const std::uint32_t* is = ids[src].data();
-      std::uint32_t* kd = keys[dst].data();
-      std::uint32_t* id = ids[dst].data();
-      for (std::size_t i = b; i < e; ++i)
-      {
-        const std::size_t o = h[(ks[i] >> shift) & 0xFFu]++;
-        kd[o] = ks[i];
-        id[o] = is[i];
-      }
-    }
-    src = dst;
-  }
+  // 2. Stable radix sort on the depth bits that differ: ascending depth, ties in index order.
+  const std::uint64_t* sorted = RadixSortKeys(keys.data(),
+    keys.data() + m,
+    static_cast<std::int64_t>(m),
+    32,
+    32 + DifferingBits(any, all),
+    threads);
 
   // 3. Back to front is the exact reverse.
   order.resize(m);
-  const std::uint32_t* sorted = ids[src].data();
   const std::int64_t mm = static_cast<std::int64_t>(m);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int64_t i = 0; i < mm; ++i)
   {
-    order[i] = sorted[mm - 1 - i];
+    order[i] = static_cast<std::uint32_t>(sorted[mm - 1 - i]);
   }
 }
 

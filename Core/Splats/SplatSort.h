@@ -46,10 +46,10 @@ struct SplatSortOptions
 
 /**
  * Fills @p order with the indices of the drawable Gaussians, back to front: depth
- * descending, ties by index descending. Parallel stable LSD radix sort on the float bit
- * patterns (which order like the values for the positive depths kept), 8-bit digits, passes
- * whose digit is constant skipped. Throws std::invalid_argument for more than 2^32 - 1
- * Gaussians.
+ * descending, ties by index descending. The rasteriser's parallel stable LSD radix sort
+ * (RadixSort.h) on the float bit patterns (which order like the values for the positive
+ * depths kept), on the bits that differ between the depths only. Throws std::invalid_argument for
+ * more than 2^32 - 1 Gaussians.
  */
 void SortBackToFront(const std::vector<float>& depths,
   std::vector<std::uint32_t>& order,

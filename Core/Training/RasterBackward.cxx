@@ -312,8 +312,6 @@ void TileBackwardScalar(const BackwardContext<T>& ctx, std::size_t t, PartitionS
   }
 }
 
-#define VIS4GS_BACKWARD_INLINE inline __attribute__((always_inline))
-
 template <typename T>
 struct BackwardLanes;
 template <>
@@ -329,31 +327,26 @@ struct BackwardLanes<double>
   typedef std::int64_t I __attribute__((vector_size(128)));
 };
 
-// VIS4GS_LANES_NATIVE_BYTES: the widest vector register of the instruction set; the
-// baseline and AVX2 instantiations run the tile loop on vectors of that width.
-#define VIS4GS_LANES_AVX512 0
-#define VIS4GS_LANES_NATIVE_BYTES 16
-#define VIS4GS_LANES_NAMESPACE lanes_baseline
-#define VIS4GS_LANES_TARGET
+// The baseline and AVX2 instantiations run the tile loop on vectors of the width of their
+// registers (VIS4GS_LANES_NATIVE_BYTES).
+namespace lanes_baseline
+{
+#define VIS4GS_LANES_ISA 1
 #include "RasterBackwardLanes.inc"
-#undef VIS4GS_LANES_NAMESPACE
-#undef VIS4GS_LANES_TARGET
-#undef VIS4GS_LANES_NATIVE_BYTES
-#define VIS4GS_LANES_NATIVE_BYTES 32
-#define VIS4GS_LANES_NAMESPACE lanes_avx2
-#define VIS4GS_LANES_TARGET VIS4GS_TARGET_AVX2
+#undef VIS4GS_LANES_ISA
+} // namespace lanes_baseline
+namespace lanes_avx2
+{
+#define VIS4GS_LANES_ISA 2
 #include "RasterBackwardLanes.inc"
-#undef VIS4GS_LANES_NAMESPACE
-#undef VIS4GS_LANES_TARGET
-#undef VIS4GS_LANES_NATIVE_BYTES
-#undef VIS4GS_LANES_AVX512
-#define VIS4GS_LANES_AVX512 1
-#define VIS4GS_LANES_NAMESPACE lanes_avx512
-#define VIS4GS_LANES_TARGET VIS4GS_TARGET_AVX512
+#undef VIS4GS_LANES_ISA
+} // namespace lanes_avx2
+namespace lanes_avx512
+{
+#define VIS4GS_LANES_ISA 3
 #include "RasterBackwardLanes.inc"
-#undef VIS4GS_LANES_NAMESPACE
-#undef VIS4GS_LANES_TARGET
-#undef VIS4GS_LANES_AVX512
+#undef VIS4GS_LANES_ISA
+} // namespace lanes_avx512
 
 template <typename T>
 using BackwardTileFunction = void (*)(const BackwardContext<T>&, std::size_t, PartitionSink<T>&);

@@ -1,4 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
+// Over 1,200 lines on purpose: the one TrainingLogReader class (one class per file), one
+// method per group of the log format (DESIGN §3: snapshots, cameras, images, metrics, events,
+// property histories), each with the validation of its group; the HDF5 and chunk helpers
+// they share are already in TrainingLogHDF5.h and TrainingLogChunks.h.
 #include "TrainingLogReader.h"
 
 #include "TrainingLogChunks.h"

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -203,6 +204,138 @@ TEST(GaussianMath, ShConstantsAreTheReferenceLiterals)
   EXPECT_EQ(sh::C2[3], -sh::C2[0]);
   EXPECT_EQ(sh::C3[4], sh::C3[2]);
   EXPECT_EQ(sh::C3[6], sh::C3[0]);
+}
+
+// The one covariance preparation (issue 22) against an independent construction: the
+// rotation from the quaternion's axis and angle (Rodrigues' formula, not the quaternion
+// product formula) and Sigma = R diag((m s)^2) R^T in double.
+TEST(GaussianMath, CovarianceMatchesAxisAngleConstruction)
+{
+  const float rot[4] = { 2.0f, 0.4f, -1.0f, 0.6f }; // not normalised
+  const float logScale[3] = { -1.2f, 0.3f, -3.5f };
+  const double m = 1.7;
+  const double qn = std::sqrt(4.0 + 0.16 + 1.0 + 0.36);
+  const double w = rot[0] / qn;
+  const double v[3] = { rot[1] / qn, rot[2] / qn, rot[3] / qn };
+  const double vn = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const double k[3] = { v[0] / vn, v[1] / vn, v[2] / vn };
+  const double angle = 2.0 * std::atan2(vn, w);
+  const double c = std::cos(angle), s = std::sin(angle);
+  const double K[3][3] = { { 0, -k[2], k[1] }, { k[2], 0, -k[0] }, { -k[1], k[0], 0 } };
+  double R[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      R[i][j] = (i == j ? c : 0.0) + s * K[i][j] + (1 - c) * k[i] * k[j];
+    }
+  }
+  double expected[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      expected[i][j] = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double sa = m * std::exp(static_cast<double>(logScale[a]));
+        expected[i][j] += R[i][a] * sa * sa * R[j][a];
+      }
+    }
+  }
+  const int upper[6][2] = { { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 1 }, { 1, 2 }, { 2, 2 } };
+  const std::array<double, 6> d = GaussianCovariance<double>(logScale, rot, m);
+  const std::array<float, 6> f = GaussianCovariance<float>(logScale, rot, static_cast<float>(m));
+  const double scale = std::exp(2 * 0.3) * m * m; // the largest variance
+  for (int e = 0; e < 6; ++e)
+  {
+    const double x = expected[upper[e][0]][upper[e][1]];
+    EXPECT_NEAR(d[e], x, 1e-14 * scale) << "element " << e;
+    EXPECT_NEAR(f[e], x, 1e-6 * scale) << "element " << e;
+  }
+  // A zero quaternion is the identity rotation: the diagonal (m s)^2 and no correlation.
+  const float zero[4] = { 0, 0, 0, 0 };
+  const std::array<double, 6> z = GaussianCovariance<double>(logScale, zero, 1.0);
+  EXPECT_DOUBLE_EQ(z[0], std::exp(2.0 * logScale[0]));
+  EXPECT_DOUBLE_EQ(z[3], std::exp(2.0 * logScale[1]));
+  EXPECT_DOUBLE_EQ(z[5], std::exp(2.0 * logScale[2]));
+  EXPECT_EQ(z[1], 0.0);
+  EXPECT_EQ(z[2], 0.0);
+  EXPECT_EQ(z[4], 0.0);
+}
+
+// ShColor against the real SH basis written from the closed forms (not the sh:: table), with
+// the reference's signs (Y_1 = -C1 y, +C1 z, -C1 x; the degree-3 signs in the constants): each
+// coefficient alone gives Y_i(d) + 0.5, in every channel with its own weight.
+TEST(GaussianMath, ShColorIsTheRealShBasis)
+{
+  const double pi = 3.141592653589793;
+  const double dn = std::sqrt(0.3 * 0.3 + 0.5 * 0.5 + 0.8 * 0.8);
+  const double dir[3] = { -0.3 / dn, 0.5 / dn, 0.8 / dn };
+  const double x = dir[0], y = dir[1], z = dir[2];
+  const double Y[16] = { 1 / (2 * std::sqrt(pi)),
+    -std::sqrt(3 / pi) / 2 * y,
+    std::sqrt(3 / pi) / 2 * z,
+    -std::sqrt(3 / pi) / 2 * x,
+    std::sqrt(15 / pi) / 2 * x * y,
+    -std::sqrt(15 / pi) / 2 * y * z,
+    std::sqrt(5 / pi) / 4 * (2 * z * z - x * x - y * y),
+    -std::sqrt(15 / pi) / 2 * x * z,
+    std::sqrt(15 / pi) / 4 * (x * x - y * y),
+    -std::sqrt(35 / (2 * pi)) / 4 * y * (3 * x * x - y * y),
+    std::sqrt(105 / pi) / 2 * x * y * z,
+    -std::sqrt(21 / (2 * pi)) / 4 * y * (4 * z * z - x * x - y * y),
+    std::sqrt(7 / pi) / 4 * z * (2 * z * z - 3 * x * x - 3 * y * y),
+    -std::sqrt(21 / (2 * pi)) / 4 * x * (4 * z * z - x * x - y * y),
+    std::sqrt(105 / pi) / 4 * z * (x * x - y * y),
+    -std::sqrt(35 / (2 * pi)) / 4 * x * (x * x - 3 * y * y) };
+  for (int degree = 0; degree <= 3; ++degree)
+  {
+    const int count = (degree + 1) * (degree + 1);
+    for (int i = 0; i < count; ++i)
+    {
+      float sh[48] = {};
+      sh[3 * i] = 1.0f;
+      sh[3 * i + 1] = -2.0f;
+      sh[3 * i + 2] = 0.25f;
+      double out[3];
+      ShColor<double>(sh, degree, dir, out);
+      EXPECT_NEAR(out[0], 0.5 + Y[i], 4e-15) << "degree " << degree << " coefficient " << i;
+      EXPECT_NEAR(out[1], 0.5 - 2 * Y[i], 4e-15) << "degree " << degree << " coefficient " << i;
+      EXPECT_NEAR(out[2], 0.5 + 0.25 * Y[i], 4e-15) << "degree " << degree << " coefficient " << i;
+    }
+  }
+  // Coefficients above the degree are not read.
+  float sh[48];
+  for (float& v : sh)
+  {
+    v = 1.0f;
+  }
+  double out[3];
+  ShColor<double>(sh, 0, dir, out);
+  EXPECT_DOUBLE_EQ(out[0], 0.5 + Y[0]);
+}
+
+// ViewColor: the direction from the centre to the Gaussian, the clamp at 0 with the clamped
+// channels reported, and a Gaussian at the centre (no direction) keeping only the DC term.
+TEST(GaussianMath, ViewColorDirectionAndClamp)
+{
+  float sh[12] = {};
+  sh[0] = 1.0f;         // red: DC only
+  sh[3 * 2 + 1] = 5.0f; // green: +C1 z
+  sh[2] = -4.0f;        // blue: below zero everywhere
+  const float position[3] = { 1.0f, 2.0f, 7.0f };
+  const double center[3] = { 1.0, 2.0, 3.0 }; // the Gaussian lies along +z
+  double rgb[3];
+  const unsigned clamped = ViewColor<double>(sh, 1, position, center, rgb);
+  EXPECT_DOUBLE_EQ(rgb[0], 0.5 + sh::C0);
+  EXPECT_DOUBLE_EQ(rgb[1], 0.5 + 5.0 * sh::C1);
+  EXPECT_EQ(rgb[2], 0.0);
+  EXPECT_EQ(clamped, 4u);
+  const double atGaussian[3] = { 1.0, 2.0, 7.0 };
+  EXPECT_EQ(ViewColor<double>(sh, 1, position, atGaussian, rgb), 4u);
+  EXPECT_DOUBLE_EQ(rgb[0], 0.5 + sh::C0);
+  EXPECT_DOUBLE_EQ(rgb[1], 0.5);
 }
 
 } // namespace vis4gs
