@@ -181,10 +181,11 @@ struct Vis4GSCleanupPanel::Internals
   vtkIdType MeasuredChanges = -1; // the hub's change count of the selection measured
   QThread* Worker = nullptr;
   bool LastFailed = false;
-  // The "before" figures of BaselineScene in BaselineCameras, reused (RemovalEffect.h).
+  // The "before" of BaselineScene in BaselineCameras per tile, reused (RemovalEffect.h): a
+  // preview renders only the tiles its selection changes.
   vtkSmartPointer<vtkPolyData> BaselineScene;
   vtkSmartPointer<vtkTable> BaselineCameras;
-  std::vector<vis4gs::ViewMetrics> Baseline;
+  vis4gs::RemovalBaseline Baseline;
   // What the table shows (for the difference images).
   struct Result
   {
@@ -195,7 +196,7 @@ struct Vis4GSCleanupPanel::Internals
     std::vector<vis4gs::Camera> Cameras;
     vis4gs::TrainingImageProvider Images;
     vis4gs::RemovalEffect Effect;
-    std::vector<vis4gs::ViewMetrics> Baseline;
+    vis4gs::RemovalBaseline Baseline;
     double BaselineSeconds = -1; ///< < 0: the baseline was reused
     std::string Error;
   };
@@ -654,7 +655,8 @@ void Vis4GSCleanupPanel::MeasureRemoval()
   d->MeasureLabel->setText(what + "...");
   if (d->Progress)
   {
-    d->Progress(-1, what + (job->Baseline.empty() ? ": rendering every view before" : ""), false);
+    d->Progress(
+      -1, what + (job->Baseline.Views.empty() ? ": rendering every view before" : ""), false);
   }
   // RemovalEffect has no progress callback: the bar is a busy indicator with the step named.
   d->Worker = QThread::create(
@@ -663,11 +665,11 @@ void Vis4GSCleanupPanel::MeasureRemoval()
       try
       {
         vis4gs::RemovalEffectOptions options;
-        if (job->Baseline.empty())
+        if (job->Baseline.Views.empty())
         {
           const auto t0 = std::chrono::steady_clock::now();
           job->Baseline =
-            vis4gs::MeasureViewMetrics(*job->Cloud, job->Cameras, options, job->Images);
+            vis4gs::MeasureRemovalBaseline(*job->Cloud, job->Cameras, options, job->Images);
           job->BaselineSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           QMetaObject::invokeMethod(
@@ -681,7 +683,7 @@ void Vis4GSCleanupPanel::MeasureRemoval()
             },
             Qt::QueuedConnection);
         }
-        options.Baseline = job->Baseline;
+        options.TileBaseline = job->Baseline;
         job->Effect = vis4gs::MeasureRemovalEffect(
           *job->Cloud, job->Removed, job->Cameras, options, job->Images);
       }

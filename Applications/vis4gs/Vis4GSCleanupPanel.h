@@ -11,8 +11,9 @@
  * split, with the before / after / |difference| images of a chosen view; delete the selection
  * to a new PLY (the main window's export).
  *
- * The "before" figures of a scene are measured once and reused by every later measurement of
- * the same scene and cameras (RemovalEffectOptions::Baseline).
+ * The "before" of a scene is measured once, per 16x16 tile, and reused by every later
+ * measurement of the same scene and cameras (RemovalEffectOptions::TileBaseline): a preview
+ * renders again only the tiles its selection changes.
  */
 #ifndef Vis4GSCleanupPanel_h
 #define Vis4GSCleanupPanel_h

@@ -314,6 +314,13 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         out.Timings.Rendering += Seconds(t0);
       }
 
+      if (settings.ViewRendered)
+      {
+        t0 = Clock::now();
+        settings.ViewRendered(vi, view, render, image);
+        out.Timings.ViewHook += Seconds(t0);
+      }
+
       t0 = Clock::now();
       const double area = (static_cast<double>(full.Width) * full.Height) /
         (static_cast<double>(view.Width) * view.Height);
@@ -539,6 +546,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   out.Timings.LossMaps = pt.LossMaps;
   out.Timings.Footprints = pt.Footprints;
   out.Timings.Accumulation = pt.Accumulation;
+  out.Timings.ViewHook = pt.ViewHook;
   if (scores && out.ViewsWithoutImage > 0)
   {
     out.Warnings.push_back(std::to_string(out.ViewsWithoutImage) + " of " +

@@ -55,6 +55,18 @@
 namespace vis4gs
 {
 
+/**
+ * Called with every view the blur/needle pass renders, once it is rendered: the camera index,
+ * the camera as rendered (Camera::Resized at LossResolution, the camera itself at 1), the
+ * render and the view's image at that size. For a caller that measures those renders too
+ * (Selection/RemovalEffect.h keeps the "before" of a clean-up), so that no view is rendered
+ * twice. It runs on the calling thread, between views.
+ */
+using ScoreViewRendered = std::function<void(std::size_t cameraIndex,
+  const Camera& view,
+  const RasterImage<float>& render,
+  const Image& image)>;
+
 /// Which scores to compute.
 struct ScoreRequest
 {
@@ -103,6 +115,8 @@ struct ScoreSettings
   RasterSettings Raster;
   /// OpenMP threads; 0 uses OpenMP's default.
   int Threads = 0;
+  /// Optional: see ScoreViewRendered. Its time is counted in ScoreTimings::ViewHook.
+  ScoreViewRendered ViewRendered;
 };
 
 /// Bits of GaussianScores::Flags.
@@ -128,6 +142,7 @@ struct ScoreTimings
   double Footprints = 0;   ///< ComputeFootprints
   double Accumulation = 0; ///< per-Gaussian sums
   double NeedleShape = 0;
+  double ViewHook = 0; ///< ScoreSettings::ViewRendered
   double Total = 0;
 };
 

@@ -364,6 +364,29 @@ void Rasterize(const GaussianCloud& cloud,
   const RasterSettings& settings,
   RasterWorkspace<T>& workspace);
 
+/**
+ * Culls (Status OffScreen, Radius 0, Counts updated) every visible Gaussian of @p projection
+ * whose tile rectangle meets no tile where @p tiles is non-zero (one byte per tile, row-major,
+ * TilesX * TilesY). Binned and composited, the chosen tiles then hold the full render's pixels,
+ * bit for bit (their lists keep the same Gaussians in the same order), for the cost of the
+ * Gaussians that reach them; other tiles hold a partial render. Returns the Gaussians culled;
+ * throws std::invalid_argument when @p tiles does not match the view.
+ */
+template <typename T>
+std::size_t KeepTiles(ViewProjection<T>& projection, const std::vector<std::uint8_t>& tiles);
+
+/**
+ * Rasterize() of the tiles where @p tiles is non-zero (see KeepTiles()) into
+ * @p workspace.Image, without depth: what a clean-up's "after" re-renders where the removal
+ * changed the image (Selection/RemovalEffect.h).
+ */
+template <typename T>
+void RasterizeTiles(const GaussianCloud& cloud,
+  const Camera& camera,
+  const RasterSettings& settings,
+  const std::vector<std::uint8_t>& tiles,
+  RasterWorkspace<T>& workspace);
+
 /// Projection, binning and compositing in one call.
 template <typename T>
 RasterImage<T> Rasterize(const GaussianCloud& cloud,
@@ -467,6 +490,20 @@ extern template void CompositeTiles<double>(const ViewProjection<double>&,
   RasterWorkCounts*,
   CompositeData<double>*,
   bool);
+extern template std::size_t KeepTiles<float>(ViewProjection<float>&,
+  const std::vector<std::uint8_t>&);
+extern template std::size_t KeepTiles<double>(ViewProjection<double>&,
+  const std::vector<std::uint8_t>&);
+extern template void RasterizeTiles<float>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  const std::vector<std::uint8_t>&,
+  RasterWorkspace<float>&);
+extern template void RasterizeTiles<double>(const GaussianCloud&,
+  const Camera&,
+  const RasterSettings&,
+  const std::vector<std::uint8_t>&,
+  RasterWorkspace<double>&);
 extern template RasterImage<float> Rasterize<float>(const GaussianCloud&,
   const Camera&,
   const RasterSettings&,

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "RemovalEffect.h"
 
-#include "Loss.h"
 #include "RasterInternal.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 
@@ -34,14 +34,13 @@ RasterSettings Settings(const RemovalEffectOptions& options)
   return s;
 }
 
-ViewMetrics Measure(const Image& render, const Image& target, int threads)
+// Every figure is measured per tile, so that a view re-measured in part (RemeasureViewTiles)
+// and one measured whole give the same bits.
+ViewMetrics Measure(const RasterImage<float>& render, const Image& target, int threads)
 {
-  ViewMetrics m;
-  const std::size_t count = render.Pixels.size();
-  m.Psnr = Psnr(render.Pixels.data(), target.Pixels.data(), count);
-  m.Ssim = Ssim(render.Pixels.data(), target.Pixels.data(), render.Width, render.Height, threads);
-  m.L1 = L1Loss(render.Pixels.data(), target.Pixels.data(), count);
-  return m;
+  return MeasureViewTiles(
+    render.Color.data(), target.Pixels.data(), render.Width, render.Height, threads)
+    .Metrics();
 }
 
 // The image of view @p index, or false; throws when its size is not the camera's.
@@ -97,6 +96,70 @@ void FinishTotals(RemovalTotals& totals)
       m->L1 /= n;
     }
   }
+}
+
+// The tiles whose lists hold a Gaussian visible in @p projection (the removed ones).
+std::vector<std::uint8_t> ListedTiles(const ViewProjection<float>& projection)
+{
+  std::vector<std::uint8_t> tiles(
+    static_cast<std::size_t>(projection.TilesX) * projection.TilesY, 0);
+  for (const ProjectedGaussian<float>& g : projection.Gaussians)
+  {
+    if (g.IsVisible())
+    {
+      for (int y = g.TileRect[1]; y < g.TileRect[3]; ++y)
+      {
+        std::fill_n(&tiles[static_cast<std::size_t>(y) * projection.TilesX + g.TileRect[0]],
+          g.TileRect[2] - g.TileRect[0],
+          std::uint8_t(1));
+      }
+    }
+  }
+  return tiles;
+}
+
+void CheckTileBaseline(const RemovalBaseline& baseline,
+  const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster)
+{
+  if (baseline.Views.empty())
+  {
+    return;
+  }
+  auto fail = [](const std::string& what)
+  { throw std::invalid_argument("MeasureRemovalEffect: the tile baseline " + what); };
+  if (baseline.Views.size() != cameras.size())
+  {
+    fail("has " + std::to_string(baseline.Views.size()) + " views for " +
+      std::to_string(cameras.size()) + " cameras");
+  }
+  if (baseline.Gaussians != cloud.Count)
+  {
+    fail("was measured on " + std::to_string(baseline.Gaussians) + " Gaussians, not " +
+      std::to_string(cloud.Count));
+  }
+  if (baseline.Background != raster.Background || baseline.ShDegree != raster.ShDegree ||
+    baseline.ScaleModifier != raster.ScaleModifier)
+  {
+    fail("was rendered with another background, SH degree or scale modifier");
+  }
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    const ViewTileSums& t = baseline.Views[v];
+    if (!t.Empty() && (t.Width != cameras[v].Width || t.Height != cameras[v].Height))
+    {
+      fail("of camera " + cameras[v].Name + " is " + std::to_string(t.Width) + "x" +
+        std::to_string(t.Height) + ", the camera " + std::to_string(cameras[v].Width) + "x" +
+        std::to_string(cameras[v].Height));
+    }
+  }
+}
+
+std::size_t CountTiles(const std::vector<std::uint8_t>& tiles)
+{
+  return static_cast<std::size_t>(
+    std::count_if(tiles.begin(), tiles.end(), [](std::uint8_t t) { return t != 0; }));
 }
 
 // The sort key: identical renders of a perfect view (PSNR +inf before and after) did not change.
@@ -200,9 +263,114 @@ std::vector<ViewMetrics> MeasureViewMetrics(const GaussianCloud& cloud,
       continue;
     }
     Rasterize(cloud, cameras[v], settings, workspace);
-    metrics[v] = Measure(ClampedImage(workspace.Image), target, threads);
+    metrics[v] = Measure(workspace.Image, target, threads);
   }
   return metrics;
+}
+
+//------------------------------------------------------------------------------
+std::size_t RemovalBaseline::MeasuredViews() const
+{
+  return static_cast<std::size_t>(std::count_if(
+    this->Views.begin(), this->Views.end(), [](const ViewTileSums& v) { return !v.Empty(); }));
+}
+
+namespace
+{
+RemovalBaseline EmptyBaseline(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster)
+{
+  RemovalBaseline baseline;
+  baseline.Views.assign(cameras.size(), ViewTileSums{});
+  baseline.Gaussians = cloud.Count;
+  baseline.Background = raster.Background;
+  baseline.ShDegree = raster.ShDegree;
+  baseline.ScaleModifier = raster.ScaleModifier;
+  return baseline;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+ScoreViewRendered RemovalBaselineRecorder(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RasterSettings& raster,
+  int threads,
+  RemovalBaseline& baseline)
+{
+  baseline = EmptyBaseline(cloud, cameras, raster);
+  RemovalBaseline* out = &baseline;
+  std::vector<std::array<int, 2>> sizes;
+  for (const Camera& c : cameras)
+  {
+    sizes.push_back({ c.Width, c.Height });
+  }
+  return
+    [out, threads, sizes](
+      std::size_t index, const Camera& view, const RasterImage<float>& render, const Image& image)
+  {
+    // Only a render at the camera's own size is the "before" of that view (a score pass at a
+    // reduced resolution renders smaller views).
+    const std::array<int, 2> size{ view.Width, view.Height };
+    if (index < out->Views.size() && size == sizes[index] && render.Width == view.Width &&
+      render.Height == view.Height && image.Width == view.Width && image.Height == view.Height)
+    {
+      out->Views[index] = MeasureViewTiles(
+        render.Color.data(), image.Pixels.data(), view.Width, view.Height, threads);
+    }
+  };
+}
+
+//------------------------------------------------------------------------------
+bool RecordRemovalBaseline(ScoreSettings& settings,
+  const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  RemovalBaseline& baseline)
+{
+  if (settings.LossResolution != 1)
+  {
+    return false;
+  }
+  ScoreViewRendered record =
+    RemovalBaselineRecorder(cloud, cameras, settings.Raster, settings.Threads, baseline);
+  ScoreViewRendered earlier = std::move(settings.ViewRendered);
+  settings.ViewRendered =
+    [record, earlier](
+      std::size_t index, const Camera& view, const RasterImage<float>& render, const Image& image)
+  {
+    if (earlier)
+    {
+      earlier(index, view, render, image);
+    }
+    record(index, view, render, image);
+  };
+  return true;
+}
+
+//------------------------------------------------------------------------------
+RemovalBaseline MeasureRemovalBaseline(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const RemovalEffectOptions& options,
+  const TrainingImageProvider& images)
+{
+  RemovalBaseline baseline = EmptyBaseline(cloud, cameras, options.Raster);
+  const RasterSettings settings = Settings(options);
+  RasterWorkspace<float> workspace;
+  Image target;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    if (!Wanted(cameras[v], options) || !LoadTarget(images, v, cameras[v], target))
+    {
+      continue;
+    }
+    Rasterize(cloud, cameras[v], settings, workspace);
+    baseline.Views[v] = MeasureViewTiles(workspace.Image.Color.data(),
+      target.Pixels.data(),
+      cameras[v].Width,
+      cameras[v].Height,
+      options.Threads);
+  }
+  return baseline;
 }
 
 //------------------------------------------------------------------------------
@@ -219,9 +387,6 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       " cameras");
   }
   RemovalEffect effect;
-  const GaussianCloud after = RemoveGaussians(cloud, removed);
-  effect.Kept = after.Count;
-  effect.Removed = cloud.Count - after.Count;
   const RasterSettings settings = Settings(options);
   const int threads = raster::internal::Threads(options.Threads);
 
@@ -230,8 +395,25 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
   std::transform(
     removed.begin(), removed.end(), kept.begin(), [](std::uint8_t r) { return r ? 0 : 1; });
   const GaussianCloud gone = RemoveGaussians(cloud, kept);
+  effect.Removed = gone.Count;
+  effect.Kept = cloud.Count - gone.Count;
   RasterSettings cull = settings;
   cull.ComputeColors = false;
+  // The cleaned cloud (a copy of every kept Gaussian), made when a view needs it whole.
+  std::unique_ptr<GaussianCloud> afterCloud;
+  auto after = [&]() -> const GaussianCloud&
+  {
+    if (!afterCloud)
+    {
+      afterCloud.reset(new GaussianCloud(RemoveGaussians(cloud, removed)));
+    }
+    return *afterCloud;
+  };
+  ViewProjection<float> reach;
+  PreparedCloudCache prepared;
+  std::vector<std::uint8_t> outside;
+
+  CheckTileBaseline(options.TileBaseline, cloud, cameras, options.Raster);
 
   RasterWorkspace<float> workspace;
   ViewProjection<float> projection;
@@ -247,6 +429,11 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
     view.CameraIndex = v;
     view.Name = camera.Name;
     view.Split = camera.Split;
+    const ViewTileSums* tiled =
+      options.TileBaseline.Views.empty() || options.TileBaseline.Views[v].Empty()
+      ? nullptr
+      : &options.TileBaseline.Views[v];
+    const bool known = tiled || !options.Baseline.empty();
     auto t0 = Clock::now();
     if (gone.Count > 0)
     {
@@ -254,11 +441,12 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       view.Affected = projection.Counts.Visible > 0;
     }
     effect.SecondsAfter += Since(t0);
-    if (!options.Baseline.empty() && !view.Affected)
+    if (known && !view.Affected)
     {
       // Nothing to render or read: the baseline is this view's figures, before and after.
-      view.HasImage = !std::isnan(options.Baseline[v].Psnr);
-      view.Before = view.After = options.Baseline[v];
+      const ViewMetrics m = tiled ? tiled->Metrics() : options.Baseline[v];
+      view.HasImage = !std::isnan(m.Psnr);
+      view.Before = view.After = m;
       effect.ViewsWithoutImage += view.HasImage ? 0 : 1;
       effect.Views.push_back(std::move(view));
       continue;
@@ -271,27 +459,85 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
       continue;
     }
     t0 = Clock::now();
-    if (options.Baseline.empty())
+    // The "before" per tile: given, or measured on this render.
+    ViewTileSums sums;
+    if (tiled)
     {
-      Rasterize(cloud, camera, settings, workspace);
-      ++effect.ViewsRendered;
-      view.Before = Measure(ClampedImage(workspace.Image), target, threads);
+      sums = *tiled;
+      view.Before = sums.Metrics();
     }
-    else
+    else if (!options.Baseline.empty())
     {
       view.Before = options.Baseline[v];
     }
+    else
+    {
+      Rasterize(cloud, camera, settings, workspace);
+      ++effect.ViewsRendered;
+      sums = MeasureViewTiles(
+        workspace.Image.Color.data(), target.Pixels.data(), camera.Width, camera.Height, threads);
+      view.Before = sums.Metrics();
+    }
     effect.SecondsBefore += Since(t0);
     t0 = Clock::now();
-    if (view.Affected)
+    if (!view.Affected)
     {
-      Rasterize(after, camera, settings, workspace);
+      view.After = view.Before;
+    }
+    else if (!sums.Empty() && options.ReuseTiles)
+    {
+      const std::vector<std::uint8_t> changed = ListedTiles(projection);
+      const std::vector<std::uint8_t> rendered =
+        DilateTiles(changed, projection.TilesX, projection.TilesY, 2);
+      // Only the kept Gaussians that reach those tiles are rendered, as a cloud of their own in
+      // their order (the same tile lists, so the same pixels). They are found by a projection
+      // without colours, the view-independent part kept between views; a Gaussian it keeps
+      // and the render culls (its SH not finite) only costs its copy. When most of the view is
+      // rendered again, most Gaussians reach it: the cleaned cloud is rendered directly.
+      bool whole = 2 * CountTiles(rendered) > rendered.size();
+      if (!whole)
+      {
+        ProjectGaussians(cloud, camera, cull, reach, prepared, 1);
+        for (std::size_t i = 0; i < cloud.Count; ++i)
+        {
+          if (removed[i])
+          {
+            reach.Gaussians[i].Status = ProjectionStatus::OffScreen;
+          }
+        }
+        KeepTiles(reach, rendered);
+        outside.resize(cloud.Count);
+        std::size_t inside = 0;
+        for (std::size_t i = 0; i < cloud.Count; ++i)
+        {
+          outside[i] = reach.Gaussians[i].IsVisible() ? 0 : 1;
+          inside += 1 - outside[i];
+        }
+        whole = 2 * inside > cloud.Count;
+      }
+      if (whole)
+      {
+        RasterizeTiles(after(), camera, settings, rendered, workspace);
+      }
+      else
+      {
+        RasterizeTiles(RemoveGaussians(cloud, outside), camera, settings, rendered, workspace);
+      }
       ++effect.ViewsRendered;
-      view.After = Measure(ClampedImage(workspace.Image), target, threads);
+      effect.TilesRendered += CountTiles(rendered);
+      effect.TilesOfTiledViews += sums.TileCount();
+      RemeasureViewTiles(sums,
+        workspace.Image.Color.data(),
+        target.Pixels.data(),
+        DilateTiles(changed, projection.TilesX, projection.TilesY, 1),
+        threads);
+      view.After = sums.Metrics();
     }
     else
     {
-      view.After = view.Before;
+      Rasterize(after(), camera, settings, workspace);
+      ++effect.ViewsRendered;
+      view.After = Measure(workspace.Image, target, threads);
     }
     effect.SecondsAfter += Since(t0);
     effect.Views.push_back(std::move(view));

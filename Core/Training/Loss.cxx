@@ -340,7 +340,8 @@ double SsimImpl(const T* x,
   T* gradSsim,
   const SsimKernels<T>& kernels = SsimKernels<T>::Best(),
   const T* targetPlanes = nullptr,
-  T* targetOut = nullptr)
+  T* targetOut = nullptr,
+  T* mapOut = nullptr)
 {
   if (W <= 0 || H <= 0)
   {
@@ -439,6 +440,13 @@ double SsimImpl(const T* x,
         gradSsim != nullptr);
     }
   }
+  if (mapOut)
+  {
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      std::copy(plane(ch, SMAP), plane(ch, SMAP) + P, mapOut + ch * P);
+    }
+  }
   // The three channel sums, each in pixel order, advanced together: three independent
   // addition chains instead of one at a time (same additions, same bits).
   double channelSum[3] = { 0, 0, 0 };
@@ -523,6 +531,16 @@ template <typename T>
 double Ssim(const T* x, const T* y, int width, int height, int threads)
 {
   return SsimImpl<T>(x, y, width, height, threads, nullptr);
+}
+
+//------------------------------------------------------------------------------
+template <typename T>
+void SsimMap(const T* x, const T* y, int width, int height, std::vector<T>& map, int threads)
+{
+  map.resize(3 * static_cast<std::size_t>(std::max(0, width)) *
+    static_cast<std::size_t>(std::max(0, height)));
+  SsimImpl<T>(
+    x, y, width, height, threads, nullptr, SsimKernels<T>::Best(), nullptr, nullptr, map.data());
 }
 
 //------------------------------------------------------------------------------
@@ -658,6 +676,8 @@ template double L1Loss<float>(const float*, const float*, std::size_t);
 template double L1Loss<double>(const double*, const double*, std::size_t);
 template double Ssim<float>(const float*, const float*, int, int, int);
 template double Ssim<double>(const double*, const double*, int, int, int);
+template void SsimMap<float>(const float*, const float*, int, int, std::vector<float>&, int);
+template void SsimMap<double>(const double*, const double*, int, int, std::vector<double>&, int);
 template void PrepareSsimTarget<float>(const float*, int, int, SsimTarget<float>&, int);
 template void PrepareSsimTarget<double>(const double*, int, int, SsimTarget<double>&, int);
 template LossValues TrainingLoss<float>(const float*,

@@ -52,6 +52,18 @@ template <typename T>
 double Ssim(const T* x, const T* y, int width, int height, int threads = 0);
 
 /**
+ * The SSIM map itself: @p map (resized to 3 * width * height) receives, channel after
+ * channel, the SSIM value of every pixel (planar: channel c, pixel p at c * W * H + p); its
+ * mean is Ssim(). A pixel's value depends only on the 11x11 window around it (zero padding at
+ * the image border) and is computed in the same order whatever the image's size, so the map
+ * of a crop equals the full image's map, bit for bit, at every crop pixel whose window lies
+ * inside the crop or is cut only by a border the crop shares with the image (Selection's
+ * ViewTileSums re-measures changed tiles this way).
+ */
+template <typename T>
+void SsimMap(const T* x, const T* y, int width, int height, std::vector<T>& map, int threads = 0);
+
+/**
  * The maps of SSIM that depend on the target image only (per channel its blurred mean and
  * blurred square), for a caller that compares many renderings with the same target (the
  * trainer, once per view): TrainingLoss() then blurs 18 planes per call instead of 24.

@@ -308,6 +308,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
                                                   : vis4gs::FootprintAccumulation::Double;
   settings.OcclusionThreshold = this->OcclusionThreshold;
   settings.Lambda = this->Lambda;
+  settings.ViewRendered = this->ViewRendered;
   const bool needCameras =
     settings.Request.ViewCoverage || settings.Request.Blur || settings.Request.Needle;
   const bool needImages = settings.Request.Blur || settings.Request.Needle;
@@ -492,4 +493,12 @@ void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeSeconds: " << this->ComputeSeconds << "\n";
   os << indent << "ReductionSeconds: " << this->ReductionSeconds << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "ViewRendered: " << (this->ViewRendered ? "set" : "none") << "\n";
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianArtifactScoreFilter::SetViewRendered(ViewRenderedFunction function)
+{
+  this->ViewRendered = std::move(function);
+  this->Modified();
 }

@@ -34,7 +34,19 @@
 #include "vis4gsFiltersDiagnosticsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <string> // For ImageDirectory
+#include <cstddef>    // For ViewRendered
+#include <functional> // For ViewRendered
+#include <string>     // For ImageDirectory
+
+#ifndef __VTK_WRAP__
+namespace vis4gs
+{
+struct Camera;
+struct Image;
+template <typename T>
+struct RasterImage;
+}
+#endif
 
 class vtkMultiProcessController;
 class vtkTable;
@@ -184,6 +196,21 @@ public:
   /// Views rendered by this process in the last execution (all of them in one process).
   vtkGetMacro(NumberOfViewsRendered, vtkIdType);
 
+#ifndef __VTK_WRAP__
+  /**
+   * Called with every view the blur/needle pass renders in this process: the camera index, the
+   * camera as rendered, the render and the image (vis4gs::ScoreSettings::ViewRendered,
+   * Core/Diagnostics/ArtifactScores.h). The vis4gs program keeps the "before" of a clean-up
+   * with it (vis4gs::RemovalBaselineRecorder) instead of rendering every view again. C++ only;
+   * default none.
+   */
+  using ViewRenderedFunction = std::function<void(std::size_t,
+    const vis4gs::Camera&,
+    const vis4gs::RasterImage<float>&,
+    const vis4gs::Image&)>;
+  void SetViewRendered(ViewRenderedFunction function);
+#endif
+
 protected:
   vtkGaussianArtifactScoreFilter();
   ~vtkGaussianArtifactScoreFilter() override;
@@ -212,6 +239,9 @@ protected:
   double ComputeSeconds = 0;
   double ReductionSeconds = 0;
   vtkMultiProcessController* Controller = nullptr;
+#ifndef __VTK_WRAP__
+  ViewRenderedFunction ViewRendered;
+#endif
 
 private:
   vtkGaussianArtifactScoreFilter(const vtkGaussianArtifactScoreFilter&) = delete;

@@ -353,3 +353,70 @@ TEST(RasterWorkspace, BinScratchIsMovable)
   EXPECT_EQ(bins.Offsets, again.Offsets);
   EXPECT_EQ(bins.Ids, BinGaussians(proj, 1).Ids);
 }
+
+// RasterizeTiles(): the chosen tiles are the full render's, bit for bit, whichever tiles are
+// chosen (none, one, scattered, all), on a scene with stiff members, float and double.
+template <typename T>
+void CheckChosenTiles(const GaussianCloud& cloud, const Camera& camera)
+{
+  const RasterImage<T> full = Rasterize<T>(cloud, camera);
+  const int tx = (camera.Width + 15) / 16, ty = (camera.Height + 15) / 16;
+  std::vector<std::vector<std::uint8_t>> masks(4, std::vector<std::uint8_t>(tx * ty, 0));
+  masks[1][(ty / 2) * tx + tx / 2] = 1;
+  for (int t = 0; t < tx * ty; t += 7)
+  {
+    masks[2][t] = 1;
+  }
+  std::fill(masks[3].begin(), masks[3].end(), 1);
+  RasterWorkspace<T> workspace;
+  for (const std::vector<std::uint8_t>& mask : masks)
+  {
+    RasterizeTiles(cloud, camera, RasterSettings{}, mask, workspace);
+    const RasterImage<T>& got = workspace.Image;
+    std::size_t compared = 0;
+    for (int y = 0; y < camera.Height; ++y)
+    {
+      for (int x = 0; x < camera.Width; ++x)
+      {
+        if (!mask[(y / 16) * tx + x / 16])
+        {
+          continue;
+        }
+        const std::size_t p = static_cast<std::size_t>(y) * camera.Width + x;
+        for (int c = 0; c < 3; ++c)
+        {
+          ASSERT_EQ(std::memcmp(&full.Color[3 * p + c], &got.Color[3 * p + c], sizeof(T)), 0)
+            << "pixel " << x << "," << y;
+        }
+        ASSERT_EQ(std::memcmp(&full.Alpha[p], &got.Alpha[p], sizeof(T)), 0);
+        ASSERT_EQ(std::memcmp(&full.Transmittance[p], &got.Transmittance[p], sizeof(T)), 0);
+        ASSERT_EQ(full.Contributors[p], got.Contributors[p]);
+        ++compared;
+      }
+    }
+    const std::size_t chosen = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+    EXPECT_GE(compared, chosen * 16 * 8); // tiles of the last row and column are clipped
+    // Culled: the Gaussians that reach no chosen tile (all but none when every tile is chosen).
+    const ProjectionCounts& counts = workspace.Projection.Counts;
+    const ViewProjection<T> plain = ProjectGaussians<T>(cloud, camera);
+    EXPECT_EQ(counts.Visible + counts.OffScreen, plain.Counts.Visible + plain.Counts.OffScreen);
+    if (chosen == mask.size())
+    {
+      EXPECT_EQ(counts.Visible, plain.Counts.Visible);
+    }
+    else if (chosen <= 1)
+    {
+      EXPECT_LT(counts.Visible, plain.Counts.Visible / 2);
+    }
+  }
+  EXPECT_THROW(
+    KeepTiles(workspace.Projection, std::vector<std::uint8_t>(3, 1)), std::invalid_argument);
+}
+
+TEST(RasterWorkspace, ChosenTilesAreTheFullRenderBitForBit)
+{
+  const GaussianCloud cloud = MixedScene(3000, 3, 29u);
+  const Camera camera = AxisCamera(150, 90, 120.0, 118.0);
+  CheckChosenTiles<float>(cloud, camera);
+  CheckChosenTiles<double>(cloud, camera);
+}

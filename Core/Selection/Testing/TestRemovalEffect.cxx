@@ -6,6 +6,7 @@
 // each found by its scores).
 // Figures are checked against a plain PSNR loop.
 #include "FastCoverage.h"
+#include "Loss.h"
 #include "RemovalEffect.h"
 #include "SelectionRule.h"
 #include "TrainingLogReader.h"
@@ -203,6 +204,179 @@ TEST(RemovalEffect, PlantedFloaterAndSurface)
   EXPECT_THROW(
     MeasureRemovalEffect(s.Cloud, wall, s.Cameras, options, images), std::invalid_argument);
 }
+
+namespace
+{
+// Plain Loss.h figures of a full render of @p cloud against @p target (an independent check
+// of the per-tile sums: the same figures up to the order of the additions).
+ViewMetrics PlainMetrics(const GaussianCloud& cloud, const Camera& camera, const Image& target)
+{
+  const Image render = ClampedImage(Rasterize<float>(cloud, camera));
+  ViewMetrics m;
+  m.Psnr = Psnr(render.Pixels.data(), target.Pixels.data(), render.Pixels.size());
+  m.Ssim = Ssim(render.Pixels.data(), target.Pixels.data(), render.Width, render.Height);
+  m.L1 = L1Loss(render.Pixels.data(), target.Pixels.data(), render.Pixels.size());
+  return m;
+}
+
+void ExpectSameFigures(const RemovalEffect& a, const RemovalEffect& b, const std::string& what)
+{
+  ASSERT_EQ(a.Views.size(), b.Views.size()) << what;
+  for (std::size_t v = 0; v < a.Views.size(); ++v)
+  {
+    const RemovalViewEffect &x = a.Views[v], &y = b.Views[v];
+    EXPECT_EQ(x.Name, y.Name) << what;
+    EXPECT_EQ(x.Affected, y.Affected) << what;
+    for (auto [p, q] : { std::make_pair(&x.Before, &y.Before), std::make_pair(&x.After, &y.After) })
+    {
+      EXPECT_EQ(p->Psnr, q->Psnr) << what << " " << x.Name;
+      EXPECT_EQ(p->Ssim, q->Ssim) << what << " " << x.Name;
+      EXPECT_EQ(p->L1, q->L1) << what << " " << x.Name;
+    }
+  }
+}
+
+void ExpectClose(const ViewMetrics& got, const ViewMetrics& want, const std::string& what)
+{
+  EXPECT_NEAR(got.Psnr, want.Psnr, 1e-10) << what;
+  EXPECT_NEAR(got.Ssim, want.Ssim, 1e-12) << what;
+  EXPECT_NEAR(got.L1, want.L1, 1e-12) << what;
+}
+} // namespace
+
+// The "after" with tile reuse (only the tiles the removed Gaussians are listed in, two tiles
+// around, re-rendered) against whole re-renders: the same bits (both are measured per tile),
+// and Loss.h's figures of a full render within 1e-12 (the order of the sums). Selections that
+// touch no tile (none, a Gaussian behind every camera), one tile, scattered tiles and every
+// tile of a random scene.
+TEST(RemovalEffect, TileReuseEqualsFullRerender)
+{
+  const std::size_t n = 1500;
+  GaussianCloud cloud = rastertest::RandomScene(n + 2, 1, 7, 2.0f, 8.0f, -5.0f, -2.5f);
+  // n: behind every camera; n + 1: a tiny opaque Gaussian on the centre of view 0's tile
+  // (4, 2) at depth 3 (pixel (72, 40); the cameras' principal point is the image centre).
+  rastertest::SetGaussian(cloud,
+    n,
+    { 0.0f, 0.0f, -3.0f },
+    { -2.0f, -2.0f, -2.0f },
+    { 1, 0, 0, 0 },
+    4.0f,
+    { 1.0f, 0.0f, 0.0f });
+  const float z = 3.0f;
+  rastertest::SetGaussian(cloud,
+    n + 1,
+    { (72.0f - 80.0f) * z / 100.0f, (40.0f - 48.0f) * z / 100.0f, z },
+    { -6.0f, -6.0f, -6.0f },
+    { 1, 0, 0, 0 },
+    4.0f,
+    { 0.0f, 1.0f, 0.0f });
+  std::vector<Camera> cameras = { rastertest::AxisCamera(160, 96, 100.0, 100.0),
+    rastertest::LookAt(160, 96, 100, 100, { 1.0, 0.2, -1.0 }, { 0.0, 0.0, 5.0 }),
+    rastertest::LookAt(150, 90, 90, 90, { -1.0, -0.3, -0.5 }, { 0.5, 0.0, 5.0 }) };
+  cameras[0].Name = "front";
+  cameras[1].Name = "right";
+  cameras[2].Name = "left";
+  cameras[2].Split = CameraSplit::Test;
+  const GaussianCloud other = rastertest::RandomScene(1500, 1, 8, 2.0f, 8.0f, -5.0f, -2.5f);
+  std::vector<Image> targets;
+  for (const Camera& c : cameras)
+  {
+    targets.push_back(ClampedImage(Rasterize<float>(other, c)));
+  }
+  const TrainingImageProvider images = Provider(targets);
+
+  struct Case
+  {
+    std::string Name;
+    std::vector<std::uint8_t> Removed;
+  };
+  std::vector<Case> cases = { { "nothing", std::vector<std::uint8_t>(cloud.Count, 0) },
+    { "behind every camera", std::vector<std::uint8_t>(cloud.Count, 0) },
+    { "one tile", std::vector<std::uint8_t>(cloud.Count, 0) },
+    { "every 10th", std::vector<std::uint8_t>(cloud.Count, 0) },
+    { "everything", std::vector<std::uint8_t>(cloud.Count, 1) } };
+  cases[1].Removed[n] = 1;
+  cases[2].Removed[n + 1] = 1;
+  for (std::size_t i = 0; i < cloud.Count; i += 10)
+  {
+    cases[3].Removed[i] = 1;
+  }
+  RemovalEffectOptions options;
+  const RemovalBaseline baseline = MeasureRemovalBaseline(cloud, cameras, options, images);
+  ASSERT_EQ(baseline.MeasuredViews(), 3u);
+  for (const Case& c : cases)
+  {
+    options.TileBaseline = {};
+    options.ReuseTiles = false;
+    const RemovalEffect whole = MeasureRemovalEffect(cloud, c.Removed, cameras, options, images);
+    options.ReuseTiles = true;
+    const RemovalEffect tiles = MeasureRemovalEffect(cloud, c.Removed, cameras, options, images);
+    options.TileBaseline = baseline;
+    const RemovalEffect reused = MeasureRemovalEffect(cloud, c.Removed, cameras, options, images);
+    ExpectSameFigures(tiles, whole, c.Name + " (tiles)");
+    ExpectSameFigures(reused, whole, c.Name + " (baseline)");
+    const GaussianCloud cleaned = RemoveGaussians(cloud, c.Removed);
+    for (const RemovalViewEffect& v : reused.Views)
+    {
+      ExpectClose(v.Before,
+        PlainMetrics(cloud, cameras[v.CameraIndex], targets[v.CameraIndex]),
+        c.Name + " before " + v.Name);
+      ExpectClose(v.After,
+        PlainMetrics(cleaned, cameras[v.CameraIndex], targets[v.CameraIndex]),
+        c.Name + " after " + v.Name);
+      if (!v.Affected)
+      {
+        EXPECT_EQ(v.After.Psnr, v.Before.Psnr);
+        EXPECT_EQ(v.After.Ssim, v.Before.Ssim);
+        EXPECT_EQ(v.After.L1, v.Before.L1);
+      }
+    }
+    // With the baseline, only affected views are rendered, and only in part.
+    std::size_t affected = 0;
+    for (const RemovalViewEffect& v : reused.Views)
+    {
+      affected += v.Affected ? 1 : 0;
+    }
+    EXPECT_EQ(reused.ViewsRendered, affected) << c.Name;
+    if (c.Name == "nothing" || c.Name == "behind every camera")
+    {
+      EXPECT_EQ(affected, 0u) << c.Name;
+      EXPECT_EQ(reused.TilesRendered, 0u);
+    }
+    else if (c.Name == "one tile")
+    {
+      // Listed in one tile of the front view: that tile and two around it, 5 x 5.
+      const RemovalViewEffect* front = nullptr;
+      for (const RemovalViewEffect& v : reused.Views)
+      {
+        front = v.Name == "front" ? &v : front;
+      }
+      ASSERT_TRUE(front && front->Affected);
+      EXPECT_NE(front->After.Psnr, front->Before.Psnr);
+      // 5 x 5 in the front view; elsewhere it may straddle a tile border (6 x 6 at most).
+      EXPECT_GE(reused.TilesRendered, 25u);
+      EXPECT_LE(reused.TilesRendered, 25u + 36u * (affected - 1));
+    }
+    else if (c.Name == "everything")
+    {
+      EXPECT_GT(reused.TilesRendered, reused.TilesOfTiledViews / 2);
+      EXPECT_EQ(affected, 3u);
+    }
+  }
+
+  // A baseline of other settings or another cloud is refused.
+  RemovalEffectOptions white = options;
+  white.Raster.Background = { 1.0, 1.0, 1.0 };
+  EXPECT_THROW(
+    MeasureRemovalEffect(cloud, cases[2].Removed, cameras, white, images), std::invalid_argument);
+  const GaussianCloud smaller = RemoveGaussians(cloud, cases[1].Removed);
+  EXPECT_THROW(MeasureRemovalEffect(
+                 smaller, std::vector<std::uint8_t>(smaller.Count, 0), cameras, options, images),
+    std::invalid_argument);
+}
+
+// Planted cases of the embedded demo log (last snapshot, 5226 Gaussians, 29 training and 6 test
+// views with their images).
 
 // Planted cases of the embedded demo log (last snapshot, 29 training and 6 test views with
 // their images), found by their scores rather than by id, so that a regenerated demo keeps
@@ -459,6 +633,82 @@ TEST_F(DemoLogRemoval, SurfaceGaussianIsNeeded)
   EXPECT_LT(e.Views.front().PsnrChange(), -0.01);
   EXPECT_LT(std::abs(e.Test.After.Psnr - e.Test.Before.Psnr),
     std::abs(e.Train.After.Psnr - e.Train.Before.Psnr));
+}
+
+// The score pass at full resolution keeps the "before" of every training view it renders
+// (RecordRemovalBaseline): the same per-tile sums, bit for bit, as rendering the views again
+// (MeasureRemovalBaseline, MeasureViewMetrics); not at a reduced resolution. With it, a real
+// rule's clean-up measured with tile reuse equals whole re-renders bit for bit.
+TEST_F(DemoLogRemoval, ScorePassBaselineAndTileReuse)
+{
+  ScoreSettings settings;
+  settings.Request = { true, true, false, false };
+  settings.LossResolution = 4;
+  RemovalBaseline fromScores;
+  EXPECT_FALSE(RecordRemovalBaseline(settings, this->Cloud, this->Cameras, fromScores));
+  EXPECT_FALSE(settings.ViewRendered);
+  // The recorder itself keeps nothing of a reduced-resolution pass.
+  ScoreSettings low = settings;
+  low.LossResolution = 2;
+  low.ViewStride = 10;
+  RemovalBaseline lowBaseline;
+  low.ViewRendered =
+    RemovalBaselineRecorder(this->Cloud, this->Cameras, low.Raster, 0, lowBaseline);
+  ComputeGaussianScores(this->Cloud, this->Cameras, low, this->Images);
+  EXPECT_EQ(lowBaseline.Views.size(), this->Cameras.size());
+  EXPECT_EQ(lowBaseline.MeasuredViews(), 0u);
+  settings.LossResolution = 1;
+  ASSERT_TRUE(RecordRemovalBaseline(settings, this->Cloud, this->Cameras, fromScores));
+  this->Scores = ComputeGaussianScores(this->Cloud, this->Cameras, settings, this->Images);
+  EXPECT_GT(this->Scores.Timings.ViewHook, 0.0);
+
+  const RemovalBaseline rendered =
+    MeasureRemovalBaseline(this->Cloud, this->Cameras, this->Options, this->Images);
+  const std::vector<ViewMetrics>& metrics = this->Options.Baseline; // MeasureViewMetrics
+  ASSERT_EQ(fromScores.Views.size(), this->Cameras.size());
+  std::size_t train = 0;
+  for (std::size_t v = 0; v < this->Cameras.size(); ++v)
+  {
+    if (this->Cameras[v].Split == CameraSplit::Test)
+    {
+      EXPECT_TRUE(fromScores.Views[v].Empty()); // the scores render training views only
+      continue;
+    }
+    ++train;
+    ASSERT_FALSE(fromScores.Views[v].Empty()) << this->Cameras[v].Name;
+    EXPECT_EQ(fromScores.Views[v].Sums, rendered.Views[v].Sums) << this->Cameras[v].Name;
+    const ViewMetrics m = fromScores.Views[v].Metrics();
+    EXPECT_EQ(m.Psnr, metrics[v].Psnr);
+    EXPECT_EQ(m.Ssim, metrics[v].Ssim);
+    EXPECT_EQ(m.L1, metrics[v].L1);
+    Image target;
+    this->Images(v, this->Cameras[v], target);
+    ExpectClose(m, PlainMetrics(this->Cloud, this->Cameras[v], target), this->Cameras[v].Name);
+  }
+  EXPECT_EQ(fromScores.MeasuredViews(), train);
+
+  // A real rule, measured with whole re-renders (the "before" from MeasureViewMetrics) and
+  // with tile reuse (the score pass's "before"; the test views rendered here).
+  SelectionRuleInputs in;
+  in.Cloud = &this->Cloud;
+  in.ViewCoverage = &this->Scores.ViewCoverage;
+  in.BlurScore = &this->Scores.BlurScore;
+  in.ViewsUsed = this->Scores.ViewsUsed;
+  const std::vector<std::uint8_t> removed = SelectionRule::Parse("views<=3").Evaluate(in);
+  this->Options.ReuseTiles = false;
+  const RemovalEffect whole =
+    MeasureRemovalEffect(this->Cloud, removed, this->Cameras, this->Options, this->Images);
+  this->Options.ReuseTiles = true;
+  this->Options.Baseline.clear();
+  this->Options.TileBaseline = fromScores;
+  const RemovalEffect reused =
+    MeasureRemovalEffect(this->Cloud, removed, this->Cameras, this->Options, this->Images);
+  ExpectSameFigures(reused, whole, "views<=3");
+  EXPECT_EQ(reused.Train.After.Psnr, whole.Train.After.Psnr);
+  EXPECT_EQ(reused.Test.After.Psnr, whole.Test.After.Psnr);
+  EXPECT_GT(reused.TilesRendered, 0u);
+  std::cout << "views<=3 with tile reuse: " << reused.TilesRendered << " of "
+            << reused.TilesOfTiledViews << " tiles of the affected views re-rendered\n";
 }
 
 } // namespace vis4gs

@@ -312,3 +312,76 @@ TEST(Loss, KeptTargetMapsGiveTheSameBits)
       x.data(), y.data(), W, H - 1, 0.2, static_cast<std::vector<float>*>(nullptr), 1, &target),
     std::invalid_argument);
 }
+
+TEST(Loss, SsimMapAveragesToSsimAndCropsKeepTheBits)
+{
+  const int W = 61, H = 37;
+  const auto xd = RandomImage(W, H, 5), yd = RandomImage(W, H, 6);
+  const std::vector<float> x(xd.begin(), xd.end()), y(yd.begin(), yd.end());
+  std::vector<float> map;
+  SsimMap(x.data(), y.data(), W, H, map);
+  ASSERT_EQ(map.size(), 3u * W * H);
+  // The map's mean, summed per channel in pixel order as Ssim() does, is Ssim() bit for bit.
+  const std::size_t P = static_cast<std::size_t>(W) * H;
+  double channel[3] = { 0, 0, 0 };
+  for (int c = 0; c < 3; ++c)
+  {
+    for (std::size_t p = 0; p < P; ++p)
+    {
+      channel[c] += map[c * P + p];
+    }
+  }
+  EXPECT_EQ((channel[0] + channel[1] + channel[2]) / (3.0 * P), Ssim(x.data(), y.data(), W, H));
+  // Against the direct 11x11 window of one pixel (a 1x1 crop of the naive SSIM would not do).
+  std::vector<double> mapd;
+  SsimMap(xd.data(), yd.data(), W, H, mapd);
+  double naiveTotal = 0;
+  for (std::size_t i = 0; i < mapd.size(); ++i)
+  {
+    naiveTotal += mapd[i];
+  }
+  EXPECT_NEAR(naiveTotal / (3.0 * P), NaiveSsim(xd, yd, W, H), 1e-13);
+
+  // Crops: one inside the image (valid pixels 5 px away from its edges) and one sharing the
+  // image's top-left corner (valid up to its own border there).
+  struct Crop
+  {
+    int X0, Y0, W, H;
+  };
+  for (const Crop& c : { Crop{ 13, 9, 30, 21 }, Crop{ 0, 0, 27, 20 }, Crop{ 40, 20, 21, 17 } })
+  {
+    std::vector<float> cx(3 * static_cast<std::size_t>(c.W) * c.H), cy(cx.size());
+    for (int j = 0; j < c.H; ++j)
+    {
+      for (int i = 0; i < 3 * c.W; ++i)
+      {
+        cx[3 * j * c.W + i] = x[3 * ((c.Y0 + j) * W + c.X0) + i];
+        cy[3 * j * c.W + i] = y[3 * ((c.Y0 + j) * W + c.X0) + i];
+      }
+    }
+    std::vector<float> cropMap;
+    SsimMap(cx.data(), cy.data(), c.W, c.H, cropMap, 2);
+    const std::size_t cp = static_cast<std::size_t>(c.W) * c.H;
+    int compared = 0;
+    for (int j = 0; j < c.H; ++j)
+    {
+      for (int i = 0; i < c.W; ++i)
+      {
+        const int gx = c.X0 + i, gy = c.Y0 + j;
+        const bool validX = (i >= 5 || c.X0 == 0) && (i < c.W - 5 || c.X0 + c.W == W);
+        const bool validY = (j >= 5 || c.Y0 == 0) && (j < c.H - 5 || c.Y0 + c.H == H);
+        if (!validX || !validY)
+        {
+          continue;
+        }
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          ASSERT_EQ(cropMap[ch * cp + j * c.W + i], map[ch * P + gy * W + gx])
+            << "crop at " << c.X0 << "," << c.Y0 << " pixel " << gx << "," << gy;
+        }
+        ++compared;
+      }
+    }
+    EXPECT_GT(compared, 100);
+  }
+}
