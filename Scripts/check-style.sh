@@ -3,6 +3,8 @@
 #   layering  Core/ includes no VTK header (DESIGN §1);
 #   modules   VTK modules depend downwards only: IO < Filters < Rendering < Views
 #             (Documentation/dev/ARCHITECTURE.md), no exception;
+#   deps      each VTK module lists exactly the modules its sources include, no unused one
+#             (Scripts/check-module-deps.py);
 #   format    our C++ follows VTK 9.1's .clang-format (Debian's clang-format 14).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -45,6 +47,10 @@ if [ "$check" = modules ] || [ "$check" = all ]; then
   else
     echo "modules: $count Vis4GS module dependencies point downwards"
   fi
+fi
+
+if [ "$check" = deps ] || [ "$check" = all ]; then
+  /usr/bin/python3 Scripts/check-module-deps.py . || status=1
 fi
 
 if [ "$check" = format ] || [ "$check" = all ]; then
