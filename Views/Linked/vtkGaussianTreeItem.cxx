@@ -8,6 +8,11 @@
   See LICENSE for details.
 
 =========================================================================*/
+// Over 1,200 lines on purpose: the one vtkContextItem of view B (one class per file), whose
+// methods are the item's own duties: building its draw index from the tree, the viewport and
+// zoom, the level-of-detail query, painting (bands, edges, vertices, highlight) and the mouse.
+// The numerics they share (the draw index, its row windows and level of detail) are already
+// Core's TreeDrawIndex, tested on their own.
 #include "vtkGaussianTreeItem.h"
 
 #include "Vis4GSDataModel.h" // vis4gs::arrays
