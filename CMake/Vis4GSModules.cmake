@@ -49,6 +49,36 @@ function (vis4gs_add_python_test module)
   endforeach ()
 endfunction ()
 
+# vis4gs_add_masked_baseline_tests(<module> <test> <compare option>...)
+# The C++ image test <module>Cxx-<test> writes <test>-selected.png and <test>-unselected.png
+# into its binary folder; this adds <...>-MaskedBaseline (the selected picture against
+# Data/Baseline/<test>.png, strictly inside masks around the highlight colours given as
+# options of Testing/Python/vis4gs_image_compare.py, loosely elsewhere) and
+# <...>-MaskedBaselineNeedsHighlight (the unselected picture must fail there), both needing
+# the image test (Documentation/dev/TESTING.md, masked baselines).
+function (vis4gs_add_masked_baseline_tests module test)
+  string(REPLACE "Vis4GS::" "vis4gs" _library "${module}")
+  set(_setup "${module}Cxx-${test}")
+  set_tests_properties("${_setup}" PROPERTIES FIXTURES_SETUP "${test}Images")
+  foreach (_state IN ITEMS selected unselected)
+    set(_name "${_setup}-MaskedBaseline")
+    set(_expect)
+    if (_state STREQUAL "unselected")
+      set(_name "${_setup}-MaskedBaselineNeedsHighlight")
+      set(_expect --expect-mismatch)
+    endif ()
+    add_test(NAME "${_name}"
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}"
+        "${PROJECT_SOURCE_DIR}/Testing/Python/vis4gs_image_compare.py"
+        "${CMAKE_CURRENT_SOURCE_DIR}/../Data/Baseline/${test}.png"
+        "${CMAKE_CURRENT_BINARY_DIR}/${test}-${_state}.png"
+        ${ARGN} ${_expect})
+    set_tests_properties("${_name}" PROPERTIES
+      LABELS "${module};${_library};Python"
+      FIXTURES_REQUIRED "${test}Images" FAIL_REGULAR_EXPRESSION "FAILED:")
+  endforeach ()
+endfunction ()
+
 vtk_module_build(
   MODULES ${vis4gs_modules}
   INSTALL_EXPORT Vis4GSTargets
