@@ -38,16 +38,6 @@ struct Stopwatch
   }
 };
 
-bool IsLogPath(const std::string& path)
-{
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(),
-    extension.end(),
-    extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".h5" || extension == ".hdf5";
-}
-
 // "FILE@N" -> FILE and N; anything else is a plain path (iteration -1: the last).
 void SplitIteration(const std::string& spec, std::string& path, int& iteration)
 {
@@ -127,7 +117,7 @@ Vis4GSComparison::State ReadState(const std::string& path,
   Vis4GSComparison::State s;
   s.Path = path;
   s.Name = fs::path(path).filename().string();
-  if (IsLogPath(path))
+  if (Vis4GSIsLogPath(path))
   {
     vtkNew<vtkGaussianTrainingLogReader> reader;
     reader->SetFileName(path.c_str());
@@ -218,7 +208,7 @@ std::shared_ptr<Vis4GSComparison> Vis4GSComparison::Load(const std::string& a,
   SplitIteration(b, pathB, iterationB);
   if (pathB.empty()) // "@N": another iteration of A's log
   {
-    if (!IsLogPath(a))
+    if (!Vis4GSIsLogPath(a))
     {
       throw std::runtime_error(b + ": @ITERATION compares two iterations of a training log, but " +
         a + " is a scene file");
@@ -227,7 +217,7 @@ std::shared_ptr<Vis4GSComparison> Vis4GSComparison::Load(const std::string& a,
   }
   c->B = ReadState(pathB, iterationB, cameras);
   std::error_code ec;
-  c->SameLog = IsLogPath(a) && fs::equivalent(a, pathB, ec);
+  c->SameLog = Vis4GSIsLogPath(a) && fs::equivalent(a, pathB, ec);
   if (!c->B.Cameras) // two scenes of the same cameras: A's serve both
   {
     c->B.Cameras = c->A.Cameras;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSDocument.h"
+#include "Vis4GSStateFiles.h"
 
 #include "GaussianMath.h"
 #include "TrainingLogReader.h"
@@ -172,11 +173,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       progress(f, m);
     }
   };
-  std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-  const bool isLog = lower.size() > 3 &&
-    (lower.compare(lower.size() - 3, 3, ".h5") == 0 ||
-      (lower.size() > 5 && lower.compare(lower.size() - 5, 5, ".hdf5") == 0));
+  const bool isLog = Vis4GSIsLogPath(path);
   std::ostringstream text;
   auto lap = start;
   double lapCpu = ProcessCpuNow();

@@ -4,11 +4,24 @@
 #include "GaussianIO.h"
 #include "ImageIO.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
+bool Vis4GSIsLogPath(const std::string& path)
+{
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(),
+    extension.end(),
+    extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".h5" || extension == ".hdf5";
+}
+
+//------------------------------------------------------------------------------
 vis4gs::GaussianCloud Vis4GSReadSceneWithIds(const std::string& path, const std::string& command)
 {
   vis4gs::GaussianReadReport report;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Vis4GSStateFiles.h
- * @brief What `vis4gs compare` and `vis4gs repair` read alike (issue 20): a scene file with its
- * Gaussians' ids, and the training images of a log's cameras.
+ * @brief What the commands and the application read alike: whether a path is a training log,
+ * a scene file with its Gaussians' ids, and the training images of a log's cameras.
  */
 #ifndef Vis4GSStateFiles_h
 #define Vis4GSStateFiles_h
@@ -13,6 +13,9 @@
 
 #include <memory>
 #include <string>
+
+/// Whether @p path names a training log (DESIGN §3): extension .h5 or .hdf5, any case.
+bool Vis4GSIsLogPath(const std::string& path);
 
 /**
  * Reads a scene (PLY, SPZ, .splat) whose "id" property, when it has one (written by

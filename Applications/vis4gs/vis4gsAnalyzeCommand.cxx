@@ -10,6 +10,7 @@
 // measures the deletion against the training and test images (Core/Selection/RemovalEffect.h):
 // before-after.csv and a section of the report with the per-view table and images.
 #include "Vis4GSCommand.h"
+#include "Vis4GSStateFiles.h"
 
 #include "GaussianIO.h"
 #include "GaussianMath.h"
@@ -582,12 +583,7 @@ int Run(const Vis4GSArguments& args)
   const std::string scene = args.GetPositional("scene");
   const fs::path output = args.Get("output");
   const std::size_t top = static_cast<std::size_t>(std::max(0, args.GetInt("top")));
-  std::string extension = fs::path(scene).extension().string();
-  std::transform(extension.begin(),
-    extension.end(),
-    extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const bool isLog = extension == ".h5" || extension == ".hdf5";
+  const bool isLog = Vis4GSIsLogPath(scene);
   // Requested scores.
   std::map<std::string, bool> want{
     { "coverage", false }, { "blur", false }, { "needle", false }, { "shape", false }

@@ -55,16 +55,6 @@ void Define(Vis4GSArguments& args)
   args.AddOption("output", "DIR", "vis4gs-compare", "Folder the results are written to.");
 }
 
-bool IsLog(const std::string& path)
-{
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(),
-    extension.end(),
-    extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".h5" || extension == ".hdf5";
-}
-
 // One side of the comparison: the cloud, and its log when it came from one.
 struct State
 {
@@ -78,7 +68,7 @@ State ReadState(const std::string& path, int iteration, const char* which)
 {
   State s;
   s.Path = path;
-  if (IsLog(path))
+  if (Vis4GSIsLogPath(path))
   {
     s.Log = std::make_shared<vis4gs::TrainingLogReader>(path);
     if (s.Log->GetSnapshotIterations().empty())
