@@ -138,6 +138,10 @@ std::string BuildGenealogy(const std::string& path,
   vtkNew<vtkGaussianGenealogyTreeFilter> filter;
   filter->SetInputConnection(events->GetOutputPort(3));
   filter->SetRepairUnknownParents(true);
+  // The same vertices, edges and arrays as a script's default vtkTree, in flat arrays: 40
+  // bytes per vertex instead of ~100 (630 MiB less at 4.89M Gaussians, see
+  // vtkGaussianCompactTree). The views read it through vtkTree's accessors.
+  filter->CompactTreeOn();
   Vis4GSErrorCollector readErrors(events);
   ProgressForwarder forward(filter, progress, 0.6, 0.95, "building the genealogy");
   const std::string errors = Vis4GSUpdate(filter, 0);

@@ -16,6 +16,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkGaussianCompactTree.h"
 #include "vtkGraphInternals.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -200,14 +201,92 @@ struct ChildLists
 
 //------------------------------------------------------------------------------
 /**
- * Fills the adjacency lists of a graph's internals: vertex 0 is the virtual root over the
- * roots, vertex k + 1 is node k with the in-edge k from parent[k] + 1, out-edges in child
- * order. Every std::vector gets its exact size in one allocation; parallel over vertices
- * (each vertex's lists are written by one thread only).
+ * Writes the edges into vtkGraph's own adjacency lists: every std::vector gets its exact size
+ * in one allocation (a heap block per in-edge and per non-empty child list: vtkTree's form).
+ */
+struct AdjacencyListWriter
+{
+  vtkGraphInternals* Internals;
+  vtkVertexAdjacencyList* Adj = nullptr;
+
+  void Start(vtkIdType n, const ChildLists& lists)
+  {
+    auto& adjacency = this->Internals->Adjacency;
+    adjacency.clear();
+    adjacency.resize(static_cast<std::size_t>(n + 1));
+    this->Adj = adjacency.data();
+    this->Adj[0].OutEdges.reserve(static_cast<std::size_t>(lists.NumberOfRoots));
+  }
+  void Root(vtkIdType, vtkIdType root) { this->Adj[0].OutEdges.emplace_back(root + 1, root); }
+  void In(vtkIdType k, vtkIdType p) { this->Adj[k + 1].InEdges.assign(1, vtkInEdgeType(p + 1, k)); }
+  void StartChildren(vtkIdType k, vtkIdType count)
+  {
+    this->Adj[k + 1].OutEdges.reserve(static_cast<std::size_t>(count));
+  }
+  void Child(vtkIdType k, vtkIdType, vtkIdType child)
+  {
+    this->Adj[k + 1].OutEdges.emplace_back(child + 1, child);
+  }
+  void Finish(vtkIdType n) { this->Internals->NumberOfEdges = n; }
+  void Fail() { this->Internals->Adjacency.clear(); }
+};
+
+//------------------------------------------------------------------------------
+/**
+ * Writes the same edges into vtkGaussianCompactTree's three flat arrays (40 bytes per
+ * vertex, three allocations). The out-edge offsets are a prefix sum of the list lengths, so
+ * a malformed list cannot write out of bounds before FillAdjacency reports it.
+ */
+struct CompactWriter
+{
+  vtkGaussianCompactTree::Structure S;
+
+  void Start(vtkIdType n, const ChildLists& lists)
+  {
+    this->S.InEdges.resize(static_cast<std::size_t>(n + 1));
+    this->S.InEdges[0] = vtkInEdgeType(-1, -1);
+    this->S.OutEdges.resize(static_cast<std::size_t>(n));
+    this->S.OutOffsets.resize(static_cast<std::size_t>(n + 2));
+    vtkIdType* o = this->S.OutOffsets.data();
+    o[0] = 0;
+    o[1] = std::min(lists.NumberOfRoots, n);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      const vtkIdType count = std::max<vtkIdType>(0, lists.Offsets[k + 1] - lists.Offsets[k]);
+      o[k + 2] = std::min(o[k + 1] + count, n);
+    }
+  }
+  void Root(vtkIdType r, vtkIdType root)
+  {
+    if (r < this->S.OutOffsets[1])
+    {
+      this->S.OutEdges[r] = vtkOutEdgeType(root + 1, root);
+    }
+  }
+  void In(vtkIdType k, vtkIdType p) { this->S.InEdges[k + 1] = vtkInEdgeType(p + 1, k); }
+  void StartChildren(vtkIdType, vtkIdType) {}
+  void Child(vtkIdType k, vtkIdType c, vtkIdType child)
+  {
+    const vtkIdType at = this->S.OutOffsets[k + 1] + c;
+    if (at < this->S.OutOffsets[k + 2])
+    {
+      this->S.OutEdges[at] = vtkOutEdgeType(child + 1, child);
+    }
+  }
+  void Finish(vtkIdType) {}
+  void Fail() { this->S = vtkGaussianCompactTree::Structure(); }
+};
+
+//------------------------------------------------------------------------------
+/**
+ * Writes the edges of the tree "vertex 0 is the virtual root over the roots, vertex k + 1 is
+ * node k with the in-edge k from parent[k] + 1, out-edges in child order" through @p writer
+ * (vtkGraph's adjacency lists or the compact arrays), in parallel over vertices (each
+ * vertex's edges are written by one thread only).
  *
  * On the way it checks that @p parent (n values) and @p lists describe the same forest and
  * that every parent precedes its child (-1 <= parent[k] < k); returns false with @p error
- * otherwise (the internals are then to be discarded). When it returns true, the graph "vertex
+ * otherwise (the writer's output is then discarded). When it returns true, the graph "vertex
  * 0 = virtual root, vertex k + 1 = node k, edge k from parent[k] + 1 to k + 1" is a tree
  * rooted at vertex 0: every vertex but 0 has exactly one in-edge and vertex 0 none, there are
  * n edges for n + 1 vertices, the out-edges are exactly the reversed in-edges (each listed
@@ -215,8 +294,8 @@ struct ChildLists
  * entries in all), and following parents strictly decreases the vertex index, so every
  * vertex reaches vertex 0 (connected) and no cycle exists.
  */
-template <typename P>
-bool FillAdjacency(vtkGraphInternals* internals,
+template <typename P, typename Writer>
+bool FillAdjacency(Writer& writer,
   vtkIdType n,
   const P* parent,
   const ChildLists& lists,
@@ -234,17 +313,10 @@ bool FillAdjacency(vtkGraphInternals* internals,
       return false;
     }
   }
-  auto& adjacency = internals->Adjacency;
-  adjacency.clear();
-  adjacency.resize(static_cast<std::size_t>(n + 1));
-  vtkVertexAdjacencyList* adj = adjacency.data();
+  writer.Start(n, lists);
+  for (vtkIdType r = 0; r < lists.NumberOfRoots; ++r)
   {
-    auto& out = adj[0].OutEdges;
-    out.reserve(static_cast<std::size_t>(lists.NumberOfRoots));
-    for (vtkIdType r = 0; r < lists.NumberOfRoots; ++r)
-    {
-      out.emplace_back(lists.Roots[r] + 1, lists.Roots[r]);
-    }
+    writer.Root(r, lists.Roots[r]);
   }
   vtkIdType badParent = -1, badList = -1, listed = 0;
 #pragma omp parallel for schedule(dynamic, 8192) reduction(max : badParent, badList)             \
@@ -257,8 +329,7 @@ bool FillAdjacency(vtkGraphInternals* internals,
       badParent = std::max(badParent, k);
       continue;
     }
-    vtkVertexAdjacencyList& a = adj[k + 1];
-    a.InEdges.assign(1, vtkInEdgeType(p + 1, k));
+    writer.In(k, p);
     const vtkIdType b = lists.Offsets[k], e = lists.Offsets[k + 1];
     if (b < 0 || e < b || e > lists.ListSize)
     {
@@ -268,7 +339,7 @@ bool FillAdjacency(vtkGraphInternals* internals,
     if (e > b)
     {
       listed += e - b;
-      a.OutEdges.reserve(static_cast<std::size_t>(e - b));
+      writer.StartChildren(k, e - b);
       vtkIdType previous = -1;
       for (vtkIdType c = b; c < e; ++c)
       {
@@ -278,7 +349,7 @@ bool FillAdjacency(vtkGraphInternals* internals,
           badList = std::max(badList, k);
           break;
         }
-        a.OutEdges.emplace_back(child + 1, child);
+        writer.Child(k, c - b, child);
         previous = child;
       }
     }
@@ -295,21 +366,23 @@ bool FillAdjacency(vtkGraphInternals* internals,
   }
   else
   {
-    internals->NumberOfEdges = n;
+    writer.Finish(n);
     return true;
   }
   error = s.str();
-  adjacency.clear();
+  writer.Fail();
   return false;
 }
 
 //------------------------------------------------------------------------------
 /**
  * The tree of @p parent / @p lists (checked by FillAdjacency) into @p tree with the vertex and
- * edge attributes. With @p validate the structure goes through a vtkMutableDirectedGraph and
+ * edge attributes. When @p tree is a vtkGaussianCompactTree it gets the compact arrays.
+ * Otherwise, with @p validate the structure goes through a vtkMutableDirectedGraph and
  * vtkTree::CheckedShallowCopy (VTK's own O(n) walk); without, it is built in a vtkTree whose
  * root is set directly (valid by construction, see FillAdjacency) and shallow-copied, which
- * vtkTree accepts without a walk. Both give the same tree (TestGaussianGenealogyTreeFilter).
+ * vtkTree accepts without a walk. All give the same tree (TestGaussianGenealogyTreeFilter,
+ * TestGaussianCompactTree).
  */
 template <typename P>
 bool MakeTree(vtkIdType n,
@@ -321,6 +394,28 @@ bool MakeTree(vtkIdType n,
   bool validate,
   std::string& error)
 {
+  if (auto* compact = vtkGaussianCompactTree::SafeDownCast(tree))
+  {
+    CompactWriter writer;
+    if (!FillAdjacency(writer, n, parent, lists, error))
+    {
+      return false;
+    }
+    if (!compact->SetStructure(std::move(writer.S)))
+    {
+      error = "the genealogy does not form a valid tree (internal error)";
+      return false;
+    }
+    if (vertexData)
+    {
+      compact->GetVertexData()->ShallowCopy(vertexData);
+    }
+    if (edgeData)
+    {
+      compact->GetEdgeData()->ShallowCopy(edgeData);
+    }
+    return true;
+  }
   vtkSmartPointer<vtkGraph> graph;
   if (validate)
   {
@@ -332,7 +427,8 @@ bool MakeTree(vtkIdType n,
     trusted->SetRootVertex(0);
     graph = trusted;
   }
-  if (!FillAdjacency(graph->GetGraphInternals(true), n, parent, lists, error))
+  AdjacencyListWriter writer{ graph->GetGraphInternals(true) };
+  if (!FillAdjacency(writer, n, parent, lists, error))
   {
     return false;
   }

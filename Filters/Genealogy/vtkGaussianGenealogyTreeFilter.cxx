@@ -14,7 +14,9 @@
 #include "vtkGaussianGenealogyAdapter.h"
 
 #include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkFieldData.h"
+#include "vtkGaussianCompactTree.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -83,6 +85,42 @@ int vtkGaussianGenealogyTreeFilter::FillOutputPortInformation(int port, vtkInfor
     return 1;
   }
   return 0;
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkGaussianGenealogyTreeFilter::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    return this->RequestDataObject(request, inputVector, outputVector);
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianGenealogyTreeFilter::RequestDataObject(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** vtkNotUsed(inputVector),
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  vtkDataObject* current = info->Get(vtkDataObject::DATA_OBJECT());
+  const bool isCompact = vtkGaussianCompactTree::SafeDownCast(current) != nullptr;
+  if (!current || isCompact != this->CompactTree)
+  {
+    vtkSmartPointer<vtkTree> tree;
+    if (this->CompactTree)
+    {
+      tree = vtkSmartPointer<vtkGaussianCompactTree>::New();
+    }
+    else
+    {
+      tree = vtkSmartPointer<vtkTree>::New();
+    }
+    info->Set(vtkDataObject::DATA_OBJECT(), tree);
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -218,6 +256,7 @@ void vtkGaussianGenealogyTreeFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepairUnknownParents: " << this->RepairUnknownParents << "\n";
   os << indent << "RepairDuplicateBirths: " << this->RepairDuplicateBirths << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "CompactTree: " << this->CompactTree << "\n";
   os << indent << "NaiveConstruction: " << this->NaiveConstruction << "\n";
   os << indent << "ValidateStructure: " << this->ValidateStructure << "\n";
   os << indent << "GenealogySeconds: " << this->GenealogySeconds << "\n";

@@ -6,7 +6,10 @@
 // hand log, a 10k-generation chain, a family with 100k children, many small families (the
 // SYNTHETIC generator), initial Gaussians without events. Plus the adapter's checks on bad
 // parent arrays (a parent after its child, a parent below -1) and the LOD filter's subtree
-// (which uses the same builder) against the validated path.
+// (which uses the same builder) against the validated path. The compact output
+// (CompactTree, vtkGaussianCompactTree) must answer every one of those queries like the
+// plain vtkTree on every case.
+#include "vtkGaussianCompactTree.h"
 #include "vtkGaussianGenealogyAdapter.h"
 #include "vtkGaussianGenealogyTreeFilter.h"
 #include "vtkGaussianTreeLevelOfDetail.h"
@@ -123,7 +126,8 @@ vtkSmartPointer<vtkTree> RunFilter(vtkTable* events,
   vtkIdType initial,
   int last,
   bool validate,
-  bool naive)
+  bool naive,
+  bool compact = false)
 {
   vtkNew<vtkGaussianGenealogyTreeFilter> filter;
   filter->SetInputData(events);
@@ -131,8 +135,18 @@ vtkSmartPointer<vtkTree> RunFilter(vtkTable* events,
   filter->SetLastIteration(last);
   filter->SetValidateStructure(validate);
   filter->SetNaiveConstruction(naive);
+  filter->SetCompactTree(compact);
   filter->Update();
-  auto tree = vtkSmartPointer<vtkTree>::New();
+  GT_CHECK((vtkGaussianCompactTree::SafeDownCast(filter->GetOutput()) != nullptr) == compact);
+  vtkSmartPointer<vtkTree> tree;
+  if (compact)
+  {
+    tree = vtkSmartPointer<vtkGaussianCompactTree>::New();
+  }
+  else
+  {
+    tree = vtkSmartPointer<vtkTree>::New();
+  }
   tree->ShallowCopy(filter->GetOutput());
   return tree;
 }
@@ -152,6 +166,8 @@ vtkSmartPointer<vtkTree> CompareAll(const vis4gs::EventTable& e,
   GT_CHECK(fast->GetNumberOfVertices() == expectedVertices);
   GT_CHECK(fast->GetRoot() == 0);
   GT_CHECK(SameTree(fast, checked, what + " (fast vs validated)"));
+  auto compact = RunFilter(table, initial, last, false, false, true);
+  GT_CHECK(SameTree(checked, compact, what + " (validated vs compact)"));
   // The log's column types are read in place; other types through converted copies.
   {
     vis4gs::EventTable storage;
