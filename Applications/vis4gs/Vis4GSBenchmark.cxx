@@ -119,11 +119,14 @@ void RunBenchmark(Vis4GSMainWindow& w, double start, double startCpu)
       item->UpdateLevelOfDetail();
     }
     const double lod = (Now() - l0) / frames;
+    // The frames are bound by filling these pixels (llvmpipe), not by the tree's size.
+    const int* size = tree->GetRenderWindow()->GetSize();
     std::cout << "benchmark: tree pan/zoom " << label << ": " << frames / w << " frames/s wall ("
               << 1000 * w / frames << " ms/frame), " << 1000 * c / frames << " ms CPU/frame, "
               << item->GetNumberOfVisibleVertices() << " nodes drawn, level-of-detail query "
               << 1000 * lod << " ms (" << item->GetLastLevelOfDetailWork()
-              << " node records visited)" << std::endl;
+              << " node records visited), tree window " << size[0] << "x" << size[1] << " pixels"
+              << std::endl;
   };
   item->ResetViewport();
   item->MergeLinesPerPixelRowOff();
