@@ -73,6 +73,29 @@ check(lineage.TraceToRoot(7, trace), "trace")
 check([trace.GetValueByName(r, "GaussianId").ToInt() for r in range(trace.GetNumberOfRows())]
       == [7, 5, 3, 0], "trace chain")
 
+# The compact output (CompactTree): same structure through vtkTree's accessors, same lineage.
+compact_filter = vis4gs.vtkGaussianGenealogyTreeFilter()
+compact_filter.SetInputData(table)
+compact_filter.SetNumberOfInitialGaussians(2)
+compact_filter.SetLastIteration(1000)
+compact_filter.CompactTreeOn()
+compact_filter.Update()
+compact = compact_filter.GetOutput()
+check(compact.IsA("vtkGaussianCompactTree"), "compact output type")
+check(not tree.IsA("vtkGaussianCompactTree"), "plain output by default")
+# Parents by hand: nodes 2, 3, 4 of node 0; 5 of 3; 6, 7 of 5 (vertex = node + 1).
+check([compact.GetParent(v) for v in range(1, 9)] == [0, 0, 1, 1, 1, 4, 6, 6], "compact parents")
+check([tree.GetParent(v) for v in range(1, 9)] == [0, 0, 1, 1, 1, 4, 6, 6], "parents")
+check([[compact.GetChild(v, c) for c in range(compact.GetNumberOfChildren(v))] for v in range(9)]
+      == [[tree.GetChild(v, c) for c in range(tree.GetNumberOfChildren(v))] for v in range(9)],
+      "compact children")
+compact_lineage = vis4gs.vtkGaussianGenealogyLineage()
+compact_lineage.SetTree(compact)
+result.Initialize()
+compact_lineage.GetDescendants(query, result)
+check([result.GetValue(k) for k in range(result.GetNumberOfTuples())] == [5, 6, 7],
+      "descendants of 3 in the compact tree")
+
 if failures:
     print("FAILED:", "; ".join(failures))
 sys.exit(1 if failures else 0)
