@@ -93,8 +93,9 @@ public:
   ///@{
   /**
    * Copies keep the compact structure when the source is a vtkGaussianCompactTree with one
-   * (shared between copies: it is never modified in place); from any other graph they take
-   * vtkTree's own adjacency lists, which the accessors then use.
+   * (shared by shallow copies, as it is never modified in place; duplicated by deep copies);
+   * from any other graph they take vtkTree's own adjacency lists, which the accessors then
+   * use.
    */
   void ShallowCopy(vtkDataObject* src) override;
   void DeepCopy(vtkDataObject* src) override;
