@@ -63,8 +63,9 @@ struct FigureColumns
   }
   void Insert(const vis4gs::ViewMetrics& before, const vis4gs::ViewMetrics& after)
   {
-    const double values[] = { before.Psnr, after.Psnr, before.Ssim, after.Ssim, before.L1,
-      after.L1 };
+    const double values[] = {
+      before.Psnr, after.Psnr, before.Ssim, after.Ssim, before.L1, after.L1
+    };
     for (int c = 0; c < 6; ++c)
     {
       this->Columns[c]->InsertNextValue(values[c]);
@@ -172,8 +173,8 @@ int vtkGaussianRemovalEffectFilter::RequestData(vtkInformation*,
   std::vector<vis4gs::Camera> cameras;
   if (!table || !vis4gs::TableToCameras(table, cameras, &error))
   {
-    vtkErrorMacro("The camera table (input port 1) is not usable: "
-      << (table ? error : std::string("none")));
+    vtkErrorMacro(
+      "The camera table (input port 1) is not usable: " << (table ? error : std::string("none")));
     return 0;
   }
   vis4gs::RemovalEffectOptions options;
@@ -216,8 +217,7 @@ int vtkGaussianRemovalEffectFilter::RequestData(vtkInformation*,
       {
         this->Internals->Valid = false;
         const auto t0 = std::chrono::steady_clock::now();
-        this->Internals->Baseline =
-          vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images);
+        this->Internals->Baseline = vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images);
         baselineSeconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         baselineViews = this->Internals->Baseline.MeasuredViews();

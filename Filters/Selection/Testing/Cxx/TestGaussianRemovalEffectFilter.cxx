@@ -225,8 +225,8 @@ int TestGaussianRemovalEffectFilter(int, char*[])
   Check(views->GetNumberOfRows() == 3 && Value(views, "camera", 1) == 0 &&
       Value(views, "l1_after", 1) == 0 && Value(views, "camera", 2) == 3,
     "by ids: a perfect after, b (test) not measured");
-  Check(filter->GetOutput(1)->GetNumberOfRows() == 2 &&
-      Value(filter->GetOutput(1), "views", 1) == 0,
+  Check(
+    filter->GetOutput(1)->GetNumberOfRows() == 2 && Value(filter->GetOutput(1), "views", 1) == 0,
     "by ids: no test view");
 
   Check(!filter->GetBaselineReused(), "a new input: the before is measured again");
@@ -249,9 +249,10 @@ int TestGaussianRemovalEffectFilter(int, char*[])
     {
       const vtkVariant a = fresh->GetOutput(0)->GetValue(r, c);
       const vtkVariant b = filter->GetOutput(0)->GetValue(r, c);
-      same = same && (a.IsString() ? a.ToString() == b.ToString()
-                                   : (a.ToDouble() == b.ToDouble() ||
-                                       (std::isnan(a.ToDouble()) && std::isnan(b.ToDouble()))));
+      same = same &&
+        (a.IsString() ? a.ToString() == b.ToString()
+                      : (a.ToDouble() == b.ToDouble() ||
+                          (std::isnan(a.ToDouble()) && std::isnan(b.ToDouble()))));
     }
   }
   Check(same, "the reused before gives a fresh filter's figures exactly");
