@@ -337,10 +337,7 @@ class Scene:
         if (ids is None) == (mask is None):
             raise Vis4GSError("repair() takes ids= or mask=, one of them")
         if mask is not None:
-            mask = np.asarray(mask, dtype=bool)
-            if mask.shape != (len(self),):
-                raise Vis4GSError(f"mask has {mask.shape} values, the scene {len(self)} Gaussians")
-            ids = self.ids[mask]
+            ids = self.select(mask=mask).ids
         cameras = self.cameras
         if cameras is None:
             raise Vis4GSError(f"{self.path}: repair() needs cameras with images")
