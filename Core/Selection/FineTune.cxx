@@ -183,8 +183,28 @@ FineTuneResult FineTune(const GaussianCloud& snapshot,
     image.Pixels = loaded.Images[v];
     return true;
   };
-  result.Source = MeasureViewMetrics(snapshot, loaded.Cameras, measure, cached);
-  result.Deleted = MeasureViewMetrics(result.Cleaned, loaded.Cameras, measure, cached);
+  // The source per tile; the deleted state re-renders only the tiles the deletion changes
+  // (RemovalEffect.h: the same figures as a full render of the cleaned scene, bit for bit).
+  measure.TileBaseline = MeasureRemovalBaseline(snapshot, loaded.Cameras, measure, cached);
+  result.Source.assign(loaded.Cameras.size(), ViewMetrics());
+  result.Deleted.assign(loaded.Cameras.size(), ViewMetrics());
+  for (std::size_t v = 0; v < loaded.Cameras.size(); ++v)
+  {
+    if (!measure.TileBaseline.Views[v].Empty())
+    {
+      result.Source[v] = measure.TileBaseline.Views[v].Metrics();
+    }
+  }
+  const RemovalEffect deletion =
+    MeasureRemovalEffect(snapshot, removed, loaded.Cameras, measure, cached);
+  for (const RemovalViewEffect& view : deletion.Views)
+  {
+    if (view.HasImage)
+    {
+      result.Deleted[view.CameraIndex] = view.After;
+    }
+  }
+  measure.TileBaseline = RemovalBaseline();
   result.RepairedFigures = MeasureViewMetrics(result.Repaired, loaded.Cameras, measure, cached);
   result.MeasureSeconds = Seconds(a, Clock::now());
   return result;

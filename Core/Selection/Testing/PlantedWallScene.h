@@ -9,6 +9,7 @@
 #include "../../Render/Testing/RasterTestUtils.h"
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace vis4gs
@@ -21,6 +22,13 @@ struct PlantedScene
   std::vector<Camera> Cameras;
   std::vector<Image> Targets;
   std::size_t Floater = 0;
+  /// One byte per Gaussian: 1 for the floater.
+  std::vector<std::uint8_t> FloaterMask() const
+  {
+    std::vector<std::uint8_t> mask(this->Cloud.Count, 0);
+    mask[this->Floater] = 1;
+    return mask;
+  }
 };
 
 // A wall of 8 x 5 Gaussians at z = 5 seen by two training cameras and one test camera, and a

@@ -34,7 +34,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter
 from .vis4gsFiltersGenealogy import vtkGaussianGenealogyLineage, vtkGaussianGenealogyTreeFilter
 from .vis4gsFiltersRaster import vtkGaussianRasterizer
-from .vis4gsFiltersSelection import (vtkGaussianRemovalEffectFilter,
+from .vis4gsFiltersSelection import (vtkGaussianFineTuneFilter,
+                                     vtkGaussianRemovalEffectFilter,
                                      vtkGaussianRuleSelectionFilter,
                                      vtkGaussianStateComparisonFilter)
 from .vis4gsIOScene import vtkGaussianCameraReader, vtkGaussianSceneReader, vtkGaussianPLYWriter
@@ -577,6 +578,62 @@ class Scene:
             ("scale_changed", compare.GetNumberScaleChanged()),
             ("unchanged", compare.GetNumberUnchanged())])
         return Comparison(_table_columns(table), counts)
+    def repair(self, mask=None, ids=None, iterations=50, free_positions=False, densify=False,
+               seed=0, output=None, threads=0):
+        """Deletes the Gaussians where the boolean `mask` is true (or whose GaussianId is in
+        `ids`) and fine-tunes the rest for `iterations` with the built-in CPU trainer
+        (vtkGaussianFineTuneFilter, Core/Selection/FineTune.h: what `vis4gs repair` does), the
+        positions fixed unless `free_positions`, densification off unless `densify`. Needs the
+        cameras and their images (a training log has both). With `output`, the repaired run's
+        training log is written there (the deletion as prune events at this iteration).
+        Returns a Scene of the repaired Gaussians whose `figures` is repair.csv's table as a
+        dict {column: list of str (view, split) or numpy array (psnr/ssim/l1 of source, deleted,
+        repaired)}: one "mean" row per split, then one row per view."""
+        if (ids is None) == (mask is None):
+            raise Vis4GSError("repair() takes ids= or mask=, one of them")
+        if mask is not None:
+            ids = self.select(mask=mask).ids
+        cameras = self.cameras
+        if cameras is None:
+            raise Vis4GSError(f"{self.path}: repair() needs cameras with images")
+        fine_tune = vtkGaussianFineTuneFilter()
+        fine_tune.SetInputData(0, self.polydata)
+        fine_tune.SetCamerasData(cameras)
+        fine_tune.SetRemovedIds(_id_array(np.asarray(ids, dtype=np.int64)))
+        fine_tune.SetSourceIteration(0 if self.iteration is None else int(self.iteration))
+        fine_tune.SetIterations(int(iterations))
+        fine_tune.SetFreePositions(bool(free_positions))
+        fine_tune.SetDensify(bool(densify))
+        fine_tune.SetSeed(int(seed))
+        fine_tune.SetNumberOfThreads(int(threads))
+        if output:
+            fine_tune.SetOutputLogFileName(os.fspath(output))
+        fine_tune.Update()
+        if fine_tune.GetOutputDataObject(1).GetNumberOfColumns() == 0:
+            raise Vis4GSError(f"{self.path}: repair failed (see the messages above)")
+        repaired = Scene.__new__(Scene)
+        repaired.__dict__.update(self.__dict__)
+        repaired.polydata = vtkPolyData()
+        repaired.polydata.ShallowCopy(fine_tune.GetOutputDataObject(0))
+        repaired.iteration = fine_tune.GetLastIteration()
+        repaired._tree = None
+        # Only `output` holds the repaired run's snapshots; at() opens that log.
+        repaired.path = os.fspath(output) if output else self.path
+        repaired.is_log = bool(output) and repaired.is_log
+        repaired.iterations = [self.iteration, repaired.iteration] if repaired.is_log else []
+        if repaired.is_log:
+            repaired._reader = vtkGaussianTrainingLogReader()
+            repaired._reader.SetFileName(repaired.path)
+        table = fine_tune.GetOutputDataObject(1)
+        repaired.figures = {}
+        for c in range(table.GetNumberOfColumns()):
+            column = table.GetColumn(c)
+            if column.IsA("vtkStringArray"):
+                values = [column.GetValue(r) for r in range(column.GetNumberOfValues())]
+            else:
+                values = np.array([column.GetValue(r) for r in range(column.GetNumberOfTuples())])
+            repaired.figures[table.GetColumnName(c)] = values
+        return repaired
 
     # ---------------------------------------------------------------- export
     def save(self, path, ascii=False):

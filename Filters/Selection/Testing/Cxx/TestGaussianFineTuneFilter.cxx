@@ -206,8 +206,7 @@ int TestGaussianFineTuneFilter(int, char*[])
   {
     vis4gs::TrainingLogReader log(logPath);
     const vis4gs::GaussianCloud snapshot = log.ReadSnapshot(100);
-    std::vector<std::uint8_t> removed(snapshot.Count, 0);
-    removed[s.Floater] = 1;
+    const std::vector<std::uint8_t> removed = s.FloaterMask();
     vis4gs::FineTuneOptions options;
     options.Iterations = 10;
     options.Threads = 2;
