@@ -8,10 +8,8 @@
 // per view of the snapshot, the cleaned scene and the repaired one (RemovalEffect.h's figures).
 #include "Vis4GSCommand.h"
 
-#include "RemovalEffect.h"
-#include "Trainer.h"
+#include "FineTune.h"
 #include "TrainingLogReader.h"
-#include "TrainingLogWriter.h"
 #include "Vis4GSStateFiles.h"
 
 #include <algorithm>
@@ -46,11 +44,6 @@ void Define(Vis4GSArguments& args)
     "Keep the trainer's densification schedule (default: off, and no opacity reset).");
   args.AddOption("seed", "S", "0", "Random seed (camera order).");
   args.AddOption("output", "DIR", "vis4gs-repair", "Folder for repaired.h5 and repair.csv.");
-}
-
-const char* SplitName(const vis4gs::Camera& camera)
-{
-  return camera.Split == vis4gs::CameraSplit::Train ? "train" : "test";
 }
 
 int Run(const Vis4GSArguments& args)
@@ -102,17 +95,14 @@ int Run(const Vis4GSArguments& args)
       " ids that the snapshot of iteration " + std::to_string(source) + " of " + logPath +
       " lacks (is it cleaned from this snapshot, with its id property?)");
   }
-  const vis4gs::GaussianCloud cleaned = vis4gs::RemoveGaussians(snapshot, removed);
   std::cout << "vis4gs repair: " << logPath << ", snapshot of iteration " << source << ": "
             << snapshot.Count << " Gaussians, " << prunes.size() << " deleted in " << cleanedPath
             << "\n";
 
-  // The training data: the log's cameras and images.
-  vis4gs::TrainingData data;
-  data.Name = log->GetHeader().Scene;
-  data.Cameras = log->ReadCameras();
+  // The log's cameras (image paths relative to the log made absolute) and images.
+  std::vector<vis4gs::Camera> cameras = log->ReadCameras();
   const fs::path logDir = fs::path(logPath).parent_path();
-  for (vis4gs::Camera& c : data.Cameras)
+  for (vis4gs::Camera& c : cameras)
   {
     if (!c.ImagePath.empty() && c.ImagePath.rfind("/images/", 0) != 0 &&
       fs::path(c.ImagePath).is_relative())
@@ -120,117 +110,42 @@ int Run(const Vis4GSArguments& args)
       c.ImagePath = (logDir / c.ImagePath).string();
     }
   }
-  const vis4gs::TrainingImageProvider images = Vis4GSLogImages(log);
-  for (std::size_t v = 0; v < data.Cameras.size(); ++v)
-  {
-    vis4gs::Image image;
-    if (!images(v, data.Cameras[v], image))
-    {
-      throw std::runtime_error(
-        logPath + ": camera " + data.Cameras[v].Name + " has no image to fine-tune against");
-    }
-    data.Images.push_back(std::move(image.Pixels));
-  }
-
-  vis4gs::TrainerOptions options;
-  options.Iterations = source + iterations;
-  options.ShDegree = snapshot.ShDegree;
-  options.Seed = static_cast<std::uint64_t>(std::stoull(args.Get("seed")));
-  options.Threads = args.GetInt("threads");
-  if (!args.GetFlag("free-positions"))
-  {
-    options.PositionLrInit = options.PositionLrFinal = 0; // Adam then leaves them untouched
-  }
-  if (!args.GetFlag("densify"))
-  {
-    options.DensifyUntilIter = 0; // also skips the opacity resets, as in the reference
-  }
-  options.SnapshotInterval = iterations;
-  options.MetricsInterval = std::max(1, iterations / 10);
-  options.EmbedImages = log->HasImages();
-  for (const vis4gs::Camera& c : data.Cameras)
-  {
-    options.ImagePaths.push_back(c.ImagePath);
-  }
-  options.ProgressInterval = 0;
-  vis4gs::Trainer trainer(std::move(data), options, snapshot, source, prunes);
-
   const fs::path output = args.Get("output");
   fs::create_directories(output);
   const fs::path logOut = output / "repaired.h5";
-  const fs::path partial = output / ".repaired.h5.partial";
-  {
-    vis4gs::TrainingLogWriterOptions wo;
-    wo.Producer = std::string("vis4gs repair ") + VIS4GS_VERSION;
-    wo.Scene = log->GetHeader().Scene;
-    wo.ShDegree = options.ShDegree;
-    wo.Iterations = options.Iterations;
-    vis4gs::TrainingLogWriter writer(partial.string(), wo);
-    trainer.Run(&writer);
-  }
-  fs::rename(partial, logOut);
+  vis4gs::FineTuneOptions options;
+  options.Iterations = iterations;
+  options.FreePositions = args.GetFlag("free-positions");
+  options.Densify = args.GetFlag("densify");
+  options.Seed = static_cast<std::uint64_t>(std::stoull(args.Get("seed")));
+  options.Threads = args.GetInt("threads");
+  options.LogPath = logOut.string();
+  options.Producer = std::string("vis4gs repair ") + VIS4GS_VERSION;
+  options.Scene = log->GetHeader().Scene;
+  options.EmbedImages = log->HasImages();
+  const vis4gs::FineTuneResult result =
+    vis4gs::FineTune(snapshot, source, removed, cameras, Vis4GSLogImages(log), options);
 
-  // The figures of the three states, per view.
-  vis4gs::RemovalEffectOptions measure;
-  measure.Threads = options.Threads;
-  const std::vector<vis4gs::Camera>& cameras = trainer.GetData().Cameras;
-  const std::vector<vis4gs::ViewMetrics> figures[3] = { vis4gs::MeasureViewMetrics(
-                                                          snapshot, cameras, measure, images),
-    vis4gs::MeasureViewMetrics(cleaned, cameras, measure, images),
-    vis4gs::MeasureViewMetrics(trainer.GetCloud(), cameras, measure, images) };
   std::ostringstream csv;
-  csv << "view,split,psnr_source,psnr_deleted,psnr_repaired,ssim_source,ssim_deleted,"
-         "ssim_repaired,l1_source,l1_deleted,l1_repaired\n"
-      << std::setprecision(9);
-  for (const char* split : { "train", "test" })
+  const std::vector<std::string>& columns = vis4gs::FineTuneFigureColumns();
+  for (std::size_t c = 0; c < columns.size(); ++c)
   {
-    double sum[9] = {};
-    std::size_t views = 0;
-    for (std::size_t v = 0; v < cameras.size(); ++v)
+    csv << (c > 0 ? "," : "") << columns[c];
+  }
+  csv << "\n" << std::setprecision(9);
+  for (const vis4gs::FineTuneFigureRow& row : vis4gs::FineTuneFigureRows(result, cameras))
+  {
+    csv << row.View << "," << row.Split;
+    for (double x : row.Values)
     {
-      if (SplitName(cameras[v]) == std::string(split) && std::isfinite(figures[0][v].L1))
-      {
-        for (int s = 0; s < 3; ++s)
-        {
-          sum[s] += figures[s][v].Psnr;
-          sum[3 + s] += figures[s][v].Ssim;
-          sum[6 + s] += figures[s][v].L1;
-        }
-        ++views;
-      }
-    }
-    if (views == 0)
-    {
-      continue;
-    }
-    csv << "mean," << split;
-    for (double x : sum)
-    {
-      csv << "," << x / views;
+      csv << "," << x;
     }
     csv << "\n";
-    std::cout << "vis4gs repair: " << split << " PSNR " << sum[0] / views << " dB, after deleting "
-              << sum[1] / views << " dB, after " << iterations << " iterations " << sum[2] / views
-              << " dB (" << views << " views)\n";
-  }
-  for (std::size_t v = 0; v < cameras.size(); ++v)
-  {
-    if (std::isfinite(figures[0][v].L1))
+    if (row.View == "mean")
     {
-      csv << cameras[v].Name << "," << SplitName(cameras[v]);
-      for (int s = 0; s < 3; ++s)
-      {
-        csv << "," << figures[s][v].Psnr;
-      }
-      for (int s = 0; s < 3; ++s)
-      {
-        csv << "," << figures[s][v].Ssim;
-      }
-      for (int s = 0; s < 3; ++s)
-      {
-        csv << "," << figures[s][v].L1;
-      }
-      csv << "\n";
+      std::cout << "vis4gs repair: " << row.Split << " PSNR " << row.Values[0]
+                << " dB, after deleting " << row.Values[1] << " dB, after " << iterations
+                << " iterations " << row.Values[2] << " dB\n";
     }
   }
   const fs::path csvPath = output / "repair.csv";
@@ -246,7 +161,8 @@ int Run(const Vis4GSArguments& args)
   fs::rename(csvPath.string() + ".partial", csvPath);
   std::cout << "vis4gs repair: wrote " << logOut.string() << " (" << prunes.size()
             << " prune events at iteration " << source << ", iterations " << source + 1 << ".."
-            << options.Iterations << ") and " << csvPath.string() << "\n";
+            << result.LastIteration << ", " << result.TrainSeconds / iterations
+            << " s per iteration) and " << csvPath.string() << "\n";
   return 0;
 }
 } // namespace

@@ -12,8 +12,8 @@
 
 #include "ArtifactScores.h"
 #include "ImageIO.h"
-#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSTrainingImages.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
@@ -36,11 +36,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <map>
-#include <memory>
 #include <sstream>
-#include <system_error>
 #include <vector>
 
 vtkStandardNewMacro(vtkGaussianArtifactScoreFilter);
@@ -48,22 +44,6 @@ vtkCxxSetObjectMacro(vtkGaussianArtifactScoreFilter, Controller, vtkMultiProcess
 
 namespace
 {
-// Files of @p folder by name up to the first '.' (the trainer's image_name).
-std::map<std::string, std::string> ImagesByName(const std::string& folder)
-{
-  std::map<std::string, std::string> files;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
-  {
-    if (entry.is_regular_file(ec))
-    {
-      const std::string name = entry.path().filename().string();
-      files.emplace(name.substr(0, name.find('.')), entry.path().string());
-    }
-  }
-  return files;
-}
-
 void AddArray(vtkPolyData* output, const char* name, const std::vector<double>& values)
 {
   vtkNew<vtkDoubleArray> array;
@@ -335,50 +315,17 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
       return 0;
     }
   }
-  if (needImages && !this->ImageDirectory.empty())
-  {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(this->ImageDirectory, ec))
-    {
-      vtkErrorMacro("ImageDirectory '" << this->ImageDirectory << "' is not a folder.");
-      return 0;
-    }
-    const auto files = ImagesByName(this->ImageDirectory);
-    for (vis4gs::Camera& camera : cameras)
-    {
-      const auto it = files.find(camera.Name);
-      camera.ImagePath = it == files.end() ? std::string() : it->second;
-    }
-  }
-  const std::array<float, 3> background = { static_cast<float>(settings.Raster.Background[0]),
-    static_cast<float>(settings.Raster.Background[1]),
-    static_cast<float>(settings.Raster.Background[2]) };
-  // Images inside a training log ("/images/<name>" in a camera table that names its log,
-  // as vtkGaussianTrainingLogReader's is) are read from the log by the process that scores
-  // the view, never through temporary files.
-  std::shared_ptr<const vis4gs::TrainingLogReader> log;
-  if (needImages && table)
-  {
-    auto* name = vtkStringArray::SafeDownCast(
-      table->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile));
-    if (name && name->GetNumberOfValues() == 1)
-    {
-      try
-      {
-        log = std::make_shared<const vis4gs::TrainingLogReader>(name->GetValue(0));
-      }
-      catch (const std::exception& e)
-      {
-        vtkErrorMacro("The training log of the cameras cannot be read: " << e.what());
-        return 0;
-      }
-    }
-  }
   vis4gs::TrainingImageProvider images;
   if (needImages)
   {
-    images = [background, log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
-    { return vis4gs::LoadCameraImage(log.get(), camera, image, background); };
+    const std::array<float, 3> background = { static_cast<float>(settings.Raster.Background[0]),
+      static_cast<float>(settings.Raster.Background[1]),
+      static_cast<float>(settings.Raster.Background[2]) };
+    if (!Vis4GSTrainingImages(table, this->ImageDirectory, background, cameras, images, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
   }
   auto progress = [this](std::size_t done, std::size_t total)
   { this->UpdateProgress(total > 0 ? static_cast<double>(done) / total : 1.0); };

@@ -106,6 +106,22 @@ constexpr const char* TreeGaussianId = "GaussianId";
 constexpr const char* TreeLayoutX = "LayoutX";
 constexpr const char* TreeLayoutY = "LayoutY";
 constexpr const char* TreeFamilyId = "FamilyId";
+// Before / after of a clean-up (vtkGaussianRemovalEffectFilter): the columns of
+// `vis4gs analyze --report`'s before-after.csv, spelled as there. Per view: RemovalView,
+// RemovalCamera (index in the camera table), RemovalSplit ("train" / "test"), RemovalAffected
+// (1 where a removed Gaussian took part), then the figures; per split (totals): RemovalSplit,
+// RemovalViews (views with an image), RemovalAffected (views changed), then the figures (means).
+constexpr const char* RemovalView = "view";
+constexpr const char* RemovalCamera = "camera";
+constexpr const char* RemovalSplit = "split";
+constexpr const char* RemovalAffected = "affected";
+constexpr const char* RemovalViews = "views";
+constexpr const char* RemovalPsnrBefore = "psnr_before";
+constexpr const char* RemovalPsnrAfter = "psnr_after";
+constexpr const char* RemovalSsimBefore = "ssim_before";
+constexpr const char* RemovalSsimAfter = "ssim_after";
+constexpr const char* RemovalL1Before = "l1_before";
+constexpr const char* RemovalL1After = "l1_after";
 }
 
 namespace detail

@@ -6,9 +6,15 @@
     for step in scene.lineage(25704): print(step)            # back to its root
     scene.select(mask=scores["coverage"] < 0.1).save("floaters.ply")
     scene.render("view.png", camera=0)
+    floaters = scene.select_rule("views<=3 and opacity>=0.1")   # guided clean-up (issue 20)
+    effect = scene.measure_removal(ids=floaters.ids)            # per view, before / after
+    scene.at(1600).select_rule(floaters.rule)                   # the rule on another snapshot
+    diff = scene.at(400).compare(scene, move=0.01)              # born, died, moved, ... ids
 
 Each call is one VTK pipeline (the readers, vtkGaussianArtifactScoreFilter,
-vtkGaussianGenealogyTreeFilter / Lineage, vtkGaussianRasterizer, vtkGaussianPLYWriter)
+vtkGaussianGenealogyTreeFilter / Lineage, vtkGaussianRasterizer, vtkGaussianPLYWriter,
+vtkGaussianRuleSelectionFilter, vtkGaussianRemovalEffectFilter,
+vtkGaussianStateComparisonFilter)
 set up the way the `vis4gs` program sets it up, so the arrays are the program's, bit for bit.
 The VTK objects stay reachable (`scene.polydata`, `scene.cameras`, `scene.tree`) for anything
 this layer does not cover.
@@ -16,17 +22,22 @@ this layer does not cover.
 import collections
 import math
 import os
+import re
 
 import numpy as np
 from vtkmodules.numpy_interface import dataset_adapter as dsa
 from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdTypeArray, vtkObject
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData, vtkTable
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter
 from .vis4gsFiltersGenealogy import vtkGaussianGenealogyLineage, vtkGaussianGenealogyTreeFilter
 from .vis4gsFiltersRaster import vtkGaussianRasterizer
+from .vis4gsFiltersSelection import (vtkGaussianFineTuneFilter,
+                                     vtkGaussianRemovalEffectFilter,
+                                     vtkGaussianRuleSelectionFilter,
+                                     vtkGaussianStateComparisonFilter)
 from .vis4gsIOScene import vtkGaussianCameraReader, vtkGaussianSceneReader, vtkGaussianPLYWriter
 from .vis4gsIOTrainingLog import vtkGaussianTrainingLogReader
 
@@ -41,6 +52,18 @@ _SCORE_PARAMETERS = {"loss_resolution": "LossResolution",
                      "float_accumulation": "FloatAccumulation",
                      "occlusion_threshold": "OcclusionThreshold", "lam": "Lambda"}
 _BIRTH_KINDS = {0: "root", 1: "clone", 2: "split", 3: "clone-split"}
+# How select_rule() combines with a current selection (vtkGaussianRuleSelectionFilter).
+_COMBINE = {None: 0, "replace": 0, "add": 1, "subtract": 2, "intersect": 3}
+# The rule attributes that are scores (SelectionRule.h), with the score each needs; "views" is
+# View Coverage times the views used. "needle" is the shape, computed from the log-scales.
+_RULE_SCORES = {"coverage": "coverage", "views": "coverage", "blur": "blur",
+                "needle_score": "needle"}
+# before-after.csv of `vis4gs analyze --report`: its columns, in its order.
+_REMOVAL_CSV = ("view", "split", "affected", "psnr_before", "psnr_after", "ssim_before",
+                "ssim_after", "l1_before", "l1_after")
+# vtkGaussianStateComparisonFilter's flags (StateComparison.h) and id sets of Comparison.
+_CHANGES = collections.OrderedDict([("moved", 1), ("opacity_changed", 2), ("scale_changed", 4),
+                                    ("born", 8), ("died", 16)])
 
 Ancestor = collections.namedtuple(
     "Ancestor", "gaussian_id born kind died snapshot value",
@@ -80,8 +103,93 @@ def open(path, iteration=None, cameras=None, images=None, id_property=None):  # 
     return Scene(path, iteration, cameras, images, id_property)
 
 
+class RemovalEffect:
+    """What deleting a selection does to the reconstruction (Scene.measure_removal()).
+
+    views: {column: numpy array}, one row per view, the largest PSNR drop first (views without
+    an image last, NaN): view (names), camera (index in the camera table), split ("train" /
+    "test"), affected (1 where a removed Gaussian took part), psnr_before, psnr_after,
+    ssim_before, ssim_after, l1_before, l1_after. effect["psnr_after"] is views["psnr_after"].
+    totals: {"train" / "test": {views, affected, psnr_before, ...}}, means over the views of a
+    split that have an image. removed, kept: Gaussians; views_rendered, tiles_rendered,
+    tiles_of_tiled_views, views_without_image, seconds_before, seconds_after, baseline_reused
+    (the "before" of an earlier measurement of the same scene was reused): the work done."""
+
+    def __init__(self, views, totals, counts):
+        self.views = views
+        self.totals = totals
+        self.__dict__.update(counts)
+
+    def __getitem__(self, column):
+        return self.views[column]
+
+    def __repr__(self):
+        parts = [f"{split} PSNR {t['psnr_before']:.4f} -> {t['psnr_after']:.4f} dB "
+                 f"({t['affected']} of {t['views']} views changed)"
+                 for split, t in self.totals.items()]
+        return f"<vis4gs.RemovalEffect: {self.removed} Gaussians removed; {'; '.join(parts)}>"
+
+    def to_csv(self, path):
+        """Writes before-after.csv as `vis4gs analyze --select=RULE --report` does: the "mean"
+        rows of the splits first, then the views, in the same number format."""
+        lines = [",".join(_REMOVAL_CSV)]
+        figures = _REMOVAL_CSV[3:]
+        for split, t in self.totals.items():
+            lines.append(",".join(["mean", split, str(int(t["affected"]))] +
+                                  [_format_double(t[f]) for f in figures]))
+        for r in range(len(self.views["view"])):
+            lines.append(",".join([str(self.views["view"][r]), str(self.views["split"][r]),
+                                   str(int(self.views["affected"][r]))] +
+                                  [_format_double(self.views[f][r]) for f in figures]))
+        _write_text(path, "\n".join(lines) + "\n")
+        return path
+
+
+class Comparison:
+    """Two states compared Gaussian by Gaussian (Scene.compare()), matched by GaussianId.
+
+    ids, change (flags: 1 moved, 2 opacity, 4 scale, 8 born, 16 died), status ("born", "died",
+    "unchanged" or e.g. "moved+opacity"), move, opacity, scale: numpy arrays, one row per id of
+    either state, by increasing id (move, opacity, scale NaN for born and died Gaussians).
+    born, died, moved, opacity_changed, scale_changed, unchanged: the ids of each kind, sorted
+    (a Gaussian can be moved and opacity_changed). counts: {kind: number}, matched included."""
+
+    def __init__(self, columns, counts):
+        self.ids = columns["GaussianId"]
+        self.change = columns["Change"]
+        self.status = columns["Status"]
+        self.move = columns["Move"]
+        self.opacity = columns["OpacityChange"]
+        self.scale = columns["ScaleChange"]
+        for kind, flag in _CHANGES.items():
+            setattr(self, kind, self.ids[(self.change & flag) != 0])
+        self.unchanged = self.ids[self.change == 0]
+        self.counts = counts
+
+    def __repr__(self):
+        return "<vis4gs.Comparison: " + ", ".join(f"{v} {k}" for k, v in self.counts.items()) + ">"
+
+    def to_csv(self, path):
+        """Writes differences.csv as `vis4gs compare` does (id, status, dmove, dopacity,
+        dscale)."""
+        lines = ["id,status,dmove,dopacity,dscale"]
+        for r in range(len(self.ids)):
+            lines.append(",".join([str(int(self.ids[r])), str(self.status[r]),
+                                   _format_double(self.move[r]), _format_double(self.opacity[r]),
+                                   _format_double(self.scale[r])]))
+        _write_text(path, "\n".join(lines) + "\n")
+        return path
+
+
 class Scene:
     """The Gaussians of one scene file or one snapshot of a training log, with its cameras."""
+
+    # select_rule(): the rule in canonical form and, over the scene it was applied to, the
+    # boolean mask of the Gaussians it selected. scores(): |V|, the training views used.
+    rule = None
+    mask = None
+    views_used = None
+    _removal = None
 
     def __init__(self, path, iteration=None, cameras=None, images=None, id_property=None):
         self.path = path
@@ -242,6 +350,8 @@ class Scene:
                               "(see the messages above)")
         self.polydata = vtkPolyData()
         self.polydata.ShallowCopy(out)
+        if any(w != "shape" for w in which):
+            self.views_used = score_filter.GetNumberOfViewsUsed()
         return collections.OrderedDict((w, self[SCORES[w]]) for w in which)
 
     # ---------------------------------------------------------------- genealogy
@@ -321,6 +431,209 @@ class Scene:
         subset.__dict__.update(self.__dict__)
         subset.polydata = _take(self.polydata, rows)
         return subset
+
+    # ---------------------------------------------------------------- clean-up (issue 20)
+    def select_rule(self, rule, combine=None, current=None):
+        """A new Scene holding the Gaussians a rule selects (vtkGaussianRuleSelectionFilter;
+        the language of `vis4gs analyze --select=RULE`, user guide "Guided clean-up"), e.g.
+        "views<=3 and opacity>=0.5", "blur top 5%", "needle>=0.8", "isolated r=0.1".
+
+        The scores the rule reads (coverage, views, blur, needle_score) are computed with the
+        defaults of scores() when this scene lacks them. combine "add", "subtract" or
+        "intersect" combines the rule's selection with `current`: a previous selection (a
+        Scene), GaussianIds, or a boolean mask over this scene (a brush, a histogram range).
+        The result keeps the rule in canonical form (.rule: apply it to another snapshot with
+        scene.at(iteration).select_rule(sel.rule), or to another log) and the selection as a
+        boolean mask over this scene (.mask)."""
+        if combine not in _COMBINE:
+            raise Vis4GSError(f"combine must be add, subtract or intersect, not {combine!r}")
+        if (combine is None) != (current is None):
+            raise Vis4GSError("combine= and current= go together")
+        words = set(re.findall(r"[a-z_]+", str(rule).lower()))
+        needed = [score for word, score in _RULE_SCORES.items() if word in words]
+        missing = [s for s in SCORES if s in needed and
+                   self.polydata.GetPointData().GetArray(SCORES[s]) is None]
+        if "views" in words and self.views_used is None and "coverage" not in missing:
+            missing.append("coverage")
+        if missing:
+            self.scores(missing)
+        rule_filter = vtkGaussianRuleSelectionFilter()
+        rule_filter.SetInputData(self.polydata)
+        rule_filter.SetRule(str(rule))
+        rule_filter.SetNumberOfViews(self.views_used or 0)
+        rule_filter.SetCombineMode(_COMBINE[combine])
+        if current is not None:
+            rule_filter.SetCurrentIds(_id_array(self._ids_of(current, "current")))
+        shown = vtkObject.GetGlobalWarningDisplay()
+        vtkObject.GlobalWarningDisplayOff()
+        try:
+            rule_filter.Update()
+        finally:
+            vtkObject.SetGlobalWarningDisplay(shown)
+        if rule_filter.GetLastRuleError():
+            raise Vis4GSError(f"{self.path}: {rule_filter.GetLastRuleError()}")
+        out = rule_filter.GetOutput()
+        if out is None or out.GetPointData().GetArray("RuleSelected") is None:
+            raise Vis4GSError(f"{self.path}: the rule {rule!r} could not be applied")
+        mask = np.asarray(dsa.WrapDataObject(out).PointData["RuleSelected"]).astype(bool)
+        subset = self.select(mask=mask)
+        subset.rule = rule_filter.GetCanonicalRule()
+        subset.mask = mask
+        return subset
+
+    def _ids_of(self, selection, what):
+        """GaussianIds of a Scene, a boolean mask over this scene, or ids."""
+        if isinstance(selection, Scene):
+            return np.asarray(selection.ids, dtype=np.int64)
+        values = np.asarray(selection)
+        if values.dtype == bool:
+            if values.shape != (len(self),):
+                raise Vis4GSError(f"{what}: the mask has {values.shape} values, the scene "
+                                  f"{len(self)} Gaussians")
+            return np.asarray(self.ids, dtype=np.int64)[values]
+        return values.astype(np.int64).reshape(-1)
+
+    def measure_removal(self, mask=None, ids=None, train=True, test=True,
+                        background=(0.0, 0.0, 0.0), sh_degree=-1, reuse_tiles=True, threads=0):
+        """Before and after deleting the Gaussians where `mask` is true (one value per Gaussian)
+        or whose GaussianId is in `ids` (e.g. a select_rule() result's .ids): every training
+        (train=) and test (test=) view with an image rendered with and without them and
+        measured against its image (vtkGaussianRemovalEffectFilter, the measurement of
+        `vis4gs analyze --select=RULE --report`, whose before-after.csv RemovalEffect.to_csv()
+        writes again). Images: the log's, the cameras', or images= of vis4gs.open().
+        Returns a RemovalEffect (numpy columns per view, the worst PSNR change first, and the
+        totals per split). The "before" is measured once per scene and settings: measuring
+        another selection renders only the views (and tiles) it changes."""
+        if (ids is None) == (mask is None):
+            raise Vis4GSError("measure_removal() takes ids= or mask=, one of them")
+        if self.cameras is None:
+            raise Vis4GSError(f"{self.path}: measuring a removal needs cameras")
+        if mask is not None:
+            mask = np.asarray(mask, dtype=bool)
+        removed = self._ids_of(mask if mask is not None else ids, "mask")
+        # One filter per scene: it keeps the "before", so that measuring another selection of
+        # the same scene renders only the "after" of the views that selection touches.
+        if self._removal is None:
+            self._removal = vtkGaussianRemovalEffectFilter()
+        effect_filter = self._removal
+        effect_filter.SetInputData(self.polydata)
+        effect_filter.SetCamerasData(self.cameras)
+        effect_filter.SetRemovedIds(_id_array(removed))
+        if self.images:
+            effect_filter.SetImageDirectory(self.images)
+        effect_filter.SetTrainViews(bool(train))
+        effect_filter.SetTestViews(bool(test))
+        effect_filter.SetBackground(*background)
+        effect_filter.SetSHDegree(sh_degree)
+        effect_filter.SetReuseTiles(bool(reuse_tiles))
+        effect_filter.SetThreads(int(threads))
+        effect_filter.Update()
+        views, totals = effect_filter.GetOutput(0), effect_filter.GetOutput(1)
+        if totals is None or totals.GetNumberOfRows() != 2:
+            raise Vis4GSError(f"{self.path}: measuring the removal failed "
+                              "(see the messages above)")
+        columns = _table_columns(views)
+        total_columns = _table_columns(totals)
+        by_split = collections.OrderedDict()
+        for r, split in enumerate(total_columns["split"]):
+            by_split[str(split)] = {name: values[r] for name, values in total_columns.items()
+                                    if name != "split"}
+        counts = {"removed": effect_filter.GetNumberRemoved(),
+                  "kept": effect_filter.GetNumberKept(),
+                  "views_rendered": effect_filter.GetNumberOfViewsRendered(),
+                  "tiles_rendered": effect_filter.GetNumberOfTilesRendered(),
+                  "tiles_of_tiled_views": effect_filter.GetNumberOfTilesOfTiledViews(),
+                  "views_without_image": effect_filter.GetNumberOfViewsWithoutImage(),
+                  "seconds_before": effect_filter.GetSecondsBefore(),
+                  "seconds_after": effect_filter.GetSecondsAfter(),
+                  "baseline_reused": bool(effect_filter.GetBaselineReused())}
+        return RemovalEffect(columns, by_split, counts)
+
+    def compare(self, other, move=0.0, opacity=0.0, scale=0.0):
+        """This state (A) against `other` (B: a Scene or a path vis4gs.open() reads), Gaussian by
+        Gaussian (vtkGaussianStateComparisonFilter, what `vis4gs compare` writes to
+        differences.csv): matched by GaussianId, born (only in B), died (only in A), moved more
+        than `move` (scene units), activated opacity changed more than `opacity`, a log-scale
+        changed more than `scale`; the thresholds are strict, so 0 reports any change.
+        Returns a Comparison (numpy columns and the id set of each kind)."""
+        if not isinstance(other, Scene):
+            other = open(other)
+        if min(move, opacity, scale) < 0:
+            raise Vis4GSError("move, opacity and scale must be >= 0")
+        compare = vtkGaussianStateComparisonFilter()
+        compare.SetInputData(0, self.polydata)
+        compare.SetInputData(1, other.polydata)
+        compare.SetMoveThreshold(float(move))
+        compare.SetOpacityThreshold(float(opacity))
+        compare.SetScaleThreshold(float(scale))
+        compare.Update()
+        table = compare.GetOutput()
+        if table is None or table.GetColumnByName("Change") is None:
+            raise Vis4GSError(f"{self.path}, {other.path}: the comparison failed "
+                              "(see the messages above)")
+        counts = collections.OrderedDict([
+            ("matched", compare.GetNumberMatched()), ("born", compare.GetNumberBorn()),
+            ("died", compare.GetNumberDied()), ("moved", compare.GetNumberMoved()),
+            ("opacity_changed", compare.GetNumberOpacityChanged()),
+            ("scale_changed", compare.GetNumberScaleChanged()),
+            ("unchanged", compare.GetNumberUnchanged())])
+        return Comparison(_table_columns(table), counts)
+    def repair(self, mask=None, ids=None, iterations=50, free_positions=False, densify=False,
+               seed=0, output=None, threads=0):
+        """Deletes the Gaussians where the boolean `mask` is true (or whose GaussianId is in
+        `ids`) and fine-tunes the rest for `iterations` with the built-in CPU trainer
+        (vtkGaussianFineTuneFilter, Core/Selection/FineTune.h: what `vis4gs repair` does), the
+        positions fixed unless `free_positions`, densification off unless `densify`. Needs the
+        cameras and their images (a training log has both). With `output`, the repaired run's
+        training log is written there (the deletion as prune events at this iteration).
+        Returns a Scene of the repaired Gaussians whose `figures` is repair.csv's table as a
+        dict {column: list of str (view, split) or numpy array (psnr/ssim/l1 of source, deleted,
+        repaired)}: one "mean" row per split, then one row per view."""
+        if (ids is None) == (mask is None):
+            raise Vis4GSError("repair() takes ids= or mask=, one of them")
+        if mask is not None:
+            ids = self.select(mask=mask).ids
+        cameras = self.cameras
+        if cameras is None:
+            raise Vis4GSError(f"{self.path}: repair() needs cameras with images")
+        fine_tune = vtkGaussianFineTuneFilter()
+        fine_tune.SetInputData(0, self.polydata)
+        fine_tune.SetCamerasData(cameras)
+        fine_tune.SetRemovedIds(_id_array(np.asarray(ids, dtype=np.int64)))
+        fine_tune.SetSourceIteration(0 if self.iteration is None else int(self.iteration))
+        fine_tune.SetIterations(int(iterations))
+        fine_tune.SetFreePositions(bool(free_positions))
+        fine_tune.SetDensify(bool(densify))
+        fine_tune.SetSeed(int(seed))
+        fine_tune.SetNumberOfThreads(int(threads))
+        if output:
+            fine_tune.SetOutputLogFileName(os.fspath(output))
+        fine_tune.Update()
+        if fine_tune.GetOutputDataObject(1).GetNumberOfColumns() == 0:
+            raise Vis4GSError(f"{self.path}: repair failed (see the messages above)")
+        repaired = Scene.__new__(Scene)
+        repaired.__dict__.update(self.__dict__)
+        repaired.polydata = vtkPolyData()
+        repaired.polydata.ShallowCopy(fine_tune.GetOutputDataObject(0))
+        repaired.iteration = fine_tune.GetLastIteration()
+        repaired._tree = None
+        # Only `output` holds the repaired run's snapshots; at() opens that log.
+        repaired.path = os.fspath(output) if output else self.path
+        repaired.is_log = bool(output) and repaired.is_log
+        repaired.iterations = [self.iteration, repaired.iteration] if repaired.is_log else []
+        if repaired.is_log:
+            repaired._reader = vtkGaussianTrainingLogReader()
+            repaired._reader.SetFileName(repaired.path)
+        table = fine_tune.GetOutputDataObject(1)
+        repaired.figures = {}
+        for c in range(table.GetNumberOfColumns()):
+            column = table.GetColumn(c)
+            if column.IsA("vtkStringArray"):
+                values = [column.GetValue(r) for r in range(column.GetNumberOfValues())]
+            else:
+                values = np.array([column.GetValue(r) for r in range(column.GetNumberOfTuples())])
+            repaired.figures[table.GetColumnName(c)] = values
+        return repaired
 
     # ---------------------------------------------------------------- export
     def save(self, path, ascii=False):
@@ -413,6 +726,27 @@ def _format_double(value):
 
 def _format_int(value):
     return str(int(value))
+
+
+def _table_columns(table):
+    """The columns of a vtkTable as numpy arrays (strings as an object array)."""
+    columns = collections.OrderedDict()
+    for c in range(table.GetNumberOfColumns()):
+        column = table.GetColumn(c)
+        if column.IsA("vtkDataArray"):
+            values = np.array(vtk_to_numpy(column))
+        else:
+            values = np.array([column.GetValue(r) for r in range(column.GetNumberOfValues())],
+                              dtype=object)
+        columns[table.GetColumnName(c)] = values
+    return columns
+
+
+def _write_text(path, text):
+    temporary = path + ".part"
+    with builtins_open(temporary, "w") as f:
+        f.write(text)
+    os.replace(temporary, path)
 
 
 def _id_array(ids):
