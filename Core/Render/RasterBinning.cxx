@@ -190,7 +190,8 @@ void BinGaussians(const ViewProjection<T>& projection,
   // The tile rectangles in sorted order, in the buffer the sorted keys do not occupy.
   std::uint64_t* spare = sorted == keys ? keys + visible : keys;
   const bool narrow = gx <= 0xFFFF && gy <= 0xFFFF;
-  raster::internal::NarrowRect* narrowRects = reinterpret_cast<raster::internal::NarrowRect*>(spare);
+  raster::internal::NarrowRect* narrowRects =
+    reinterpret_cast<raster::internal::NarrowRect*>(spare);
   std::array<int, 4>* wideRects = GrowRaw(buf.WideRects, narrow ? 0 : visible);
 #pragma omp parallel for schedule(static) num_threads(chunks)
   for (std::int64_t k = 0; k < nv; ++k)
@@ -347,14 +348,7 @@ void BinSortedRects(const std::array<int, 4>* rects,
   if (ids)
   {
     BinSortedRectsOf(
-      rects,
-      [ids](std::int64_t k) { return ids[k]; },
-      count,
-      gx,
-      gy,
-      chunks,
-      diff,
-      bins);
+      rects, [ids](std::int64_t k) { return ids[k]; }, count, gx, gy, chunks, diff, bins);
   }
   else
   {
