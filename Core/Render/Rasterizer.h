@@ -303,7 +303,7 @@ struct RasterWorkCounts
  * Per-Gaussian data of the compositing loop, input order: the kernel (mean, conic, opacity,
  * colour, depth) of every visible Gaussian and the conservative spans (RasterBounds.h) of the
  * pixels where its alpha can reach 1/255 (unbounded when the opacity is below 1/255).
- * Culled Gaussians hold zeros and no bound. The spans are kept as SpanRecord (56 bytes: the
+ * Culled Gaussians hold zeros and no bound. The spans are kept as SpanRecord (40 bytes: the
  * mean is the kernel's; SpanRecord::Expand() gives back the SpanBounds). CompositeTiles() fills it
  * on request, so that a consumer replaying the blending (the trainer's backward) reads the very
  * data the forward decided with instead of recomputing it.
