@@ -57,7 +57,7 @@ struct MultiViewRenderer::Data
   // Visible Gaussians in (depth, index) order: position s holds Gaussian Sorted[s].
   std::vector<std::uint32_t> Sorted;
   std::vector<raster::detail::KernelGaussian<float>> Kernels;
-  std::vector<raster::detail::SpanBounds> Bounds; ///< alpha-level spans (compositing)
+  std::vector<raster::detail::SpanRecord> Bounds; ///< alpha-level spans (compositing)
   std::vector<std::array<int, 4>> Rects;
   std::vector<std::int32_t> Radius;
   TileBins Bins; ///< Ids are sorted positions s (ascending within every tile)

@@ -282,11 +282,11 @@ void MultiViewRenderer::Project(const Camera& camera)
           sb.RowMax = std::min(sb.RowMax, static_cast<int>(std::ceil(sb.V + yE + 0.01)));
         }
       }
-      d.Bounds[s] = sb;
+      d.Bounds[s] = raster::detail::SpanRecord(sb);
     }
     else
     {
-      d.Bounds[s] = raster::detail::SpanBounds();
+      d.Bounds[s] = raster::detail::SpanRecord();
     }
   }
   d.HasView = true;

@@ -72,9 +72,12 @@ U* GrowRaw(RawVector<U>& v, std::size_t n)
 
 struct BinScratch::Buffers
 {
-  RawVector<std::uint32_t> VisIds, Order;
-  RawVector<std::array<int, 4>> VisRects, Rects;
+  /// 2 per visible Gaussian: the sort keys and the radix sort's other buffer; after the sort,
+  /// the half not holding the sorted keys holds the sorted tile rectangles (16-bit).
   RawVector<std::uint64_t> Keys;
+  /// The sorted tile rectangles when the tile grid exceeds 16 bits (images wider or taller
+  /// than 2^20 pixels); empty otherwise.
+  RawVector<std::array<int, 4>> WideRects;
   std::vector<std::int64_t> Diff;
 };
 
@@ -109,8 +112,9 @@ void BinGaussians(const ViewProjection<T>& projection,
   const std::size_t gx = static_cast<std::size_t>(projection.TilesX);
   const std::size_t gy = static_cast<std::size_t>(projection.TilesY);
 
-  // (1) Visible Gaussians, compacted in index order: ids, tile rectangles, sort keys. The
-  // compact position is monotonic in the index, so it breaks depth ties like the index.
+  // (1) Visible Gaussians in index order: one 64-bit key each, the Gaussian's index in the
+  // low 32 bits (below 2^32: ProjectGaussians refuses larger clouds) and, for float, the
+  // depth bits above it. The index breaks depth ties, as the reference's stable sort does.
   std::vector<std::uint64_t> before(static_cast<std::size_t>(chunks) + 1, 0);
 #pragma omp parallel for schedule(static, 1) num_threads(chunks)
   for (int c = 0; c < chunks; ++c)
@@ -129,13 +133,11 @@ void BinGaussians(const ViewProjection<T>& projection,
   }
   const std::size_t visible = static_cast<std::size_t>(before[static_cast<std::size_t>(chunks)]);
   const std::int64_t nv = static_cast<std::int64_t>(visible);
-  using Rect = std::array<int, 4>;
-  std::uint32_t* visIds = GrowRaw(buf.VisIds, visible);
-  Rect* visRects = GrowRaw(buf.VisRects, visible);
-  constexpr bool isFloat = std::is_same<T, float>::value;
-  // float: depth bits above the compact position (and room for the radix sort's buffer)
-  std::uint64_t* keys = GrowRaw(buf.Keys, isFloat ? 2 * visible : 0);
-  std::vector<std::pair<T, std::uint32_t>> pairs(isFloat ? 0 : visible); // double
+  // The keys and a second buffer of the same size: the radix sort's (float), then the sorted
+  // rectangles'. 16 bytes per visible Gaussian in all, reused from frame to frame.
+  std::uint64_t* keys = GrowRaw(buf.Keys, 2 * visible);
+  std::vector<std::pair<T, std::uint32_t>> pairs(
+    std::is_same<T, float>::value ? 0 : visible); // double
   std::uint32_t depthOr = 0, depthAnd = ~0u;
 #pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
   for (int c = 0; c < chunks; ++c)
@@ -149,8 +151,6 @@ void BinGaussians(const ViewProjection<T>& projection,
       {
         continue;
       }
-      visIds[k] = static_cast<std::uint32_t>(i);
-      visRects[k] = { g.TileRect[0], g.TileRect[1], g.TileRect[2], g.TileRect[3] };
       if constexpr (std::is_same<T, float>::value)
       {
         // depth > 0.2, so the bits order like the values.
@@ -158,11 +158,11 @@ void BinGaussians(const ViewProjection<T>& projection,
         std::memcpy(&bits, &g.Depth, sizeof(bits));
         depthOr |= bits;
         depthAnd &= bits;
-        keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
+        keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(i);
       }
       else
       {
-        pairs[k] = { g.Depth, static_cast<std::uint32_t>(k) };
+        pairs[k] = { g.Depth, static_cast<std::uint32_t>(i) };
       }
       ++k;
     }
@@ -170,19 +170,12 @@ void BinGaussians(const ViewProjection<T>& projection,
 
   // (2) Global order by (depth, index). Float: stable radix sort on the depth bits that
   // differ between Gaussians (the keys arrive in index order, so ties stay in index order).
-  std::uint32_t* order = GrowRaw(buf.Order, visible);
-  Rect* rects = GrowRaw(buf.Rects, visible);
+  // Double: std::sort of (depth, index) pairs, whose indices then become the keys.
+  const std::uint64_t* sorted = keys;
   if constexpr (std::is_same<T, float>::value)
   {
-    const std::uint64_t* sorted =
+    sorted =
       RadixSortKeys(keys, keys + visible, nv, 32, 32 + DifferingBits(depthOr, depthAnd), chunks);
-#pragma omp parallel for schedule(static) num_threads(chunks)
-    for (std::int64_t k = 0; k < nv; ++k)
-    {
-      const std::uint32_t pos = static_cast<std::uint32_t>(sorted[k]);
-      order[static_cast<std::size_t>(k)] = visIds[pos];
-      rects[static_cast<std::size_t>(k)] = visRects[pos];
-    }
   }
   else
   {
@@ -190,16 +183,44 @@ void BinGaussians(const ViewProjection<T>& projection,
 #pragma omp parallel for schedule(static) num_threads(chunks)
     for (std::int64_t k = 0; k < nv; ++k)
     {
-      const std::uint32_t pos = pairs[static_cast<std::size_t>(k)].second;
-      order[static_cast<std::size_t>(k)] = visIds[pos];
-      rects[static_cast<std::size_t>(k)] = visRects[pos];
+      keys[k] = pairs[static_cast<std::size_t>(k)].second;
+    }
+    std::vector<std::pair<T, std::uint32_t>>().swap(pairs);
+  }
+  // The tile rectangles in sorted order, in the buffer the sorted keys do not occupy.
+  std::uint64_t* spare = sorted == keys ? keys + visible : keys;
+  const bool narrow = gx <= 0xFFFF && gy <= 0xFFFF;
+  raster::internal::NarrowRect* narrowRects =
+    reinterpret_cast<raster::internal::NarrowRect*>(spare);
+  std::array<int, 4>* wideRects = GrowRaw(buf.WideRects, narrow ? 0 : visible);
+#pragma omp parallel for schedule(static) num_threads(chunks)
+  for (std::int64_t k = 0; k < nv; ++k)
+  {
+    const int* r = gs[static_cast<std::uint32_t>(sorted[k])].TileRect;
+    if (narrow)
+    {
+      narrowRects[k] = { { static_cast<std::uint16_t>(r[0]),
+        static_cast<std::uint16_t>(r[1]),
+        static_cast<std::uint16_t>(r[2]),
+        static_cast<std::uint16_t>(r[3]) } };
+    }
+    else
+    {
+      wideRects[k] = { r[0], r[1], r[2], r[3] };
     }
   }
-  std::vector<std::pair<T, std::uint32_t>>().swap(pairs);
 
-  // (3) The per-tile lists.
-  raster::internal::BinSortedRects(
-    rects, order, nv, static_cast<int>(gx), static_cast<int>(gy), chunks, buf.Diff, bins);
+  // (3) The per-tile lists of the Gaussian indices (the keys' low 32 bits).
+  if (narrow)
+  {
+    raster::internal::BinSortedKeys(
+      narrowRects, sorted, nv, static_cast<int>(gx), static_cast<int>(gy), chunks, buf.Diff, bins);
+  }
+  else
+  {
+    raster::internal::BinSortedKeys(
+      wideRects, sorted, nv, static_cast<int>(gx), static_cast<int>(gy), chunks, buf.Diff, bins);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -218,8 +239,13 @@ namespace raster
 {
 namespace internal
 {
-void BinSortedRects(const std::array<int, 4>* rects,
-  const std::uint32_t* ids,
+namespace
+{
+// BinSortedRects() for any rectangle type (4 tile coordinates) and any source of the entries
+// (IdAt(k): the entry of sorted position k).
+template <typename Rect, typename IdAt>
+void BinSortedRectsOf(const Rect* rects,
+  IdAt idAt,
   std::int64_t count,
   int gxi,
   int gyi,
@@ -227,7 +253,6 @@ void BinSortedRects(const std::array<int, 4>* rects,
   std::vector<std::int64_t>& diff,
   TileBins& bins)
 {
-  using Rect = std::array<int, 4>;
   const std::size_t gx = static_cast<std::size_t>(gxi), gy = static_cast<std::size_t>(gyi);
   const std::size_t tiles = gx * gy;
   const std::int64_t nv = count;
@@ -296,8 +321,7 @@ void BinSortedRects(const std::array<int, 4>* rects,
     for (std::int64_t k = b; k < e; ++k)
     {
       const Rect& r = rects[static_cast<std::size_t>(k)];
-      const std::uint32_t id =
-        ids ? ids[static_cast<std::size_t>(k)] : static_cast<std::uint32_t>(k);
+      const std::uint32_t id = idAt(k);
       for (int ty = r[1]; ty < r[3]; ++ty)
       {
         std::int64_t* row = cursor + static_cast<std::size_t>(ty) * dx;
@@ -308,6 +332,76 @@ void BinSortedRects(const std::array<int, 4>* rects,
       }
     }
   }
+}
+
+} // namespace
+
+void BinSortedRects(const std::array<int, 4>* rects,
+  const std::uint32_t* ids,
+  std::int64_t count,
+  int gx,
+  int gy,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins)
+{
+  if (ids)
+  {
+    BinSortedRectsOf(
+      rects, [ids](std::int64_t k) { return ids[k]; }, count, gx, gy, chunks, diff, bins);
+  }
+  else
+  {
+    BinSortedRectsOf(
+      rects,
+      [](std::int64_t k) { return static_cast<std::uint32_t>(k); },
+      count,
+      gx,
+      gy,
+      chunks,
+      diff,
+      bins);
+  }
+}
+
+void BinSortedKeys(const NarrowRect* rects,
+  const std::uint64_t* keys,
+  std::int64_t count,
+  int gx,
+  int gy,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins)
+{
+  BinSortedRectsOf(
+    rects,
+    [keys](std::int64_t k) { return static_cast<std::uint32_t>(keys[k]); },
+    count,
+    gx,
+    gy,
+    chunks,
+    diff,
+    bins);
+}
+
+void BinSortedKeys(const std::array<int, 4>* rects,
+  const std::uint64_t* keys,
+  std::int64_t count,
+  int gx,
+  int gy,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins)
+{
+  BinSortedRectsOf(
+    rects,
+    [keys](std::int64_t k) { return static_cast<std::uint32_t>(keys[k]); },
+    count,
+    gx,
+    gy,
+    chunks,
+    diff,
+    bins);
 }
 
 } // namespace internal

@@ -65,6 +65,52 @@ struct SpanBounds
 };
 
 /**
+ * A SpanBounds as the per-Gaussian arrays keep it (40 bytes instead of 88): without the mean
+ * (U, V), which the compositing loops read from the Gaussian's kernel record (the same
+ * values: MakeSpanBounds takes them from there), without InvA and BOverA, recomputed as
+ * MakeSpanBounds computes them (1 / A and B / A in double: the same bits), and with Bounded
+ * as NegTwoL > 0 (an unbounded SpanBounds holds NegTwoL 0, a bounded one -2 L' >= 2e-5).
+ * Expand() gives back the SpanBounds field for field, so every decision made with it is
+ * unchanged.
+ */
+struct SpanRecord
+{
+  double A = 0, B = 0, Det = 0;
+  double NegTwoL = 0;
+  int RowMin = 0, RowMax = -1;
+  SpanRecord() = default;
+  explicit SpanRecord(const SpanBounds& s)
+    : A(s.A)
+    , B(s.B)
+    , Det(s.Det)
+    , NegTwoL(s.Bounded ? s.NegTwoL : 0.0)
+    , RowMin(s.RowMin)
+    , RowMax(s.RowMax)
+  {
+  }
+  /// The SpanBounds of a Gaussian with mean (@p u, @p v) (its kernel's U and V).
+  SpanBounds Expand(double u, double v) const
+  {
+    SpanBounds s;
+    s.RowMin = this->RowMin;
+    s.RowMax = this->RowMax;
+    if (this->NegTwoL > 0)
+    {
+      s.Bounded = true;
+      s.U = u;
+      s.V = v;
+      s.A = this->A;
+      s.B = this->B;
+      s.Det = this->Det;
+      s.InvA = 1.0 / this->A;
+      s.BOverA = this->B / this->A;
+      s.NegTwoL = this->NegTwoL;
+    }
+    return s;
+  }
+};
+
+/**
  * Bounds for the level set power >= @p level (level <= 0) of a Gaussian with mean (u, v)
  * and conic (a, b, c) held in scalar type T.
  *

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <immintrin.h>
 #include <limits>
@@ -69,8 +70,11 @@ struct CompositeContext
 {
   int Width, Height, TilesX;
   const TileBins* Bins;
-  const KernelGaussian<T>* Kernels;
-  const raster::detail::SpanBounds* Bounds;
+  /// Gaussian id's kernel record at Kernels + id * KernelStride bytes: a KernelGaussian array,
+  /// or the projection's ProjectedGaussians, which start with the same values (KernelAt()).
+  const unsigned char* Kernels;
+  std::size_t KernelStride;
+  const raster::detail::SpanRecord* Bounds;
   RasterImage<T>* Image;
   GaussianWeightStats* Weights;
   T Background[3];
@@ -102,6 +106,23 @@ namespace composite_avx512
 
 template <typename T>
 using TileFunction = void (*)(const CompositeContext<T>&, std::int64_t);
+
+// A ProjectedGaussian begins with a KernelGaussian's values in its order: the compositing reads
+// the kernels of a projection in place.
+template <typename T>
+constexpr bool ProjectionStartsWithKernel()
+{
+  using P = ProjectedGaussian<T>;
+  using K = KernelGaussian<T>;
+  return std::is_standard_layout<P>::value && std::is_standard_layout<K>::value &&
+    offsetof(P, U) == offsetof(K, U) && offsetof(P, V) == offsetof(K, V) &&
+    offsetof(P, ConicA) == offsetof(K, A) && offsetof(P, ConicB) == offsetof(K, B) &&
+    offsetof(P, ConicC) == offsetof(K, C) && offsetof(P, Opacity) == offsetof(K, O) &&
+    offsetof(P, Color) == offsetof(K, R) && offsetof(P, Color) + sizeof(T) == offsetof(K, G) &&
+    offsetof(P, Color) + 2 * sizeof(T) == offsetof(K, Bl) && offsetof(P, Depth) == offsetof(K, Z);
+}
+static_assert(ProjectionStartsWithKernel<float>(), "ProjectedGaussian<float> layout");
+static_assert(ProjectionStartsWithKernel<double>(), "ProjectedGaussian<double> layout");
 
 VIS4GS_TARGET_AVX512 int RowColumnsOn512(const raster::detail::SpanBounds& sb,
   int py0,
@@ -138,7 +159,7 @@ inline __attribute__((always_inline)) void FillCompositeRange(const ViewProjecti
   std::size_t begin,
   std::size_t end,
   raster::detail::KernelGaussian<T>* kernels,
-  raster::detail::SpanBounds* bounds)
+  raster::detail::SpanRecord* bounds)
 {
   using raster::detail::KernelGaussian;
   for (std::size_t i = begin; i < end; ++i)
@@ -148,22 +169,35 @@ inline __attribute__((always_inline)) void FillCompositeRange(const ViewProjecti
     // copy into the large array cost store-forwarding stalls).
     if (!g.IsVisible())
     {
-      new (&kernels[i]) KernelGaussian<T>{};
-      new (&bounds[i]) raster::detail::SpanBounds();
+      if (kernels)
+      {
+        new (&kernels[i]) KernelGaussian<T>{};
+      }
+      new (&bounds[i]) raster::detail::SpanRecord();
       continue;
     }
-    new (&kernels[i]) KernelGaussian<T>{
-      g.U, g.V, g.ConicA, g.ConicB, g.ConicC, g.Opacity, g.Color[0], g.Color[1], g.Color[2], g.Depth
-    };
+    if (kernels)
+    {
+      new (&kernels[i]) KernelGaussian<T>{ g.U,
+        g.V,
+        g.ConicA,
+        g.ConicB,
+        g.ConicC,
+        g.Opacity,
+        g.Color[0],
+        g.Color[1],
+        g.Color[2],
+        g.Depth };
+    }
     if (g.Opacity >= raster::MinAlpha<T>())
     {
       const double level = std::log(raster::MinAlpha<double>() / static_cast<double>(g.Opacity));
-      new (&bounds[i]) raster::detail::SpanBounds(raster::detail::MakeSpanBounds<T>(
+      new (&bounds[i]) raster::detail::SpanRecord(raster::detail::MakeSpanBounds<T>(
         g.U, g.V, g.ConicA, g.ConicB, g.ConicC, std::min(0.0, level)));
     }
     else
     {
-      new (&bounds[i]) raster::detail::SpanBounds();
+      new (&bounds[i]) raster::detail::SpanRecord();
     }
   }
 }
@@ -173,7 +207,7 @@ void FillCompositeRangeBaseline(const ViewProjection<T>& projection,
   std::size_t begin,
   std::size_t end,
   raster::detail::KernelGaussian<T>* kernels,
-  raster::detail::SpanBounds* bounds)
+  raster::detail::SpanRecord* bounds)
 {
   FillCompositeRange(projection, begin, end, kernels, bounds);
 }
@@ -185,7 +219,7 @@ VIS4GS_TARGET_AVX2 void FillCompositeRangeAvx2(const ViewProjection<T>& projecti
   std::size_t begin,
   std::size_t end,
   raster::detail::KernelGaussian<T>* kernels,
-  raster::detail::SpanBounds* bounds)
+  raster::detail::SpanRecord* bounds)
 {
   FillCompositeRange(projection, begin, end, kernels, bounds);
 }
@@ -194,7 +228,7 @@ template <typename T>
 void FillCompositeData(const ViewProjection<T>& projection,
   int threads,
   raster::detail::KernelGaussian<T>* kernels,
-  raster::detail::SpanBounds* bounds)
+  raster::detail::SpanRecord* bounds)
 {
   const std::size_t n = projection.Gaussians.size();
   const auto fill = CpuHasAvx2() ? &FillCompositeRangeAvx2<T> : &FillCompositeRangeBaseline<T>;
@@ -258,27 +292,32 @@ void CompositeTiles(const ViewProjection<T>& projection,
   }
   image.Contributors.resize(pixels);
 
-  // Compact per-Gaussian kernel data and conservative spans (input order; culled Gaussians
-  // get zeros and no bound). Kept in *keep when given (its buffers are reused).
-  std::unique_ptr<KernelGaussian<T>[]> ownKernels;
-  std::unique_ptr<unsigned char[]> ownBounds; // raw storage of trivially copyable SpanBounds
-  KernelGaussian<T>* kernels;
-  raster::detail::SpanBounds* bounds;
+  // Conservative spans per Gaussian (input order; culled Gaussians get no bound), and the
+  // compact kernel records when *keep asks for them; otherwise the kernels are read from the
+  // projection in place. Kept in *keep when given (its buffers are reused).
+  std::unique_ptr<unsigned char[]> ownBounds; // raw storage of trivially copyable SpanRecord
+  KernelGaussian<T>* kernels = nullptr;
+  raster::detail::SpanRecord* bounds;
   if (keep)
   {
-    ResizeKeep(keep->Kernels, n);
+    if (keep->KeepKernels)
+    {
+      ResizeKeep(keep->Kernels, n);
+      kernels = keep->Kernels.data();
+    }
+    else
+    {
+      std::vector<KernelGaussian<T>>().swap(keep->Kernels);
+    }
     ResizeKeep(keep->Bounds, n);
-    kernels = keep->Kernels.data();
     bounds = keep->Bounds.data();
   }
   else
   {
     // Uninitialised: the loop below writes every element (first touch in parallel).
-    ownKernels = RawBuffer<KernelGaussian<T>>(n);
-    static_assert(std::is_trivially_copyable<raster::detail::SpanBounds>::value, "");
-    ownBounds = RawBuffer<unsigned char>((n > 0 ? n : 1) * sizeof(raster::detail::SpanBounds));
-    kernels = ownKernels.get();
-    bounds = reinterpret_cast<raster::detail::SpanBounds*>(ownBounds.get());
+    static_assert(std::is_trivially_copyable<raster::detail::SpanRecord>::value, "");
+    ownBounds = RawBuffer<unsigned char>((n > 0 ? n : 1) * sizeof(raster::detail::SpanRecord));
+    bounds = reinterpret_cast<raster::detail::SpanRecord*>(ownBounds.get());
   }
   FillCompositeData(projection, threads, kernels, bounds);
   if (weights)
@@ -292,7 +331,9 @@ void CompositeTiles(const ViewProjection<T>& projection,
     projection.Height,
     projection.TilesX,
     &bins,
-    kernels,
+    kernels ? reinterpret_cast<const unsigned char*>(kernels)
+            : reinterpret_cast<const unsigned char*>(projection.Gaussians.data()),
+    kernels ? sizeof(KernelGaussian<T>) : sizeof(ProjectedGaussian<T>),
     bounds,
     &image,
     weights,
@@ -361,7 +402,8 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
     in.Height,
     in.Bins->TilesX,
     in.Bins,
-    in.Kernels,
+    reinterpret_cast<const unsigned char*>(in.Kernels),
+    sizeof(KernelGaussian<float>),
     in.Bounds,
     &image,
     nullptr,

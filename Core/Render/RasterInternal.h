@@ -89,6 +89,29 @@ void BinSortedRects(const std::array<int, 4>* rects,
   std::vector<std::int64_t>& diff,
   TileBins& bins);
 
+/// A tile rectangle in 16 bits per coordinate (tile grids of at most 65535 x 65535 tiles):
+/// half the bytes of BinGaussians()' sorted rectangles.
+using NarrowRect = std::array<std::uint16_t, 4>;
+
+/// BinSortedRects() with the entries in the low 32 bits of @p keys (BinGaussians()' sorted
+/// keys: a Gaussian's index below its depth bits), rectangles narrow or not.
+void BinSortedKeys(const NarrowRect* rects,
+  const std::uint64_t* keys,
+  std::int64_t count,
+  int gx,
+  int gy,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins);
+void BinSortedKeys(const std::array<int, 4>* rects,
+  const std::uint64_t* keys,
+  std::int64_t count,
+  int gx,
+  int gy,
+  int chunks,
+  std::vector<std::int64_t>& diff,
+  TileBins& bins);
+
 /// The AVX-512 tile loop's candidate columns of pixel rows py0 .. py0 + 7 (CompositeLanes.inc
 /// RowColumns8: SpanBounds::Columns() in 8 double lanes, clipped to the tile [X0, X0 + 15]):
 /// bit l set when row py0 + l has candidate columns in the tile, then [lo[l], hi[l]] relative
@@ -102,7 +125,7 @@ struct CompositeInput
   int Width = 0, Height = 0;
   const TileBins* Bins = nullptr;
   const detail::KernelGaussian<float>* Kernels = nullptr;
-  const detail::SpanBounds* Bounds = nullptr;
+  const detail::SpanRecord* Bounds = nullptr;
   std::array<double, 3> Background{ 0.0, 0.0, 0.0 };
   int KernelIsa = 0;
   int Threads = 1;

@@ -98,7 +98,9 @@ struct ProjectionCounts
 /**
  * Result of preprocessing one Gaussian for one view (reference §2.3 step 12, plus what the
  * backward pass needs). Fields other than Status are meaningful only when Status == Visible,
- * except ViewPosition (set whenever the parameters are finite).
+ * except ViewPosition (set whenever the parameters are finite). The first ten values are
+ * those of the compositing's kernel record, in its order (raster::detail::KernelGaussian),
+ * so that the compositing reads them in place (CompositeData::KeepKernels).
  */
 template <typename T>
 struct ProjectedGaussian
@@ -106,8 +108,8 @@ struct ProjectedGaussian
   T U = 0, V = 0;                       ///< pixel-space mean (ndc2Pix)
   T ConicA = 0, ConicB = 0, ConicC = 0; ///< inverse of the dilated 2D covariance
   T Opacity = 0;                        ///< sigmoid(logit)
-  T Depth = 0;                          ///< view-space z of the mean (sort key)
   T Color[3] = { 0, 0, 0 };             ///< SH colour + 0.5, clamped at 0
+  T Depth = 0;                          ///< view-space z of the mean (sort key)
   T Cov2D[3] = { 0, 0, 0 };             ///< dilated 2D covariance a, b, c (pixels^2)
   T ViewPosition[3] = { 0, 0, 0 };      ///< t = R mu + t_v
   int Radius = 0;                       ///< ceil(3 sqrt(lambda_max)) pixels; 0 when culled
@@ -301,15 +303,20 @@ struct RasterWorkCounts
  * Per-Gaussian data of the compositing loop, input order: the kernel (mean, conic, opacity,
  * colour, depth) of every visible Gaussian and the conservative spans (RasterBounds.h) of the
  * pixels where its alpha can reach 1/255 (unbounded when the opacity is below 1/255).
- * Culled Gaussians hold zeros and no bound. CompositeTiles() fills it on request, so that a
- * consumer replaying the blending (the trainer's backward) reads the very data the forward
- * decided with instead of recomputing it.
+ * Culled Gaussians hold zeros and no bound. The spans are kept as SpanRecord (40 bytes: the
+ * mean is the kernel's; SpanRecord::Expand() gives back the SpanBounds). CompositeTiles() fills it
+ * on request, so that a consumer replaying the blending (the trainer's backward) reads the very
+ * data the forward decided with instead of recomputing it.
  */
 template <typename T>
 struct CompositeData
 {
   std::vector<raster::detail::KernelGaussian<T>> Kernels;
-  std::vector<raster::detail::SpanBounds> Bounds;
+  std::vector<raster::detail::SpanRecord> Bounds;
+  /// false: CompositeTiles() leaves Kernels empty and reads every kernel from the projection
+  /// in place (the same values), 40 bytes (float) per Gaussian less for a caller that only
+  /// draws (the scene view). The default keeps them for a consumer that replays the blending.
+  bool KeepKernels = true;
 };
 
 /// Fills @p data for @p projection (what CompositeTiles() keeps), reusing its buffers.

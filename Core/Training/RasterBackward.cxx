@@ -141,7 +141,7 @@ struct BackwardContext
 {
   const TileBins* Bins;
   const BackwardKernel<T>* Kernels;
-  const raster::detail::SpanBounds* Spans;
+  const raster::detail::SpanRecord* Spans;
   const RasterImage<T>* Image;
   const T* dLdImage;
   T Background[3];
@@ -225,8 +225,8 @@ void TileBackwardScalar(const BackwardContext<T>& ctx, std::size_t t, PartitionS
   for (std::size_t jj = maxLast; jj-- > 0;)
   {
     const std::uint32_t id = bins.Ids[begin + jj];
-    const raster::detail::SpanBounds& sb = ctx.Spans[id];
     const BackwardKernel<T>& g = ctx.Kernels[id];
+    const raster::detail::SpanBounds sb = ctx.Spans[id].Expand(g.U, g.V);
     int r0 = y0, r1 = y1 - 1;
     if (sb.Bounded)
     {

@@ -627,6 +627,8 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
         }
       }
       vis4gs::BinGaussians<float>(projection, threads, in.Work.Bins, in.Work.Scratch);
+      // Nothing replays the blending: the compositing reads the kernels from the projection.
+      in.Work.Composite.KeepKernels = false;
       vis4gs::CompositeTiles<float>(
         projection, in.Work.Bins, settings, in.Image, nullptr, nullptr, &in.Work.Composite);
       in.FrameReusable = unmodified;

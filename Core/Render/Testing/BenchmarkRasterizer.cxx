@@ -446,6 +446,7 @@ void Frames(std::size_t n, int frames, int threads, std::uint64_t version)
   s.Threads = threads;
   s.ShDegree = 0;
   RasterWorkspace<float> ws;
+  ws.Composite.KeepKernels = false; // as the scene view
   std::vector<double> phase[4], wall;
   for (int f = -1; f < frames; ++f)
   {

@@ -559,7 +559,8 @@ TEST(ScreenSelection, FrameOnReusedDrawnProjectionEqualsReplay)
     const auto& a = frame.Projection.Gaussians[i];
     const auto& b = replay.Projection.Gaussians[i];
     ASSERT_EQ(a.Status, b.Status) << i;
-    ASSERT_TRUE(std::memcmp(&a.U, &b.U, 7 * sizeof(float)) == 0) << i; // U..Depth
+    ASSERT_TRUE(std::memcmp(&a.U, &b.U, 6 * sizeof(float)) == 0) << i; // U..Opacity
+    ASSERT_TRUE(std::memcmp(&a.Depth, &b.Depth, sizeof(float)) == 0) << i;
     ASSERT_TRUE(std::memcmp(a.Cov2D, b.Cov2D, sizeof(a.Cov2D)) == 0) << i;
     ASSERT_TRUE(std::memcmp(a.TileRect, b.TileRect, sizeof(a.TileRect)) == 0) << i;
     visible += a.IsVisible() ? 1 : 0;
