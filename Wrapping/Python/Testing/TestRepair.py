@@ -3,7 +3,8 @@
   TestRepair.py VIS4GS LOG OUTPUT_DIR ITERATIONS
 
 The case study's floater, found by its scores (the visible Gaussian, opacity >= 0.1, with the
-lowest positive View Coverage), is deleted and the rest fine-tuned for a few iterations, once
+lowest positive View Coverage), is deleted and the rest fine-tuned for a few iterations (2: one
+Adam step, the trainer makes none at its last iteration), once
 with Scene.repair() and once with `vis4gs repair` on the cleaned PLY that Scene.select().save()
 writes. Checked: the Python figures equal repair.csv's exactly (as the CSV prints them, 9
 significant digits; view and split names too), the repaired Gaussians equal the last snapshot of
