@@ -293,13 +293,15 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
     settings.Request.ViewCoverage || settings.Request.Blur || settings.Request.Needle;
   const bool needImages = settings.Request.Blur || settings.Request.Needle;
 
-  vis4gs::GaussianCloud cloud;
   std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(input, cloud, &error))
+  // (no copy of a reader's scene: its arrays are a shared cloud)
+  const auto shared = vis4gs::GaussianCloudOf(input, &error);
+  if (!shared)
   {
     vtkErrorMacro("The input is not a Gaussian scene: " << error);
     return 0;
   }
+  const vis4gs::GaussianCloud& cloud = *shared;
   std::vector<vis4gs::Camera> cameras;
   if (needCameras)
   {

@@ -37,6 +37,7 @@
 #include <mutex>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace vis4gs
 {
@@ -50,6 +51,8 @@ struct AdoptedBuffers
 {
   std::mutex Mutex;
   std::unordered_map<void*, std::shared_ptr<void>> Owners;
+  // The buffers whose owner is a shared GaussianCloud (their vectors), for SharedGaussianCloud.
+  std::unordered_set<const void*> CloudBuffers;
 };
 AdoptedBuffers& Adopted()
 {
@@ -68,6 +71,7 @@ void ReleaseAdopted(void* data)
     }
     owner = std::move(it->second);
     Adopted().Owners.erase(it);
+    Adopted().CloudBuffers.erase(data);
   }
   // owner (the vector) is freed here, outside the lock.
 }
@@ -79,6 +83,31 @@ void (*AdoptBuffer(void* data, std::shared_ptr<void> owner))(void*)
   Adopted().Owners[data] = std::move(owner);
   return &ReleaseAdopted;
 }
+
+namespace
+{
+// AdoptBuffer for a buffer that is a vector of the shared cloud @p owner.
+void (*AdoptCloudBuffer(void* data, std::shared_ptr<GaussianCloud> owner))(void*)
+{
+  std::lock_guard<std::mutex> lock(Adopted().Mutex);
+  Adopted().Owners[data] = std::move(owner);
+  Adopted().CloudBuffers.insert(data);
+  return &ReleaseAdopted;
+}
+
+// The shared cloud owning @p data, or null.
+std::shared_ptr<const GaussianCloud> FindCloudOf(const void* data)
+{
+  std::lock_guard<std::mutex> lock(Adopted().Mutex);
+  if (!data || !Adopted().CloudBuffers.count(data))
+  {
+    return nullptr;
+  }
+  auto it = Adopted().Owners.find(const_cast<void*>(data));
+  return it == Adopted().Owners.end() ? nullptr
+                                      : std::static_pointer_cast<const GaussianCloud>(it->second);
+}
+}
 }
 
 namespace
@@ -86,15 +115,38 @@ namespace
 constexpr int MaxDistortion = 12;
 
 //------------------------------------------------------------------------------
-// A float array of @p values: adopted (no copy) when @p adopt, else copied.
+// A VTK array named @p name whose memory is @p values, a non-empty vector of the shared cloud
+// @p owner (which lives while the array does).
+template <typename ArrayT, typename T>
+vtkSmartPointer<ArrayT> ShareVector(const char* name,
+  std::vector<T>& values,
+  int components,
+  const std::shared_ptr<GaussianCloud>& owner)
+{
+  using V = typename ArrayT::ValueType;
+  static_assert(sizeof(V) == sizeof(T) && std::is_integral<V>::value == std::is_integral<T>::value,
+    "the array's value type must have the vector's representation");
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  V* data = reinterpret_cast<V*>(values.data());
+  array->SetArray(
+    data, static_cast<vtkIdType>(values.size()), 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+  array->SetArrayFreeFunction(detail::AdoptCloudBuffer(data, owner));
+  return array;
+}
+
+//------------------------------------------------------------------------------
+// A float array of @p values: the memory of @p shared's vector when @p shared is the cloud
+// being filled from (no copy), else a copy.
 vtkSmartPointer<vtkFloatArray> MakeFloatArray(const char* name,
   int components,
   std::vector<float>& values,
-  bool adopt)
+  const std::shared_ptr<GaussianCloud>& shared)
 {
-  if (adopt)
+  if (shared)
   {
-    return AdoptVector<vtkFloatArray>(name, std::move(values), components);
+    return ShareVector<vtkFloatArray>(name, values, components, shared);
   }
   auto a = vtkSmartPointer<vtkFloatArray>::New();
   a->SetName(name);
@@ -234,12 +286,12 @@ vtkDataArray* NewArrayFromExtra(const ExtraProperty& extra)
 namespace
 {
 //------------------------------------------------------------------------------
-// GaussianCloudToPolyData; @p adopt moves the vectors of @p cloud into the arrays (the caller
-// gave up @p cloud), otherwise @p cloud is only read.
+// GaussianCloudToPolyData; when @p shared (then @p cloud is *shared) the arrays are the vectors
+// of @p cloud, otherwise @p cloud is only read.
 void FillPolyData(GaussianCloud& cloud,
   vtkPolyData* output,
   const PolyDataOptions& options,
-  bool adopt)
+  const std::shared_ptr<GaussianCloud>& shared)
 {
   output->Initialize();
   const std::size_t n = cloud.Count;
@@ -248,7 +300,7 @@ void FillPolyData(GaussianCloud& cloud,
   points->SetDataTypeToFloat();
   if (cloud.Positions.size() == 3 * n && n > 0)
   {
-    points->SetData(MakeFloatArray(nullptr, 3, cloud.Positions, adopt));
+    points->SetData(MakeFloatArray(nullptr, 3, cloud.Positions, shared));
   }
   else
   {
@@ -258,9 +310,17 @@ void FillPolyData(GaussianCloud& cloud,
 
   vtkPointData* pd = output->GetPointData();
   vtkSmartPointer<vtkIdTypeArray> ids;
-  if (adopt && cloud.Ids.size() == n && n > 0)
+  if (shared && n > 0)
   {
-    ids = AdoptVector<vtkIdTypeArray>(arrays::GaussianId, std::move(cloud.Ids));
+    if (cloud.Ids.size() != n)
+    {
+      cloud.Ids.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        cloud.Ids[i] = static_cast<std::int64_t>(i);
+      }
+    }
+    ids = ShareVector<vtkIdTypeArray>(arrays::GaussianId, cloud.Ids, 1, shared);
   }
   else
   {
@@ -274,7 +334,6 @@ void FillPolyData(GaussianCloud& cloud,
   }
   pd->SetPedigreeIds(ids);
 
-  // The activated values first: they read the raw vectors that adopting moves away.
   const bool hasOpacity = cloud.OpacityLogits.size() == n;
   std::vector<float> opacity, scale;
   if (options.ActivatedArrays)
@@ -299,29 +358,29 @@ void FillPolyData(GaussianCloud& cloud,
 
   if (cloud.LogScales.size() == 3 * n)
   {
-    pd->AddArray(MakeFloatArray(arrays::LogScale, 3, cloud.LogScales, adopt));
+    pd->AddArray(MakeFloatArray(arrays::LogScale, 3, cloud.LogScales, shared));
   }
   if (cloud.Rotations.size() == 4 * n)
   {
-    pd->AddArray(MakeFloatArray(arrays::Rotation, 4, cloud.Rotations, adopt));
+    pd->AddArray(MakeFloatArray(arrays::Rotation, 4, cloud.Rotations, shared));
   }
   if (hasOpacity)
   {
-    pd->AddArray(MakeFloatArray(arrays::OpacityLogit, 1, cloud.OpacityLogits, adopt));
+    pd->AddArray(MakeFloatArray(arrays::OpacityLogit, 1, cloud.OpacityLogits, shared));
   }
   const int shComponents = 3 * cloud.ShCoefficientCount();
   if (n > 0 && cloud.SH.size() == n * static_cast<std::size_t>(shComponents))
   {
-    pd->AddArray(MakeFloatArray(arrays::SH, shComponents, cloud.SH, adopt));
+    pd->AddArray(MakeFloatArray(arrays::SH, shComponents, cloud.SH, shared));
   }
 
   if (options.ActivatedArrays && hasOpacity)
   {
-    pd->AddArray(MakeFloatArray(arrays::Opacity, 1, opacity, true));
+    pd->AddArray(AdoptVector<vtkFloatArray>(arrays::Opacity, std::move(opacity)));
   }
   if (options.ActivatedArrays && scale.size() == 3 * n)
   {
-    pd->AddArray(MakeFloatArray(arrays::Scale, 3, scale, true));
+    pd->AddArray(AdoptVector<vtkFloatArray>(arrays::Scale, std::move(scale), 3));
   }
 
   for (const auto& extra : cloud.Extra)
@@ -329,6 +388,11 @@ void FillPolyData(GaussianCloud& cloud,
     vtkSmartPointer<vtkDataArray> a;
     a.TakeReference(NewArrayFromExtra(extra));
     pd->AddArray(a);
+  }
+  if (shared)
+  {
+    // (copied into arrays of their own: the shared cloud is the model's parameters only)
+    std::vector<ExtraProperty>().swap(cloud.Extra);
   }
 
   vtkNew<vtkIntArray> degree;
@@ -343,7 +407,7 @@ void GaussianCloudToPolyData(const GaussianCloud& cloud,
   vtkPolyData* output,
   const PolyDataOptions& options)
 {
-  FillPolyData(const_cast<GaussianCloud&>(cloud), output, options, false);
+  FillPolyData(const_cast<GaussianCloud&>(cloud), output, options, nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -351,8 +415,105 @@ void GaussianCloudToPolyData(GaussianCloud&& cloud,
   vtkPolyData* output,
   const PolyDataOptions& options)
 {
-  FillPolyData(cloud, output, options, true);
+  auto shared = std::make_shared<GaussianCloud>(std::move(cloud));
   cloud = GaussianCloud();
+  FillPolyData(*shared, output, options, shared);
+}
+
+namespace
+{
+//------------------------------------------------------------------------------
+// The SH degree PolyDataToGaussianCloud gives @p input (its SH array's, else the SHDegree field
+// data's, else 0); false with a message when the SH array's component count is no degree.
+bool SceneShDegree(vtkPolyData* input, int& degree, std::string* error)
+{
+  degree = -1;
+  if (auto* fd = vtkIntArray::SafeDownCast(input->GetFieldData()->GetArray(arrays::SHDegree)))
+  {
+    if (fd->GetNumberOfTuples() > 0)
+    {
+      degree = fd->GetValue(0);
+    }
+  }
+  if (vtkDataArray* sh = input->GetPointData()->GetArray(arrays::SH))
+  {
+    const int k = sh->GetNumberOfComponents() / 3;
+    const int inferred = static_cast<int>(std::lround(std::sqrt(static_cast<double>(k)))) - 1;
+    if (sh->GetNumberOfComponents() % 3 != 0 || (inferred + 1) * (inferred + 1) != k ||
+      inferred > 3)
+    {
+      if (error)
+      {
+        *error = "array 'SH' has " + std::to_string(sh->GetNumberOfComponents()) +
+          " components; expected 3*(D+1)^2 for an SH degree D of 0 to 3";
+      }
+      return false;
+    }
+    degree = inferred;
+  }
+  degree = degree < 0 ? 0 : degree;
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+std::shared_ptr<const GaussianCloud> SharedGaussianCloud(vtkPolyData* input)
+{
+  auto* points = input && input->GetPoints()
+    ? vtkFloatArray::SafeDownCast(input->GetPoints()->GetData())
+    : nullptr;
+  const std::size_t n = input ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0;
+  if (!points || n == 0 || points->GetNumberOfComponents() != 3)
+  {
+    return nullptr;
+  }
+  auto cloud = detail::FindCloudOf(points->GetPointer(0));
+  if (!cloud || cloud->Count != n || !cloud->Extra.empty())
+  {
+    return nullptr;
+  }
+  // Each parameter array present is the cloud's vector of the same size; each one absent is an
+  // empty vector in the cloud (as PolyDataToGaussianCloud would leave it).
+  vtkPointData* pd = input->GetPointData();
+  auto same = [&](const char* name, const void* data, std::size_t size, int type) -> bool
+  {
+    vtkDataArray* a = name ? pd->GetArray(name) : points;
+    if (!a)
+    {
+      return size == 0;
+    }
+    return a->GetDataType() == type && a->GetNumberOfTuples() == static_cast<vtkIdType>(n) &&
+      static_cast<std::size_t>(a->GetNumberOfValues()) == size && size > 0 &&
+      a->GetVoidPointer(0) == data;
+  };
+  int degree = 0;
+  if (!same(nullptr, cloud->Positions.data(), cloud->Positions.size(), VTK_FLOAT) ||
+    !same(arrays::LogScale, cloud->LogScales.data(), cloud->LogScales.size(), VTK_FLOAT) ||
+    !same(arrays::Rotation, cloud->Rotations.data(), cloud->Rotations.size(), VTK_FLOAT) ||
+    !same(
+      arrays::OpacityLogit, cloud->OpacityLogits.data(), cloud->OpacityLogits.size(), VTK_FLOAT) ||
+    !same(arrays::SH, cloud->SH.data(), cloud->SH.size(), VTK_FLOAT) ||
+    !same(arrays::GaussianId, cloud->Ids.data(), cloud->Ids.size(), VTK_ID_TYPE) ||
+    !SceneShDegree(input, degree, nullptr) || degree != cloud->ShDegree)
+  {
+    return nullptr;
+  }
+  return cloud;
+}
+
+//------------------------------------------------------------------------------
+std::shared_ptr<const GaussianCloud> GaussianCloudOf(vtkPolyData* input, std::string* error)
+{
+  if (auto shared = SharedGaussianCloud(input))
+  {
+    return shared;
+  }
+  auto cloud = std::make_shared<GaussianCloud>();
+  if (!PolyDataToGaussianCloud(input, *cloud, error))
+  {
+    return nullptr;
+  }
+  return cloud;
 }
 
 //------------------------------------------------------------------------------
@@ -402,31 +563,10 @@ bool PolyDataToGaussianCloud(vtkPolyData* input,
     return false;
   }
 
-  int degree = -1;
-  if (auto* fd = vtkIntArray::SafeDownCast(input->GetFieldData()->GetArray(arrays::SHDegree)))
+  if (!SceneShDegree(input, cloud.ShDegree, error))
   {
-    if (fd->GetNumberOfTuples() > 0)
-    {
-      degree = fd->GetValue(0);
-    }
+    return false;
   }
-  if (vtkDataArray* sh = pd->GetArray(arrays::SH))
-  {
-    const int k = sh->GetNumberOfComponents() / 3;
-    const int inferred = static_cast<int>(std::lround(std::sqrt(static_cast<double>(k)))) - 1;
-    if (sh->GetNumberOfComponents() % 3 != 0 || (inferred + 1) * (inferred + 1) != k ||
-      inferred > 3)
-    {
-      if (error)
-      {
-        *error = "array 'SH' has " + std::to_string(sh->GetNumberOfComponents()) +
-          " components; expected 3*(D+1)^2 for an SH degree D of 0 to 3";
-      }
-      return false;
-    }
-    degree = inferred;
-  }
-  cloud.ShDegree = degree < 0 ? 0 : degree;
 
   if (vtkDataArray* ids = pd->GetArray(arrays::GaussianId))
   {

@@ -174,10 +174,34 @@ VIS4GSIOSCENE_EXPORT void GaussianCloudToPolyData(const GaussianCloud& cloud,
   vtkPolyData* output,
   const PolyDataOptions& options = {});
 
-/// The same, taking over the parameter vectors of @p cloud without copying (AdoptVector).
+/**
+ * The same, taking over @p cloud without copying: the cloud moves into shared storage whose
+ * vectors the arrays of @p output are (points, LogScale, Rotation, OpacityLogit, SH and
+ * GaussianId; GaussianId is filled with 0..n-1 when @p cloud has no ids), so that
+ * SharedGaussianCloud can give the Core form back without a second copy. The storage lives
+ * while any of those arrays or a holder of the shared cloud does. Extra properties are copied
+ * into arrays of their own and not kept in the shared cloud.
+ */
 VIS4GSIOSCENE_EXPORT void GaussianCloudToPolyData(GaussianCloud&& cloud,
   vtkPolyData* output,
   const PolyDataOptions& options = {});
+
+/**
+ * The Core cloud whose vectors the parameter arrays of @p input are (made by
+ * GaussianCloudToPolyData(GaussianCloud&&), passed on by shallow copies), or null when any of
+ * those arrays is not that cloud's (replaced, reallocated, converted, removed). When not null
+ * it equals what PolyDataToGaussianCloud(input, cloud, error, false) gives, without a copy:
+ * the arrays and the cloud are one memory, so a value written into an array is the cloud's.
+ */
+VIS4GSIOSCENE_EXPORT std::shared_ptr<const GaussianCloud> SharedGaussianCloud(vtkPolyData* input);
+
+/**
+ * The Core form of @p input for reading: SharedGaussianCloud when the arrays are one, else a
+ * new cloud converted by PolyDataToGaussianCloud (null, with a message in @p error, when the
+ * input is not a Gaussian scene).
+ */
+VIS4GSIOSCENE_EXPORT std::shared_ptr<const GaussianCloud> GaussianCloudOf(vtkPolyData* input,
+  std::string* error);
 
 /**
  * Reads a Gaussian scene back from @p input. Missing parameter arrays stay empty in @p cloud;

@@ -55,6 +55,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,7 +98,10 @@ struct vtkGaussianSplatMapper::vtkInternals
   std::vector<std::uint8_t> Keep; // 1 per Gaussian
   std::vector<std::uint8_t> Selected;
   std::vector<double> Scores;
-  std::vector<std::pair<vtkIdType, vtkIdType>> IdToIndex; // sorted (GaussianId, index)
+  // Selected GaussianIds to indices: the id is the index when the cloud has no ids; a binary
+  // search in the cloud's ids when they ascend (a reader's output: no table); else IdOrder,
+  // the indices sorted by id (4 bytes per Gaussian).
+  std::vector<std::uint32_t> IdOrder;
   std::vector<float> Depths;
   std::vector<std::uint32_t> Order;
   vtkMTimeType InputTime = 0;
@@ -225,24 +229,36 @@ struct vtkGaussianSplatMapper::vtkInternals
     vtkIdTypeArray* ids = self->SelectedIds;
     if (ids && ids->GetNumberOfTuples() > 0)
     {
+      const std::vector<std::int64_t>& cloudIds = this->Cloud->Ids;
       this->Selected.assign(n, 0);
       for (vtkIdType k = 0; k < ids->GetNumberOfTuples(); ++k)
       {
         const vtkIdType id = ids->GetValue(k);
-        if (this->IdToIndex.empty())
+        if (cloudIds.size() != n)
         {
           if (id >= 0 && id < static_cast<vtkIdType>(n))
           {
             this->Selected[id] = 1;
           }
-          continue;
         }
-        auto it = std::lower_bound(this->IdToIndex.begin(),
-          this->IdToIndex.end(),
-          std::make_pair(id, vtkIdType(std::numeric_limits<vtkIdType>::min())));
-        for (; it != this->IdToIndex.end() && it->first == id; ++it)
+        else if (this->IdOrder.empty())
         {
-          this->Selected[it->second] = 1;
+          const auto range = std::equal_range(cloudIds.begin(), cloudIds.end(), id);
+          for (auto it = range.first; it != range.second; ++it)
+          {
+            this->Selected[static_cast<std::size_t>(it - cloudIds.begin())] = 1;
+          }
+        }
+        else
+        {
+          auto it = std::lower_bound(this->IdOrder.begin(),
+            this->IdOrder.end(),
+            id,
+            [&](std::uint32_t i, vtkIdType v) { return cloudIds[i] < v; });
+          for (; it != this->IdOrder.end() && cloudIds[*it] == id; ++it)
+          {
+            this->Selected[*it] = 1;
+          }
         }
       }
       opt.Selected = this->Selected.data();
@@ -439,17 +455,17 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     const vis4gs::GaussianCloud& cloud = *in.Cloud;
     const std::size_t n = cloud.Count;
     in.HasSH = cloud.SH.size() == 3 * n * static_cast<std::size_t>(cloud.ShCoefficientCount());
-    in.IdToIndex.clear();
-    vtkDataArray* ids = input->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
-    if (ids && ids->GetNumberOfTuples() == static_cast<vtkIdType>(n))
+    // (the cloud's Ids are the input's GaussianId array: ConvertScene)
+    std::vector<std::uint32_t>().swap(in.IdOrder);
+    const std::vector<std::int64_t>& ids = cloud.Ids;
+    if (ids.size() == n && n <= std::numeric_limits<std::uint32_t>::max() &&
+      !std::is_sorted(ids.begin(), ids.end()))
     {
-      in.IdToIndex.resize(n);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        in.IdToIndex[i] = { static_cast<vtkIdType>(ids->GetComponent(static_cast<vtkIdType>(i), 0)),
-          static_cast<vtkIdType>(i) };
-      }
-      std::sort(in.IdToIndex.begin(), in.IdToIndex.end());
+      in.IdOrder.resize(n);
+      std::iota(in.IdOrder.begin(), in.IdOrder.end(), 0u);
+      std::stable_sort(in.IdOrder.begin(),
+        in.IdOrder.end(),
+        [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
     }
     in.ColoredDegree = -2; // force new colours
     in.DisplayTime = 0;
@@ -758,8 +774,9 @@ std::shared_ptr<const vis4gs::GaussianCloud> vtkGaussianSplatMapper::ConvertScen
   vtkPolyData* scene,
   std::string* error)
 {
-  auto cloud = std::make_shared<vis4gs::GaussianCloud>();
-  if (!vis4gs::PolyDataToGaussianCloud(scene, *cloud, error))
+  // No copy when the scene's arrays are a shared cloud (GaussianCloudToPolyData of a reader).
+  auto cloud = vis4gs::GaussianCloudOf(scene, error);
+  if (!cloud)
   {
     return nullptr;
   }

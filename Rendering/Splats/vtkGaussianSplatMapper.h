@@ -344,7 +344,8 @@ public:
   /**
    * The Core form of @p scene that the mapper draws and vtkGaussianSelector selects in;
    * nullptr, with a message in @p error, when the scene has no points or lacks the LogScale,
-   * Rotation or OpacityLogit arrays.
+   * Rotation or OpacityLogit arrays. No copy when the scene's arrays are a reader's shared
+   * cloud (vis4gs::GaussianCloudOf): then the scene's arrays are the only copy.
    */
   static std::shared_ptr<const vis4gs::GaussianCloud> ConvertScene(vtkPolyData* scene,
     std::string* error);

@@ -74,8 +74,9 @@ struct vtkGaussianSceneView::vtkInternals
   vtkWeakPointer<vtkGaussianSelectionHub> Hub;
   unsigned long HubObserver = 0;
   vtkNew<vtkCallbackCommand> HubCommand;
-  // The one Core copy of the scene's Gaussians, shared by the mapper and the selector;
-  // converted again when the scene or its MTime changes (checked before each render).
+  // The one Core form of the scene's Gaussians, shared by the mapper and the selector (the
+  // scene's own arrays for a reader's scene, else a conversion); taken again when the scene
+  // or its MTime changes (checked before each render).
   std::shared_ptr<const vis4gs::GaussianCloud> Cloud;
   vtkPolyData* CloudScene = nullptr; // identity only
   vtkMTimeType CloudTime = 0;

@@ -32,8 +32,9 @@
  * selection the view fires vtkCommand::EndPickEvent (GetLastSelectionCount/Mode say what was
  * picked, the selector's GetLastSelectionTime how long it took).
  *
- * The mapper and the selector share one copy of the Gaussians (the Core form of the scene,
- * converted once per scene and MTime): no second resident copy beside the polydata.
+ * The mapper and the selector share one Core form of the Gaussians, taken once per scene and
+ * MTime: for a reader's scene it is the scene's own arrays (vis4gs::SharedGaussianCloud), so
+ * the polydata is the only copy; any other scene is converted once.
  */
 #ifndef vtkGaussianSceneView_h
 #define vtkGaussianSceneView_h

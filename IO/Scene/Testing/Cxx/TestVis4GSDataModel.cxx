@@ -134,6 +134,74 @@ int TestVis4GSDataModel(int, char*[])
       "AdoptVector: tuples of the given components");
   }
 
+  // One copy (issue 22): the Core form of an adopting polydata is its arrays' own memory, the
+  // same as a conversion would give; shallow copies keep it; any array that stops being the
+  // cloud's vector (replaced, deep-copied, removed, reallocated) makes it a conversion again.
+  {
+    vtkNew<vtkPolyData> one;
+    vis4gs::GaussianCloud moved = cloud;
+    vis4gs::GaussianCloudToPolyData(std::move(moved), one);
+    vis4gs::GaussianCloud converted;
+    Check(vis4gs::PolyDataToGaussianCloud(one, converted, &error), error.c_str());
+    auto shared = vis4gs::SharedGaussianCloud(one);
+    Check(shared != nullptr, "an adopting polydata has a shared cloud");
+    if (shared)
+    {
+      Check(shared->Positions.data() == one->GetPoints()->GetData()->GetVoidPointer(0) &&
+          shared->Rotations.data() == one->GetPointData()->GetArray("Rotation")->GetVoidPointer(0),
+        "the shared cloud is the arrays' memory");
+      Check(shared->Count == converted.Count && shared->ShDegree == converted.ShDegree &&
+          SameBits(shared->Positions, converted.Positions) &&
+          SameBits(shared->LogScales, converted.LogScales) &&
+          SameBits(shared->Rotations, converted.Rotations) &&
+          SameBits(shared->OpacityLogits, converted.OpacityLogits) &&
+          SameBits(shared->SH, converted.SH) && shared->Ids == converted.Ids &&
+          shared->Extra.empty() && shared->Ids == cloud.Ids,
+        "the shared cloud equals the conversion (without extras)");
+      Check(vis4gs::GaussianCloudOf(one, &error) == shared, "GaussianCloudOf gives it");
+      // Written through the array: the cloud is the same memory.
+      one->GetPointData()->GetArray("OpacityLogit")->SetComponent(3, 0, 2.5);
+      Check(shared->OpacityLogits[3] == 2.5f, "a value written into an array is the cloud's");
+    }
+    vtkNew<vtkPolyData> shallow;
+    shallow->ShallowCopy(one);
+    Check(vis4gs::SharedGaussianCloud(shallow) == shared, "a shallow copy shares it");
+    vtkNew<vtkPolyData> deep;
+    deep->DeepCopy(one);
+    Check(!vis4gs::SharedGaussianCloud(deep), "a deep copy is not the shared cloud");
+    auto copied = vis4gs::GaussianCloudOf(deep, &error);
+    Check(copied && copied != shared && SameBits(copied->SH, cloud.SH) &&
+        copied->Positions.data() != deep->GetPoints()->GetData()->GetVoidPointer(0),
+      "GaussianCloudOf converts a deep copy");
+    shallow->GetPointData()->RemoveArray("Rotation");
+    Check(!vis4gs::SharedGaussianCloud(shallow), "a removed array is not the shared cloud's");
+    // The storage outlives the polydata while the cloud is held, and the reverse.
+    one->Initialize();
+    Check(shared && SameBits(shared->SH, cloud.SH), "the held cloud survives its polydata");
+    shared.reset();
+    vis4gs::GaussianCloud fromShallow;
+    Check(vis4gs::PolyDataToGaussianCloud(deep, fromShallow, &error) &&
+        SameBits(fromShallow.Positions, cloud.Positions),
+      "the deep copy is intact");
+    const auto* kept =
+      static_cast<const float*>(shallow->GetPointData()->GetArray("SH")->GetVoidPointer(0));
+    Check(SameBits(std::vector<float>(kept, kept + cloud.SH.size()), cloud.SH),
+      "the arrays survive the released cloud");
+    // Reallocated by VTK (a resize): no longer the cloud's memory.
+    vtkNew<vtkPolyData> grown;
+    grown->ShallowCopy(deep);
+    vis4gs::GaussianCloud noIds = cloud;
+    noIds.Ids.clear();
+    noIds.Extra.clear();
+    vis4gs::GaussianCloudToPolyData(std::move(noIds), grown);
+    auto identity = vis4gs::SharedGaussianCloud(grown);
+    Check(identity && identity->Ids == std::vector<std::int64_t>({ 0, 1, 2, 3 }) &&
+        grown->GetPointData()->GetArray("GaussianId")->GetTuple1(3) == 3.0,
+      "a cloud without ids shares the ids 0..n-1");
+    grown->GetPointData()->GetArray("LogScale")->Resize(100);
+    Check(!vis4gs::SharedGaussianCloud(grown), "a reallocated array is not the cloud's");
+  }
+
   // A wrong component count is refused with a message naming the array.
   pd->GetPointData()->GetArray("Rotation")->SetNumberOfComponents(3);
   Check(!vis4gs::PolyDataToGaussianCloud(pd, back, &error) &&

@@ -8,7 +8,8 @@ Reads the log's last snapshot (vtkGaussianTrainingLogReader), then
             (the mapper and the selector share the view's one Core copy),
   separate  does the same with a vtkGaussianSplatMapper, a vtkGaussianSelector and the
             frustums of their own, as the application's window did before the scene view
-            class (the mapper and the selector each convert the polydata to Core's form).
+            class (the mapper and the selector each take the polydata's Core form: a
+            conversion each before the reader's arrays became a shared cloud, none now).
 Prints the CPU seconds; run each under `/usr/bin/time -v` for the peak resident set size
 (Documentation/performance-history.md). Not run by CTest.
 """
