@@ -131,6 +131,51 @@ void FillRow(QTableWidget* table,
   }
 }
 
+// Renders the "before" of the wanted views with an image that @p baseline lacks (every view
+// for an empty baseline: the score pass keeps only the training views it renders). Returns
+// the number of views rendered.
+std::size_t CompleteBaseline(vis4gs::RemovalBaseline& baseline,
+  const vis4gs::GaussianCloud& cloud,
+  const std::vector<vis4gs::Camera>& cameras,
+  const vis4gs::RemovalEffectOptions& options,
+  const vis4gs::TrainingImageProvider& images)
+{
+  if (baseline.Views.empty())
+  {
+    baseline = vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images);
+    return baseline.MeasuredViews();
+  }
+  std::vector<std::size_t> missing;
+  std::vector<vis4gs::Camera> subset;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    if (baseline.Views[v].Empty())
+    {
+      missing.push_back(v);
+      subset.push_back(cameras[v]);
+    }
+  }
+  if (missing.empty())
+  {
+    return 0;
+  }
+  vis4gs::RemovalBaseline part = vis4gs::MeasureRemovalBaseline(cloud,
+    subset,
+    options,
+    [&images, &missing](std::size_t i, const vis4gs::Camera& camera, vis4gs::Image& image)
+    { return images(missing[i], camera, image); });
+  std::size_t rendered = 0;
+  for (std::size_t i = 0; i < missing.size(); ++i)
+  {
+    if (!part.Views[i].Empty())
+    {
+      baseline.Views[missing[i]] = std::move(part.Views[i]);
+      ++rendered;
+    }
+  }
+  return rendered;
+}
+
 QTableWidget* MakeTable(QWidget* parent)
 {
   auto* table = new QTableWidget(parent);
@@ -198,6 +243,10 @@ struct Vis4GSCleanupPanel::Internals
     vis4gs::RemovalEffect Effect;
     vis4gs::RemovalBaseline Baseline;
     double BaselineSeconds = -1; ///< < 0: the baseline was reused
+    /// Views whose "before" this preview rendered, and those it reused (from the score pass or
+    /// an earlier preview of the scene).
+    std::size_t BeforeRendered = 0;
+    std::size_t BeforeReused = 0;
     std::string Error;
   };
   std::shared_ptr<Result> Shown, Running;
@@ -375,6 +424,24 @@ void Vis4GSCleanupPanel::resizeEvent(QResizeEvent* event)
 }
 
 //------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::SetScoreBaseline(vtkPolyData* scene,
+  vtkTable* cameras,
+  const vis4gs::RemovalBaseline& baseline)
+{
+  // An earlier preview of the same scene may have measured more views (the test views).
+  if (!scene || scene != d->Scene.GetPointer() || cameras != d->Cameras.GetPointer() ||
+    baseline.MeasuredViews() == 0 ||
+    (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras &&
+      d->Baseline.MeasuredViews() >= baseline.MeasuredViews()))
+  {
+    return;
+  }
+  d->BaselineScene = scene;
+  d->BaselineCameras = cameras;
+  d->Baseline = baseline;
+}
+
+//------------------------------------------------------------------------------
 void Vis4GSCleanupPanel::SetDeleteAction(std::function<void()> action)
 {
   d->Delete = std::move(action);
@@ -392,6 +459,13 @@ void Vis4GSCleanupPanel::SetScene(vtkPolyData* scene, vtkTable* cameras)
   const bool newScene = scene != d->Scene.GetPointer();
   d->Scene = scene;
   d->Cameras = cameras;
+  if (scene != d->BaselineScene.GetPointer() || cameras != d->BaselineCameras.GetPointer())
+  {
+    // Another snapshot: its "before" is another one (and the old scene is released).
+    d->BaselineScene = nullptr;
+    d->BaselineCameras = nullptr;
+    d->Baseline = vis4gs::RemovalBaseline();
+  }
   d->Measure->setEnabled(scene && cameras && cameras->GetNumberOfRows() > 0);
   d->Measure->setToolTip(d->Measure->isEnabled()
       ? "Render every training and test view with and without the selection and compare "
@@ -643,9 +717,11 @@ void Vis4GSCleanupPanel::MeasureRemoval()
     d->MeasureLabel->setText("Select Gaussians first (a rule, a brush, the histogram).");
     return;
   }
-  if (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras)
+  if (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras &&
+    d->Baseline.Views.size() == job->Cameras.size())
   {
     job->Baseline = d->Baseline;
+    job->BeforeReused = d->Baseline.MeasuredViews();
   }
   d->Running = job;
   d->MeasuredChanges = d->Hub->GetNumberOfChanges();
@@ -655,8 +731,11 @@ void Vis4GSCleanupPanel::MeasureRemoval()
   d->MeasureLabel->setText(what + "...");
   if (d->Progress)
   {
-    d->Progress(
-      -1, what + (job->Baseline.Views.empty() ? ": rendering every view before" : ""), false);
+    d->Progress(-1,
+      what +
+        (job->BeforeReused == 0 ? ": rendering every view before"
+                                : ": rendering the views before that the score pass did not"),
+      false);
   }
   // RemovalEffect has no progress callback: the bar is a busy indicator with the step named.
   d->Worker = QThread::create(
@@ -665,11 +744,11 @@ void Vis4GSCleanupPanel::MeasureRemoval()
       try
       {
         vis4gs::RemovalEffectOptions options;
-        if (job->Baseline.Views.empty())
+        const auto t0 = std::chrono::steady_clock::now();
+        job->BeforeRendered =
+          CompleteBaseline(job->Baseline, *job->Cloud, job->Cameras, options, job->Images);
+        if (job->BeforeRendered > 0)
         {
-          const auto t0 = std::chrono::steady_clock::now();
-          job->Baseline =
-            vis4gs::MeasureRemovalBaseline(*job->Cloud, job->Cameras, options, job->Images);
           job->BaselineSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           QMetaObject::invokeMethod(
@@ -720,25 +799,26 @@ void Vis4GSCleanupPanel::OnMeasured()
   d->Baseline = job->Baseline;
   d->Shown = job;
   const vis4gs::RemovalEffect& e = job->Effect;
-  const QString summary =
-    QString(
-      "Deleting %1 Gaussians (%2 kept): training PSNR %3 -> %4 dB (%5 of %6 views "
-      "changed), test PSNR %7 -> %8 dB (%9 of %10). Before: %11; after: %12 views rendered in "
-      "%13 s.")
-      .arg(e.Removed)
-      .arg(e.Kept)
-      .arg(e.Train.Before.Psnr, 0, 'f', 3)
-      .arg(e.Train.After.Psnr, 0, 'f', 3)
-      .arg(e.Train.AffectedViews)
-      .arg(e.Train.Views)
-      .arg(e.Test.Before.Psnr, 0, 'f', 3)
-      .arg(e.Test.After.Psnr, 0, 'f', 3)
-      .arg(e.Test.AffectedViews)
-      .arg(e.Test.Views)
-      .arg(job->BaselineSeconds < 0 ? QString("reused from the last measurement of this scene")
-                                    : QString("%1 s").arg(job->BaselineSeconds, 0, 'f', 2))
-      .arg(e.ViewsRendered)
-      .arg(e.SecondsAfter, 0, 'f', 2);
+  const QString summary = QString(
+    "Deleting %1 Gaussians (%2 kept): training PSNR %3 -> %4 dB (%5 of %6 views "
+    "changed), test PSNR %7 -> %8 dB (%9 of %10). Before: %11 views reused (the score pass, "
+    "earlier previews), %12; after: %13 views rendered in %14 s.")
+                            .arg(e.Removed)
+                            .arg(e.Kept)
+                            .arg(e.Train.Before.Psnr, 0, 'f', 3)
+                            .arg(e.Train.After.Psnr, 0, 'f', 3)
+                            .arg(e.Train.AffectedViews)
+                            .arg(e.Train.Views)
+                            .arg(e.Test.Before.Psnr, 0, 'f', 3)
+                            .arg(e.Test.After.Psnr, 0, 'f', 3)
+                            .arg(e.Test.AffectedViews)
+                            .arg(e.Test.Views)
+                            .arg(job->BeforeReused)
+                            .arg(QString("%1 rendered in %2 s")
+                                   .arg(job->BeforeRendered)
+                                   .arg(std::max(0.0, job->BaselineSeconds), 0, 'f', 2))
+                            .arg(e.ViewsRendered)
+                            .arg(e.SecondsAfter, 0, 'f', 2);
   d->MeasureLabel->setText(summary);
   FillRow(d->Totals,
     0,
@@ -987,18 +1067,82 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     withoutScores->ShallowCopy(scene);
     withoutScores->GetPointData()->RemoveArray(vis4gs::arrays::ViewCoverage);
     withScores->ShallowCopy(scene);
+    const vis4gs::RemovalBaseline fromScores = d->Baseline;
     d->Hub->SelectIds(brushed, 3, vtkGaussianSelectionHub::REPLACE);
     this->SetScene(withoutScores, table);
     ok = check(d->Hub->GetNumberOfSelectedIds() == brushedCount,
            "clean-up: a new iteration without its scores yet keeps the selection") &&
+      ok;
+    this->SetScoreBaseline(scene, table, fromScores);
+    ok = check(d->Baseline.MeasuredViews() == 0 && !d->BaselineScene,
+           "clean-up: another snapshot drops the score pass's 'before', and a 'before' of "
+           "a scene not shown is refused") &&
       ok;
     this->SetScene(withScores, table);
     ok =
       check(selected() == expected, "clean-up: the rule is re-applied once the scores are there") &&
       ok;
     this->SetScene(scene, table);
+    // What the main window hands over when the score pass of this scene ends.
+    this->SetScoreBaseline(scene, table, fromScores);
   }
-  // 5. The measurement in the worker thread; the table and the images.
+  // The "before" renders of a preview (the score pass renders no test view), its "after"
+  // renders (the affected views only), and its figures against those of the panel's own
+  // "before" rendered anew (what it did before it reused the score pass's): bit for bit.
+  auto checkReuse = [&check](const Internals::Result& shown, std::size_t reused, bool figures)
+  {
+    const vis4gs::RemovalEffect& effect = shown.Effect;
+    std::size_t affected = 0;
+    for (const vis4gs::RemovalViewEffect& v : effect.Views)
+    {
+      affected += v.Affected && v.HasImage ? 1 : 0;
+    }
+    bool ok = check(reused > 0 && shown.BeforeReused == reused &&
+        shown.BeforeRendered + reused == effect.Train.Views + effect.Test.Views &&
+        reused >= effect.Train.Views && effect.ViewsRendered == affected,
+      "clean-up: the preview reused " + std::to_string(reused) + " views 'before' (" +
+        std::to_string(effect.Train.Views) + " training views), rendered " +
+        std::to_string(shown.BeforeRendered) + " 'before' and " +
+        std::to_string(effect.ViewsRendered) + " 'after' (" + std::to_string(effect.TilesRendered) +
+        " of " + std::to_string(effect.TilesOfTiledViews) + " tiles) for " +
+        std::to_string(affected) + " affected views");
+    if (!figures)
+    {
+      return ok;
+    }
+    vis4gs::RemovalEffectOptions options;
+    options.TileBaseline =
+      vis4gs::MeasureRemovalBaseline(*shown.Cloud, shown.Cameras, options, shown.Images);
+    const vis4gs::RemovalEffect fresh = vis4gs::MeasureRemovalEffect(
+      *shown.Cloud, shown.Removed, shown.Cameras, options, shown.Images);
+    auto same = [](const vis4gs::ViewMetrics& a, const vis4gs::ViewMetrics& b)
+    {
+      auto equal = [](double x, double y) { return std::isnan(x) ? std::isnan(y) : x == y; };
+      return equal(a.Psnr, b.Psnr) && equal(a.Ssim, b.Ssim) && equal(a.L1, b.L1);
+    };
+    bool identical = fresh.Views.size() == effect.Views.size() &&
+      same(fresh.Train.Before, effect.Train.Before) &&
+      same(fresh.Train.After, effect.Train.After) && same(fresh.Test.Before, effect.Test.Before) &&
+      same(fresh.Test.After, effect.Test.After);
+    for (std::size_t r = 0; identical && r < effect.Views.size(); ++r)
+    {
+      identical = fresh.Views[r].CameraIndex == effect.Views[r].CameraIndex &&
+        fresh.Views[r].Affected == effect.Views[r].Affected &&
+        same(fresh.Views[r].Before, effect.Views[r].Before) &&
+        same(fresh.Views[r].After, effect.Views[r].After);
+    }
+    ok = check(identical,
+           "clean-up: the figures with the score pass's 'before' equal those of a 'before' "
+           "rendered anew, bit for bit (train PSNR " +
+             std::to_string(effect.Train.Before.Psnr) + " -> " +
+             std::to_string(effect.Train.After.Psnr) + ")") &&
+      ok;
+    return ok;
+  };
+  // 5. The measurement in the worker thread; the table and the images. The score pass (full
+  //    resolution) rendered every training view: the preview renders none of them "before".
+  const std::size_t fromScores =
+    d->BaselineScene == d->Scene ? d->Baseline.MeasuredViews() : std::size_t(0);
   this->MeasureRemoval();
   ok = check(this->WaitForMeasurement(), "clean-up: the removal was measured") && ok;
   if (!d->Shown)
@@ -1011,6 +1155,7 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
       "clean-up: the table lists every view (" + std::to_string(d->Views->rowCount()) +
         ") for the " + std::to_string(e.Removed) + " Gaussians removed") &&
     ok;
+  ok = checkReuse(*d->Shown, fromScores, true) && ok;
   bool worstFirst = true;
   for (int r = 1; r < d->Views->rowCount(); ++r)
   {
@@ -1033,5 +1178,21 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
   ok = check(this->grab().save(directory + "/cleanup-panel.png"),
          "clean-up: screenshot cleanup-panel.png") &&
     ok;
+  // 6. A second preview of the same scene (one Gaussian fewer) renders no view "before".
+  if (expected.size() > 1)
+  {
+    const vtkIdType first = *expected.begin();
+    d->Hub->SelectIds(&first, 1, vtkGaussianSelectionHub::SUBTRACT);
+    this->MeasureRemoval();
+    const bool measured = this->WaitForMeasurement();
+    ok = check(measured && d->Shown->BeforeRendered == 0 &&
+             d->Shown->BeforeReused == d->Shown->Effect.Train.Views + d->Shown->Effect.Test.Views,
+           "clean-up: a second preview renders no view 'before' (" +
+             std::to_string(d->Shown->BeforeRendered) + "), it reuses " +
+             std::to_string(d->Shown->BeforeReused)) &&
+      ok;
+    ok = checkReuse(*d->Shown, d->Shown->BeforeReused, false) && ok;
+    d->Hub->SelectIds(&first, 1, vtkGaussianSelectionHub::ADD);
+  }
   return ok;
 }

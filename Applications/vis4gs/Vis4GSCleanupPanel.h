@@ -13,7 +13,9 @@
  *
  * The "before" of a scene is measured once, per 16x16 tile, and reused by every later
  * measurement of the same scene and cameras (RemovalEffectOptions::TileBaseline): a preview
- * renders again only the tiles its selection changes.
+ * renders again only the tiles its selection changes. The application's score pass hands the
+ * panel the "before" of every training view it rendered at full resolution
+ * (SetScoreBaseline()), so that the first preview renders only the test views "before".
  */
 #ifndef Vis4GSCleanupPanel_h
 #define Vis4GSCleanupPanel_h
@@ -29,6 +31,11 @@ class QString;
 class vtkGaussianSelectionHub;
 class vtkPolyData;
 class vtkTable;
+
+namespace vis4gs
+{
+struct RemovalBaseline;
+}
 
 class Vis4GSCleanupPanel : public QWidget
 {
@@ -52,6 +59,16 @@ public:
    * scores it reads are there.
    */
   void SetScene(vtkPolyData* scene, vtkTable* cameras);
+
+  /**
+   * The "before" of @p scene in @p cameras per tile that the application's score pass kept
+   * (Vis4GSDocument::ComputeScores()): a preview of this scene renders no view it holds
+   * "before", and only the tiles its selection changes "after". Dropped when the panel's
+   * scene changes (another snapshot); ignored when @p scene is not the panel's scene.
+   */
+  void SetScoreBaseline(vtkPolyData* scene,
+    vtkTable* cameras,
+    const vis4gs::RemovalBaseline& baseline);
 
   /// What "Delete selection to new PLY..." does (the main window's export).
   void SetDeleteAction(std::function<void()> action);
