@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanel.h"
 
+#include "FineTune.h"
 #include "RemovalEffect.h"
 #include "SelectionRule.h"
 #include "TrainingLogReader.h"
+#include "Vis4GSCompareWindow.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSSelectionExport.h"
 #include "vtkGaussianRuleSelectionFilter.h"
 #include "vtkGaussianSelectionHub.h"
 
@@ -22,8 +25,10 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDir>
 #include <QFile>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -34,6 +39,7 @@
 #include <QPushButton>
 #include <QResizeEvent>
 #include <QScrollBar>
+#include <QSpinBox>
 #include <QSplitter>
 #include <QTableWidget>
 #include <QTextStream>
@@ -41,10 +47,12 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -61,8 +69,13 @@ const char* const Columns[] = { "View",
   "SSIM\nchange",
   "L1\nbefore",
   "L1\nafter",
-  "L1\nchange" };
-constexpr int NumberOfColumns = 12;
+  "L1\nchange",
+  "PSNR\nrepaired",
+  "SSIM\nrepaired",
+  "L1\nrepaired" };
+constexpr int NumberOfColumns = 15;
+/// The first of the repaired columns (PSNR, SSIM, L1), shown after a fine-tune.
+constexpr int RepairedColumn = 12;
 
 // A heat map of t in [0, 1]: black, red, yellow, white.
 void Heat(double t, unsigned char* rgb)
@@ -191,6 +204,10 @@ QTableWidget* MakeTable(QWidget* parent)
   table->setSelectionMode(QAbstractItemView::SingleSelection);
   table->verticalHeader()->hide();
   table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  for (int c = RepairedColumn; c < NumberOfColumns; ++c)
+  {
+    table->setColumnHidden(c, true);
+  }
   return table;
 }
 } // namespace
@@ -250,6 +267,29 @@ struct Vis4GSCleanupPanel::Internals
     std::string Error;
   };
   std::shared_ptr<Result> Shown, Running;
+  // Fine-tune (repair).
+  QPushButton* FineTune = nullptr;
+  QSpinBox* Iterations = nullptr;
+  QCheckBox* FreePositions = nullptr;
+  QCheckBox* Densify = nullptr;
+  QPushButton* Cancel = nullptr;
+  QPushButton* OpenRepaired = nullptr;
+  QPushButton* CompareRepaired = nullptr;
+  QLabel* RepairLabel = nullptr;
+  std::function<void(const QString&)> Open;
+  QThread* RepairWorker = nullptr;
+  struct Repair
+  {
+    std::shared_ptr<Result> Preview; ///< the deletion fine-tuned and its before / after
+    QString SourceLog;               ///< empty for a scene file
+    QString LogPath;
+    vis4gs::FineTuneOptions Options;
+    vis4gs::FineTuneResult Figures;
+    std::vector<vis4gs::FineTuneFigureRow> Rows;
+    std::atomic<bool> Cancel{ false };
+    std::string Error;
+  };
+  std::shared_ptr<Repair> Repairing, Repaired;
 };
 
 //------------------------------------------------------------------------------
@@ -319,6 +359,47 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
   measureLayout->addWidget(deletePly);
   measureLayout->addStretch(1);
   layout->addWidget(measureRow);
+  auto* repairRow = new QWidget(this);
+  auto* repairLayout = new QHBoxLayout(repairRow);
+  repairLayout->setContentsMargins(0, 0, 0, 0);
+  d->FineTune = new QPushButton("Fine-tune...", repairRow);
+  d->FineTune->setToolTip("Fine-tune the previewed deletion with the built-in trainer and "
+                          "measure it again (a third state, 'repaired'); writes the repaired "
+                          "run's log, the deletion as prune events (as vis4gs repair)");
+  d->Iterations = new QSpinBox(repairRow);
+  d->Iterations->setRange(1, 1000000);
+  d->Iterations->setValue(50);
+  d->Iterations->setSuffix(" iterations");
+  d->FreePositions = new QCheckBox("positions free", repairRow);
+  d->FreePositions->setToolTip("Optimise the positions too (default: fixed)");
+  d->Densify = new QCheckBox("densify", repairRow);
+  d->Densify->setToolTip("Keep the trainer's densification schedule (default: off, and no "
+                         "opacity reset)");
+  d->Cancel = new QPushButton("Cancel", repairRow);
+  d->Cancel->setEnabled(false);
+  repairLayout->addWidget(d->FineTune);
+  repairLayout->addWidget(d->Iterations);
+  repairLayout->addWidget(d->FreePositions);
+  repairLayout->addWidget(d->Densify);
+  repairLayout->addWidget(d->Cancel);
+  repairLayout->addStretch(1);
+  layout->addWidget(repairRow);
+  auto* repairedRow = new QWidget(this);
+  auto* repairedLayout = new QHBoxLayout(repairedRow);
+  repairedLayout->setContentsMargins(0, 0, 0, 0);
+  d->RepairLabel = new QLabel(repairedRow);
+  d->RepairLabel->setWordWrap(true);
+  d->RepairLabel->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  d->OpenRepaired = new QPushButton("Open", repairedRow);
+  d->OpenRepaired->setToolTip("Open the repaired run's log in this window");
+  d->CompareRepaired = new QPushButton("Compare with source", repairedRow);
+  d->CompareRepaired->setToolTip("The source snapshot and the repaired run side by side");
+  repairedLayout->addWidget(d->RepairLabel, 1);
+  repairedLayout->addWidget(d->OpenRepaired);
+  repairedLayout->addWidget(d->CompareRepaired);
+  d->OpenRepaired->hide();
+  d->CompareRepaired->hide();
+  layout->addWidget(repairedRow);
   d->MeasureLabel = new QLabel(this);
   d->MeasureLabel->setWordWrap(true);
   layout->addWidget(d->MeasureLabel);
@@ -383,6 +464,59 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
       }
     });
   connect(d->Measure, &QPushButton::clicked, this, [this] { this->MeasureRemoval(); });
+  connect(d->FineTune,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      // The default: next to the source log, named after it and the snapshot.
+      QString folder = QDir::currentPath(), stem = "scene";
+      if (d->Shown && d->Cameras)
+      {
+        if (auto* logFile = vtkStringArray::SafeDownCast(
+              d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
+        {
+          if (logFile->GetNumberOfValues() == 1)
+          {
+            const QFileInfo source(QString::fromStdString(logFile->GetValue(0)));
+            folder = source.absolutePath();
+            stem = source.completeBaseName();
+          }
+        }
+      }
+      const QString path = QFileDialog::getSaveFileName(this,
+        "Write the repaired run's log",
+        QDir(folder).filePath(
+          QString("%1-repaired-%2.h5").arg(stem).arg(std::max(0, d->Hub->GetIteration()))),
+        "Training logs (*.h5)");
+      if (!path.isEmpty())
+      {
+        this->StartFineTune(
+          path, d->Iterations->value(), d->FreePositions->isChecked(), d->Densify->isChecked());
+      }
+    });
+  connect(d->Cancel, &QPushButton::clicked, this, [this] { this->CancelFineTune(); });
+  connect(d->OpenRepaired,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      if (d->Open && d->Repaired)
+      {
+        d->Open(d->Repaired->LogPath);
+      }
+    });
+  connect(d->CompareRepaired,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      if (d->Repaired && !d->Repaired->SourceLog.isEmpty())
+      {
+        Vis4GSCompareWindow::OpenWindow(
+          this, d->Repaired->SourceLog, d->Repaired->Figures.SourceIteration, d->Repaired->LogPath);
+      }
+    });
   connect(deletePly,
     &QPushButton::clicked,
     this,
@@ -412,6 +546,11 @@ Vis4GSCleanupPanel::~Vis4GSCleanupPanel()
   if (d->Worker)
   {
     d->Worker->wait();
+  }
+  if (d->RepairWorker)
+  {
+    d->Repairing->Cancel = true;
+    d->RepairWorker->wait();
   }
 }
 
@@ -658,6 +797,7 @@ void Vis4GSCleanupPanel::OnSelectionChanged()
     text += " (the table is of an earlier selection)";
   }
   d->SelectionLabel->setText(text);
+  this->UpdateButtons();
 }
 
 //------------------------------------------------------------------------------
@@ -727,6 +867,7 @@ void Vis4GSCleanupPanel::MeasureRemoval()
   d->MeasuredChanges = d->Hub->GetNumberOfChanges();
   d->LastFailed = false;
   d->Measure->setEnabled(false);
+  d->FineTune->setEnabled(false);
   const QString what = QString("measuring the removal of %1 Gaussians").arg(removed);
   d->MeasureLabel->setText(what + "...");
   if (d->Progress)
@@ -784,6 +925,7 @@ void Vis4GSCleanupPanel::OnMeasured()
   d->Worker = nullptr;
   std::shared_ptr<Internals::Result> job = std::move(d->Running);
   d->Measure->setEnabled(d->Scene && d->Cameras);
+  this->UpdateButtons();
   if (!job->Error.empty())
   {
     d->LastFailed = true;
@@ -836,6 +978,13 @@ void Vis4GSCleanupPanel::OnMeasured()
     e.Test.After);
   d->Views->blockSignals(true);
   d->Views->clearContents();
+  for (QTableWidget* table : { d->Totals, d->Views })
+  {
+    for (int c = RepairedColumn; c < NumberOfColumns; ++c)
+    {
+      table->setColumnHidden(c, true); // a fine-tune of this preview shows them
+    }
+  }
   d->Views->setRowCount(static_cast<int>(e.Views.size()));
   for (std::size_t r = 0; r < e.Views.size(); ++r)
   {
@@ -961,6 +1110,311 @@ void Vis4GSCleanupPanel::ShowDifference(int row)
                              .arg(QString::fromStdString(camera.Name))
                              .arg(largest, 0, 'g', 3));
   QApplication::restoreOverrideCursor();
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::SetOpenAction(std::function<void(const QString&)> action)
+{
+  d->Open = std::move(action);
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::UpdateButtons()
+{
+  const bool busy = d->Worker || d->RepairWorker;
+  const bool current =
+    d->Shown && d->Shown->Scene == d->Scene && d->MeasuredChanges == d->Hub->GetNumberOfChanges();
+  d->FineTune->setEnabled(!busy && current);
+  d->Cancel->setEnabled(d->RepairWorker != nullptr);
+  if (d->RepairWorker)
+  {
+    d->Measure->setEnabled(false);
+  }
+  if (!current && !d->RepairWorker && d->RepairLabel->text().isEmpty())
+  {
+    d->RepairLabel->setText("Fine-tune: measure the removal of the selection first (it starts "
+                            "from the preview).");
+  }
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
+  int iterations,
+  bool freePositions,
+  bool densify)
+{
+  auto refuse = [this](const QString& why)
+  {
+    d->RepairLabel->setText(why);
+    return false;
+  };
+  if (d->Worker || d->RepairWorker)
+  {
+    return refuse("A measurement or a fine-tune is running.");
+  }
+  if (!d->Shown || d->Shown->Scene != d->Scene ||
+    d->MeasuredChanges != d->Hub->GetNumberOfChanges())
+  {
+    return refuse("Measure the removal of the selection first: the fine-tune starts from its "
+                  "preview (the table is of another selection or snapshot).");
+  }
+  auto job = std::make_shared<Internals::Repair>();
+  job->Preview = d->Shown;
+  job->LogPath = logPath;
+  vis4gs::FineTuneOptions& options = job->Options;
+  options.Iterations = iterations;
+  options.FreePositions = freePositions;
+  options.Densify = densify;
+  options.LogPath = logPath.toStdString();
+  options.Producer = std::string("vis4gs view ") + VIS4GS_VERSION;
+  // The source and deleted figures are the preview's (the same per-tile sums as vis4gs
+  // repair's): only the repaired scene is measured.
+  options.Measure = false;
+  if (auto* logFile = vtkStringArray::SafeDownCast(
+        d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
+  {
+    if (logFile->GetNumberOfValues() == 1)
+    {
+      job->SourceLog = QString::fromStdString(logFile->GetValue(0));
+      try
+      {
+        const vis4gs::TrainingLogReader log(logFile->GetValue(0));
+        options.Scene = log.GetHeader().Scene;
+        options.EmbedImages = log.HasImages(); // as vis4gs repair
+      }
+      catch (const std::exception& e)
+      {
+        return refuse(QString::fromStdString(e.what()));
+      }
+    }
+  }
+  Internals::Repair* raw = job.get(); // (the job owns its options: no cycle)
+  options.Progress = [this, raw](int done, int total)
+  {
+    QMetaObject::invokeMethod(
+      this,
+      [this, done, total]
+      {
+        if (d->Progress && d->RepairWorker)
+        {
+          d->Progress(static_cast<double>(done) / total,
+            QString("fine-tuning the cleaned scene: iteration %1 of %2").arg(done).arg(total),
+            false);
+        }
+      },
+      Qt::QueuedConnection);
+    return !raw->Cancel;
+  };
+  const int source = std::max(0, d->Hub->GetIteration());
+  d->Repairing = job;
+  d->RepairLabel->setText(QString("fine-tuning the deletion of %1 Gaussians for %2 iterations...")
+                            .arg(d->Shown->Effect.Removed)
+                            .arg(iterations));
+  if (d->Progress)
+  {
+    d->Progress(0, d->RepairLabel->text(), false);
+  }
+  d->RepairWorker = QThread::create(
+    [this, job, source]
+    {
+      try
+      {
+        const Internals::Result& preview = *job->Preview;
+        job->Figures = vis4gs::FineTune(
+          *preview.Cloud, source, preview.Removed, preview.Cameras, preview.Images, job->Options);
+        if (!job->Figures.Cancelled)
+        {
+          QMetaObject::invokeMethod(
+            this,
+            [this]
+            {
+              if (d->Progress)
+              {
+                d->Progress(-1, "measuring the repaired scene in every view", false);
+              }
+            },
+            Qt::QueuedConnection);
+          const std::size_t n = preview.Cameras.size();
+          job->Figures.Source.assign(n, vis4gs::ViewMetrics{});
+          job->Figures.Deleted.assign(n, vis4gs::ViewMetrics{});
+          for (std::size_t v = 0; v < preview.Baseline.Views.size() && v < n; ++v)
+          {
+            if (!preview.Baseline.Views[v].Empty())
+            {
+              job->Figures.Source[v] = preview.Baseline.Views[v].Metrics();
+            }
+          }
+          for (const vis4gs::RemovalViewEffect& view : preview.Effect.Views)
+          {
+            if (view.HasImage && view.CameraIndex < n)
+            {
+              job->Figures.Deleted[view.CameraIndex] = view.After;
+            }
+          }
+          const auto t0 = std::chrono::steady_clock::now();
+          job->Figures.RepairedFigures = vis4gs::MeasureViewMetrics(
+            job->Figures.Repaired, preview.Cameras, vis4gs::RemovalEffectOptions{}, preview.Images);
+          job->Figures.MeasureSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          job->Rows = vis4gs::FineTuneFigureRows(job->Figures, preview.Cameras);
+        }
+      }
+      catch (const std::exception& e)
+      {
+        job->Error = e.what();
+      }
+      QMetaObject::invokeMethod(
+        this, [this] { this->OnFineTuned(); }, Qt::QueuedConnection);
+    });
+  this->UpdateButtons();
+  d->RepairWorker->start();
+  this->UpdateButtons();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::CancelFineTune()
+{
+  if (d->Repairing)
+  {
+    d->Repairing->Cancel = true;
+  }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::OnFineTuned()
+{
+  d->RepairWorker->wait();
+  d->RepairWorker->deleteLater();
+  d->RepairWorker = nullptr;
+  const std::shared_ptr<Internals::Repair> job = std::move(d->Repairing);
+  d->Measure->setEnabled(d->Scene && d->Cameras);
+  this->UpdateButtons();
+  const vis4gs::FineTuneResult& r = job->Figures;
+  if (!job->Error.empty() || r.Cancelled)
+  {
+    d->RepairLabel->setText(!job->Error.empty()
+        ? "fine-tune failed: " + QString::fromStdString(job->Error)
+        : QString("Fine-tune cancelled after iteration %1 of %2: no log written.")
+            .arg(r.LastIteration - r.SourceIteration)
+            .arg(job->Options.Iterations));
+    if (d->Progress)
+    {
+      d->Progress(1, d->RepairLabel->text(), true);
+    }
+    return;
+  }
+  d->Repaired = job;
+  // The third state in the table, if it still shows the preview fine-tuned.
+  const bool shown = d->Shown == job->Preview;
+  double means[2][9];
+  bool have[2] = { false, false };
+  for (const vis4gs::FineTuneFigureRow& row : job->Rows)
+  {
+    if (row.View == "mean")
+    {
+      const int split = row.Split == "train" ? 0 : 1;
+      std::copy(row.Values, row.Values + 9, means[split]);
+      have[split] = true;
+    }
+  }
+  if (shown)
+  {
+    for (int split = 0; split < 2; ++split)
+    {
+      for (int m = 0; m < 3; ++m)
+      {
+        SetNumber(d->Totals,
+          split,
+          RepairedColumn + m,
+          have[split] ? means[split][3 * m + 2] : std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+    for (int row = 0; row < d->Views->rowCount(); ++row)
+    {
+      const std::size_t v = d->Views->item(row, 0)->data(Qt::UserRole).toULongLong();
+      const vis4gs::ViewMetrics m =
+        v < r.RepairedFigures.size() ? r.RepairedFigures[v] : vis4gs::ViewMetrics{};
+      SetNumber(d->Views, row, RepairedColumn, m.Psnr);
+      SetNumber(d->Views, row, RepairedColumn + 1, m.Ssim);
+      SetNumber(d->Views, row, RepairedColumn + 2, m.L1);
+    }
+    for (QTableWidget* table : { d->Totals, d->Views })
+    {
+      for (int c = RepairedColumn; c < NumberOfColumns; ++c)
+      {
+        table->setColumnHidden(c, false);
+      }
+    }
+  }
+  auto psnr = [&](int split, int state)
+  { return have[split] ? QString::number(means[split][state], 'f', 3) : QString("-"); };
+  d->RepairLabel->setText(
+    QString("Fine-tuned %1 iterations (positions %2, densification %3) in %4 s: training PSNR "
+            "%5 (source) -> %6 (deleted) -> %7 dB (repaired), test %8 -> %9 -> %10 dB. Log: %11")
+      .arg(job->Options.Iterations)
+      .arg(job->Options.FreePositions ? "free" : "fixed")
+      .arg(job->Options.Densify ? "on" : "off")
+      .arg(r.TrainSeconds + r.MeasureSeconds, 0, 'f', 1)
+      .arg(psnr(0, 0))
+      .arg(psnr(0, 1))
+      .arg(psnr(0, 2))
+      .arg(psnr(1, 0))
+      .arg(psnr(1, 1))
+      .arg(psnr(1, 2))
+      .arg(job->LogPath));
+  d->OpenRepaired->setVisible(static_cast<bool>(d->Open));
+  d->CompareRepaired->setVisible(!job->SourceLog.isEmpty());
+  if (d->Progress)
+  {
+    d->Progress(1, d->RepairLabel->text(), true);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSCleanupPanel::WaitForFineTune()
+{
+  const std::shared_ptr<Internals::Repair> job = d->Repairing;
+  while (d->RepairWorker)
+  {
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+    QThread::msleep(5);
+  }
+  return job && d->Repaired == job;
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSCleanupPanel::WriteRepairTable(const QString& path) const
+{
+  if (!d->Repaired)
+  {
+    return false;
+  }
+  const std::string tmp = path.toStdString() + ".tmp";
+  {
+    std::ofstream csv(tmp);
+    const std::vector<std::string>& columns = vis4gs::FineTuneFigureColumns();
+    for (std::size_t c = 0; c < columns.size(); ++c)
+    {
+      csv << (c ? "," : "") << columns[c];
+    }
+    csv << "\n" << std::setprecision(17);
+    for (const vis4gs::FineTuneFigureRow& row : d->Repaired->Rows)
+    {
+      csv << row.View << "," << row.Split;
+      for (double v : row.Values)
+      {
+        csv << "," << v;
+      }
+      csv << "\n";
+    }
+    if (!csv)
+    {
+      return false;
+    }
+  }
+  QFile::remove(path);
+  return QFile::rename(QString::fromStdString(tmp), path);
 }
 
 //------------------------------------------------------------------------------
@@ -1192,7 +1646,87 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
              std::to_string(d->Shown->BeforeReused)) &&
       ok;
     ok = checkReuse(*d->Shown, d->Shown->BeforeReused, false) && ok;
-    d->Hub->SelectIds(&first, 1, vtkGaussianSelectionHub::ADD);
+  }
+  // 7. Fine-tune the previewed deletion (as `vis4gs repair`): a cancelled one writes nothing;
+  //    a short one writes the repaired log, whose events are the deletion's prunes only
+  //    (densification off). The deletion and its cleaned scene (the main window's export) are
+  //    written for CTest, which runs `vis4gs repair` on them and compares.
+  {
+    const QString cancelled = directory + "/cleanup-cancelled.h5";
+    QFile::remove(cancelled);
+    ok = check(this->StartFineTune(cancelled, 100000, false, false),
+           "clean-up: the fine-tune starts from the current preview") &&
+      ok;
+    this->CancelFineTune();
+    const bool finished = this->WaitForFineTune();
+    ok = check(!finished && !QFileInfo::exists(cancelled) &&
+             QDir(directory)
+               .entryList({ ".cleanup-cancelled*" }, QDir::Files | QDir::Hidden)
+               .isEmpty() &&
+             d->RepairLabel->text().contains("cancelled"),
+           "clean-up: a cancelled fine-tune writes no log, nor its temporary (" +
+             d->RepairLabel->text().toStdString() + ")") &&
+      ok;
+    const QString repaired = directory + "/cleanup-repaired.h5";
+    // One iteration: the trainer logs /metrics (every view rendered) after each of so few.
+    const int iterations = 1;
+    QFile::remove(repaired);
+    const bool tuned =
+      this->StartFineTune(repaired, iterations, false, false) && this->WaitForFineTune();
+    ok = check(tuned,
+           "clean-up: fine-tuned " + std::to_string(iterations) + " iteration (" +
+             d->RepairLabel->text().toStdString() + ")") &&
+      ok;
+    std::vector<std::int64_t> deleted, pruned;
+    for (vtkIdType id : selected())
+    {
+      deleted.push_back(static_cast<std::int64_t>(id));
+    }
+    int last = -1;
+    std::size_t events = 0;
+    try
+    {
+      const vis4gs::TrainingLogReader log(repaired.toStdString());
+      const vis4gs::EventTable table = log.ReadEvents();
+      events = table.Size();
+      for (std::size_t i = 0; i < table.Size(); ++i)
+      {
+        if (table.Kind[i] == static_cast<std::uint8_t>(vis4gs::EventKind::Prune) &&
+          table.Iteration[i] == d->Hub->GetIteration())
+        {
+          pruned.push_back(table.Parent[i]);
+        }
+      }
+      last = log.GetSnapshotIterations().back();
+    }
+    catch (const std::exception& e)
+    {
+      check(false, std::string("clean-up: the repaired log reads back: ") + e.what());
+    }
+    std::sort(pruned.begin(), pruned.end());
+    ok = check(!deleted.empty() && pruned == deleted && events == deleted.size() &&
+             last == d->Hub->GetIteration() + iterations,
+           "clean-up: the repaired log's " + std::to_string(events) +
+             " events are the prunes "
+             "of the " +
+             std::to_string(deleted.size()) + " deleted Gaussians at iteration " +
+             std::to_string(d->Hub->GetIteration()) + "; its last snapshot is iteration " +
+             std::to_string(last)) &&
+      ok;
+    bool filled = !d->Views->isColumnHidden(RepairedColumn) && d->Views->rowCount() > 0;
+    for (int r = 0; filled && r < d->Views->rowCount(); ++r)
+    {
+      const double before = d->Views->item(r, 3)->data(Qt::UserRole).toDouble();
+      const double after = d->Views->item(r, RepairedColumn)->data(Qt::UserRole).toDouble();
+      filled = std::isnan(before) == std::isnan(after);
+    }
+    ok = check(filled, "clean-up: the table shows the repaired figures of every view") && ok;
+    Vis4GSWriteSelectedIds(directory + "/cleanup-repair-deleted.csv", d->Hub);
+    Vis4GSWriteSelectedScene(directory + "/cleanup-repair-cleaned.ply", d->Scene, d->Hub, true);
+    ok = check(this->WriteRepairTable(directory + "/cleanup-repair.csv") &&
+             QFileInfo::exists(directory + "/cleanup-repair-cleaned.ply"),
+           "clean-up: cleanup-repair.csv, the deletion and its cleaned scene are written") &&
+      ok;
   }
   return ok;
 }

@@ -9,7 +9,9 @@
  * measure deleting the selection against the training and test images
  * (Core/Selection/RemovalEffect.h) in a worker thread, shown per view (worst first) and per
  * split, with the before / after / |difference| images of a chosen view; delete the selection
- * to a new PLY (the main window's export).
+ * to a new PLY (the main window's export); fine-tune the previewed deletion (Core/Selection/
+ * FineTune.h) and show the repaired figures as a third state, writing the repaired run's log,
+ * which the main window or the comparison window opens.
  *
  * The "before" of a scene is measured once, per 16x16 tile, and reused by every later
  * measurement of the same scene and cameras (RemovalEffectOptions::TileBaseline): a preview
@@ -102,6 +104,26 @@ public:
   void ShowDifference(int row);
 
   /**
+   * Starts fine-tuning the previewed deletion (the table shown, of the current selection and
+   * snapshot) for @p iterations with the built-in trainer (vis4gs::FineTune(), as `vis4gs
+   * repair`), positions fixed unless @p freePositions, densification off unless @p densify, in
+   * a worker thread with its progress in the progress bar and Cancel. The repaired run's log
+   * (the deletion as prune events at the snapshot's iteration, then the fine-tune) is written
+   * to @p logPath; the table gets the repaired figures of every view. False, with the reason
+   * shown, when there is no current preview or a worker runs.
+   */
+  bool StartFineTune(const QString& logPath, int iterations, bool freePositions, bool densify);
+  /// Asks the fine-tune running to stop after its current iteration (no log is written).
+  void CancelFineTune();
+  /// Processes events until the fine-tune started last is done; false if it failed or was
+  /// cancelled.
+  bool WaitForFineTune();
+  /// Writes the figures of the last fine-tune in the columns of `vis4gs repair`'s repair.csv.
+  bool WriteRepairTable(const QString& path) const;
+  /// What "Open the repaired log" does (the main window opens the file).
+  void SetOpenAction(std::function<void(const QString& path)> action);
+
+  /**
    * The panel's part of `vis4gs view --self-test` on a scene with cameras and images: a bad
    * rule leaves the selection alone, a rule combines with a brushed selection, save/load,
    * the measurement's table and images. Writes cleanup-selection.csv, cleanup-before-after.csv
@@ -118,6 +140,8 @@ private:
   void OnRuleEdited();
   void OnSelectionChanged();
   void OnMeasured();
+  void OnFineTuned();
+  void UpdateButtons();
 
   struct Internals;
   std::unique_ptr<Internals> d;

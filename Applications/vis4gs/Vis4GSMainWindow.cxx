@@ -370,6 +370,7 @@ void Vis4GSMainWindow::BuildUi()
   makeDock(2, "C. Log and control panel", panelScroll, Qt::RightDockWidgetArea);
   d->Cleanup = new Vis4GSCleanupPanel(d->Hub, this);
   d->Cleanup->SetDeleteAction([this] { this->ExportPly(true); });
+  d->Cleanup->SetOpenAction([this](const QString& path) { this->Open(path); });
   d->Cleanup->SetProgress(
     [this](double fraction, const QString& message, bool done)
     {
