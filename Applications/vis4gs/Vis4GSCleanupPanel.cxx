@@ -803,7 +803,7 @@ void Vis4GSCleanupPanel::OnSelectionChanged()
 //------------------------------------------------------------------------------
 void Vis4GSCleanupPanel::MeasureRemoval()
 {
-  if (d->Worker || !d->Scene || !d->Cameras)
+  if (d->Worker || d->RepairWorker || !d->Scene || !d->Cameras)
   {
     return;
   }
@@ -1565,8 +1565,11 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
       return ok;
     }
     vis4gs::RemovalEffectOptions options;
+    const auto t0 = std::chrono::steady_clock::now();
     options.TileBaseline =
       vis4gs::MeasureRemovalBaseline(*shown.Cloud, shown.Cameras, options, shown.Images);
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const vis4gs::RemovalEffect fresh = vis4gs::MeasureRemovalEffect(
       *shown.Cloud, shown.Removed, shown.Cameras, options, shown.Images);
     auto same = [](const vis4gs::ViewMetrics& a, const vis4gs::ViewMetrics& b)
@@ -1585,11 +1588,14 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
         same(fresh.Views[r].Before, effect.Views[r].Before) &&
         same(fresh.Views[r].After, effect.Views[r].After);
     }
-    ok = check(identical,
-           "clean-up: the figures with the score pass's 'before' equal those of a 'before' "
-           "rendered anew, bit for bit (train PSNR " +
-             std::to_string(effect.Train.Before.Psnr) + " -> " +
-             std::to_string(effect.Train.After.Psnr) + ")") &&
+    ok =
+      check(identical,
+        "clean-up: the figures with the score pass's 'before' equal those of a 'before' "
+        "rendered anew, bit for bit (train PSNR " +
+          std::to_string(effect.Train.Before.Psnr) + " -> " +
+          std::to_string(effect.Train.After.Psnr) + "); 'before' of the preview " +
+          std::to_string(std::max(0.0, shown.BaselineSeconds)) + " s, rendered anew " +
+          std::to_string(seconds) + " s; 'after' " + std::to_string(effect.SecondsAfter) + " s") &&
       ok;
     return ok;
   };
