@@ -38,6 +38,7 @@
 #include <QPixmap>
 #include <QPushButton>
 #include <QResizeEvent>
+#include <QScrollArea>
 #include <QScrollBar>
 #include <QSpinBox>
 #include <QSplitter>
@@ -240,6 +241,7 @@ struct Vis4GSCleanupPanel::Internals
   QLabel* Images[3] = { nullptr, nullptr, nullptr };
   QLabel* ImageCaption = nullptr;
   QSplitter* Splitter = nullptr;
+  QScrollArea* LeftScroll = nullptr;
   vtkIdType MeasuredChanges = -1; // the hub's change count of the selection measured
   QThread* Worker = nullptr;
   bool LastFailed = false;
@@ -304,9 +306,15 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
   outer->setContentsMargins(0, 0, 0, 0);
   d->Splitter = new QSplitter(Qt::Horizontal, this);
   outer->addWidget(d->Splitter);
-  auto* left = new QWidget(d->Splitter);
+  // The left half scrolls rather than squeezing its rows in a low dock (1280x800).
+  d->LeftScroll = new QScrollArea(d->Splitter);
+  d->LeftScroll->setWidgetResizable(true);
+  d->LeftScroll->setFrameShape(QFrame::NoFrame);
+  d->LeftScroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  auto* left = new QWidget(d->LeftScroll);
+  d->LeftScroll->setWidget(left);
   auto* right = new QWidget(d->Splitter);
-  d->Splitter->addWidget(left);
+  d->Splitter->addWidget(d->LeftScroll);
   d->Splitter->addWidget(right);
   d->Splitter->setStretchFactor(0, 2);
   d->Splitter->setStretchFactor(1, 3);
@@ -531,6 +539,11 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
     &QTableWidget::currentCellChanged,
     this,
     [this](int r, int, int, int) { this->ShowDifference(r); });
+
+  // As wide as its rows need (the splitter would give the scroll area less): it scrolls
+  // vertically only.
+  d->LeftScroll->setMinimumWidth(
+    left->minimumSizeHint().width() + d->LeftScroll->verticalScrollBar()->sizeHint().width());
 
   d->HubCommand->SetClientData(this);
   d->HubCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
@@ -1349,9 +1362,10 @@ void Vis4GSCleanupPanel::OnFineTuned()
   }
   auto psnr = [&](int split, int state)
   { return have[split] ? QString::number(means[split][state], 'f', 3) : QString("-"); };
+  d->RepairLabel->setToolTip("The repaired run's log: " + job->LogPath);
   d->RepairLabel->setText(
-    QString("Fine-tuned %1 iterations (positions %2, densification %3) in %4 s: training PSNR "
-            "%5 (source) -> %6 (deleted) -> %7 dB (repaired), test %8 -> %9 -> %10 dB. Log: %11")
+    QString("Repaired (%1 iterations, positions %2, densification %3, %4 s): PSNR source -> "
+            "deleted -> repaired: train %5 -> %6 -> %7 dB, test %8 -> %9 -> %10 dB. Log: %11")
       .arg(job->Options.Iterations)
       .arg(job->Options.FreePositions ? "free" : "fixed")
       .arg(job->Options.Densify ? "on" : "off")
@@ -1362,12 +1376,21 @@ void Vis4GSCleanupPanel::OnFineTuned()
       .arg(psnr(1, 0))
       .arg(psnr(1, 1))
       .arg(psnr(1, 2))
-      .arg(job->LogPath));
+      .arg(QFileInfo(job->LogPath).fileName()));
   d->OpenRepaired->setVisible(static_cast<bool>(d->Open));
   d->CompareRepaired->setVisible(!job->SourceLog.isEmpty());
+  // The new columns and the summary in sight.
+  d->LeftScroll->ensureWidgetVisible(d->RepairLabel);
+  for (QTableWidget* table : { d->Totals, d->Views })
+  {
+    if (shown && table->rowCount() > 0 && table->item(0, RepairedColumn))
+    {
+      table->scrollToItem(table->item(0, RepairedColumn));
+    }
+  }
   if (d->Progress)
   {
-    d->Progress(1, d->RepairLabel->text(), true);
+    d->Progress(1, d->RepairLabel->text() + " (" + job->LogPath + ")", true);
   }
 }
 
