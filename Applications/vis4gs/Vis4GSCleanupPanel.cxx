@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanel.h"
 
+#include "FineTune.h"
 #include "RemovalEffect.h"
 #include "SelectionRule.h"
 #include "TrainingLogReader.h"
+#include "Vis4GSCompareWindow.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSSelectionExport.h"
 #include "vtkGaussianRuleSelectionFilter.h"
 #include "vtkGaussianSelectionHub.h"
 
@@ -22,8 +25,10 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDir>
 #include <QFile>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -33,7 +38,9 @@
 #include <QPixmap>
 #include <QPushButton>
 #include <QResizeEvent>
+#include <QScrollArea>
 #include <QScrollBar>
+#include <QSpinBox>
 #include <QSplitter>
 #include <QTableWidget>
 #include <QTextStream>
@@ -41,10 +48,12 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -61,8 +70,13 @@ const char* const Columns[] = { "View",
   "SSIM\nchange",
   "L1\nbefore",
   "L1\nafter",
-  "L1\nchange" };
-constexpr int NumberOfColumns = 12;
+  "L1\nchange",
+  "PSNR\nrepaired",
+  "SSIM\nrepaired",
+  "L1\nrepaired" };
+constexpr int NumberOfColumns = 15;
+/// The first of the repaired columns (PSNR, SSIM, L1), shown after a fine-tune.
+constexpr int RepairedColumn = 12;
 
 // A heat map of t in [0, 1]: black, red, yellow, white.
 void Heat(double t, unsigned char* rgb)
@@ -131,6 +145,51 @@ void FillRow(QTableWidget* table,
   }
 }
 
+// Renders the "before" of the wanted views with an image that @p baseline lacks (every view
+// for an empty baseline: the score pass keeps only the training views it renders). Returns
+// the number of views rendered.
+std::size_t CompleteBaseline(vis4gs::RemovalBaseline& baseline,
+  const vis4gs::GaussianCloud& cloud,
+  const std::vector<vis4gs::Camera>& cameras,
+  const vis4gs::RemovalEffectOptions& options,
+  const vis4gs::TrainingImageProvider& images)
+{
+  if (baseline.Views.empty())
+  {
+    baseline = vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images);
+    return baseline.MeasuredViews();
+  }
+  std::vector<std::size_t> missing;
+  std::vector<vis4gs::Camera> subset;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    if (baseline.Views[v].Empty())
+    {
+      missing.push_back(v);
+      subset.push_back(cameras[v]);
+    }
+  }
+  if (missing.empty())
+  {
+    return 0;
+  }
+  vis4gs::RemovalBaseline part = vis4gs::MeasureRemovalBaseline(cloud,
+    subset,
+    options,
+    [&images, &missing](std::size_t i, const vis4gs::Camera& camera, vis4gs::Image& image)
+    { return images(missing[i], camera, image); });
+  std::size_t rendered = 0;
+  for (std::size_t i = 0; i < missing.size(); ++i)
+  {
+    if (!part.Views[i].Empty())
+    {
+      baseline.Views[missing[i]] = std::move(part.Views[i]);
+      ++rendered;
+    }
+  }
+  return rendered;
+}
+
 QTableWidget* MakeTable(QWidget* parent)
 {
   auto* table = new QTableWidget(parent);
@@ -146,6 +205,10 @@ QTableWidget* MakeTable(QWidget* parent)
   table->setSelectionMode(QAbstractItemView::SingleSelection);
   table->verticalHeader()->hide();
   table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  for (int c = RepairedColumn; c < NumberOfColumns; ++c)
+  {
+    table->setColumnHidden(c, true);
+  }
   return table;
 }
 } // namespace
@@ -178,6 +241,7 @@ struct Vis4GSCleanupPanel::Internals
   QLabel* Images[3] = { nullptr, nullptr, nullptr };
   QLabel* ImageCaption = nullptr;
   QSplitter* Splitter = nullptr;
+  QScrollArea* LeftScroll = nullptr;
   vtkIdType MeasuredChanges = -1; // the hub's change count of the selection measured
   QThread* Worker = nullptr;
   bool LastFailed = false;
@@ -198,9 +262,36 @@ struct Vis4GSCleanupPanel::Internals
     vis4gs::RemovalEffect Effect;
     vis4gs::RemovalBaseline Baseline;
     double BaselineSeconds = -1; ///< < 0: the baseline was reused
+    /// Views whose "before" this preview rendered, and those it reused (from the score pass or
+    /// an earlier preview of the scene).
+    std::size_t BeforeRendered = 0;
+    std::size_t BeforeReused = 0;
     std::string Error;
   };
   std::shared_ptr<Result> Shown, Running;
+  // Fine-tune (repair).
+  QPushButton* FineTune = nullptr;
+  QSpinBox* Iterations = nullptr;
+  QCheckBox* FreePositions = nullptr;
+  QCheckBox* Densify = nullptr;
+  QPushButton* Cancel = nullptr;
+  QPushButton* OpenRepaired = nullptr;
+  QPushButton* CompareRepaired = nullptr;
+  QLabel* RepairLabel = nullptr;
+  std::function<void(const QString&)> Open;
+  QThread* RepairWorker = nullptr;
+  struct Repair
+  {
+    std::shared_ptr<Result> Preview; ///< the deletion fine-tuned and its before / after
+    QString SourceLog;               ///< empty for a scene file
+    QString LogPath;
+    vis4gs::FineTuneOptions Options;
+    vis4gs::FineTuneResult Figures;
+    std::vector<vis4gs::FineTuneFigureRow> Rows;
+    std::atomic<bool> Cancel{ false };
+    std::string Error;
+  };
+  std::shared_ptr<Repair> Repairing, Repaired;
 };
 
 //------------------------------------------------------------------------------
@@ -215,9 +306,15 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
   outer->setContentsMargins(0, 0, 0, 0);
   d->Splitter = new QSplitter(Qt::Horizontal, this);
   outer->addWidget(d->Splitter);
-  auto* left = new QWidget(d->Splitter);
+  // The left half scrolls rather than squeezing its rows in a low dock (1280x800).
+  d->LeftScroll = new QScrollArea(d->Splitter);
+  d->LeftScroll->setWidgetResizable(true);
+  d->LeftScroll->setFrameShape(QFrame::NoFrame);
+  d->LeftScroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  auto* left = new QWidget(d->LeftScroll);
+  d->LeftScroll->setWidget(left);
   auto* right = new QWidget(d->Splitter);
-  d->Splitter->addWidget(left);
+  d->Splitter->addWidget(d->LeftScroll);
   d->Splitter->addWidget(right);
   d->Splitter->setStretchFactor(0, 2);
   d->Splitter->setStretchFactor(1, 3);
@@ -270,6 +367,47 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
   measureLayout->addWidget(deletePly);
   measureLayout->addStretch(1);
   layout->addWidget(measureRow);
+  auto* repairRow = new QWidget(this);
+  auto* repairLayout = new QHBoxLayout(repairRow);
+  repairLayout->setContentsMargins(0, 0, 0, 0);
+  d->FineTune = new QPushButton("Fine-tune...", repairRow);
+  d->FineTune->setToolTip("Fine-tune the previewed deletion with the built-in trainer and "
+                          "measure it again (a third state, 'repaired'); writes the repaired "
+                          "run's log, the deletion as prune events (as vis4gs repair)");
+  d->Iterations = new QSpinBox(repairRow);
+  d->Iterations->setRange(1, 1000000);
+  d->Iterations->setValue(50);
+  d->Iterations->setSuffix(" iterations");
+  d->FreePositions = new QCheckBox("positions free", repairRow);
+  d->FreePositions->setToolTip("Optimise the positions too (default: fixed)");
+  d->Densify = new QCheckBox("densify", repairRow);
+  d->Densify->setToolTip("Keep the trainer's densification schedule (default: off, and no "
+                         "opacity reset)");
+  d->Cancel = new QPushButton("Cancel", repairRow);
+  d->Cancel->setEnabled(false);
+  repairLayout->addWidget(d->FineTune);
+  repairLayout->addWidget(d->Iterations);
+  repairLayout->addWidget(d->FreePositions);
+  repairLayout->addWidget(d->Densify);
+  repairLayout->addWidget(d->Cancel);
+  repairLayout->addStretch(1);
+  layout->addWidget(repairRow);
+  auto* repairedRow = new QWidget(this);
+  auto* repairedLayout = new QHBoxLayout(repairedRow);
+  repairedLayout->setContentsMargins(0, 0, 0, 0);
+  d->RepairLabel = new QLabel(repairedRow);
+  d->RepairLabel->setWordWrap(true);
+  d->RepairLabel->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  d->OpenRepaired = new QPushButton("Open", repairedRow);
+  d->OpenRepaired->setToolTip("Open the repaired run's log in this window");
+  d->CompareRepaired = new QPushButton("Compare with source", repairedRow);
+  d->CompareRepaired->setToolTip("The source snapshot and the repaired run side by side");
+  repairedLayout->addWidget(d->RepairLabel, 1);
+  repairedLayout->addWidget(d->OpenRepaired);
+  repairedLayout->addWidget(d->CompareRepaired);
+  d->OpenRepaired->hide();
+  d->CompareRepaired->hide();
+  layout->addWidget(repairedRow);
   d->MeasureLabel = new QLabel(this);
   d->MeasureLabel->setWordWrap(true);
   layout->addWidget(d->MeasureLabel);
@@ -334,6 +472,59 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
       }
     });
   connect(d->Measure, &QPushButton::clicked, this, [this] { this->MeasureRemoval(); });
+  connect(d->FineTune,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      // The default: next to the source log, named after it and the snapshot.
+      QString folder = QDir::currentPath(), stem = "scene";
+      if (d->Shown && d->Cameras)
+      {
+        if (auto* logFile = vtkStringArray::SafeDownCast(
+              d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
+        {
+          if (logFile->GetNumberOfValues() == 1)
+          {
+            const QFileInfo source(QString::fromStdString(logFile->GetValue(0)));
+            folder = source.absolutePath();
+            stem = source.completeBaseName();
+          }
+        }
+      }
+      const QString path = QFileDialog::getSaveFileName(this,
+        "Write the repaired run's log",
+        QDir(folder).filePath(
+          QString("%1-repaired-%2.h5").arg(stem).arg(std::max(0, d->Hub->GetIteration()))),
+        "Training logs (*.h5)");
+      if (!path.isEmpty())
+      {
+        this->StartFineTune(
+          path, d->Iterations->value(), d->FreePositions->isChecked(), d->Densify->isChecked());
+      }
+    });
+  connect(d->Cancel, &QPushButton::clicked, this, [this] { this->CancelFineTune(); });
+  connect(d->OpenRepaired,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      if (d->Open && d->Repaired)
+      {
+        d->Open(d->Repaired->LogPath);
+      }
+    });
+  connect(d->CompareRepaired,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      if (d->Repaired && !d->Repaired->SourceLog.isEmpty())
+      {
+        Vis4GSCompareWindow::OpenWindow(
+          this, d->Repaired->SourceLog, d->Repaired->Figures.SourceIteration, d->Repaired->LogPath);
+      }
+    });
   connect(deletePly,
     &QPushButton::clicked,
     this,
@@ -348,6 +539,11 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
     &QTableWidget::currentCellChanged,
     this,
     [this](int r, int, int, int) { this->ShowDifference(r); });
+
+  // As wide as its rows need (the splitter would give the scroll area less): it scrolls
+  // vertically only.
+  d->LeftScroll->setMinimumWidth(
+    left->minimumSizeHint().width() + d->LeftScroll->verticalScrollBar()->sizeHint().width());
 
   d->HubCommand->SetClientData(this);
   d->HubCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
@@ -364,6 +560,11 @@ Vis4GSCleanupPanel::~Vis4GSCleanupPanel()
   {
     d->Worker->wait();
   }
+  if (d->RepairWorker)
+  {
+    d->Repairing->Cancel = true;
+    d->RepairWorker->wait();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -372,6 +573,24 @@ void Vis4GSCleanupPanel::resizeEvent(QResizeEvent* event)
   d->Splitter->setOrientation(
     event->size().width() > 3 * event->size().height() / 2 ? Qt::Horizontal : Qt::Vertical);
   this->QWidget::resizeEvent(event);
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::SetScoreBaseline(vtkPolyData* scene,
+  vtkTable* cameras,
+  const vis4gs::RemovalBaseline& baseline)
+{
+  // An earlier preview of the same scene may have measured more views (the test views).
+  if (!scene || scene != d->Scene.GetPointer() || cameras != d->Cameras.GetPointer() ||
+    baseline.MeasuredViews() == 0 ||
+    (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras &&
+      d->Baseline.MeasuredViews() >= baseline.MeasuredViews()))
+  {
+    return;
+  }
+  d->BaselineScene = scene;
+  d->BaselineCameras = cameras;
+  d->Baseline = baseline;
 }
 
 //------------------------------------------------------------------------------
@@ -392,6 +611,13 @@ void Vis4GSCleanupPanel::SetScene(vtkPolyData* scene, vtkTable* cameras)
   const bool newScene = scene != d->Scene.GetPointer();
   d->Scene = scene;
   d->Cameras = cameras;
+  if (scene != d->BaselineScene.GetPointer() || cameras != d->BaselineCameras.GetPointer())
+  {
+    // Another snapshot: its "before" is another one (and the old scene is released).
+    d->BaselineScene = nullptr;
+    d->BaselineCameras = nullptr;
+    d->Baseline = vis4gs::RemovalBaseline();
+  }
   d->Measure->setEnabled(scene && cameras && cameras->GetNumberOfRows() > 0);
   d->Measure->setToolTip(d->Measure->isEnabled()
       ? "Render every training and test view with and without the selection and compare "
@@ -584,12 +810,13 @@ void Vis4GSCleanupPanel::OnSelectionChanged()
     text += " (the table is of an earlier selection)";
   }
   d->SelectionLabel->setText(text);
+  this->UpdateButtons();
 }
 
 //------------------------------------------------------------------------------
 void Vis4GSCleanupPanel::MeasureRemoval()
 {
-  if (d->Worker || !d->Scene || !d->Cameras)
+  if (d->Worker || d->RepairWorker || !d->Scene || !d->Cameras)
   {
     return;
   }
@@ -643,20 +870,26 @@ void Vis4GSCleanupPanel::MeasureRemoval()
     d->MeasureLabel->setText("Select Gaussians first (a rule, a brush, the histogram).");
     return;
   }
-  if (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras)
+  if (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras &&
+    d->Baseline.Views.size() == job->Cameras.size())
   {
     job->Baseline = d->Baseline;
+    job->BeforeReused = d->Baseline.MeasuredViews();
   }
   d->Running = job;
   d->MeasuredChanges = d->Hub->GetNumberOfChanges();
   d->LastFailed = false;
   d->Measure->setEnabled(false);
+  d->FineTune->setEnabled(false);
   const QString what = QString("measuring the removal of %1 Gaussians").arg(removed);
   d->MeasureLabel->setText(what + "...");
   if (d->Progress)
   {
-    d->Progress(
-      -1, what + (job->Baseline.Views.empty() ? ": rendering every view before" : ""), false);
+    d->Progress(-1,
+      what +
+        (job->BeforeReused == 0 ? ": rendering every view before"
+                                : ": rendering the views before that the score pass did not"),
+      false);
   }
   // RemovalEffect has no progress callback: the bar is a busy indicator with the step named.
   d->Worker = QThread::create(
@@ -665,11 +898,11 @@ void Vis4GSCleanupPanel::MeasureRemoval()
       try
       {
         vis4gs::RemovalEffectOptions options;
-        if (job->Baseline.Views.empty())
+        const auto t0 = std::chrono::steady_clock::now();
+        job->BeforeRendered =
+          CompleteBaseline(job->Baseline, *job->Cloud, job->Cameras, options, job->Images);
+        if (job->BeforeRendered > 0)
         {
-          const auto t0 = std::chrono::steady_clock::now();
-          job->Baseline =
-            vis4gs::MeasureRemovalBaseline(*job->Cloud, job->Cameras, options, job->Images);
           job->BaselineSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           QMetaObject::invokeMethod(
@@ -705,6 +938,7 @@ void Vis4GSCleanupPanel::OnMeasured()
   d->Worker = nullptr;
   std::shared_ptr<Internals::Result> job = std::move(d->Running);
   d->Measure->setEnabled(d->Scene && d->Cameras);
+  this->UpdateButtons();
   if (!job->Error.empty())
   {
     d->LastFailed = true;
@@ -720,25 +954,26 @@ void Vis4GSCleanupPanel::OnMeasured()
   d->Baseline = job->Baseline;
   d->Shown = job;
   const vis4gs::RemovalEffect& e = job->Effect;
-  const QString summary =
-    QString(
-      "Deleting %1 Gaussians (%2 kept): training PSNR %3 -> %4 dB (%5 of %6 views "
-      "changed), test PSNR %7 -> %8 dB (%9 of %10). Before: %11; after: %12 views rendered in "
-      "%13 s.")
-      .arg(e.Removed)
-      .arg(e.Kept)
-      .arg(e.Train.Before.Psnr, 0, 'f', 3)
-      .arg(e.Train.After.Psnr, 0, 'f', 3)
-      .arg(e.Train.AffectedViews)
-      .arg(e.Train.Views)
-      .arg(e.Test.Before.Psnr, 0, 'f', 3)
-      .arg(e.Test.After.Psnr, 0, 'f', 3)
-      .arg(e.Test.AffectedViews)
-      .arg(e.Test.Views)
-      .arg(job->BaselineSeconds < 0 ? QString("reused from the last measurement of this scene")
-                                    : QString("%1 s").arg(job->BaselineSeconds, 0, 'f', 2))
-      .arg(e.ViewsRendered)
-      .arg(e.SecondsAfter, 0, 'f', 2);
+  const QString summary = QString(
+    "Deleting %1 Gaussians (%2 kept): training PSNR %3 -> %4 dB (%5 of %6 views "
+    "changed), test PSNR %7 -> %8 dB (%9 of %10). Before: %11 views reused (the score pass, "
+    "earlier previews), %12; after: %13 views rendered in %14 s.")
+                            .arg(e.Removed)
+                            .arg(e.Kept)
+                            .arg(e.Train.Before.Psnr, 0, 'f', 3)
+                            .arg(e.Train.After.Psnr, 0, 'f', 3)
+                            .arg(e.Train.AffectedViews)
+                            .arg(e.Train.Views)
+                            .arg(e.Test.Before.Psnr, 0, 'f', 3)
+                            .arg(e.Test.After.Psnr, 0, 'f', 3)
+                            .arg(e.Test.AffectedViews)
+                            .arg(e.Test.Views)
+                            .arg(job->BeforeReused)
+                            .arg(QString("%1 rendered in %2 s")
+                                   .arg(job->BeforeRendered)
+                                   .arg(std::max(0.0, job->BaselineSeconds), 0, 'f', 2))
+                            .arg(e.ViewsRendered)
+                            .arg(e.SecondsAfter, 0, 'f', 2);
   d->MeasureLabel->setText(summary);
   FillRow(d->Totals,
     0,
@@ -756,6 +991,13 @@ void Vis4GSCleanupPanel::OnMeasured()
     e.Test.After);
   d->Views->blockSignals(true);
   d->Views->clearContents();
+  for (QTableWidget* table : { d->Totals, d->Views })
+  {
+    for (int c = RepairedColumn; c < NumberOfColumns; ++c)
+    {
+      table->setColumnHidden(c, true); // a fine-tune of this preview shows them
+    }
+  }
   d->Views->setRowCount(static_cast<int>(e.Views.size()));
   for (std::size_t r = 0; r < e.Views.size(); ++r)
   {
@@ -884,6 +1126,321 @@ void Vis4GSCleanupPanel::ShowDifference(int row)
 }
 
 //------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::SetOpenAction(std::function<void(const QString&)> action)
+{
+  d->Open = std::move(action);
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::UpdateButtons()
+{
+  const bool busy = d->Worker || d->RepairWorker;
+  const bool current =
+    d->Shown && d->Shown->Scene == d->Scene && d->MeasuredChanges == d->Hub->GetNumberOfChanges();
+  d->FineTune->setEnabled(!busy && current);
+  d->Cancel->setEnabled(d->RepairWorker != nullptr);
+  if (d->RepairWorker)
+  {
+    d->Measure->setEnabled(false);
+  }
+  if (!current && !d->RepairWorker && d->RepairLabel->text().isEmpty())
+  {
+    d->RepairLabel->setText("Fine-tune: measure the removal of the selection first (it starts "
+                            "from the preview).");
+  }
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
+  int iterations,
+  bool freePositions,
+  bool densify)
+{
+  auto refuse = [this](const QString& why)
+  {
+    d->RepairLabel->setText(why);
+    return false;
+  };
+  if (d->Worker || d->RepairWorker)
+  {
+    return refuse("A measurement or a fine-tune is running.");
+  }
+  if (!d->Shown || d->Shown->Scene != d->Scene ||
+    d->MeasuredChanges != d->Hub->GetNumberOfChanges())
+  {
+    return refuse("Measure the removal of the selection first: the fine-tune starts from its "
+                  "preview (the table is of another selection or snapshot).");
+  }
+  auto job = std::make_shared<Internals::Repair>();
+  job->Preview = d->Shown;
+  job->LogPath = logPath;
+  vis4gs::FineTuneOptions& options = job->Options;
+  options.Iterations = iterations;
+  options.FreePositions = freePositions;
+  options.Densify = densify;
+  options.LogPath = logPath.toStdString();
+  options.Producer = std::string("vis4gs view ") + VIS4GS_VERSION;
+  // The source and deleted figures are the preview's (the same per-tile sums as vis4gs
+  // repair's): only the repaired scene is measured.
+  options.Measure = false;
+  if (auto* logFile = vtkStringArray::SafeDownCast(
+        d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
+  {
+    if (logFile->GetNumberOfValues() == 1)
+    {
+      job->SourceLog = QString::fromStdString(logFile->GetValue(0));
+      try
+      {
+        const vis4gs::TrainingLogReader log(logFile->GetValue(0));
+        options.Scene = log.GetHeader().Scene;
+        options.EmbedImages = log.HasImages(); // as vis4gs repair
+      }
+      catch (const std::exception& e)
+      {
+        return refuse(QString::fromStdString(e.what()));
+      }
+    }
+  }
+  Internals::Repair* raw = job.get(); // (the job owns its options: no cycle)
+  options.Progress = [this, raw](int done, int total)
+  {
+    QMetaObject::invokeMethod(
+      this,
+      [this, done, total]
+      {
+        if (d->Progress && d->RepairWorker)
+        {
+          d->Progress(static_cast<double>(done) / total,
+            QString("fine-tuning the cleaned scene: iteration %1 of %2").arg(done).arg(total),
+            false);
+        }
+      },
+      Qt::QueuedConnection);
+    return !raw->Cancel;
+  };
+  const int source = std::max(0, d->Hub->GetIteration());
+  d->Repairing = job;
+  d->RepairLabel->setText(QString("fine-tuning the deletion of %1 Gaussians for %2 iterations...")
+                            .arg(d->Shown->Effect.Removed)
+                            .arg(iterations));
+  if (d->Progress)
+  {
+    d->Progress(0, d->RepairLabel->text(), false);
+  }
+  d->RepairWorker = QThread::create(
+    [this, job, source]
+    {
+      try
+      {
+        const Internals::Result& preview = *job->Preview;
+        job->Figures = vis4gs::FineTune(
+          *preview.Cloud, source, preview.Removed, preview.Cameras, preview.Images, job->Options);
+        if (!job->Figures.Cancelled)
+        {
+          QMetaObject::invokeMethod(
+            this,
+            [this]
+            {
+              if (d->Progress)
+              {
+                d->Progress(-1, "measuring the repaired scene in every view", false);
+              }
+            },
+            Qt::QueuedConnection);
+          const std::size_t n = preview.Cameras.size();
+          job->Figures.Source.assign(n, vis4gs::ViewMetrics{});
+          job->Figures.Deleted.assign(n, vis4gs::ViewMetrics{});
+          for (std::size_t v = 0; v < preview.Baseline.Views.size() && v < n; ++v)
+          {
+            if (!preview.Baseline.Views[v].Empty())
+            {
+              job->Figures.Source[v] = preview.Baseline.Views[v].Metrics();
+            }
+          }
+          for (const vis4gs::RemovalViewEffect& view : preview.Effect.Views)
+          {
+            if (view.HasImage && view.CameraIndex < n)
+            {
+              job->Figures.Deleted[view.CameraIndex] = view.After;
+            }
+          }
+          const auto t0 = std::chrono::steady_clock::now();
+          job->Figures.RepairedFigures = vis4gs::MeasureViewMetrics(
+            job->Figures.Repaired, preview.Cameras, vis4gs::RemovalEffectOptions{}, preview.Images);
+          job->Figures.MeasureSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          job->Rows = vis4gs::FineTuneFigureRows(job->Figures, preview.Cameras);
+        }
+      }
+      catch (const std::exception& e)
+      {
+        job->Error = e.what();
+      }
+      QMetaObject::invokeMethod(
+        this, [this] { this->OnFineTuned(); }, Qt::QueuedConnection);
+    });
+  this->UpdateButtons();
+  d->RepairWorker->start();
+  this->UpdateButtons();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::CancelFineTune()
+{
+  if (d->Repairing)
+  {
+    d->Repairing->Cancel = true;
+  }
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSCleanupPanel::OnFineTuned()
+{
+  d->RepairWorker->wait();
+  d->RepairWorker->deleteLater();
+  d->RepairWorker = nullptr;
+  const std::shared_ptr<Internals::Repair> job = std::move(d->Repairing);
+  d->Measure->setEnabled(d->Scene && d->Cameras);
+  this->UpdateButtons();
+  const vis4gs::FineTuneResult& r = job->Figures;
+  if (!job->Error.empty() || r.Cancelled)
+  {
+    d->RepairLabel->setText(!job->Error.empty()
+        ? "fine-tune failed: " + QString::fromStdString(job->Error)
+        : QString("Fine-tune cancelled after iteration %1 of %2: no log written.")
+            .arg(r.LastIteration - r.SourceIteration)
+            .arg(job->Options.Iterations));
+    if (d->Progress)
+    {
+      d->Progress(1, d->RepairLabel->text(), true);
+    }
+    return;
+  }
+  d->Repaired = job;
+  // The third state in the table, if it still shows the preview fine-tuned.
+  const bool shown = d->Shown == job->Preview;
+  double means[2][9];
+  bool have[2] = { false, false };
+  for (const vis4gs::FineTuneFigureRow& row : job->Rows)
+  {
+    if (row.View == "mean")
+    {
+      const int split = row.Split == "train" ? 0 : 1;
+      std::copy(row.Values, row.Values + 9, means[split]);
+      have[split] = true;
+    }
+  }
+  if (shown)
+  {
+    for (int split = 0; split < 2; ++split)
+    {
+      for (int m = 0; m < 3; ++m)
+      {
+        SetNumber(d->Totals,
+          split,
+          RepairedColumn + m,
+          have[split] ? means[split][3 * m + 2] : std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+    for (int row = 0; row < d->Views->rowCount(); ++row)
+    {
+      const std::size_t v = d->Views->item(row, 0)->data(Qt::UserRole).toULongLong();
+      const vis4gs::ViewMetrics m =
+        v < r.RepairedFigures.size() ? r.RepairedFigures[v] : vis4gs::ViewMetrics{};
+      SetNumber(d->Views, row, RepairedColumn, m.Psnr);
+      SetNumber(d->Views, row, RepairedColumn + 1, m.Ssim);
+      SetNumber(d->Views, row, RepairedColumn + 2, m.L1);
+    }
+    for (QTableWidget* table : { d->Totals, d->Views })
+    {
+      for (int c = RepairedColumn; c < NumberOfColumns; ++c)
+      {
+        table->setColumnHidden(c, false);
+      }
+    }
+  }
+  auto psnr = [&](int split, int state)
+  { return have[split] ? QString::number(means[split][state], 'f', 3) : QString("-"); };
+  d->RepairLabel->setToolTip("The repaired run's log: " + job->LogPath);
+  d->RepairLabel->setText(
+    QString("Repaired (%1 iterations, positions %2, densification %3, %4 s): PSNR source -> "
+            "deleted -> repaired: train %5 -> %6 -> %7 dB, test %8 -> %9 -> %10 dB. Log: %11")
+      .arg(job->Options.Iterations)
+      .arg(job->Options.FreePositions ? "free" : "fixed")
+      .arg(job->Options.Densify ? "on" : "off")
+      .arg(r.TrainSeconds + r.MeasureSeconds, 0, 'f', 1)
+      .arg(psnr(0, 0))
+      .arg(psnr(0, 1))
+      .arg(psnr(0, 2))
+      .arg(psnr(1, 0))
+      .arg(psnr(1, 1))
+      .arg(psnr(1, 2))
+      .arg(QFileInfo(job->LogPath).fileName()));
+  d->OpenRepaired->setVisible(static_cast<bool>(d->Open));
+  d->CompareRepaired->setVisible(!job->SourceLog.isEmpty());
+  // The new columns and the summary in sight.
+  d->LeftScroll->ensureWidgetVisible(d->RepairLabel);
+  for (QTableWidget* table : { d->Totals, d->Views })
+  {
+    if (shown && table->rowCount() > 0 && table->item(0, RepairedColumn))
+    {
+      table->scrollToItem(table->item(0, RepairedColumn));
+    }
+  }
+  if (d->Progress)
+  {
+    d->Progress(1, d->RepairLabel->text() + " (" + job->LogPath + ")", true);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSCleanupPanel::WaitForFineTune()
+{
+  const std::shared_ptr<Internals::Repair> job = d->Repairing;
+  while (d->RepairWorker)
+  {
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+    QThread::msleep(5);
+  }
+  return job && d->Repaired == job;
+}
+
+//------------------------------------------------------------------------------
+bool Vis4GSCleanupPanel::WriteRepairTable(const QString& path) const
+{
+  if (!d->Repaired)
+  {
+    return false;
+  }
+  const std::string tmp = path.toStdString() + ".tmp";
+  {
+    std::ofstream csv(tmp);
+    const std::vector<std::string>& columns = vis4gs::FineTuneFigureColumns();
+    for (std::size_t c = 0; c < columns.size(); ++c)
+    {
+      csv << (c ? "," : "") << columns[c];
+    }
+    csv << "\n" << std::setprecision(17);
+    for (const vis4gs::FineTuneFigureRow& row : d->Repaired->Rows)
+    {
+      csv << row.View << "," << row.Split;
+      for (double v : row.Values)
+      {
+        csv << "," << v;
+      }
+      csv << "\n";
+    }
+    if (!csv)
+    {
+      return false;
+    }
+  }
+  QFile::remove(path);
+  return QFile::rename(QString::fromStdString(tmp), path);
+}
+
+//------------------------------------------------------------------------------
 bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
   const std::function<bool(bool, const std::string&)>& check)
 {
@@ -987,18 +1544,88 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     withoutScores->ShallowCopy(scene);
     withoutScores->GetPointData()->RemoveArray(vis4gs::arrays::ViewCoverage);
     withScores->ShallowCopy(scene);
+    const vis4gs::RemovalBaseline fromScores = d->Baseline;
     d->Hub->SelectIds(brushed, 3, vtkGaussianSelectionHub::REPLACE);
     this->SetScene(withoutScores, table);
     ok = check(d->Hub->GetNumberOfSelectedIds() == brushedCount,
            "clean-up: a new iteration without its scores yet keeps the selection") &&
+      ok;
+    this->SetScoreBaseline(scene, table, fromScores);
+    ok = check(d->Baseline.MeasuredViews() == 0 && !d->BaselineScene,
+           "clean-up: another snapshot drops the score pass's 'before', and a 'before' of "
+           "a scene not shown is refused") &&
       ok;
     this->SetScene(withScores, table);
     ok =
       check(selected() == expected, "clean-up: the rule is re-applied once the scores are there") &&
       ok;
     this->SetScene(scene, table);
+    // What the main window hands over when the score pass of this scene ends.
+    this->SetScoreBaseline(scene, table, fromScores);
   }
-  // 5. The measurement in the worker thread; the table and the images.
+  // The "before" renders of a preview (the score pass renders no test view), its "after"
+  // renders (the affected views only), and its figures against those of the panel's own
+  // "before" rendered anew (what it did before it reused the score pass's): bit for bit.
+  auto checkReuse = [&check](const Internals::Result& shown, std::size_t reused, bool figures)
+  {
+    const vis4gs::RemovalEffect& effect = shown.Effect;
+    std::size_t affected = 0;
+    for (const vis4gs::RemovalViewEffect& v : effect.Views)
+    {
+      affected += v.Affected && v.HasImage ? 1 : 0;
+    }
+    bool ok = check(reused > 0 && shown.BeforeReused == reused &&
+        shown.BeforeRendered + reused == effect.Train.Views + effect.Test.Views &&
+        reused >= effect.Train.Views && effect.ViewsRendered == affected,
+      "clean-up: the preview reused " + std::to_string(reused) + " views 'before' (" +
+        std::to_string(effect.Train.Views) + " training views), rendered " +
+        std::to_string(shown.BeforeRendered) + " 'before' and " +
+        std::to_string(effect.ViewsRendered) + " 'after' (" + std::to_string(effect.TilesRendered) +
+        " of " + std::to_string(effect.TilesOfTiledViews) + " tiles) for " +
+        std::to_string(affected) + " affected views");
+    if (!figures)
+    {
+      return ok;
+    }
+    vis4gs::RemovalEffectOptions options;
+    const auto t0 = std::chrono::steady_clock::now();
+    options.TileBaseline =
+      vis4gs::MeasureRemovalBaseline(*shown.Cloud, shown.Cameras, options, shown.Images);
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const vis4gs::RemovalEffect fresh = vis4gs::MeasureRemovalEffect(
+      *shown.Cloud, shown.Removed, shown.Cameras, options, shown.Images);
+    auto same = [](const vis4gs::ViewMetrics& a, const vis4gs::ViewMetrics& b)
+    {
+      auto equal = [](double x, double y) { return std::isnan(x) ? std::isnan(y) : x == y; };
+      return equal(a.Psnr, b.Psnr) && equal(a.Ssim, b.Ssim) && equal(a.L1, b.L1);
+    };
+    bool identical = fresh.Views.size() == effect.Views.size() &&
+      same(fresh.Train.Before, effect.Train.Before) &&
+      same(fresh.Train.After, effect.Train.After) && same(fresh.Test.Before, effect.Test.Before) &&
+      same(fresh.Test.After, effect.Test.After);
+    for (std::size_t r = 0; identical && r < effect.Views.size(); ++r)
+    {
+      identical = fresh.Views[r].CameraIndex == effect.Views[r].CameraIndex &&
+        fresh.Views[r].Affected == effect.Views[r].Affected &&
+        same(fresh.Views[r].Before, effect.Views[r].Before) &&
+        same(fresh.Views[r].After, effect.Views[r].After);
+    }
+    ok =
+      check(identical,
+        "clean-up: the figures with the score pass's 'before' equal those of a 'before' "
+        "rendered anew, bit for bit (train PSNR " +
+          std::to_string(effect.Train.Before.Psnr) + " -> " +
+          std::to_string(effect.Train.After.Psnr) + "); 'before' of the preview " +
+          std::to_string(std::max(0.0, shown.BaselineSeconds)) + " s, rendered anew " +
+          std::to_string(seconds) + " s; 'after' " + std::to_string(effect.SecondsAfter) + " s") &&
+      ok;
+    return ok;
+  };
+  // 5. The measurement in the worker thread; the table and the images. The score pass (full
+  //    resolution) rendered every training view: the preview renders none of them "before".
+  const std::size_t fromScores =
+    d->BaselineScene == d->Scene ? d->Baseline.MeasuredViews() : std::size_t(0);
   this->MeasureRemoval();
   ok = check(this->WaitForMeasurement(), "clean-up: the removal was measured") && ok;
   if (!d->Shown)
@@ -1011,6 +1638,7 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
       "clean-up: the table lists every view (" + std::to_string(d->Views->rowCount()) +
         ") for the " + std::to_string(e.Removed) + " Gaussians removed") &&
     ok;
+  ok = checkReuse(*d->Shown, fromScores, true) && ok;
   bool worstFirst = true;
   for (int r = 1; r < d->Views->rowCount(); ++r)
   {
@@ -1033,5 +1661,101 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
   ok = check(this->grab().save(directory + "/cleanup-panel.png"),
          "clean-up: screenshot cleanup-panel.png") &&
     ok;
+  // 6. A second preview of the same scene (one Gaussian fewer) renders no view "before".
+  if (expected.size() > 1)
+  {
+    const vtkIdType first = *expected.begin();
+    d->Hub->SelectIds(&first, 1, vtkGaussianSelectionHub::SUBTRACT);
+    this->MeasureRemoval();
+    const bool measured = this->WaitForMeasurement();
+    ok = check(measured && d->Shown->BeforeRendered == 0 &&
+             d->Shown->BeforeReused == d->Shown->Effect.Train.Views + d->Shown->Effect.Test.Views,
+           "clean-up: a second preview renders no view 'before' (" +
+             std::to_string(d->Shown->BeforeRendered) + "), it reuses " +
+             std::to_string(d->Shown->BeforeReused)) &&
+      ok;
+    ok = checkReuse(*d->Shown, d->Shown->BeforeReused, false) && ok;
+  }
+  // 7. Fine-tune the previewed deletion (as `vis4gs repair`): a cancelled one writes nothing;
+  //    a short one writes the repaired log, whose events are the deletion's prunes only
+  //    (densification off). The deletion and its cleaned scene (the main window's export) are
+  //    written for CTest, which runs `vis4gs repair` on them and compares.
+  {
+    const QString cancelled = directory + "/cleanup-cancelled.h5";
+    QFile::remove(cancelled);
+    ok = check(this->StartFineTune(cancelled, 100000, false, false),
+           "clean-up: the fine-tune starts from the current preview") &&
+      ok;
+    this->CancelFineTune();
+    const bool finished = this->WaitForFineTune();
+    ok = check(!finished && !QFileInfo::exists(cancelled) &&
+             QDir(directory)
+               .entryList({ ".cleanup-cancelled*" }, QDir::Files | QDir::Hidden)
+               .isEmpty() &&
+             d->RepairLabel->text().contains("cancelled"),
+           "clean-up: a cancelled fine-tune writes no log, nor its temporary (" +
+             d->RepairLabel->text().toStdString() + ")") &&
+      ok;
+    const QString repaired = directory + "/cleanup-repaired.h5";
+    // One iteration: the trainer logs /metrics (every view rendered) after each of so few.
+    const int iterations = 1;
+    QFile::remove(repaired);
+    const bool tuned =
+      this->StartFineTune(repaired, iterations, false, false) && this->WaitForFineTune();
+    ok = check(tuned,
+           "clean-up: fine-tuned " + std::to_string(iterations) + " iteration (" +
+             d->RepairLabel->text().toStdString() + ")") &&
+      ok;
+    std::vector<std::int64_t> deleted, pruned;
+    for (vtkIdType id : selected())
+    {
+      deleted.push_back(static_cast<std::int64_t>(id));
+    }
+    int last = -1;
+    std::size_t events = 0;
+    try
+    {
+      const vis4gs::TrainingLogReader log(repaired.toStdString());
+      const vis4gs::EventTable table = log.ReadEvents();
+      events = table.Size();
+      for (std::size_t i = 0; i < table.Size(); ++i)
+      {
+        if (table.Kind[i] == static_cast<std::uint8_t>(vis4gs::EventKind::Prune) &&
+          table.Iteration[i] == d->Hub->GetIteration())
+        {
+          pruned.push_back(table.Parent[i]);
+        }
+      }
+      last = log.GetSnapshotIterations().back();
+    }
+    catch (const std::exception& e)
+    {
+      check(false, std::string("clean-up: the repaired log reads back: ") + e.what());
+    }
+    std::sort(pruned.begin(), pruned.end());
+    ok = check(!deleted.empty() && pruned == deleted && events == deleted.size() &&
+             last == d->Hub->GetIteration() + iterations,
+           "clean-up: the repaired log's " + std::to_string(events) +
+             " events are the prunes "
+             "of the " +
+             std::to_string(deleted.size()) + " deleted Gaussians at iteration " +
+             std::to_string(d->Hub->GetIteration()) + "; its last snapshot is iteration " +
+             std::to_string(last)) &&
+      ok;
+    bool filled = !d->Views->isColumnHidden(RepairedColumn) && d->Views->rowCount() > 0;
+    for (int r = 0; filled && r < d->Views->rowCount(); ++r)
+    {
+      const double before = d->Views->item(r, 3)->data(Qt::UserRole).toDouble();
+      const double after = d->Views->item(r, RepairedColumn)->data(Qt::UserRole).toDouble();
+      filled = std::isnan(before) == std::isnan(after);
+    }
+    ok = check(filled, "clean-up: the table shows the repaired figures of every view") && ok;
+    Vis4GSWriteSelectedIds(directory + "/cleanup-repair-deleted.csv", d->Hub);
+    Vis4GSWriteSelectedScene(directory + "/cleanup-repair-cleaned.ply", d->Scene, d->Hub, true);
+    ok = check(this->WriteRepairTable(directory + "/cleanup-repair.csv") &&
+             QFileInfo::exists(directory + "/cleanup-repair-cleaned.ply"),
+           "clean-up: cleanup-repair.csv, the deletion and its cleaned scene are written") &&
+      ok;
+  }
   return ok;
 }

@@ -9,11 +9,15 @@
  * measure deleting the selection against the training and test images
  * (Core/Selection/RemovalEffect.h) in a worker thread, shown per view (worst first) and per
  * split, with the before / after / |difference| images of a chosen view; delete the selection
- * to a new PLY (the main window's export).
+ * to a new PLY (the main window's export); fine-tune the previewed deletion (Core/Selection/
+ * FineTune.h) and show the repaired figures as a third state, writing the repaired run's log,
+ * which the main window or the comparison window opens.
  *
  * The "before" of a scene is measured once, per 16x16 tile, and reused by every later
  * measurement of the same scene and cameras (RemovalEffectOptions::TileBaseline): a preview
- * renders again only the tiles its selection changes.
+ * renders again only the tiles its selection changes. The application's score pass hands the
+ * panel the "before" of every training view it rendered at full resolution
+ * (SetScoreBaseline()), so that the first preview renders only the test views "before".
  */
 #ifndef Vis4GSCleanupPanel_h
 #define Vis4GSCleanupPanel_h
@@ -29,6 +33,11 @@ class QString;
 class vtkGaussianSelectionHub;
 class vtkPolyData;
 class vtkTable;
+
+namespace vis4gs
+{
+struct RemovalBaseline;
+}
 
 class Vis4GSCleanupPanel : public QWidget
 {
@@ -52,6 +61,16 @@ public:
    * scores it reads are there.
    */
   void SetScene(vtkPolyData* scene, vtkTable* cameras);
+
+  /**
+   * The "before" of @p scene in @p cameras per tile that the application's score pass kept
+   * (Vis4GSDocument::ComputeScores()): a preview of this scene renders no view it holds
+   * "before", and only the tiles its selection changes "after". Dropped when the panel's
+   * scene changes (another snapshot); ignored when @p scene is not the panel's scene.
+   */
+  void SetScoreBaseline(vtkPolyData* scene,
+    vtkTable* cameras,
+    const vis4gs::RemovalBaseline& baseline);
 
   /// What "Delete selection to new PLY..." does (the main window's export).
   void SetDeleteAction(std::function<void()> action);
@@ -85,6 +104,26 @@ public:
   void ShowDifference(int row);
 
   /**
+   * Starts fine-tuning the previewed deletion (the table shown, of the current selection and
+   * snapshot) for @p iterations with the built-in trainer (vis4gs::FineTune(), as `vis4gs
+   * repair`), positions fixed unless @p freePositions, densification off unless @p densify, in
+   * a worker thread with its progress in the progress bar and Cancel. The repaired run's log
+   * (the deletion as prune events at the snapshot's iteration, then the fine-tune) is written
+   * to @p logPath; the table gets the repaired figures of every view. False, with the reason
+   * shown, when there is no current preview or a worker runs.
+   */
+  bool StartFineTune(const QString& logPath, int iterations, bool freePositions, bool densify);
+  /// Asks the fine-tune running to stop after its current iteration (no log is written).
+  void CancelFineTune();
+  /// Processes events until the fine-tune started last is done; false if it failed or was
+  /// cancelled.
+  bool WaitForFineTune();
+  /// Writes the figures of the last fine-tune in the columns of `vis4gs repair`'s repair.csv.
+  bool WriteRepairTable(const QString& path) const;
+  /// What "Open the repaired log" does (the main window opens the file).
+  void SetOpenAction(std::function<void(const QString& path)> action);
+
+  /**
    * The panel's part of `vis4gs view --self-test` on a scene with cameras and images: a bad
    * rule leaves the selection alone, a rule combines with a brushed selection, save/load,
    * the measurement's table and images. Writes cleanup-selection.csv, cleanup-before-after.csv
@@ -101,6 +140,8 @@ private:
   void OnRuleEdited();
   void OnSelectionChanged();
   void OnMeasured();
+  void OnFineTuned();
+  void UpdateButtons();
 
   struct Internals;
   std::unique_ptr<Internals> d;

@@ -382,11 +382,22 @@ void Vis4GSCompareWindow::AskAndOpen(QWidget* parent,
   {
     return;
   }
+  OpenWindow(parent, a, iteration, b, cameras);
+}
+
+//------------------------------------------------------------------------------
+Vis4GSCompareWindow* Vis4GSCompareWindow::OpenWindow(QWidget* parent,
+  const QString& a,
+  int iteration,
+  const QString& b,
+  const QString& cameras)
+{
   auto* window = new Vis4GSCompareWindow(parent);
   window->setWindowFlag(Qt::Window);
   window->setAttribute(Qt::WA_DeleteOnClose);
   window->Open(a, iteration, b, cameras);
   window->show();
+  return window;
 }
 
 //------------------------------------------------------------------------------

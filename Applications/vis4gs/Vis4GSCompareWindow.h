@@ -50,6 +50,14 @@ public:
     const std::vector<int>& snapshots,
     const QString& cameras);
 
+  /// A comparison window of @p a at @p iteration against @p b (Open()), shown as a window of
+  /// its own that deletes itself when closed (the clean-up panel's repaired log, AskAndOpen()).
+  static Vis4GSCompareWindow* OpenWindow(QWidget* parent,
+    const QString& a,
+    int iteration,
+    const QString& b,
+    const QString& cameras = {});
+
   /// Thresholds used by the next comparison (move, opacity, scale; `vis4gs compare`'s).
   void SetThresholds(double move, double opacity, double scale);
 

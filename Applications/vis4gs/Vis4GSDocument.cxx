@@ -3,6 +3,7 @@
 #include "Vis4GSStateFiles.h"
 
 #include "GaussianMath.h"
+#include "RemovalEffect.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
@@ -446,7 +447,8 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
 vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   vtkTable* cameras,
   bool withImages,
-  const Progress& progress)
+  const Progress& progress,
+  vis4gs::RemovalBaseline* baseline)
 {
   if (!scene)
   {
@@ -465,6 +467,21 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   filter->SetComputeBlurScore(haveCameras && withImages);
   filter->SetComputeNeedleScore(haveCameras && withImages);
   filter->SetComputeNeedleShape(true);
+  if (baseline && haveCameras && withImages && filter->GetLossResolution() == 1)
+  {
+    std::vector<vis4gs::Camera> views;
+    std::string error;
+    if (!vis4gs::TableToCameras(cameras, views, &error))
+    {
+      throw std::runtime_error("the score cameras: " + error);
+    }
+    // The recorder sizes the baseline from the cloud's count and the cameras' sizes only: the
+    // filter converts the scene itself, a second copy of its Gaussians is not needed here.
+    vis4gs::GaussianCloud counted;
+    counted.Count = static_cast<std::size_t>(scene->GetNumberOfPoints());
+    filter->SetViewRendered(
+      vis4gs::RemovalBaselineRecorder(counted, views, vis4gs::RasterSettings{}, 0, *baseline));
+  }
   ProgressForwarder forward(filter, progress, 0.0, 1.0, "computing the scores");
   const std::string errors = Vis4GSUpdate(filter, 0);
   if (!errors.empty() || !filter->GetOutput())

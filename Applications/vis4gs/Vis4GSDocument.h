@@ -28,6 +28,7 @@ class vtkTree;
 namespace vis4gs
 {
 class TrainingLogReader;
+struct RemovalBaseline;
 }
 
 struct Vis4GSDocument
@@ -92,11 +93,17 @@ struct Vis4GSDocument
    * always; ViewCoverage with @p cameras; BlurScore and NeedleScore when @p withImages too.
    * Returns a new polydata holding the arrays (the input is not modified, so this can run in
    * a worker thread while the GUI draws @p scene). Throws std::runtime_error on failure.
+   *
+   * With @p baseline, the blur/needle pass (full resolution, with images) also keeps the
+   * "before" of a clean-up of @p scene per tile on the renders it makes anyway
+   * (vis4gs::RemovalBaselineRecorder): the clean-up panel then renders no training view
+   * "before" again. It is left empty when that pass does not run.
    */
   static vtkSmartPointer<vtkPolyData> ComputeScores(vtkPolyData* scene,
     vtkTable* cameras,
     bool withImages,
-    const Progress& progress);
+    const Progress& progress,
+    vis4gs::RemovalBaseline* baseline = nullptr);
 
   /**
    * Writes the views' inputs into @p folder, for comparing the application with a script

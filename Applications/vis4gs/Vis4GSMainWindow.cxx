@@ -9,6 +9,7 @@
 #include "Vis4GSSelectionTable.h"
 
 #include "GaussianIO.h"
+#include "RemovalEffect.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianHistogramView.h"
@@ -369,6 +370,7 @@ void Vis4GSMainWindow::BuildUi()
   makeDock(2, "C. Log and control panel", panelScroll, Qt::RightDockWidgetArea);
   d->Cleanup = new Vis4GSCleanupPanel(d->Hub, this);
   d->Cleanup->SetDeleteAction([this] { this->ExportPly(true); });
+  d->Cleanup->SetOpenAction([this](const QString& path) { this->Open(path); });
   d->Cleanup->SetProgress(
     [this](double fraction, const QString& message, bool done)
     {
@@ -875,14 +877,17 @@ void Vis4GSMainWindow::StartScores()
       ? (images ? "computing View Coverage, Blur, Needle scores and needle shape"
                 : "computing View Coverage and needle shape (the log has no training images)")
       : "computing the needle shape (no cameras: no View Coverage, Blur or Needle score)");
+  // The blur/needle pass's renders are the clean-up panel's "before" of this snapshot.
+  auto baseline = std::make_shared<vis4gs::RemovalBaseline>();
   d->ScoreWorker = QThread::create(
-    [this, input, cameras, images]
+    [this, input, cameras, images, baseline]
     {
       vtkSmartPointer<vtkPolyData> scores;
       QString error;
       try
       {
-        scores = Vis4GSDocument::ComputeScores(input,
+        scores = Vis4GSDocument::ComputeScores(
+          input,
           cameras,
           images,
           [this](double f, const std::string& m)
@@ -890,7 +895,8 @@ void Vis4GSMainWindow::StartScores()
             const QString message = QString::fromStdString(m);
             QMetaObject::invokeMethod(
               this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
-          });
+          },
+          baseline.get());
       }
       catch (const std::exception& e)
       {
@@ -898,7 +904,7 @@ void Vis4GSMainWindow::StartScores()
       }
       QMetaObject::invokeMethod(
         this,
-        [this, input, scores, error]
+        [this, input, cameras, scores, error, baseline]
         {
           d->ScoreWorker->wait();
           d->ScoreWorker->deleteLater();
@@ -919,6 +925,8 @@ void Vis4GSMainWindow::StartScores()
             current->Modified();
             this->statusBar()->showMessage("scores computed", 3000);
             this->UpdateScene(); // overlay and histogram lists
+            // (After UpdateScene: it gives the panel the score cameras of the first pass.)
+            d->Cleanup->SetScoreBaseline(current, cameras, *baseline);
           }
           if (d->ScoresPending)
           {

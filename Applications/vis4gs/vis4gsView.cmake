@@ -107,6 +107,16 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "${_vis4gs_cleanup_dir}")
   set_tests_properties(vis4gs-ViewCleanupMatchesAnalyze PROPERTIES
     FIXTURES_REQUIRED "vis4gsViewDemoShots;vis4gsViewCleanupAnalyze")
+  # The panel's "Fine-tune..." (the self-test fine-tunes its previewed deletion): the same log
+  # events and snapshots, and the same figures, as `vis4gs repair` on the same inputs.
+  add_test(NAME vis4gs-ViewCleanupRepairMatchesRepair
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckCleanupRepair.py"
+      $<TARGET_FILE:vis4gs> "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
+      "${_vis4gs_demo_shots}" "${_vis4gs_view_dir}/cleanup-repair")
+  set_tests_properties(vis4gs-ViewCleanupRepairMatchesRepair PROPERTIES
+    LABELS "Application;GUI;Python" ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1"
+    PASS_REGULAR_EXPRESSION "the panel's fine-tune equals vis4gs repair"
+    FAIL_REGULAR_EXPRESSION "FAILED" FIXTURES_REQUIRED vis4gsViewDemoShots)
   # The comparison window (issue 20), three ways: two iterations of the demo log, the demo
   # log against the scene analyze --select="views<=3" --delete cleaned (a log and a scene of
   # the same cameras: the deleted floaters died), and two synthetic logs (both runs' metric
