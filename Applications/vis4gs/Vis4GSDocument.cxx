@@ -2,24 +2,21 @@
 #include "Vis4GSDocument.h"
 #include "Vis4GSStateFiles.h"
 
-#include "GaussianMath.h"
 #include "RemovalEffect.h"
-#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
+#include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSceneReader.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
-#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -230,20 +227,30 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   {
     doc->IsLog = true;
     report(0.05, "opening the training log");
-    doc->Log = std::make_shared<vis4gs::TrainingLogReader>(path);
-    const auto& log = *doc->Log;
-    const auto& header = log.GetHeader();
-    doc->Snapshots = log.GetSnapshotIterations();
-    text << path << "\nproducer: " << header.Producer << "\nscene: " << header.Scene
-         << "\nplanned iterations: " << header.Iterations << "\nSH degree: " << header.ShDegree
-         << "\nsnapshots: " << doc->Snapshots.size() << "\n";
-    for (const auto& lack : log.GetLacks())
-    {
-      text << "lacks: " << lack << "\n";
-    }
     doc->Reader = vtkSmartPointer<vtkGaussianTrainingLogReader>::New();
-    doc->Reader->SetFileName(path.c_str());
-    if (log.HasMetrics())
+    vtkGaussianTrainingLogReader* log = doc->Reader;
+    log->SetFileName(path.c_str());
+    {
+      Vis4GSErrorCollector errors(log);
+      log->UpdateInformation(); // opens the log: header, snapshot list, what it holds
+      if (!errors.GetMessages().empty())
+      {
+        throw std::runtime_error(errors.GetMessages());
+      }
+    }
+    for (int i = 0; i < log->GetNumberOfSnapshots(); ++i)
+    {
+      doc->Snapshots.push_back(log->GetSnapshotIteration(i));
+    }
+    text << path << "\nproducer: " << log->GetProducer() << "\nscene: " << log->GetSceneName()
+         << "\nplanned iterations: " << log->GetPlannedIterations()
+         << "\nSH degree: " << log->GetTrainerSHDegree() << "\nsnapshots: " << doc->Snapshots.size()
+         << "\n";
+    for (int i = 0; i < log->GetNumberOfLacks(); ++i)
+    {
+      text << "lacks: " << log->GetLack(i) << "\n";
+    }
+    if (log->HasMetrics())
     {
       report(0.1, "reading the metrics");
       const std::string errors = Vis4GSUpdate(doc->Reader, 2);
@@ -254,7 +261,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       doc->Metrics = Detach(doc->Reader->GetMetricsOutput());
       text << "metrics rows: " << doc->Metrics->GetNumberOfRows() << "\n";
     }
-    if (log.HasCameras())
+    if (log->HasCameras())
     {
       const std::string errors = Vis4GSUpdate(doc->Reader, 1);
       if (!errors.empty())
@@ -272,7 +279,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     std::thread genealogyThread;
     std::string genealogyError, readError, genealogyTimes;
     std::size_t eventCount = 0;
-    if (log.HasEvents())
+    if (log->HasEvents())
     {
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
       Vis4GSDocument* target = doc.get();
@@ -373,51 +380,43 @@ int Vis4GSDocument::LoadIteration(int iteration)
 vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t>& ids) const
 {
   auto table = vtkSmartPointer<vtkTable>::New();
-  vtkNew<vtkIntArray> it;
-  it->SetName(vis4gs::arrays::HistoryIteration);
-  vtkNew<vtkIdTypeArray> id;
-  id->SetName(vis4gs::arrays::GaussianId);
-  vtkNew<vtkDoubleArray> opacity, scale, px, py, pz;
-  opacity->SetName(vis4gs::arrays::Opacity);
-  scale->SetName(vis4gs::arrays::Scale);
-  px->SetName(vis4gs::arrays::HistoryPositionX);
-  py->SetName(vis4gs::arrays::HistoryPositionY);
-  pz->SetName(vis4gs::arrays::HistoryPositionZ);
-  if (this->Log && !ids.empty())
+  if (!this->Reader || ids.empty())
   {
-    const vis4gs::PropertyHistory h = this->Log->ReadPropertyHistory(
-      ids, vis4gs::SnapshotPositions | vis4gs::SnapshotLogScales | vis4gs::SnapshotOpacityLogits);
-    for (std::size_t r = 0; r < h.Size(); ++r)
-    {
-      it->InsertNextValue(h.Iteration[r]);
-      id->InsertNextValue(h.Id[r]);
-      opacity->InsertNextValue(vis4gs::Sigmoid(static_cast<double>(h.OpacityLogits[r])));
-      const float m =
-        std::max({ h.LogScales[3 * r], h.LogScales[3 * r + 1], h.LogScales[3 * r + 2] });
-      scale->InsertNextValue(vis4gs::ActivatedScale(static_cast<double>(m)));
-      px->InsertNextValue(h.Positions[3 * r]);
-      py->InsertNextValue(h.Positions[3 * r + 1]);
-      pz->InsertNextValue(h.Positions[3 * r + 2]);
-    }
+    return table;
   }
-  for (vtkAbstractArray* a : { static_cast<vtkAbstractArray*>(it),
-         static_cast<vtkAbstractArray*>(id),
-         static_cast<vtkAbstractArray*>(opacity),
-         static_cast<vtkAbstractArray*>(scale),
-         static_cast<vtkAbstractArray*>(px),
-         static_cast<vtkAbstractArray*>(py),
-         static_cast<vtkAbstractArray*>(pz) })
+  vtkNew<vtkIdTypeArray> wanted;
+  wanted->SetNumberOfValues(static_cast<vtkIdType>(ids.size()));
+  for (std::size_t i = 0; i < ids.size(); ++i)
   {
-    table->AddColumn(a);
+    wanted->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(ids[i]));
+  }
+  Vis4GSErrorCollector errors(this->Reader);
+  if (!this->Reader->GetPropertyHistory(wanted, table))
+  {
+    throw std::runtime_error(errors.GetMessages());
   }
   return table;
+}
+
+std::vector<std::int64_t> Vis4GSDocument::HistoryDumpSelection() const
+{
+  std::vector<std::int64_t> ids;
+  vtkDataArray* column =
+    this->Scene ? this->Scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId) : nullptr;
+  const vtkIdType n = column ? column->GetNumberOfTuples() : 0;
+  const vtkIdType count = std::min<vtkIdType>(n, HistoryLines);
+  for (vtkIdType k = 0; k < count; ++k)
+  {
+    ids.push_back(static_cast<std::int64_t>(column->GetTuple1(k * n / count)));
+  }
+  return ids;
 }
 
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
 {
   this->CamerasWithImages = 0;
-  if (!this->Cameras || !this->Log)
+  if (!this->Cameras || !this->Reader)
   {
     return this->Cameras;
   }
@@ -427,8 +426,11 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
   {
     throw std::runtime_error(this->Path + ": " + error);
   }
-  const std::vector<std::string> names = this->Log->GetImageNames();
-  const std::set<std::string> embedded(names.begin(), names.end());
+  std::set<std::string> embedded;
+  for (int i = 0; i < this->Reader->GetNumberOfEmbeddedImages(); ++i)
+  {
+    embedded.insert(this->Reader->GetEmbeddedImageName(i));
+  }
   const std::string prefix = "/images/";
   for (const vis4gs::Camera& c : cameras)
   {
@@ -563,6 +565,10 @@ void Vis4GSDocument::DumpInputs(const std::string& folder, vtkPolyData* scores) 
     {
       write(tables, table, name);
     }
+  }
+  if (this->Reader && this->Scene)
+  {
+    write(tables, this->History(this->HistoryDumpSelection()), "history.vtt");
   }
   if (this->Tree)
   {

@@ -27,7 +27,6 @@ class vtkTree;
 
 namespace vis4gs
 {
-class TrainingLogReader;
 struct RemovalBaseline;
 }
 
@@ -46,10 +45,9 @@ struct Vis4GSDocument
   vtkSmartPointer<vtkTable> TestMetrics;
   vtkSmartPointer<vtkTree> Tree;   ///< genealogy filter output (null when the log has no events)
   vtkSmartPointer<vtkTable> Bands; ///< the genealogy filter's family bands
-  /// The reader whose Gaussians port gives Scene (snapshots of a log).
+  /// The reader whose Gaussians port gives Scene (snapshots of a log); also the header, the
+  /// snapshot list and sizes and the property history (the text of panel C, History()).
   vtkSmartPointer<vtkGaussianTrainingLogReader> Reader;
-  /// Header, snapshot sizes and property history queries (the text of panel C, History()).
-  std::shared_ptr<vis4gs::TrainingLogReader> Log;
   std::vector<int> Snapshots;
   int Iteration = -1;   ///< iteration of Scene (-1 for a PLY)
   std::string Summary;  ///< training log text for panel C
@@ -71,11 +69,19 @@ struct Vis4GSDocument
   int LoadIteration(int iteration);
 
   /**
-   * Property history of @p ids across the snapshots, in the long format of
-   * vtkGaussianTimelineView (Iteration, GaussianId, Opacity, Scale (largest), PositionX..Z).
-   * Empty table without a log.
+   * Property history of @p ids across the snapshots, the long table
+   * vtkGaussianTrainingLogReader::GetPropertyHistory gives a script and the timeline draws
+   * (GaussianId, Iteration, Position, LogScale, Rotation, OpacityLogit, SHDC, Opacity, Scale).
+   * Empty table without a log or ids; throws std::runtime_error with the reader's errors.
    */
   vtkSmartPointer<vtkTable> History(const std::vector<std::int64_t>& ids) const;
+
+  /// The window gives the timeline the history of at most this many selected Gaussians.
+  static constexpr int HistoryLines = 16;
+
+  /// The selection whose History() DumpInputs writes: HistoryLines Gaussians of Scene at
+  /// evenly spread rows (row k * n / HistoryLines), so that old and young ones are in it.
+  std::vector<std::int64_t> HistoryDumpSelection() const;
 
   /**
    * The camera table for vtkGaussianArtifactScoreFilter: Cameras itself (the filter reads the
@@ -109,8 +115,9 @@ struct Vis4GSDocument
    * Writes the views' inputs into @p folder, for comparing the application with a script
    * (`vis4gs view --dump-inputs`): scene.vtp (Scene with the score arrays of @p scores), and
    * as .vtt tables metrics, tree-vertices (the tree's vertex data plus ParentVertex),
-   * tree-edges (edge data) and bands, each when present. Throws std::runtime_error naming
-   * the file on failure.
+   * tree-edges (edge data), bands and history (History() of HistoryDumpSelection(), what
+   * the timeline gets when those Gaussians are selected), each when present. Throws
+   * std::runtime_error naming the file on failure.
    */
   void DumpInputs(const std::string& folder, vtkPolyData* scores) const;
 

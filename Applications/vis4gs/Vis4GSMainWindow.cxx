@@ -10,13 +10,13 @@
 
 #include "GaussianIO.h"
 #include "RemovalEffect.h"
-#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianHistogramView.h"
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
 #include "vtkGaussianTimelineView.h"
+#include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
 #include "vtkGaussianTreeView.h"
 
@@ -960,11 +960,11 @@ void Vis4GSMainWindow::OnSelectionChanged()
 {
   const auto& selected = d->Hub->GetSelectedIdVector();
   d->Panel->Table->Show(d->Doc ? d->Doc->Scene.GetPointer() : nullptr, selected);
-  // History of the selection (first 16) for the timeline.
-  if (d->Doc && d->Doc->Log)
+  // History of the selection (the first HistoryLines) for the timeline, from the log reader.
+  if (d->Doc && d->Doc->Reader)
   {
-    std::vector<std::int64_t> ids(
-      selected.begin(), selected.begin() + std::min<std::size_t>(16, selected.size()));
+    std::vector<std::int64_t> ids(selected.begin(),
+      selected.begin() + std::min<std::size_t>(Vis4GSDocument::HistoryLines, selected.size()));
     try
     {
       d->Timeline->SetHistory(d->Doc->History(ids));
@@ -980,28 +980,28 @@ void Vis4GSMainWindow::OnSelectionChanged()
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::OnIterationChanged(int iteration)
 {
-  if (!d->Doc || !d->Doc->Log || iteration < 0)
+  if (!d->Doc || !d->Doc->Reader || iteration < 0)
   {
     return;
   }
   d->Panel->IterationLabel->setText(QString::number(iteration));
   const auto& s = d->Doc->Snapshots;
-  auto it = std::lower_bound(s.begin(), s.end(), d->Doc->Log->FindNearestSnapshot(iteration));
+  const int nearest = d->Doc->Reader->FindNearestSnapshot(iteration);
+  auto it = std::lower_bound(s.begin(), s.end(), nearest);
   if (it != s.end())
   {
     d->Panel->IterationSlider->blockSignals(true);
     d->Panel->IterationSlider->setValue(static_cast<int>(it - s.begin()));
     d->Panel->IterationSlider->blockSignals(false);
   }
-  if (d->Doc->Log->FindNearestSnapshot(iteration) != d->Doc->Iteration)
+  if (nearest != d->Doc->Iteration)
   {
     // The snapshot is read in this thread (the views need it at once, and the log's reader
     // is not shared with a worker): a busy bar and message are painted before it starts.
     const bool shown = d->Progress->isVisible();
     d->Progress->setRange(0, 0);
     d->Progress->show();
-    this->statusBar()->showMessage(QString("reading the snapshot of iteration %1")
-                                     .arg(d->Doc->Log->FindNearestSnapshot(iteration)));
+    this->statusBar()->showMessage(QString("reading the snapshot of iteration %1").arg(nearest));
     QApplication::processEvents(QEventLoop::ExcludeUserInputEvents);
     QApplication::setOverrideCursor(Qt::WaitCursor);
     auto done = [this, shown]

@@ -5,7 +5,6 @@
 #include "Vis4GSDocument.h"
 #include "Vis4GSMainWindow.h"
 
-#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraFrustums.h"
 #include "vtkGaussianCameraUtilities.h"
@@ -14,6 +13,7 @@
 #include "vtkGaussianSelector.h"
 #include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineView.h"
+#include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
 #include "vtkGaussianTreeView.h"
 
@@ -496,7 +496,7 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
     check(allShown, "the whole lineage is drawn at the overview zoom");
     item->ZoomToSelection();
   }
-  if (doc->Log)
+  if (doc->Reader)
   {
     check(timeline->GetNumberOfHistoryLines() == 1, "the timeline shows its history");
     vtkSmartPointer<vtkTable> h = doc->History({ static_cast<std::int64_t>(targetId) });
@@ -731,7 +731,7 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
   }
   // 4. The iteration slider loads another snapshot into the scene (and back). The pointers
   //    into the old scene above are not used after this.
-  if (doc->Log && doc->Snapshots.size() > 1)
+  if (doc->Reader && doc->Snapshots.size() > 1)
   {
     const int last = doc->Iteration;
     const int previous = doc->Snapshots[doc->Snapshots.size() - 2];
@@ -739,7 +739,7 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
     vtkPolyData* shown = doc->Scene;
     check(hub->GetIteration() == previous && doc->Iteration == previous && shown &&
         mapper->GetInput() == shown &&
-        static_cast<std::size_t>(shown->GetNumberOfPoints()) == doc->Log->GetSnapshotSize(previous),
+        shown->GetNumberOfPoints() == doc->Reader->GetSnapshotSize(previous),
       "the iteration slider loads the snapshot of iteration " + std::to_string(previous) +
         " into the scene (" + std::to_string(shown ? shown->GetNumberOfPoints() : 0) +
         " Gaussians)");

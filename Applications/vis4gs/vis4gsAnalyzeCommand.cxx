@@ -26,6 +26,7 @@
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 #include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianSceneReader.h"
 #include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkCallbackCommand.h"
@@ -200,6 +201,32 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
       c.ImagePath = (logDir / c.ImagePath).string();
     }
   }
+  return cloud;
+}
+
+// A scene file read as a script reads it, by vtkGaussianSceneReader into @p gaussians (the
+// score filter's input; its warnings go to VTK's output window, stderr); the cloud returned is
+// their copy for the Core steps after the scores, with the file's extra properties, which
+// scores.ply keeps.
+vis4gs::GaussianCloud ReadSceneFile(const std::string& path, vtkPolyData* gaussians)
+{
+  vtkNew<vtkGaussianSceneReader> reader;
+  reader->SetFileName(path.c_str());
+  const std::string errors = Vis4GSUpdate(reader, 0);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  gaussians->ShallowCopy(reader->GetOutput());
+  vis4gs::GaussianCloud cloud;
+  std::string error;
+  if (!vis4gs::PolyDataToGaussianCloud(gaussians, cloud, &error, true))
+  {
+    throw std::runtime_error(path + ": " + error);
+  }
+  // The reader numbers the rows of a file without an id property (its IdProperty is empty):
+  // the cloud keeps those ids implicit, as the file has them, so scores.ply gets no id column.
+  cloud.Ids.clear();
   return cloud;
 }
 
@@ -651,17 +678,11 @@ int Run(const Vis4GSArguments& args)
   }
   else
   {
-    vis4gs::GaussianReadReport report;
-    cloud = vis4gs::ReadGaussianScene(scene, {}, &report);
-    for (const std::string& w : report.Warnings)
-    {
-      std::cerr << "vis4gs analyze: warning: " << w << "\n";
-    }
+    cloud = ReadSceneFile(scene, polyData);
     if (needCameras)
     {
       cameras = LoadCameras(scene, args);
     }
-    vis4gs::GaussianCloudToPolyData(cloud, polyData);
   }
   if (mpi.Rank() == 0)
   {

@@ -182,6 +182,12 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
   {
     roots = last.Count ? *std::max_element(last.Ids.begin(), last.Ids.end()) + 1 : 0;
   }
+  // Core's Genealogy, not vtkGaussianGenealogyTreeFilter: the demo draws no tree, it writes
+  // one lineage as text (root-cause.txt) beside the log its trainer wrote, and the trace needs
+  // per-snapshot coverage values that the VTK trace filter leaves to its caller
+  // (vtkGaussianGenealogyLineage); building a vtkTree of every Gaussian to read one chain back
+  // would add a copy and no check. `vis4gs view` and scripts show the same tree through the
+  // VTK filter.
   const vis4gs::Genealogy tree = vis4gs::Genealogy::Build(roots, events, snapshots.back());
   const std::int64_t node = tree.FindNode(floater);
   const std::vector<std::int32_t> snapshotIterations(snapshots.begin(), snapshots.end());

@@ -3,12 +3,13 @@
 
 #include "GaussianMath.h"
 #include "KernelIsa.h"
+#include "ProjectionSteps.h"
 #include "RasterBounds.h"
 #include "RasterKernel.h"
 #include "Rasterizer.h"
+#include "ThreadCount.h"
 
 #include <immintrin.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,12 +78,10 @@ bool Visible(const PreparedGaussian& g, const PreparedView& w, bool rasterMode)
   {
     return false;
   }
-  const float* V = w.V;
-  const float x = g.X, y = g.Y, z = g.Z;
-  const float t0 = V[0] * x + V[1] * y + V[2] * z + V[3];
-  const float t1 = V[4] * x + V[5] * y + V[6] * z + V[7];
-  const float t2 = V[8] * x + V[9] * y + V[10] * z + V[11];
-  if (t2 <= float(raster::NearPlane))
+  // The rasteriser's projection steps (ProjectionSteps.h).
+  const raster::ProjectionView<float> view = raster::ProjectionViewOf(w);
+  const raster::ProjectedViewPosition<float> t = raster::ProjectViewPosition(view, g.X, g.Y, g.Z);
+  if (t.T2 <= float(raster::NearPlane))
   {
     return false;
   }
@@ -90,71 +89,15 @@ bool Visible(const PreparedGaussian& g, const PreparedView& w, bool rasterMode)
   {
     return false; // alpha <= o < 1/255 everywhere
   }
-  const float hx = w.F0[0] * x + w.F0[1] * y + w.F0[2] * z + w.F0[3];
-  const float hy = w.F1[0] * x + w.F1[1] * y + w.F1[2] * z + w.F1[3];
-  const float hw = w.F3[0] * x + w.F3[1] * y + w.F3[2] * z + w.F3[3];
-  const float pw = 1.0f / (hw + 0.0000001f);
-  const float ndcX = hx * pw, ndcY = hy * pw;
-  const float txtz = t0 / t2, tytz = t1 / t2;
-  const float tx = std::min(w.LimX, std::max(-w.LimX, txtz)) * t2;
-  const float ty = std::min(w.LimY, std::max(-w.LimY, tytz)) * t2;
-  const float J00 = w.FocalX / t2, J02 = -(w.FocalX * tx) / (t2 * t2);
-  const float J11 = w.FocalY / t2, J12 = -(w.FocalY * ty) / (t2 * t2);
-  float Tm[2][3];
-  for (int c = 0; c < 3; ++c)
-  {
-    Tm[0][c] = J00 * V[c] + J02 * V[8 + c];
-    Tm[1][c] = J11 * V[4 + c] + J12 * V[8 + c];
-  }
-  const float Sig[3][3] = {
-    { g.S00, g.S01, g.S02 }, { g.S01, g.S11, g.S12 }, { g.S02, g.S12, g.S22 }
-  };
-  float TS[2][3];
-  for (int r = 0; r < 2; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      TS[r][c] = Tm[r][0] * Sig[0][c] + Tm[r][1] * Sig[1][c] + Tm[r][2] * Sig[2][c];
-    }
-  }
-  const float cxx = TS[0][0] * Tm[0][0] + TS[0][1] * Tm[0][1] + TS[0][2] * Tm[0][2];
-  const float cxy = TS[0][0] * Tm[1][0] + TS[0][1] * Tm[1][1] + TS[0][2] * Tm[1][2];
-  const float cyy = TS[1][0] * Tm[1][0] + TS[1][1] * Tm[1][1] + TS[1][2] * Tm[1][2];
-  const float a = cxx + float(raster::Dilation);
-  const float b = cxy;
-  const float c = cyy + float(raster::Dilation);
-  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
+  const float s[6] = { g.S00, g.S01, g.S02, g.S11, g.S12, g.S22 };
+  const raster::ProjectedConic<float> q = raster::ProjectConic(view, g.X, g.Y, g.Z, t, s);
+  if (!q.CovFinite || q.Degenerate || !q.ConicFinite || !q.UvFinite)
   {
     return false;
   }
-  const float det = a * c - b * b;
-  if (det == 0.0f)
-  {
-    return false;
-  }
-  const float detInv = 1.0f / det;
-  const float conA = c * detInv, conB = -b * detInv, conC = a * detInv;
-  const float mid = 0.5f * (a + c);
-  const float root = std::sqrt(std::max(0.1f, mid * mid - det));
-  const float l1 = mid + root, l2 = mid - root;
-  const float radiusF = std::ceil(3.0f * std::sqrt(std::max(l1, l2)));
-  if (!std::isfinite(conA) || !std::isfinite(conB) || !std::isfinite(conC) ||
-    !std::isfinite(radiusF) || !std::isfinite(det))
-  {
-    return false;
-  }
-  const float u = raster::Ndc2Pix(ndcX, w.W), v = raster::Ndc2Pix(ndcY, w.H);
-  if (!std::isfinite(u) || !std::isfinite(v))
-  {
-    return false;
-  }
-  const int radius = raster::ClampToInt(radiusF);
-  const float rr = static_cast<float>(radius);
-  const float bs = float(raster::TileSize);
-  const int x0 = std::min(w.Gx, std::max(0, raster::ClampToInt((u - rr) / bs)));
-  const int y0 = std::min(w.Gy, std::max(0, raster::ClampToInt((v - rr) / bs)));
-  const int x1 = std::min(w.Gx, std::max(0, raster::ClampToInt((u + rr + bs - 1.0f) / bs)));
-  const int y1 = std::min(w.Gy, std::max(0, raster::ClampToInt((v + rr + bs - 1.0f) / bs)));
+  const float u = q.U, v = q.V, conA = q.ConA, conB = q.ConB, conC = q.ConC;
+  const raster::ProjectedTileRect r = raster::ProjectTileRect(view, u, v, q.RadiusF);
+  const int radius = r.Radius, x0 = r.X0, y0 = r.Y0, x1 = r.X1, y1 = r.Y1;
   if (static_cast<long long>(x1 - x0) * (y1 - y0) == 0)
   {
     return false;
@@ -320,7 +263,7 @@ void CountVisibleViews(const GaussianCloud& cloud,
   visibleViews.resize(n, 0);
   const bool rasterMode = mode == FootprintMode::Rasterizer;
   const float mod = static_cast<float>(scaleModifier);
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  const int nt = ThreadCount(threads);
   // The vector path decides the alpha footprint (the exact mode); the 3-sigma mode and
   // machines without AVX2 use the scalar test. Both give identical counts.
   const BlockFunction block = rasterMode ? SelectBlockFunction(kernelIsa) : nullptr;

@@ -4,9 +4,9 @@
 #include "KernelIsa.h"
 #include "MultiViewData.h"
 #include "RasterBounds.h"
+#include "ThreadCount.h"
 
 #include <immintrin.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -543,7 +543,7 @@ void FootprintPass(const ViewProjection<T>& proj,
   const int W = proj.Width, H = proj.Height;
   const std::int64_t n = static_cast<std::int64_t>(proj.Gaussians.size());
   std::uint64_t total = 0, evaluated = 0;
-  const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
+  const int threads = ThreadCount(opt.Threads);
   const int vector = VectorLevel<T>(opt);
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads) reduction(+ : total, evaluated)
   for (std::int64_t ii = 0; ii < n; ++ii)
@@ -582,7 +582,7 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
   const int W = d.Camera.W, H = d.Camera.H;
   const std::int64_t nv = static_cast<std::int64_t>(d.Records.size());
   std::uint64_t total = 0, evaluated = 0;
-  const int threads = opt.Threads > 0 ? opt.Threads : omp_get_max_threads();
+  const int threads = ThreadCount(opt.Threads);
   const int vector = VectorLevel<float>(opt);
   const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
   // Batches of 16: the boxes (EllipseBox, a chain of a division and two square roots per

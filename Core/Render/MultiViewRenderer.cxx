@@ -5,6 +5,7 @@
 #include "MultiViewData.h"
 #include "RadixSort.h"
 #include "RasterInternal.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,7 +35,7 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
   d.ShDegree = settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree);
   d.ShDegree = std::max(0, d.ShDegree);
   d.ViewIndependentColor = d.ShDegree == 0;
-  d.Threads = Threads(settings.Threads);
+  d.Threads = ThreadCount(settings.Threads);
   MultiViewPrepared& p = d.Prepared;
   for (auto* v : { &p.X, &p.Y, &p.Z, &p.S00, &p.S01, &p.S02, &p.S11, &p.S12, &p.S22, &p.Opacity })
   {

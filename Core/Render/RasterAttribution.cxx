@@ -5,6 +5,7 @@
 
 #include "RasterInternal.h"
 #include "RasterKernel.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +32,7 @@ std::vector<PixelAttribution> AttributePixels(const ViewProjection<T>& projectio
   const T bg[3] = { static_cast<T>(settings.Background[0]),
     static_cast<T>(settings.Background[1]),
     static_cast<T>(settings.Background[2]) };
-  const int threads = raster::internal::Threads(settings.Threads);
+  const int threads = ThreadCount(settings.Threads);
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (std::int64_t q = 0; q < count; ++q)
   {

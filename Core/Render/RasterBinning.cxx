@@ -5,13 +5,13 @@
 
 #include "RadixSort.h"
 #include "RasterInternal.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <array>
 #include <cstring>
 #include <memory>
 #include <new>
-#include <omp.h>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -108,7 +108,7 @@ void BinGaussians(const ViewProjection<T>& projection,
   bins.TilesY = projection.TilesY;
   const auto& gs = projection.Gaussians;
   const std::int64_t n = static_cast<std::int64_t>(gs.size());
-  const int chunks = raster::internal::Threads(threads);
+  const int chunks = ThreadCount(threads);
   const std::size_t gx = static_cast<std::size_t>(projection.TilesX);
   const std::size_t gy = static_cast<std::size_t>(projection.TilesY);
 

@@ -8,6 +8,7 @@
 #include "KernelIsa.h"
 #include "RasterBounds.h"
 #include "RasterInternal.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <atomic>
@@ -18,7 +19,6 @@
 #include <limits>
 #include <memory>
 #include <new>
-#include <omp.h>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -250,8 +250,7 @@ void PrepareCompositeData(const ViewProjection<T>& projection, int threads, Comp
   const std::size_t n = projection.Gaussians.size();
   ResizeKeep(data.Kernels, n);
   ResizeKeep(data.Bounds, n);
-  FillCompositeData(
-    projection, raster::internal::Threads(threads), data.Kernels.data(), data.Bounds.data());
+  FillCompositeData(projection, ThreadCount(threads), data.Kernels.data(), data.Bounds.data());
 }
 
 //------------------------------------------------------------------------------
@@ -274,7 +273,7 @@ void CompositeTiles(const ViewProjection<T>& projection,
   {
     throw std::invalid_argument("CompositeTiles: weights and work counts need depth on");
   }
-  const int threads = raster::internal::Threads(settings.Threads);
+  const int threads = ThreadCount(settings.Threads);
   const std::size_t n = projection.Gaussians.size();
   const std::size_t pixels = static_cast<std::size_t>(projection.Width) * projection.Height;
   image.Width = projection.Width;

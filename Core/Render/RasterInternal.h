@@ -24,9 +24,6 @@ namespace raster
 namespace internal
 {
 
-/// OpenMP threads: @p requested when positive, else OpenMP's default.
-int Threads(int requested);
-
 /// madvise(MADV_HUGEPAGE) on the whole 2 MiB pages of a large buffer (before first touch).
 void HugePages(const void* data, std::size_t bytes);
 

@@ -8,8 +8,10 @@
 #include "GaussianMath.h"
 #include "KernelIsa.h"
 #include "MultiViewData.h"
+#include "ProjectionSteps.h"
 #include "RasterBounds.h"
 #include "RasterInternal.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +19,6 @@
 #include <immintrin.h>
 #include <limits>
 #include <memory>
-#include <omp.h>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -638,8 +639,7 @@ void ProjectInto(const GaussianCloud& cloud,
   {
     if (settings.KernelIsa >= 0)
     {
-      ProjectFloatLanes(
-        cloud, settings, raster::internal::Threads(settings.Threads), p, reset, cache, version);
+      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p, reset, cache, version);
       return;
     }
   }
@@ -654,10 +654,13 @@ void ProjectInto(const GaussianCloud& cloud,
   const T limx = T(raster::JacobianClamp) * p.TanFovX;
   const T limy = T(raster::JacobianClamp) * p.TanFovY;
   const T focalX = p.Fx, focalY = p.Fy;
+  const raster::ProjectionView<T> view{
+    V.data(), F.data(), F.data() + 4, F.data() + 12, focalX, focalY, limx, limy, W, H, gx, gy
+  };
   const auto campos = p.CameraCenter;
 
   std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
-  const int threads = raster::internal::Threads(settings.Threads);
+  const int threads = ThreadCount(settings.Threads);
   const std::int64_t count = static_cast<std::int64_t>(n);
 #pragma omp parallel num_threads(threads)
   {
@@ -684,102 +687,45 @@ void ProjectInto(const GaussianCloud& cloud,
         continue;
       }
       const T x = pos[0], y = pos[1], z = pos[2];
+      // Steps 1, 2, 4, 5, 6 are ProjectionSteps.h (the fast coverage runs them too).
       // 1. View position and near cull.
-      const T t0 = V[0] * x + V[1] * y + V[2] * z + V[3];
-      const T t1 = V[4] * x + V[5] * y + V[6] * z + V[7];
-      const T t2 = V[8] * x + V[9] * y + V[10] * z + V[11];
-      g.ViewPosition[0] = t0;
-      g.ViewPosition[1] = t1;
-      g.ViewPosition[2] = t2;
-      g.Depth = t2;
-      if (t2 <= T(raster::NearPlane))
+      const raster::ProjectedViewPosition<T> t = raster::ProjectViewPosition(view, x, y, z);
+      g.ViewPosition[0] = t.T0;
+      g.ViewPosition[1] = t.T1;
+      g.ViewPosition[2] = t.T2;
+      g.Depth = t.T2;
+      if (t.T2 <= T(raster::NearPlane))
       {
         g.Status = ProjectionStatus::NearPlane;
         ++local[static_cast<int>(g.Status)];
         continue;
       }
-      // 2. Clip coordinates.
-      const T hx = F[0] * x + F[1] * y + F[2] * z + F[3];
-      const T hy = F[4] * x + F[5] * y + F[6] * z + F[7];
-      const T hw = F[12] * x + F[13] * y + F[14] * z + F[15];
-      const T pw = T(1) / (hw + T(0.0000001));
-      const T ndcX = hx * pw, ndcY = hy * pw;
       // 3. 3D covariance R diag(s^2) R^T.
       const std::array<T, 6> sigma = GaussianCovariance<T>(ls, rot, mod);
-      const T Sig[3][3] = { { sigma[0], sigma[1], sigma[2] },
-        { sigma[1], sigma[3], sigma[4] },
-        { sigma[2], sigma[4], sigma[5] } };
-      // 4. EWA projection with the clamped Jacobian.
-      const T txtz = t0 / t2, tytz = t1 / t2;
-      const T tx = std::min(limx, std::max(-limx, txtz)) * t2;
-      const T ty = std::min(limy, std::max(-limy, tytz)) * t2;
-      const T J00 = focalX / t2, J02 = -(focalX * tx) / (t2 * t2);
-      const T J11 = focalY / t2, J12 = -(focalY * ty) / (t2 * t2);
-      T Tm[2][3]; // J * R_v
-      for (int c = 0; c < 3; ++c)
+      const T s[6] = { sigma[0], sigma[1], sigma[2], sigma[3], sigma[4], sigma[5] };
+      // 2, 4, 5. Clip coordinates, EWA projection with the clamped Jacobian, det cull,
+      // conic, radius; the pixel-space mean of 6.
+      const raster::ProjectedConic<T> q = raster::ProjectConic(view, x, y, z, t, s);
+      g.Cov2D[0] = q.A;
+      g.Cov2D[1] = q.B;
+      g.Cov2D[2] = q.C;
+      if (!q.CovFinite || q.Degenerate || !q.ConicFinite)
       {
-        Tm[0][c] = J00 * V[c] + J02 * V[8 + c];
-        Tm[1][c] = J11 * V[4 + c] + J12 * V[8 + c];
-      }
-      T TS[2][3];
-      for (int r = 0; r < 2; ++r)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          TS[r][c] = Tm[r][0] * Sig[0][c] + Tm[r][1] * Sig[1][c] + Tm[r][2] * Sig[2][c];
-        }
-      }
-      const T cxx = TS[0][0] * Tm[0][0] + TS[0][1] * Tm[0][1] + TS[0][2] * Tm[0][2];
-      const T cxy = TS[0][0] * Tm[1][0] + TS[0][1] * Tm[1][1] + TS[0][2] * Tm[1][2];
-      const T cyy = TS[1][0] * Tm[1][0] + TS[1][1] * Tm[1][1] + TS[1][2] * Tm[1][2];
-      const T a = cxx + T(raster::Dilation);
-      const T b = cxy;
-      const T c = cyy + T(raster::Dilation);
-      g.Cov2D[0] = a;
-      g.Cov2D[1] = b;
-      g.Cov2D[2] = c;
-      if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
-      {
-        g.Status = ProjectionStatus::NonFinite;
+        g.Status =
+          q.CovFinite && q.Degenerate ? ProjectionStatus::Degenerate : ProjectionStatus::NonFinite;
         ++local[static_cast<int>(g.Status)];
         continue;
       }
-      // 5. det cull, conic, radius.
-      const T det = a * c - b * b;
-      if (det == T(0))
-      {
-        g.Status = ProjectionStatus::Degenerate;
-        ++local[static_cast<int>(g.Status)];
-        continue;
-      }
-      const T detInv = T(1) / det;
-      const T conA = c * detInv, conB = -b * detInv, conC = a * detInv;
-      const T mid = T(0.5) * (a + c);
-      const T root = std::sqrt(std::max(T(0.1), mid * mid - det));
-      const T l1 = mid + root, l2 = mid - root;
-      const T radiusF = std::ceil(T(3) * std::sqrt(std::max(l1, l2)));
-      if (!std::isfinite(conA) || !std::isfinite(conB) || !std::isfinite(conC) ||
-        !std::isfinite(radiusF) || !std::isfinite(det))
-      {
-        g.Status = ProjectionStatus::NonFinite;
-        ++local[static_cast<int>(g.Status)];
-        continue;
-      }
-      // 6. Pixel-space mean and tile rectangle.
-      const T u = raster::Ndc2Pix(ndcX, W), v = raster::Ndc2Pix(ndcY, H);
-      const int radius = raster::ClampToInt(radiusF);
-      const T rr = static_cast<T>(radius);
-      const T bs = T(raster::TileSize);
-      const int x0 = std::min(gx, std::max(0, raster::ClampToInt((u - rr) / bs)));
-      const int y0 = std::min(gy, std::max(0, raster::ClampToInt((v - rr) / bs)));
-      const int x1 = std::min(gx, std::max(0, raster::ClampToInt((u + rr + bs - T(1)) / bs)));
-      const int y1 = std::min(gy, std::max(0, raster::ClampToInt((v + rr + bs - T(1)) / bs)));
+      // 6. Tile rectangle.
+      const raster::ProjectedTileRect r = raster::ProjectTileRect(view, q.U, q.V, q.RadiusF);
+      const T u = q.U, v = q.V;
+      const int x0 = r.X0, y0 = r.Y0, x1 = r.X1, y1 = r.Y1;
       g.U = u;
       g.V = v;
-      g.ConicA = conA;
-      g.ConicB = conB;
-      g.ConicC = conC;
-      g.Radius = radius;
+      g.ConicA = q.ConA;
+      g.ConicB = q.ConB;
+      g.ConicC = q.ConC;
+      g.Radius = r.Radius;
       g.TileRect[0] = x0;
       g.TileRect[1] = y0;
       g.TileRect[2] = x1;

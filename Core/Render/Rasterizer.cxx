@@ -5,8 +5,8 @@
 #include "Rasterizer.h"
 
 #include "RasterInternal.h"
+#include "ThreadCount.h"
 
-#include <omp.h>
 #include <stdexcept>
 #include <string>
 #if defined(__linux__)
@@ -135,12 +135,6 @@ namespace raster
 {
 namespace internal
 {
-int Threads(int requested)
-{
-  return requested > 0 ? requested : omp_get_max_threads();
-}
-
-//------------------------------------------------------------------------------
 // Asks Linux for transparent huge pages on a large buffer before it is first touched: the
 // multi-megabyte buffers of projection and binning otherwise cost one page fault per 4 KiB
 // (serial when a std::vector value-initialises them) and a TLB miss on most scattered writes.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "RemovalEffect.h"
 
-#include "RasterInternal.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <chrono>
@@ -384,7 +384,7 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
   }
   RemovalEffect effect;
   const RasterSettings settings = Settings(options);
-  const int threads = raster::internal::Threads(options.Threads);
+  const int threads = ThreadCount(options.Threads);
 
   // Which views a removed Gaussian takes part in: project only those.
   std::vector<std::uint8_t> kept(removed.size());

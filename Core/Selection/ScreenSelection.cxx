@@ -4,8 +4,7 @@
 #include "Footprint.h"
 #include "KernelIsa.h"
 #include "RasterKernel.h"
-
-#include <omp.h>
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,11 +16,6 @@ namespace vis4gs
 {
 namespace
 {
-int ThreadCount(int requested)
-{
-  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
-}
-
 typedef float V16 __attribute__((vector_size(64)));
 typedef std::int32_t I16 __attribute__((vector_size(64)));
 

@@ -3,7 +3,7 @@
 
 #include "GaussianMath.h"
 #include "NeedleShape.h"
-#include "RasterInternal.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <array>
@@ -553,7 +553,7 @@ public:
 private:
   int Threads() const
   {
-    return raster::internal::Threads(this->Inputs.Threads);
+    return ThreadCount(this->Inputs.Threads);
   }
 
   const std::vector<double>& Score(const std::vector<double>* values, const char* what)
@@ -797,7 +797,7 @@ std::vector<std::uint8_t> IsolatedGaussians(const GaussianCloud& cloud, double r
   }
   const double r2 = radius * radius;
   const long long count = static_cast<long long>(n);
-#pragma omp parallel for schedule(dynamic, 4096) num_threads(raster::internal::Threads(threads))
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(ThreadCount(threads))
   for (long long ii = 0; ii < count; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);

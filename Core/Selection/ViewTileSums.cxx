@@ -2,8 +2,8 @@
 #include "ViewTileSums.h"
 
 #include "Loss.h"
-#include "RasterInternal.h"
 #include "RasterKernel.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -133,7 +133,7 @@ void RemeasureViewTiles(ViewTileSums& sums,
       " tiles (" + std::to_string(sums.Sums.size()) + " values)");
   }
   const int W = sums.Width, H = sums.Height;
-  const int nthreads = raster::internal::Threads(threads);
+  const int nthreads = ThreadCount(threads);
   std::vector<float> cropRender, cropImage, map;
   for (const TileGroup& g : GroupTiles(tiles, sums.TilesX, sums.TilesY))
   {

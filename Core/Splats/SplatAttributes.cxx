@@ -2,8 +2,7 @@
 #include "SplatAttributes.h"
 
 #include "GaussianMath.h"
-
-#include <omp.h>
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +13,6 @@ namespace vis4gs
 {
 namespace
 {
-int ThreadCount(int requested)
-{
-  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
-}
-
 void CheckArray(const char* name, std::size_t size, std::size_t n, std::size_t per)
 {
   if (size != n * per)

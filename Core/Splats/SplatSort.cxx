@@ -2,6 +2,7 @@
 #include "SplatSort.h"
 
 #include "RadixSort.h"
+#include "ThreadCount.h"
 
 #include <omp.h>
 
@@ -17,11 +18,6 @@ namespace vis4gs
 {
 namespace
 {
-int ThreadCount(int requested)
-{
-  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
-}
-
 std::uint32_t FloatBits(float f)
 {
   std::uint32_t u;

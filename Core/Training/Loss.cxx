@@ -2,6 +2,7 @@
 #include "Loss.h"
 
 #include "KernelIsa.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,16 +23,6 @@ namespace
 constexpr int Radius = 5; // 11x11 window, zero padding of 5
 constexpr double C1 = 0.01 * 0.01;
 constexpr double C2 = 0.03 * 0.03;
-
-int ThreadCount(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
 
 std::vector<double> MakeWindow()
 {

@@ -5,6 +5,7 @@
 #include "KernelIsa.h"
 #include "RasterBounds.h"
 #include "RasterKernel.h"
+#include "ThreadCount.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,24 +14,10 @@
 #include <string>
 #include <type_traits>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace vis4gs
 {
 namespace
 {
-
-int ThreadCount(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
 
 //------------------------------------------------------------------------------
 // SH basis values Y_k(d) for k < 16 (reference §2.4).

@@ -5,6 +5,7 @@
 #include "Loss.h"
 #include "RasterBackward.h"
 #include "Rasterizer.h"
+#include "ThreadCount.h"
 #include "TrainingLogWriter.h"
 
 #include <algorithm>
@@ -13,10 +14,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace vis4gs
 {
@@ -28,16 +25,6 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b)
 {
   return std::chrono::duration<double>(b - a).count();
-}
-
-int ThreadCount(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
 }
 
 int ScaledCount(int value, double factor, int minimum)

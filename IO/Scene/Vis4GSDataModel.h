@@ -93,13 +93,12 @@ constexpr const char* EventChild = "Child";
 constexpr const char* EventInitialIds = "InitialIds";
 constexpr const char* EventInitialCount = "NumberOfInitialGaussians";
 constexpr const char* EventLastIteration = "LastIteration";
-// Property history (long format, one row per Gaussian and snapshot): the timeline view's
-// history table, as the application and vtkGaussianTrainingLogReader::GetPropertyHistory give it.
+// Property history (long format, one row per Gaussian and snapshot): the table
+// vtkGaussianTrainingLogReader::GetPropertyHistory gives the application and a script alike
+// and the timeline view draws (GaussianId, Iteration, Position, LogScale, Rotation,
+// OpacityLogit, SHDC, Opacity, Scale; a vector drawn by one component or its largest).
 constexpr const char* HistoryIteration = "Iteration";
 constexpr const char* HistoryPosition = "Position";
-constexpr const char* HistoryPositionX = "PositionX";
-constexpr const char* HistoryPositionY = "PositionY";
-constexpr const char* HistoryPositionZ = "PositionZ";
 constexpr const char* HistorySHDC = "SHDC";
 // Genealogy tree (vtkGaussianGenealogyTreeFilter) vertex data read by the views
 constexpr const char* TreeGaussianId = "GaussianId";

@@ -48,6 +48,11 @@ public:
   std::vector<int> Iterations;
   std::vector<std::string> Lacks;
   std::vector<std::string> Repairs;
+  vis4gs::TrainingLogHeader Header;
+  bool HasCameras = false;
+  bool HasMetrics = false;
+  bool HasEvents = false;
+  std::vector<std::string> ImageNames;
 };
 
 vtkStandardNewMacro(vtkGaussianTrainingLogReader);
@@ -98,6 +103,18 @@ void vtkGaussianTrainingLogReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Repair: " << this->Repair << "\n";
   os << indent << "LoadedIteration: " << this->LoadedIteration << "\n";
   os << indent << "SnapshotReads: " << this->SnapshotReads << "\n";
+  const vtkInternals& d = *this->Internals;
+  os << indent << "Producer: " << d.Header.Producer << "\n";
+  os << indent << "SceneName: " << d.Header.Scene << "\n";
+  os << indent << "PlannedIterations: " << d.Header.Iterations << "\n";
+  os << indent << "TrainerSHDegree: " << d.Header.ShDegree << "\n";
+  os << indent << "HasCameras: " << d.HasCameras << "\n";
+  os << indent << "HasMetrics: " << d.HasMetrics << "\n";
+  os << indent << "HasEvents: " << d.HasEvents << "\n";
+  os << indent << "NumberOfEmbeddedImages: " << d.ImageNames.size() << "\n";
+  os << indent << "NumberOfSnapshots: " << d.Iterations.size() << "\n";
+  os << indent << "NumberOfLacks: " << d.Lacks.size() << "\n";
+  os << indent << "NumberOfRepairs: " << d.Repairs.size() << "\n";
 }
 
 //------------------------------------------------------------------------------
@@ -170,6 +187,46 @@ const char* vtkGaussianTrainingLogReader::GetRepair(int i)
 }
 
 //------------------------------------------------------------------------------
+const char* vtkGaussianTrainingLogReader::GetProducer()
+{
+  return this->Internals->Header.Producer.c_str();
+}
+const char* vtkGaussianTrainingLogReader::GetSceneName()
+{
+  return this->Internals->Header.Scene.c_str();
+}
+int vtkGaussianTrainingLogReader::GetPlannedIterations()
+{
+  return this->Internals->Header.Iterations;
+}
+int vtkGaussianTrainingLogReader::GetTrainerSHDegree()
+{
+  return this->Internals->Header.ShDegree;
+}
+bool vtkGaussianTrainingLogReader::HasCameras()
+{
+  return this->Internals->HasCameras;
+}
+bool vtkGaussianTrainingLogReader::HasMetrics()
+{
+  return this->Internals->HasMetrics;
+}
+bool vtkGaussianTrainingLogReader::HasEvents()
+{
+  return this->Internals->HasEvents;
+}
+int vtkGaussianTrainingLogReader::GetNumberOfEmbeddedImages()
+{
+  return static_cast<int>(this->Internals->ImageNames.size());
+}
+const char* vtkGaussianTrainingLogReader::GetEmbeddedImageName(int i)
+{
+  const auto& v = this->Internals->ImageNames;
+  return i >= 0 && i < static_cast<int>(v.size()) ? v[static_cast<std::size_t>(i)].c_str()
+                                                  : nullptr;
+}
+
+//------------------------------------------------------------------------------
 bool vtkGaussianTrainingLogReader::OpenLog()
 {
   vtkInternals& d = *this->Internals;
@@ -189,6 +246,11 @@ bool vtkGaussianTrainingLogReader::OpenLog()
     d.Iterations = d.Log->GetSnapshotIterations();
     d.Lacks = d.Log->GetLacks();
     d.Repairs = d.Log->GetRepairs();
+    d.Header = d.Log->GetHeader();
+    d.HasCameras = d.Log->HasCameras();
+    d.HasMetrics = d.Log->HasMetrics();
+    d.HasEvents = d.Log->HasEvents();
+    d.ImageNames = d.Log->GetImageNames();
   }
   catch (const std::exception& e)
   {
@@ -196,6 +258,9 @@ bool vtkGaussianTrainingLogReader::OpenLog()
     d.Iterations.clear();
     d.Lacks.clear();
     d.Repairs.clear();
+    d.Header = vis4gs::TrainingLogHeader();
+    d.HasCameras = d.HasMetrics = d.HasEvents = false;
+    d.ImageNames.clear();
     vtkErrorMacro(<< e.what());
     return false;
   }

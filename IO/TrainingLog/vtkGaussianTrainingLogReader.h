@@ -125,14 +125,34 @@ public:
   const char* GetRepair(int i);
   ///@}
 
+  ///@{
+  /**
+   * The log's header and contents (valid after UpdateInformation()): the trainer that wrote
+   * it, its scene name, the planned last iteration and the trainer's SH degree; whether it
+   * holds cameras, metrics and events (what updating ports 1, 2 and 3 would read), and the
+   * names of the training images stored inside it ("/images/<name>" in the cameras table).
+   */
+  const char* GetProducer();
+  const char* GetSceneName();
+  int GetPlannedIterations();
+  int GetTrainerSHDegree();
+  bool HasCameras();
+  bool HasMetrics();
+  bool HasEvents();
+  int GetNumberOfEmbeddedImages();
+  const char* GetEmbeddedImageName(int i);
+  ///@}
+
   /// Number of snapshots read so far (each update of output 0 reads at most one).
   vtkGetMacro(SnapshotReads, int);
 
   /**
    * Fills @p output with the history of @p ids across all snapshots: one row per (id,
    * snapshot holding it), ordered by id then iteration, with columns GaussianId, Iteration,
-   * Position (3), LogScale (3), Rotation (4), OpacityLogit, SHDC (3), Opacity, Scale (3).
-   * Returns 0 (and reports an error) on failure.
+   * Position (3), LogScale (3), Rotation (4), OpacityLogit, SHDC (3), Opacity, Scale (3)
+   * (names in vis4gs::arrays). This is the history vtkGaussianTimelineView draws: any column
+   * as its HistoryProperty, a vector by its largest component (Scale) or by the one its
+   * HistoryComponent names (Position X, Y or Z). Returns 0 (and reports an error) on failure.
    */
   int GetPropertyHistory(vtkIdTypeArray* ids, vtkTable* output);
 

@@ -328,6 +328,12 @@ int vtkGaussianTimelineView::GetNumberOfHistoryLines()
 }
 
 //------------------------------------------------------------------------------
+vtkTable* vtkGaussianTimelineView::GetHistoryLines()
+{
+  return this->Internals->Wide;
+}
+
+//------------------------------------------------------------------------------
 int vtkGaussianTimelineView::GetNumberOfMetricPlots()
 {
   return this->Internals->MetricPlots;
@@ -520,11 +526,19 @@ void vtkGaussianTimelineView::UpdatePlots()
         continue;
       }
       const double t = hit->GetComponent(r, 0);
-      // Multi-component properties (Scale) are drawn by their largest component.
+      // A vector property is drawn by the chosen component, else by its largest (Scale).
+      const int components = hval->GetNumberOfComponents();
       double value = hval->GetComponent(r, 0);
-      for (int c = 1; c < hval->GetNumberOfComponents(); ++c)
+      if (this->HistoryComponent >= 0 && this->HistoryComponent < components)
       {
-        value = std::max(value, hval->GetComponent(r, c));
+        value = hval->GetComponent(r, this->HistoryComponent);
+      }
+      else
+      {
+        for (int c = 1; c < components; ++c)
+        {
+          value = std::max(value, hval->GetComponent(r, c));
+        }
       }
       series[id][t] = value;
       iterations.push_back(t);
@@ -608,6 +622,7 @@ void vtkGaussianTimelineView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "History: " << in.History.GetPointer() << "\n";
   os << indent << "HistoryProperty: " << str(this->HistoryProperty) << "\n";
   os << indent << "MaximumHistoryLines: " << this->MaximumHistoryLines << "\n";
+  os << indent << "HistoryComponent: " << this->HistoryComponent << "\n";
   os << indent << "IterationColumn: " << str(this->IterationColumn) << "\n";
   os << indent << "CountColumn: " << str(this->CountColumn) << "\n";
   os << indent << "PSNRColumn: " << str(this->PSNRColumn) << "\n";

@@ -125,6 +125,16 @@ public:
 
   ///@{
   /**
+   * Component of a vector HistoryProperty drawn (0, 1, 2: Position's X, Y, Z); -1 draws the
+   * largest component (Scale: the largest axis). Ignored for a scalar property or a component
+   * the column does not have (then the largest is drawn). Default -1.
+   */
+  vtkSetClampMacro(HistoryComponent, int, -1, 15);
+  vtkGetMacro(HistoryComponent, int);
+  ///@}
+
+  ///@{
+  /**
    * At most this many Gaussians' lines in the history chart. Default 16.
    */
   vtkSetClampMacro(MaximumHistoryLines, int, 1, 1000);
@@ -181,6 +191,9 @@ public:
 
   /// Number of Gaussians whose history is drawn (after the last UpdatePlots).
   int GetNumberOfHistoryLines();
+  /// What the history chart draws (after the last UpdatePlots): an Iteration column and one
+  /// column "Gaussian <id>" per line, the drawn value or NaN where the Gaussian is not logged.
+  vtkTable* GetHistoryLines();
   /// Number of metric plots drawn in the quality and count charts.
   int GetNumberOfMetricPlots();
   /// Number of those that draw the comparison run's metrics.
@@ -199,6 +212,7 @@ protected:
   char* RunName = nullptr;
   char* ComparisonRunName = nullptr;
   int MaximumHistoryLines = 16;
+  int HistoryComponent = -1;
   char* IterationColumn = nullptr;
   char* CountColumn = nullptr;
   char* PSNRColumn = nullptr;

@@ -1,11 +1,13 @@
 """The application and a VTK Python script are one program (issue 22): `vis4gs view LOG
 --dump-inputs=DIR` writes what the window gives its views (the scene with its scores, the
-genealogy tree and family bands, the metrics table); this script builds the four views from
+genealogy tree and family bands, the metrics table, and the property history the timeline
+gets for a selection); this script builds the four views from
 the same VTK classes a user connects (training-log reader, genealogy filter on its events
 port, score filter on its Gaussians and cameras ports, tree / timeline / histogram views) and
 requires every array to be equal, value for value (NaN equal to NaN) and name for name.
-Independently of both, the Gaussians and the metrics are compared with the log read by h5py
-and the tree's size with the log's events.
+Independently of both, the Gaussians, the metrics and the selection's history (ids, snapshots,
+position, opacity, largest scale) are compared with the log read by h5py and the tree's size
+with the log's events.
 
 Usage: ViewInputsMatchScript.py VIS4GS LOG OUTPUT_DIR"""
 import os
@@ -16,6 +18,8 @@ import sys
 import h5py
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkIdTypeArray
+from vtkmodules.vtkCommonDataModel import vtkTable
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLTableReader
 
 import vis4gs
@@ -83,6 +87,13 @@ with h5py.File(log, "r") as h5:
     h5_log["plots"] = 1 + sum(
         int(np.any(np.isfinite(h5[f"metrics/{test}{m}"][()])))
         for test in ("", "test/") for m in ("psnr", "ssim", "lpips"))
+    # Every snapshot's ids and the parameters the timeline's history draws, for the
+    # selection history below (the demo log is small: a few MB in all).
+    h5_log["snapshots"] = {
+        int(h5["snapshots"][name].attrs["iteration"]): {
+            key: h5["snapshots"][name][key][()]
+            for key in ("id", "position", "log_scale", "opacity_logit")}
+        for name in names}
     kinds = h5["events/kind"][()]
     births = int(np.sum((kinds == 1) | (kinds == 2)))
     h5_log["vertices"] = 1 + h5["snapshots"][names[0]]["id"].shape[0] + births
@@ -95,7 +106,8 @@ if run.returncode != 0:
     print(run.stdout)
     print(f"FAILED: vis4gs view --dump-inputs exited with {run.returncode}")
     sys.exit(1)
-for name in ("scene.vtp", "metrics.vtt", "tree-vertices.vtt", "tree-edges.vtt", "bands.vtt"):
+for name in ("scene.vtp", "metrics.vtt", "tree-vertices.vtt", "tree-edges.vtt", "bands.vtt",
+             "history.vtt"):
     check(os.path.isfile(os.path.join(output, name)), f"--dump-inputs wrote no {name}")
 if failures:
     print("FAILED: " + "; ".join(failures))
@@ -179,6 +191,47 @@ compare_fields("metrics", app_metrics.GetRowData(), metrics.GetRowData())
 check(not os.path.exists(os.path.join(output, "test-metrics.vtt")),
       "the application has no separate test-metrics table (its metrics hold TestPSNR...)")
 
+# History (view D's bottom chart): the application's table for its selection (16 Gaussians
+# of the scene at rows k * n / 16) is the reader's GetPropertyHistory, column for column, and
+# the timeline draws the same lines from either.
+app_history = read_table("history.vtt")
+n = app_scene.GetNumberOfPoints()
+scene_ids = values(app_scene.GetPointData().GetArray("GaussianId"))
+selection = [int(scene_ids[k * n // 16]) for k in range(min(16, n))]
+history_ids = values(app_history.GetColumnByName("GaussianId"))
+check(history_ids is not None and sorted(set(history_ids.tolist())) == sorted(selection),
+      f"history: the application's table holds the ids {sorted(set(history_ids.tolist())) if history_ids is not None else None}, "
+      f"expected its selection {sorted(selection)}")
+id_array = vtkIdTypeArray()
+for gid in selection:
+    id_array.InsertNextValue(gid)
+script_history = vtkTable()
+check(reader.GetPropertyHistory(id_array, script_history) == 1,
+      "the script's reader gives the selection's history")
+compare_fields("history", app_history.GetRowData(), script_history.GetRowData())
+
+# (No selection hub: a hub renders its views on a change, and this test has no display; the
+# history holds the selection only, at most MaximumHistoryLines = 16 Gaussians.)
+lines = []
+for history in (app_history, script_history):
+    view = vis4gs.vtkGaussianTimelineView()
+    view.SetHistory(history)
+    drawn = {}
+    for prop, component in (("Opacity", -1), ("Scale", -1), ("Position", 1)):
+        view.SetHistoryProperty(prop)
+        view.SetHistoryComponent(component)
+        view.UpdatePlots()
+        table = view.GetHistoryLines()
+        drawn[prop] = {table.GetColumnName(c): values(table.GetColumn(c))
+                       for c in range(table.GetNumberOfColumns())}
+    check(view.GetNumberOfHistoryLines() == len(selection),
+          f"the timeline draws {view.GetNumberOfHistoryLines()} history lines, expected "
+          f"{len(selection)}")
+    lines.append(drawn)
+for prop in ("Opacity", "Scale", "Position"):
+    a, b = lines[0][prop], lines[1][prop]
+    check(sorted(a) == sorted(b) and all(same(a[k], b[k]) for k in a),
+          f"the timeline's {prop} lines differ between the application's history and the script's")
 # Independently of VTK: the log as h5py reads it (read first, see above).
 check(same(vtk_to_numpy(app_scene.GetPoints().GetData()), h5_log["position"]),
       f"scene: positions are those of the last snapshot ({h5_log['last']})")
@@ -192,10 +245,42 @@ check(app_vertices.GetNumberOfRows() == h5_log["vertices"],
       f"tree: {app_vertices.GetNumberOfRows()} vertices, expected 1 + initial + births = "
       f"{h5_log['vertices']}")
 
+# The selection's history against h5py: a row for every (Gaussian, snapshot holding it), the
+# position, the opacity (sigmoid of the logit) and the largest scale (exp of the largest log
+# scale), and the lines the timeline drew (Position by its Y component).
+expected_rows = 0
+for iteration, snap in h5_log["snapshots"].items():
+    for gid in selection:
+        rows = np.nonzero(snap["id"] == gid)[0]
+        if rows.size == 0:
+            continue
+        expected_rows += 1
+        r = rows[0]
+        opacity = 1.0 / (1.0 + np.exp(-np.float64(snap["opacity_logit"][r])))
+        scale = np.exp(np.float64(np.max(snap["log_scale"][r])))
+        column = f"Gaussian {gid}"
+        at = np.nonzero(lines[0]["Opacity"]["Iteration"] == iteration)[0]
+        ok = at.size == 1 and column in lines[0]["Opacity"]
+        check(ok, f"history: the timeline has no point of Gaussian {gid} at iteration {iteration}")
+        if not ok:
+            continue
+        k = at[0]
+        check(abs(lines[0]["Opacity"][column][k] - opacity) <= 1e-6 and
+              abs(lines[0]["Scale"][column][k] - scale) <= 1e-6 * max(1.0, scale) and
+              lines[0]["Position"][column][k] == np.float64(snap["position"][r][1]),
+              f"history: Gaussian {gid} at iteration {iteration}: the timeline draws opacity "
+              f"{lines[0]['Opacity'][column][k]}, scale {lines[0]['Scale'][column][k]}, y "
+              f"{lines[0]['Position'][column][k]}; h5py gives {opacity}, {scale}, "
+              f"{snap['position'][r][1]}")
+check(app_history.GetNumberOfRows() == expected_rows,
+      f"history: {app_history.GetNumberOfRows()} rows, h5py finds the selection in "
+      f"{expected_rows} (Gaussian, snapshot) pairs")
+
 if failures:
     for f in failures:
         print("FAILED: " + f)
     sys.exit(1)
 print(f"the application's view inputs equal the script's: {app_scene.GetNumberOfPoints()} "
       f"Gaussians with {app_scene.GetPointData().GetNumberOfArrays()} arrays, "
-      f"{tree.GetNumberOfVertices()} tree vertices, {app_metrics.GetNumberOfRows()} metrics rows")
+      f"{tree.GetNumberOfVertices()} tree vertices, {app_metrics.GetNumberOfRows()} metrics rows, "
+      f"{app_history.GetNumberOfRows()} history rows of {len(selection)} selected Gaussians")
