@@ -8,9 +8,10 @@ training images are the same bytes on both paths).
   `vis4gs repair LOG CLEANED` (both 2 iterations; CLEANED is analyze --select="views<=3"
   --delete's cleaned.ply) agree on every training row of repair.csv (the scene has only the
   training cameras: the trainer's cameras.json holds no test views). The source and deleted
-  columns only involve the same float32 parameters and 8-bit images, and the training sees
-  the same cameras in the same order, so the figures agree to round-off of the camera poses
-  (cameras.json stores the centre and R^T in float64, the log world_to_camera);
+  columns only involve the same float32 parameters and 8-bit images (PNG is lossless), the
+  training sees the same cameras in the same order at the same iteration numbers, and the
+  poses survive cameras.json's float64 centre and R^T: the figures are identical, digit for
+  digit;
 - the scene run's repaired.h5 holds exactly the deletion as prune events at SOURCE;
 - the Python layer: vis4gs.open(SCENE.ply, cameras=, images=).repair(ids=deleted) gives the
   command's figures before and after the deletion.
@@ -127,7 +128,7 @@ def main(vis4gs_exe, log_path, analyze, folder):
             a, b = float(value), float(from_scene[key][column])
             worst = max(worst, abs(a - b) / max(1.0, abs(a)))
     print(f"largest relative difference between the two repair.csv: {worst:.3g}")
-    check(worst < 1e-4, "the scene run's training figures equal the log run's (to 1e-4)")
+    check(worst == 0.0, "the scene run's training figures equal the log run's exactly")
     mean = from_scene[("mean", "train")]
     print("scene run: training PSNR source %s, deleted %s, repaired %s" %
           (mean["psnr_source"], mean["psnr_deleted"], mean["psnr_repaired"]))
