@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   const std::string& cameras)
@@ -54,4 +55,23 @@ std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
 bool Vis4GSLoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
 {
   return vis4gs::LoadCameraImage(nullptr, camera, image);
+}
+
+void Vis4GSAttachImagesByName(std::vector<vis4gs::Camera>& cameras, const std::string& folder)
+{
+  if (!std::filesystem::is_directory(folder))
+  {
+    throw std::runtime_error(folder + ": --images is not a folder");
+  }
+  std::map<std::string, std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+  {
+    const std::string name = entry.path().filename().string();
+    files.emplace(name.substr(0, name.find('.')), entry.path().string());
+  }
+  for (vis4gs::Camera& c : cameras)
+  {
+    const auto it = files.find(c.Name);
+    c.ImagePath = it == files.end() ? std::string() : it->second;
+  }
 }

@@ -26,6 +26,13 @@ std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
   const std::string& cameras);
 
 /**
+ * Sets each camera's ImagePath to the file of @p folder whose name up to its first dot is the
+ * camera's name (`--images=DIR`), empty where none matches; throws std::runtime_error when
+ * @p folder is no folder. Shared by `vis4gs analyze` and `vis4gs repair`.
+ */
+void Vis4GSAttachImagesByName(std::vector<vis4gs::Camera>& cameras, const std::string& folder);
+
+/**
  * The image of @p camera for a before/after measurement (RemovalEffect.h's
  * TrainingImageProvider): false when the camera names no existing file; a file that cannot be
  * read throws std::runtime_error naming it. Shared by `analyze --report` and the view's

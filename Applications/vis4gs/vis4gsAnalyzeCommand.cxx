@@ -230,25 +230,6 @@ vis4gs::GaussianCloud ReadSceneFile(const std::string& path, vtkPolyData* gaussi
   return cloud;
 }
 
-void AttachImagesByName(std::vector<vis4gs::Camera>& cameras, const std::string& folder)
-{
-  if (!fs::is_directory(folder))
-  {
-    throw std::runtime_error(folder + ": --images is not a folder");
-  }
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::directory_iterator(folder))
-  {
-    const std::string name = entry.path().filename().string();
-    files.emplace(name.substr(0, name.find('.')), entry.path().string());
-  }
-  for (vis4gs::Camera& c : cameras)
-  {
-    const auto it = files.find(c.Name);
-    c.ImagePath = it == files.end() ? std::string() : it->second;
-  }
-}
-
 std::string Base64(const std::vector<unsigned char>& bytes)
 {
   static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -706,7 +687,7 @@ int Run(const Vis4GSArguments& args)
   }
   if (!args.Get("images").empty())
   {
-    AttachImagesByName(cameras, args.Get("images"));
+    Vis4GSAttachImagesByName(cameras, args.Get("images"));
   }
   if (controller)
   {

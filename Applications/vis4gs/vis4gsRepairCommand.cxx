@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// `vis4gs repair LOG CLEANED --iterations=N --output=DIR` (issue 20): fine-tunes a cleaned scene
-// (analyze --select=RULE --delete's cleaned.ply, or any scene holding a subset of the ids of a
-// snapshot of LOG) for N iterations with the built-in trainer, positions fixed and densification
-// off by default, and writes DIR/repaired.h5, a training log that continues LOG: its first event
-// rows are the deletion as prune events at the snapshot's iteration, its iterations follow it,
-// so the genealogy of the repaired run stays one tree. DIR/repair.csv holds PSNR, SSIM and L1
-// per view of the snapshot, the cleaned scene and the repaired one (RemovalEffect.h's figures).
+// `vis4gs repair SOURCE CLEANED --iterations=N --output=DIR` (issue 20): fine-tunes a cleaned
+// scene (analyze --select=RULE --delete's cleaned.ply, or any scene holding a subset of the ids
+// of SOURCE) for N iterations with the built-in trainer, positions fixed and densification off
+// by default, and writes DIR/repaired.h5, a training log whose first event rows are the
+// deletion as prune events at the source iteration and whose iterations follow it, so the
+// genealogy of the repaired run stays one tree. SOURCE is a training log (a snapshot of it,
+// its cameras and images) or a scene file with cameras and images found as `vis4gs analyze`
+// finds them (--cameras, --images; source iteration 0 unless --iteration). DIR/repair.csv
+// holds PSNR, SSIM and L1 per view of the source, the cleaned scene and the repaired one
+// (RemovalEffect.h's figures).
 #include "Vis4GSCommand.h"
+#include "Vis4GSSceneCameras.h"
 
 #include "FineTune.h"
 #include "TrainingLogReader.h"
@@ -29,14 +33,28 @@ namespace fs = std::filesystem;
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional("LOG", "Training log the cleaned scene comes from (.h5).");
+  args.AddPositional("SOURCE",
+    "What the cleaned scene comes from: a training log (.h5), or a scene file (3DGS .ply, "
+    ".splat, ...; its id property, else its row numbers, are the ids) with cameras and images.");
   args.AddPositional("CLEANED",
     "The cleaned scene: a PLY whose id property names the Gaussians kept (analyze --delete's "
-    "cleaned.ply), a subset of the snapshot's ids.");
+    "cleaned.ply), a subset of the source's ids.");
   args.AddOption("iteration",
     "N",
     "-1",
-    "The snapshot the scene was cleaned from (the nearest logged); -1: the last.");
+    "Log: the snapshot the scene was cleaned from (the nearest logged), -1: the last. Scene "
+    "file: its iteration number in the repaired log, -1: 0.");
+  args.AddOption("cameras",
+    "FILE|DIR",
+    "",
+    "Scene file only: cameras.json, a COLMAP dataset folder (sparse/0 + images) or a "
+    "transforms*.json (file or folder). Default: cameras.json beside the scene or two folders "
+    "up (the trainer's model folder).");
+  args.AddOption("images",
+    "DIR",
+    "",
+    "Scene file only: folder of training images, matched to cameras by name. Default: the "
+    "cameras' own image paths.");
   args.AddOption("iterations", "N", "50", "Fine-tuning iterations.");
   args.AddFlag("free-positions", false, "Optimise the positions too (default: fixed).");
   args.AddFlag("densify",
@@ -48,23 +66,75 @@ void Define(Vis4GSArguments& args)
 
 int Run(const Vis4GSArguments& args)
 {
-  const std::string logPath = args.GetPositional("LOG");
+  const std::string sourcePath = args.GetPositional("SOURCE");
   const int iterations = args.GetInt("iterations");
   if (iterations <= 0)
   {
     throw std::runtime_error("--iterations must be positive");
   }
-  auto log = std::make_shared<vis4gs::TrainingLogReader>(logPath);
-  if (log->GetSnapshotIterations().empty() || !log->HasCameras())
-  {
-    throw std::runtime_error(logPath + ": the training log needs a snapshot and /cameras");
-  }
-  vis4gs::SnapshotReadOptions readOptions;
-  readOptions.ShDegree = -1;
-  int source = 0;
   const int wanted = args.GetInt("iteration");
-  const vis4gs::GaussianCloud snapshot = log->ReadNearestSnapshot(
-    wanted < 0 ? log->GetSnapshotIterations().back() : wanted, readOptions, &source);
+  std::shared_ptr<vis4gs::TrainingLogReader> log; // null for a scene file
+  vis4gs::GaussianCloud snapshot;
+  std::vector<vis4gs::Camera> cameras;
+  int source = 0;
+  if (Vis4GSIsLogPath(sourcePath))
+  {
+    log = std::make_shared<vis4gs::TrainingLogReader>(sourcePath);
+    if (log->GetSnapshotIterations().empty() || !log->HasCameras())
+    {
+      throw std::runtime_error(sourcePath + ": the training log needs a snapshot and /cameras");
+    }
+    vis4gs::SnapshotReadOptions readOptions;
+    readOptions.ShDegree = -1;
+    snapshot = log->ReadNearestSnapshot(
+      wanted < 0 ? log->GetSnapshotIterations().back() : wanted, readOptions, &source);
+    // The log's cameras, image paths relative to the log made absolute.
+    cameras = log->ReadCameras();
+    const fs::path logDir = fs::path(sourcePath).parent_path();
+    for (vis4gs::Camera& c : cameras)
+    {
+      if (!c.ImagePath.empty() && c.ImagePath.rfind("/images/", 0) != 0 &&
+        fs::path(c.ImagePath).is_relative())
+      {
+        c.ImagePath = (logDir / c.ImagePath).string();
+      }
+    }
+  }
+  else
+  {
+    snapshot = Vis4GSReadSceneWithIds(sourcePath, "repair");
+    if (snapshot.Ids.empty()) // no id property: the rows are the ids, as for every reader
+    {
+      snapshot.Ids.resize(snapshot.Count);
+      for (std::size_t i = 0; i < snapshot.Count; ++i)
+      {
+        snapshot.Ids[i] = static_cast<std::int64_t>(i);
+      }
+    }
+    source = std::max(wanted, 0);
+    cameras = Vis4GSFindSceneCameras(sourcePath, args.Get("cameras"));
+    if (cameras.empty())
+    {
+      throw std::runtime_error(sourcePath +
+        ": no cameras found; give --cameras=cameras.json, a COLMAP folder or a transforms.json");
+    }
+    if (!args.Get("images").empty())
+    {
+      Vis4GSAttachImagesByName(cameras, args.Get("images"));
+    }
+    const std::string imageSource =
+      args.Get("images").empty() ? "the cameras of " + sourcePath : args.Get("images");
+    for (const vis4gs::Camera& c : cameras)
+    {
+      std::error_code ec;
+      if (c.ImagePath.empty() || !fs::is_regular_file(c.ImagePath, ec))
+      {
+        throw std::runtime_error(imageSource + ": no image for camera \"" + c.Name + "\"" +
+          (c.ImagePath.empty() ? std::string() : " (" + c.ImagePath + " is no file)") +
+          "; give --images=DIR");
+      }
+    }
+  }
   const std::string cleanedPath = args.GetPositional("CLEANED");
   const vis4gs::GaussianCloud kept = Vis4GSReadSceneWithIds(cleanedPath, "repair");
 
@@ -92,24 +162,13 @@ int Run(const Vis4GSArguments& args)
   if (found != keptIds.size())
   {
     throw std::runtime_error(cleanedPath + ": holds " + std::to_string(keptIds.size() - found) +
-      " ids that the snapshot of iteration " + std::to_string(source) + " of " + logPath +
-      " lacks (is it cleaned from this snapshot, with its id property?)");
+      " ids that " +
+      (log ? "the snapshot of iteration " + std::to_string(source) + " of " : std::string()) +
+      sourcePath + " lacks (is it cleaned from this source, with its id property?)");
   }
-  std::cout << "vis4gs repair: " << logPath << ", snapshot of iteration " << source << ": "
-            << snapshot.Count << " Gaussians, " << prunes.size() << " deleted in " << cleanedPath
-            << "\n";
+  std::cout << "vis4gs repair: " << sourcePath << ", iteration " << source << ": " << snapshot.Count
+            << " Gaussians, " << prunes.size() << " deleted in " << cleanedPath << "\n";
 
-  // The log's cameras (image paths relative to the log made absolute) and images.
-  std::vector<vis4gs::Camera> cameras = log->ReadCameras();
-  const fs::path logDir = fs::path(logPath).parent_path();
-  for (vis4gs::Camera& c : cameras)
-  {
-    if (!c.ImagePath.empty() && c.ImagePath.rfind("/images/", 0) != 0 &&
-      fs::path(c.ImagePath).is_relative())
-    {
-      c.ImagePath = (logDir / c.ImagePath).string();
-    }
-  }
   const fs::path output = args.Get("output");
   fs::create_directories(output);
   const fs::path logOut = output / "repaired.h5";
@@ -121,8 +180,9 @@ int Run(const Vis4GSArguments& args)
   options.Threads = args.GetInt("threads");
   options.LogPath = logOut.string();
   options.Producer = std::string("vis4gs repair ") + VIS4GS_VERSION;
-  options.Scene = log->GetHeader().Scene;
-  options.EmbedImages = log->HasImages();
+  // A scene file's images are embedded so that the repaired log stands on its own.
+  options.Scene = log ? log->GetHeader().Scene : fs::path(sourcePath).stem().string();
+  options.EmbedImages = log ? log->HasImages() : true;
   const vis4gs::FineTuneResult result =
     vis4gs::FineTune(snapshot, source, removed, cameras, Vis4GSLogImages(log), options);
 

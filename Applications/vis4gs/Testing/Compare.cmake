@@ -40,3 +40,14 @@ vis4gs_add_app_test(RepairWrongSnapshot ARGS repair "${_vis4gs_compare_log}"
   ABSENT ${CMAKE_CURRENT_BINARY_DIR}/repair-wrong)
 set_tests_properties(vis4gs-RepairWrongSnapshot PROPERTIES
   FIXTURES_REQUIRED vis4gsCleanup-floaters)
+# `vis4gs repair SCENE.ply CLEANED` (issue 20): the demo log's last snapshot as a PLY with ids,
+# its cameras.json and PNG images (made with numpy/zlib), repaired 2 iterations like the log;
+# also the Python layer's Scene.repair on that scene and the errors.
+add_test(NAME vis4gs-RepairScene
+  COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/CheckRepairScene.py"
+    $<TARGET_FILE:vis4gs> "${_vis4gs_compare_log}"
+    "${CMAKE_CURRENT_BINARY_DIR}/analyze-cleanup-floaters" "${CMAKE_CURRENT_BINARY_DIR}/repair-scene")
+set_tests_properties(vis4gs-RepairScene PROPERTIES LABELS "Application;Python"
+  ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH};PYTHONDONTWRITEBYTECODE=1"
+  PASS_REGULAR_EXPRESSION "repair of a scene file agrees" FAIL_REGULAR_EXPRESSION "FAILED"
+  FIXTURES_REQUIRED vis4gsCleanup-floaters)
