@@ -14,6 +14,7 @@
 #include "Vis4GSDataModel.h"
 #include "Vis4GSTrainingImages.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
@@ -194,10 +195,16 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
   {
     vtkNew<vtkGaussianTrainingLogReader> log;
     log->SetFileName(logName->GetValue(0).c_str());
-    log->GlobalWarningDisplayOff(); // its error is reported here, naming the file
+    // Its error is reported here, as this filter's (an observer keeps it from being printed).
+    std::string logError;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetClientData(&logError);
+    onError->SetCallback([](vtkObject*, unsigned long, void* client, void* message)
+      { *static_cast<std::string*>(client) += message ? static_cast<const char*>(message) : ""; });
+    log->AddObserver(vtkCommand::ErrorEvent, onError);
     if (!vtkDemandDrivenPipeline::SafeDownCast(log->GetExecutive())->UpdateInformation())
     {
-      vtkErrorMacro("The training log of the cameras cannot be read: " << logName->GetValue(0));
+      vtkErrorMacro("The training log of the cameras cannot be read: " << logError);
       return 0;
     }
     options.Scene = log->GetSceneName();
