@@ -2,8 +2,8 @@
 #include "Vis4GSCleanupPanelInternals.h"
 
 #include "TrainingLogTypes.h"
-#include "Vis4GSDataModel.h"
 #include "Vis4GSCompareWindow.h"
+#include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSelectionExport.h"
 #include "vtkGaussianSceneView.h"
@@ -38,6 +38,10 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
   const std::function<bool(bool, const std::string&)>& check)
 {
   bool ok = true;
+  // A scene file (vis4gs-ViewCleanupScene): the checks of the panel's own mechanics that the
+  // demo log's run makes (a 'before' rendered anew, a second preview, a cancelled fine-tune)
+  // are left out, for time; its deletion is the rule's whole selection (step 7).
+  const bool sceneFile = !d->SceneFile.isEmpty();
   vtkDataArray* ids = d->Scene ? d->Scene->GetPointData()->GetArray("GaussianId") : nullptr;
   if (!check(ids && ids->GetNumberOfTuples() > 10, "clean-up: a scene with ids"))
   {
@@ -231,7 +235,7 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
       "clean-up: the table lists every view (" + std::to_string(d->Views->rowCount()) +
         ") for the " + std::to_string(e.Removed) + " Gaussians removed") &&
     ok;
-  ok = checkReuse(*d->Shown, fromScores, true) && ok;
+  ok = checkReuse(*d->Shown, fromScores, !sceneFile) && ok;
   bool worstFirst = true;
   for (int r = 1; r < d->Views->rowCount(); ++r)
   {
@@ -255,7 +259,7 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
          "clean-up: screenshot cleanup-panel.png") &&
     ok;
   // 6. A second preview of the same scene (one Gaussian fewer) renders no view "before".
-  if (expected.size() > 1)
+  if (expected.size() > 1 && !sceneFile)
   {
     const vtkIdType first = *expected.begin();
     d->Hub->SelectIds(&first, 1, vtkGaussianSelectionHub::SUBTRACT);
@@ -274,36 +278,35 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
   //    (densification off). The deletion and its cleaned scene (the main window's export) are
   //    written for CTest, which runs `vis4gs repair` on them and compares.
   {
-    const QString cancelled = directory + "/cleanup-cancelled.h5";
-    QFile::remove(cancelled);
-    ok = check(this->StartFineTune(cancelled, 100000, false, false),
-           "clean-up: the fine-tune starts from the current preview") &&
-      ok;
-    this->CancelFineTune();
-    const bool finished = this->WaitForFineTune();
-    ok = check(!finished && !QFileInfo::exists(cancelled) &&
-             QDir(directory)
-               .entryList({ ".cleanup-cancelled*" }, QDir::Files | QDir::Hidden)
-               .isEmpty() &&
-             d->RepairLabel->text().contains("cancelled"),
-           "clean-up: a cancelled fine-tune writes no log, nor its temporary (" +
-             d->RepairLabel->text().toStdString() + ")") &&
-      ok;
+    if (!sceneFile)
+    {
+      const QString cancelled = directory + "/cleanup-cancelled.h5";
+      QFile::remove(cancelled);
+      ok = check(this->StartFineTune(cancelled, 100000, false, false),
+             "clean-up: the fine-tune starts from the current preview") &&
+        ok;
+      this->CancelFineTune();
+      const bool finished = this->WaitForFineTune();
+      ok = check(!finished && !QFileInfo::exists(cancelled) &&
+               QDir(directory)
+                 .entryList({ ".cleanup-cancelled*" }, QDir::Files | QDir::Hidden)
+                 .isEmpty() &&
+               d->RepairLabel->text().contains("cancelled"),
+             "clean-up: a cancelled fine-tune writes no log, nor its temporary (" +
+               d->RepairLabel->text().toStdString() + ")") &&
+        ok;
+    }
     const QString repaired = directory + "/cleanup-repaired.h5";
     // A log: one iteration (the trainer logs /metrics, every view rendered, after each of so
-    // few). A scene file: the rule's whole selection again, 2 iterations, the deletion and the
-    // fine-tune that vis4gs-RepairScene's `vis4gs repair` ran on it, whose figures the test
-    // compares with these.
-    const bool sceneFile = !d->SceneFile.isEmpty();
+    // few). A scene file: 2 iterations of the rule's whole selection (the preview of step 5),
+    // the deletion and the fine-tune that vis4gs-RepairScene's `vis4gs repair` ran on it,
+    // whose figures the test compares with these.
     const int iterations = sceneFile ? 2 : 1;
     if (sceneFile)
     {
-      this->ApplyRule(d->Rule->text(), REPLACE);
-      this->MeasureRemoval();
-      ok = check(this->WaitForMeasurement() && selected() == expected &&
-               d->Shown->Effect.Removed == expected.size(),
-             "clean-up: the rule's " + std::to_string(expected.size()) +
-               " Gaussians measured again for the fine-tune") &&
+      ok = check(selected() == expected && d->Shown->Effect.Removed == expected.size(),
+             "clean-up: the fine-tune starts from the preview of the rule's " +
+               std::to_string(expected.size()) + " Gaussians") &&
         ok;
     }
     QFile::remove(repaired);
@@ -387,11 +390,11 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
       QThread::msleep(50);
     }
     const vtkIdType kept = d->Scene->GetNumberOfPoints() - static_cast<vtkIdType>(deleted.size());
-    ok = check(compare && shownB == kept &&
-             compare->grab().save(directory + "/cleanup-compare.png"),
-           "clean-up: the comparison window shows the repaired state with the " +
-             std::to_string(kept) + " Gaussians kept (" + std::to_string(shownB) +
-             "), screenshot cleanup-compare.png") &&
+    ok =
+      check(compare && shownB == kept && compare->grab().save(directory + "/cleanup-compare.png"),
+        "clean-up: the comparison window shows the repaired state with the " +
+          std::to_string(kept) + " Gaussians kept (" + std::to_string(shownB) +
+          "), screenshot cleanup-compare.png") &&
       ok;
     if (compare)
     {
