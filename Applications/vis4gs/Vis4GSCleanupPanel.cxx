@@ -308,13 +308,7 @@ Vis4GSCleanupPanel::Vis4GSCleanupPanel(vtkGaussianSelectionHub* hub, QWidget* pa
         d->Open(d->Repaired->LogPath);
       }
     });
-  connect(d->CompareRepaired,
-    &QPushButton::clicked,
-    this,
-    [this]
-    {
-      this->OpenComparison();
-    });
+  connect(d->CompareRepaired, &QPushButton::clicked, this, [this] { this->OpenComparison(); });
   connect(deletePly,
     &QPushButton::clicked,
     this,

@@ -635,8 +635,7 @@ void Vis4GSMainWindow::Open(const QString& path)
   d->Progress->setValue(0);
   d->Progress->show();
   this->statusBar()->showMessage("loading " + path);
-  const std::string file = path.toStdString(), cameras = d->SceneCameras,
-                    images = d->SceneImages;
+  const std::string file = path.toStdString(), cameras = d->SceneCameras, images = d->SceneImages;
   // Readers and filters run in a worker thread; progress and the result are posted back to
   // the GUI thread, which keeps handling events (the interface stays responsive).
   d->Worker = QThread::create(

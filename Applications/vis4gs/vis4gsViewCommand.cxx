@@ -74,8 +74,7 @@ void Define(Vis4GSArguments& args)
     "Open the comparison window instead (issue 20): FILE side by side with B, another snapshot "
     "of FILE's log (@ITERATION), a training log (its last snapshot, or LOG@ITERATION) or a "
     "scene of the same cameras; with --self-test, its scripted check.");
-  args.AddOption(
-    "iteration",
+  args.AddOption("iteration",
     "N",
     "-1",
     "With --compare: FILE's snapshot nearest N; -1: the last. A scene file: the iteration it "
