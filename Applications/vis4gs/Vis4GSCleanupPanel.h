@@ -148,7 +148,9 @@ public:
    * with `vis4gs analyze --select --report` by a test), the fine-tune's log, figures
    * (cleanup-repair.csv), deletion and cleaned scene, and screenshots into @p directory. On a
    * scene file the fine-tuned deletion is the rule's whole selection, 2 iterations (what
-   * vis4gs-RepairScene's `vis4gs repair` runs); on a log one Gaussian fewer, 1 iteration.
+   * vis4gs-RepairScene's `vis4gs repair` runs), without the mechanics checks the log's run
+   * makes (a 'before' rendered anew, a second preview, a cancelled fine-tune); on a log one
+   * Gaussian fewer, 1 iteration.
    * @p check reports each assertion.
    */
   bool RunSelfTest(const QString& directory,
