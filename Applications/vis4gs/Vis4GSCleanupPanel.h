@@ -29,6 +29,7 @@
 #include <string>
 
 class QResizeEvent;
+class Vis4GSCompareWindow;
 class QString;
 class vtkGaussianSelectionHub;
 class vtkPolyData;
@@ -71,6 +72,17 @@ public:
   void SetScoreBaseline(vtkPolyData* scene,
     vtkTable* cameras,
     const vis4gs::RemovalBaseline& baseline);
+
+  /**
+   * A scene file (not a training log) shown: its @p path, the @p cameras option it was opened
+   * with (empty: found next to it) and the @p iteration it was trained to (`vis4gs view
+   * --iteration`), which a fine-tune continues from as `vis4gs repair --iteration` does (its
+   * learning-rate and SH-degree schedules; -1: 0). An empty @p path: a training log, whose
+   * snapshot gives the iteration.
+   */
+  void SetSceneFile(const QString& path, const QString& cameras, int iteration);
+  /// The iteration a fine-tune starts from: the snapshot's, or the scene file's.
+  int GetSourceIteration() const;
 
   /// What "Delete selection to new PLY..." does (the main window's export).
   void SetDeleteAction(std::function<void()> action);
@@ -120,15 +132,26 @@ public:
   bool WaitForFineTune();
   /// Writes the figures of the last fine-tune in the columns of `vis4gs repair`'s repair.csv.
   bool WriteRepairTable(const QString& path) const;
+  /**
+   * "Compare with source": a comparison window of the source (the log's snapshot, or the scene
+   * file) against the repaired log's last snapshot; null without a fine-tune.
+   */
+  Vis4GSCompareWindow* OpenComparison();
   /// What "Open the repaired log" does (the main window opens the file).
   void SetOpenAction(std::function<void(const QString& path)> action);
 
   /**
-   * The panel's part of `vis4gs view --self-test` on a scene with cameras and images: a bad
-   * rule leaves the selection alone, a rule combines with a brushed selection, save/load,
-   * the measurement's table and images. Writes cleanup-selection.csv, cleanup-before-after.csv
-   * (compared with `vis4gs analyze --select --report` by a test) and screenshots into
-   * @p directory. @p check reports each assertion.
+   * The panel's part of `vis4gs view --self-test` on a log or a scene file with cameras and
+   * images: a bad rule leaves the selection alone, a rule combines with a brushed selection,
+   * save/load, the measurement's table and images, a cancelled and a finished fine-tune and
+   * the comparison window. Writes cleanup-selection.csv, cleanup-before-after.csv (compared
+   * with `vis4gs analyze --select --report` by a test), the fine-tune's log, figures
+   * (cleanup-repair.csv), deletion and cleaned scene, and screenshots into @p directory. On a
+   * scene file the fine-tuned deletion is the rule's whole selection, 2 iterations (what
+   * vis4gs-RepairScene's `vis4gs repair` runs), without the mechanics checks the log's run
+   * makes (a 'before' rendered anew, a second preview, a cancelled fine-tune); on a log one
+   * Gaussian fewer, 1 iteration.
+   * @p check reports each assertion.
    */
   bool RunSelfTest(const QString& directory,
     const std::function<bool(bool, const std::string&)>& check);

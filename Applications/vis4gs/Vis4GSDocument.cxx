@@ -163,7 +163,8 @@ std::string BuildGenealogy(const std::string& path,
 //------------------------------------------------------------------------------
 std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   const Progress& progress,
-  const std::string& cameraPath)
+  const std::string& cameraPath,
+  const std::string& imageFolder)
 {
   const auto start = std::chrono::steady_clock::now();
   auto doc = std::make_shared<Vis4GSDocument>();
@@ -214,7 +215,16 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
          << " Gaussians (a scene file: no training history)\n";
     stage("scene file");
     report(0.8, "reading the cameras");
-    const std::vector<vis4gs::Camera> cameras = Vis4GSFindSceneCameras(path, cameraPath);
+    std::vector<vis4gs::Camera> cameras = Vis4GSFindSceneCameras(path, cameraPath);
+    if (!imageFolder.empty())
+    {
+      if (cameras.empty())
+      {
+        throw std::runtime_error(path + ": --images needs cameras (none found; give --cameras)");
+      }
+      // In the camera table's Image column, where every filter finds them.
+      Vis4GSAttachImagesByName(cameras, imageFolder);
+    }
     if (!cameras.empty())
     {
       doc->Cameras = vtkSmartPointer<vtkTable>::New();
@@ -416,7 +426,7 @@ std::vector<std::int64_t> Vis4GSDocument::HistoryDumpSelection() const
 vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
 {
   this->CamerasWithImages = 0;
-  if (!this->Cameras || !this->Reader)
+  if (!this->Cameras)
   {
     return this->Cameras;
   }
@@ -427,7 +437,7 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
     throw std::runtime_error(this->Path + ": " + error);
   }
   std::set<std::string> embedded;
-  for (int i = 0; i < this->Reader->GetNumberOfEmbeddedImages(); ++i)
+  for (int i = 0; this->Reader && i < this->Reader->GetNumberOfEmbeddedImages(); ++i)
   {
     embedded.insert(this->Reader->GetEmbeddedImageName(i));
   }

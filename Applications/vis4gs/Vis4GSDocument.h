@@ -59,11 +59,14 @@ struct Vis4GSDocument
 
   /**
    * Loads @p path; throws std::runtime_error naming the file on failure. A scene file gets
-   * the cameras of @p cameras (Vis4GSFindSceneCameras(); a log has its own and ignores it).
+   * the cameras of @p cameras (Vis4GSFindSceneCameras(); a log has its own and ignores both)
+   * and the training images of @p images, matched to them by name (Vis4GSAttachImagesByName(),
+   * in the table's Image column).
    */
   static std::shared_ptr<Vis4GSDocument> Load(const std::string& path,
     const Progress& progress,
-    const std::string& cameras = std::string());
+    const std::string& cameras = std::string(),
+    const std::string& images = std::string());
 
   /// Replaces Scene with the snapshot nearest @p iteration (logs only); returns its iteration.
   int LoadIteration(int iteration);
@@ -86,8 +89,9 @@ struct Vis4GSDocument
   /**
    * The camera table for vtkGaussianArtifactScoreFilter: Cameras itself (the filter reads the
    * images inside the log through the table's TrainingLogFile, as in a script), after counting
-   * the cameras with an image into CamerasWithImages (0 for a scene file: the application
-   * computes no blur or needle score there). Null without cameras. @p unusedFolder is what
+   * the cameras with an image into CamerasWithImages (a scene file's are those of
+   * `--images`; without, 0: the application computes no blur or needle score there). Null
+   * without cameras. @p unusedFolder is what
    * embedded images used to be extracted to; ignored.
    */
   vtkSmartPointer<vtkTable> ScoreCameras(const std::string& unusedFolder = std::string());

@@ -97,6 +97,8 @@ struct Vis4GSMainWindow::Internals
   QComboBox* HistogramArray = nullptr; // (in the histogram dock)
   QProgressBar* Progress = nullptr;
   std::string SceneCameras;
+  std::string SceneImages;
+  int SceneIteration = -1;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
   Vis4GSCleanupPanel* Cleanup = nullptr;
@@ -633,11 +635,11 @@ void Vis4GSMainWindow::Open(const QString& path)
   d->Progress->setValue(0);
   d->Progress->show();
   this->statusBar()->showMessage("loading " + path);
-  const std::string file = path.toStdString(), cameras = d->SceneCameras;
+  const std::string file = path.toStdString(), cameras = d->SceneCameras, images = d->SceneImages;
   // Readers and filters run in a worker thread; progress and the result are posted back to
   // the GUI thread, which keeps handling events (the interface stays responsive).
   d->Worker = QThread::create(
-    [this, file, cameras]
+    [this, file, cameras, images]
     {
       std::shared_ptr<Vis4GSDocument> doc;
       QString error;
@@ -651,7 +653,8 @@ void Vis4GSMainWindow::Open(const QString& path)
             QMetaObject::invokeMethod(
               this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
           },
-          cameras);
+          cameras,
+          images);
       }
       catch (const std::exception& e)
       {
@@ -667,6 +670,13 @@ void Vis4GSMainWindow::Open(const QString& path)
 void Vis4GSMainWindow::SetSceneCameras(const QString& cameras)
 {
   d->SceneCameras = cameras.toStdString();
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::SetSceneImages(const QString& folder, int iteration)
+{
+  d->SceneImages = folder.toStdString();
+  d->SceneIteration = iteration;
 }
 
 //------------------------------------------------------------------------------
@@ -707,6 +717,9 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
     d->ScoreWorker->wait();
   }
   d->Doc = doc;
+  d->Cleanup->SetSceneFile(doc->IsLog ? QString() : QString::fromStdString(doc->Path),
+    QString::fromStdString(d->SceneCameras),
+    d->SceneIteration);
   this->Stage(0, nullptr);
   d->ScoreCameras = nullptr;
   d->ImageDir.reset();

@@ -46,6 +46,12 @@ public:
    * default, looks for cameras.json next to the scene, Vis4GSFindSceneCameras()).
    */
   void SetSceneCameras(const QString& cameras);
+  /**
+   * Training images of the scene files opened next (a folder, matched to the cameras by name,
+   * as `vis4gs repair --images`; they give the scores and the clean-up panel's measurement) and
+   * the iteration they were trained to (the clean-up's fine-tune continues from it; -1: 0).
+   */
+  void SetSceneImages(const QString& folder, int iteration);
 
   /**
    * Level of detail of the scene view: at most @p splats Gaussians are drawn (every k-th in

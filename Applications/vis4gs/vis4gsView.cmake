@@ -15,6 +15,9 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     Vis4GSSelectionExport.cxx
     Vis4GSSelectionTable.cxx
     Vis4GSCleanupPanel.cxx
+    Vis4GSCleanupMeasurement.cxx
+    Vis4GSCleanupFineTune.cxx
+    Vis4GSCleanupSelfTest.cxx
     Vis4GSCompareWindow.cxx
     Vis4GSCompareWindow.h
     Vis4GSComparison.cxx
@@ -117,6 +120,17 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     LABELS "Application;GUI;Python" ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1"
     PASS_REGULAR_EXPRESSION "the panel's fine-tune equals vis4gs repair"
     FAIL_REGULAR_EXPRESSION "FAILED" FIXTURES_REQUIRED vis4gsViewDemoShots)
+  # The clean-up panel on a scene file with cameras and images (issue 20): the scene that
+  # vis4gs-RepairScene built (a PLY with ids, cameras.json, PNG images) opened with --cameras,
+  # --images and --iteration; the self-test selects by rule, measures, deletes, fine-tunes 2
+  # iterations and opens the comparison; CheckCleanupScene.py runs it and checks the figures'
+  # direction and that they equal that test's `vis4gs repair` run. Fails by its exit status.
+  add_test(NAME vis4gs-ViewCleanupScene
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckCleanupScene.py"
+      $<TARGET_FILE:vis4gs> "${CMAKE_CURRENT_BINARY_DIR}/Testing/repair-scene"
+      "${_vis4gs_view_dir}/cleanup-scene")
+  set_tests_properties(vis4gs-ViewCleanupScene PROPERTIES LABELS "Application;GUI;Python"
+    ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1" FIXTURES_REQUIRED vis4gsRepairScene)
   # The comparison window (issue 20), three ways: two iterations of the demo log, the demo
   # log against the scene analyze --select="views<=3" --delete cleaned (a log and a scene of
   # the same cameras: the deleted floaters died), and two synthetic logs (both runs' metric

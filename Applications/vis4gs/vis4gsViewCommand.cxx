@@ -62,14 +62,24 @@ void Define(Vis4GSArguments& args)
     "COLMAP dataset folder or a transforms*.json (file or folder). Default: cameras.json next to "
     "the scene or two folders up (the "
     "INRIA model layout); none found, no cameras.");
+  args.AddOption("images",
+    "DIR",
+    "",
+    "Training images of a scene file, matched to its cameras by name (up to the first '.'): "
+    "the blur and needle scores and the clean-up panel's before/after measurement and "
+    "fine-tune use them.");
   args.AddOption("compare",
     "B",
     "",
     "Open the comparison window instead (issue 20): FILE side by side with B, another snapshot "
     "of FILE's log (@ITERATION), a training log (its last snapshot, or LOG@ITERATION) or a "
     "scene of the same cameras; with --self-test, its scripted check.");
-  args.AddOption(
-    "iteration", "N", "-1", "With --compare: FILE's snapshot nearest N; -1: the last.");
+  args.AddOption("iteration",
+    "N",
+    "-1",
+    "With --compare: FILE's snapshot nearest N; -1: the last. A scene file: the iteration it "
+    "was trained to, which the clean-up's fine-tune continues from (as vis4gs repair "
+    "--iteration); -1: 0.");
   args.AddOption("compare-thresholds",
     "M,O,S",
     "0,0,0",
@@ -149,6 +159,7 @@ int Run(const Vis4GSArguments& args)
   }
   window.SetSplatBudget(static_cast<long long>(args.GetDouble("splat-budget")));
   window.SetSceneCameras(QString::fromStdString(args.Get("cameras")));
+  window.SetSceneImages(QString::fromStdString(args.Get("images")), args.GetInt("iteration"));
   if (args.GetFlag("welcome"))
   {
     window.ShowWelcome();

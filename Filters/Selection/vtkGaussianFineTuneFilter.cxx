@@ -11,12 +11,15 @@
 #include "vtkGaussianFineTuneFilter.h"
 
 #include "FineTune.h"
-#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSTrainingImages.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -30,7 +33,6 @@
 
 #include <algorithm>
 #include <exception>
-#include <memory>
 #include <vector>
 
 vtkStandardNewMacro(vtkGaussianFineTuneFilter);
@@ -176,30 +178,38 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
     vtkErrorMacro("The camera table is not usable: " << error);
     return 0;
   }
-  // Images inside a training log are read from the log the camera table names.
-  std::shared_ptr<const vis4gs::TrainingLogReader> log;
-  auto* logName = vtkStringArray::SafeDownCast(
-    cameraTable->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile));
+  // The images as the score and removal filters find them (Vis4GSTrainingImages); the log the
+  // camera table names also gives the repaired log its scene name and whether it embeds them.
+  vis4gs::TrainingImageProvider images;
+  if (!Vis4GSTrainingImages(cameraTable, std::string(), { 0.f, 0.f, 0.f }, cameras, images, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
   vis4gs::FineTuneOptions options;
   options.Producer = "vtkGaussianFineTuneFilter";
   options.EmbedImages = false;
-  try
+  auto* logName = vtkStringArray::SafeDownCast(
+    cameraTable->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile));
+  if (logName && logName->GetNumberOfValues() == 1)
   {
-    if (logName && logName->GetNumberOfValues() == 1)
+    vtkNew<vtkGaussianTrainingLogReader> log;
+    log->SetFileName(logName->GetValue(0).c_str());
+    // Its error is reported here, as this filter's (an observer keeps it from being printed).
+    std::string logError;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetClientData(&logError);
+    onError->SetCallback([](vtkObject*, unsigned long, void* client, void* message)
+      { *static_cast<std::string*>(client) += message ? static_cast<const char*>(message) : ""; });
+    log->AddObserver(vtkCommand::ErrorEvent, onError);
+    if (!vtkDemandDrivenPipeline::SafeDownCast(log->GetExecutive())->UpdateInformation())
     {
-      log = std::make_shared<const vis4gs::TrainingLogReader>(logName->GetValue(0));
-      options.Scene = log->GetHeader().Scene;
-      options.EmbedImages = log->HasImages();
+      vtkErrorMacro("The training log of the cameras cannot be read: " << logError);
+      return 0;
     }
+    options.Scene = log->GetSceneName();
+    options.EmbedImages = log->HasImages();
   }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("The training log of the cameras cannot be read: " << e.what());
-    return 0;
-  }
-  const vis4gs::TrainingImageProvider images =
-    [log](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
-  { return vis4gs::LoadCameraImage(log.get(), camera, image); };
 
   options.Iterations = this->Iterations;
   options.FreePositions = this->FreePositions;

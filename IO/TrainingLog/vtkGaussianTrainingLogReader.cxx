@@ -52,6 +52,7 @@ public:
   bool HasCameras = false;
   bool HasMetrics = false;
   bool HasEvents = false;
+  bool HasImages = false;
   std::vector<std::string> ImageNames;
 };
 
@@ -111,6 +112,7 @@ void vtkGaussianTrainingLogReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HasCameras: " << d.HasCameras << "\n";
   os << indent << "HasMetrics: " << d.HasMetrics << "\n";
   os << indent << "HasEvents: " << d.HasEvents << "\n";
+  os << indent << "HasImages: " << d.HasImages << "\n";
   os << indent << "NumberOfEmbeddedImages: " << d.ImageNames.size() << "\n";
   os << indent << "NumberOfSnapshots: " << d.Iterations.size() << "\n";
   os << indent << "NumberOfLacks: " << d.Lacks.size() << "\n";
@@ -215,6 +217,10 @@ bool vtkGaussianTrainingLogReader::HasEvents()
 {
   return this->Internals->HasEvents;
 }
+bool vtkGaussianTrainingLogReader::HasImages()
+{
+  return this->Internals->HasImages;
+}
 int vtkGaussianTrainingLogReader::GetNumberOfEmbeddedImages()
 {
   return static_cast<int>(this->Internals->ImageNames.size());
@@ -250,6 +256,7 @@ bool vtkGaussianTrainingLogReader::OpenLog()
     d.HasCameras = d.Log->HasCameras();
     d.HasMetrics = d.Log->HasMetrics();
     d.HasEvents = d.Log->HasEvents();
+    d.HasImages = d.Log->HasImages();
     d.ImageNames = d.Log->GetImageNames();
   }
   catch (const std::exception& e)
@@ -259,7 +266,7 @@ bool vtkGaussianTrainingLogReader::OpenLog()
     d.Lacks.clear();
     d.Repairs.clear();
     d.Header = vis4gs::TrainingLogHeader();
-    d.HasCameras = d.HasMetrics = d.HasEvents = false;
+    d.HasCameras = d.HasMetrics = d.HasEvents = d.HasImages = false;
     d.ImageNames.clear();
     vtkErrorMacro(<< e.what());
     return false;

@@ -129,8 +129,9 @@ public:
   /**
    * The log's header and contents (valid after UpdateInformation()): the trainer that wrote
    * it, its scene name, the planned last iteration and the trainer's SH degree; whether it
-   * holds cameras, metrics and events (what updating ports 1, 2 and 3 would read), and the
-   * names of the training images stored inside it ("/images/<name>" in the cameras table).
+   * holds cameras, metrics and events (what updating ports 1, 2 and 3 would read), whether it
+   * has an /images group (a fine-tune of it embeds its images too, as `vis4gs repair` does) and
+   * the names of the training images stored inside it ("/images/<name>" in the cameras table).
    */
   const char* GetProducer();
   const char* GetSceneName();
@@ -139,6 +140,7 @@ public:
   bool HasCameras();
   bool HasMetrics();
   bool HasEvents();
+  bool HasImages();
   int GetNumberOfEmbeddedImages();
   const char* GetEmbeddedImageName(int i);
   ///@}

@@ -11,7 +11,6 @@ snapshot and checks, from the files (h5py, csv):
 
 Usage: CheckCleanupRepair.py VIS4GS LOG.h5 SHOTS_DIR OUTPUT_DIR
 """
-import csv
 import os
 import subprocess
 import sys
@@ -19,18 +18,10 @@ import sys
 import h5py
 import numpy as np
 
-problems = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from Checks import (check, finish, largest_relative_difference,  # noqa: E402
+                    read_figures)
 
-
-def check(ok, what):
-    print(("ok: " if ok else "FAILED: ") + what)
-    if not ok:
-        problems.append(what)
-
-
-def read_table(path):
-    with open(path, newline="") as f:
-        return {(r["view"], r["split"]): r for r in csv.DictReader(f)}
 
 
 def prunes(log):
@@ -73,24 +64,15 @@ def main(vis4gs_exe, log_path, shots, folder):
                                                b["snapshots"][name][key][()])
         check(same, f"both logs' snapshots {names} are equal, dataset by dataset")
 
-    panel = read_table(os.path.join(shots, "cleanup-repair.csv"))
-    command = read_table(os.path.join(folder, "repair.csv"))
+    panel = read_figures(os.path.join(shots, "cleanup-repair.csv"))
+    command = read_figures(os.path.join(folder, "repair.csv"))
     columns = [c for c in next(iter(command.values())).keys() if c not in ("view", "split")]
-    worst = 0.0
-    for key, row in command.items():
-        if key not in panel:
-            worst = float("inf")
-            break
-        for c in columns:
-            x, y = float(panel[key][c]), float(row[c])
-            # repair.csv prints 9 significant digits.
-            worst = max(worst, abs(x - y) / max(abs(y), 1e-300))
+    # repair.csv prints 9 significant digits.
+    worst = largest_relative_difference(panel, command)
     check(panel.keys() == command.keys() and worst <= 1e-8,
           f"the panel's figures equal repair.csv's: {len(command)} rows, {len(columns)} columns "
           f"(largest relative difference {worst:.1e})")
-    if problems:
-        sys.exit(1)
-    print("the panel's fine-tune equals vis4gs repair")
+    finish("the panel's fine-tune equals vis4gs repair")
 
 
 if __name__ == "__main__":

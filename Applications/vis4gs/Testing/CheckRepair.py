@@ -29,14 +29,8 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from CleanupReport import read_ply  # noqa: E402
+from Checks import check, finish  # noqa: E402
 
-problems = []
-
-
-def check(ok, what):
-    print(("ok: " if ok else "FAILED: ") + what)
-    if not ok:
-        problems.append(what)
 
 
 def main(vis4gs_exe, log_path, analyze, folder):
@@ -138,9 +132,7 @@ def main(vis4gs_exe, log_path, analyze, folder):
     n_rep = len(metrics["iteration"]) * 2  # train and test rows
     check(sources.count("log-a") == n_src and sources.count("log-b") == n_rep,
           f"compare: metrics.csv holds both runs' /metrics ({n_src} and {n_rep} rows)")
-    if problems:
-        sys.exit(1)
-    print("repair outputs agree")
+    finish("repair outputs agree")
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ Usage: CheckRepairScene.py VIS4GS LOG.h5 ANALYZE_DIR OUTPUT_DIR
 """
 import csv
 import os
+import shutil
 import struct
 import subprocess
 import sys
@@ -165,7 +166,8 @@ def main(vis4gs_exe, log_path, analyze, folder):
     # Errors name the file and the problem.
     lonely = os.path.join(folder, "lonely")
     os.makedirs(lonely, exist_ok=True)
-    os.replace(scene, os.path.join(lonely, "scene.ply"))
+    # A copy: the scene stays for the view's clean-up test (CheckCleanupScene.py).
+    shutil.copyfile(scene, os.path.join(lonely, "scene.ply"))
     r = run([vis4gs_exe, "repair", os.path.join(lonely, "scene.ply"), cleaned,
              f"--output={folder}/no-cameras"], expect_ok=False)
     check(r.returncode == 1 and "scene.ply: no cameras found" in r.stdout,

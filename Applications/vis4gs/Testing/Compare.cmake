@@ -51,3 +51,6 @@ set_tests_properties(vis4gs-RepairScene PROPERTIES LABELS "Application;Python"
   ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH};PYTHONDONTWRITEBYTECODE=1"
   PASS_REGULAR_EXPRESSION "repair of a scene file agrees" FAIL_REGULAR_EXPRESSION "FAILED"
   FIXTURES_REQUIRED vis4gsCleanup-floaters)
+# Its scene, cameras, images and repair run are the clean-up panel's scene-file test's
+# (vis4gs-ViewCleanupScene, ../vis4gsView.cmake).
+set_tests_properties(vis4gs-RepairScene PROPERTIES FIXTURES_SETUP vis4gsRepairScene)

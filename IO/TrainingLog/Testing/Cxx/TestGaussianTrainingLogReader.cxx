@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -114,6 +115,8 @@ int TestGaussianTrainingLogReader(int, char*[])
   CHECK(info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[1] == 2000.0);
   CHECK(reader->GetNumberOfSnapshots() == 3 && reader->GetSnapshotIteration(2) == 3000);
   CHECK(reader->GetNumberOfLacks() == 0);
+  CHECK(!reader->HasImages() && reader->GetNumberOfEmbeddedImages() == 0);
+  CHECK(reader->HasCameras() && reader->HasMetrics() && reader->HasEvents());
 
   // Default: the last snapshot with the SH rest (as vis4gs analyze reads it); here DC only,
   // asked for; the tables are not read.
@@ -178,6 +181,25 @@ int TestGaussianTrainingLogReader(int, char*[])
           1.0 / (1.0 + std::exp(-logit))) < 1e-6);
   vtkDataArray* pos = vtkDataArray::SafeDownCast(history->GetColumnByName("Position"));
   CHECK(pos && pos->GetComponent(4, 1) == 102.25f);
+
+  // A log with an embedded image: HasImages and its name (what a fine-tune of it embeds).
+  const std::string withImage = path + ".image.h5";
+  {
+    vis4gs::TrainingLogWriter writer(withImage);
+    const unsigned char rgb[2 * 3 * 3] = {};
+    writer.WriteImage("c0", 3, 2, rgb);
+    writer.WriteSnapshot(100, Cloud(4, 0, 0.f));
+  }
+  vtkNew<vtkGaussianTrainingLogReader> imaged;
+  imaged->SetFileName(withImage.c_str());
+  imaged->UpdateInformation();
+  CHECK(imaged->HasImages());
+  CHECK(imaged->GetNumberOfEmbeddedImages() == 1 &&
+    std::string(imaged->GetEmbeddedImageName(0)) == "c0");
+  std::ostringstream printed;
+  imaged->Print(printed);
+  CHECK(printed.str().find("HasImages: 1") != std::string::npos);
+  std::remove(withImage.c_str());
 
   // A missing file: a clear error, no crash.
   vtkNew<vtkGaussianTrainingLogReader> missing;
