@@ -5,7 +5,12 @@
 #             (Documentation/dev/ARCHITECTURE.md), no exception;
 #   deps      each VTK module lists exactly the modules its sources include, no unused one
 #             (Scripts/check-module-deps.py);
-#   format    our C++ follows VTK 9.1's .clang-format (Debian's clang-format 14).
+#   format    our C++ follows VTK 9.1's .clang-format (Debian's clang-format 14);
+#   length    a source file (.cxx .h .hxx .txx .cpp .inc .py .glsl) over 1,200 lines says why
+#             within its first 25 lines, with the marker "Over 1,200 lines on purpose:"
+#             (Documentation/dev/ARCHITECTURE.md, "File size");
+#   tests     no CTest test sets PASS_REGULAR_EXPRESSION, which makes CTest ignore the exit
+#             status (Documentation/dev/TESTING.md).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 check="${1:-all}"
@@ -74,6 +79,41 @@ if [ "$check" = format ] || [ "$check" = all ]; then
     status=1
   else
     echo "format: ${#files[@]} files follow .clang-format"
+  fi
+fi
+if [ "$check" = length ] || [ "$check" = all ]; then
+  mapfile -t files < <(git ls-files --cached --others --exclude-standard \
+    '*.h' '*.cxx' '*.hxx' '*.txx' '*.cpp' '*.inc' '*.py' '*.glsl' | grep -v '^build' || true)
+  bad=()
+  long=0
+  for f in "${files[@]}"; do
+    [ -f "$f" ] || continue
+    lines=$(wc -l <"$f")
+    [ "$lines" -gt 1200 ] || continue
+    long=$((long + 1))
+    if ! head -n 25 "$f" | grep -q 'Over 1,200 lines on purpose:'; then
+      bad+=("$f ($lines lines)")
+    fi
+  done
+  if [ ${#bad[@]} -gt 0 ]; then
+    echo "FAILED: over 1,200 lines without \"Over 1,200 lines on purpose: <why>\" in the first 25"
+    echo "lines (split the file along its responsibilities, or say why it is one file):"
+    printf '  %s\n' "${bad[@]}"
+    status=1
+  else
+    echo "length: ${#files[@]} source files, $long over 1,200 lines, each saying why"
+  fi
+fi
+
+if [ "$check" = tests ] || [ "$check" = all ]; then
+  bad=$(git grep -n --untracked -E '^[^#]*PASS_REGULAR_EXPRESSION' -- '*CMakeLists.txt' '*.cmake' || true)
+  if [ -n "$bad" ]; then
+    echo "FAILED: PASS_REGULAR_EXPRESSION makes CTest ignore the exit status; use"
+    echo "vis4gs_add_checked_test(... OUTPUT regex) (CMake/Vis4GSTesting.cmake) instead:"
+    echo "$bad"
+    status=1
+  else
+    echo "tests: no test passes on a line of text alone"
   fi
 fi
 exit $status

@@ -364,27 +364,8 @@ void BinSortedRects(const std::array<int, 4>* rects,
   }
 }
 
-void BinSortedKeys(const NarrowRect* rects,
-  const std::uint64_t* keys,
-  std::int64_t count,
-  int gx,
-  int gy,
-  int chunks,
-  std::vector<std::int64_t>& diff,
-  TileBins& bins)
-{
-  BinSortedRectsOf(
-    rects,
-    [keys](std::int64_t k) { return static_cast<std::uint32_t>(keys[k]); },
-    count,
-    gx,
-    gy,
-    chunks,
-    diff,
-    bins);
-}
-
-void BinSortedKeys(const std::array<int, 4>* rects,
+template <typename Rect>
+void BinSortedKeys(const Rect* rects,
   const std::uint64_t* keys,
   std::int64_t count,
   int gx,

@@ -91,16 +91,10 @@ void BinSortedRects(const std::array<int, 4>* rects,
 using NarrowRect = std::array<std::uint16_t, 4>;
 
 /// BinSortedRects() with the entries in the low 32 bits of @p keys (BinGaussians()' sorted
-/// keys: a Gaussian's index below its depth bits), rectangles narrow or not.
-void BinSortedKeys(const NarrowRect* rects,
-  const std::uint64_t* keys,
-  std::int64_t count,
-  int gx,
-  int gy,
-  int chunks,
-  std::vector<std::int64_t>& diff,
-  TileBins& bins);
-void BinSortedKeys(const std::array<int, 4>* rects,
+/// keys: a Gaussian's index below its depth bits), rectangles narrow (NarrowRect) or not
+/// (std::array<int, 4>). Defined in RasterBinning.cxx, its only user.
+template <typename Rect>
+void BinSortedKeys(const Rect* rects,
   const std::uint64_t* keys,
   std::int64_t count,
   int gx,

@@ -93,10 +93,37 @@ public:
     return s;
   }
 
-  void Skip(std::size_t bytes) // caller checked the bytes exist
+  /// Every element of @p values (a std::array or std::vector), in order.
+  template <typename Array>
+  void GetAll(Array& values, const std::string& what)
   {
-    this->P += bytes;
-    this->Left -= bytes;
+    for (auto& v : values)
+    {
+      v = this->Get<typename Array::value_type>(what);
+    }
+  }
+
+  /// A count of records of exactly @p bytes each, then the records: each read by
+  /// @p read(record) into @p records when @p keep, else skipped.
+  template <typename Record, typename Read>
+  void FixedRecords(std::vector<Record>& records,
+    std::size_t bytes,
+    const std::string& what,
+    bool keep,
+    Read read)
+  {
+    const std::uint64_t n = this->Count(bytes, what);
+    if (!keep)
+    {
+      this->P += n * bytes; // Count() checked the bytes exist
+      this->Left -= n * bytes;
+      return;
+    }
+    records.resize(static_cast<std::size_t>(n));
+    for (auto& r : records)
+    {
+      read(r);
+    }
   }
 
   std::size_t Remaining() const { return this->Left; }
@@ -124,6 +151,21 @@ T ParseNumber(std::string_view s, const std::string& name, std::size_t lineNo, c
         "' is not a valid " + what);
   }
   return v;
+}
+
+/// The words @p tok[first], @p tok[first + 1], ... as the elements of @p values (a std::array).
+template <typename Array>
+void ParseNumbers(Array& values,
+  const std::vector<std::string_view>& tok,
+  std::size_t first,
+  const std::string& name,
+  std::size_t lineNo,
+  const char* what)
+{
+  for (std::size_t k = 0; k < values.size(); ++k)
+  {
+    values[k] = ParseNumber<typename Array::value_type>(tok[first + k], name, lineNo, what);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -191,10 +233,7 @@ std::vector<ColmapCamera> CamerasBinary(const void* data, std::size_t size, cons
           std::to_string(c.ModelId));
     }
     c.Params.resize(model->NumParams);
-    for (double& p : c.Params)
-    {
-      p = in.Get<double>(where + " parameters");
-    }
+    in.GetAll(c.Params, where + " parameters");
     CheckCameraParams(c, name, where + " (id " + std::to_string(c.Id) + ")");
     cams.push_back(std::move(c));
   }
@@ -260,33 +299,22 @@ std::vector<ColmapImage> ImagesBinary(const void* data,
     std::string where = "image record " + std::to_string(i);
     ColmapImage im;
     im.Id = in.Get<std::int32_t>(where);
-    for (double& q : im.Q)
-    {
-      q = in.Get<double>(where);
-    }
-    for (double& t : im.T)
-    {
-      t = in.Get<double>(where);
-    }
+    in.GetAll(im.Q, where);
+    in.GetAll(im.T, where);
     im.CameraId = in.Get<std::int32_t>(where);
     im.Name = in.CString(where + " name");
     where += " ('" + im.Name + "')";
     CheckImagePose(im, name, where);
-    const std::uint64_t np = in.Count(24, "2D points of " + where);
-    if (observations)
-    {
-      im.Points2D.resize(static_cast<std::size_t>(np));
-      for (auto& p : im.Points2D)
+    in.FixedRecords(im.Points2D,
+      24,
+      "2D points of " + where,
+      observations,
+      [&](ColmapPoint2D& p)
       {
         p.X = in.Get<double>(where);
         p.Y = in.Get<double>(where);
         p.Point3DId = in.Get<std::int64_t>(where);
-      }
-    }
-    else
-    {
-      in.Skip(static_cast<std::size_t>(np) * 24);
-    }
+      });
     images.push_back(std::move(im));
   }
   return images;
@@ -312,14 +340,8 @@ std::vector<ColmapImage> ImagesText(const void* data,
     }
     ColmapImage im;
     im.Id = ParseNumber<std::int32_t>(tok[0], name, ln, "image id");
-    for (int k = 0; k < 4; ++k)
-    {
-      im.Q[k] = ParseNumber<double>(tok[1 + k], name, ln, "quaternion component");
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      im.T[k] = ParseNumber<double>(tok[5 + k], name, ln, "translation component");
-    }
+    ParseNumbers(im.Q, tok, 1, name, ln, "quaternion component");
+    ParseNumbers(im.T, tok, 5, name, ln, "translation component");
     im.CameraId = ParseNumber<std::int32_t>(tok[8], name, ln, "camera id");
     // The name is the rest of the line (COLMAP names may not contain spaces, but be lenient).
     const std::size_t nameStart = static_cast<std::size_t>(tok[9].data() - line.data());
@@ -374,29 +396,18 @@ std::vector<ColmapPoint3D> PointsBinary(const void* data,
     const std::string where = "point3D record " + std::to_string(i);
     ColmapPoint3D p;
     p.Id = in.Get<std::uint64_t>(where);
-    for (double& x : p.Xyz)
-    {
-      x = in.Get<double>(where);
-    }
-    for (auto& c : p.Rgb)
-    {
-      c = in.Get<std::uint8_t>(where);
-    }
+    in.GetAll(p.Xyz, where);
+    in.GetAll(p.Rgb, where);
     p.Error = in.Get<double>(where);
-    const std::uint64_t tl = in.Count(8, "track elements of " + where);
-    if (observations)
-    {
-      p.Track.resize(static_cast<std::size_t>(tl));
-      for (auto& t : p.Track)
+    in.FixedRecords(p.Track,
+      8,
+      "track elements of " + where,
+      observations,
+      [&](ColmapTrackElement& t)
       {
         t.ImageId = in.Get<std::int32_t>(where);
         t.Point2DIdx = in.Get<std::int32_t>(where);
-      }
-    }
-    else
-    {
-      in.Skip(static_cast<std::size_t>(tl) * 8);
-    }
+      });
     points.push_back(std::move(p));
   }
   return points;
@@ -423,10 +434,7 @@ std::vector<ColmapPoint3D> PointsText(const void* data,
     }
     ColmapPoint3D p;
     p.Id = ParseNumber<std::uint64_t>(tok[0], name, ln, "point3D id");
-    for (int k = 0; k < 3; ++k)
-    {
-      p.Xyz[k] = ParseNumber<double>(tok[1 + k], name, ln, "coordinate");
-    }
+    ParseNumbers(p.Xyz, tok, 1, name, ln, "coordinate");
     for (int k = 0; k < 3; ++k)
     {
       const unsigned v = ParseNumber<unsigned>(tok[4 + k], name, ln, "colour (0..255)");
@@ -468,6 +476,14 @@ public:
     }
     this->Bytes.insert(this->Bytes.end(), b, b + sizeof(T));
   }
+  template <typename Array>
+  void PutAll(const Array& values)
+  {
+    for (auto v : values)
+    {
+      this->Put<typename Array::value_type>(v);
+    }
+  }
   void PutString(const std::string& s)
   {
     this->Bytes.insert(this->Bytes.end(), s.begin(), s.end());
@@ -481,6 +497,16 @@ std::string Num(double v)
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof(buf), v);
   return std::string(buf, r.ptr);
+}
+
+/// " v0 v1 ..." (shortest round-trip text) after @p line.
+template <typename Array>
+void AppendNums(std::string& line, const Array& values)
+{
+  for (double v : values)
+  {
+    line += " " + Num(v);
+  }
 }
 
 void WriteOut(const std::string& path, const void* data, std::size_t size)
@@ -630,10 +656,7 @@ void WriteColmapModel(const std::string& folder, const ColmapModel& model, Colma
       cams.Put<std::int32_t>(c.ModelId);
       cams.Put<std::uint64_t>(c.Width);
       cams.Put<std::uint64_t>(c.Height);
-      for (double p : c.Params)
-      {
-        cams.Put<double>(p);
-      }
+      cams.PutAll(c.Params);
     }
     WriteOut(folder + "/cameras.bin", cams.Bytes.data(), cams.Bytes.size());
     ByteWriter ims;
@@ -641,14 +664,8 @@ void WriteColmapModel(const std::string& folder, const ColmapModel& model, Colma
     for (const auto& im : model.Images)
     {
       ims.Put<std::int32_t>(im.Id);
-      for (double q : im.Q)
-      {
-        ims.Put<double>(q);
-      }
-      for (double t : im.T)
-      {
-        ims.Put<double>(t);
-      }
+      ims.PutAll(im.Q);
+      ims.PutAll(im.T);
       ims.Put<std::int32_t>(im.CameraId);
       ims.PutString(im.Name);
       ims.Put<std::uint64_t>(im.Points2D.size());
@@ -665,14 +682,8 @@ void WriteColmapModel(const std::string& folder, const ColmapModel& model, Colma
     for (const auto& p : model.Points3D)
     {
       pts.Put<std::uint64_t>(p.Id);
-      for (double x : p.Xyz)
-      {
-        pts.Put<double>(x);
-      }
-      for (auto c : p.Rgb)
-      {
-        pts.Put<std::uint8_t>(c);
-      }
+      pts.PutAll(p.Xyz);
+      pts.PutAll(p.Rgb);
       pts.Put<double>(p.Error);
       pts.Put<std::uint64_t>(p.Track.size());
       for (const auto& t : p.Track)
@@ -692,10 +703,7 @@ void WriteColmapModel(const std::string& folder, const ColmapModel& model, Colma
   {
     cams += std::to_string(c.Id) + " " + FindColmapModel(c.ModelId)->Name + " " +
       std::to_string(c.Width) + " " + std::to_string(c.Height);
-    for (double p : c.Params)
-    {
-      cams += " " + Num(p);
-    }
+    AppendNums(cams, c.Params);
     cams += "\n";
   }
   WriteOut(folder + "/cameras.txt", cams.data(), cams.size());
@@ -707,14 +715,8 @@ void WriteColmapModel(const std::string& folder, const ColmapModel& model, Colma
   for (const auto& im : model.Images)
   {
     ims += std::to_string(im.Id);
-    for (double q : im.Q)
-    {
-      ims += " " + Num(q);
-    }
-    for (double t : im.T)
-    {
-      ims += " " + Num(t);
-    }
+    AppendNums(ims, im.Q);
+    AppendNums(ims, im.T);
     ims += " " + std::to_string(im.CameraId) + " " + im.Name + "\n";
     for (std::size_t k = 0; k < im.Points2D.size(); ++k)
     {
@@ -731,10 +733,7 @@ void WriteColmapModel(const std::string& folder, const ColmapModel& model, Colma
   for (const auto& p : model.Points3D)
   {
     pts += std::to_string(p.Id);
-    for (double x : p.Xyz)
-    {
-      pts += " " + Num(x);
-    }
+    AppendNums(pts, p.Xyz);
     for (auto c : p.Rgb)
     {
       pts += " " + std::to_string(static_cast<unsigned>(c));

@@ -464,17 +464,8 @@ GaussianCloud ReadCompressed(const ByteSource& src,
   }
   report.NonFiniteValues = badValues;
   report.NonFiniteGaussians = badRows;
-  if (report.NonFiniteValues)
-  {
-    report.Warnings.push_back(name + ": " + std::to_string(report.NonFiniteGaussians) +
-      " Gaussians hold NaN or infinite values (" + std::to_string(report.NonFiniteValues) +
-      " values; an alpha byte of 0 or 255 is an opacity logit of -inf or +inf); they are kept as "
-      "read");
-  }
-  if (reportOut)
-  {
-    *reportOut = std::move(report);
-  }
+  detail::FinishReadReport(
+    report, name, reportOut, "; an alpha byte of 0 or 255 is an opacity logit of -inf or +inf");
   return cloud;
 }
 
@@ -890,8 +881,7 @@ GaussianCloud ReadCompressedPly(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  detail::InputFile file(path);
-  return ReadCompressed(detail::FileSource(file), options, report);
+  return detail::ParseFileSource(ReadCompressed, path, options, report);
 }
 
 //------------------------------------------------------------------------------

@@ -348,6 +348,15 @@ namespace detail
 /// arrays are sized for what @p options ask a reader to load, the others left empty: the one
 /// allocation rule of every scene reader.
 GaussianCloud AllocateReadArrays(std::size_t n, int shDegree, const GaussianReadOptions& options);
+
+/// The end of every scene reader: when the cloud holds non-finite values, the warning "NAME:
+/// G Gaussians hold NaN or infinite values (V values<note>); they are kept as read" (@p note
+/// says what else the format counts, e.g. ", zero scales included"); then @p report is moved
+/// to the caller's @p out, if any.
+void FinishReadReport(GaussianReadReport& report,
+  const std::string& name,
+  GaussianReadReport* out,
+  const std::string& note = "");
 } // namespace detail
 
 } // namespace vis4gs

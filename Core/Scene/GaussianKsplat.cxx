@@ -388,16 +388,7 @@ GaussianCloud ReadKsplatBytes(const unsigned char* data,
   }
   report.NonFiniteValues = badValues;
   report.NonFiniteGaussians = badRows;
-  if (report.NonFiniteValues)
-  {
-    report.Warnings.push_back(name + ": " + std::to_string(report.NonFiniteGaussians) +
-      " Gaussians hold NaN or infinite values (" + std::to_string(report.NonFiniteValues) +
-      " values, zero scales included); they are kept as read");
-  }
-  if (reportOut)
-  {
-    *reportOut = std::move(report);
-  }
+  detail::FinishReadReport(report, name, reportOut, ", zero scales included");
   return cloud;
 }
 
@@ -437,8 +428,7 @@ GaussianCloud ReadKsplat(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  const std::vector<unsigned char> bytes = detail::ReadWholeFile(path);
-  return ReadKsplatBytes(bytes.data(), bytes.size(), path, options, report);
+  return detail::ParseWholeFile(ReadKsplatBytes, path, options, report);
 }
 
 //------------------------------------------------------------------------------
@@ -448,8 +438,7 @@ GaussianCloud ReadKsplatFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  const detail::ByteSource src = detail::MemorySource(data, size, name);
-  return ReadKsplatBytes(src.Memory, static_cast<std::size_t>(src.Size), name, options, report);
+  return detail::ParseMemory(ReadKsplatBytes, data, size, name, options, report);
 }
 
 } // namespace vis4gs

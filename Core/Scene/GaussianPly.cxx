@@ -986,16 +986,7 @@ GaussianCloud ReadPly(const ByteSource& src,
       report,
       options.IdProperty);
   }
-  if (report.NonFiniteValues)
-  {
-    report.Warnings.push_back(name + ": " + std::to_string(report.NonFiniteGaussians) +
-      " Gaussians hold NaN or infinite values (" + std::to_string(report.NonFiniteValues) +
-      " values); they are kept as read");
-  }
-  if (reportOut)
-  {
-    *reportOut = std::move(report);
-  }
+  detail::FinishReadReport(report, name, reportOut);
   return cloud;
 }
 
@@ -1006,8 +997,7 @@ GaussianCloud ReadGaussianPly(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  detail::InputFile file(path);
-  return ReadPly(detail::FileSource(file), options, report);
+  return detail::ParseFileSource(ReadPly, path, options, report);
 }
 
 //------------------------------------------------------------------------------

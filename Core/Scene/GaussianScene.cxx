@@ -48,6 +48,24 @@ GaussianCloud ReadGaussianScene(const std::string& path,
 }
 
 //------------------------------------------------------------------------------
+void detail::FinishReadReport(GaussianReadReport& report,
+  const std::string& name,
+  GaussianReadReport* out,
+  const std::string& note)
+{
+  if (report.NonFiniteValues)
+  {
+    report.Warnings.push_back(name + ": " + std::to_string(report.NonFiniteGaussians) +
+      " Gaussians hold NaN or infinite values (" + std::to_string(report.NonFiniteValues) +
+      " values" + note + "); they are kept as read");
+  }
+  if (out)
+  {
+    *out = std::move(report);
+  }
+}
+
+//------------------------------------------------------------------------------
 GaussianCloud detail::AllocateReadArrays(std::size_t n,
   int shDegree,
   const GaussianReadOptions& options)

@@ -596,16 +596,7 @@ GaussianCloud ReadSogFiles(SogFiles& files,
   {
     report.NonFiniteGaussians += b;
   }
-  if (report.NonFiniteValues)
-  {
-    report.Warnings.push_back(name + ": " + std::to_string(report.NonFiniteGaussians) +
-      " Gaussians hold NaN or infinite values (" + std::to_string(report.NonFiniteValues) +
-      " values); they are kept as read");
-  }
-  if (reportOut)
-  {
-    *reportOut = std::move(report);
-  }
+  detail::FinishReadReport(report, name, reportOut);
   return cloud;
 }
 

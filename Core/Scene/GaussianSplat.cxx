@@ -108,16 +108,7 @@ GaussianCloud ReadSplatSource(const detail::ByteSource& src,
     });
   report.NonFiniteValues = badValues;
   report.NonFiniteGaussians = badRows;
-  if (report.NonFiniteValues)
-  {
-    report.Warnings.push_back(src.Name + ": " + std::to_string(report.NonFiniteGaussians) +
-      " Gaussians hold NaN or infinite values (" + std::to_string(report.NonFiniteValues) +
-      " values); they are kept as read");
-  }
-  if (reportOut)
-  {
-    *reportOut = std::move(report);
-  }
+  detail::FinishReadReport(report, src.Name, reportOut);
   return cloud;
 }
 
@@ -128,8 +119,7 @@ GaussianCloud ReadSplat(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  detail::InputFile file(path);
-  return ReadSplatSource(detail::FileSource(file), options, report);
+  return detail::ParseFileSource(ReadSplatSource, path, options, report);
 }
 
 //------------------------------------------------------------------------------

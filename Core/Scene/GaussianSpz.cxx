@@ -637,8 +637,7 @@ GaussianCloud ReadSpz(const std::string& path,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  const std::vector<unsigned char> bytes = detail::ReadWholeFile(path);
-  return ReadSpzBytes(bytes.data(), bytes.size(), path, options, report);
+  return detail::ParseWholeFile(ReadSpzBytes, path, options, report);
 }
 
 //------------------------------------------------------------------------------
@@ -648,8 +647,7 @@ GaussianCloud ReadSpzFromMemory(const void* data,
   const GaussianReadOptions& options,
   GaussianReadReport* report)
 {
-  const detail::ByteSource src = detail::MemorySource(data, size, name);
-  return ReadSpzBytes(src.Memory, static_cast<std::size_t>(src.Size), name, options, report);
+  return detail::ParseMemory(ReadSpzBytes, data, size, name, options, report);
 }
 
 //------------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace vis4gs
@@ -187,6 +188,36 @@ struct ByteSource
 /// A ByteSource over an open file, or over a caller's buffer (null @p data: an empty one).
 ByteSource FileSource(const InputFile& file);
 ByteSource MemorySource(const void* data, std::size_t size, const std::string& name);
+
+/// @p parse(source, args...) on the file @p path read through a ByteSource (in blocks): the
+/// file form of the readers of .ply, compressed .ply and .splat.
+template <typename Parse, typename... Args>
+auto ParseFileSource(Parse parse, const std::string& path, Args&&... args)
+{
+  const InputFile file(path);
+  return parse(FileSource(file), std::forward<Args>(args)...);
+}
+
+/// @p parse(bytes, size, path, args...) on the whole file @p path, read into memory: the file
+/// form of the readers that parse one buffer (.ksplat, .spz).
+template <typename Parse, typename... Args>
+auto ParseWholeFile(Parse parse, const std::string& path, Args&&... args)
+{
+  const std::vector<unsigned char> bytes = ReadWholeFile(path);
+  return parse(bytes.data(), bytes.size(), path, std::forward<Args>(args)...);
+}
+
+/// The same on a caller's buffer (null @p data: an empty one, as MemorySource()).
+template <typename Parse, typename... Args>
+auto ParseMemory(Parse parse,
+  const void* data,
+  std::size_t size,
+  const std::string& name,
+  Args&&... args)
+{
+  const ByteSource src = MemorySource(data, size, name);
+  return parse(src.Memory, static_cast<std::size_t>(src.Size), name, std::forward<Args>(args)...);
+}
 
 /**
  * Calls @p kernel(rows, firstRow, rowCount) over @p rowCount rows of @p rowSize bytes that

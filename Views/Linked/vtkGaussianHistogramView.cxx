@@ -12,6 +12,7 @@
 
 #include "Vis4GSDataModel.h" // vis4gs::arrays
 
+#include "Vis4GSHubLink.h"
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChartXY.h"
@@ -29,7 +30,6 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkTable.h"
-#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,8 +43,7 @@ struct vtkGaussianHistogramView::vtkInternals
   vtkNew<vtkChartXY> Chart;
   vtkNew<vtkTable> Bins;
   vtkSmartPointer<vtkDataObject> Data;
-  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
-  unsigned long Observer = 0;
+  Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkNew<vtkCallbackCommand> ChartCommand;
   std::vector<double> Edges;
@@ -100,20 +99,9 @@ vtkDataObject* vtkGaussianHistogramView::GetInputData()
 void vtkGaussianHistogramView::SetSelectionHub(vtkGaussianSelectionHub* hub)
 {
   auto& in = *this->Internals;
-  if (in.Hub == hub)
+  if (!in.Hub.Link(hub, in.HubCommand, this, false))
   {
     return;
-  }
-  if (in.Hub)
-  {
-    in.Hub->RemoveObserver(in.Observer);
-    in.Hub->RemoveView(this);
-  }
-  in.Hub = hub;
-  if (hub)
-  {
-    in.Observer = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
-    hub->AddView(this);
   }
   this->UpdateHistogram();
 }

@@ -12,6 +12,7 @@
 
 #include "Vis4GSDataModel.h" // vis4gs::arrays, the column names of the metrics tables
 
+#include "Vis4GSHubLink.h"
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChartLegend.h"
@@ -31,7 +32,6 @@
 #include "vtkTable.h"
 #include "vtkTextProperty.h"
 #include "vtkVector.h"
-#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -88,8 +88,7 @@ struct vtkGaussianTimelineView::vtkInternals
   /// The finite rows of metric columns that have NaN (a merged train/test table).
   std::vector<vtkSmartPointer<vtkTable>> FiniteRows;
   vtkNew<vtkTable> Wide;
-  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
-  unsigned long SelectionObserver = 0, IterationObserver = 0;
+  Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkNew<vtkCallbackCommand> ClickCommand;
   int Iteration = -1;
@@ -249,23 +248,12 @@ vtkTable* vtkGaussianTimelineView::GetHistory()
 void vtkGaussianTimelineView::SetSelectionHub(vtkGaussianSelectionHub* hub)
 {
   auto& in = *this->Internals;
-  if (in.Hub == hub)
+  if (!in.Hub.Link(hub, in.HubCommand, this, true))
   {
     return;
   }
-  if (in.Hub)
-  {
-    in.Hub->RemoveObserver(in.SelectionObserver);
-    in.Hub->RemoveObserver(in.IterationObserver);
-    in.Hub->RemoveView(this);
-  }
-  in.Hub = hub;
   if (hub)
   {
-    in.SelectionObserver = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
-    in.IterationObserver =
-      hub->AddObserver(vtkGaussianSelectionHub::IterationChangedEvent, in.HubCommand);
-    hub->AddView(this);
     in.Iteration = hub->GetIteration();
   }
   this->UpdatePlots();

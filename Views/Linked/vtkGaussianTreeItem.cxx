@@ -19,6 +19,7 @@
 
 #include "TreeDrawIndex.h"
 
+#include "Vis4GSHubLink.h"
 #include "vtkGaussianSelectionHub.h"
 
 #include "vtkBrush.h"
@@ -37,7 +38,6 @@
 #include "vtkTextProperty.h"
 #include "vtkTree.h"
 #include "vtkTypeTraits.h"
-#include "vtkWeakPointer.h"
 
 #include "Genealogy.h" // vis4gs::ZoomThreshold (DESIGN §4)
 
@@ -153,9 +153,7 @@ struct vtkGaussianTreeItem::vtkInternals
 {
   vtkSmartPointer<vtkTree> Tree;
   vtkSmartPointer<vtkTable> Bands;
-  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
-  unsigned long SelectionObserver = 0;
-  unsigned long IterationObserver = 0;
+  Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkMTimeType BuiltTreeTime = 0;
   vtkMTimeType BuiltBandsTime = 0;
@@ -258,21 +256,13 @@ vtkTable* vtkGaussianTreeItem::GetFamilyBands()
 void vtkGaussianTreeItem::SetSelectionHub(vtkGaussianSelectionHub* hub)
 {
   auto& in = *this->Internals;
-  if (in.Hub == hub)
+  // The tree view that holds this item is the view the hub renders.
+  if (!in.Hub.Link(hub, in.HubCommand, nullptr, true))
   {
     return;
   }
-  if (in.Hub)
-  {
-    in.Hub->RemoveObserver(in.SelectionObserver);
-    in.Hub->RemoveObserver(in.IterationObserver);
-  }
-  in.Hub = hub;
   if (hub)
   {
-    in.SelectionObserver = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
-    in.IterationObserver =
-      hub->AddObserver(vtkGaussianSelectionHub::IterationChangedEvent, in.HubCommand);
     this->UpdateFromHub();
   }
   this->Modified();

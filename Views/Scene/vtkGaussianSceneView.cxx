@@ -12,6 +12,7 @@
 
 #include "GaussianCloud.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSHubLink.h"
 #include "vtkGaussianCameraFrustums.h"
 #include "vtkGaussianCameraUtilities.h"
 #include "vtkGaussianSelectionHub.h"
@@ -71,8 +72,7 @@ struct vtkGaussianSceneView::vtkInternals
 {
   vtkSmartPointer<vtkPolyData> Scene;
   vtkSmartPointer<vtkTable> Cameras;
-  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
-  unsigned long HubObserver = 0;
+  Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   // The one Core form of the scene's Gaussians, shared by the mapper and the selector (the
   // scene's own arrays for a reader's scene, else a conversion); taken again when the scene
@@ -334,20 +334,9 @@ bool vtkGaussianSceneView::JumpToCamera(vtkIdType row)
 void vtkGaussianSceneView::SetSelectionHub(vtkGaussianSelectionHub* hub)
 {
   auto& in = *this->Internals;
-  if (in.Hub == hub)
+  if (!in.Hub.Link(hub, in.HubCommand, this, false))
   {
     return;
-  }
-  if (in.Hub)
-  {
-    in.Hub->RemoveObserver(in.HubObserver);
-    in.Hub->RemoveView(this);
-  }
-  in.Hub = hub;
-  if (hub)
-  {
-    in.HubObserver = hub->AddObserver(vtkCommand::SelectionChangedEvent, in.HubCommand);
-    hub->AddView(this);
   }
   this->OnSelectionChanged();
   this->Modified();

@@ -1,7 +1,8 @@
-"""Runs one command line of a vis4gs application test and checks what it claims: its exit
-status, the files it says it wrote (removed first, so an old file cannot pass), the files it
-must not leave behind, and optionally text in its output. Text alone is never enough: an
-error message can print the same words, so the exit status is always checked.
+"""Runs one command line of a test and checks what it claims: its exit status, the files it
+says it wrote (removed first, so an old file cannot pass), the files it must not leave behind,
+and optionally text in its output. Text alone is never enough: an error message can print the
+same words, so the exit status is always checked. CTest's PASS_REGULAR_EXPRESSION ignores the
+exit status; no test uses it (vis4gs_add_checked_test in CMake/Vis4GSTesting.cmake runs this).
 
 Usage: RunCommand.py [--status=N] [--output=REGEX]... [--file=PATH]... [--png=PATH:W,H]...
                      [--absent=PATH]... -- COMMAND [ARGS...]
