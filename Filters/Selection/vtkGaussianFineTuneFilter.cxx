@@ -202,6 +202,7 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
   { return vis4gs::LoadCameraImage(log.get(), camera, image); };
 
   options.Iterations = this->Iterations;
+  options.WarmupIterations = this->WarmupIterations;
   options.FreePositions = this->FreePositions;
   options.Densify = this->Densify;
   options.Seed = this->Seed;
@@ -277,6 +278,7 @@ void vtkGaussianFineTuneFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SourceIteration: " << this->SourceIteration << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "WarmupIterations: " << this->WarmupIterations << "\n";
   os << indent << "FreePositions: " << this->FreePositions << "\n";
   os << indent << "Densify: " << this->Densify << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -30,6 +30,8 @@ from vtkmodules.vtkCommonCore import vtkObject
 
 import vis4gs
 
+# Not the default warm-up, so that both sides must pass it on (--warmup, warmup=).
+WARMUP = 3
 failures = []
 vtkObject.GlobalWarningDisplayOff()
 
@@ -56,7 +58,8 @@ def main(vis4gs_exe, log_path, folder, iterations):
     scene.select(mask=scene.ids != floater).save(cleaned)
     cli = os.path.join(folder, "cli")
     result = subprocess.run([vis4gs_exe, "repair", log_path, cleaned,
-                             f"--iterations={iterations}", "--threads=2", f"--output={cli}"],
+                             f"--iterations={iterations}", f"--warmup={WARMUP}", "--threads=2",
+                             f"--output={cli}"],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     print(result.stdout)
     check(result.returncode == 0, f"vis4gs repair exits 0 (got {result.returncode})")
@@ -66,8 +69,14 @@ def main(vis4gs_exe, log_path, folder, iterations):
         rows = list(csv.reader(f))
 
     # Python, the same inputs (no log: the CLI's is checked above and in CheckRepair.py).
-    repaired = scene.repair(ids=[floater], iterations=iterations, threads=2)
+    repaired = scene.repair(ids=[floater], iterations=iterations, warmup=WARMUP, threads=2)
     figures = repaired.figures
+    try:
+        scene.repair(ids=[floater], iterations=2, iteration=scene.iteration + 1)
+        check(False, "repair(iteration=) of another snapshot of a log raises")
+    except vis4gs.Vis4GSError as e:
+        check("open that snapshot instead" in str(e), f"repair(iteration=) of another snapshot "
+              f"of a log raises: {e}")
     check(list(figures) == rows[0], f"the figures' columns are repair.csv's: {list(figures)}")
     check(len(rows) - 1 == len(figures["view"]), f"{len(rows) - 1} rows in repair.csv, "
           f"{len(figures['view'])} in Python")
