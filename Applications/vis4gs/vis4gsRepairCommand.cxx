@@ -56,11 +56,21 @@ void Define(Vis4GSArguments& args)
     "Scene file only: folder of training images, matched to cameras by name. Default: the "
     "cameras' own image paths.");
   args.AddOption("iterations", "N", "50", "Fine-tuning iterations.");
+  args.AddOption("warmup",
+    "W",
+    "10",
+    "Learning-rate warm-up: the j-th of the first W iterations uses j/(W+1) of every learning "
+    "rate, so that fresh Adam moments do not make a converged scene worse first; 0: none.");
   args.AddFlag("free-positions", false, "Optimise the positions too (default: fixed).");
   args.AddFlag("densify",
     false,
     "Keep the trainer's densification schedule (default: off, and no opacity reset).");
   args.AddOption("seed", "S", "0", "Random seed (camera order).");
+  args.AddOption("metrics-interval",
+    "N",
+    "0",
+    "The repaired log's train/test metrics every N iterations (every view rendered); 0: at "
+    "most 10 rows, the first and last from the repair's own measurement.");
   args.AddOption("output", "DIR", "vis4gs-repair", "Folder for repaired.h5 and repair.csv.");
 }
 
@@ -71,6 +81,11 @@ int Run(const Vis4GSArguments& args)
   if (iterations <= 0)
   {
     throw std::runtime_error("--iterations must be positive");
+  }
+  const int warmup = args.GetInt("warmup");
+  if (warmup < 0)
+  {
+    throw std::runtime_error("--warmup must be >= 0");
   }
   const int wanted = args.GetInt("iteration");
   std::shared_ptr<vis4gs::TrainingLogReader> log; // null for a scene file
@@ -174,6 +189,8 @@ int Run(const Vis4GSArguments& args)
   const fs::path logOut = output / "repaired.h5";
   vis4gs::FineTuneOptions options;
   options.Iterations = iterations;
+  options.WarmupIterations = warmup;
+  options.MetricsInterval = std::max(0, args.GetInt("metrics-interval"));
   options.FreePositions = args.GetFlag("free-positions");
   options.Densify = args.GetFlag("densify");
   options.Seed = static_cast<std::uint64_t>(std::stoull(args.Get("seed")));

@@ -46,6 +46,36 @@ std::string PartialPath(const std::string& path)
   return path.substr(0, start) + "." + path.substr(start) + ".partial";
 }
 
+// The trainer's metrics row (Trainer::Evaluate()) from per-view figures: the means over the
+// views of @p split, the loss from them as the trainer weighs it; NaN without such a view.
+MetricsRow MeanMetrics(const std::vector<ViewMetrics>& figures,
+  const std::vector<Camera>& cameras,
+  CameraSplit split,
+  double lambdaDssim)
+{
+  MetricsRow row;
+  double l1 = 0, ssim = 0, psnr = 0;
+  int views = 0;
+  for (std::size_t v = 0; v < cameras.size(); ++v)
+  {
+    if (cameras[v].Split == split)
+    {
+      l1 += figures[v].L1;
+      ssim += figures[v].Ssim;
+      psnr += figures[v].Psnr;
+      ++views;
+    }
+  }
+  if (views > 0)
+  {
+    row.L1 = l1 / views;
+    row.Ssim = ssim / views;
+    row.Psnr = psnr / views;
+    row.Loss = (1.0 - lambdaDssim) * row.L1 + lambdaDssim * (1.0 - row.Ssim);
+  }
+  return row;
+}
+
 const char* SplitName(const Camera& camera)
 {
   return camera.Split == CameraSplit::Train ? "train" : "test";
@@ -115,8 +145,14 @@ FineTuneResult FineTune(const GaussianCloud& snapshot,
   {
     trainerOptions.DensifyUntilIter = 0; // also skips the opacity resets, as in the reference
   }
+  trainerOptions.LrWarmupIterations = std::max(0, options.WarmupIterations);
   trainerOptions.SnapshotInterval = options.Iterations;
-  trainerOptions.MetricsInterval = std::max(1, options.Iterations / 10);
+  // By default at most 10 metrics rows in between (the trainer logs the iterations that are
+  // multiples of the interval), none for a short run: its first and last rows are FineTune's
+  // own measurement below.
+  trainerOptions.MetricsInterval = options.MetricsInterval > 0 ? options.MetricsInterval
+    : options.Iterations <= 10                                 ? 0
+                                                               : (options.Iterations + 9) / 10;
   trainerOptions.EmbedImages = options.EmbedImages;
   for (const Camera& c : cameras)
   {
@@ -124,6 +160,75 @@ FineTuneResult FineTune(const GaussianCloud& snapshot,
   }
   trainerOptions.ProgressInterval = 1;
   Trainer trainer(std::move(data), trainerOptions, snapshot, sourceIteration, result.Pruned);
+
+  // The source and deleted states are measured before the iterations: the log's metrics row
+  // of the source iteration (the deleted scene) is then their means, not a second render.
+  RemovalEffectOptions measure;
+  measure.Threads = options.Threads;
+  const TrainingData& loaded = trainer.GetData();
+  const TrainingImageProvider cached = [&loaded](std::size_t v, const Camera& c, Image& image)
+  {
+    image.Width = c.Width;
+    image.Height = c.Height;
+    image.Channels = 3;
+    image.Pixels = loaded.Images[v];
+    return true;
+  };
+  if (options.Measure)
+  {
+    const auto a = Clock::now();
+    // The source per tile; the deleted state re-renders only the tiles the deletion changes
+    // (RemovalEffect.h: the same figures as a full render of the cleaned scene, bit for bit).
+    measure.TileBaseline = MeasureRemovalBaseline(snapshot, loaded.Cameras, measure, cached);
+    result.Source.assign(loaded.Cameras.size(), ViewMetrics());
+    result.Deleted.assign(loaded.Cameras.size(), ViewMetrics());
+    for (std::size_t v = 0; v < loaded.Cameras.size(); ++v)
+    {
+      if (!measure.TileBaseline.Views[v].Empty())
+      {
+        result.Source[v] = measure.TileBaseline.Views[v].Metrics();
+      }
+    }
+    const RemovalEffect deletion =
+      MeasureRemovalEffect(snapshot, removed, loaded.Cameras, measure, cached);
+    for (const RemovalViewEffect& view : deletion.Views)
+    {
+      if (view.HasImage)
+      {
+        result.Deleted[view.CameraIndex] = view.After;
+      }
+    }
+    measure.TileBaseline = RemovalBaseline();
+    result.MeasureSeconds = Seconds(a, Clock::now());
+  }
+  // The log's metrics rows: the deleted state's and the repaired state's from the figures
+  // above and below (measured once); the trainer renders the ones in between.
+  double repairedSeconds = 0;
+  const int lastIteration = trainerOptions.Iterations;
+  trainer.SetMetricsSource(
+    [&](const Trainer& t, MetricsRow& train, MetricsRow& test)
+    {
+      const std::vector<ViewMetrics>* figures = nullptr;
+      if (options.Measure && t.GetIteration() == sourceIteration)
+      {
+        figures = &result.Deleted;
+      }
+      else if (options.Measure && t.GetIteration() == lastIteration)
+      {
+        const auto a = Clock::now();
+        result.RepairedFigures = MeasureViewMetrics(t.GetCloud(), loaded.Cameras, measure, cached);
+        repairedSeconds += Seconds(a, Clock::now());
+        figures = &result.RepairedFigures;
+      }
+      if (!figures)
+      {
+        result.MetricsRenders += static_cast<int>(loaded.Cameras.size());
+        return false;
+      }
+      train = MeanMetrics(*figures, loaded.Cameras, CameraSplit::Train, trainerOptions.LambdaDssim);
+      test = MeanMetrics(*figures, loaded.Cameras, CameraSplit::Test, trainerOptions.LambdaDssim);
+      return true;
+    });
 
   std::atomic<bool> stop(false);
   std::function<void(const TrainerProgress&)> progress;
@@ -163,50 +268,23 @@ FineTuneResult FineTune(const GaussianCloud& snapshot,
       partial.Path.clear();
     }
   }
-  result.TrainSeconds = Seconds(start, Clock::now());
+  result.TrainSeconds = Seconds(start, Clock::now()) - repairedSeconds;
+  result.MeasureSeconds += repairedSeconds;
   result.Cancelled = stop;
   result.Repaired = trainer.GetCloud();
-  if (result.Cancelled || !options.Measure)
+  if (result.Cancelled)
   {
-    return result;
+    result.Source.clear();
+    result.Deleted.clear();
+    result.RepairedFigures.clear();
   }
-
-  const auto a = Clock::now();
-  RemovalEffectOptions measure;
-  measure.Threads = options.Threads;
-  const TrainingData& loaded = trainer.GetData();
-  const TrainingImageProvider cached = [&loaded](std::size_t v, const Camera& c, Image& image)
+  else if (options.Measure && result.RepairedFigures.empty()) // no log: not measured yet
   {
-    image.Width = c.Width;
-    image.Height = c.Height;
-    image.Channels = 3;
-    image.Pixels = loaded.Images[v];
-    return true;
-  };
-  // The source per tile; the deleted state re-renders only the tiles the deletion changes
-  // (RemovalEffect.h: the same figures as a full render of the cleaned scene, bit for bit).
-  measure.TileBaseline = MeasureRemovalBaseline(snapshot, loaded.Cameras, measure, cached);
-  result.Source.assign(loaded.Cameras.size(), ViewMetrics());
-  result.Deleted.assign(loaded.Cameras.size(), ViewMetrics());
-  for (std::size_t v = 0; v < loaded.Cameras.size(); ++v)
-  {
-    if (!measure.TileBaseline.Views[v].Empty())
-    {
-      result.Source[v] = measure.TileBaseline.Views[v].Metrics();
-    }
+    const auto a = Clock::now();
+    result.RepairedFigures =
+      MeasureViewMetrics(result.Repaired, trainer.GetData().Cameras, measure, cached);
+    result.MeasureSeconds += Seconds(a, Clock::now());
   }
-  const RemovalEffect deletion =
-    MeasureRemovalEffect(snapshot, removed, loaded.Cameras, measure, cached);
-  for (const RemovalViewEffect& view : deletion.Views)
-  {
-    if (view.HasImage)
-    {
-      result.Deleted[view.CameraIndex] = view.After;
-    }
-  }
-  measure.TileBaseline = RemovalBaseline();
-  result.RepairedFigures = MeasureViewMetrics(result.Repaired, loaded.Cameras, measure, cached);
-  result.MeasureSeconds = Seconds(a, Clock::now());
   return result;
 }
 

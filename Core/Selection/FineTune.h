@@ -39,6 +39,12 @@ struct FineTuneOptions
   /// Keep the trainer's densification schedule; by default it is off (no clone, split, prune
   /// of low opacity, nor opacity reset), so the only events are the deletion's prunes.
   bool Densify = false;
+  /// Learning-rate warm-up (TrainerOptions::LrWarmupIterations): the j-th of the first W
+  /// iterations uses j / (W + 1) of every learning rate. Fresh Adam moments make the first
+  /// steps about lr in size for every parameter, which throws a converged snapshot off for
+  /// the first 10 to 25 iterations; the warm-up keeps the training PSNR from dipping
+  /// (Documentation/user-guide.md, "Repair", has the measurements). 0: none.
+  int WarmupIterations = 10;
   std::uint64_t Seed = 0; ///< the trainer's seed (camera order, split samples)
   int Threads = 0;        ///< OpenMP threads; 0 uses OpenMP's default
   /// The repaired run's training log; empty: none written. Written to a temporary next to it
@@ -52,8 +58,14 @@ struct FineTuneOptions
   /// (the result is then Cancelled and no log is written).
   std::function<bool(int done, int total)> Progress;
   /// Measure the three states in every camera (FineTuneResult::Source, Deleted,
-  /// RepairedFigures).
+  /// RepairedFigures). The log's metrics rows of the first and the last iteration are then
+  /// these figures' means (nothing is rendered twice); the trainer measures its own in between
+  /// (at most 10 rows: the iterations that are multiples of ceil(Iterations / 10); none for up
+  /// to 10 iterations).
   bool Measure = true;
+  /// The log's metrics rows at the iterations that are multiples of N (and the first and the
+  /// last); 0 (default): at most 10 rows, as above.
+  int MetricsInterval = 0;
 };
 
 struct FineTuneResult
@@ -69,6 +81,9 @@ struct FineTuneResult
   bool Cancelled = false;
   double TrainSeconds = 0;   ///< wall clock of the fine-tune iterations
   double MeasureSeconds = 0; ///< wall clock of the measurement of the three states
+  /// Train and test views the trainer rendered for the log's metrics rows (FineTune's own
+  /// measurement of the three states not counted).
+  int MetricsRenders = 0;
 };
 
 /**

@@ -691,7 +691,12 @@ double Trainer::Step()
   const TrainerOptions& o = this->Options;
   const int threads = ThreadCount(o.Threads);
   this->StatisticsJustReset = false;
-  const double positionLr = this->PositionLearningRate(it);
+  // A fine-tune's warm-up: j / (W + 1) of every learning rate at its j-th iteration (j <= W).
+  const int sinceStart = it - this->StartIteration;
+  const double lrScale = o.LrWarmupIterations > 0 && sinceStart <= o.LrWarmupIterations
+    ? static_cast<double>(sinceStart) / (o.LrWarmupIterations + 1)
+    : 1.0;
+  const double positionLr = lrScale * this->PositionLearningRate(it);
   if (o.ShIncreaseInterval > 0 && it % o.ShIncreaseInterval == 0)
   {
     this->ActiveShDegree = std::min(this->ActiveShDegree + 1, o.ShDegree);
@@ -809,31 +814,31 @@ double Trainer::Step()
       c.SH.data(),
       grads.SH.data(),
       c.SH.size(),
-      o.FeatureLr / 20.0,
+      lrScale * o.FeatureLr / 20.0,
       threads,
       3 * static_cast<std::size_t>(c.ShCoefficientCount()),
       3,
-      o.FeatureLr);
+      lrScale * o.FeatureLr);
     if (!replacedOpacity)
     {
       AdamStep(this->AdamOpacity,
         c.OpacityLogits.data(),
         grads.OpacityLogits.data(),
         c.OpacityLogits.size(),
-        o.OpacityLr,
+        lrScale * o.OpacityLr,
         threads);
     }
     AdamStep(this->AdamScales,
       c.LogScales.data(),
       grads.LogScales.data(),
       c.LogScales.size(),
-      o.ScalingLr,
+      lrScale * o.ScalingLr,
       threads);
     AdamStep(this->AdamRotations,
       c.Rotations.data(),
       grads.Rotations.data(),
       c.Rotations.size(),
-      o.RotationLr,
+      lrScale * o.RotationLr,
       threads);
   }
   const auto t5 = Clock::now();
@@ -949,13 +954,25 @@ int Trainer::Run(TrainingLogWriter* log,
   auto logMetrics = [&]()
   {
     const auto a = Clock::now();
-    MetricsRow train = this->Evaluate(false);
-    train.ElapsedSeconds = Seconds(start, Clock::now());
+    MetricsRow train, test;
+    if (!this->Metrics || !this->Metrics(*this, train, test))
+    {
+      train = this->Evaluate(false);
+      if (!this->TestViews.empty())
+      {
+        test = this->Evaluate(true);
+      }
+    }
+    const double elapsed = Seconds(start, Clock::now());
+    for (MetricsRow* row : { &train, &test })
+    {
+      row->Iteration = this->Iteration;
+      row->NumGaussians = static_cast<std::int64_t>(this->Cloud.Count);
+      row->ElapsedSeconds = elapsed;
+    }
     log->AppendMetrics(train, false);
     if (!this->TestViews.empty())
     {
-      MetricsRow test = this->Evaluate(true);
-      test.ElapsedSeconds = train.ElapsedSeconds;
       log->AppendMetrics(test, true);
     }
     lastMetrics = this->Iteration;

@@ -103,6 +103,11 @@ struct TrainerOptions
   /// backward (same per-pixel arithmetic; gradient sums rounded in another order). For
   /// benchmarks and tests.
   int KernelIsa = 0;
+  /// Learning-rate warm-up of a fine-tune (FineTuneOptions::WarmupIterations): the first W
+  /// iterations after the start iteration (j = 1..W) scale every learning rate by j / (W + 1),
+  /// so that the first steps of fresh Adam moments, about lr in size for every parameter
+  /// whatever its gradient, do not throw a converged scene off first. 0 (default): none.
+  int LrWarmupIterations = 0;
 
   // Logging.
   int SnapshotInterval = 1000;  ///< also snapshots iteration 0 and the last iteration
@@ -205,6 +210,17 @@ public:
   /// Train (test = false) or test metrics of the current Gaussians (render clamped to [0,1]).
   MetricsRow Evaluate(bool test) const;
 
+  /**
+   * Where Run() takes the metrics rows it logs from, instead of Evaluate(): a caller that
+   * measures some states anyway (FineTune: the start and the last one, per view) so that they
+   * are not rendered twice. Called with the trainer at the iteration logged; fills L1, SSIM,
+   * PSNR, LPIPS and Loss of @p train and @p test (Run() sets their iteration, count and
+   * elapsed time) and returns true, or returns false to let Evaluate() measure.
+   */
+  using MetricsSource =
+    std::function<bool(const Trainer& trainer, MetricsRow& train, MetricsRow& test)>;
+  void SetMetricsSource(MetricsSource source) { this->Metrics = std::move(source); }
+
   /// Gaussians initialised from points (reference §1.1, §4.2): 3-NN mean squared distance
   /// scales, identity rotation, opacity 0.1, DC colour, SH rest 0, ids 0..N-1.
   static GaussianCloud InitializeFromPoints(const std::vector<float>& positions,
@@ -281,6 +297,7 @@ private:
   /// fit in 256 MB; otherwise TrainingLoss() recomputes them every iteration).
   std::vector<SsimTarget<float>> SsimTargets;
   int SsimTargetsUsable = -1; ///< -1 not decided yet, 0 no, 1 yes
+  MetricsSource Metrics;
 };
 
 } // namespace vis4gs

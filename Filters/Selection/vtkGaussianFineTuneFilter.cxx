@@ -212,6 +212,7 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
   }
 
   options.Iterations = this->Iterations;
+  options.WarmupIterations = this->WarmupIterations;
   options.FreePositions = this->FreePositions;
   options.Densify = this->Densify;
   options.Seed = this->Seed;
@@ -287,6 +288,7 @@ void vtkGaussianFineTuneFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SourceIteration: " << this->SourceIteration << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "WarmupIterations: " << this->WarmupIterations << "\n";
   os << indent << "FreePositions: " << this->FreePositions << "\n";
   os << indent << "Densify: " << this->Densify << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

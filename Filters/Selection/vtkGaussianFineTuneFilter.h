@@ -86,6 +86,14 @@ public:
   ///@}
 
   ///@{
+  /// Learning-rate warm-up (vis4gs::FineTuneOptions::WarmupIterations): the j-th of the first
+  /// W iterations uses j / (W + 1) of every learning rate; 0: none. Default 10, as `vis4gs
+  /// repair --warmup`.
+  vtkSetClampMacro(WarmupIterations, int, 0, VTK_INT_MAX);
+  vtkGetMacro(WarmupIterations, int);
+  ///@}
+
+  ///@{
   /// Optimise the positions too. Default off (bit for bit as in the snapshot).
   vtkSetMacro(FreePositions, bool);
   vtkGetMacro(FreePositions, bool);
@@ -141,6 +149,7 @@ protected:
   vtkSmartPointer<vtkIdTypeArray> RemovedIds;
   int SourceIteration = -1;
   int Iterations = 50;
+  int WarmupIterations = 10;
   bool FreePositions = false;
   bool Densify = false;
   vtkTypeUInt64 Seed = 0;

@@ -579,18 +579,31 @@ class Scene:
             ("unchanged", compare.GetNumberUnchanged())])
         return Comparison(_table_columns(table), counts)
     def repair(self, mask=None, ids=None, iterations=50, free_positions=False, densify=False,
-               seed=0, output=None, threads=0):
+               seed=0, output=None, threads=0, warmup=10, iteration=None):
         """Deletes the Gaussians where the boolean `mask` is true (or whose GaussianId is in
         `ids`) and fine-tunes the rest for `iterations` with the built-in CPU trainer
         (vtkGaussianFineTuneFilter, Core/Selection/FineTune.h: what `vis4gs repair` does), the
-        positions fixed unless `free_positions`, densification off unless `densify`. Needs the
-        cameras and their images (a training log has both). With `output`, the repaired run's
-        training log is written there (the deletion as prune events at this iteration).
-        Returns a Scene of the repaired Gaussians whose `figures` is repair.csv's table as a
-        dict {column: list of str (view, split) or numpy array (psnr/ssim/l1 of source, deleted,
-        repaired)}: one "mean" row per split, then one row per view."""
+        positions fixed unless `free_positions`, densification off unless `densify`, the
+        learning rates warmed up over the first `warmup` iterations (`--warmup`; 0: none).
+        `iteration` is the source iteration the repaired run continues (`--iteration` of a
+        scene file: the trainer's schedules see it, the log records the deletion there);
+        default the scene's iteration, 0 for a scene file; a log's snapshot has its own.
+        Needs the cameras and their images (a training log has both). With `output`, the
+        repaired run's training log is written there (the deletion as prune events at the
+        source iteration). Returns a Scene of the repaired Gaussians whose `figures` is
+        repair.csv's table as a dict {column: numpy array: of str for view and split, of float
+        for psnr/ssim/l1 of source, deleted, repaired}: one "mean" row per split, then one row
+        per view."""
         if (ids is None) == (mask is None):
             raise Vis4GSError("repair() takes ids= or mask=, one of them")
+        if iteration is None:
+            iteration = 0 if self.iteration is None else self.iteration
+        elif self.is_log and int(iteration) != self.iteration:
+            raise Vis4GSError(f"{self.path}: repair(iteration={iteration}) of the snapshot of "
+                              f"iteration {self.iteration}: open that snapshot instead "
+                              "(vis4gs.open(path, iteration=N))")
+        if int(iteration) < 0 or int(warmup) < 0:
+            raise Vis4GSError("repair(): iteration= and warmup= must be >= 0")
         if mask is not None:
             ids = self.select(mask=mask).ids
         cameras = self.cameras
@@ -600,8 +613,9 @@ class Scene:
         fine_tune.SetInputData(0, self.polydata)
         fine_tune.SetCamerasData(cameras)
         fine_tune.SetRemovedIds(_id_array(np.asarray(ids, dtype=np.int64)))
-        fine_tune.SetSourceIteration(0 if self.iteration is None else int(self.iteration))
+        fine_tune.SetSourceIteration(int(iteration))
         fine_tune.SetIterations(int(iterations))
+        fine_tune.SetWarmupIterations(int(warmup))
         fine_tune.SetFreePositions(bool(free_positions))
         fine_tune.SetDensify(bool(densify))
         fine_tune.SetSeed(int(seed))
@@ -620,19 +634,11 @@ class Scene:
         # Only `output` holds the repaired run's snapshots; at() opens that log.
         repaired.path = os.fspath(output) if output else self.path
         repaired.is_log = bool(output) and repaired.is_log
-        repaired.iterations = [self.iteration, repaired.iteration] if repaired.is_log else []
+        repaired.iterations = [int(iteration), repaired.iteration] if repaired.is_log else []
         if repaired.is_log:
             repaired._reader = vtkGaussianTrainingLogReader()
             repaired._reader.SetFileName(repaired.path)
-        table = fine_tune.GetOutputDataObject(1)
-        repaired.figures = {}
-        for c in range(table.GetNumberOfColumns()):
-            column = table.GetColumn(c)
-            if column.IsA("vtkStringArray"):
-                values = [column.GetValue(r) for r in range(column.GetNumberOfValues())]
-            else:
-                values = np.array([column.GetValue(r) for r in range(column.GetNumberOfTuples())])
-            repaired.figures[table.GetColumnName(c)] = values
+        repaired.figures = dict(_table_columns(fine_tune.GetOutputDataObject(1)))
         return repaired
 
     # ---------------------------------------------------------------- export

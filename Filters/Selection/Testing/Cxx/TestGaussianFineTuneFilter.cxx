@@ -295,7 +295,8 @@ int TestGaussianFineTuneFilter(int, char*[])
   std::ostringstream print;
   byId->Print(print);
   Check(print.str().find("OutputLogFileName: " + repairedLog) != std::string::npos &&
-      print.str().find("RemovedIds: 1 ids") != std::string::npos,
+      print.str().find("RemovedIds: 1 ids") != std::string::npos &&
+      print.str().find("WarmupIterations: 10") != std::string::npos,
     "PrintSelf");
   fs::remove_all(folder);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
