@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The vis4gs program: one binary, subcommands registered by the vis4gs*Command.cxx files.
 #include "Vis4GSCommand.h"
-#include "Vis4GSHugePages.h"
+#include "Vis4GSProcessTuning.h"
 
 #include <omp.h>
 
@@ -27,7 +27,7 @@ void PrintUsage(std::ostream& os)
 
 int main(int argc, char* argv[])
 {
-  Vis4GSUseHugePages(argv);
+  Vis4GSTuneProcess(argc, argv);
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
     std::string(argv[1]) == "help")
   {

@@ -684,6 +684,34 @@ void Trainer::ResetOpacity()
 }
 
 //------------------------------------------------------------------------------
+const SsimTarget<float>* Trainer::TargetMaps(std::size_t view, int threads) const
+{
+  if (this->SsimTargetsUsable < 0)
+  {
+    std::size_t bytes = 0;
+    for (const Camera& c : this->Data.Cameras)
+    {
+      bytes += 6 * sizeof(float) * static_cast<std::size_t>(std::max(0, c.Width)) *
+        static_cast<std::size_t>(std::max(0, c.Height));
+    }
+    this->SsimTargetsUsable = bytes <= (std::size_t(256) << 20) ? 1 : 0;
+    this->SsimTargets.assign(this->SsimTargetsUsable ? this->Data.Cameras.size() : 0, {});
+  }
+  if (this->SsimTargetsUsable == 0)
+  {
+    return nullptr;
+  }
+  const Camera& cam = this->Data.Cameras[view];
+  const float* target = this->Data.Images[view].data();
+  SsimTarget<float>& st = this->SsimTargets[view];
+  if (st.Image != target || st.Width != cam.Width || st.Height != cam.Height)
+  {
+    PrepareSsimTarget(target, cam.Width, cam.Height, st, threads);
+  }
+  return &st;
+}
+
+//------------------------------------------------------------------------------
 double Trainer::Step()
 {
   const auto t0 = Clock::now();
@@ -735,28 +763,8 @@ double Trainer::Step()
   }
   const auto t1 = Clock::now();
 
-  if (this->SsimTargetsUsable < 0)
-  {
-    std::size_t bytes = 0;
-    for (const Camera& c : this->Data.Cameras)
-    {
-      bytes += 6 * sizeof(float) * static_cast<std::size_t>(std::max(0, c.Width)) *
-        static_cast<std::size_t>(std::max(0, c.Height));
-    }
-    this->SsimTargetsUsable = bytes <= (std::size_t(256) << 20) ? 1 : 0;
-    this->SsimTargets.assign(this->SsimTargetsUsable ? this->Data.Cameras.size() : 0, {});
-  }
   const float* target = this->Data.Images[view].data();
-  const SsimTarget<float>* ssimTarget = nullptr;
-  if (this->SsimTargetsUsable > 0)
-  {
-    SsimTarget<float>& st = this->SsimTargets[view];
-    if (st.Image != target || st.Width != cam.Width || st.Height != cam.Height)
-    {
-      PrepareSsimTarget(target, cam.Width, cam.Height, st, threads);
-    }
-    ssimTarget = &st;
-  }
+  const SsimTarget<float>* ssimTarget = this->TargetMaps(view, threads);
   const LossValues loss = TrainingLoss(image.Color.data(),
     target,
     cam.Width,
@@ -878,18 +886,37 @@ MetricsRow Trainer::Evaluate(bool test) const
   settings.Background = this->Data.Background;
   settings.ShDegree = this->ActiveShDegree;
   settings.Threads = threads;
+  // Every view renders the same cloud: the view-independent preparation is made once per
+  // call (a new cloud version each call, as the cloud may change between calls), and the
+  // buffers are kept between calls. Neither the depth nor the kernels kept for a backward
+  // are needed here; the image is the same, bit for bit.
+  RasterWorkspace<float>& ws = this->EvalWorkspace;
+  ++ws.CloudVersion;
+  ws.Composite.KeepKernels = false;
   double l1 = 0, ssim = 0, psnr = 0;
   for (std::size_t v : views)
   {
     const Camera& cam = this->Data.Cameras[v];
-    RasterImage<float> img = Rasterize<float>(this->Cloud, cam, settings);
+    ProjectGaussians(this->Cloud, cam, settings, ws.Projection, ws.Prepared, ws.CloudVersion);
+    BinGaussians(ws.Projection, threads, ws.Bins, ws.Scratch);
+    RasterImage<float>& img = ws.Image;
+    CompositeTiles(ws.Projection, ws.Bins, settings, img, nullptr, nullptr, &ws.Composite, false);
     for (float& x : img.Color)
     {
       x = std::min(1.0f, std::max(0.0f, x));
     }
     const float* gt = this->Data.Images[v].data();
-    l1 += L1Loss(img.Color.data(), gt, img.Color.size());
-    ssim += Ssim(img.Color.data(), gt, cam.Width, cam.Height, threads);
+    // L1Loss() and Ssim() bit for bit, the target's SSIM maps made once per view.
+    const LossValues values = TrainingLoss(img.Color.data(),
+      gt,
+      cam.Width,
+      cam.Height,
+      this->Options.LambdaDssim,
+      static_cast<std::vector<float>*>(nullptr),
+      threads,
+      this->TargetMaps(v, threads));
+    l1 += values.L1;
+    ssim += values.Ssim;
     psnr += Psnr(img.Color.data(), gt, img.Color.size());
   }
   const double m = static_cast<double>(views.size());

@@ -293,11 +293,18 @@ private:
   TileBins StepBins;
   BinScratch StepBinScratch;
   RasterImage<float> StepImage;
-  /// Per camera: the SSIM maps of its target image, made on first use (while all of them
-  /// fit in 256 MB; otherwise TrainingLoss() recomputes them every iteration).
-  std::vector<SsimTarget<float>> SsimTargets;
-  int SsimTargetsUsable = -1; ///< -1 not decided yet, 0 no, 1 yes
+  /// Per camera: the SSIM maps of its target image, made on first use by the training step
+  /// or the metrics (while all of them fit in 256 MB; otherwise TrainingLoss() recomputes
+  /// them every time). Caches of the const Evaluate() as well, hence mutable.
+  mutable std::vector<SsimTarget<float>> SsimTargets;
+  mutable int SsimTargetsUsable = -1; ///< -1 not decided yet, 0 no, 1 yes
+  /// Evaluate()'s rendering buffers, kept between calls.
+  mutable RasterWorkspace<float> EvalWorkspace;
   MetricsSource Metrics;
+
+  /// The SSIM maps of view @p view's target (made on first use), or null when they are
+  /// not kept.
+  const SsimTarget<float>* TargetMaps(std::size_t view, int threads) const;
 };
 
 } // namespace vis4gs

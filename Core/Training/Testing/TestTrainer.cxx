@@ -5,6 +5,8 @@
 // interruption. Every run here is a few hundred iterations on 32x32 images (seconds).
 #include "Adam.h"
 #include "GaussianMath.h"
+#include "Loss.h"
+#include "Rasterizer.h"
 #include "Trainer.h"
 #include "TrainingData.h"
 #include "TrainingLogReader.h"
@@ -14,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -466,6 +470,60 @@ TEST(Trainer, SameSeedAndThreadsGiveTheSameRun)
   Trainer e(TinyData(), o);
   e.Run(nullptr);
   EXPECT_NE(a.GetCloud().Positions, e.GetCloud().Positions);
+}
+
+// Evaluate() keeps its rendering buffers, the cloud's preparation within a call and the
+// targets' SSIM maps between calls: its rows equal, bit for bit, the straightforward pass
+// (an allocating Rasterize(), L1Loss(), Ssim(), Psnr() per view), also after the cloud changed.
+TEST(Trainer, EvaluateEqualsAPlainMetricsPass)
+{
+  TrainerOptions o = ShortRun(60);
+  o.Threads = 2;
+  Trainer t(TinyData(), o);
+  auto plain = [&t](bool test)
+  {
+    RasterSettings settings;
+    settings.Background = t.GetData().Background;
+    settings.ShDegree = t.GetActiveShDegree();
+    settings.Threads = 2;
+    double l1 = 0, ssim = 0, psnr = 0;
+    int views = 0;
+    for (std::size_t v = 0; v < t.GetData().Cameras.size(); ++v)
+    {
+      const Camera& cam = t.GetData().Cameras[v];
+      if ((cam.Split == CameraSplit::Test) != test)
+      {
+        continue;
+      }
+      RasterImage<float> img = Rasterize<float>(t.GetCloud(), cam, settings);
+      for (float& x : img.Color)
+      {
+        x = std::min(1.0f, std::max(0.0f, x));
+      }
+      const float* gt = t.GetData().Images[v].data();
+      l1 += L1Loss(img.Color.data(), gt, img.Color.size());
+      ssim += Ssim(img.Color.data(), gt, cam.Width, cam.Height, 2);
+      psnr += Psnr(img.Color.data(), gt, img.Color.size());
+      ++views;
+    }
+    return std::array<double, 3>{ l1 / views, ssim / views, psnr / views };
+  };
+  for (int round = 0; round < 3; ++round)
+  {
+    for (bool test : { false, true })
+    {
+      const MetricsRow row = t.Evaluate(test);
+      const std::array<double, 3> expected = plain(test);
+      EXPECT_EQ(row.L1, expected[0]) << "round " << round << " test " << test;
+      EXPECT_EQ(row.Ssim, expected[1]) << "round " << round << " test " << test;
+      EXPECT_EQ(row.Psnr, expected[2]) << "round " << round << " test " << test;
+    }
+    for (int k = 0; k < 25; ++k) // densifies at 21 (new rows) and trains: a new cloud
+    {
+      t.Step();
+    }
+  }
+  EXPECT_GT(t.GetCloud().Count, 150u);
 }
 
 // A fine-tune from a given cloud (vis4gs repair, issue 20): the pruned ids are logged first, at
