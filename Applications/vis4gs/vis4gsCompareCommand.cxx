@@ -164,34 +164,6 @@ const char* SplitName(vis4gs::CameraSplit split)
   return split == vis4gs::CameraSplit::Train ? "train" : "test";
 }
 
-// Mean over the cameras of @p split that were measured (NaN figures are views without image).
-vis4gs::ViewMetrics Mean(const std::vector<vis4gs::ViewMetrics>& m,
-  const std::vector<vis4gs::Camera>& cameras,
-  vis4gs::CameraSplit split,
-  std::size_t& views)
-{
-  vis4gs::ViewMetrics mean;
-  double psnr = 0, ssim = 0, l1 = 0;
-  views = 0;
-  for (std::size_t i = 0; i < m.size(); ++i)
-  {
-    if (cameras[i].Split == split && std::isfinite(m[i].L1))
-    {
-      psnr += m[i].Psnr;
-      ssim += m[i].Ssim;
-      l1 += m[i].L1;
-      ++views;
-    }
-  }
-  if (views > 0)
-  {
-    mean.Psnr = psnr / views;
-    mean.Ssim = ssim / views;
-    mean.L1 = l1 / views;
-  }
-  return mean;
-}
-
 // The training PSNR curves of the logs as one inline SVG (x: iteration, y: PSNR).
 std::string Curves(const std::vector<std::pair<std::string, vis4gs::MetricsTable>>& runs)
 {
@@ -311,7 +283,8 @@ int Run(const Vis4GSArguments& args)
       { vis4gs::CameraSplit::Train, vis4gs::CameraSplit::Test })
     {
       std::size_t views = 0;
-      const vis4gs::ViewMetrics mean = Mean(*measured[s], cameras, split, views);
+      const vis4gs::ViewMetrics mean =
+        vis4gs::MeanViewMetrics(*measured[s], cameras, split, &views);
       if (views > 0)
       {
         csv << source << "," << SplitName(split) << "," << states[s]->Iteration << ",mean,"

@@ -47,30 +47,21 @@ std::string PartialPath(const std::string& path)
 }
 
 // The trainer's metrics row (Trainer::Evaluate()) from per-view figures: the means over the
-// views of @p split, the loss from them as the trainer weighs it; NaN without such a view.
+// views of @p split that have an image (as repair.csv's mean rows), the loss from them as the
+// trainer weighs it; NaN without such a view.
 MetricsRow MeanMetrics(const std::vector<ViewMetrics>& figures,
   const std::vector<Camera>& cameras,
   CameraSplit split,
   double lambdaDssim)
 {
   MetricsRow row;
-  double l1 = 0, ssim = 0, psnr = 0;
-  int views = 0;
-  for (std::size_t v = 0; v < cameras.size(); ++v)
-  {
-    if (cameras[v].Split == split)
-    {
-      l1 += figures[v].L1;
-      ssim += figures[v].Ssim;
-      psnr += figures[v].Psnr;
-      ++views;
-    }
-  }
+  std::size_t views = 0;
+  const ViewMetrics mean = MeanViewMetrics(figures, cameras, split, &views);
   if (views > 0)
   {
-    row.L1 = l1 / views;
-    row.Ssim = ssim / views;
-    row.Psnr = psnr / views;
+    row.L1 = mean.L1;
+    row.Ssim = mean.Ssim;
+    row.Psnr = mean.Psnr;
     row.Loss = (1.0 - lambdaDssim) * row.L1 + lambdaDssim * (1.0 - row.Ssim);
   }
   return row;

@@ -557,4 +557,36 @@ RemovalEffect MeasureRemovalEffect(const GaussianCloud& cloud,
   return effect;
 }
 
+//------------------------------------------------------------------------------
+ViewMetrics MeanViewMetrics(const std::vector<ViewMetrics>& figures,
+  const std::vector<Camera>& cameras,
+  CameraSplit split,
+  std::size_t* views)
+{
+  ViewMetrics mean;
+  double psnr = 0, ssim = 0, l1 = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < figures.size() && i < cameras.size(); ++i)
+  {
+    if (cameras[i].Split == split && std::isfinite(figures[i].L1))
+    {
+      psnr += figures[i].Psnr;
+      ssim += figures[i].Ssim;
+      l1 += figures[i].L1;
+      ++count;
+    }
+  }
+  if (count > 0)
+  {
+    mean.Psnr = psnr / static_cast<double>(count);
+    mean.Ssim = ssim / static_cast<double>(count);
+    mean.L1 = l1 / static_cast<double>(count);
+  }
+  if (views)
+  {
+    *views = count;
+  }
+  return mean;
+}
+
 } // namespace vis4gs

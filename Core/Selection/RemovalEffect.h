@@ -131,6 +131,13 @@ struct RemovalEffectOptions
 /// the reference evaluation clamp the same way).
 Image ClampedImage(const RasterImage<float>& render);
 
+/// Means of @p figures over the cameras of @p split that were measured (NaN figures are views
+/// without an image); NaN, and @p views 0, when there is none.
+ViewMetrics MeanViewMetrics(const std::vector<ViewMetrics>& figures,
+  const std::vector<Camera>& cameras,
+  CameraSplit split,
+  std::size_t* views = nullptr);
+
 /// The cloud without the Gaussians where @p removed is non-zero (one byte per Gaussian), every
 /// array (ids, extras) kept in order. Throws std::invalid_argument on a size mismatch.
 GaussianCloud RemoveGaussians(const GaussianCloud& cloud, const std::vector<std::uint8_t>& removed);
