@@ -108,6 +108,8 @@ struct Vis4GSMainWindow::Internals
   // A harness's hooks (SetLoadHooks).
   std::function<void(int, const char*)> StageHook;
   std::function<void()> LoadedHook;
+  // The dock sizes of the document's layout (LayoutForDocument), applied again by SettleLayout.
+  std::function<void()> DockSizes;
 };
 
 namespace
@@ -573,8 +575,7 @@ void Vis4GSMainWindow::LayoutForDocument()
   d->Panel->ShowRow(d->Panel->IterationRow, snapshots);
   // Sizes: the scene about 55 % of the width; the timeline's three stacked charts 40 % of the
   // height (at least 300 pixels); the tree above the panel about half of the right column.
-  // Applied again once the new dock arrangement is laid out (resizeDocks on docks that were
-  // just moved is only approximate), the bottom last so that the columns do not push it.
+  // Applied again by SettleLayout once the new dock arrangement is laid out.
   auto sizes = [this, tree, timeline, scene, treeDock, panel, timelineDock, histogram]
   {
     const int w = this->width(),
@@ -598,7 +599,20 @@ void Vis4GSMainWindow::LayoutForDocument()
     }
   };
   sizes();
-  QTimer::singleShot(0, this, sizes);
+  d->DockSizes = sizes;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSMainWindow::SettleLayout()
+{
+  // resizeDocks on docks that were just moved is only approximate: the sizes are applied again
+  // once the new arrangement is laid out, the bottom last so that the columns do not push it.
+  QCoreApplication::sendPostedEvents(nullptr, QEvent::LayoutRequest);
+  if (d->DockSizes)
+  {
+    d->DockSizes();
+    QCoreApplication::sendPostedEvents(nullptr, QEvent::LayoutRequest);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -750,6 +764,8 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Panel->IterationSlider->setValue(d->Panel->IterationSlider->maximum());
   d->Panel->IterationSlider->setEnabled(doc->Snapshots.size() > 1);
   d->Panel->IterationSlider->blockSignals(false);
+  // Before the scene view has the Gaussians, while its frames cost nothing.
+  this->SettleLayout();
   d->Scene->SetCameras(doc->Cameras);
   this->UpdateScene(false); // every view is rendered once below
   this->Stage(0, "scene, histogram and panel inputs");

@@ -117,6 +117,9 @@ private:
   // Docks and panel rows for the views the document has data for (tree, timeline, cameras,
   // snapshots); the remaining views share the window.
   void LayoutForDocument();
+  // Lays the docks out now, at their final sizes: a view resized after its first frame draws
+  // it again, and one software frame of a 4.89M-Gaussian scene costs about 0.7 s.
+  void SettleLayout();
   void OnProgress(double fraction, const QString& message);
   void OnLoaded(std::shared_ptr<Vis4GSDocument> document, const QString& error);
   void OnSelectionChanged();
