@@ -4,6 +4,7 @@
 # Documentation/performance.md come from this script on an otherwise idle machine.
 #   bash Scripts/run-benchmarks.sh [build dir, default build] [log, default benchmarks.log]
 # Large temporary files go to ${VIS4GS_BENCH_DIR:-/tmp}; the whole run takes tens of minutes.
+# Start-up as on a newly started machine (cold cache, host-fresh memory): run-startup-fresh.sh.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 # Spinning OpenMP workers only steal time from each other on 2 cores.
