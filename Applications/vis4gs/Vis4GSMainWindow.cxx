@@ -518,6 +518,8 @@ void Vis4GSMainWindow::BuildUi()
   }
   this->resize(1400, 900);
   this->LayoutForDocument();
+  // The empty window's docks are sized again once it is shown (resizeDocks before is approximate).
+  QTimer::singleShot(0, this, [this] { this->SettleLayout(); });
 }
 
 //------------------------------------------------------------------------------

@@ -28,6 +28,8 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -36,15 +38,7 @@
 
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 vis4gs::Camera MakeCamera(const std::string& name, double cz, bool flipped)
 {
@@ -207,5 +201,5 @@ int TestGaussianArtifactScoreFilter(int, char*[])
   Check(pd->GetArray("LogScale") != nullptr, "input arrays passed through");
 
   std::filesystem::remove_all(folder);
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return Check.ExitCode();
 }

@@ -27,22 +27,15 @@
 #include "vtkTable.h"
 #include "vtkTestErrorObserver.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <cmath>
 #include <iostream>
 
 namespace
 {
 
-int failures = 0;
-
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << std::endl;
-    ++failures;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 vis4gs::Camera MakeCamera(const std::string& name, int w, int h, double f, double tz)
 {
@@ -161,5 +154,5 @@ int TestGaussianRasterizer(int, char*[])
 
   vtkNew<vtkGaussianRasterizer> printer;
   printer->Print(std::cout);
-  return failures == 0 ? 0 : 1;
+  return Check.ExitCode();
 }

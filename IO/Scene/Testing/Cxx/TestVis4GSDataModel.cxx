@@ -19,6 +19,8 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -26,15 +28,7 @@
 
 namespace
 {
-int failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
 {
@@ -234,5 +228,5 @@ int TestVis4GSDataModel(int, char*[])
   table->RemoveColumnByName("Fx");
   Check(!vis4gs::TableToCameras(table, cameras2, &error) && error.find("Fx") != std::string::npos,
     "missing column named");
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return Check.ExitCode();
 }

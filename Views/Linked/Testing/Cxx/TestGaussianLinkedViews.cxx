@@ -27,20 +27,14 @@
 #include "vtkTable.h"
 #include "vtkTree.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <iostream>
 #include <vector>
 
 namespace
 {
-int failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "ERROR: check failed: " << what << "\n";
-    ++failures;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 std::vector<vtkIdType> Values(vtkIdTypeArray* a)
 {
@@ -210,5 +204,5 @@ int TestGaussianLinkedViews(int argc, char* argv[])
   Check(linkedtest::WriteSelectionImages(window, hub, "TestGaussianLinkedViews"),
     "the pictures with and without the selection are written");
   hub->RemoveAllViews();
-  return (failures == 0 && retVal == vtkRegressionTester::PASSED) ? 0 : 1;
+  return (Check.GetFailures() == 0 && retVal == vtkRegressionTester::PASSED) ? 0 : 1;
 }

@@ -17,20 +17,14 @@
 #include "vtkSelectionNode.h"
 #include "vtkTable.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <iostream>
 #include <vector>
 
 namespace
 {
-int failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "ERROR: check failed: " << what << "\n";
-    ++failures;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 std::vector<vtkIdType> Values(vtkIdTypeArray* a)
 {
@@ -176,5 +170,5 @@ int TestGaussianSelectionHub(int, char*[])
   Check(seen == 1500 && hub->GetIteration() == 1500, "iteration event");
   Check(renders == 4, "views rendered after an iteration change");
   hub->RemoveAllViews();
-  return failures == 0 ? 0 : 1;
+  return Check.ExitCode();
 }

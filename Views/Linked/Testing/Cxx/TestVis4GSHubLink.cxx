@@ -12,19 +12,13 @@
 #include "vtkSmartPointer.h"
 #include "vtkView.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <iostream>
 
 namespace
 {
-int failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "ERROR: check failed: " << what << "\n";
-    ++failures;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 struct Counts
 {
@@ -82,5 +76,5 @@ int TestVis4GSHubLink(int, char*[])
       link.Link(nullptr, command, nullptr, false) && b->GetNumberOfViews() == 0 &&
       !b->HasObserver(vtkCommand::SelectionChangedEvent),
     "unlinking removes the observer and the view");
-  return failures == 0 ? 0 : 1;
+  return Check.ExitCode();
 }

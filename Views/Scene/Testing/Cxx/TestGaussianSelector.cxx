@@ -27,6 +27,8 @@
 #include "vtkSelectionNode.h"
 #include "vtkTestErrorObserver.h"
 
+#include "Vis4GSTestCheck.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
@@ -35,15 +37,7 @@
 
 namespace
 {
-int fail = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::printf("FAILED: %s\n", what);
-    fail = 1;
-  }
-}
+vis4gs::testing::CheckCounter Check;
 
 std::vector<vtkIdType> Ids(vtkIdTypeArray* a)
 {
@@ -360,5 +354,5 @@ int TestGaussianSelector(int, char*[])
     Check(reuse == (k == 0), "the drawn frame is copied once, then the cached view is used");
   }
   Check(!errors->GetError(), "no unexpected errors");
-  return fail;
+  return Check.ExitCode();
 }
