@@ -888,8 +888,8 @@ MetricsRow Trainer::Evaluate(bool test) const
   settings.Threads = threads;
   // Every view renders the same cloud: the view-independent preparation is made once per
   // call (a new cloud version each call, as the cloud may change between calls), and the
-  // buffers are kept between calls. Neither the depth nor the kernels kept for a backward
-  // are needed here; the image is the same, bit for bit.
+  // buffers are kept between calls. The kernels kept for a backward are not needed here; the
+  // image is the same, bit for bit.
   RasterWorkspace<float>& ws = this->EvalWorkspace;
   ++ws.CloudVersion;
   ws.Composite.KeepKernels = false;
@@ -897,10 +897,8 @@ MetricsRow Trainer::Evaluate(bool test) const
   for (std::size_t v : views)
   {
     const Camera& cam = this->Data.Cameras[v];
-    ProjectGaussians(this->Cloud, cam, settings, ws.Projection, ws.Prepared, ws.CloudVersion);
-    BinGaussians(ws.Projection, threads, ws.Bins, ws.Scratch);
+    Rasterize(this->Cloud, cam, settings, ws);
     RasterImage<float>& img = ws.Image;
-    CompositeTiles(ws.Projection, ws.Bins, settings, img, nullptr, nullptr, &ws.Composite, false);
     for (float& x : img.Color)
     {
       x = std::min(1.0f, std::max(0.0f, x));
