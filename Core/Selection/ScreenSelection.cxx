@@ -842,6 +842,70 @@ std::array<std::array<double, 3>, 5> CameraFrustum(const Camera& camera, double 
 }
 
 //------------------------------------------------------------------------------
+double AutoFrustumDepth(const std::vector<Camera>& cameras,
+  const float* positions,
+  std::size_t count)
+{
+  const std::size_t stride = std::max<std::size_t>(1, count / 65536);
+  std::array<std::vector<double>, 3> axes;
+  for (std::size_t i = 0; i < count; i += stride)
+  {
+    const float* p = positions + 3 * i;
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        axes[k].push_back(p[k]);
+      }
+    }
+  }
+  std::vector<double> distances;
+  if (!axes[0].empty())
+  {
+    std::array<double, 3> median;
+    for (int k = 0; k < 3; ++k)
+    {
+      auto mid = axes[k].begin() + axes[k].size() / 2;
+      std::nth_element(axes[k].begin(), mid, axes[k].end());
+      median[k] = *mid;
+    }
+    for (const Camera& c : cameras)
+    {
+      const auto o = c.Center();
+      distances.push_back(std::hypot(o[0] - median[0], o[1] - median[1], o[2] - median[2]));
+    }
+  }
+  // A tenth of the camera centres' spread (a ring around an object: about a fifth of the way
+  // to it) ...
+  double depth = 0;
+  if (!cameras.empty())
+  {
+    std::array<double, 3> lo, hi;
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
+    for (const Camera& c : cameras)
+    {
+      const auto o = c.Center();
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], o[k]);
+        hi[k] = std::max(hi[k], o[k]);
+      }
+    }
+    depth = 0.1 * std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  }
+  // ... but at least a tenth of the way to the scene, where the cameras stand close together
+  // (forward-facing captures, a single camera) and the spread says nothing of the scene.
+  if (!distances.empty())
+  {
+    auto mid = distances.begin() + distances.size() / 2;
+    std::nth_element(distances.begin(), mid, distances.end());
+    depth = std::max(depth, 0.1 * *mid);
+  }
+  return depth > 0 && std::isfinite(depth) ? depth : 1.0;
+}
+
+//------------------------------------------------------------------------------
 std::vector<std::uint32_t> CountVisibleInViews(const GaussianCloud& cloud,
   const std::vector<std::uint32_t>& indices,
   const std::vector<Camera>& cameras,

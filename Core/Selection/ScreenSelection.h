@@ -215,6 +215,19 @@ RayQuery PixelRay(const Camera& camera, double x, double y, double sigmas = 3.0)
 std::array<std::array<double, 3>, 5> CameraFrustum(const Camera& camera, double depth);
 
 /**
+ * The view depth at which frustums are drawn when the user has not set one: a tenth of the
+ * diagonal of the camera centres' bounding box (for a ring of cameras around an object, about
+ * a fifth of the way to it), but at least a tenth of the median distance from the camera
+ * centres to the scene's median point (per-axis median of up to 65,536 evenly strided finite
+ * means of @p positions, x y z per Gaussian), so that cameras standing close together
+ * (forward-facing captures, a single camera) still get frustums in the scene's units, and far
+ * floaters move nothing. 1 when both are 0 or not finite.
+ */
+double AutoFrustumDepth(const std::vector<Camera>& cameras,
+  const float* positions,
+  std::size_t count);
+
+/**
  * For each camera, the number of Gaussians among @p indices that are visible in it: a
  * non-empty footprint |Omega(g, v)| >= 1 (DESIGN §4, Footprint.h, exact rasteriser mode),
  * whether occluded or not. Only the listed Gaussians are projected.

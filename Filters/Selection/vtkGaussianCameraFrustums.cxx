@@ -176,23 +176,16 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
   double depth = this->FrustumDepth;
   if (!(depth > 0))
   {
-    double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
-    double hi[3] = { VTK_DOUBLE_MIN, VTK_DOUBLE_MIN, VTK_DOUBLE_MIN };
-    for (const auto& c : cams)
+    std::vector<float> means;
+    const vtkIdType n = scene ? scene->GetNumberOfPoints() : 0;
+    const vtkIdType stride = std::max<vtkIdType>(1, n / 65536);
+    for (vtkIdType i = 0; i < n; i += stride)
     {
-      const auto p = c.Center();
-      for (int k = 0; k < 3; ++k)
-      {
-        lo[k] = std::min(lo[k], p[k]);
-        hi[k] = std::max(hi[k], p[k]);
-      }
+      double p[3];
+      scene->GetPoint(i, p);
+      means.insert(means.end(), { float(p[0]), float(p[1]), float(p[2]) });
     }
-    double d2 = 0;
-    for (int k = 0; k < 3 && !cams.empty(); ++k)
-    {
-      d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-    }
-    depth = d2 > 0 ? 0.1 * std::sqrt(d2) : 1.0;
+    depth = vis4gs::AutoFrustumDepth(cams, means.data(), means.size() / 3);
   }
 
   vtkNew<vtkPoints> points;

@@ -54,8 +54,9 @@ public:
 
   ///@{
   /**
-   * View depth of the drawn image rectangle. 0 (default): 10 % of the diagonal of the
-   * camera centres' bounding box (or 1 when all centres coincide).
+   * View depth of the drawn image rectangle. 0 (default): sized to the scene
+   * (vis4gs::AutoFrustumDepth: a tenth of the diagonal of the camera centres' bounding box,
+   * but at least a tenth of the median distance from the cameras to the scene's median point).
    */
   vtkSetClampMacro(FrustumDepth, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FrustumDepth, double);

@@ -755,4 +755,72 @@ TEST(ScreenSelection, VisibleCountsPerView)
   EXPECT_THROW(CountVisibleInViews(cloud, { 5000 }, cams), std::invalid_argument);
 }
 
+// The automatic frustum depth: 8 cameras on a ring of radius 10 around a cluster at (5, 0, 0)
+// give a tenth of the ring's bounding-box diagonal (20 sqrt(2)), with or without the scene;
+// the same capture in millimetres gives 1000 times that. Cameras close together (a forward
+// line 0.2 long, 10 from the cluster) get a tenth of the way to the scene (1), not of their
+// spread, and 1 % of the means thrown 1e6 away move nothing; a single camera without means
+// gets 1.
+TEST(ScreenSelection, AutoFrustumDepthFollowsTheScene)
+{
+  const auto ring = [](double unit)
+  {
+    std::vector<Camera> cams;
+    for (int k = 0; k < 8; ++k)
+    {
+      Camera c = TestCamera();
+      const double a = 2 * M_PI * k / 8;
+      // Centre (5 + 10 cos a, 0, 10 sin a) in the given unit: t = -R C with R = identity.
+      c.WorldToCamera = { 1,
+        0,
+        0,
+        -(5 + 10 * std::cos(a)) * unit,
+        0,
+        1,
+        0,
+        0,
+        0,
+        0,
+        1,
+        -10 * std::sin(a) * unit,
+        0,
+        0,
+        0,
+        1 };
+      cams.push_back(c);
+    }
+    return cams;
+  };
+  std::vector<float> means;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  for (int i = 0; i < 10000; ++i)
+  {
+    const bool floater = i % 100 == 0;
+    means.insert(means.end(), { floater ? 1e6f : 5 + u(rng), u(rng), u(rng) });
+  }
+  const double ringDepth = 0.1 * 20 * std::sqrt(2.0);
+  EXPECT_NEAR(AutoFrustumDepth(ring(1), means.data(), means.size() / 3), ringDepth, 1e-9);
+  EXPECT_NEAR(AutoFrustumDepth(ring(1), nullptr, 0), ringDepth, 1e-9);
+  std::vector<float> mm(means);
+  for (float& x : mm)
+  {
+    x *= 1000;
+  }
+  EXPECT_NEAR(AutoFrustumDepth(ring(1000), mm.data(), mm.size() / 3), 1000 * ringDepth, 1e-6);
+  std::vector<Camera> line;
+  for (int k = 0; k < 3; ++k)
+  {
+    Camera c = TestCamera();
+    c.WorldToCamera = { 1, 0, 0, -(4.9 + 0.1 * k), 0, 1, 0, 0, 0, 0, 1, 10, 0, 0, 0, 1 };
+    line.push_back(c);
+  }
+  EXPECT_NEAR(AutoFrustumDepth(line, means.data(), means.size() / 3), 1.0, 0.01);
+  EXPECT_NEAR(AutoFrustumDepth(line, nullptr, 0), 0.1 * 0.2, 1e-9);
+  EXPECT_EQ(AutoFrustumDepth({ TestCamera() }, nullptr, 0), 1.0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> bad = { nan, 0, 0 };
+  EXPECT_NEAR(AutoFrustumDepth(line, bad.data(), 1), 0.1 * 0.2, 1e-9);
+}
+
 } // namespace vis4gs
