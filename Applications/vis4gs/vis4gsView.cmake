@@ -324,6 +324,13 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
     COMMAND $<TARGET_FILE:vis4gs> view "${_vis4gs_view_dir}/synthetic.h5" --benchmark
       --resolution=800,600)
   set_tests_properties(vis4gs-ViewBenchmarkMode PROPERTIES FIXTURES_REQUIRED vis4gsViewLog)
+  # A log whose camera table starts with test cameras opens at its first training camera
+  # (issue 33).
+  add_test(NAME vis4gs-ViewStartsAtTrainingCamera
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}"
+      "${CMAKE_CURRENT_SOURCE_DIR}/Testing/StartsAtTrainingCamera.py" "$<TARGET_FILE:vis4gs>"
+      "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" "${_vis4gs_view_dir}/start-camera")
+  set_tests_properties(vis4gs-ViewStartsAtTrainingCamera PROPERTIES LABELS "Application;GUI;Python")
   vis4gs_add_app_test(ViewHelp ARGS view --help OUTPUT "--self-test=DIR")
   # One pipeline (issue 22): the inputs the window gives its views (--dump-inputs, no window)
   # equal those of the four views built from the VTK classes in Python, array for array, and
