@@ -25,6 +25,10 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   {
     return ReadSpz(path, options, report);
   }
+  if (IsGltfFile(path))
+  {
+    return ReadGltf(path, options, report);
+  }
   if (detail::LowerExtension(path) == ".splat")
   {
     return ReadSplat(path, options, report);
