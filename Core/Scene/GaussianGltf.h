@@ -11,6 +11,8 @@
 #include "GaussianCloud.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace vis4gs
 {
@@ -27,6 +29,21 @@ void GltfToPlyAxes(GaussianCloud& cloud);
 void PlyToGltfAxes(GaussianCloud& cloud);
 /// The SH part of the half turn: coefficients of odd order m change sign.
 void FlipOddOrderSh(GaussianCloud& cloud);
+
+/**
+ * Moves @p cloud, in glTF's frame, by a node's global transform @p columnMajor (4x4), as the
+ * extension defines it: means by the matrix, covariances Σ' = M Σ Mᵀ, view-dependent colour
+ * by the rotation of M's polar decomposition. A rotation with uniform scale changes the
+ * quaternions and log-scales directly; uneven scale or shear re-factors each covariance
+ * exactly and adds a warning naming @p where to @p warnings. A mirror, a collapse or a
+ * non-finite matrix throws std::runtime_error naming @p name (the extension leaves them
+ * undefined).
+ */
+void ApplyGltfTransform(GaussianCloud& cloud,
+  const double* columnMajor,
+  const std::string& name,
+  const std::string& where,
+  std::vector<std::string>& warnings);
 
 /// Real SH basis function k (0..15, the reference rasteriser's order and signs) at @p dir.
 double ShBasis(int k, const double dir[3]);
