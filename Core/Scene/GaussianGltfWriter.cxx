@@ -80,7 +80,8 @@ GaussianCloud Select(const GaussianCloud& cloud, int degree, std::vector<std::si
     {
       norm2 += double(src[c]) * src[c];
     }
-    const auto q = NormalizeQuaternion(src);
+    const double wide[4] = { src[0], src[1], src[2], src[3] };
+    const auto q = NormalizeQuaternion<double>(wide);
     const bool zero = q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0;
     for (int c = 0; c < 4; ++c)
     {
@@ -344,14 +345,19 @@ void MeasureErrors(const GaussianCloud& cloud,
     {
       // The angle between unit quaternions a and b (sign aligned) is 4 atan2(|a-b|, |a+b|),
       // which keeps its precision where acos of the dot product loses it.
+      const double stored[4] = { back.Rotations[4 * i],
+        back.Rotations[4 * i + 1],
+        back.Rotations[4 * i + 2],
+        back.Rotations[4 * i + 3] };
+      const auto r = NormalizeQuaternion<double>(stored);
       double dot = 0, diff = 0, sum = 0;
       for (int c = 0; c < 4; ++c)
       {
-        dot += q[c] * back.Rotations[4 * i + c];
+        dot += q[c] * r[c];
       }
       for (int c = 0; c < 4; ++c)
       {
-        const double b = (dot < 0 ? -1.0 : 1.0) * back.Rotations[4 * i + c];
+        const double b = (dot < 0 ? -1.0 : 1.0) * r[c];
         diff += (q[c] - b) * (q[c] - b);
         sum += (q[c] + b) * (q[c] + b);
       }
