@@ -80,6 +80,11 @@ Vis4GSExportReport Vis4GSWriteSelectedScene(const QString& path,
                  .arg(r.SH.Max, 0, 'g', 3),
         10000 };
     }
+    if (path.endsWith(".glb", Qt::CaseInsensitive) || path.endsWith(".gltf", Qt::CaseInsensitive))
+    {
+      const auto report = vis4gs::WriteGltf(path.toStdString(), cloud);
+      return { path + ": " + QString::fromStdString(vis4gs::DescribeQuantisation(report)), 15000 };
+    }
     if (path.endsWith(".compressed.ply", Qt::CaseInsensitive))
     {
       const auto report = vis4gs::WriteCompressedPly(path.toStdString(), cloud);
