@@ -58,6 +58,11 @@ struct GaussianReadReport
   /// least one. The values are kept as read.
   std::size_t NonFiniteValues = 0;
   std::size_t NonFiniteGaussians = 0;
+  /// The render mode the file names: "default", "antialiased" (Mip-Splatting's 2D filter:
+  /// Brush's `SplatRenderMode: mip`, Postshot's `antialiased 1`, SPZ's flag) or "2dgs" (2D
+  /// Gaussian splatting surfels: Brush's `SplatRenderMode: 2dgs`, or a PLY without scale_2);
+  /// empty when the file says nothing.
+  std::string RenderMode;
   /// Human-readable warnings (already formatted with the file name).
   std::vector<std::string> Warnings;
 };
