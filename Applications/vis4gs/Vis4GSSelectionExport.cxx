@@ -66,19 +66,9 @@ Vis4GSExportReport Vis4GSWriteSelectedScene(const QString& path,
   {
     if (path.endsWith(".spz", Qt::CaseInsensitive))
     {
-      // Lossy: say how much was lost and what could not be stored.
+      // Lossy: say how much was lost and what could not be stored (as vis4gs convert does).
       const vis4gs::SpzWriteReport r = vis4gs::WriteSpz(path.toStdString(), cloud);
-      return { QString("%1: %2 Gaussians written as SPZ v4, %3 left out; max error: position "
-                       "%4, log-scale %5, opacity %6, colour %7, SH %8")
-                 .arg(path)
-                 .arg(r.Written)
-                 .arg(r.LeftOut)
-                 .arg(r.Position.Max, 0, 'g', 3)
-                 .arg(r.LogScale.Max, 0, 'g', 3)
-                 .arg(r.Opacity.Max, 0, 'g', 3)
-                 .arg(r.Color.Max, 0, 'g', 3)
-                 .arg(r.SH.Max, 0, 'g', 3),
-        10000 };
+      return { path + ": " + QString::fromStdString(vis4gs::DescribeQuantisation(r)), 15000 };
     }
     if (path.endsWith(".glb", Qt::CaseInsensitive) || path.endsWith(".gltf", Qt::CaseInsensitive))
     {

@@ -208,6 +208,9 @@ struct SpzWriteReport
  * special values keep their meaning. Returns the quantisation error per attribute, measured
  * by decoding what was written. Written through a temporary file renamed into place.
  */
+/// One line: written / left out counts, special values and max/RMS error per attribute.
+std::string DescribeQuantisation(const SpzWriteReport& report);
+
 SpzWriteReport WriteSpz(const std::string& path,
   const GaussianCloud& cloud,
   const SpzWriteOptions& options = {});

@@ -938,4 +938,29 @@ SpzWriteReport WriteSpz(const std::string& path,
   return report;
 }
 
+//------------------------------------------------------------------------------
+std::string DescribeQuantisation(const SpzWriteReport& report)
+{
+  const std::vector<QuantisationError> errors = {
+    { "position", report.Position.Max, report.Position.Rms, report.Written },
+    { "log-scale", report.LogScale.Max, report.LogScale.Rms, report.Written },
+    { "rotation (components)", report.Rotation.Max, report.Rotation.Rms, report.Written },
+    { "opacity (alpha)", report.Opacity.Max, report.Opacity.Rms, report.Written },
+    { "colour (SH DC)", report.Color.Max, report.Color.Rms, report.Written },
+    { "SH", report.SH.Max, report.SH.Rms, report.Written },
+  };
+  std::string s = "SPZ v4, " + detail::DescribeWriteErrors(report.Written, report.LeftOut, errors);
+  if (report.OutOfRange)
+  {
+    s +=
+      "; " + std::to_string(report.OutOfRange) + " of those left out beyond 2^23 in a coordinate";
+  }
+  if (report.SpecialValues)
+  {
+    s += "; " + std::to_string(report.SpecialValues) +
+      " drawable special values kept with their meaning";
+  }
+  return s;
+}
+
 } // namespace vis4gs
