@@ -128,12 +128,15 @@ def main():
                   "%s within the target's quantisation: position %.3g (<= %.3g), log-scale %.3g "
                   "(<= %.3g), alpha %.3g (<= %.3g)" % (what, pos, pos_bound[b], sc, scale_bound[b],
                                                        al, alpha_bound[b]))
-            line = out.strip().splitlines()[-1]
+            line = ([l for l in out.splitlines() if l.startswith("vis4gs convert: " + dst + ":")]
+                    or [""])[0]
             if b in ("spz", "glb", "gltf", "compressed.ply"):
                 rp = reported(line, "position")
                 ra = reported(line, "opacity (alpha)")
-                check(rp is not None and abs(rp - pos) <= 1e-3 * pos + 1e-12 and ra is not None and
-                      abs(ra - al) <= 1e-3 * al + 1e-12,
+                # Printed with 3 significant digits; the compressed PLY's writer measures alpha
+                # from its bytes, we from the float32 logits read back (2e-8 apart at most).
+                check(rp is not None and abs(rp - pos) <= 5.01e-3 * pos + 1e-12 and ra is not None
+                      and abs(ra - al) <= 5.01e-3 * al + 2e-8,
                       "%s reports the errors measured here (position %s vs %.4g, alpha %s vs %.4g)"
                       % (what, rp, pos, ra, al))
             if a in KEEPS_EXTRAS and b in KEEPS_EXTRAS:
