@@ -108,64 +108,10 @@ int Run(const Vis4GSArguments& args)
   }
   std::cout << "vis4gs convert: " << in << " (" << what << "): " << cloud.Count
             << " Gaussians, SH degree " << cloud.ShDegree << std::endl;
-  const bool storesExtras = format == ".ply" || format == ".glb" || format == ".gltf";
-  if (!storesExtras && (!cloud.Extra.empty() || !cloud.Ids.empty()))
-  {
-    std::string names;
-    for (const auto& e : cloud.Extra)
-    {
-      names += (names.empty() ? "" : ", ") + e.Name;
-    }
-    if (!cloud.Ids.empty())
-    {
-      names += std::string(names.empty() ? "" : ", ") + "ids";
-    }
-    std::cout << "vis4gs convert: " << format << " has no place for the extra properties (" << names
-              << "); they are not written (use .ply or .glb to keep them)" << std::endl;
-  }
-  std::string line;
-  if (format == ".spz")
-  {
-    line = vis4gs::DescribeQuantisation(vis4gs::WriteSpz(out, cloud));
-  }
-  else if (format == ".glb" || format == ".gltf")
-  {
-    if (!cloud.Ids.empty())
-    {
-      // glTF has no 64-bit integers; ids up to 2^24 survive as float32, as any extra.
-      vis4gs::ExtraProperty id{ "id", vis4gs::ScalarType::Float64, {} };
-      id.Bytes.resize(8 * cloud.Count);
-      for (std::size_t i = 0; i < cloud.Count; ++i)
-      {
-        const double v = static_cast<double>(cloud.Ids[i]);
-        std::copy_n(reinterpret_cast<const unsigned char*>(&v), 8, &id.Bytes[8 * i]);
-      }
-      cloud.Extra.push_back(std::move(id));
-    }
-    line = vis4gs::DescribeQuantisation(vis4gs::WriteGltf(out, cloud));
-  }
-  else if (format == ".compressed.ply")
-  {
-    line =
-      "compressed PLY, " + vis4gs::DescribeQuantisation(vis4gs::WriteCompressedPly(out, cloud));
-  }
-  else if (format == ".splat")
-  {
-    const std::size_t left = vis4gs::WriteSplat(out, cloud);
-    line = ".splat, " + std::to_string(cloud.Count - left) + " Gaussians written" +
-      (left ? ", " + std::to_string(left) + " left out (no answer in the reference's arithmetic)"
-            : "") +
-      "; colour, opacity and rotation quantised to 8 bits, scales and positions float32, SH above "
-      "degree 0 dropped";
-  }
-  else
-  {
-    vis4gs::GaussianWriteOptions o;
-    o.Format =
-      args.GetFlag("ascii") ? vis4gs::PlyFormat::Ascii : vis4gs::PlyFormat::BinaryLittleEndian;
-    vis4gs::WriteGaussianPly(out, cloud, o);
-    line = "PLY, " + std::to_string(cloud.Count) + " Gaussians written exactly (float32)";
-  }
+  vis4gs::SceneWriteOptions o;
+  o.Format =
+    args.GetFlag("ascii") ? vis4gs::PlyFormat::Ascii : vis4gs::PlyFormat::BinaryLittleEndian;
+  const std::string line = vis4gs::WriteGaussianScene(out, cloud, o);
   std::cout << "vis4gs convert: " << out << ": " << line << std::endl;
   return 0;
 }

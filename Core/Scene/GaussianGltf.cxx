@@ -755,20 +755,10 @@ void Append(GaussianCloud& all,
   const int degree = std::min(all.ShDegree, part.ShDegree);
   auto cut = [degree](GaussianCloud& c)
   {
-    if (c.ShDegree == degree || c.SH.empty())
+    if (c.ShDegree != degree)
     {
-      c.ShDegree = degree;
-      return;
+      c = detail::CutShDegree(c, degree);
     }
-    const std::size_t k = static_cast<std::size_t>(c.ShCoefficientCount());
-    const std::size_t kk = static_cast<std::size_t>((degree + 1) * (degree + 1));
-    std::vector<float> sh(3 * kk * c.Count);
-    for (std::size_t g = 0; g < c.Count; ++g)
-    {
-      std::copy_n(&c.SH[3 * k * g], 3 * kk, &sh[3 * kk * g]);
-    }
-    c.SH = std::move(sh);
-    c.ShDegree = degree;
   };
   if (all.ShDegree != part.ShDegree)
   {

@@ -424,6 +424,29 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);
 
+/// How WriteGaussianScene writes, whatever the format.
+struct SceneWriteOptions
+{
+  /// Encoding of a `.ply` (the other formats have one each).
+  PlyFormat Format = PlyFormat::BinaryLittleEndian;
+  /// Property holding GaussianCloud::Ids in a PLY (and `_<name>` in glTF, float32).
+  std::string IdProperty = "id";
+  /// Highest SH degree written (the cloud's if lower).
+  int MaxShDegree = 3;
+};
+
+/**
+ * Writes @p cloud in the format @p path's name says, as every interface does (`vis4gs
+ * convert`, the application's export, vtkGaussianPLYWriter): `.compressed.ply`
+ * (WriteCompressedPly), `.spz` (WriteSpz), `.glb` / `.gltf` (WriteGltf), `.splat` (WriteSplat),
+ * anything else a 3DGS PLY (WriteGaussianPly, exact). Extras and ids go where the format can
+ * hold them (PLY, glTF). Returns one line saying what was written and, for the lossy formats,
+ * the error measured by reading it back (DescribeQuantisation) and what was left out.
+ */
+std::string WriteGaussianScene(const std::string& path,
+  const GaussianCloud& cloud,
+  const SceneWriteOptions& options = {});
+
 namespace detail
 {
 /// "N Gaussians written, L left out (...); quantisation error max/RMS: a max/rms; ..." for the
@@ -431,6 +454,9 @@ namespace detail
 std::string DescribeWriteErrors(std::size_t written,
   std::size_t leftOut,
   const std::vector<QuantisationError>& errors);
+
+/// A copy of @p cloud with its SH cut to @p degree (the whole copy when it holds no more).
+GaussianCloud CutShDegree(const GaussianCloud& cloud, int degree);
 
 /// A cloud of @p n Gaussians with SH degree @p shDegree (0 when @p options skip SH) whose
 /// arrays are sized for what @p options ask a reader to load, the others left empty: the one

@@ -144,7 +144,7 @@ def main():
                     db["score"].astype(np.float32), da["score"].astype(np.float32)),
                     "%s keeps the score bit for bit" % what)
             elif a in KEEPS_EXTRAS:
-                check("no place for the extra properties (score)" in out,
+                check("extra properties (score) have no place" in out,
                       "%s says the score cannot be written" % what)
 
     # --sh-degree drops bands; --no-extras drops the score; bad arguments fail with a reason.
