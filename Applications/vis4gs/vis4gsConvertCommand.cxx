@@ -10,33 +10,12 @@
 #include "TrainingLogReader.h"
 #include "Vis4GSStateFiles.h"
 
-#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 #include <string>
 
 namespace
 {
-
-/// The written format a file name asks for ("" when none).
-std::string TargetFormat(const std::string& path)
-{
-  std::string lower(path);
-  std::transform(lower.begin(),
-    lower.end(),
-    lower.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  auto ends = [&lower](const std::string& s)
-  { return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0; };
-  for (const char* f : { ".compressed.ply", ".ply", ".spz", ".glb", ".gltf", ".splat" })
-  {
-    if (ends(f))
-    {
-      return f;
-    }
-  }
-  return "";
-}
 
 void Define(Vis4GSArguments& args)
 {
@@ -69,7 +48,7 @@ int Run(const Vis4GSArguments& args)
   {
     throw std::runtime_error("--sh-degree must be -1 or 0..3, not " + std::to_string(shDegree));
   }
-  const std::string format = TargetFormat(out);
+  const std::string format = vis4gs::detail::SceneWriteFormat(out);
   if (format.empty())
   {
     throw std::runtime_error(out +

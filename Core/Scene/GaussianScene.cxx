@@ -58,13 +58,8 @@ std::string WriteGaussianScene(const std::string& path,
   const GaussianCloud& cloud,
   const SceneWriteOptions& options)
 {
-  std::string lower(path);
-  std::transform(lower.begin(),
-    lower.end(),
-    lower.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  auto ends = [&lower](const std::string& s)
-  { return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0; };
+  const std::string format = detail::SceneWriteFormat(path);
+  auto ends = [&format](const char* f) { return format == f; };
   const int degree = std::max(0, std::min(options.MaxShDegree, cloud.ShDegree));
   // What the quantised formats cannot hold, said once.
   std::string extras;
@@ -136,6 +131,25 @@ std::string WriteGaussianScene(const std::string& path,
     WriteGaussianPly(path, cloud, o);
   }
   return "PLY, " + std::to_string(cloud.Count) + " Gaussians written exactly (float32)";
+}
+
+//------------------------------------------------------------------------------
+std::string detail::SceneWriteFormat(const std::string& path)
+{
+  std::string lower(path);
+  std::transform(lower.begin(),
+    lower.end(),
+    lower.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* f : { ".compressed.ply", ".ply", ".spz", ".glb", ".gltf", ".splat" })
+  {
+    const std::size_t n = std::strlen(f);
+    if (lower.size() >= n && lower.compare(lower.size() - n, n, f) == 0)
+    {
+      return f;
+    }
+  }
+  return "";
 }
 
 //------------------------------------------------------------------------------
