@@ -690,16 +690,31 @@ Eigen::Matrix4d LocalMatrix(const Document& doc, const Json& node, const std::st
   return m;
 }
 
+/// Limits that keep a small file from expanding without bound: glTF's node hierarchy is a
+/// tree (a node reached twice would multiply its subtree, exponentially along a chain), and
+/// one mesh instanced many times multiplies its Gaussians.
+constexpr int MaxNodeDepth = 256;
+constexpr std::size_t MaxInstancesPerMesh = 16;
+
 void CollectInstances(const Document& doc,
   std::size_t nodeIndex,
   const Eigen::Matrix4d& parent,
-  std::set<std::size_t>& path,
+  int depth,
+  std::set<std::size_t>& visited,
   std::vector<Instance>& out)
 {
   const std::string where = "nodes[" + std::to_string(nodeIndex) + "]";
-  if (!path.insert(nodeIndex).second)
+  if (!visited.insert(nodeIndex).second)
   {
-    Fail(doc.Name, where + " is its own ancestor (the node hierarchy has a cycle)");
+    Fail(doc.Name,
+      where +
+        " is reached twice (a cycle, or a node with two parents); glTF's node hierarchy is a tree");
+  }
+  if (depth > MaxNodeDepth)
+  {
+    Fail(doc.Name,
+      where + " lies deeper than " + std::to_string(MaxNodeDepth) +
+        " levels in the node hierarchy; refused");
   }
   const Json& node = Element(doc, "nodes", nodeIndex, "a scene or node");
   const Eigen::Matrix4d world = parent * LocalMatrix(doc, node, where);
@@ -716,6 +731,15 @@ void CollectInstances(const Document& doc,
         if (p.is_object() && ext != p.end() && ext->is_object() &&
           ext->contains(detail::GltfExtension))
         {
+          const auto uses = std::count_if(
+            out.begin(), out.end(), [&p](const Instance& i) { return i.Primitive == &p; });
+          if (static_cast<std::size_t>(uses) >= MaxInstancesPerMesh)
+          {
+            Fail(doc.Name,
+              "meshes[" + std::to_string(meshIndex) + "] is instanced by more than " +
+                std::to_string(MaxInstancesPerMesh) +
+                " nodes; refused (its Gaussians would be copied as many times)");
+          }
           out.push_back({ &p, world, nodeIndex, meshIndex });
         }
       }
@@ -734,10 +758,9 @@ void CollectInstances(const Document& doc,
       {
         Fail(doc.Name, where + ".children holds a value that is not a node index");
       }
-      CollectInstances(doc, c.get<std::size_t>(), world, path, out);
+      CollectInstances(doc, c.get<std::size_t>(), world, depth + 1, visited, out);
     }
   }
-  path.erase(nodeIndex);
 }
 
 /// Appends @p part to @p all (SH cut to the lower degree; extras kept only if both agree).
@@ -805,7 +828,7 @@ GaussianCloud ReadDocument(Document& doc,
   GaussianReadReport report;
   report.Format = "gltf";
   std::vector<Instance> instances;
-  std::set<std::size_t> path;
+  std::set<std::size_t> visited;
   const auto scenes = doc.Root.find("scenes");
   if (scenes != doc.Root.end() && scenes->is_array() && !scenes->empty())
   {
@@ -818,7 +841,8 @@ GaussianCloud ReadDocument(Document& doc,
         Fail(
           name, "scenes[" + std::to_string(s) + "].nodes holds a value that is not a node index");
       }
-      CollectInstances(doc, n.get<std::size_t>(), Eigen::Matrix4d::Identity(), path, instances);
+      CollectInstances(
+        doc, n.get<std::size_t>(), Eigen::Matrix4d::Identity(), 0, visited, instances);
     }
   }
   if (instances.empty())

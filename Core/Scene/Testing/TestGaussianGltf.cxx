@@ -304,6 +304,27 @@ TEST(GaussianGltf, MirrorsCyclesAndBrokenFilesAreRefusedWithTheirReason)
   expectError(
     Json(f.Bin, f.Attributes, 2, R"("nodes":[{"mesh":0,"scale":[-1,1,1]}])"), "determinant");
   expectError(Json(f.Bin, f.Attributes, 2, R"("nodes":[{"mesh":0,"children":[0]}])"), "cycle");
+  // Two parents: along a chain each doubling would multiply the Gaussians exponentially.
+  expectError(
+    Json(f.Bin, f.Attributes, 2, R"("nodes":[{"children":[1,2]},{"children":[2]},{"mesh":0}])"),
+    "two parents");
+  std::string many = R"("nodes":[{"children":[)";
+  for (int i = 1; i <= 17; ++i)
+  {
+    many += (i > 1 ? "," : "") + std::to_string(i);
+  }
+  many += "]}";
+  for (int i = 1; i <= 17; ++i)
+  {
+    many += R"(,{"mesh":0})";
+  }
+  expectError(Json(f.Bin, f.Attributes, 2, many + "]"), "instanced by more than 16 nodes");
+  std::string deep = R"("nodes":[)";
+  for (int i = 0; i < 300; ++i)
+  {
+    deep += R"({"children":[)" + std::to_string(i + 1) + "]},";
+  }
+  expectError(Json(f.Bin, f.Attributes, 2, deep + R"({"mesh":0}])"), "deeper than 256");
   expectError(Json(f.Bin, f.Attributes, 3), "runs past the end of its buffer");
   std::string longer = Json(f.Bin, f.Attributes, 2);
   longer.replace(longer.find("\"count\":2"), 9, "\"count\":3");
