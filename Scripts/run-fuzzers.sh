@@ -13,7 +13,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${2:-$root/build-fuzz}"
 data="${VIS4GS_SHARED_DATA_DIR:-$root/../shared/data}"
 targets=(FuzzGaussianPly FuzzSplat FuzzCamerasJson FuzzTransformsJson FuzzColmap FuzzSpz FuzzCompressedPly
-  FuzzSog FuzzKsplat)
+  FuzzSog FuzzKsplat FuzzGltf)
 
 if [ "${VIS4GS_FUZZ_SKIP_BUILD:-0}" != 1 ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja \
@@ -28,7 +28,7 @@ fi
 seeds="$build/seeds"
 rm -rf "$seeds"
 mkdir -p "$seeds"/{FuzzGaussianPly,FuzzSplat,FuzzCamerasJson,FuzzTransformsJson,FuzzColmap,FuzzSpz,FuzzKsplat}
-mkdir -p "$seeds/FuzzCompressedPly" "$seeds/FuzzSog"
+mkdir -p "$seeds/FuzzCompressedPly" "$seeds/FuzzSog" "$seeds/FuzzGltf"
 ply="$data/inria_ply_tiny_kacytran/point_cloud/iteration_7000/point_cloud.ply"
 donut="$data/gs_ply_sh0_variant_donut_v3dg/fused.ply"
 if [ -f "$ply" ]; then
@@ -161,6 +161,25 @@ rec2 = struct.pack("<3H7H4B9B", 32767, 0, 65535, 0x3C00, 0x3800, 0x4000, 0x3C00,
                    10, 20, 30, 40, *range(9))
 body2 = struct.pack("<I6f", 1, 0, 0, 0, 5, 5, 5) + rec2 * 2
 open(sys.argv[1] + "/l2.ksplat", "wb").write(ksplat(2, body2, (1, 2, 5.0, 12, 32767, 1, 1)))
+PY
+
+# glTF: a 6-Gaussian SH-degree-1 GLB with a score attribute written by WriteGltf
+# (Testing/Fuzz/Seeds), and the same as JSON with a data URI, a node hierarchy (TRS parent,
+# matrix child) and the SPZ extension's nesting pointing at a view of its buffer.
+/usr/bin/python3 - "$root/Testing/Fuzz/Seeds/tiny.glb" "$seeds/FuzzGltf" <<'PY'
+import base64, json, struct, sys
+glb = open(sys.argv[1], "rb").read()
+open(sys.argv[2] + "/tiny.glb", "wb").write(glb)
+n = struct.unpack_from("<I", glb, 12)[0]
+doc = json.loads(glb[20:20 + n])
+bin_ = glb[20 + n + 8:]
+doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(bin_).decode()
+doc["nodes"] = [{"children": [1], "translation": [1, 2, 3], "rotation": [0, 0.6, 0, 0.8]},
+                {"mesh": 0, "matrix": [2, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}]
+open(sys.argv[2] + "/nodes.gltf", "w").write(json.dumps(doc))
+ext = doc["meshes"][0]["primitives"][0]["extensions"]["KHR_gaussian_splatting"]
+ext["extensions"] = {"KHR_gaussian_splatting_compression_spz_2": {"bufferView": 0}}
+open(sys.argv[2] + "/spz-nesting.gltf", "w").write(json.dumps(doc))
 PY
 
 status=0

@@ -376,7 +376,8 @@ void Vis4GSCompareWindow::AskAndOpen(QWidget* parent,
     b = QFileDialog::getOpenFileName(parent,
       "State B",
       QFileInfo(a).absolutePath(),
-      "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.ksplat *.splat *.sog meta.json);;All files (*)");
+      "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.ksplat *.splat *.sog meta.json *.glb *.gltf);;All "
+      "files (*)");
   }
   if (!ok || b.isEmpty())
   {

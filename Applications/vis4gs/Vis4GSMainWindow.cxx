@@ -430,7 +430,9 @@ void Vis4GSMainWindow::BuildUi()
       const QString path = QFileDialog::getOpenFileName(this,
         "Open a training log or a scene",
         QString(),
-        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.ksplat *.splat *.sog meta.json);;All files (*)");
+        "Vis4GS inputs (*.h5 *.hdf5 *.ply *.spz *.ksplat *.splat *.sog meta.json *.glb "
+        "*.gltf);;All "
+        "files (*)");
       if (!path.isEmpty())
       {
         this->Open(path);
@@ -1100,7 +1102,9 @@ void Vis4GSMainWindow::ExportPly(bool deleteSelection)
   QString path = QFileDialog::getSaveFileName(this,
     deleteSelection ? "Save the scene without the selection" : "Export the selected Gaussians",
     deleteSelection ? "pruned.ply" : "selection.ply",
-    "PLY (*.ply);;SPZ v4, quantised for web viewers (*.spz);;" + compressedFilter,
+    "PLY (*.ply);;SPZ v4, quantised for web viewers (*.spz);;glTF KHR_gaussian_splatting (*.glb "
+    "*.gltf);;" +
+      compressedFilter,
     &filter);
   if (!path.isEmpty() && filter == compressedFilter &&
     !path.endsWith(".compressed.ply", Qt::CaseInsensitive))

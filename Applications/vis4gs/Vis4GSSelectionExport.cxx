@@ -64,29 +64,9 @@ Vis4GSExportReport Vis4GSWriteSelectedScene(const QString& path,
   }
   try
   {
-    if (path.endsWith(".spz", Qt::CaseInsensitive))
-    {
-      // Lossy: say how much was lost and what could not be stored.
-      const vis4gs::SpzWriteReport r = vis4gs::WriteSpz(path.toStdString(), cloud);
-      return { QString("%1: %2 Gaussians written as SPZ v4, %3 left out; max error: position "
-                       "%4, log-scale %5, opacity %6, colour %7, SH %8")
-                 .arg(path)
-                 .arg(r.Written)
-                 .arg(r.LeftOut)
-                 .arg(r.Position.Max, 0, 'g', 3)
-                 .arg(r.LogScale.Max, 0, 'g', 3)
-                 .arg(r.Opacity.Max, 0, 'g', 3)
-                 .arg(r.Color.Max, 0, 'g', 3)
-                 .arg(r.SH.Max, 0, 'g', 3),
-        10000 };
-    }
-    if (path.endsWith(".compressed.ply", Qt::CaseInsensitive))
-    {
-      const auto report = vis4gs::WriteCompressedPly(path.toStdString(), cloud);
-      return { path + ": " + QString::fromStdString(vis4gs::DescribeQuantisation(report)), 15000 };
-    }
-    vis4gs::WriteGaussianPly(path.toStdString(), cloud);
-    return { QString("%1: %2 Gaussians written").arg(path).arg(points->GetNumberOfPoints()), 5000 };
+    // Written by the name's format, with what a lossy one lost (as vis4gs convert says it).
+    const std::string line = vis4gs::WriteGaussianScene(path.toStdString(), cloud);
+    return { path + ": " + QString::fromStdString(line), 15000 };
   }
   catch (const std::exception& e)
   {

@@ -69,7 +69,7 @@ void Define(Vis4GSArguments& args)
 {
   args.AddPositional("scene",
     "Gaussian scene: a 3DGS .ply, compressed PLY, SOG (.sog, meta.json or its folder), .spz, "
-    ".ksplat or .splat, or a training log .h5 (DESIGN §3).");
+    ".ksplat, .splat or glTF (.glb, .gltf), or a training log .h5 (DESIGN §3).");
   args.AddOption("iteration",
     "N",
     "-1",

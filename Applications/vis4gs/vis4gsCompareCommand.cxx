@@ -33,7 +33,8 @@ namespace fs = std::filesystem;
 
 void Define(Vis4GSArguments& args)
 {
-  args.AddPositional("A", "First state: a 3DGS .ply, .spz or .splat, or a training log .h5.");
+  args.AddPositional(
+    "A", "First state: a 3DGS scene (.ply, .spz, .splat, .glb, ...), or a training log .h5.");
   args.AddPositional("B", "Second state, as A (the same log for two of its iterations).");
   args.AddOption("iteration-a", "N", "-1", "Log A: the snapshot nearest to N; -1: the last.");
   args.AddOption("iteration-b", "N", "-1", "Log B: the snapshot nearest to N; -1: the last.");

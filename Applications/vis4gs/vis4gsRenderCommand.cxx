@@ -32,7 +32,7 @@ void Define(Vis4GSArguments& args)
 {
   args.AddPositional("scene",
     "3DGS scene: the trainer's PLY, a compressed PLY, a SOG (.sog, meta.json or its folder), an "
-    "SPZ, a .ksplat or an antimatter15 .splat.");
+    "SPZ, a .ksplat, an antimatter15 .splat or glTF (.glb, .gltf).");
   args.AddOption("cameras",
     "FILE_OR_DIR",
     "",

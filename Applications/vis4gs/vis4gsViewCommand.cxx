@@ -26,7 +26,7 @@ void Define(Vis4GSArguments& args)
 {
   args.AddPositional("FILE",
     "Training log (.h5) or Gaussian scene (.ply, .compressed.ply, .sog, meta.json, .spz, .ksplat, "
-    ".splat) to open.",
+    ".splat, .glb, .gltf) to open.",
     false);
   args.AddOption("self-test",
     "DIR",

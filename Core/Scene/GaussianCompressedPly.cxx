@@ -935,29 +935,38 @@ std::vector<unsigned char> WriteCompressedPlyToMemory(const GaussianCloud& cloud
 //------------------------------------------------------------------------------
 std::string DescribeQuantisation(const CompressedPlyWriteReport& report)
 {
-  std::string s = std::to_string(report.Written) + " Gaussians written";
-  if (report.LeftOut)
+  std::string s = detail::DescribeWriteErrors(report.Written, report.LeftOut, report.Errors);
+  if (report.ClampedLogScales)
   {
-    s += ", " + std::to_string(report.LeftOut) +
+    s += "; " + std::to_string(report.ClampedLogScales) + " log-scales outside [-20, 20] clamped";
+  }
+  if (report.ClampedSH)
+  {
+    s += "; " + std::to_string(report.ClampedSH) + " f_rest outside [-4, 4] clamped";
+  }
+  return s;
+}
+
+//------------------------------------------------------------------------------
+std::string detail::DescribeWriteErrors(std::size_t written,
+  std::size_t leftOut,
+  const std::vector<QuantisationError>& errors)
+{
+  std::string s = std::to_string(written) + " Gaussians written";
+  if (leftOut)
+  {
+    s += ", " + std::to_string(leftOut) +
       " left out (no answer in the reference's arithmetic, Documentation/special-values.md)";
   }
   s += "; quantisation error max/RMS:";
   char buf[128];
-  for (const auto& e : report.Errors)
+  for (const auto& e : errors)
   {
     if (e.Values)
     {
       std::snprintf(buf, sizeof(buf), " %s %.3g/%.3g;", e.Attribute.c_str(), e.Max, e.Rms);
       s += buf;
     }
-  }
-  if (report.ClampedLogScales)
-  {
-    s += " " + std::to_string(report.ClampedLogScales) + " log-scales outside [-20, 20] clamped;";
-  }
-  if (report.ClampedSH)
-  {
-    s += " " + std::to_string(report.ClampedSH) + " f_rest outside [-4, 4] clamped;";
   }
   s.pop_back();
   return s;

@@ -3,7 +3,7 @@
  * @file GaussianIO.h
  * @brief Reading and writing 3DGS scenes: the trainer's PLY (binary little/big endian and
  * ASCII), the antimatter15 `.splat` format (reference §1.1), Niantic's SPZ, GaussianSplats3D's
- * `.ksplat`, and PlayCanvas's compressed PLY and SOG.
+ * `.ksplat`, PlayCanvas's compressed PLY and SOG, and glTF with KHR_gaussian_splatting.
  *
  * PLY properties are looked up by name in any order; every PLY scalar type name is accepted
  * (char/int8, uchar/uint8, short/int16, ushort/uint16, int/int32, uint/uint32,
@@ -58,6 +58,11 @@ struct GaussianReadReport
   /// least one. The values are kept as read.
   std::size_t NonFiniteValues = 0;
   std::size_t NonFiniteGaussians = 0;
+  /// The render mode the file names: "default", "antialiased" (Mip-Splatting's 2D filter:
+  /// Brush's `SplatRenderMode: mip`, Postshot's `antialiased 1`, SPZ's flag) or "2dgs" (2D
+  /// Gaussian splatting surfels: Brush's `SplatRenderMode: 2dgs`, or a PLY without scale_2);
+  /// empty when the file says nothing.
+  std::string RenderMode;
   /// Human-readable warnings (already formatted with the file name).
   std::vector<std::string> Warnings;
 };
@@ -203,6 +208,9 @@ struct SpzWriteReport
  * special values keep their meaning. Returns the quantisation error per attribute, measured
  * by decoding what was written. Written through a temporary file renamed into place.
  */
+/// One line: written / left out counts, special values and max/RMS error per attribute.
+std::string DescribeQuantisation(const SpzWriteReport& report);
+
 SpzWriteReport WriteSpz(const std::string& path,
   const GaussianCloud& cloud,
   const SpzWriteOptions& options = {});
@@ -334,16 +342,122 @@ GaussianCloud ReadKsplatFromMemory(const void* data,
 /// True if @p path holds a .ksplat header (version 0.x) whose sections fill the file exactly.
 bool IsKsplatFile(const std::string& path);
 
+/**
+ * Reads glTF 2.0 with `KHR_gaussian_splatting` (Documentation/file-formats.md, "glTF"): a GLB,
+ * or JSON whose buffers are data URIs or files beside it (relative names only). Every
+ * primitive with the extension that a node of the default scene instances is read, moved by
+ * the node's global transform (the whole hierarchy's matrix or TRS: means, rotations and
+ * scales; a transform that scales unevenly or shears has each covariance M S Mᵀ re-factored
+ * exactly, with a warning; a mirror or collapse is an error, the extension leaves it undefined),
+ * then turned from glTF's frame (+Y up) into the PLY's axes by a half turn about z, as
+ * splat-transform's `.glb` writer does in reverse. Attributes as the extension defines them:
+ * linear scales (log taken), linear opacity in [0, 1] (logit taken, in double), unit
+ * quaternions x y z w, SH coefficients of degrees 0-3 copied bit for bit; the fallback
+ * COLOR_0 stands in (with a warning) only when SH degree 0 or the opacity is missing. A
+ * primitive whose `KHR_gaussian_splatting` holds `KHR_gaussian_splatting_compression_spz_2` is
+ * read from its SPZ payload with ReadSpzFromMemory. Application-specific SCALAR attributes
+ * (a leading underscore) become extras of the name without it. Errors name the file and the
+ * accessor, buffer or node at fault.
+ */
+GaussianCloud ReadGltf(const std::string& path,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// Same from memory; external buffer files cannot be reached (an error names them).
+GaussianCloud ReadGltfFromMemory(const void* data,
+  std::size_t size,
+  const std::string& name,
+  const GaussianReadOptions& options = {},
+  GaussianReadReport* report = nullptr);
+/// True for a GLB ("glTF" magic), a `.gltf` holding a JSON object, or a JSON object naming
+/// "asset" and KHR_gaussian_splatting in its first MiB.
+bool IsGltfFile(const std::string& path);
+
+struct GltfWriteOptions
+{
+  /// Highest SH degree written (the cloud's if lower).
+  int MaxShDegree = 3;
+  /// Write the cloud's extras as application-specific SCALAR attributes `_<name>` (8- and
+  /// 16-bit integers keep their type, everything else is float32).
+  bool KeepExtras = true;
+  /// The extension's required colorSpace ("srgb_rec709_display" or "lin_rec709_display").
+  std::string ColorSpace = "srgb_rec709_display";
+};
+
+struct GltfWriteReport
+{
+  std::size_t Written = 0;
+  /// Gaussians the reference cannot draw (ClassifyGaussian) or with non-finite written SH.
+  std::size_t LeftOut = 0;
+  std::size_t FileBytes = 0;
+  /// What does not read back exactly, measured by reading the written bytes: log-scale (float32
+  /// exp then log), rotation (normalised to unit length; degrees), opacity (alpha, float32
+  /// sigmoid), extras (float32 of float64 or 32-bit integers); positions and SH are exact.
+  std::vector<QuantisationError> Errors;
+};
+
+/**
+ * Writes glTF 2.0 with `KHR_gaussian_splatting`: a GLB unless @p path ends in `.gltf` (then
+ * JSON with the buffer as a data URI). One node, one POINTS primitive: POSITION (with min/max),
+ * ROTATION (unit quaternions, a zero one as the identity), SCALE (exp of the log-scale),
+ * OPACITY (sigmoid of the logit), SH degrees 0..MaxShDegree, float32 each, the fallback
+ * COLOR_0 (8-bit, sRGB decoded to linear as glTF asks), and the extras. Data is turned out of
+ * the PLY's axes into glTF's frame (ReadGltf's exact inverse). Gaussians the reference cannot
+ * draw are left out and counted, as by WriteSplat; an empty result is an error (glTF accessors
+ * hold at least one element). Written to a temporary file and renamed into place.
+ */
+GltfWriteReport WriteGltf(const std::string& path,
+  const GaussianCloud& cloud,
+  const GltfWriteOptions& options = {});
+/// Same into memory: @p binary a GLB, else JSON with a data URI.
+std::vector<unsigned char> WriteGltfToMemory(const GaussianCloud& cloud,
+  bool binary,
+  const GltfWriteOptions& options = {},
+  GltfWriteReport* report = nullptr);
+/// One line: written / left out counts and max/RMS error per attribute.
+std::string DescribeQuantisation(const GltfWriteReport& report);
+
 /// Reads a scene by content, then extension: .ksplat (IsKsplatFile) with ReadKsplat, SPZ (gzip
-/// or "NGSP" start) with ReadSpz, a SOG (folder, zip or meta.json) with ReadSog, ".splat" with
-/// ReadSplat, a compressed PLY (by content) with ReadCompressedPly, anything else with
-/// ReadGaussianPly (GaussianScene.cxx: a new format adds its test there).
+/// or "NGSP" start) with ReadSpz, glTF (IsGltfFile) with ReadGltf, a SOG (folder, zip or meta.json)
+/// with ReadSog, ".splat" with ReadSplat, a compressed PLY (by content) with ReadCompressedPly,
+/// anything else with ReadGaussianPly (GaussianScene.cxx: a new format adds its test there).
 GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);
 
+/// How WriteGaussianScene writes, whatever the format.
+struct SceneWriteOptions
+{
+  /// Encoding of a `.ply` (the other formats have one each).
+  PlyFormat Format = PlyFormat::BinaryLittleEndian;
+  /// Property holding GaussianCloud::Ids in a PLY (and `_<name>` in glTF, float32).
+  std::string IdProperty = "id";
+  /// Highest SH degree written (the cloud's if lower).
+  int MaxShDegree = 3;
+};
+
+/**
+ * Writes @p cloud in the format @p path's name says, as every interface does (`vis4gs
+ * convert`, the application's export, vtkGaussianPLYWriter): `.compressed.ply`
+ * (WriteCompressedPly), `.spz` (WriteSpz), `.glb` / `.gltf` (WriteGltf), `.splat` (WriteSplat),
+ * anything else a 3DGS PLY (WriteGaussianPly, exact). Extras and ids go where the format can
+ * hold them (PLY, glTF). Returns one line saying what was written and, for the lossy formats,
+ * the error measured by reading it back (DescribeQuantisation) and what was left out.
+ */
+std::string WriteGaussianScene(const std::string& path,
+  const GaussianCloud& cloud,
+  const SceneWriteOptions& options = {});
+
 namespace detail
 {
+/// "N Gaussians written, L left out (...); quantisation error max/RMS: a max/rms; ..." for the
+/// writers' reports (DescribeQuantisation).
+std::string DescribeWriteErrors(std::size_t written,
+  std::size_t leftOut,
+  const std::vector<QuantisationError>& errors);
+
+/// A copy of @p cloud with its SH cut to @p degree (the whole copy when it holds no more).
+GaussianCloud CutShDegree(const GaussianCloud& cloud, int degree);
+
 /// A cloud of @p n Gaussians with SH degree @p shDegree (0 when @p options skip SH) whose
 /// arrays are sized for what @p options ask a reader to load, the others left empty: the one
 /// allocation rule of every scene reader.

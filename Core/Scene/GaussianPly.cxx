@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -93,7 +94,77 @@ struct Plan
 {
   std::vector<Target> Targets; // one per vertex property, file order
   std::vector<ExtraProperty>* Extras = nullptr;
+  bool Surfels = false; // 2DGS: scale_0 and scale_1 without scale_2
 };
+
+/// The render mode a PLY names (Brush's `SplatRenderMode: default | mip | 2dgs`, Postshot's
+/// `antialiased 0 | 1`; case-insensitive, the last one wins, as Brush's importer and
+/// splat-transform decide) and 2DGS surfels (no scale_2): read with a log-scale of -inf along
+/// the normal, as splat-transform does; both said in the report.
+void ApplyRenderMode(const std::vector<std::string>& comments,
+  bool surfels,
+  const std::string& name,
+  GaussianCloud& cloud,
+  GaussianReadReport& report)
+{
+  std::string mode, said;
+  for (const std::string& c : comments)
+  {
+    std::string lower(c);
+    std::transform(lower.begin(),
+      lower.end(),
+      lower.begin(),
+      [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    auto value = [&lower](const char* key) -> std::string
+    {
+      const std::size_t l = std::strlen(key);
+      if (lower.compare(0, l, key) != 0)
+      {
+        return "-";
+      }
+      const auto b = lower.find_first_not_of(" \t", l);
+      return b == std::string::npos ? "" : lower.substr(b);
+    };
+    const std::string brush = value("splatrendermode:");
+    const std::string postshot = value("antialiased ");
+    const std::string next = brush == "default" || postshot == "0" ? "default"
+      : brush == "mip" || postshot == "1"                          ? "antialiased"
+      : brush == "2dgs"                                            ? "2dgs"
+                                                                   : "";
+    if (!next.empty())
+    {
+      mode = next;
+      said = c;
+    }
+  }
+  if (surfels)
+  {
+    if (!cloud.LogScales.empty())
+    {
+      for (std::size_t g = 0; g < cloud.Count; ++g)
+      {
+        cloud.LogScales[3 * g + 2] = -std::numeric_limits<float>::infinity();
+      }
+    }
+    report.Warnings.push_back(name +
+      ": no scale_2: 2D Gaussian splatting surfels, read with scale 0 along the normal (log-scale "
+      "-inf, as splat-transform does) and drawn by the 3DGS rasteriser as flat Gaussians, which is "
+      "not 2DGS's ray-splat renderer");
+    mode = "2dgs";
+  }
+  else if (mode == "2dgs")
+  {
+    report.Warnings.push_back(
+      name + ": the header says '" + said + "' but the file holds scale_2: read as 3D Gaussians");
+  }
+  else if (mode == "antialiased")
+  {
+    report.Warnings.push_back(name + ": the header says '" + said +
+      "': trained with antialiasing (Mip-Splatting's 2D filter); Vis4GS draws the Gaussians as the "
+      "INRIA renderer does");
+  }
+  report.RenderMode = mode;
+}
 
 //------------------------------------------------------------------------------
 // Maps the vertex properties onto @p cloud (allocating what is requested) and fills @p plan.
@@ -230,11 +301,13 @@ void BuildPlan(const PlyElement& vertex,
       need(havePos[c], std::string(1, static_cast<char>('x' + c)));
     }
   }
+  // 2D Gaussian splatting stores surfels: two scales, none along the normal.
+  plan.Surfels = haveScale[0] && haveScale[1] && !haveScale[2];
   if (options.LoadScales)
   {
     for (int c = 0; c < 3; ++c)
     {
-      need(haveScale[c], "scale_" + std::to_string(c));
+      need(haveScale[c] || (c == 2 && plan.Surfels), "scale_" + std::to_string(c));
     }
   }
   if (options.LoadRotations)
@@ -986,6 +1059,7 @@ GaussianCloud ReadPly(const ByteSource& src,
       report,
       options.IdProperty);
   }
+  ApplyRenderMode(header.Comments, plan.Surfels, name, cloud, report);
   detail::FinishReadReport(report, name, reportOut);
   return cloud;
 }

@@ -100,6 +100,7 @@ struct PackedSpz
   std::size_t Offsets[6] = {}; // positions, alphas, colours, scales, rotations, SH
   std::size_t Sizes[6] = {};
   std::vector<std::string> Warnings;
+  bool Raw = false; ///< a version 2/3 payload without its gzip stream
 
   bool SmallestThree() const { return this->Version >= 3; }
   int RestDim() const { return RestDims[this->ShDegree]; }
@@ -302,11 +303,6 @@ void DecompressNgsp(PackedSpz& p, const std::string& name, const unsigned char* 
   p.Flags = src[14];
   const int numStreams = src[15];
   const std::uint64_t toc = detail::LoadLE32(src + 16);
-  if (p.Version < 4)
-  {
-    throw std::runtime_error(name + ": an uncompressed NGSP header with version " +
-      std::to_string(p.Version) + " (versions 2 and 3 are gzip streams)");
-  }
   CheckHeader(p, name, detail::LoadLE32(src), detail::LoadLE32(src + 8), src[12], n);
   const int expectedStreams = p.ShDegree > 0 ? 6 : 5;
   if (numStreams != expectedStreams)
@@ -368,12 +364,43 @@ void DecompressNgsp(PackedSpz& p, const std::string& name, const unsigned char* 
   }
 }
 
+/// Versions 2 and 3 without the gzip stream (the "raw" SPZ some tools write and
+/// splat-transform reads): the 16-byte header, the attribute blocks, the extension records.
+void ReadRawLegacy(PackedSpz& p, const std::string& name, const unsigned char* src, std::size_t n)
+{
+  if (n < LegacyHeaderSize)
+  {
+    throw std::runtime_error(name + ": raw SPZ file shorter than its 16-byte header");
+  }
+  p.Version = detail::LoadLE32(src + 4);
+  p.FractionalBits = src[13];
+  p.Flags = src[14];
+  CheckHeader(p, name, detail::LoadLE32(src), detail::LoadLE32(src + 8), src[12], n);
+  const std::size_t total = TotalSize(p);
+  if (n - LegacyHeaderSize < total)
+  {
+    throw std::runtime_error(name + ": the raw SPZ data ends early: " + std::to_string(p.Count) +
+      " Gaussians need " + std::to_string(total) + " bytes after the header, the file holds " +
+      std::to_string(n - LegacyHeaderSize));
+  }
+  p.Data.assign(src + LegacyHeaderSize, src + LegacyHeaderSize + total);
+  if (p.Flags & FlagHasExtensions)
+  {
+    ParseExtensions(p, name, src + LegacyHeaderSize + total, n - LegacyHeaderSize - total);
+  }
+  p.Raw = true;
+}
+
 PackedSpz Unpack(const unsigned char* src, std::size_t n, const std::string& name)
 {
   PackedSpz p;
   if (n >= 2 && src[0] == 0x1f && src[1] == 0x8b)
   {
     InflateLegacy(p, name, src, n);
+  }
+  else if (n >= 8 && detail::LoadLE32(src) == NgspMagic && detail::LoadLE32(src + 4) < 4)
+  {
+    ReadRawLegacy(p, name, src, n);
   }
   else if (n >= 4 && detail::LoadLE32(src) == NgspMagic)
   {
@@ -530,12 +557,13 @@ GaussianCloud ReadSpzBytes(const unsigned char* data,
   }
   const PackedSpz p = Unpack(data, size, name);
   GaussianReadReport report;
-  report.Format = "spz v" + std::to_string(p.Version);
+  report.Format = "spz v" + std::to_string(p.Version) + (p.Raw ? " raw" : "");
   report.FileShDegree = p.ShDegree;
   report.Warnings = p.Warnings;
   if (p.Flags & FlagAntialiased)
   {
     report.Format += " antialiased";
+    report.RenderMode = "antialiased";
     report.Warnings.push_back(name + ": the SPZ file says its Gaussians were trained with " +
       "antialiasing (Mip-Splatting's 2D filter); Vis4GS draws them as the INRIA renderer does");
   }
@@ -908,6 +936,31 @@ SpzWriteReport WriteSpz(const std::string& path,
   detail::WriteFileAtomically(
     path, [&](std::FILE* f) { detail::WriteBytes(f, bytes.data(), bytes.size(), path); });
   return report;
+}
+
+//------------------------------------------------------------------------------
+std::string DescribeQuantisation(const SpzWriteReport& report)
+{
+  const std::vector<QuantisationError> errors = {
+    { "position", report.Position.Max, report.Position.Rms, report.Written },
+    { "log-scale", report.LogScale.Max, report.LogScale.Rms, report.Written },
+    { "rotation (components)", report.Rotation.Max, report.Rotation.Rms, report.Written },
+    { "opacity (alpha)", report.Opacity.Max, report.Opacity.Rms, report.Written },
+    { "colour (SH DC)", report.Color.Max, report.Color.Rms, report.Written },
+    { "SH", report.SH.Max, report.SH.Rms, report.Written },
+  };
+  std::string s = "SPZ v4, " + detail::DescribeWriteErrors(report.Written, report.LeftOut, errors);
+  if (report.OutOfRange)
+  {
+    s +=
+      "; " + std::to_string(report.OutOfRange) + " of those left out beyond 2^23 in a coordinate";
+  }
+  if (report.SpecialValues)
+  {
+    s += "; " + std::to_string(report.SpecialValues) +
+      " drawable special values kept with their meaning";
+  }
+  return s;
 }
 
 } // namespace vis4gs

@@ -106,6 +106,14 @@ PlyHeader ParsePlyHeader(const unsigned char* data, std::size_t size, const std:
     }
     if (tok[0] == "comment" || tok[0] == "obj_info")
     {
+      if (tok[0] == "comment")
+      {
+        std::string_view c = line.substr(line.find("comment") + 7);
+        const auto b = c.find_first_not_of(" \t");
+        const auto e = c.find_last_not_of(" \t\r");
+        header.Comments.emplace_back(
+          b == std::string_view::npos ? std::string_view() : c.substr(b, e - b + 1));
+      }
       continue;
     }
     if (tok[0] == "format")

@@ -46,6 +46,8 @@ struct PlyHeader
   PlyFormat Format = PlyFormat::BinaryLittleEndian;
   std::vector<PlyElement> Elements;
   std::size_t Bytes = 0; ///< header length including the end_header line
+  /// Text of the `comment` lines after the keyword, in order (render modes, producers).
+  std::vector<std::string> Comments;
 };
 
 /// Parses the header at the start of @p data (at most MaxPlyHeaderBytes are looked at); throws

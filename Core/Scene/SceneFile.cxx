@@ -204,6 +204,77 @@ void WriteBytes(std::FILE* f, const void* data, std::size_t size, const std::str
 }
 
 //------------------------------------------------------------------------------
+std::string EncodeBase64(const unsigned char* bytes, std::size_t size)
+{
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  for (std::size_t i = 0; i < size; i += 3)
+  {
+    const unsigned v = unsigned(bytes[i]) << 16 |
+      (i + 1 < size ? unsigned(bytes[i + 1]) << 8 : 0u) | (i + 2 < size ? bytes[i + 2] : 0u);
+    out += table[v >> 18 & 63];
+    out += table[v >> 12 & 63];
+    out += i + 1 < size ? table[v >> 6 & 63] : '=';
+    out += i + 2 < size ? table[v & 63] : '=';
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<unsigned char> DecodeBase64(std::string_view text)
+{
+  while (!text.empty() && text.back() == '=')
+  {
+    text.remove_suffix(1);
+  }
+  std::vector<unsigned char> out;
+  if (text.size() % 4 == 1)
+  {
+    return out;
+  }
+  out.reserve(text.size() / 4 * 3 + 2);
+  unsigned v = 0;
+  int bits = 0;
+  for (const char ch : text)
+  {
+    int d = -1;
+    if (ch >= 'A' && ch <= 'Z')
+    {
+      d = ch - 'A';
+    }
+    else if (ch >= 'a' && ch <= 'z')
+    {
+      d = ch - 'a' + 26;
+    }
+    else if (ch >= '0' && ch <= '9')
+    {
+      d = ch - '0' + 52;
+    }
+    else if (ch == '+' || ch == '-')
+    {
+      d = 62;
+    }
+    else if (ch == '/' || ch == '_')
+    {
+      d = 63;
+    }
+    if (d < 0)
+    {
+      return {};
+    }
+    v = (v << 6 | unsigned(d)) & 0xffffff;
+    bits += 6;
+    if (bits >= 8)
+    {
+      bits -= 8;
+      out.push_back(static_cast<unsigned char>(v >> bits & 0xff));
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
 std::string ParentFolder(const std::string& path)
 {
   const auto slash = path.find_last_of('/');

@@ -243,6 +243,15 @@ void WriteFileAtomically(const std::string& path, const std::function<void(std::
 /// fwrite that throws naming @p path when the write is short.
 void WriteBytes(std::FILE* f, const void* data, std::size_t size, const std::string& path);
 
+/// Base64 (RFC 4648, with padding) of @p bytes: glTF data URIs, the analyze report's images.
+std::string EncodeBase64(const unsigned char* bytes, std::size_t size);
+/// The bytes of base64 @p text (padding optional); empty for text that is not base64.
+std::vector<unsigned char> DecodeBase64(std::string_view text);
+
+/// The scene format a file name asks a writer for (WriteGaussianScene): ".compressed.ply",
+/// ".ply", ".spz", ".glb", ".gltf" or ".splat" (any case), "" for any other name.
+std::string SceneWriteFormat(const std::string& path);
+
 /// Folder part of @p path ("." when there is none).
 std::string ParentFolder(const std::string& path);
 /// True if @p path names an existing regular file / directory.

@@ -57,14 +57,15 @@ void vtkGaussianPLYWriter::WriteData()
   {
     cloud.Ids.clear();
   }
-  vis4gs::GaussianWriteOptions options;
+  vis4gs::SceneWriteOptions options;
   options.Format = this->FileFormat == BINARY_BIG_ENDIAN ? vis4gs::PlyFormat::BinaryBigEndian
     : this->FileFormat == ASCII                          ? vis4gs::PlyFormat::Ascii
                                                          : vis4gs::PlyFormat::BinaryLittleEndian;
   options.IdProperty = this->IdPropertyName;
   try
   {
-    vis4gs::WriteGaussianPly(this->FileName, cloud, options);
+    // A name ending in .glb, .gltf, .spz, .compressed.ply or .splat picks that format.
+    this->WriteReport = vis4gs::WriteGaussianScene(this->FileName, cloud, options);
   }
   catch (const std::exception& e)
   {
@@ -82,4 +83,5 @@ void vtkGaussianPLYWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WriteIds: " << this->WriteIds << "\n";
   os << indent << "IdPropertyName: " << this->IdPropertyName << "\n";
   os << indent << "WriteExtraArrays: " << this->WriteExtraArrays << "\n";
+  os << indent << "WriteReport: " << this->WriteReport << "\n";
 }

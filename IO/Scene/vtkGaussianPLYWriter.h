@@ -21,9 +21,14 @@
  * not written (they are derived). GaussianId is written as an `id` property only with
  * WriteIds on.
  *
+ * A FileName ending in `.glb` / `.gltf` (glTF KHR_gaussian_splatting), `.spz`,
+ * `.compressed.ply` or `.splat` writes that format instead, as every interface chooses it
+ * (vis4gs::WriteGaussianScene): extras and ids only where the format holds them (glTF), the
+ * quantisation error measured by reading back in GetWriteReport().
+ *
  * The file is written to a temporary file in the same folder and renamed into place, so a
  * failed write never leaves a half-written file. Errors are reported with vtkErrorMacro.
- * The writing is done by vis4gs::WriteGaussianPly (Core/Scene/GaussianIO.h).
+ * The writing is done by vis4gs::WriteGaussianScene (Core/Scene/GaussianIO.h).
  */
 #ifndef vtkGaussianPLYWriter_h
 #define vtkGaussianPLYWriter_h
@@ -95,6 +100,12 @@ public:
    */
   vtkPolyData* GetInput();
 
+  /**
+   * After a write: one line saying what was written and, for a lossy format, its measured
+   * quantisation error and what was left out. Empty before the first write.
+   */
+  const char* GetWriteReport() const { return this->WriteReport.c_str(); }
+
 protected:
   vtkGaussianPLYWriter() = default;
   ~vtkGaussianPLYWriter() override = default;
@@ -107,6 +118,7 @@ protected:
   bool WriteIds = false;
   std::string IdPropertyName = "id";
   bool WriteExtraArrays = true;
+  std::string WriteReport;
 
 private:
   vtkGaussianPLYWriter(const vtkGaussianPLYWriter&) = delete;

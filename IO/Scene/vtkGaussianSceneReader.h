@@ -11,8 +11,8 @@
 /**
  * @class   vtkGaussianSceneReader
  * @brief   Reads a 3DGS scene (the trainer's PLY, Niantic's SPZ, GaussianSplats3D's .ksplat, an
- * antimatter15 .splat, a PlayCanvas compressed PLY or a SOG) as the Gaussian vtkPolyData of
- * DESIGN §2.
+ * antimatter15 .splat, a PlayCanvas compressed PLY, a SOG, or glTF with KHR_gaussian_splatting)
+ * as the Gaussian vtkPolyData of DESIGN §2.
  *
  * The output's points are the means; point data holds the raw parameters (LogScale,
  * Rotation, OpacityLogit, SH coefficient-major), GaussianId (pedigree ids), the activated
@@ -21,9 +21,10 @@
  * read as antimatter15 splats; the others by content: SPZ (versions 2-4, converted from SPZ's
  * RUB axes to the PLY's), GaussianSplats3D's .ksplat, a SOG v2 scene (a `.sog` zip, a folder
  * holding meta.json, or the meta.json itself), a PlayCanvas/SuperSplat compressed PLY (a PLY
- * with a `chunk` element and packed vertex properties; decoded as splat-transform does),
- * anything else as PLY (binary little/big endian or ASCII). Documentation/file-formats.md
- * describes each format.
+ * with a `chunk` element and packed vertex properties; decoded as splat-transform does), glTF
+ * 2.0 with KHR_gaussian_splatting (a GLB, or JSON; node transforms applied, turned from glTF's
+ * +Y-up frame into the PLY's axes), anything else as PLY (binary little/big endian or ASCII).
+ * Documentation/file-formats.md describes each format.
  *
  * Errors (missing file, truncated data, missing properties, ...) are reported with
  * vtkErrorMacro naming the file and the problem, and the request fails. Gaussians with NaN or
@@ -49,8 +50,8 @@ public:
 
   ///@{
   /**
-   * The file to read (.ply, .compressed.ply, .spz, .ksplat, .splat, .sog, meta.json, or a SOG
-   * folder). Default: none.
+   * The file to read (.ply, .compressed.ply, .spz, .ksplat, .splat, .sog, meta.json, a SOG
+   * folder, .glb or .gltf). Default: none.
    */
   vtkSetStdStringFromCharMacro(FileName);
   vtkGetCharFromStdStringMacro(FileName);

@@ -5,7 +5,8 @@
 //
 // Usage: vis4gsSceneConvert IN OUT [--compressed] [--source-order] [--sh=N] [--zstd-level=L]
 // OUT is written by its extension: .spz (WriteSpz; prints its quantisation report as JSON),
-// .splat, a compressed PLY with --compressed (prints DescribeQuantisation), else a float32 PLY
+// .splat, .glb / .gltf (WriteGltf; prints DescribeQuantisation), a compressed PLY with
+// --compressed (prints DescribeQuantisation), else a float32 PLY
 // holding every decoded value exactly (prints {"read_format", "count", "sh_degree"} as JSON).
 // --sh=N (alias --max-sh-degree=N) limits the SH degree read and written.
 #include "GaussianIO.h"
@@ -97,6 +98,13 @@ int main(int argc, char* argv[])
       PrintError("color", r.Color, false);
       PrintError("sh", r.SH, true);
       std::printf("}\n");
+    }
+    else if (ext == ".glb" || ext == ".gltf")
+    {
+      vis4gs::GltfWriteOptions gltfOptions;
+      gltfOptions.MaxShDegree = options.MaxShDegree;
+      std::printf("%s\n",
+        vis4gs::DescribeQuantisation(vis4gs::WriteGltf(argv[2], cloud, gltfOptions)).c_str());
     }
     else if (ext == ".splat")
     {

@@ -553,6 +553,65 @@ TEST(GaussianPlyErrors, MissingRequiredProperties)
   EXPECT_THROW_WITH(ReadText(h), "10 f_rest properties");
 }
 
+TEST(GaussianPly, SurfelsWithoutScale2AndRenderModeComments)
+{
+  // 2DGS (issue 34): scale_0 and scale_1 only; read flat along the normal and said so.
+  const std::string surfels = "ply\nformat ascii 1.0\ncomment SplatRenderMode: 2dgs\n"
+                              "element vertex 2\nproperty float x\nproperty float y\n"
+                              "property float z\nproperty float f_dc_0\nproperty float f_dc_1\n"
+                              "property float f_dc_2\nproperty float opacity\n"
+                              "property float scale_0\nproperty float scale_1\n"
+                              "property float rot_0\nproperty float rot_1\nproperty float rot_2\n"
+                              "property float rot_3\nend_header\n"
+                              "1 2 3 0.1 0.2 0.3 0.5 -2 -3 1 0 0 0\n4 5 6 0 0 0 1 -1 -4 0 1 0 0\n";
+  GaussianReadReport report;
+  const GaussianCloud c =
+    ReadGaussianPlyFromMemory(surfels.data(), surfels.size(), "surfels.ply", {}, &report);
+  ASSERT_EQ(c.Count, 2u);
+  EXPECT_EQ(c.LogScales[0], -2.0f);
+  EXPECT_EQ(c.LogScales[1], -3.0f);
+  EXPECT_EQ(c.LogScales[4], -4.0f);
+  for (int g = 0; g < 2; ++g)
+  {
+    EXPECT_TRUE(std::isinf(c.LogScales[3 * g + 2]) && c.LogScales[3 * g + 2] < 0);
+  }
+  EXPECT_EQ(report.RenderMode, "2dgs");
+  ASSERT_EQ(report.Warnings.size(), 1u);
+  EXPECT_NE(report.Warnings[0].find("surfels.ply: no scale_2: 2D Gaussian splatting surfels"),
+    std::string::npos);
+  // Written back, the flat axis keeps its meaning (scale_2 = -inf reads as written).
+  const auto bytes = WriteGaussianPlyToMemory(c);
+  const GaussianCloud back = ReadGaussianPlyFromMemory(bytes.data(), bytes.size(), "back.ply");
+  EXPECT_EQ(back.LogScales, c.LogScales);
+  // One scale only is no surfel: still an error naming what is missing.
+  std::string one = surfels;
+  one.replace(one.find("property float scale_1\n"), 23, "");
+  EXPECT_THROW_WITH(ReadText(one), "scale_1", "scale_2");
+
+  // Brush's and Postshot's comments; the last one wins, case does not matter.
+  auto mode = [](const std::string& comments, std::string* warning = nullptr)
+  {
+    std::string text = Header("ascii", "1");
+    text.insert(text.find("element"), comments);
+    text += "0 0 0 0 0 0 0 0 0 0 1 0 0 0\n";
+    GaussianReadReport r;
+    ReadGaussianPlyFromMemory(text.data(), text.size(), "m.ply", {}, &r);
+    if (warning)
+    {
+      *warning = r.Warnings.empty() ? "" : r.Warnings.back();
+    }
+    return r.RenderMode;
+  };
+  std::string warning;
+  EXPECT_EQ(mode("comment SplatRenderMode: mip\n", &warning), "antialiased");
+  EXPECT_NE(warning.find("m.ply: the header says 'SplatRenderMode: mip'"), std::string::npos);
+  EXPECT_EQ(mode("comment antialiased 1\ncomment splatrendermode: DEFAULT\n"), "default");
+  EXPECT_EQ(mode("comment antialiased 1\n"), "antialiased");
+  EXPECT_EQ(mode("comment made by a tool\n"), "");
+  EXPECT_EQ(mode("comment SplatRenderMode: 2dgs\n", &warning), "2dgs");
+  EXPECT_NE(warning.find("holds scale_2: read as 3D Gaussians"), std::string::npos);
+}
+
 TEST(GaussianPlyErrors, NonNumericAscii)
 {
   const std::string h = Header("ascii", "2");

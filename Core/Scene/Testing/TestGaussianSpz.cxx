@@ -289,6 +289,23 @@ TEST(GaussianSpz, ReadsHandBuiltVersion2And3)
     ExpectTwoGaussians(ReadSpzFromMemory(withExtension.data(), withExtension.size(), "rdf.spz"),
       version >= 3,
       false);
+    // The same bytes without the gzip stream ("raw" SPZ, issue 34): read alike, said so.
+    GaussianReadReport rawReport;
+    ExpectTwoGaussians(
+      ReadSpzFromMemory(raw.data(), raw.size(), "raw.spz", {}, &rawReport), version >= 3, false);
+    EXPECT_EQ(rawReport.Format, "spz v" + std::to_string(version) + " raw");
+    const Bytes cut(raw.begin(), raw.end() - 20);
+    try
+    {
+      ReadSpzFromMemory(cut.data(), cut.size(), "cut.spz");
+      ADD_FAILURE() << "a truncated raw SPZ was read";
+    }
+    catch (const std::runtime_error& e)
+    {
+      EXPECT_NE(
+        std::string(e.what()).find("cut.spz: the raw SPZ data ends early"), std::string::npos)
+        << e.what();
+    }
   }
 }
 

@@ -101,6 +101,26 @@ int TestGaussianPLYWriter(int, char*[])
     Check(back.FindExtra(vis4gs::arrays::Opacity) == nullptr, "activated arrays not written" + tag);
   }
 
+  // By the file name, glTF (issue 34): the scores kept as attributes, SH and positions exact,
+  // the ids as float32 (exact below 2^24), the measured error in the report.
+  writer->SetFileFormat(vtkGaussianPLYWriter::BINARY_LITTLE_ENDIAN);
+  writer->SetFileName((dir / "scored.glb").c_str());
+  writer->Write();
+  {
+    const vis4gs::GaussianCloud back = vis4gs::ReadGaussianScene(dir / "scored.glb");
+    const vis4gs::GaussianCloud orig = vis4gs::ReadGaussianPly(ply);
+    const vis4gs::ExtraProperty* vc = back.FindExtra(vis4gs::arrays::ViewCoverage);
+    const vis4gs::ExtraProperty* id = back.FindExtra("id");
+    Check(back.Count == 9080 && back.SH == orig.SH && back.Positions == orig.Positions,
+      "glTF: SH and positions exact");
+    Check(vc && vc->GetAsDouble(4540) == 0.5 && id && id->GetAsDouble(9079) == 9079,
+      "glTF: scores and ids kept");
+    Check(
+      std::string(writer->GetWriteReport()).find("9080 Gaussians written; quantisation error") !=
+        std::string::npos,
+      std::string("glTF: the write report: ") + writer->GetWriteReport());
+  }
+
   // Errors: unwritable folder, input without points.
   vtkNew<iotest::MessageObserver> errors;
   writer->AddObserver(vtkCommand::ErrorEvent, errors);

@@ -133,6 +133,22 @@ int TestGaussianSceneReader(int, char*[])
       SameFloats(sd->GetArray(vis4gs::arrays::Rotation), spzCore.Rotations),
     "spz arrays equal to the Core reader's");
 
+  // glTF KHR_gaussian_splatting by content (issue 34): the real PLY as a GLB, extras (the
+  // normals) kept as application-specific attributes, read as the Core reader reads it.
+  vis4gs::WriteGltf(dir / "inria.glb", core);
+  const vis4gs::GaussianCloud gltfCore = vis4gs::ReadGltf(dir / "inria.glb");
+  vtkNew<vtkGaussianSceneReader> gltf;
+  gltf->SetFileName((dir / "inria.glb").c_str());
+  gltf->Update();
+  Check(std::string(gltf->GetFileFormat()) == "gltf", "glTF format");
+  vtkPointData* gd = gltf->GetOutput()->GetPointData();
+  Check(gltf->GetOutput()->GetNumberOfPoints() == static_cast<vtkIdType>(core.Count) &&
+      SameFloats(gd->GetArray(vis4gs::arrays::SH), core.SH) &&
+      SameFloats(gd->GetArray(vis4gs::arrays::Rotation), gltfCore.Rotations) &&
+      SameFloats(gd->GetArray(vis4gs::arrays::LogScale), gltfCore.LogScales) &&
+      gd->GetArray("nx") != nullptr,
+    "glTF arrays equal to the Core reader's, SH as the PLY's");
+
   // A compressed PLY, whatever its name: recognised by content, decoded as the Core reader.
   vis4gs::WriteCompressedPly(dir / "scene.bin", core);
   const vis4gs::GaussianCloud compressed = vis4gs::ReadCompressedPly(dir / "scene.bin");
