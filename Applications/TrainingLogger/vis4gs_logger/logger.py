@@ -59,8 +59,12 @@ class TrainingLogger:
         self.snapshot_sh_rest = snapshot_sh_rest
         self.snapshot_statistics = snapshot_statistics
         self.iteration = self.start_iteration
+        #: the iteration of the last step() call (None before the first)
+        self.last_step = None
         self.tracker = None
         self._start = time.perf_counter()
+        #: snapshots that could not be written ("iteration N: why")
+        self.snapshot_failures = []
         #: seconds spent inside the logger (for measuring its overhead)
         self.time_spent_s = 0.0
 
@@ -73,8 +77,8 @@ class TrainingLogger:
                     num_gaussians=None, elapsed_s=None, test=False):
         """Appends a row to /metrics (test=True: /metrics/test)."""
         t0 = time.perf_counter()
-        if not test:
-            self.iteration = int(iteration)
+        if not test and (self.last_step is None or int(iteration) > self.last_step):
+            self.iteration = int(iteration)  # metrics of an ended step do not move it back
         if num_gaussians is None:
             num_gaussians = self.tracker.count() if self.tracker is not None else -1
         if elapsed_s is None:
@@ -184,14 +188,31 @@ class TrainingLogger:
         return self.snapshot_interval > 0 and int(iteration) % self.snapshot_interval == 0
 
     def step(self, iteration):
-        """Call at the end of each iteration: writes a snapshot at the interval.
+        """Call at the end of each iteration: writes a snapshot at the interval, and events
+        recorded from now on belong to iteration + 1 (until log_metrics names a later one),
+        so that they carry their step's iteration however seldom metrics are logged.
 
         The snapshot of an iteration that already has one is not written again: gsplat's
         loop starts at step 0, after track_gsplat() wrote the snapshot of iteration 0 (and a
-        resumed run starts at the checkpoint's iteration, which track_* wrote too)."""
+        resumed run starts at the checkpoint's iteration, which track_* wrote too). A
+        snapshot that cannot be written (e.g. a full disk) is a warning, not an exception:
+        the training goes on, and close() tries the final one again."""
         iteration = int(iteration)
+        self.last_step = iteration
+        self.iteration = iteration + 1
         if self.should_snapshot(iteration) and iteration != self.writer.last_snapshot_iteration:
+            self._snapshot_or_warn(iteration)
+
+    def _snapshot_or_warn(self, iteration):
+        try:
             self.snapshot(iteration)
+        except Exception as error:  # noqa: BLE001 - never stop the training for the log
+            self.snapshot_failures.append(f"iteration {iteration}: {error}")
+            if len(self.snapshot_failures) == 1:
+                warnings.warn(f"vis4gs_logger: {self.path}: the snapshot of iteration "
+                              f"{iteration} could not be written ({type(error).__name__}: "
+                              f"{error}); training goes on, later failures are counted in "
+                              "snapshot_failures", RuntimeWarning, stacklevel=3)
 
     def snapshot(self, iteration):
         """Writes a snapshot of the tracked model now (and flushes the file)."""
@@ -204,7 +225,23 @@ class TrainingLogger:
     def flush(self):
         self.writer.flush()
 
+    def final_iteration(self):
+        """The iteration of the model as it is now: the last step(), else the last
+        iteration log_metrics named; None when neither was called."""
+        if self.last_step is not None:
+            return self.last_step
+        return self.iteration if self.iteration > self.start_iteration else None
+
     def close(self):
+        """Writes the snapshot of the final model (the last step's, when the interval did
+        not write it: gsplat's loop ends at max_steps - 1, a 3DGS run's length need not be
+        a multiple of the interval), then closes the file."""
+        if self.writer._file is None:
+            return
+        final = self.final_iteration()
+        if (self.tracker is not None and final is not None
+                and final > self.writer.last_snapshot_iteration):
+            self._snapshot_or_warn(final)
         if self.tracker is not None:
             self.tracker.uninstall()
         self.writer.close()

@@ -17,6 +17,8 @@ FORMAT_VERSION = 1
 CLONE, SPLIT, PRUNE = 1, 2, 3
 
 _METRIC_COLUMNS = ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s")
+_BREAK_COLUMNS = (("iteration", "<i4"), ("event_row", "<i8"), ("tracked", "<i8"), ("rows", "<i8"),
+                  ("kept", "<i8"), ("first_new_id", "<i8"), ("new_roots", "<i8"))
 
 
 def to_numpy(array, dtype=None):
@@ -101,6 +103,8 @@ class TrainingLogWriter:
         for name, dtype in (("iteration", "<i4"), ("kind", "u1"), ("parent", "<i8"), ("child", "<i8")):
             self._create_table(events, name, dtype, 65536)
         self._pending_events = []
+        self._event_rows = 0  # rows of /events, written and buffered
+        self._pending_breaks = []
         f.create_group("snapshots")
         self._last_snapshot = -1
         self._last_flush = time.monotonic()
@@ -212,8 +216,20 @@ class TrainingLogWriter:
         if len(children) != len(parents):
             raise ValueError("parents and children differ in length")
         n = len(parents)
+        self._event_rows += n
         self._pending_events.append((np.full(n, int(iteration), np.int32),
                                      np.full(n, int(kind), np.uint8), parents, children))
+
+    def append_lineage_break(self, iteration, tracked, rows, kept, first_new_id, new_roots,
+                             where=""):
+        """Buffers one row of /lineage_breaks: at ``iteration``, after the events written so
+        far (``event_row`` = their count), the logger tracked ``tracked`` ids for ``rows``
+        rows; the first ``kept`` rows kept their ids (the others' ids ended there) and
+        ``new_roots`` rows got the new root ids first_new_id, first_new_id + 1, ...
+        ``where`` says which operation found it."""
+        self._check_open()
+        self._pending_breaks.append((int(iteration), self._event_rows, int(tracked), int(rows),
+                                     int(kept), int(first_new_id), int(new_roots), str(where)))
 
     def write_snapshot(self, iteration, ids, position, log_scale, rotation, opacity_logit, sh,
                        grad_accum=None, denom=None, flush=True):
@@ -280,8 +296,24 @@ class TrainingLogWriter:
             for j, name in enumerate(("iteration", "kind", "parent", "child")):
                 self._append(events[name], np.concatenate([e[j] for e in self._pending_events]))
             self._pending_events = []
+        if self._pending_breaks:
+            self._flush_breaks()
         self._file.flush()
         self._last_flush = time.monotonic()
+
+    def _flush_breaks(self):
+        g = self._file.get("lineage_breaks")
+        if g is None:
+            g = self._file.create_group("lineage_breaks")
+            for name, dtype in _BREAK_COLUMNS:
+                self._create_table(g, name, dtype, 256)
+            g.create_dataset("where", shape=(0,), maxshape=(None,), chunks=(256,),
+                             dtype=h5py.string_dtype("utf-8"))
+        cols = list(zip(*self._pending_breaks))
+        for j, (name, dtype) in enumerate(_BREAK_COLUMNS):
+            self._append(g[name], np.asarray(cols[j], dtype))
+        self._append(g["where"], np.array(cols[-1], dtype=object))
+        self._pending_breaks = []
 
     def _maybe_timed_flush(self):
         if self.flush_every_s is not None and time.monotonic() - self._last_flush > self.flush_every_s:
