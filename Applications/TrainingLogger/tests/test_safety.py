@@ -231,3 +231,77 @@ def test_a_snapshot_that_cannot_be_written_does_not_stop_the_training(tmp_path, 
     logger.step(3)
     logger.close()
     assert _snapshots(path) == [0, 3]
+
+
+def test_snapshot_options_sh_degree_float16_and_compression(tmp_path):
+    """SH degree kept, float16 colours and a compression level: the stored values are the
+    trainer's (the first (d+1)^2 coefficients; float16 within half a unit in the last place),
+    fewer bytes per Gaussian, and the C++ reader reads them."""
+    params, optimizers, state = test_gsplat.make_splats(2000, 5)
+    with torch.no_grad():
+        params["shN"].normal_()
+    sh = torch.cat([params["sh0"], params["shN"]], dim=1).detach().numpy()
+    sizes = {}
+    for name, options in (("full", {}), ("dc", {"snapshot_sh_degree": 0}),
+                          ("deg1", {"snapshot_sh_degree": 1}),
+                          ("half", {"snapshot_sh_float16": True}),
+                          ("gzip", {"snapshot_deflate": 4})):
+        path = str(tmp_path / f"{name}.h5")
+        logger = TrainingLogger(path, snapshot_interval=0, **options)
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])
+        logger.close()
+        sizes[name] = logger.writer.snapshot_bytes
+        with h5py.File(path, "r") as f:
+            stored = f["snapshots/000000/sh"]
+            k = {"dc": 1, "deg1": 4}.get(name, 16)
+            assert stored.shape == (2000, k, 3)
+            if name == "half":
+                assert stored.dtype == np.float16
+                np.testing.assert_allclose(stored[:], sh, rtol=2 ** -11, atol=2 ** -24)
+            else:
+                assert stored.dtype == np.float32
+                np.testing.assert_array_equal(stored[:], sh[:, :k])
+            assert (stored.compression == "gzip") == (name == "gzip")
+        info = dump(path)
+        if require_dump():
+            assert info["counts"] == [2000] and info["repairs"] == []
+    # ids 8 + position 12 + log_scale 12 + rotation 16 + opacity 4 = 52 bytes, + 12 per
+    # coefficient (6 in float16); chunks are whole rows here, so the sizes are exact.
+    assert sizes["full"] == 2000 * (52 + 16 * 12)
+    assert sizes["dc"] == 2000 * (52 + 12) and sizes["deg1"] == 2000 * (52 + 4 * 12)
+    assert sizes["half"] == 2000 * (52 + 16 * 6)
+    assert sizes["gzip"] < sizes["full"]
+
+
+def test_disk_warning_and_size_budget(tmp_path, monkeypatch):
+    """The projected log (snapshots so far + the last one's size for each one planned)
+    against the free disk: one warning. A budget doubles the interval until the projection
+    fits."""
+    import shutil
+    from collections import namedtuple
+
+    params, optimizers, state = test_gsplat.make_splats(1000, 6)
+    per_snapshot = 1000 * (52 + 16 * 12)
+    usage = namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda p: usage(10 ** 9, 0, 5 * per_snapshot))
+    path = str(tmp_path / "disk.h5")
+    with pytest.warns(RuntimeWarning, match="projected to grow by") as caught:
+        logger = TrainingLogger(path, iterations=100, snapshot_interval=10)
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])  # snapshot 0: 10 more planned
+        for step in range(1, 31):
+            logger.step(step)
+        logger.close()
+    assert len([w for w in caught if "projected" in str(w.message)]) == 1
+    assert _snapshots(path) == [0, 10, 20, 30]
+
+    monkeypatch.setattr(shutil, "disk_usage", lambda p: usage(10 ** 12, 0, 10 ** 11))
+    path = str(tmp_path / "budget.h5")
+    with pytest.warns(RuntimeWarning, match="snapshot interval now 40"):
+        logger = TrainingLogger(path, iterations=100, snapshot_interval=10,
+                                snapshot_budget_bytes=4 * per_snapshot)
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])
+        for step in range(1, 101):
+            logger.step(step)
+        logger.close()
+    # 0, then every 40: 40, 80, and the final model 100 (the budget bounds the planned ones)
+    assert _snapshots(path) == [0, 40, 80, 100]

@@ -67,17 +67,26 @@ class TrainingLogWriter:
     C++ writer: deflate saves only ~15 % on float32 parameters but makes every property
     history query inflate whole chunks); rows per chunk of the snapshot datasets;
     flush_every_s: also flush buffered rows when this many seconds have passed since the
-    last flush (None: only at snapshots and close).
+    last flush (None: only at snapshots and close); snapshot_sh_degree: SH degree kept in the
+    snapshots (None: all the trainer has; 0: the DC term only); snapshot_sh_float16: store
+    the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504).
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
                  deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0,
-                 start_iteration=0):
+                 start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False):
         from . import __version__
 
         self.path = os.fspath(path)
         self.deflate = int(deflate)
         self.snapshot_deflate = int(snapshot_deflate)
+        if snapshot_sh_degree is not None and not 0 <= int(snapshot_sh_degree) <= 4:
+            raise ValueError(f"{self.path}: snapshot_sh_degree must be 0..4 or None, "
+                             f"not {snapshot_sh_degree}")
+        self.snapshot_sh_degree = None if snapshot_sh_degree is None else int(snapshot_sh_degree)
+        self.snapshot_sh_float16 = bool(snapshot_sh_float16)
+        #: bytes of the snapshot datasets written so far (as stored, after compression)
+        self.snapshot_bytes = 0
         self.chunk_rows = int(chunk_rows)
         self.flush_every_s = flush_every_s
         self._file = h5py.File(self.path, "w", fs_strategy="none", libver="earliest")
@@ -241,6 +250,8 @@ class TrainingLogWriter:
             raise ValueError(f"{self.path}: snapshot {iteration} is not after {self._last_snapshot}")
         ids = to_numpy(ids, np.int64).reshape(-1)
         n = len(ids)
+        if self.snapshot_sh_degree is not None:  # the coefficients of the degrees kept
+            sh = sh[:, : (self.snapshot_sh_degree + 1) ** 2] if sh.ndim == 3 else sh
         arrays = {
             "position": to_numpy(position, np.float32).reshape(n, 3),
             "log_scale": to_numpy(log_scale, np.float32).reshape(n, 3),
@@ -265,12 +276,15 @@ class TrainingLogWriter:
         g.attrs["iteration"] = np.int64(iteration)
         c = self.chunk_rows
         level = self.snapshot_deflate
-        self._dataset(g, "id", ids, (c,), level)
+        written = [self._dataset(g, "id", ids, (c,), level)]
         for key, value in arrays.items():
             if key == "sh":
-                self._dataset(g, key, value, (c, 1, 3), level)
+                if self.snapshot_sh_float16:  # readers convert to float32 (HDF5 does)
+                    value = value.astype(np.float16)
+                written.append(self._dataset(g, key, value, (c, 1, 3), level))
             else:
-                self._dataset(g, key, value, (c,) + value.shape[1:], level)
+                written.append(self._dataset(g, key, value, (c,) + value.shape[1:], level))
+        self.snapshot_bytes += sum(d.id.get_storage_size() for d in written)
         self._last_snapshot = iteration
         if flush:
             self.flush()
