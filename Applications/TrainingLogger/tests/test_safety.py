@@ -305,3 +305,73 @@ def test_disk_warning_and_size_budget(tmp_path, monkeypatch):
         logger.close()
     # 0, then every 40: 40, 80, and the final model 100 (the budget bounds the planned ones)
     assert _snapshots(path) == [0, 40, 80, 100]
+
+
+def _png(path, rgb):
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF))
+
+    h, w, _ = rgb.shape
+    raw = b"".join(b"\0" + rgb[y].tobytes() for y in range(h))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def test_analyze_computes_what_needs_no_image_when_an_image_is_bad(tmp_path):
+    """`vis4gs analyze --scores=coverage,needle,shape` on a logger's log whose third
+    training image is not a PNG: exit 0, a warning naming the file, View Coverage and Needle
+    Shape over every view, the Needle score from the readable views: equal to a run where
+    that view has no image at all."""
+    import csv
+    import os
+    import subprocess
+
+    from test_lifecycle import colmap_parser
+
+    exe = os.environ.get("VIS4GS_EXECUTABLE")
+    if not exe:
+        pytest.skip("VIS4GS_EXECUTABLE (the vis4gs program) is not set: run under CTest")
+    parser = colmap_parser(tmp_path / "scene", views=4)
+    rng = np.random.default_rng(7)
+    for i, p in enumerate(parser.image_paths):
+        _png(p, rng.integers(0, 255, (48, 64, 3), dtype=np.uint8))
+    bad = parser.image_paths[2]
+    with open(bad, "wb") as f:
+        f.write(b"this is no PNG")
+    params, _, _ = test_gsplat.make_splats(200, 8)
+    with torch.no_grad():
+        params["means"][:, :2] = torch.rand(200, 2) * 2 - 1
+        params["means"][:, 2] = 4.0 + torch.rand(200)
+        params["scales"][:] = -3.0
+        params["scales"][:, 0] = -1.5  # elongated: a Needle Shape above 0
+        params["opacities"][:] = 2.0
+    path = str(tmp_path / "run" / "training_log.h5")
+    os.makedirs(os.path.dirname(path))
+    logger = TrainingLogger(path, snapshot_interval=0)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    logger.log_gsplat_cameras(parser, test_every=0)
+    logger.close()
+
+    def analyze(out):
+        run = subprocess.run([exe, "analyze", path, "--scores=coverage,needle,shape",
+                              f"--output={out}"], capture_output=True, text=True, timeout=300)
+        assert run.returncode == 0, run.stdout + run.stderr
+        with open(os.path.join(out, "scores.csv")) as f:
+            rows = list(csv.DictReader(f))
+        return run.stdout + run.stderr, rows
+
+    text, rows = analyze(str(tmp_path / "bad"))
+    assert bad in text or os.path.basename(bad) in text, text
+    assert len(rows) == 200
+    coverage = np.array([float(r["ViewCoverage"]) for r in rows])
+    assert coverage.max() == 1.0  # every view counts for coverage, the bad one too
+    os.remove(bad)
+    text2, rows2 = analyze(str(tmp_path / "absent"))
+    for key in ("ViewCoverage", "NeedleScore", "NeedleShape"):
+        assert [r[key] for r in rows] == [r[key] for r in rows2], key
+    assert any(float(r["NeedleScore"]) > 0 for r in rows)
