@@ -285,8 +285,7 @@ void TrainingLogReader::Internals::CheckLacks()
   this->Cameras = h5::IsGroup(f, "/cameras") && h5::IsDataset(f, "/cameras/name");
   this->Images = h5::IsGroup(f, "/images");
   this->Events = h5::IsGroup(f, "/events") && h5::IsDataset(f, "/events/iteration");
-  this->Breaks =
-    h5::IsGroup(f, "/lineage_breaks") && h5::IsDataset(f, "/lineage_breaks/iteration");
+  this->Breaks = h5::IsGroup(f, "/lineage_breaks") && h5::IsDataset(f, "/lineage_breaks/iteration");
   if (!this->Metrics)
   {
     this->Lacks.push_back("no /metrics (required by the format): loss, PSNR, SSIM and Gaussian "

@@ -597,9 +597,8 @@ bool vtkGaussianGenealogyAdapter::BreaksFromFieldData(vtkFieldData* fd,
     vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(c.first)) : nullptr;
     if (!a || a->GetNumberOfTuples() != b)
     {
-      error = std::string("the events' field data has ") +
-        names::EventBreakIteration + " but " + (a ? "a " : "no ") + c.first +
-        (a ? " of another length" : "");
+      error = std::string("the events' field data has ") + names::EventBreakIteration + " but " +
+        (a ? "a " : "no ") + c.first + (a ? " of another length" : "");
       return false;
     }
     c.second->resize(static_cast<std::size_t>(b));

@@ -1093,8 +1093,9 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
 
   // Legend (top right).
   // (a seventh entry, the break's ring, only when the log has lineage breaks)
-  const char* names[7] = { "root", "clone", "split", "clone-split", "prune", "selected",
-    "lineage break" };
+  const char* names[7] = {
+    "root", "clone", "split", "clone-split", "prune", "selected", "lineage break"
+  };
   const int entries = in.BreakRoot.empty() ? 6 : 7;
   const float lx = map.R - 92.f, ly = map.T - 6.f;
   painter->GetPen()->SetLineType(vtkPen::NO_PEN);

@@ -24,8 +24,13 @@ void Add(EventTable& t, std::int32_t it, int kind, std::int64_t parent, std::int
   t.Child.push_back(child);
 }
 
-void AddBreak(LineageBreakTable& b, std::int32_t it, std::int64_t row, std::int64_t tracked,
-  std::int64_t rows, std::int64_t kept, std::int64_t first)
+void AddBreak(LineageBreakTable& b,
+  std::int32_t it,
+  std::int64_t row,
+  std::int64_t tracked,
+  std::int64_t rows,
+  std::int64_t kept,
+  std::int64_t first)
 {
   b.Iteration.push_back(it);
   b.EventRow.push_back(row);
