@@ -190,9 +190,20 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
       if (writeImages) // under MPI process 0 writes them once for every process
       {
         int width = 0, height = 0;
-        const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
-        fs::create_directories(file.parent_path());
-        vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+        try
+        {
+          const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
+          fs::create_directories(file.parent_path());
+          vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+        }
+        catch (const std::exception& e)
+        {
+          // Without its file the view counts as one without image: left out of the image
+          // scores only (the scores that need none are computed all the same).
+          std::cerr << "vis4gs analyze: warning: the training image " << c.ImagePath
+                    << " cannot be read (" << e.what()
+                    << "); its view is left out of the Blur and Needle scores\n";
+        }
       }
       c.ImagePath = file.string();
     }

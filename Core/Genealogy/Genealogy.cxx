@@ -1,4 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
+// Over 1,200 lines on purpose: the one Genealogy class and its builder, which share the
+// node arrays' private layout (validation, id index, events, lineage breaks, families, rows,
+// bands, lineage queries); the level of detail and the draw index are already their own files.
 #include "Genealogy.h"
 
 #include <algorithm>
@@ -107,6 +110,7 @@ private:
   void IndexInsert(std::int64_t id, std::int64_t node);
   std::int64_t AddNode(std::int64_t id, std::int32_t birth, BirthKind kind, std::int64_t parent);
   void ProcessEvents();
+  void ApplyBreaks(std::size_t row);
   template <typename Phase>
   void Finish(Phase& phase);
   void Warn(const std::string& text, std::size_t& counter, const char* summary);
@@ -129,6 +133,7 @@ private:
   std::vector<std::int64_t> Permutation; // processing order (empty: table order)
   std::size_t OrphanWarnings = 0;
   std::size_t DuplicateWarnings = 0;
+  std::size_t NextBreak = 0;
   // Coarsened mode: interval of the last clone / split of each node as a parent.
   std::vector<std::int32_t> CloneBucket;
   std::vector<std::int32_t> SplitBucket;
@@ -308,6 +313,16 @@ void GenealogyBuilder::PrepareIndex(const std::vector<std::int64_t>* initialIds,
       ++births;
     }
   }
+  const LineageBreakTable* breaks = this->Options.Breaks;
+  for (std::size_t b = 0; breaks && b < breaks->Size(); ++b)
+  {
+    if (breaks->NewRoots[b] > 0)
+    {
+      lo = std::min(lo, breaks->FirstNewId[b]);
+      hi = std::max(hi, breaks->FirstNewId[b] + breaks->NewRoots[b] - 1);
+      births += breaks->NewRoots[b];
+    }
+  }
   const std::int64_t initialCount =
     initialIds ? static_cast<std::int64_t>(initialIds->size()) : numberOfInitial;
   // Upper bound on the nodes: initial + births + orphans (at most one per event row).
@@ -445,6 +460,7 @@ void GenealogyBuilder::ProcessEvents()
 
   for (std::size_t k = 0; k < e; ++k)
   {
+    this->ApplyBreaks(k);
     const std::size_t r =
       this->Permutation.empty() ? k : static_cast<std::size_t>(this->Permutation[k]);
     const std::int32_t it = ev.Iteration[r];
@@ -540,6 +556,40 @@ void GenealogyBuilder::ProcessEvents()
     }
   }
   closeBucket();
+  this->ApplyBreaks(std::numeric_limits<std::size_t>::max());
+}
+
+//------------------------------------------------------------------------------
+void GenealogyBuilder::ApplyBreaks(std::size_t row)
+{
+  const LineageBreakTable* breaks = this->Options.Breaks;
+  Genealogy& g = this->G;
+  for (; breaks && this->NextBreak < breaks->Size() &&
+       static_cast<std::size_t>(breaks->EventRow[this->NextBreak]) <= row;
+       ++this->NextBreak)
+  {
+    const std::size_t b = this->NextBreak;
+    const std::int32_t when = this->Bucket(std::min(breaks->Iteration[b], this->Last));
+    if (breaks->Kept[b] == 0)
+    {
+      for (std::int32_t& death : g.Death)
+      {
+        death = death < 0 ? when : death;
+      }
+    }
+    for (std::int64_t k = 0; k < breaks->NewRoots[b]; ++k)
+    {
+      const std::int64_t id = breaks->FirstNewId[b] + k;
+      if (g.FindNode(id) >= 0)
+      {
+        std::ostringstream s;
+        s << "genealogy: lineage break " << b << " (iteration " << breaks->Iteration[b]
+          << ") starts a new root with GaussianId " << id << ", which already exists";
+        throw std::runtime_error(s.str());
+      }
+      g.BreakRootNodes.push_back(this->AddNode(id, when, BirthKind::Root, -1));
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -107,6 +107,13 @@ struct GenealogyOptions
   double Alpha = 0.4;
   /// Birth iteration of the initial Gaussians.
   std::int32_t InitialIteration = 0;
+  /**
+   * Lineage breaks of the log (TrainingLogReader::ReadLineageBreaks; not owned, may be
+   * null). Before the event row EventRow[b] (in processing order), a break with Kept = 0
+   * ends every Gaussian alive (death at the break, Pruned 0) and each break starts
+   * NewRoots roots with the ids FirstNewId.. born at its iteration (GetBreakRoots()).
+   */
+  const LineageBreakTable* Breaks = nullptr;
 };
 
 /**
@@ -297,6 +304,8 @@ public:
   const std::vector<std::string>& GetWarnings() const { return this->Warnings; }
   /// Nodes created by RepairUnknownParents.
   const std::vector<std::int64_t>& GetOrphanRoots() const { return this->Orphans; }
+  /// Roots started by lineage breaks (GenealogyOptions::Breaks), increasing node indices.
+  const std::vector<std::int64_t>& GetBreakRoots() const { return this->BreakRootNodes; }
   /// Event rows (as stored) ignored by RepairDuplicateBirths.
   const std::vector<std::int64_t>& GetDroppedEventRows() const { return this->DroppedRows; }
   /// Whether the events had to be sorted by iteration.
@@ -324,6 +333,7 @@ private:
   std::int32_t LastIteration = 0;
   double Alpha = 0.4;
 
+  std::vector<std::int64_t> BreakRootNodes;
   std::vector<std::int64_t> Ids;
   std::vector<std::int32_t> Birth;
   std::vector<std::int32_t> Death;

@@ -157,7 +157,8 @@ struct TrainingLogReader::Internals
   TrainingLogHeader Header;
   std::vector<std::string> Lacks;
   mutable std::vector<std::string> Repairs;
-  bool Cameras = false, Images = false, Metrics = false, TestMetrics = false, Events = false;
+  bool Cameras = false, Images = false, Metrics = false, TestMetrics = false, Events = false,
+       Breaks = false;
   std::vector<SnapshotEntry> Snapshots;
   std::vector<int> Iterations;
 
@@ -284,6 +285,7 @@ void TrainingLogReader::Internals::CheckLacks()
   this->Cameras = h5::IsGroup(f, "/cameras") && h5::IsDataset(f, "/cameras/name");
   this->Images = h5::IsGroup(f, "/images");
   this->Events = h5::IsGroup(f, "/events") && h5::IsDataset(f, "/events/iteration");
+  this->Breaks = h5::IsGroup(f, "/lineage_breaks") && h5::IsDataset(f, "/lineage_breaks/iteration");
   if (!this->Metrics)
   {
     this->Lacks.push_back("no /metrics (required by the format): loss, PSNR, SSIM and Gaussian "
@@ -412,6 +414,10 @@ bool TrainingLogReader::HasTestMetrics() const
 bool TrainingLogReader::HasEvents() const
 {
   return this->Impl->Events;
+}
+bool TrainingLogReader::HasLineageBreaks() const
+{
+  return this->Impl->Breaks;
 }
 const std::vector<int>& TrainingLogReader::GetSnapshotIterations() const
 {
@@ -894,6 +900,75 @@ MetricsTable TrainingLogReader::ReadMetrics(bool test) const
 }
 
 //------------------------------------------------------------------------------
+LineageBreakTable TrainingLogReader::ReadLineageBreaks() const
+{
+  const Internals& d = *this->Impl;
+  LineageBreakTable t;
+  if (!d.Breaks)
+  {
+    return t;
+  }
+  h5::ErrorSilencer silence;
+  struct Column
+  {
+    const char* Name;
+    std::vector<std::int64_t>* Values;
+  };
+  const Column columns[] = { { "event_row", &t.EventRow },
+    { "tracked", &t.Tracked },
+    { "rows", &t.Rows },
+    { "kept", &t.Kept },
+    { "first_new_id", &t.FirstNewId },
+    { "new_roots", &t.NewRoots } };
+  auto read = [&](const char* name, hid_t type, auto& values)
+  {
+    const std::string path = std::string("/lineage_breaks/") + name;
+    h5::Handle set = d.OpenDataset(d.File, path);
+    std::vector<hsize_t> dims = h5::Dims(set);
+    if (dims.size() != 1)
+    {
+      d.Throw(path + " is not one-dimensional");
+    }
+    values.resize(static_cast<std::size_t>(dims[0]));
+    if (!values.empty())
+    {
+      h5::CheckStatus(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+        d.Path,
+        "cannot read " + path);
+    }
+  };
+  read("iteration", H5T_NATIVE_INT32, t.Iteration);
+  for (const Column& c : columns)
+  {
+    read(c.Name, H5T_NATIVE_INT64, *c.Values);
+    if (c.Values->size() != t.Size())
+    {
+      d.Throw(std::string("/lineage_breaks/") + c.Name + " has " +
+        std::to_string(c.Values->size()) + " rows but /lineage_breaks/iteration has " +
+        std::to_string(t.Size()));
+    }
+  }
+  for (std::size_t b = 0; b < t.Size(); ++b)
+  {
+    const std::string row = "/lineage_breaks row " + std::to_string(b);
+    if (t.Kept[b] < 0 || t.NewRoots[b] < 0 || t.FirstNewId[b] < 0 || t.EventRow[b] < 0 ||
+      (t.Kept[b] != 0 && t.Kept[b] != t.Tracked[b]) || t.Kept[b] + t.NewRoots[b] != t.Rows[b])
+    {
+      d.Throw(row + " is inconsistent: kept " + std::to_string(t.Kept[b]) + " of " +
+        std::to_string(t.Tracked[b]) + " ids, " + std::to_string(t.NewRoots[b]) +
+        " new roots for " + std::to_string(t.Rows[b]) + " rows");
+    }
+    if (b > 0 &&
+      (t.Iteration[b] < t.Iteration[b - 1] || t.EventRow[b] < t.EventRow[b - 1] ||
+        t.FirstNewId[b] < t.FirstNewId[b - 1] + t.NewRoots[b - 1]))
+    {
+      d.Throw(row + " goes back (iteration, event row or new ids) from the row before it");
+    }
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
 EventTable TrainingLogReader::ReadEvents() const
 {
   const Internals& d = *this->Impl;
@@ -973,7 +1048,9 @@ EventTable TrainingLogReader::ReadEvents() const
   }
 
   // 2. Ids: the initial Gaussians are 0..N0-1 with N0 the first new id; new ids increase;
-  // a parent must exist and be alive (a split parent stays valid within its split).
+  // a parent must exist and be alive (a split parent stays valid within its split). The
+  // new roots of a lineage break are new ids too, born after the break's event row.
+  const LineageBreakTable breaks = this->ReadLineageBreaks();
   std::int64_t n0 = -1;
   std::int64_t maxParent = -1;
   for (std::size_t i = 0; i < e; ++i)
@@ -983,6 +1060,13 @@ EventTable TrainingLogReader::ReadEvents() const
       n0 = t.Child[i];
     }
     maxParent = std::max(maxParent, t.Parent[i]);
+  }
+  for (std::size_t b = 0; b < breaks.Size(); ++b)
+  {
+    if (breaks.NewRoots[b] > 0 && (n0 < 0 || breaks.FirstNewId[b] < n0))
+    {
+      n0 = breaks.FirstNewId[b];
+    }
   }
   if (n0 < 0)
   {
@@ -1038,8 +1122,49 @@ EventTable TrainingLogReader::ReadEvents() const
   {
     out.Reserve(e);
   }
+  std::size_t nextBreak = 0;
+  // A break before row i: the ids it could not place end (Kept 0), its new roots are born.
+  auto applyBreaks = [&](std::size_t i)
+  {
+    for (; nextBreak < breaks.Size() && static_cast<std::size_t>(breaks.EventRow[nextBreak]) <= i;
+         ++nextBreak)
+    {
+      const std::size_t b = nextBreak;
+      if (breaks.Kept[b] == 0)
+      {
+        for (std::size_t k = 0; k < initialEnd.size(); ++k)
+        {
+          if (initialKind[k] == 0)
+          {
+            initialEnd[k] = breaks.Iteration[b];
+            initialKind[k] = 3;
+          }
+        }
+        for (std::size_t k = 0; k < bornEnd.size(); ++k)
+        {
+          if (bornKind[k] == 0)
+          {
+            bornEnd[k] = breaks.Iteration[b];
+            bornKind[k] = 3;
+          }
+        }
+      }
+      if (breaks.NewRoots[b] > 0 && !born.empty() && breaks.FirstNewId[b] <= born.back())
+      {
+        d.Throw("/lineage_breaks row " + std::to_string(b) + " starts new roots at id " +
+          std::to_string(breaks.FirstNewId[b]) + ", which is not a fresh id");
+      }
+      for (std::int64_t k = 0; k < breaks.NewRoots[b]; ++k)
+      {
+        born.push_back(breaks.FirstNewId[b] + k);
+        bornEnd.push_back(-1);
+        bornKind.push_back(0);
+      }
+    }
+  };
   for (std::size_t i = 0; i < e; ++i)
   {
+    applyBreaks(i);
     const std::uint8_t kind = t.Kind[i];
     const std::int32_t it = t.Iteration[i];
     std::int64_t child = t.Child[i];

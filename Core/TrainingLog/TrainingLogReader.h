@@ -104,8 +104,14 @@ public:
   std::vector<std::string> GetImageNames() const;
   /// Reads /metrics (or /metrics/test); missing value columns are filled with NaN.
   MetricsTable ReadMetrics(bool test = false) const;
-  /// Reads and validates /events (empty table when the file has none).
+  /// Reads and validates /events (empty table when the file has none); the new roots and
+  /// ended ids of /lineage_breaks are part of the validation.
   EventTable ReadEvents() const;
+  /// Whether the file has /lineage_breaks (the logger lost the lineage of some rows).
+  bool HasLineageBreaks() const;
+  /// Reads /lineage_breaks (empty table when the file has none); throws, naming the file,
+  /// on columns of different lengths or rows out of order (iteration, event row, new ids).
+  LineageBreakTable ReadLineageBreaks() const;
   /**
    * History of @p ids across all snapshots: one row per (id, snapshot holding it), ordered
    * by id then iteration, with the arrays named by @p arrays (SnapshotSH means the DC term).

@@ -139,6 +139,27 @@ struct MetricsTable
   }
 };
 
+/**
+ * Columns of /lineage_breaks (optional; written by the Python logger when a trainer changed
+ * the model's rows outside the operations it tracks). Row b: at Iteration[b], after the
+ * first EventRow[b] rows of /events, the logger tracked Tracked[b] ids for a model of Rows[b]
+ * rows. The first Kept[b] rows kept their ids; when Kept[b] is 0 every id alive there ended
+ * (no event says how). NewRoots[b] rows became new roots with the ids FirstNewId[b],
+ * FirstNewId[b] + 1, ... (fresh ids, in the order of new ids with the births around them).
+ */
+struct LineageBreakTable
+{
+  std::vector<std::int32_t> Iteration;
+  std::vector<std::int64_t> EventRow;
+  std::vector<std::int64_t> Tracked;
+  std::vector<std::int64_t> Rows;
+  std::vector<std::int64_t> Kept;
+  std::vector<std::int64_t> FirstNewId;
+  std::vector<std::int64_t> NewRoots;
+
+  std::size_t Size() const { return this->Iteration.size(); }
+};
+
 /// Root attributes of a training log.
 struct TrainingLogHeader
 {

@@ -36,7 +36,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <mutex>
 #include <sstream>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkGaussianArtifactScoreFilter);
@@ -318,6 +321,12 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
     }
   }
   vis4gs::TrainingImageProvider images;
+  struct Unreadable
+  {
+    std::mutex Mutex;
+    std::vector<std::string> Messages;
+  };
+  auto unreadable = std::make_shared<Unreadable>();
   if (needImages)
   {
     const std::array<float, 3> background = { static_cast<float>(settings.Raster.Background[0]),
@@ -328,6 +337,22 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
       vtkErrorMacro(<< error);
       return 0;
     }
+    // One unreadable image must not cost every score: its view is left out of the image
+    // scores, as a view without image, and a warning names the file (the reader's message).
+    images = [read = std::move(images), unreadable](
+               std::size_t view, const vis4gs::Camera& camera, vis4gs::Image& image)
+    {
+      try
+      {
+        return read(view, camera, image);
+      }
+      catch (const std::exception& e)
+      {
+        std::lock_guard<std::mutex> lock(unreadable->Mutex);
+        unreadable->Messages.push_back(e.what());
+        return false;
+      }
+    };
   }
   auto progress = [this](std::size_t done, std::size_t total)
   { this->UpdateProgress(total > 0 ? static_cast<double>(done) / total : 1.0); };
@@ -368,6 +393,12 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   for (const std::string& warning : scores.Warnings)
   {
     vtkWarningMacro(<< warning);
+  }
+  for (const std::string& message : unreadable->Messages)
+  {
+    vtkWarningMacro("a training image cannot be read, its view is left out of the Blur and "
+                    "Needle scores: "
+      << message);
   }
   this->NumberOfViewsUsed = static_cast<vtkIdType>(scores.ViewsUsed);
   this->NumberOfViewsWithoutImage = static_cast<vtkIdType>(scores.ViewsWithoutImage);

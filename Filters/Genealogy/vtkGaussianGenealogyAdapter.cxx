@@ -570,6 +570,47 @@ bool vtkGaussianGenealogyAdapter::BuildStructure(const std::vector<vtkIdType>& p
 }
 
 //------------------------------------------------------------------------------
+bool vtkGaussianGenealogyAdapter::BreaksFromFieldData(vtkFieldData* fd,
+  vis4gs::LineageBreakTable& breaks,
+  std::string& error)
+{
+  namespace names = vis4gs::arrays;
+  vtkDataArray* iteration =
+    fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(names::EventBreakIteration)) : nullptr;
+  const vtkIdType b = iteration ? iteration->GetNumberOfTuples() : 0;
+  breaks = vis4gs::LineageBreakTable();
+  breaks.Iteration.resize(static_cast<std::size_t>(b));
+  for (vtkIdType i = 0; i < b; ++i)
+  {
+    breaks.Iteration[i] = static_cast<std::int32_t>(iteration->GetComponent(i, 0));
+  }
+  const std::pair<const char*, std::vector<std::int64_t>*> columns[] = {
+    { names::EventBreakEventRow, &breaks.EventRow },
+    { names::EventBreakTracked, &breaks.Tracked },
+    { names::EventBreakRows, &breaks.Rows },
+    { names::EventBreakKept, &breaks.Kept },
+    { names::EventBreakFirstNewId, &breaks.FirstNewId },
+    { names::EventBreakNewRoots, &breaks.NewRoots },
+  };
+  for (const auto& c : columns)
+  {
+    vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(c.first)) : nullptr;
+    if (!a || a->GetNumberOfTuples() != b)
+    {
+      error = std::string("the events' field data has ") + names::EventBreakIteration + " but " +
+        (a ? "a " : "no ") + c.first + (a ? " of another length" : "");
+      return false;
+    }
+    c.second->resize(static_cast<std::size_t>(b));
+    for (vtkIdType i = 0; i < b; ++i)
+    {
+      (*c.second)[i] = static_cast<std::int64_t>(a->GetComponent(i, 0));
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vtkTree* tree,
   vtkTable* bands,
@@ -598,6 +639,18 @@ bool vtkGaussianGenealogyAdapter::FillTree(const vis4gs::Genealogy& g,
   vd->AddArray(
     VertexArray<vtkIntArray>(vis4gs::arrays::TreeLayoutX, g.GetBirthIterations(), firstBirth));
   vd->AddArray(IndexVertexArray(vis4gs::arrays::TreeLayoutY, g.GetRows(), -1, n));
+  if (!g.GetBreakRoots().empty())
+  {
+    vtkNew<vtkUnsignedCharArray> breakRoot;
+    breakRoot->SetName(vis4gs::arrays::TreeLineageBreakRoot);
+    breakRoot->SetNumberOfTuples(static_cast<vtkIdType>(n + 1));
+    breakRoot->FillValue(0);
+    for (std::int64_t node : g.GetBreakRoots())
+    {
+      breakRoot->SetValue(static_cast<vtkIdType>(node + 1), 1);
+    }
+    vd->AddArray(breakRoot);
+  }
 
   vtkNew<vtkDataSetAttributes> ed;
   vtkNew<vtkUnsignedCharArray> edgeKind;

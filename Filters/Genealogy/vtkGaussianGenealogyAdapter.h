@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+class vtkFieldData;
 class vtkTable;
 class vtkTree;
 class vtkSelection;
@@ -51,6 +52,15 @@ public:
   static bool EventsFromTable(vtkTable* table,
     vis4gs::EventTable& storage,
     vis4gs::EventColumns& events,
+    std::string& error);
+
+  /**
+   * The lineage breaks that vtkGaussianTrainingLogReader puts into its events port's field
+   * data (LineageBreakIteration, ... LineageBreakNewRoots, one tuple per break): false with
+   * @p error naming the array when one is missing or of another length.
+   */
+  static bool BreaksFromFieldData(vtkFieldData* fd,
+    vis4gs::LineageBreakTable& breaks,
     std::string& error);
 
   /**

@@ -188,6 +188,17 @@ int vtkGaussianGenealogyTreeFilter::RequestData(vtkInformation* vtkNotUsed(reque
   options.RepairUnknownParents = this->RepairUnknownParents;
   options.RepairDuplicateBirths = this->RepairDuplicateBirths;
   options.Alpha = this->Alpha;
+  // The log's lineage breaks (field data of the reader's events port), when it has any.
+  vis4gs::LineageBreakTable breaks;
+  if (fd && fd->GetAbstractArray(vis4gs::arrays::EventBreakIteration))
+  {
+    if (!vtkGaussianGenealogyAdapter::BreaksFromFieldData(fd, breaks, error))
+    {
+      vtkErrorMacro("" << error);
+      return 0;
+    }
+    options.Breaks = &breaks;
+  }
 
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();

@@ -93,6 +93,15 @@ constexpr const char* EventChild = "Child";
 constexpr const char* EventInitialIds = "InitialIds";
 constexpr const char* EventInitialCount = "NumberOfInitialGaussians";
 constexpr const char* EventLastIteration = "LastIteration";
+// The log's /lineage_breaks as field data of the events table, one tuple per break
+// (vis4gs::LineageBreakTable's columns; present only when the log has breaks).
+constexpr const char* EventBreakIteration = "LineageBreakIteration";
+constexpr const char* EventBreakEventRow = "LineageBreakEventRow";
+constexpr const char* EventBreakTracked = "LineageBreakTracked";
+constexpr const char* EventBreakRows = "LineageBreakRows";
+constexpr const char* EventBreakKept = "LineageBreakKept";
+constexpr const char* EventBreakFirstNewId = "LineageBreakFirstNewId";
+constexpr const char* EventBreakNewRoots = "LineageBreakNewRoots";
 // Property history (long format, one row per Gaussian and snapshot): the table
 // vtkGaussianTrainingLogReader::GetPropertyHistory gives the application and a script alike
 // and the timeline view draws (GaussianId, Iteration, Position, LogScale, Rotation,
@@ -105,6 +114,8 @@ constexpr const char* TreeGaussianId = "GaussianId";
 constexpr const char* TreeLayoutX = "LayoutX";
 constexpr const char* TreeLayoutY = "LayoutY";
 constexpr const char* TreeFamilyId = "FamilyId";
+/// u8, 1 for a root started by a lineage break (present only when the log has breaks).
+constexpr const char* TreeLineageBreakRoot = "LineageBreakRoot";
 // Before / after of a clean-up (vtkGaussianRemovalEffectFilter): the columns of
 // `vis4gs analyze --report`'s before-after.csv, spelled as there. Per view: RemovalView,
 // RemovalCamera (index in the camera table), RemovalSplit ("train" / "test"), RemovalAffected

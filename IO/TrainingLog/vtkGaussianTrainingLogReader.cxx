@@ -549,6 +549,25 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
       last->InsertNextValue(
         std::max(d.Log->GetHeader().Iterations, snapshots.empty() ? 0 : snapshots.back()));
       output->GetFieldData()->AddArray(last);
+      // Where the logger lost the lineage, for the genealogy filter (only when it did).
+      const vis4gs::LineageBreakTable breaks = d.Log->ReadLineageBreaks();
+      if (breaks.Size() > 0)
+      {
+        output->GetFieldData()->AddArray(
+          MakeColumn<vtkIntArray>(names::EventBreakIteration, breaks.Iteration));
+        const std::pair<const char*, const std::vector<std::int64_t>*> columns[] = {
+          { names::EventBreakEventRow, &breaks.EventRow },
+          { names::EventBreakTracked, &breaks.Tracked },
+          { names::EventBreakRows, &breaks.Rows },
+          { names::EventBreakKept, &breaks.Kept },
+          { names::EventBreakFirstNewId, &breaks.FirstNewId },
+          { names::EventBreakNewRoots, &breaks.NewRoots },
+        };
+        for (const auto& c : columns)
+        {
+          output->GetFieldData()->AddArray(MakeColumn<vtkIdTypeArray>(c.first, *c.second));
+        }
+      }
     }
   }
   catch (const std::exception& e)

@@ -62,6 +62,8 @@ const unsigned char KindColors[5][4] = {
 };
 const unsigned char HighlightColor[4] = { 255, 215, 0, 255 };
 const unsigned char SelectedColor[4] = { 255, 64, 64, 255 };
+// The ring around a root that a lineage break started (the logger lost the lineage there).
+const unsigned char BreakRootColor[4] = { 255, 255, 255, 255 };
 
 int KindSlot(int kind)
 {
@@ -165,6 +167,8 @@ struct vtkGaussianTreeItem::vtkInternals
   // The tree's arrays that Index reads in place (BirthView, PView), held while it does.
   vtkSmartPointer<vtkDataArray> BirthArray, PArray;
   std::vector<std::uint8_t> Kind, Pruned;
+  // 1 for a root a lineage break started (the tree's LineageBreakRoot); empty without breaks.
+  std::vector<std::uint8_t> BreakRoot;
 
   std::vector<float> BandMinX, BandMaxX, BandMinY, BandMaxY;
 
@@ -287,6 +291,7 @@ void vtkGaussianTreeItem::BuildIndex()
     in.PArray = nullptr;
     in.Kind.clear();
     in.Pruned.clear();
+    in.BreakRoot.clear();
     in.InLineage.clear();
     in.Selected.clear();
     in.Lineage.clear();
@@ -348,6 +353,11 @@ void vtkGaussianTreeItem::BuildIndex()
       ReadColumn(ps, n, in.Index.P);
     }
     ReadColumn(kinds, n, in.Kind);
+    in.BreakRoot.clear();
+    if (vtkDataArray* breakRoot = vd->GetArray(vis4gs::arrays::TreeLineageBreakRoot))
+    {
+      ReadColumn(breakRoot, n, in.BreakRoot);
+    }
     if (pruned)
     {
       ReadColumn(pruned, n, in.Pruned);
@@ -989,6 +999,26 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
     }
   }
 
+  // Roots started by a lineage break: a ring under their marker.
+  if (!in.BreakRoot.empty())
+  {
+    pts.clear();
+    for (vtkIdType v : in.Visible)
+    {
+      if (in.BreakRoot[v])
+      {
+        pts.insert(pts.end(), { map.X(in.Index.BirthData()[v]), map.Y(in.Index.Row[v]) });
+      }
+    }
+    pen->SetWidth(in.Visible.size() > 20000 ? 4.f : 9.f);
+    pen->SetColor(BreakRootColor[0], BreakRootColor[1], BreakRootColor[2], 255);
+    device->ApplyPen(pen);
+    if (!pts.empty())
+    {
+      device->DrawPoints(pts.data(), static_cast<int>(pts.size() / 2));
+    }
+  }
+
   // Node markers: births by kind; a purple marker at the death of pruned Gaussians.
   pts.clear();
   cols.clear();
@@ -1062,16 +1092,20 @@ bool vtkGaussianTreeItem::Paint(vtkContext2D* painter)
   }
 
   // Legend (top right).
-  const char* names[6] = { "root", "clone", "split", "clone-split", "prune", "selected" };
+  // (a seventh entry, the break's ring, only when the log has lineage breaks)
+  const char* names[7] = {
+    "root", "clone", "split", "clone-split", "prune", "selected", "lineage break"
+  };
+  const int entries = in.BreakRoot.empty() ? 6 : 7;
   const float lx = map.R - 92.f, ly = map.T - 6.f;
   painter->GetPen()->SetLineType(vtkPen::NO_PEN);
   painter->GetBrush()->SetColor(20, 22, 28, 200);
-  painter->DrawRect(lx - 6, ly - 6 * 14 - 4, 96, 6 * 14 + 8);
+  painter->DrawRect(lx - 6, ly - entries * 14 - 4, 96, entries * 14 + 8);
   text->SetJustificationToLeft();
   text->SetVerticalJustificationToCentered();
-  for (int k = 0; k < 6; ++k)
+  for (int k = 0; k < entries; ++k)
   {
-    const unsigned char* c = k < 5 ? KindColors[k] : SelectedColor;
+    const unsigned char* c = k < 5 ? KindColors[k] : k == 5 ? SelectedColor : BreakRootColor;
     painter->GetBrush()->SetColor(c[0], c[1], c[2], 255);
     const float y = ly - 14.f * k - 7.f;
     painter->DrawRect(lx, y - 4, 10, 8);

@@ -17,7 +17,9 @@
  * lines from birth to death (or the last iteration while alive), parent-child edges (a
  * vertical segment at the child's birth from the parent's row to the child's row), node
  * markers coloured by birth kind (DESIGN §6: root brown, clone aquamarine, split tan,
- * clone-split teal; a purple marker at the death of pruned Gaussians), the selected lineage
+ * clone-split teal; a purple marker at the death of pruned Gaussians; a white ring around a
+ * root that a lineage break of the log started, when the tree has the optional vertex array
+ * LineageBreakRoot, and then a legend entry "lineage break"), the selected lineage
  * highlighted, the iteration cursor, an iteration axis and a legend.
  *
  * Level of detail (DESIGN §4): a node is drawn when P(i) >= tau(z) (tau from Core's

@@ -131,7 +131,7 @@ def pending_events(logger):
 
 
 def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run",
-          before_step=None):
+          before_step=None, snapshot_interval=10):
     """simple_trainer.py's loop (from step 0) with the README's lines."""
     torch.manual_seed(seed)
     splats, optimizers = create_splats(n0, seed)
@@ -150,7 +150,7 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
     exec(readme[""], ns)
     exec(readme["in Runner.__init__, after self.strategy_state = ...initialize_state(...):"], ns)
     logger, tracker = ns["logger"], ns["tracker"]
-    logger.snapshot_interval = 10  # (default 500) to see several in 80 steps
+    logger.snapshot_interval = snapshot_interval  # (default 500) to see several in a short run
     scheduler = torch.optim.lr_scheduler.ExponentialLR(optimizers["means"],
                                                        gamma=0.01 ** (1.0 / max_steps))
     seen = set()
@@ -194,6 +194,7 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
         check_lineage(splats, tracker, root_through_events(events, n0))
         logged[0] += 1
     final_ids = tracker.ids.clone()
+    final_means = splats["means"].detach().clone()
     exec(readme["after the loop:"], ns)
     path = f"{result_dir}/training_log.h5"
     with h5py.File(path, "r") as f:  # test metrics, LPIPS, cameras with their image files
@@ -205,16 +206,23 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
         assert f["cameras"].attrs["source"] == runner.parser.data_dir
     events = read_events(path)
     check_lineage(splats, type("T", (), {"ids": final_ids})(), root_through_events(events, n0))
+    # The last snapshot is the final step's model: its ids and means as the loop left them.
+    with h5py.File(path, "r") as f:
+        last = f[f"snapshots/{max_steps - 1:06d}"]
+        order = np.argsort(final_ids.numpy(), kind="stable")
+        np.testing.assert_array_equal(last["id"][:], final_ids.numpy()[order])
+        np.testing.assert_array_equal(last["position"][:], final_means.numpy()[order])
     return path, splats, final_ids, seen, events, tracker
 
 
-def check_log(path, splats, final_ids, n0, max_steps, events):
+def check_log(path, splats, final_ids, n0, max_steps, events, snapshot_interval=10):
     check_format(path)
     alive, _ = replay_genealogy(events, n0)
     assert alive == set(final_ids.tolist())
     with h5py.File(path, "r") as f:
         snaps = sorted(int(k) for k in f["snapshots"])
-        assert snaps[0] == 0 and snaps == list(range(0, max_steps, 10))
+        expected = sorted(set(range(0, max_steps, snapshot_interval)) | {max_steps - 1})
+        assert snaps[0] == 0 and snaps == expected, snaps
         assert f["metrics/iteration"][0] == 0 and len(f["metrics/iteration"]) == max_steps
         # The lineage check on the logged snapshots too: each snapshot's rows exist.
         last = f[f"snapshots/{snaps[-1]:06d}"]
@@ -255,6 +263,20 @@ def test_mcmc_strategy(tmp_path):
     assert len(final_ids) == 400
     assert tracker.warnings == []
     check_log(path, splats, final_ids, 300, max_steps, events)
+
+
+def test_mcmc_strategy_long(tmp_path):
+    """MCMC for 1,000 steps: relocations and additions every 25 steps up to the cap, with
+    the lineage checked at every step and the final model in the log."""
+    strategy = gsplat_strategy.MCMCStrategy(cap_max=900, refine_start_iter=25, refine_every=25,
+                                            refine_stop_iter=900, min_opacity=0.005)
+    max_steps = 1000
+    path, splats, final_ids, seen, events, tracker = train(tmp_path, strategy, max_steps,
+                                                           snapshot_interval=100)
+    assert seen == {CLONE, PRUNE}, seen
+    assert len(final_ids) == 900
+    assert tracker.warnings == [] and tracker.breaks == []
+    check_log(path, splats, final_ids, 300, max_steps, events, snapshot_interval=100)
 
 
 def test_pinned_commit_is_recorded():

@@ -7,9 +7,11 @@ run the logger against it (never committed here; Scripts/test-upstream-trainers.
   relocation.py are imported as they are, as the package ``gsplat``. Only what exists for
   CUDA alone is replaced: the compiled extension (``gsplat.cuda._wrapper`` /
   ``gsplat.cuda._backend``) is a stub whose "relocation" kernel is the double-loop torch
-  reference of gsplat's own tests/test_relocation.py, ``gsplat.quat_scale_to_covar_preci``
-  is gsplat's torch implementation (gsplat/cuda/_math.py), and GSPLAT_MCMC_BACKEND=torch
-  selects gsplat's own torch path of inject_noise_to_position.
+  reference of gsplat's own tests/test_relocation.py (v1.5.x has none: the kernel's formula,
+  _relocation_formula), ``gsplat.quat_scale_to_covar_preci`` is gsplat's torch
+  implementation (gsplat/cuda/_math.py on main, _torch_impl.py in v1.5.x), and
+  GSPLAT_MCMC_BACKEND=torch selects gsplat's own torch path of inject_noise_to_position
+  (v1.5.x's is torch only).
 * original 3DGS: VIS4GS_3DGS_SRC is a folder holding the repository's
   scene/gaussian_model.py and utils/general_utils.py. The model is loaded with its
   explicit CUDA device redirected to the CPU (the text ``device="cuda"`` /
@@ -95,25 +97,63 @@ def load_gsplat():
     _module("gsplat.cuda", __path__=[os.path.join(pkg, "cuda")])
     _module("gsplat.cuda._wrapper", _make_lazy_cuda_func=make_lazy_cuda_func)
     _module("gsplat.cuda._backend", _C=None)
-    math_impl = importlib.import_module("gsplat.cuda._math")
-    top.quat_scale_to_covar_preci = math_impl._quat_scale_to_covar_preci
+    # gsplat's torch implementation: gsplat/cuda/_math.py on main, _torch_impl.py in v1.5.x.
+    for name in ("gsplat.cuda._math", "gsplat.cuda._torch_impl"):
+        if os.path.isfile(os.path.join(pkg, "cuda", name.rsplit(".", 1)[1] + ".py")):
+            top.quat_scale_to_covar_preci = importlib.import_module(name)._quat_scale_to_covar_preci
+            break
+    else:
+        raise RuntimeError(f"{GSPLAT_ENV}={src}: neither gsplat/cuda/_math.py nor "
+                           "gsplat/cuda/_torch_impl.py holds _quat_scale_to_covar_preci")
     importlib.import_module("gsplat.utils")
     importlib.import_module("gsplat.relocation")
     strategy = importlib.import_module("gsplat.strategy")
 
-    # The relocation kernel: gsplat's torch reference from its own relocation test.
-    spec = importlib.util.spec_from_file_location(
-        "gsplat_upstream_test_relocation", os.path.join(src, "tests", "test_relocation.py"))
-    reference = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(reference)
+    # The relocation kernel: gsplat's torch reference from its own relocation test, or (v1.5.x
+    # has no such test) the kernel's formula written out below. v1.5.x calls the kernel
+    # without min_opacity and clamps nothing.
+    test_file = os.path.join(src, "tests", "test_relocation.py")
+    if os.path.isfile(test_file):
+        spec = importlib.util.spec_from_file_location("gsplat_upstream_test_relocation", test_file)
+        reference = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(reference)
+        formula = reference._reference_relocation
+    else:
+        formula = _relocation_formula
 
-    def relocation(opacities, scales, ratios, binoms, n_max, min_opacity):
-        return reference._reference_relocation(opacities, scales, ratios, binoms, min_opacity)
+    def relocation(opacities, scales, ratios, binoms, n_max, min_opacity=None):
+        if min_opacity is None:
+            return _relocation_formula(opacities, scales, ratios, binoms, None)
+        return formula(opacities, scales, ratios, binoms, min_opacity)
 
     kernels["relocation"] = relocation
     strategy.commit = gsplat_commit(src)
     _gsplat = strategy
     return strategy
+
+
+def _relocation_formula(opacities, scales, ratios, binoms, min_opacity):
+    """MCMC relocation (Kheradmand et al. 2024, eq. 9), as gsplat's relocation kernel
+    computes it: o' = 1 - (1 - o)^(1/n), s' = s * o / sum_{i=1..n} sum_{k<i} C(i-1, k)
+    (-1)^k o'^(k+1) / sqrt(k+1); o' clamped to [min_opacity, 1 - eps] when given."""
+    import math
+
+    import torch
+
+    out_o = torch.empty_like(opacities)
+    out_s = torch.empty_like(scales)
+    eps = torch.finfo(opacities.dtype).eps
+    for idx in range(opacities.shape[0]):
+        n = int(ratios[idx])
+        o = float(opacities[idx])
+        new_o = 1.0 - (1.0 - o) ** (1.0 / n)
+        if min_opacity is not None:
+            new_o = min(max(new_o, min_opacity), 1.0 - eps)
+        total = sum(float(binoms[i - 1, k]) * (-1.0) ** k * new_o ** (k + 1) / math.sqrt(k + 1)
+                    for i in range(1, n + 1) for k in range(i))
+        out_o[idx] = new_o
+        out_s[idx] = scales[idx] * (o / total)
+    return out_o, out_s
 
 
 def gs3d_source():

@@ -20,8 +20,6 @@ clones the copied positions). A mismatch (a modified trainer) gives a warning an
 rows get fresh ids without events.
 """
 
-import time
-
 from .tracking import CLONE, SPLIT, IdTracker
 
 __all__ = ["GaussianModelTracker", "track_3dgs"]
@@ -79,76 +77,84 @@ class GaussianModelTracker(IdTracker):
         tracker = self
 
         def densify_and_clone(grads, grad_threshold, scene_extent, *args, **kwargs):
-            tracker._ensure()
-            mask = tracker._clone_mask(grads, grad_threshold, scene_extent)
-            tracker._pending = ("clone", mask, 1)
+            def before():
+                mask = tracker._clone_mask(grads, grad_threshold, scene_extent)
+                tracker._pending = ("clone", mask, 1)
+
             try:
-                return orig["densify_and_clone"](grads, grad_threshold, scene_extent, *args, **kwargs)
+                return tracker.guarded("densify_and_clone", orig["densify_and_clone"],
+                                       (grads, grad_threshold, scene_extent) + args, kwargs,
+                                       before, lambda state, result: None)
             finally:
                 tracker._pending = None
-                tracker._check("densify_and_clone")
 
         def densify_and_split(grads, grad_threshold, scene_extent, *args, **kwargs):
-            tracker._ensure()
-            n = kwargs.get("N", args[0] if args else 2)
-            mask = tracker._split_mask(grads, grad_threshold, scene_extent)
-            tracker._pending = ("split", mask, int(n))
-            tracker._in_split = True
+            def before():
+                n = kwargs.get("N", args[0] if args else 2)
+                mask = tracker._split_mask(grads, grad_threshold, scene_extent)
+                tracker._pending = ("split", mask, int(n))
+                tracker._in_split = True
+
             try:
-                return orig["densify_and_split"](grads, grad_threshold, scene_extent, *args, **kwargs)
+                return tracker.guarded("densify_and_split", orig["densify_and_split"],
+                                       (grads, grad_threshold, scene_extent) + args, kwargs,
+                                       before, lambda state, result: None)
             finally:
                 tracker._pending = None
                 tracker._in_split = False
-                tracker._check("densify_and_split")
 
         def densification_postfix(new_xyz, *args, **kwargs):
-            t0 = time.perf_counter()
-            ids = tracker._ensure()
-            n_new = int(new_xyz.shape[0])
-            pending = tracker._pending
-            parents = None
-            if pending is not None:
+            def before():
+                ids = tracker.ids
+                n_new = int(new_xyz.shape[0])
+                pending = tracker._pending
+                if pending is None:
+                    return len(ids), n_new, None, None
                 kind, mask, per = pending
-                mask = mask.to(ids.device)
-                selected = ids[mask]
+                selected = ids[mask.to(ids.device)]
                 if len(selected) * per != n_new:
                     tracker._warn(
                         f"{kind} at iteration {tracker.logger.iteration}: the trainer added {n_new} "
                         f"Gaussians where its {kind} rule selects {len(selected)} parents x {per}; "
                         "recording them without parents")
-                elif kind == "clone" and n_new > 0 and not bool(
+                    return len(ids), n_new, None, None
+                if kind == "clone" and n_new > 0 and not bool(
                         (new_xyz.detach() == tracker.g.get_xyz.detach()[mask]).all()):
                     tracker._warn(
                         f"clone at iteration {tracker.logger.iteration}: the new Gaussians are "
                         "not copies of the rows the clone rule selects; recording them without parents")
+                    return len(ids), n_new, None, None
+                # Children order "all first samples, then all second samples".
+                return len(ids), n_new, kind, selected.repeat(per) if per > 1 else selected
+
+            def after(state, result):
+                m, n_new, kind, parents = state
+                added = tracker.count() - m
+                if parents is not None and added != n_new:
+                    tracker._warn(f"densification_postfix added {added} Gaussians for {n_new} "
+                                  "new rows; recording them without parents")
+                    parents = None
+                if parents is None:
+                    tracker.append_orphans(added)
                 else:
-                    # Children order "all first samples, then all second samples".
-                    parents = selected.repeat(per) if per > 1 else selected
-            tracker.logger.time_spent_s += time.perf_counter() - t0
-            result = orig["densification_postfix"](new_xyz, *args, **kwargs)
-            t0 = time.perf_counter()
-            added = tracker.count() - len(ids)
-            if parents is not None and added != n_new:
-                tracker._warn(f"densification_postfix added {added} Gaussians for {n_new} new rows; "
-                              "recording them without parents")
-                parents = None
-            if parents is None:
-                tracker.append_orphans(added)
-            else:
-                tracker.append_children(CLONE if pending[0] == "clone" else SPLIT, parents)
-            tracker.logger.time_spent_s += time.perf_counter() - t0
-            tracker._check("densification_postfix")
-            return result
+                    tracker.append_children(CLONE if kind == "clone" else SPLIT, parents)
+
+            return tracker.guarded("densification_postfix", orig["densification_postfix"],
+                                   (new_xyz,) + args, kwargs, before, after)
 
         def prune_points(mask, *args, **kwargs):
-            t0 = time.perf_counter()
-            tracker._ensure()
-            # Inside a split the removed rows are the split parents: their end is the split.
-            tracker.remove_rows(mask, record=not tracker._in_split)
-            tracker.logger.time_spent_s += time.perf_counter() - t0
-            result = orig["prune_points"](mask, *args, **kwargs)
-            tracker._check("prune_points")
-            return result
+            def before():
+                mask_ = mask.to(tracker.ids.device).bool()
+                if len(mask_) != len(tracker.ids):
+                    raise ValueError(f"a mask of {len(mask_)} rows for {len(tracker.ids)} Gaussians")
+                return mask_
+
+            def after(mask_, result):
+                # Inside a split the removed rows are the split parents: their end is the split.
+                tracker.remove_rows(mask_, record=not tracker._in_split)
+
+            return tracker.guarded("prune_points", orig["prune_points"], (mask,) + args, kwargs,
+                                   before, after)
 
         g.densify_and_clone = densify_and_clone
         g.densify_and_split = densify_and_split

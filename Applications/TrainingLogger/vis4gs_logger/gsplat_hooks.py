@@ -23,7 +23,6 @@ Ids are no longer increasing in row order after a relocation; snapshots sort row
 
 import importlib
 import inspect
-import time
 
 from .tracking import CLONE, SPLIT, IdTracker
 
@@ -82,8 +81,11 @@ class GsplatTracker(IdTracker):
         tracker = self
 
         def wrapper(*args, **kwargs):
-            bound = signature.bind(*args, **kwargs)
-            bound.apply_defaults()
+            try:
+                bound = signature.bind(*args, **kwargs)
+                bound.apply_defaults()
+            except TypeError:
+                return fn(*args, **kwargs)  # the op itself reports the wrong call
             if bound.arguments.get("params") is not tracker.params:
                 return fn(*args, **kwargs)  # another model: not ours
             return handler(fn, bound, args, kwargs)
@@ -93,44 +95,43 @@ class GsplatTracker(IdTracker):
         wrapper.__doc__ = fn.__doc__
         return wrapper
 
-    # -- handlers ------------------------------------------------------------------------
+    # -- handlers: what each op does to the rows (before / after it runs) ----------------
     def _on_duplicate(self, fn, bound, args, kwargs):
         import torch
 
-        ids = self._ensure()
-        sel = torch.where(bound.arguments["mask"].to(ids.device))[0]
-        parents = ids[sel]
-        result = fn(*args, **kwargs)
-        t0 = time.perf_counter()
-        self.append_children(CLONE, parents)
-        self.logger.time_spent_s += time.perf_counter() - t0
-        self._check("duplicate")
-        return result
+        def before():
+            return self.ids[torch.where(bound.arguments["mask"].to(self.ids.device))[0]]
+
+        def after(parents, result):
+            self.append_children(CLONE, parents)
+
+        return self.guarded("duplicate", fn, args, kwargs, before, after)
 
     def _on_split(self, fn, bound, args, kwargs):
         import torch
 
-        ids = self._ensure()
-        mask = bound.arguments["mask"].to(ids.device).bool()
-        parents = ids[torch.where(mask)[0]]
-        rest = ids[torch.where(~mask)[0]]
-        result = fn(*args, **kwargs)
-        t0 = time.perf_counter()
-        self.ids = rest  # compaction happens inside split; the parents end by the split
-        self.append_children(SPLIT, parents.repeat(2))
-        self.logger.time_spent_s += time.perf_counter() - t0
-        self._check("split")
-        return result
+        def before():
+            mask = bound.arguments["mask"].to(self.ids.device).bool()
+            return self.ids[torch.where(mask)[0]], self.ids[torch.where(~mask)[0]]
+
+        def after(state, result):
+            parents, rest = state
+            self.ids = rest  # compaction happens inside split; the parents end by the split
+            self.append_children(SPLIT, parents.repeat(2))
+
+        return self.guarded("split", fn, args, kwargs, before, after)
 
     def _on_remove(self, fn, bound, args, kwargs):
-        mask = bound.arguments["mask"]
-        t0 = time.perf_counter()
-        self._ensure()
-        self.remove_rows(mask, record=True)
-        self.logger.time_spent_s += time.perf_counter() - t0
-        result = fn(*args, **kwargs)
-        self._check("remove")
-        return result
+        def before():
+            mask = bound.arguments["mask"].to(self.ids.device).bool()
+            if len(mask) != len(self.ids):
+                raise ValueError(f"a mask of {len(mask)} rows for {len(self.ids)} Gaussians")
+            return mask
+
+        def after(mask, result):
+            self.remove_rows(mask, record=True)
+
+        return self.guarded("remove", fn, args, kwargs, before, after)
 
     def _call_capturing(self, fn, args, kwargs):
         """Calls fn capturing the indices returned by the sampler it uses."""
@@ -184,13 +185,22 @@ class GsplatTracker(IdTracker):
     def _on_relocate(self, fn, bound, args, kwargs):
         import torch
 
-        ids = self._ensure()
-        mask = bound.arguments["mask"].to(ids.device).bool()
-        dead = torch.where(mask)[0]
-        alive = torch.where(~mask)[0]
-        result, sampled = self._call_capturing(fn, args, kwargs)
-        t0 = time.perf_counter()
-        if len(dead) > 0:
+        captured = {}
+
+        def call(*a, **k):
+            result, captured["sampled"] = self._call_capturing(fn, a, k)
+            return result
+
+        def before():
+            mask = bound.arguments["mask"].to(self.ids.device).bool()
+            return torch.where(mask)[0], torch.where(~mask)[0]
+
+        def after(state, result):
+            dead, alive = state
+            ids = self.ids
+            if len(dead) == 0:
+                return
+            sampled = captured.get("sampled")
             if sampled is not None and len(sampled) == len(dead):
                 sources = alive[sampled.to(ids.device)]
             else:
@@ -205,30 +215,36 @@ class GsplatTracker(IdTracker):
             ids = ids.clone()
             ids[dead] = new
             self.ids = ids
-        self.logger.time_spent_s += time.perf_counter() - t0
-        self._check("relocate")
-        return result
+
+        return self.guarded("relocate", call, args, kwargs, before, after)
 
     def _on_sample_add(self, fn, bound, args, kwargs):
         import torch
 
-        ids = self._ensure()
-        n0 = len(ids)
-        result, sampled = self._call_capturing(fn, args, kwargs)
-        t0 = time.perf_counter()
-        n_new = self.count() - n0
-        if sampled is not None and len(sampled) == n_new:
-            sources = sampled.to(ids.device)
-        else:
-            rows = torch.arange(n0, n0 + n_new)
-            src, ok = self._match_sources(rows, torch.arange(n0))
-            if not ok.all():
-                self._warn(f"sample_add at iteration {self.logger.iteration}: sources not found")
-            sources = torch.as_tensor(src, device=ids.device)
-        self.append_children(CLONE, ids[sources])
-        self.logger.time_spent_s += time.perf_counter() - t0
-        self._check("sample_add")
-        return result
+        captured = {}
+
+        def call(*a, **k):
+            result, captured["sampled"] = self._call_capturing(fn, a, k)
+            return result
+
+        def before():
+            return len(self.ids)
+
+        def after(n0, result):
+            ids = self.ids
+            n_new = self.count() - n0
+            sampled = captured.get("sampled")
+            if sampled is not None and len(sampled) == n_new:
+                sources = sampled.to(ids.device)
+            else:
+                rows = torch.arange(n0, n0 + n_new)
+                src, ok = self._match_sources(rows, torch.arange(n0))
+                if not ok.all():
+                    self._warn(f"sample_add at iteration {self.logger.iteration}: sources not found")
+                sources = torch.as_tensor(src, device=ids.device)
+            self.append_children(CLONE, ids[sources])
+
+        return self.guarded("sample_add", call, args, kwargs, before, after)
 
     # -- snapshots -----------------------------------------------------------------------
     def write_snapshot(self, iteration):

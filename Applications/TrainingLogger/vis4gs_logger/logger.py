@@ -25,8 +25,17 @@ class TrainingLogger:
     each iteration (it writes a snapshot every ``snapshot_interval`` iterations). Metric
     values may be python floats or one-element tensors; values not measured are None
     (stored as NaN). ``elapsed_s`` defaults to the wall time since the logger was created.
-    ``deflate``, ``snapshot_deflate`` (default 0: snapshots uncompressed), ``chunk_rows``
-    and ``flush_every_s`` are passed to TrainingLogWriter.
+    ``deflate``, ``snapshot_deflate`` (default 0: snapshots uncompressed; 1-9: gzip level),
+    ``snapshot_sh_degree`` (default None: every SH degree), ``snapshot_sh_float16`` (default
+    False), ``chunk_rows`` and ``flush_every_s`` are passed to TrainingLogWriter.
+
+    Disk: after each snapshot the size of the whole run is projected (the snapshots so far,
+    plus the last one's size for each snapshot still planned up to ``iterations``); a
+    warning says so once when it exceeds the free space of the log's disk.
+    ``snapshot_budget_bytes`` (default None: no budget): when the projection exceeds it, the
+    snapshot interval doubles (as often as needed), so that the run thins its later
+    snapshots instead of filling the disk; the snapshots written stay (HDF5 does not give
+    freed space back in a file written crash-safely, see the writer).
 
     ``start_iteration``: the iteration of the checkpoint a resumed run starts from (3DGS
     ``--start_checkpoint``). The row-to-id map of the checkpoint is not in the trainer's
@@ -39,7 +48,8 @@ class TrainingLogger:
     def __init__(self, path, scene="", sh_degree=3, iterations=30000,
                  snapshot_interval=DEFAULT_SNAPSHOT_INTERVAL, snapshot_sh_rest=True,
                  snapshot_statistics=True, deflate=1, chunk_rows=4096, producer=None,
-                 flush_every_s=300.0, snapshot_deflate=0, start_iteration=0):
+                 flush_every_s=300.0, snapshot_deflate=0, start_iteration=0,
+                 snapshot_sh_degree=None, snapshot_sh_float16=False, snapshot_budget_bytes=None):
         self.start_iteration = int(start_iteration)
         if self.start_iteration > 0 and os.path.exists(path):
             root, ext = os.path.splitext(os.fspath(path))
@@ -53,14 +63,23 @@ class TrainingLogger:
                                         deflate=deflate, chunk_rows=chunk_rows,
                                         flush_every_s=flush_every_s,
                                         snapshot_deflate=snapshot_deflate,
-                                        start_iteration=self.start_iteration)
+                                        start_iteration=self.start_iteration,
+                                        snapshot_sh_degree=snapshot_sh_degree,
+                                        snapshot_sh_float16=snapshot_sh_float16)
         self.path = self.writer.path
         self.snapshot_interval = int(snapshot_interval) if snapshot_interval else 0
+        self.iterations = int(iterations)
+        self.snapshot_budget_bytes = snapshot_budget_bytes
+        self._disk_warned = False
         self.snapshot_sh_rest = snapshot_sh_rest
         self.snapshot_statistics = snapshot_statistics
         self.iteration = self.start_iteration
+        #: the iteration of the last step() call (None before the first)
+        self.last_step = None
         self.tracker = None
         self._start = time.perf_counter()
+        #: snapshots that could not be written ("iteration N: why")
+        self.snapshot_failures = []
         #: seconds spent inside the logger (for measuring its overhead)
         self.time_spent_s = 0.0
 
@@ -73,8 +92,8 @@ class TrainingLogger:
                     num_gaussians=None, elapsed_s=None, test=False):
         """Appends a row to /metrics (test=True: /metrics/test)."""
         t0 = time.perf_counter()
-        if not test:
-            self.iteration = int(iteration)
+        if not test and (self.last_step is None or int(iteration) > self.last_step):
+            self.iteration = int(iteration)  # metrics of an ended step do not move it back
         if num_gaussians is None:
             num_gaussians = self.tracker.count() if self.tracker is not None else -1
         if elapsed_s is None:
@@ -184,27 +203,94 @@ class TrainingLogger:
         return self.snapshot_interval > 0 and int(iteration) % self.snapshot_interval == 0
 
     def step(self, iteration):
-        """Call at the end of each iteration: writes a snapshot at the interval.
+        """Call at the end of each iteration: writes a snapshot at the interval, and events
+        recorded from now on belong to iteration + 1 (until log_metrics names a later one),
+        so that they carry their step's iteration however seldom metrics are logged.
 
         The snapshot of an iteration that already has one is not written again: gsplat's
         loop starts at step 0, after track_gsplat() wrote the snapshot of iteration 0 (and a
-        resumed run starts at the checkpoint's iteration, which track_* wrote too)."""
+        resumed run starts at the checkpoint's iteration, which track_* wrote too). A
+        snapshot that cannot be written (e.g. a full disk) is a warning, not an exception:
+        the training goes on, and close() tries the final one again."""
         iteration = int(iteration)
+        self.last_step = iteration
+        self.iteration = iteration + 1
         if self.should_snapshot(iteration) and iteration != self.writer.last_snapshot_iteration:
+            self._snapshot_or_warn(iteration)
+
+    def _snapshot_or_warn(self, iteration):
+        try:
             self.snapshot(iteration)
+        except Exception as error:  # noqa: BLE001 - never stop the training for the log
+            self.snapshot_failures.append(f"iteration {iteration}: {error}")
+            if len(self.snapshot_failures) == 1:
+                warnings.warn(f"vis4gs_logger: {self.path}: the snapshot of iteration "
+                              f"{iteration} could not be written ({type(error).__name__}: "
+                              f"{error}); training goes on, later failures are counted in "
+                              "snapshot_failures", RuntimeWarning, stacklevel=3)
 
     def snapshot(self, iteration):
         """Writes a snapshot of the tracked model now (and flushes the file)."""
         if self.tracker is None:
             raise RuntimeError(f"{self.path}: no model is tracked (call track_3dgs or track_gsplat)")
         t0 = time.perf_counter()
+        before = self.writer.snapshot_bytes
         self.tracker.write_snapshot(int(iteration))
+        self._plan_disk(int(iteration), self.writer.snapshot_bytes - before)
         self.time_spent_s += time.perf_counter() - t0
+
+    def projected_bytes(self, iteration, last_bytes):
+        """Snapshot bytes of the whole run if every snapshot still planned after
+        ``iteration`` is as large as the last (``last_bytes``)."""
+        left = 0
+        if self.snapshot_interval > 0 and self.iterations > iteration:
+            left = (self.iterations - iteration) // self.snapshot_interval + 1
+        return self.writer.snapshot_bytes + left * last_bytes
+
+    def _plan_disk(self, iteration, last_bytes):
+        import shutil
+
+        projected = self.projected_bytes(iteration, last_bytes)
+        budget = self.snapshot_budget_bytes
+        while budget is not None and self.snapshot_interval > 0 and projected > budget \
+                and self.snapshot_interval < max(1, self.iterations):
+            self.snapshot_interval *= 2
+            projected = self.projected_bytes(iteration, last_bytes)
+            warnings.warn(f"vis4gs_logger: {self.path}: the snapshots would take "
+                          f"{projected / 1e9:.2f} GB beyond the budget of {budget / 1e9:.2f} GB: "
+                          f"snapshot interval now {self.snapshot_interval}", RuntimeWarning,
+                          stacklevel=4)
+        if not self._disk_warned:
+            free = shutil.disk_usage(os.path.dirname(os.path.abspath(self.path))).free
+            if projected - self.writer.snapshot_bytes > free:
+                self._disk_warned = True
+                warnings.warn(f"vis4gs_logger: {self.path}: the log is projected to grow by "
+                              f"{(projected - self.writer.snapshot_bytes) / 1e9:.2f} GB "
+                              f"({last_bytes / 1e6:.1f} MB per snapshot) but its disk has "
+                              f"{free / 1e9:.2f} GB free: pass snapshot_budget_bytes, "
+                              "snapshot_sh_degree, snapshot_sh_float16 or a larger "
+                              "snapshot_interval", RuntimeWarning, stacklevel=4)
 
     def flush(self):
         self.writer.flush()
 
+    def final_iteration(self):
+        """The iteration of the model as it is now: the last step(), else the last
+        iteration log_metrics named; None when neither was called."""
+        if self.last_step is not None:
+            return self.last_step
+        return self.iteration if self.iteration > self.start_iteration else None
+
     def close(self):
+        """Writes the snapshot of the final model (the last step's, when the interval did
+        not write it: gsplat's loop ends at max_steps - 1, a 3DGS run's length need not be
+        a multiple of the interval), then closes the file."""
+        if self.writer._file is None:
+            return
+        final = self.final_iteration()
+        if (self.tracker is not None and final is not None
+                and final > self.writer.last_snapshot_iteration):
+            self._snapshot_or_warn(final)
         if self.tracker is not None:
             self.tracker.uninstall()
         self.writer.close()

@@ -17,6 +17,8 @@ FORMAT_VERSION = 1
 CLONE, SPLIT, PRUNE = 1, 2, 3
 
 _METRIC_COLUMNS = ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s")
+_BREAK_COLUMNS = (("iteration", "<i4"), ("event_row", "<i8"), ("tracked", "<i8"), ("rows", "<i8"),
+                  ("kept", "<i8"), ("first_new_id", "<i8"), ("new_roots", "<i8"))
 
 
 def to_numpy(array, dtype=None):
@@ -65,17 +67,26 @@ class TrainingLogWriter:
     C++ writer: deflate saves only ~15 % on float32 parameters but makes every property
     history query inflate whole chunks); rows per chunk of the snapshot datasets;
     flush_every_s: also flush buffered rows when this many seconds have passed since the
-    last flush (None: only at snapshots and close).
+    last flush (None: only at snapshots and close); snapshot_sh_degree: SH degree kept in the
+    snapshots (None: all the trainer has; 0: the DC term only); snapshot_sh_float16: store
+    the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504).
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
                  deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0,
-                 start_iteration=0):
+                 start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False):
         from . import __version__
 
         self.path = os.fspath(path)
         self.deflate = int(deflate)
         self.snapshot_deflate = int(snapshot_deflate)
+        if snapshot_sh_degree is not None and not 0 <= int(snapshot_sh_degree) <= 4:
+            raise ValueError(f"{self.path}: snapshot_sh_degree must be 0..4 or None, "
+                             f"not {snapshot_sh_degree}")
+        self.snapshot_sh_degree = None if snapshot_sh_degree is None else int(snapshot_sh_degree)
+        self.snapshot_sh_float16 = bool(snapshot_sh_float16)
+        #: bytes of the snapshot datasets written so far (as stored, after compression)
+        self.snapshot_bytes = 0
         self.chunk_rows = int(chunk_rows)
         self.flush_every_s = flush_every_s
         self._file = h5py.File(self.path, "w", fs_strategy="none", libver="earliest")
@@ -101,6 +112,8 @@ class TrainingLogWriter:
         for name, dtype in (("iteration", "<i4"), ("kind", "u1"), ("parent", "<i8"), ("child", "<i8")):
             self._create_table(events, name, dtype, 65536)
         self._pending_events = []
+        self._event_rows = 0  # rows of /events, written and buffered
+        self._pending_breaks = []
         f.create_group("snapshots")
         self._last_snapshot = -1
         self._last_flush = time.monotonic()
@@ -212,8 +225,20 @@ class TrainingLogWriter:
         if len(children) != len(parents):
             raise ValueError("parents and children differ in length")
         n = len(parents)
+        self._event_rows += n
         self._pending_events.append((np.full(n, int(iteration), np.int32),
                                      np.full(n, int(kind), np.uint8), parents, children))
+
+    def append_lineage_break(self, iteration, tracked, rows, kept, first_new_id, new_roots,
+                             where=""):
+        """Buffers one row of /lineage_breaks: at ``iteration``, after the events written so
+        far (``event_row`` = their count), the logger tracked ``tracked`` ids for ``rows``
+        rows; the first ``kept`` rows kept their ids (the others' ids ended there) and
+        ``new_roots`` rows got the new root ids first_new_id, first_new_id + 1, ...
+        ``where`` says which operation found it."""
+        self._check_open()
+        self._pending_breaks.append((int(iteration), self._event_rows, int(tracked), int(rows),
+                                     int(kept), int(first_new_id), int(new_roots), str(where)))
 
     def write_snapshot(self, iteration, ids, position, log_scale, rotation, opacity_logit, sh,
                        grad_accum=None, denom=None, flush=True):
@@ -225,6 +250,8 @@ class TrainingLogWriter:
             raise ValueError(f"{self.path}: snapshot {iteration} is not after {self._last_snapshot}")
         ids = to_numpy(ids, np.int64).reshape(-1)
         n = len(ids)
+        if self.snapshot_sh_degree is not None:  # the coefficients of the degrees kept
+            sh = sh[:, : (self.snapshot_sh_degree + 1) ** 2] if sh.ndim == 3 else sh
         arrays = {
             "position": to_numpy(position, np.float32).reshape(n, 3),
             "log_scale": to_numpy(log_scale, np.float32).reshape(n, 3),
@@ -249,12 +276,15 @@ class TrainingLogWriter:
         g.attrs["iteration"] = np.int64(iteration)
         c = self.chunk_rows
         level = self.snapshot_deflate
-        self._dataset(g, "id", ids, (c,), level)
+        written = [self._dataset(g, "id", ids, (c,), level)]
         for key, value in arrays.items():
             if key == "sh":
-                self._dataset(g, key, value, (c, 1, 3), level)
+                if self.snapshot_sh_float16:  # readers convert to float32 (HDF5 does)
+                    value = value.astype(np.float16)
+                written.append(self._dataset(g, key, value, (c, 1, 3), level))
             else:
-                self._dataset(g, key, value, (c,) + value.shape[1:], level)
+                written.append(self._dataset(g, key, value, (c,) + value.shape[1:], level))
+        self.snapshot_bytes += sum(d.id.get_storage_size() for d in written)
         self._last_snapshot = iteration
         if flush:
             self.flush()
@@ -280,8 +310,24 @@ class TrainingLogWriter:
             for j, name in enumerate(("iteration", "kind", "parent", "child")):
                 self._append(events[name], np.concatenate([e[j] for e in self._pending_events]))
             self._pending_events = []
+        if self._pending_breaks:
+            self._flush_breaks()
         self._file.flush()
         self._last_flush = time.monotonic()
+
+    def _flush_breaks(self):
+        g = self._file.get("lineage_breaks")
+        if g is None:
+            g = self._file.create_group("lineage_breaks")
+            for name, dtype in _BREAK_COLUMNS:
+                self._create_table(g, name, dtype, 256)
+            g.create_dataset("where", shape=(0,), maxshape=(None,), chunks=(256,),
+                             dtype=h5py.string_dtype("utf-8"))
+        cols = list(zip(*self._pending_breaks))
+        for j, (name, dtype) in enumerate(_BREAK_COLUMNS):
+            self._append(g[name], np.asarray(cols[j], dtype))
+        self._append(g["where"], np.array(cols[-1], dtype=object))
+        self._pending_breaks = []
 
     def _maybe_timed_flush(self):
         if self.flush_every_s is not None and time.monotonic() - self._last_flush > self.flush_every_s:

@@ -79,6 +79,19 @@ int main(int argc, char* argv[])
       }
     }
     out["history"] = rows;
+    nlohmann::json breaks = nlohmann::json::array();
+    const vis4gs::LineageBreakTable b = reader.ReadLineageBreaks();
+    for (std::size_t r = 0; r < b.Size(); ++r)
+    {
+      breaks.push_back({ { "iteration", b.Iteration[r] },
+        { "event_row", b.EventRow[r] },
+        { "tracked", b.Tracked[r] },
+        { "rows", b.Rows[r] },
+        { "kept", b.Kept[r] },
+        { "first_new_id", b.FirstNewId[r] },
+        { "new_roots", b.NewRoots[r] } });
+    }
+    out["lineage_breaks"] = breaks;
     out["repairs"] = reader.GetRepairs();
     std::cout << out.dump() << std::endl;
   }

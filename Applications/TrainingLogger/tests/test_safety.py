@@ -1,0 +1,377 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""What the logger owes a training that runs for hours (issue 32): the final model is
+always in the log, events carry the iteration of the step that made them, and a
+bookkeeping problem never stops the training (it is a warning and a row of
+/lineage_breaks, whose new roots the C++ reader and the genealogy know)."""
+
+import warnings
+
+import h5py
+import numpy as np
+import pytest
+import torch
+
+import mock_gsplat_ops
+import test_gsplat
+from logcheck import check_format, dump, read_events, require_dump
+from mock_3dgs import GaussianModel
+from vis4gs_logger import CLONE, PRUNE, TrainingLogger, track_3dgs, track_gsplat
+
+
+def _snapshots(path):
+    with h5py.File(path, "r") as f:
+        return sorted(int(k) for k in f["snapshots"])
+
+
+def test_gsplat_loop_ends_with_the_final_model(tmp_path):
+    """gsplat's loop runs steps 0..max_steps-1: the last one is no multiple of the
+    interval, and close() writes it (the ids and means of the model as it ended)."""
+    params, optimizers, state = test_gsplat.make_splats(20, 0)
+    path = str(tmp_path / "gsplat.h5")
+    logger = TrainingLogger(path, snapshot_interval=4)
+    tracker = track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    max_steps = 11
+    for step in range(max_steps):
+        logger.log_metrics(step, loss=1.0)
+        if step == 9:  # densification late in the run: the final model differs from 8's
+            mask = torch.zeros(len(params["means"]), dtype=torch.bool)
+            mask[:3] = True
+            mock_gsplat_ops.duplicate(params, optimizers, state, mask)
+        logger.step(step)
+    ids = tracker.ids.clone()
+    means = params["means"].detach().clone()
+    logger.close()
+    assert _snapshots(path) == [0, 4, 8, max_steps - 1]
+    with h5py.File(path, "r") as f:
+        g = f[f"snapshots/{max_steps - 1:06d}"]
+        order = np.argsort(ids.numpy())
+        np.testing.assert_array_equal(g["id"][:], ids.numpy()[order])
+        np.testing.assert_array_equal(g["position"][:], means.numpy()[order])
+    logger.close()  # twice: nothing more
+    assert _snapshots(path) == [0, 4, 8, max_steps - 1]
+    info = dump(path)
+    if require_dump():
+        assert info["snapshots"][-1] == max_steps - 1 and info["counts"][-1] == 23
+
+
+def test_3dgs_loop_ends_with_the_final_model(tmp_path):
+    """train.py runs iterations 1..N: 600 iterations at the default interval 500 ended at
+    500 before; the log now ends with 600. A run that ends on the interval gets no
+    second copy."""
+    for iterations, expected in ((600, [0, 500, 600]), (1000, [0, 500, 1000])):
+        g = GaussianModel(3)
+        g.create_random(30, seed=1)
+        path = str(tmp_path / f"gs3d_{iterations}.h5")
+        logger = TrainingLogger(path, iterations=iterations)
+        track_3dgs(g, logger)
+        for iteration in range(1, iterations + 1):
+            logger.step(iteration)
+        logger.close()
+        assert _snapshots(path) == expected
+
+
+def test_events_carry_the_iteration_of_their_step(tmp_path):
+    """Metrics logged every 10th step only: the events of step 13 are at 13 (they took the
+    iteration of the last log_metrics call, 10, before)."""
+    params, optimizers, state = test_gsplat.make_splats(10, 1)
+    path = str(tmp_path / "events.h5")
+    logger = TrainingLogger(path, snapshot_interval=0)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    made = []
+    for step in range(25):
+        if step % 10 == 0:
+            logger.log_metrics(step, loss=1.0)
+        if step in (0, 13, 17, 20, 24):
+            mask = torch.zeros(len(params["means"]), dtype=torch.bool)
+            mask[step % 5] = True
+            mock_gsplat_ops.duplicate(params, optimizers, state, mask)
+            made.append(step)
+        if step == 21:
+            mask = torch.zeros(len(params["means"]), dtype=torch.bool)
+            mask[0] = True
+            mock_gsplat_ops.remove(params, optimizers, state, mask)
+            made.append(step)
+        logger.step(step)
+        # metrics of an ended step (logged after step()) do not move events back
+        logger.log_metrics(step, loss=0.5, test=False) if step == 17 else None
+    logger.close()
+    it, kind, _, _ = read_events(path)
+    assert it.tolist() == made
+    assert kind.tolist() == [CLONE, CLONE, CLONE, CLONE, PRUNE, CLONE]
+
+
+def _grow_outside(params, optimizers, n):
+    """A fork's own densification: rows appended without gsplat's ops."""
+    def param_fn(name, p):
+        return torch.nn.Parameter(torch.cat([p, p[:n]]), requires_grad=p.requires_grad)
+
+    def optimizer_fn(key, v):
+        return torch.cat([v, torch.zeros_like(v[:n])])
+
+    mock_gsplat_ops._update_param_with_optimizer(param_fn, optimizer_fn, params, optimizers)
+
+
+def _shrink_outside(params, optimizers, keep):
+    def param_fn(name, p):
+        return torch.nn.Parameter(p[keep], requires_grad=p.requires_grad)
+
+    def optimizer_fn(key, v):
+        return v[keep]
+
+    mock_gsplat_ops._update_param_with_optimizer(param_fn, optimizer_fn, params, optimizers)
+
+
+def test_rows_changed_outside_the_wrappers_break_the_lineage_not_the_training(tmp_path):
+    """A fork adds rows, then removes rows, outside the wrapped ops; a wrapped op and the
+    snapshots follow. Nothing raises; one warning; each break is a row of /lineage_breaks;
+    the appended rows keep the ids before them, after a removal every row is a new root."""
+    params, optimizers, _ = test_gsplat.make_splats(8, 2)
+    state = {}  # the fork keeps no per-row strategy state
+    path = str(tmp_path / "break.h5")
+    logger = TrainingLogger(path, snapshot_interval=2)
+    tracker = track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for step in range(1, 8):
+            logger.log_metrics(step, loss=1.0)
+            if step == 3:
+                _grow_outside(params, optimizers, 3)  # 8 -> 11 rows, ids 8..10 new roots
+                mask = torch.zeros(11, dtype=torch.bool)
+                mask[[1, 9]] = True
+                mock_gsplat_ops.duplicate(params, optimizers, state, mask)  # 11, 12
+            if step == 5:
+                _shrink_outside(params, optimizers, torch.arange(1, 13))  # 13 -> 12 rows
+            if step == 6:
+                mask = torch.zeros(12, dtype=torch.bool)
+                mask[0] = True
+                mock_gsplat_ops.split(params, optimizers, state, mask)
+            logger.step(step)
+        logger.close()
+    ours = [w for w in caught if "vis4gs_logger" in str(w.message)]
+    assert len(ours) == 1 and "lineage lost at iteration 3" in str(ours[0].message)
+    assert len(tracker.breaks) == 2
+    with h5py.File(path, "r") as f:
+        b = f["lineage_breaks"]
+        assert b["iteration"][:].tolist() == [3, 6]
+        assert b["tracked"][:].tolist() == [8, 13] and b["rows"][:].tolist() == [11, 12]
+        assert b["kept"][:].tolist() == [8, 0]
+        assert b["first_new_id"][:].tolist() == [8, 13] and b["new_roots"][:].tolist() == [3, 12]
+        assert b["event_row"][:].tolist() == [0, 2]
+        assert "duplicate" in b["where"].asstr()[0] and "split" in b["where"].asstr()[1]
+        assert f["snapshots/000004/id"][:].tolist() == list(range(13))
+        # after the second break: ids 13..24, the split of row 0 (id 13) gives 25, 26
+        assert f["snapshots/000006/id"][:].tolist() == list(range(14, 27))
+    it, kind, parent, child = read_events(path)
+    assert it.tolist() == [3, 3, 6, 6] and parent.tolist() == [1, 9, 13, 13]
+    assert child.tolist() == [11, 12, 25, 26]
+    check_format(path)
+    info = dump(path)
+    if require_dump():
+        assert info["repairs"] == [] and info["events"] == 4
+        assert info["lineage_breaks"] == [
+            {"iteration": 3, "event_row": 0, "tracked": 8, "rows": 11, "kept": 8,
+             "first_new_id": 8, "new_roots": 3},
+            {"iteration": 6, "event_row": 2, "tracked": 13, "rows": 12, "kept": 0,
+             "first_new_id": 13, "new_roots": 12}]
+
+
+def test_ops_imported_before_tracking_and_failing_bookkeeping(tmp_path, monkeypatch):
+    """A custom strategy that imported gsplat's op before track_gsplat calls the unwrapped
+    op: the next wrapped op finds the rows changed and breaks the lineage. A failure inside
+    the bookkeeping itself is a warning and a break too; the trainer's op still runs, and
+    the trainer's own exceptions still reach it."""
+    params, optimizers, _ = test_gsplat.make_splats(6, 3)
+    state = {}
+    unwrapped_duplicate = mock_gsplat_ops.duplicate
+    path = str(tmp_path / "early.h5")
+    logger = TrainingLogger(path, snapshot_interval=0)
+    tracker = track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        logger.step(0)
+        unwrapped_duplicate(params, optimizers, state, torch.tensor([1, 1, 0, 0, 0, 0]).bool())
+        mock_gsplat_ops.remove(params, optimizers, state, torch.zeros(8, dtype=torch.bool))
+        logger.step(1)
+        monkeypatch.setattr(tracker, "append_children",
+                            lambda *a, **k: (_ for _ in ()).throw(KeyError("boom")))
+        mock_gsplat_ops.duplicate(params, optimizers, state, torch.ones(8, dtype=torch.bool))
+        assert len(params["means"]) == 16  # the op ran
+        logger.step(2)
+        with pytest.raises(IndexError):  # the trainer's own error is not swallowed
+            mock_gsplat_ops.duplicate(params, optimizers, state, torch.ones(40, dtype=torch.bool))
+        logger.close()
+    messages = [str(w.message) for w in caught if "vis4gs_logger" in str(w.message)]
+    assert any("bookkeeping of duplicate failed at iteration 2" in m for m in messages)
+    with h5py.File(path, "r") as f:
+        b = f["lineage_breaks"]
+        assert b["iteration"][:].tolist() == [1, 2]
+        assert b["kept"][:].tolist() == [6, 0] and b["new_roots"][:].tolist() == [2, 16]
+        assert f["snapshots/000002/id"][:].tolist() == list(range(8, 24))
+    info = dump(path)
+    if require_dump():
+        assert info["repairs"] == [] and info["snapshots"] == [0, 2]
+
+
+def test_a_snapshot_that_cannot_be_written_does_not_stop_the_training(tmp_path, monkeypatch):
+    params, optimizers, state = test_gsplat.make_splats(4, 4)
+    path = str(tmp_path / "full.h5")
+    logger = TrainingLogger(path, snapshot_interval=1)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+
+    def full_disk(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    original = logger.writer.write_snapshot
+    monkeypatch.setattr(logger.writer, "write_snapshot", full_disk)
+    with pytest.warns(RuntimeWarning, match="snapshot of iteration 1 could not be written"):
+        logger.step(1)
+        logger.step(2)
+    assert len(logger.snapshot_failures) == 2
+    monkeypatch.setattr(logger.writer, "write_snapshot", original)
+    logger.step(3)
+    logger.close()
+    assert _snapshots(path) == [0, 3]
+
+
+def test_snapshot_options_sh_degree_float16_and_compression(tmp_path):
+    """SH degree kept, float16 colours and a compression level: the stored values are the
+    trainer's (the first (d+1)^2 coefficients; float16 within half a unit in the last place),
+    fewer bytes per Gaussian, and the C++ reader reads them."""
+    params, optimizers, state = test_gsplat.make_splats(2000, 5)
+    with torch.no_grad():
+        params["shN"].normal_()
+    sh = torch.cat([params["sh0"], params["shN"]], dim=1).detach().numpy()
+    sizes = {}
+    for name, options in (("full", {}), ("dc", {"snapshot_sh_degree": 0}),
+                          ("deg1", {"snapshot_sh_degree": 1}),
+                          ("half", {"snapshot_sh_float16": True}),
+                          ("gzip", {"snapshot_deflate": 4})):
+        path = str(tmp_path / f"{name}.h5")
+        logger = TrainingLogger(path, snapshot_interval=0, **options)
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])
+        logger.close()
+        sizes[name] = logger.writer.snapshot_bytes
+        with h5py.File(path, "r") as f:
+            stored = f["snapshots/000000/sh"]
+            k = {"dc": 1, "deg1": 4}.get(name, 16)
+            assert stored.shape == (2000, k, 3)
+            if name == "half":
+                assert stored.dtype == np.float16
+                np.testing.assert_allclose(stored[:], sh, rtol=2 ** -11, atol=2 ** -24)
+            else:
+                assert stored.dtype == np.float32
+                np.testing.assert_array_equal(stored[:], sh[:, :k])
+            assert (stored.compression == "gzip") == (name == "gzip")
+        info = dump(path)
+        if require_dump():
+            assert info["counts"] == [2000] and info["repairs"] == []
+    # ids 8 + position 12 + log_scale 12 + rotation 16 + opacity 4 = 52 bytes, + 12 per
+    # coefficient (6 in float16); chunks are whole rows here, so the sizes are exact.
+    assert sizes["full"] == 2000 * (52 + 16 * 12)
+    assert sizes["dc"] == 2000 * (52 + 12) and sizes["deg1"] == 2000 * (52 + 4 * 12)
+    assert sizes["half"] == 2000 * (52 + 16 * 6)
+    assert sizes["gzip"] < sizes["full"]
+
+
+def test_disk_warning_and_size_budget(tmp_path, monkeypatch):
+    """The projected log (snapshots so far + the last one's size for each one planned)
+    against the free disk: one warning. A budget doubles the interval until the projection
+    fits."""
+    import shutil
+    from collections import namedtuple
+
+    params, optimizers, state = test_gsplat.make_splats(1000, 6)
+    per_snapshot = 1000 * (52 + 16 * 12)
+    usage = namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda p: usage(10 ** 9, 0, 5 * per_snapshot))
+    path = str(tmp_path / "disk.h5")
+    with pytest.warns(RuntimeWarning, match="projected to grow by") as caught:
+        logger = TrainingLogger(path, iterations=100, snapshot_interval=10)
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])  # snapshot 0: 10 more planned
+        for step in range(1, 31):
+            logger.step(step)
+        logger.close()
+    assert len([w for w in caught if "projected" in str(w.message)]) == 1
+    assert _snapshots(path) == [0, 10, 20, 30]
+
+    monkeypatch.setattr(shutil, "disk_usage", lambda p: usage(10 ** 12, 0, 10 ** 11))
+    path = str(tmp_path / "budget.h5")
+    with pytest.warns(RuntimeWarning, match="snapshot interval now 40"):
+        logger = TrainingLogger(path, iterations=100, snapshot_interval=10,
+                                snapshot_budget_bytes=4 * per_snapshot)
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])
+        for step in range(1, 101):
+            logger.step(step)
+        logger.close()
+    # 0, then every 40: 40, 80, and the final model 100 (the budget bounds the planned ones)
+    assert _snapshots(path) == [0, 40, 80, 100]
+
+
+def _png(path, rgb):
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF))
+
+    h, w, _ = rgb.shape
+    raw = b"".join(b"\0" + rgb[y].tobytes() for y in range(h))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def test_analyze_computes_what_needs_no_image_when_an_image_is_bad(tmp_path):
+    """`vis4gs analyze --scores=coverage,needle,shape` on a logger's log whose third
+    training image is not a PNG: exit 0, a warning naming the file, View Coverage and Needle
+    Shape over every view, the Needle score from the readable views: equal to a run where
+    that view has no image at all."""
+    import csv
+    import os
+    import subprocess
+
+    from test_lifecycle import colmap_parser
+
+    exe = os.environ.get("VIS4GS_EXECUTABLE")
+    if not exe:
+        pytest.skip("VIS4GS_EXECUTABLE (the vis4gs program) is not set: run under CTest")
+    parser = colmap_parser(tmp_path / "scene", views=4)
+    rng = np.random.default_rng(7)
+    for i, p in enumerate(parser.image_paths):
+        _png(p, rng.integers(0, 255, (48, 64, 3), dtype=np.uint8))
+    bad = parser.image_paths[2]
+    with open(bad, "wb") as f:
+        f.write(b"this is no PNG")
+    params, _, _ = test_gsplat.make_splats(200, 8)
+    with torch.no_grad():
+        params["means"][:, :2] = torch.rand(200, 2) * 2 - 1
+        params["means"][:, 2] = 4.0 + torch.rand(200)
+        params["scales"][:] = -3.0
+        params["scales"][:, 0] = -1.5  # elongated: a Needle Shape above 0
+        params["opacities"][:] = 2.0
+    path = str(tmp_path / "run" / "training_log.h5")
+    os.makedirs(os.path.dirname(path))
+    logger = TrainingLogger(path, snapshot_interval=0)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    logger.log_gsplat_cameras(parser, test_every=0)
+    logger.close()
+
+    def analyze(out):
+        run = subprocess.run([exe, "analyze", path, "--scores=coverage,needle,shape",
+                              f"--output={out}"], capture_output=True, text=True, timeout=300)
+        assert run.returncode == 0, run.stdout + run.stderr
+        with open(os.path.join(out, "scores.csv")) as f:
+            rows = list(csv.DictReader(f))
+        return run.stdout + run.stderr, rows
+
+    text, rows = analyze(str(tmp_path / "bad"))
+    assert bad in text or os.path.basename(bad) in text, text
+    assert len(rows) == 200
+    coverage = np.array([float(r["ViewCoverage"]) for r in rows])
+    assert coverage.max() == 1.0  # every view counts for coverage, the bad one too
+    os.remove(bad)
+    text2, rows2 = analyze(str(tmp_path / "absent"))
+    for key in ("ViewCoverage", "NeedleScore", "NeedleShape"):
+        assert [r[key] for r in rows] == [r[key] for r in rows2], key
+    assert any(float(r["NeedleScore"]) > 0 for r in rows)
