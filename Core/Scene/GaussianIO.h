@@ -342,6 +342,14 @@ GaussianCloud ReadGaussianScene(const std::string& path,
   const GaussianReadOptions& options = {},
   GaussianReadReport* report = nullptr);
 
+/**
+ * Writes @p text to @p path through a temporary file in the same folder renamed into place (as
+ * every writer here): a failure (a full disk, a read-only folder) leaves no partial file and a
+ * file already at @p path untouched, and throws std::runtime_error naming @p path and the
+ * problem. The commands' tables and reports go through it.
+ */
+void WriteTextFile(const std::string& path, const std::string& text);
+
 namespace detail
 {
 /// A cloud of @p n Gaussians with SH degree @p shDegree (0 when @p options skip SH) whose
