@@ -38,7 +38,8 @@ fi
 # The parsers' libFuzzer targets, for a bounded time (clang + ASan, Core only, own build dir).
 bash "$here/Scripts/run-fuzzers.sh" "${VIS4GS_FUZZ_SECONDS:-15}" "$build-fuzz"
 
-(cd "$build" && xvfb-run -a -s "-screen 0 1920x1080x24" \
+# One X server (Xvfb, -noreset: Scripts/with-display.sh says why) for every test that renders.
+(cd "$build" && bash "$here/Scripts/with-display.sh" --new \
   ctest --output-on-failure --timeout 900 -j "$jobs" "${@:2}")
 
 # The ParaView plugin (Plugins/ParaView, its own build folder): Debian's ParaView packages
@@ -51,5 +52,6 @@ if [ "${VIS4GS_PARAVIEW:-1}" = 1 ]; then
       -DVIS4GS_PROGRAM="$build/bin/vis4gs"
   fi
   cmake --build "$build-paraview" -j "$jobs"
-  ctest --test-dir "$build-paraview" --output-on-failure --timeout 900
+  bash "$here/Scripts/with-display.sh" --new \
+    ctest --test-dir "$build-paraview" --output-on-failure --timeout 900
 fi

@@ -30,10 +30,13 @@
 #endif
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <ctime>
 #include <exception>
 #include <filesystem>
+#include <iostream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -114,6 +117,21 @@ double ProcessCpuNow()
 double ThreadCpuNow()
 {
   return CpuClock(CLOCK_THREAD_CPUTIME_ID);
+}
+
+// A reader's error as collected, "ERROR: In <source>, line <n>\n<class> (<address>): <text>\n\n",
+// reduced to <text> for the tree view and the warnings a user reads.
+std::string PlainError(const std::string& collected)
+{
+  static const std::regex vtkPrefix(
+    "ERROR: In [^\n]*, line [0-9]+\n[A-Za-z0-9_]+ \\(0x[0-9a-fA-F]+\\): ");
+  std::string text = std::regex_replace(collected, vtkPrefix, "");
+  text = std::regex_replace(text, std::regex("\\s*\n\\s*"), " ");
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+  {
+    text.pop_back();
+  }
+  return text;
 }
 
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
@@ -314,7 +332,7 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       report(0.2, "reading the last snapshot and the events");
       try
       {
-        doc->LoadIteration(doc->Snapshots.back());
+        doc->LoadLatestReadableSnapshot();
       }
       catch (...)
       {
@@ -332,16 +350,19 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       genealogyThread.join();
       stage("waiting for the genealogy");
       timings << genealogyTimes;
-      if (!readError.empty())
+      if (readError.empty())
       {
-        throw std::runtime_error(readError);
+        text << "events: " << eventCount << "\n";
       }
-      text << "events: " << eventCount << "\n";
       if (!genealogyError.empty())
       {
-        // The views that need no genealogy stay usable.
+        // Damaged events (the reader's error) or a genealogy that cannot be built: the views
+        // that need no genealogy stay usable, and the tree view says why it is empty.
         doc->Tree = nullptr;
         doc->Bands = nullptr;
+        doc->TreeUnavailable =
+          "The densification tree cannot be shown: " + PlainError(genealogyError);
+        doc->Warnings.push_back(doc->TreeUnavailable + " (the other views are open)");
         text << "genealogy: could not be built: " << genealogyError << "\n";
       }
       else if (doc->Tree)
@@ -362,6 +383,35 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   text << "\n";
   doc->Summary = text.str();
   return doc;
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSDocument::LoadLatestReadableSnapshot()
+{
+  std::string errors;
+  while (!this->Snapshots.empty())
+  {
+    try
+    {
+      this->LoadIteration(this->Snapshots.back());
+      break;
+    }
+    catch (const std::exception& e)
+    {
+      // Left out of the iteration slider: the snapshots before it stay usable.
+      errors += (errors.empty() ? "" : "; ") + PlainError(e.what());
+      this->Snapshots.pop_back();
+    }
+  }
+  if (this->Snapshots.empty())
+  {
+    throw std::runtime_error(this->Path + ": no snapshot can be read: " + errors);
+  }
+  if (!errors.empty())
+  {
+    this->Warnings.push_back("snapshots that cannot be read are left out (" + errors +
+      "); showing iteration " + std::to_string(this->Iteration));
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -578,7 +628,16 @@ void Vis4GSDocument::DumpInputs(const std::string& folder, vtkPolyData* scores) 
   }
   if (this->Reader && this->Scene)
   {
-    write(tables, this->History(this->HistoryDumpSelection()), "history.vtt");
+    try
+    {
+      write(tables, this->History(this->HistoryDumpSelection()), "history.vtt");
+    }
+    catch (const std::exception& e)
+    {
+      // The history reads every snapshot: one that cannot be read leaves it out (the window's
+      // timeline says so in the status bar); the other inputs are written.
+      std::cerr << "vis4gs view: warning: no property history: " << PlainError(e.what()) << "\n";
+    }
   }
   if (this->Tree)
   {
@@ -605,6 +664,10 @@ void Vis4GSDocument::LoadAndDumpInputs(const std::string& path,
   const std::string& folder)
 {
   const std::shared_ptr<Vis4GSDocument> doc = Load(path, Progress(), cameras);
+  for (const std::string& warning : doc->Warnings)
+  {
+    std::cerr << "vis4gs view: warning: " << warning << "\n";
+  }
   vtkSmartPointer<vtkTable> scoreCameras = doc->ScoreCameras();
   vtkSmartPointer<vtkPolyData> scores;
   if (doc->Scene)

@@ -49,8 +49,14 @@ struct Vis4GSDocument
   /// snapshot list and sizes and the property history (the text of panel C, History()).
   vtkSmartPointer<vtkGaussianTrainingLogReader> Reader;
   std::vector<int> Snapshots;
-  int Iteration = -1;   ///< iteration of Scene (-1 for a PLY)
-  std::string Summary;  ///< training log text for panel C
+  int Iteration = -1;  ///< iteration of Scene (-1 for a PLY)
+  std::string Summary; ///< training log text for panel C
+  /// Why the tree view is empty although the log has events (they are damaged: the reader's or
+  /// the genealogy filter's error); empty when the tree is there or the log has no events.
+  std::string TreeUnavailable;
+  /// What Load() could not open while the rest of the file opened (damaged events, a snapshot
+  /// that cannot be read): the window and --dump-inputs say each once, on standard error.
+  std::vector<std::string> Warnings;
   double Seconds = 0.0; ///< load time
 
   /// Progress callback: fraction in [0, 1] and a message; a negative fraction is a step of
@@ -58,7 +64,10 @@ struct Vis4GSDocument
   using Progress = std::function<void(double, const std::string&)>;
 
   /**
-   * Loads @p path; throws std::runtime_error naming the file on failure. A scene file gets
+   * Loads @p path; throws std::runtime_error naming the file on failure. Damaged parts of a log
+   * do not fail the load when the rest is intact: damaged events leave the tree out
+   * (TreeUnavailable), a last snapshot that cannot be read is replaced by the latest one that
+   * can (and left out of Snapshots); both go to Warnings. A scene file gets
    * the cameras of @p cameras (Vis4GSFindSceneCameras(); a log has its own and ignores both)
    * and the training images of @p images, matched to them by name (Vis4GSAttachImagesByName(),
    * in the table's Image column).
@@ -70,6 +79,9 @@ struct Vis4GSDocument
 
   /// Replaces Scene with the snapshot nearest @p iteration (logs only); returns its iteration.
   int LoadIteration(int iteration);
+  /// LoadIteration() of the last snapshot, else of the latest one that can be read: those that
+  /// cannot are removed from Snapshots and named in Warnings. Throws when none can be read.
+  void LoadLatestReadableSnapshot();
 
   /**
    * Property history of @p ids across the snapshots, the long table

@@ -54,6 +54,7 @@
 #include <QScrollArea>
 #include <QSlider>
 #include <QSpinBox>
+#include <QStackedWidget>
 #include <QStatusBar>
 #include <QTemporaryDir>
 #include <QThread>
@@ -84,6 +85,8 @@ struct Vis4GSMainWindow::Internals
   std::unique_ptr<QTemporaryDir> ImageDir;
   // B, D, histogram.
   QVTKOpenGLNativeWidget* TreeWidget = nullptr;
+  QStackedWidget* TreeStack = nullptr; // the tree, or TreeMessage: why the log has none
+  QLabel* TreeMessage = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> TreeWindow;
   vtkNew<vtkGaussianTreeView> Tree;
   QVTKOpenGLNativeWidget* TimelineWidget = nullptr;
@@ -264,7 +267,13 @@ void Vis4GSMainWindow::BuildUi()
   d->Tree->SetRenderWindow(d->TreeWindow);
   d->Tree->SetInteractor(d->TreeWindow->GetInteractor());
   d->Tree->SetSelectionHub(d->Hub);
-  makeDock(1, "B. Densification tree", d->TreeWidget, Qt::RightDockWidgetArea);
+  d->TreeMessage = new QLabel;
+  d->TreeMessage->setWordWrap(true);
+  d->TreeMessage->setAlignment(Qt::AlignCenter);
+  d->TreeStack = new QStackedWidget;
+  d->TreeStack->addWidget(d->TreeWidget);
+  d->TreeStack->addWidget(d->TreeMessage);
+  makeDock(1, "B. Densification tree", d->TreeStack, Qt::RightDockWidgetArea);
 
   // D: timeline.
   d->TimelineWidget = makeVtkWidget(d->TimelineWindow);
@@ -528,7 +537,8 @@ void Vis4GSMainWindow::BuildUi()
 void Vis4GSMainWindow::LayoutForDocument()
 {
   const Vis4GSDocument* doc = d->Doc.get();
-  const bool tree = doc && doc->Tree != nullptr;
+  // A log whose events are damaged shows the tree view, saying why it is empty.
+  const bool tree = doc && (doc->Tree != nullptr || !doc->TreeUnavailable.empty());
   const bool timeline = doc && doc->Metrics != nullptr;
   const bool cameras = doc && doc->Cameras && doc->Cameras->GetNumberOfRows() > 0;
   const bool snapshots = doc && doc->Snapshots.size() > 1;
@@ -746,6 +756,12 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Hub->ClearSelection();
   this->setWindowTitle("Vis4GS - " + QFileInfo(QString::fromStdString(doc->Path)).fileName());
   d->Panel->LogText->setPlainText(QString::fromStdString(doc->Summary));
+  for (const std::string& warning : doc->Warnings) // said once, here
+  {
+    std::cerr << "vis4gs view: warning: " << warning << "\n";
+  }
+  d->TreeMessage->setText(QString::fromStdString(doc->TreeUnavailable));
+  d->TreeStack->setCurrentIndex(doc->Tree || doc->TreeUnavailable.empty() ? 0 : 1);
   this->LayoutForDocument();
   d->Tree->SetTree(doc->Tree);
   d->Tree->SetFamilyBands(doc->Bands);

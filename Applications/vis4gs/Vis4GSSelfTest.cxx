@@ -47,6 +47,7 @@
 #include <QListWidget>
 #include <QMenuBar>
 #include <QSlider>
+#include <QStackedWidget>
 #include <QStatusBar>
 #include <QTimer>
 
@@ -172,7 +173,20 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
   {
     // The layout shows exactly the views with data, and they fill the window between the
     // menu and the status bar (no large empty area).
-    const bool has[5] = { true, doc->Tree != nullptr, true, doc->Metrics != nullptr, true };
+    // (A log with damaged events shows the tree view with the reason it is empty.)
+    const bool has[5] = { true,
+      doc->Tree != nullptr || !doc->TreeUnavailable.empty(),
+      true,
+      doc->Metrics != nullptr,
+      true };
+    if (!doc->TreeUnavailable.empty())
+    {
+      auto* stack = qobject_cast<QStackedWidget*>(docks[1]->widget());
+      auto* label = stack ? qobject_cast<QLabel*>(stack->currentWidget()) : nullptr;
+      check(label && label->isVisible() && label->text().toStdString() == doc->TreeUnavailable &&
+          !doc->Tree,
+        "the tree view says why it is empty: " + doc->TreeUnavailable);
+    }
     long long covered = 0;
     for (int k = 0; k < 5; ++k)
     {

@@ -25,6 +25,7 @@
 #include "Vis4GSMPI.h"
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
+#include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSceneReader.h"
 #include "vtkGaussianTrainingLogReader.h"
@@ -438,7 +439,7 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
     vis4gs::MeasureRemovalEffect(cloud, selected, cameras, options, Vis4GSLoadViewImage);
   const double seconds = Since(t0);
   {
-    std::ofstream csv(folder / "before-after.csv");
+    std::ostringstream csv;
     csv << "view,split,affected,psnr_before,psnr_after,ssim_before,ssim_after,l1_before,l1_after\n"
         << std::setprecision(9);
     auto row = [&csv](const std::string& view,
@@ -461,10 +462,7 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
         v.Before,
         v.After);
     }
-    if (!csv)
-    {
-      throw std::runtime_error((folder / "before-after.csv").string() + ": could not be written");
-    }
+    vis4gs::WriteTextFile((folder / "before-after.csv").string(), csv.str());
   }
   std::cout << "vis4gs analyze: deleting " << effect.Removed << " Gaussians: training PSNR "
             << effect.Train.Before.Psnr << " -> " << effect.Train.After.Psnr << " dB ("
@@ -562,50 +560,6 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
   }
   return html.str();
 }
-
-// ---------------------------------------------------------------------------------------
-// The outputs go to a hidden folder inside the output folder and are moved into place only when
-// all of them are written, so a failure (or a process killed under MPI) leaves no partial
-// scores.csv, scores.ply or report.html; the hidden folder is removed on failure when possible.
-class StagingFolder
-{
-public:
-  explicit StagingFolder(const fs::path& output)
-    : Output(output)
-    , Path(output / (".vis4gs-analyze-partial-" + std::to_string(::getpid())))
-  {
-    fs::create_directories(this->Path);
-  }
-  ~StagingFolder()
-  {
-    std::error_code ec;
-    fs::remove_all(this->Path, ec);
-  }
-  StagingFolder(const StagingFolder&) = delete;
-  StagingFolder& operator=(const StagingFolder&) = delete;
-
-  const fs::path& Get() const { return this->Path; }
-
-  // Renames every file into the output folder (report.html last: it marks a complete run).
-  void Commit()
-  {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(this->Path))
-    {
-      files.push_back(entry.path());
-    }
-    std::stable_partition(
-      files.begin(), files.end(), [](const fs::path& p) { return p.filename() != "report.html"; });
-    for (const fs::path& file : files)
-    {
-      fs::rename(file, this->Output / file.filename());
-    }
-  }
-
-private:
-  fs::path Output;
-  fs::path Path;
-};
 
 int Run(const Vis4GSArguments& args)
 {
@@ -813,8 +767,7 @@ int Run(const Vis4GSArguments& args)
 
   // Outputs.
   t0 = Clock::now();
-  fs::create_directories(output);
-  StagingFolder staging(output);
+  Vis4GSStagingFolder staging(output, "analyze");
   vis4gs::GaussianCloud withScores = cloud;
   for (const auto& [name, values] : scores)
   {
@@ -839,7 +792,7 @@ int Run(const Vis4GSArguments& args)
   }
   vis4gs::WriteGaussianPly((staging.Get() / "scores.ply").string(), withScores);
   {
-    std::ofstream csv(staging.Get() / "scores.csv");
+    std::ostringstream csv;
     csv << "GaussianId";
     for (const auto& s : scores)
     {
@@ -860,10 +813,7 @@ int Run(const Vis4GSArguments& args)
       }
       csv << "\n";
     }
-    if (!csv)
-    {
-      throw std::runtime_error((output / "scores.csv").string() + ": could not be written");
-    }
+    vis4gs::WriteTextFile((staging.Get() / "scores.csv").string(), csv.str());
   }
   // Top-k: highest blur/needle/shape, lowest coverage (floaters).
   std::map<std::string, std::vector<std::size_t>> tops;
@@ -909,10 +859,10 @@ int Run(const Vis4GSArguments& args)
     }
     const std::vector<std::uint8_t> selected = rule->Evaluate(inputs);
     const std::string canonical = rule->ToString();
-    std::ofstream(staging.Get() / "selection-rule.txt") << canonical << "\n";
+    vis4gs::WriteTextFile((staging.Get() / "selection-rule.txt").string(), canonical + "\n");
     std::size_t count = 0;
     {
-      std::ofstream csv(staging.Get() / "selection.csv");
+      std::ostringstream csv;
       csv << "GaussianId\n";
       for (std::size_t i = 0; i < cloud.Count; ++i)
       {
@@ -922,10 +872,7 @@ int Run(const Vis4GSArguments& args)
           ++count;
         }
       }
-      if (!csv)
-      {
-        throw std::runtime_error((output / "selection.csv").string() + ": could not be written");
-      }
+      vis4gs::WriteTextFile((staging.Get() / "selection.csv").string(), csv.str());
     }
     std::cout << "vis4gs analyze: rule '" << canonical << "' selects " << count << " of "
               << cloud.Count << " Gaussians\n";
@@ -1017,7 +964,7 @@ int Run(const Vis4GSArguments& args)
   const double tOutputs = Since(t0);
 
   // HTML report.
-  std::ofstream html(staging.Get() / "report.html");
+  std::ostringstream html;
   html << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>vis4gs analyze: "
        << Vis4GSHtml(scene) << "</title><style>body{font-family:sans-serif;margin:2em}"
        << "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
@@ -1089,11 +1036,7 @@ int Run(const Vis4GSArguments& args)
     html << "</table>\n";
   }
   html << "<p>Total " << Since(start) << " s.</p></body></html>\n";
-  if (!html)
-  {
-    throw std::runtime_error((output / "report.html").string() + ": could not be written");
-  }
-  html.close();
+  vis4gs::WriteTextFile((staging.Get() / "report.html").string(), html.str());
   staging.Commit();
   std::cout << "vis4gs analyze: wrote " << (output / "report.html").string() << ", scores.csv, "
             << "scores.ply and " << overlays.size() << " overlay images\n";

@@ -13,13 +13,13 @@
 #include "StateComparison.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSSceneCameras.h"
+#include "Vis4GSStagingFolder.h"
 #include "Vis4GSStateFiles.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -137,22 +137,6 @@ std::vector<vis4gs::Camera> FindCameras(const Vis4GSArguments& args,
   return cameras;
 }
 
-// Writes @p text to @p path through a temporary file, so a failure leaves no partial file.
-void WriteText(const fs::path& path, const std::string& text)
-{
-  const fs::path temporary = path.string() + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out)
-    {
-      throw std::runtime_error(path.string() + ": could not be written");
-    }
-  }
-  fs::rename(temporary, path);
-}
-
 std::string Number(double v, int precision = 4)
 {
   std::ostringstream out;
@@ -257,7 +241,7 @@ int Run(const Vis4GSArguments& args)
   }
 
   const fs::path output = args.Get("output");
-  fs::create_directories(output);
+  Vis4GSStagingFolder staging(output, "compare");
   {
     std::ostringstream csv;
     csv << "id,status,dmove,dopacity,dscale\n" << std::setprecision(9);
@@ -266,7 +250,7 @@ int Run(const Vis4GSArguments& args)
       csv << d.Id << "," << vis4gs::StateChangeName(d.Change) << "," << d.Move << "," << d.Opacity
           << "," << d.Scale << "\n";
     }
-    WriteText(output / "differences.csv", csv.str());
+    vis4gs::WriteTextFile((staging.Get() / "differences.csv").string(), csv.str());
   }
 
   // metrics.csv: source a / b (the states, per view and "mean" per split), log-a / log-b (the
@@ -336,7 +320,7 @@ int Run(const Vis4GSArguments& args)
       }
     }
   }
-  WriteText(output / "metrics.csv", csv.str());
+  vis4gs::WriteTextFile((staging.Get() / "metrics.csv").string(), csv.str());
 
   std::ostringstream html;
   html << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>vis4gs compare</title>"
@@ -388,7 +372,8 @@ int Run(const Vis4GSArguments& args)
     html << "<h2>Metric curves</h2>" << Curves(curves);
   }
   html << "<p>Files: differences.csv (one row per id), metrics.csv.</p></body></html>\n";
-  WriteText(output / "report.html", html.str());
+  vis4gs::WriteTextFile((staging.Get() / "report.html").string(), html.str());
+  staging.Commit();
   std::cout << "vis4gs compare: wrote " << (output / "differences.csv").string() << ", "
             << (output / "metrics.csv").string() << ", " << (output / "report.html").string()
             << "\n";

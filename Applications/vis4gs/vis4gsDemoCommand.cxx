@@ -7,8 +7,10 @@
 // densification tree to its root, with the View Coverage of each ancestor at the snapshot
 // nearest its birth.
 #include "Vis4GSCommand.h"
+#include "Vis4GSStagingFolder.h"
 
 #include "ArtifactScores.h"
+#include "GaussianIO.h"
 #include "Genealogy.h"
 #include "TrainingLogReader.h"
 
@@ -43,22 +45,6 @@ const char* KindName(vis4gs::BirthKind kind)
       return "clone-split";
   }
   return "?";
-}
-
-// Writes @p text to a file beside @p path and renames it over @p path: a failed write
-// leaves no half file.
-void WriteReplacing(const fs::path& path, const std::string& text)
-{
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream file(partial);
-    file << text;
-    if (!file)
-    {
-      throw std::runtime_error(path.string() + ": could not be written");
-    }
-  }
-  fs::rename(partial, path);
 }
 
 void Define(Vis4GSArguments& args)
@@ -228,7 +214,7 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
     }
   }
   std::cout << text.str();
-  WriteReplacing(output / "root-cause.txt", text.str());
+  vis4gs::WriteTextFile((output / "root-cause.txt").string(), text.str());
   // The report names the traced floater too, so that it reads as one diagnosis.
   const fs::path report = output / "report.html";
   std::ifstream in(report);
@@ -239,9 +225,8 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
     throw std::runtime_error(report.string() + ": analyze's report is missing or incomplete");
   }
   html.insert(end, "<h2>Root-cause trace</h2><pre>" + Vis4GSHtml(text.str()) + "</pre>\n");
-  WriteReplacing(report, html);
-  std::cout << "vis4gs demo: wrote " << (output / "root-cause.txt").string()
-            << " and added the trace to " << report.string() << "\n";
+  vis4gs::WriteTextFile(report.string(), html);
+  std::cout << "vis4gs demo: wrote root-cause.txt and added the trace to report.html\n";
   return 0;
 }
 
@@ -258,14 +243,20 @@ int Run(const Vis4GSArguments& args)
     std::cout << "vis4gs demo: opening " << log << " (use --no-gui for the batch report)\n";
     return RunCommand("view", { log, "--welcome" });
   }
+  // analyze's outputs and the trace are moved into the output folder together, so that a
+  // failure (a full disk) leaves an earlier run's report and trace as they were.
   const fs::path output = args.Get("output");
+  Vis4GSStagingFolder staging(output, "demo");
   const int analyzed = RunCommand("analyze",
-    { log, "--output=" + output.string(), "--top=" + args.Get("top"), "--overlay-views=3" });
+    { log, "--output=" + staging.Get().string(), "--top=" + args.Get("top"), "--overlay-views=3" });
   if (analyzed != 0)
   {
     return analyzed;
   }
-  return CaseStudy(log, output, args.GetDouble("min-opacity"));
+  const int traced = CaseStudy(log, staging.Get(), args.GetDouble("min-opacity"));
+  staging.Commit();
+  std::cout << "vis4gs demo: wrote " << output.string() << "\n";
+  return traced;
 }
 }
 

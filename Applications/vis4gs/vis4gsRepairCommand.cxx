@@ -11,15 +11,16 @@
 // (RemovalEffect.h's figures).
 #include "Vis4GSCommand.h"
 #include "Vis4GSSceneCameras.h"
+#include "Vis4GSStagingFolder.h"
 
 #include "FineTune.h"
+#include "GaussianIO.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSStateFiles.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -185,7 +186,8 @@ int Run(const Vis4GSArguments& args)
             << " Gaussians, " << prunes.size() << " deleted in " << cleanedPath << "\n";
 
   const fs::path output = args.Get("output");
-  fs::create_directories(output);
+  // Both outputs are moved into place together: a failure leaves an earlier run's pair as it was.
+  Vis4GSStagingFolder staging(output, "repair");
   const fs::path logOut = output / "repaired.h5";
   vis4gs::FineTuneOptions options;
   options.Iterations = iterations;
@@ -195,7 +197,7 @@ int Run(const Vis4GSArguments& args)
   options.Densify = args.GetFlag("densify");
   options.Seed = static_cast<std::uint64_t>(std::stoull(args.Get("seed")));
   options.Threads = args.GetInt("threads");
-  options.LogPath = logOut.string();
+  options.LogPath = (staging.Get() / logOut.filename()).string();
   options.Producer = std::string("vis4gs repair ") + VIS4GS_VERSION;
   // A scene file's images are embedded so that the repaired log stands on its own.
   options.Scene = log ? log->GetHeader().Scene : fs::path(sourcePath).stem().string();
@@ -226,16 +228,8 @@ int Run(const Vis4GSArguments& args)
     }
   }
   const fs::path csvPath = output / "repair.csv";
-  {
-    std::ofstream out(csvPath.string() + ".partial");
-    out << csv.str();
-    out.close();
-    if (!out)
-    {
-      throw std::runtime_error(csvPath.string() + ": could not be written");
-    }
-  }
-  fs::rename(csvPath.string() + ".partial", csvPath);
+  vis4gs::WriteTextFile((staging.Get() / csvPath.filename()).string(), csv.str());
+  staging.Commit();
   std::cout << "vis4gs repair: wrote " << logOut.string() << " (" << prunes.size()
             << " prune events at iteration " << source << ", iterations " << source + 1 << ".."
             << result.LastIteration << ", " << result.TrainSeconds / iterations

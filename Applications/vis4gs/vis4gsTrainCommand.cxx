@@ -32,7 +32,10 @@ void Define(Vis4GSArguments& args)
   args.AddPositional("DATASET",
     "COLMAP dataset folder, NeRF-synthetic / instant-ngp folder or transforms*.json, or a "
     "synthetic scene description (.json).");
-  args.AddOption("output", "LOG.h5", "training-log.h5", "Training log to write (HDF5, DESIGN §3).");
+  args.AddOption("output",
+    "LOG.h5",
+    "training-log.h5",
+    "Training log to write (HDF5, DESIGN §3), as LOG.h5.tmp while the trainer runs.");
   args.AddOption("iterations", "N", "30000", "Number of training iterations.");
   args.AddFlag("schedule-scale",
     false,
@@ -156,7 +159,15 @@ int Run(const Vis4GSArguments& args)
   wo.ShDegree = o.ShDegree;
   wo.Iterations = o.Iterations;
   wo.SnapshotDeflateLevel = args.GetInt("snapshot-deflate");
+  // Written as <output>.tmp and renamed when the training ends (interrupted too: the log is
+  // valid then), so that a failure (a full disk, a read-only folder) leaves no partial log and
+  // an earlier log at --output as it was. A killed trainer leaves the temporary, readable up to
+  // its last snapshot.
+  wo.WriteToTemporary = true;
   vis4gs::TrainingLogWriter log(output, wo);
+  std::cout << "vis4gs train: writing " << output << ".tmp (renamed to " << output
+            << " at the end)\n"
+            << std::flush;
 
   StopRequested = false;
   auto previous = std::signal(SIGINT, OnInterrupt);

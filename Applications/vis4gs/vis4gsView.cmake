@@ -342,4 +342,21 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" "${_vis4gs_view_dir}/dump-inputs")
   set_tests_properties(vis4gs-ViewInputsMatchScript PROPERTIES
     ENVIRONMENT "PYTHONPATH=${VIS4GS_PYTHONPATH};PYTHONDONTWRITEBYTECODE=1")
+  # A log with damaged parts opens with what is intact (issue 35): damaged events (the tree view
+  # says why it is empty) and an unreadable last snapshot (the one before it is shown), the
+  # views' inputs against h5py's reading; the window's scripted session on the damaged events.
+  foreach (_vis4gs_case IN ITEMS events snapshot)
+    add_test(NAME vis4gs-ViewDamagedLog-${_vis4gs_case}
+      COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckDamagedLog.py"
+        ${_vis4gs_case} "$<TARGET_FILE:vis4gs>" "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
+        "${_vis4gs_view_dir}/damaged-${_vis4gs_case}")
+    set_tests_properties(vis4gs-ViewDamagedLog-${_vis4gs_case} PROPERTIES
+      LABELS "Application;Python" FAIL_REGULAR_EXPRESSION "FAILED")
+  endforeach ()
+  add_test(NAME vis4gs-ViewDamagedLog-events-SelfTest
+    COMMAND "${VIS4GS_SYSTEM_PYTHON}" "${CMAKE_CURRENT_SOURCE_DIR}/Testing/CheckDamagedLog.py"
+      events "$<TARGET_FILE:vis4gs>" "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
+      "${_vis4gs_view_dir}/damaged-events-self-test" --self-test)
+  set_tests_properties(vis4gs-ViewDamagedLog-events-SelfTest PROPERTIES
+    LABELS "Application;GUI;Python" FAIL_REGULAR_EXPRESSION "FAILED")
 endif ()

@@ -447,6 +447,14 @@ std::string WriteGaussianScene(const std::string& path,
   const GaussianCloud& cloud,
   const SceneWriteOptions& options = {});
 
+/**
+ * Writes @p text to @p path through a temporary file in the same folder renamed into place (as
+ * every writer here): a failure (a full disk, a read-only folder) leaves no partial file and a
+ * file already at @p path untouched, and throws std::runtime_error naming @p path and the
+ * problem. The commands' tables and reports go through it.
+ */
+void WriteTextFile(const std::string& path, const std::string& text);
+
 namespace detail
 {
 /// "N Gaussians written, L left out (...); quantisation error max/RMS: a max/rms; ..." for the

@@ -9,6 +9,7 @@
 #include <jpeglib.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <csetjmp>
 #include <cstring>
@@ -444,9 +445,11 @@ void WritePng8(const std::string& path,
     {
       if (!png_image_write_to_stdio(&img, f, 0, pixels, 0, nullptr))
       {
-        const std::string msg = img.message;
+        // libpng says only "Write Error"; the stream's errno says why (a full disk).
+        const int error = errno;
+        const std::string why = std::ferror(f) && error != 0 ? std::strerror(error) : img.message;
         png_image_free(&img);
-        throw std::runtime_error(path + ": cannot write PNG: " + msg);
+        throw std::runtime_error(path + ": cannot write PNG: " + why);
       }
     });
 }

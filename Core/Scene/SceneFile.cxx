@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SceneFile.h"
+#include "GaussianIO.h"
 
 #include <algorithm>
 #include <cctype>
@@ -372,4 +373,11 @@ void WriteFileAtomically(const std::string& path, const std::function<void(std::
 }
 
 } // namespace detail
+
+//------------------------------------------------------------------------------
+void WriteTextFile(const std::string& path, const std::string& text)
+{
+  detail::WriteFileAtomically(
+    path, [&](std::FILE* f) { detail::WriteBytes(f, text.data(), text.size(), path); });
+}
 } // namespace vis4gs

@@ -4,6 +4,15 @@
 #include <algorithm>
 #include <cstring>
 
+namespace
+{
+// HDF5 closes every file still open in an exit handler. A file whose writes failed (a full
+// disk) cannot be closed, and HDF5 1.10's handler then crashes (SIGSEGV in H5F__close_cb) after
+// the program has reported the error; it must run before any other HDF5 call to take effect.
+// Every writer here closes its files itself, and a log is valid up to its last flush anyway.
+const bool NoHdf5ExitHandler = H5dont_atexit() >= 0;
+}
+
 namespace vis4gs
 {
 namespace h5
@@ -76,6 +85,16 @@ std::string LastErrorMessage()
 {
   std::string message;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, &InnermostMessage, &message);
+  // A failed system call: HDF5's file driver message holds the time, the buffer address and the
+  // byte counts around the one part a person needs, the system's "error message = '...'".
+  const std::string key = "error message = '";
+  const std::size_t start = message.find(key);
+  const std::size_t end =
+    start == std::string::npos ? start : message.find('\'', start + key.size());
+  if (end != std::string::npos)
+  {
+    return message.substr(start + key.size(), end - start - key.size());
+  }
   return message;
 }
 

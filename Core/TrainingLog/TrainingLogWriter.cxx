@@ -3,8 +3,12 @@
 
 #include "TrainingLogHDF5.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace vis4gs
 {
@@ -59,6 +63,31 @@ struct TrainingLogWriter::Internals
   bool CamerasWritten = false;
   int LastSnapshot = -1;
   bool Closed = false;
+  bool Renamed = false; ///< WriteToTemporary: the temporary became Path
+
+  /// Closes every handle without flushing and removes the file being written: what a failed
+  /// writer leaves when no partial file may stay.
+  void Discard()
+  {
+    h5::ErrorSilencer silence;
+    this->Closed = true;
+    this->Train = MetricsSink();
+    this->Test = MetricsSink();
+    for (auto& e : this->EventSets)
+    {
+      e.Reset();
+    }
+    void* handle = nullptr;
+    if (this->File.Valid() && H5Fget_vfd_handle(this->File, H5P_DEFAULT, &handle) >= 0 && handle)
+    {
+      // Gives the bytes written back to a full file system first, so that HDF5 can write its
+      // metadata and close the file: a file it fails to close stays open in the library, whose
+      // exit handler then crashes (HDF5 1.10, in H5F__close_cb).
+      [[maybe_unused]] const int truncated = ::ftruncate(*static_cast<int*>(handle), 0);
+    }
+    this->File = h5::Handle();
+    std::remove(this->WritePath.c_str());
+  }
 
   void CreateMetrics(MetricsSink& sink, const std::string& groupPath)
   {
@@ -217,9 +246,39 @@ TrainingLogWriter::TrainingLogWriter(const std::string& path,
   H5Pset_file_locking(fapl, false, true);
 #endif
 
-  d.File = h5::Handle(h5::Check(H5Fcreate(d.WritePath.c_str(), H5F_ACC_TRUNC, fcpl, fapl),
-    d.WritePath,
-    "cannot create the training log"));
+  const bool existed = ::access(d.WritePath.c_str(), F_OK) == 0;
+  const hid_t file = H5Fcreate(d.WritePath.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+  if (file < 0)
+  {
+    // A full disk fails the first write after the file was made: no empty file stays (a file
+    // that was there is left alone unless it is our own temporary).
+    const std::string why = h5::LastErrorMessage();
+    H5Eclear2(H5E_DEFAULT);
+    if (!existed || options.WriteToTemporary)
+    {
+      std::remove(d.WritePath.c_str());
+    }
+    throw std::runtime_error(d.WritePath + ": cannot create the training log" +
+      (why.empty() ? std::string() : " (" + why + ")"));
+  }
+  d.File = h5::Handle(file);
+  try
+  {
+    this->WriteHeader();
+  }
+  catch (...)
+  {
+    // A full disk: no log (not even an empty one) stays behind.
+    d.Discard();
+    throw;
+  }
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::WriteHeader()
+{
+  Internals& d = *this->Impl;
+  const TrainingLogWriterOptions& options = d.Options;
   h5::WriteStringAttribute(d.File, "format", "vis4gs-training-log");
   h5::WriteIntAttribute(d.File, "format_version", 1);
   h5::WriteStringAttribute(d.File, "producer", options.Producer);
@@ -262,6 +321,14 @@ TrainingLogWriter::TrainingLogWriter(const std::string& path,
 //------------------------------------------------------------------------------
 TrainingLogWriter::~TrainingLogWriter()
 {
+  Internals& d = *this->Impl;
+  if (d.Options.WriteToTemporary && !d.Renamed)
+  {
+    // Not closed (an exception unwinds the owner), or Close() failed: the temporary is
+    // incomplete, and what is at Path stays as it was.
+    d.Discard();
+    return;
+  }
   try
   {
     this->Close();
@@ -628,9 +695,14 @@ void TrainingLogWriter::Close()
   {
     h5::Fail(d.WritePath, "cannot close the training log");
   }
-  if (d.Options.WriteToTemporary && std::rename(d.WritePath.c_str(), d.Path.c_str()) != 0)
+  if (d.Options.WriteToTemporary)
   {
-    throw std::runtime_error(d.Path + ": cannot rename " + d.WritePath + " onto it");
+    if (std::rename(d.WritePath.c_str(), d.Path.c_str()) != 0)
+    {
+      throw std::runtime_error(
+        d.Path + ": cannot rename " + d.WritePath + " onto it: " + std::strerror(errno));
+    }
+    d.Renamed = true;
   }
 }
 

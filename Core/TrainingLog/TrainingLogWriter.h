@@ -10,7 +10,10 @@
  * leaves a log that reads up to its last flush (tested by SIGKILL-ing a writer).
  *
  * With WriteToTemporary a whole file is written under "<path>.tmp" and renamed onto
- * @c path by Close(), so that a reader never sees a half-written file.
+ * @c path by Close(), so that a reader never sees a half-written file; a writer destroyed
+ * without a successful Close() (an error unwinds its owner: a full disk) removes the temporary
+ * and leaves what was at @c path untouched. A constructor that fails once the file exists
+ * removes it, in both modes.
  *
  * Errors throw std::runtime_error naming the file.
  */
@@ -67,7 +70,8 @@ class TrainingLogWriter
 public:
   /// Creates (truncates) @p path and writes the root attributes; throws on failure.
   TrainingLogWriter(const std::string& path, const TrainingLogWriterOptions& options = {});
-  /// Closes the file (errors are swallowed; call Close() to see them).
+  /// Closes the file (errors are swallowed; call Close() to see them); with WriteToTemporary
+  /// and no successful Close(), removes the temporary instead.
   ~TrainingLogWriter();
   TrainingLogWriter(const TrainingLogWriter&) = delete;
   TrainingLogWriter& operator=(const TrainingLogWriter&) = delete;
@@ -106,6 +110,10 @@ public:
   static std::string SnapshotName(int iteration);
 
 private:
+  /// The root attributes, the empty tables and groups, flushed (the constructor's work once the
+  /// file exists).
+  void WriteHeader();
+
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };

@@ -1,12 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The text tokenizer of the scene formats (SceneFile.h): the one copy the PLY header, the
 // ASCII PLY body and the COLMAP text files read their words and numbered lines with.
+#include "GaussianIO.h"
 #include "SceneFile.h"
 
 #include <gtest/gtest.h>
 
+#include <dirent.h>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <sys/stat.h>
 #include <vector>
 
 namespace vis4gs
@@ -60,6 +66,62 @@ TEST(SceneFile, TextLinesNumbersAndSkipsLines)
   detail::TextLines empty("");
   EXPECT_FALSE(empty.Raw(line));
   EXPECT_EQ(empty.LineNumber(), 0u);
+}
+
+//------------------------------------------------------------------------------
+// WriteTextFile (GaussianIO.h), the tables and reports of the commands: it replaces a file
+// whole, and a failure names the path and the problem and leaves no temporary and the old
+// file as it was (full disks and read-only folders: Applications/vis4gs/Testing/CheckFullDisk.py).
+namespace
+{
+std::string Slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> Entries(const std::string& folder)
+{
+  std::vector<std::string> names;
+  if (DIR* dir = ::opendir(folder.c_str()))
+  {
+    while (const dirent* e = ::readdir(dir))
+    {
+      const std::string name = e->d_name;
+      if (name != "." && name != "..")
+      {
+        names.push_back(name);
+      }
+    }
+    ::closedir(dir);
+  }
+  return names;
+}
+}
+
+TEST(SceneFile, WriteTextFileReplacesWholeAndFailsNamingThePath)
+{
+  const std::string folder = ::testing::TempDir() + "vis4gs-write-text-file";
+  ::mkdir(folder.c_str(), 0755);
+  const std::string path = folder + "/table.csv";
+  WriteTextFile(path, "a,b\n1,2\n");
+  WriteTextFile(path, "a\n3\n");
+  EXPECT_EQ(Slurp(path), "a\n3\n");
+  EXPECT_EQ(Entries(folder), std::vector<std::string>{ "table.csv" }); // no temporary left
+  const std::string missing = folder + "/no-such-folder/table.csv";
+  try
+  {
+    WriteTextFile(missing, "x\n");
+    ADD_FAILURE() << "a file in a missing folder was written";
+  }
+  catch (const std::runtime_error& e)
+  {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(missing), std::string::npos) << what;
+    EXPECT_NE(what.find("No such file or directory"), std::string::npos) << what;
+  }
+  EXPECT_EQ(Slurp(path), "a\n3\n");
+  EXPECT_EQ(Entries(folder), std::vector<std::string>{ "table.csv" });
 }
 
 } // namespace vis4gs

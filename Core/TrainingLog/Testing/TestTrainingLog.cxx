@@ -487,6 +487,30 @@ TEST(TrainingLog, WriterRejectsBadInputAndRenamesTemporary)
 }
 
 //------------------------------------------------------------------------------
+// A writer through a temporary that is destroyed without Close() (an exception unwinds its
+// owner: a full disk) removes the temporary and leaves the log already at the path untouched.
+TEST(TrainingLog, WriterDestroyedWithoutCloseLeavesTheOldLog)
+{
+  const std::string path = TempLogPath("discard");
+  {
+    TrainingLogWriter old(path);
+    old.WriteSnapshot(10, MakeCloud({ 0, 1 }, 0, 1));
+    old.Close();
+  }
+  {
+    TrainingLogWriterOptions options;
+    options.WriteToTemporary = true;
+    TrainingLogWriter writer(path, options);
+    writer.WriteSnapshot(20, MakeCloud({ 0, 1, 2 }, 0, 1));
+    writer.Flush();
+    EXPECT_TRUE(Exists(path + ".tmp"));
+  }
+  EXPECT_FALSE(Exists(path + ".tmp"));
+  TrainingLogReader reader(path);
+  EXPECT_EQ(reader.GetSnapshotIterations(), std::vector<int>{ 10 });
+}
+
+//------------------------------------------------------------------------------
 TEST(TrainingLog, LacksAndEmptyLog)
 {
   const std::string path = TempLogPath("empty");
