@@ -80,7 +80,7 @@ def compute_scores(scene, options, demo):
 
     known = {"scores", "cameras", "view-stride", "loss-resolution", "coverage-resolution",
              "footprint", "output", "top", "overlay-views", "threads", "log", "no-gui",
-             "occlusion-threshold"}
+             "occlusion-threshold", "images"}
     unknown = set(options) - known
     if unknown:
         stop(f"this checker does not reproduce the option(s) {sorted(unknown)}")
@@ -105,6 +105,8 @@ def compute_scores(scene, options, demo):
             camera_reader = vis4gs.vtkGaussianCameraReader()
             camera_reader.SetFileName(options["cameras"])
             camera_reader.SetRequireImages(False)
+            if "images" in options:
+                camera_reader.SetImageFolder(os.path.abspath(options["images"]))
             cameras_port = camera_reader.GetOutputPort(0)
     score_filter = vis4gs.vtkGaussianArtifactScoreFilter()
     score_filter.SetInputConnection(points_port)
