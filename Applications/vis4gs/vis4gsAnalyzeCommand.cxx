@@ -48,6 +48,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -131,7 +132,7 @@ std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSAr
 // any dataset; others are paths relative to the log. The Gaussians are read as a script reads
 // them, by vtkGaussianTrainingLogReader (every SH degree) into @p gaussians, the score filter's
 // input; the cloud returned is their copy for the Core steps after the scores.
-vis4gs::GaussianCloud ReadLogScene(const std::string& path,
+std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& path,
   const Vis4GSArguments& args,
   const fs::path& output,
   bool needCameras,
@@ -160,14 +161,15 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
   }
   const int logged = reader->GetLoadedIteration();
   gaussians->ShallowCopy(reader->GetGaussiansOutput());
-  vis4gs::GaussianCloud cloud;
   std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(gaussians, cloud, &error))
+  // The reader's own cloud when its arrays are one (no copy of gigabytes).
+  const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
+  if (!cloud)
   {
     throw std::runtime_error(path + ": " + error);
   }
   std::cout << "vis4gs analyze: " << path << ": snapshot of iteration " << logged << ", "
-            << cloud.Count << " Gaussians\n";
+            << cloud->Count << " Gaussians\n";
   if (!needCameras)
   {
     return cloud;
@@ -206,9 +208,11 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
 
 // A scene file read as a script reads it, by vtkGaussianSceneReader into @p gaussians (the
 // score filter's input; its warnings go to VTK's output window, stderr); the cloud returned is
-// their copy for the Core steps after the scores, with the file's extra properties, which
-// scores.ply keeps.
-vis4gs::GaussianCloud ReadSceneFile(const std::string& path, vtkPolyData* gaussians)
+// the reader's own (shared with the arrays, no copy) for the Core steps after the scores, and
+// @p extras the file's other properties, which scores.ply keeps.
+std::shared_ptr<const vis4gs::GaussianCloud> ReadSceneFile(const std::string& path,
+  vtkPolyData* gaussians,
+  std::vector<vis4gs::ExtraProperty>& extras)
 {
   vtkNew<vtkGaussianSceneReader> reader;
   reader->SetFileName(path.c_str());
@@ -218,16 +222,30 @@ vis4gs::GaussianCloud ReadSceneFile(const std::string& path, vtkPolyData* gaussi
     throw std::runtime_error(errors);
   }
   gaussians->ShallowCopy(reader->GetOutput());
-  vis4gs::GaussianCloud cloud;
   std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(gaussians, cloud, &error, true))
+  const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
+  if (!cloud)
   {
     throw std::runtime_error(path + ": " + error);
   }
-  // The reader numbers the rows of a file without an id property (its IdProperty is empty):
-  // the cloud keeps those ids implicit, as the file has them, so scores.ply gets no id column.
-  cloud.Ids.clear();
+  extras = cloud->Extra.empty() ? vis4gs::PolyDataExtraProperties(gaussians) : cloud->Extra;
   return cloud;
+}
+
+// The scene as its file holds it, for a new file of the same kind (cleaned.ply): the other
+// properties of the file, and no id column where the file has none (the reader numbers its
+// rows; such ids stay implicit).
+vis4gs::GaussianCloud AsFileHasIt(const vis4gs::GaussianCloud& cloud,
+  const std::vector<vis4gs::ExtraProperty>& extras,
+  bool fileHasIds)
+{
+  vis4gs::GaussianCloud copy = cloud;
+  copy.Extra = extras;
+  if (!fileHasIds)
+  {
+    copy.Ids.clear();
+  }
+  return copy;
 }
 
 std::string Base64(const std::vector<unsigned char>& bytes)
@@ -650,20 +668,19 @@ int Run(const Vis4GSArguments& args)
   // Read.
   auto t0 = Clock::now();
   const bool needCameras = want["coverage"] || want["blur"] || want["needle"] || measure;
-  vis4gs::GaussianCloud cloud;
   std::vector<vis4gs::Camera> cameras;
   vtkNew<vtkPolyData> polyData; // the score filter's input
-  if (isLog)
+  std::vector<vis4gs::ExtraProperty> fileExtras;
+  const std::shared_ptr<const vis4gs::GaussianCloud> sceneCloud = isLog
+    ? ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0, polyData)
+    : ReadSceneFile(scene, polyData, fileExtras);
+  const vis4gs::GaussianCloud& cloud = *sceneCloud;
+  // A log's snapshot has its ids; a scene file's rows are numbered by the reader unless the
+  // file has an id column, and scores.ply then has none either, as the file.
+  const bool fileHasIds = isLog;
+  if (!isLog && needCameras)
   {
-    cloud = ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0, polyData);
-  }
-  else
-  {
-    cloud = ReadSceneFile(scene, polyData);
-    if (needCameras)
-    {
-      cameras = LoadCameras(scene, args);
-    }
+    cameras = LoadCameras(scene, args);
   }
   if (mpi.Rank() == 0)
   {
@@ -790,7 +807,8 @@ int Run(const Vis4GSArguments& args)
   t0 = Clock::now();
   fs::create_directories(output);
   StagingFolder staging(output);
-  vis4gs::GaussianCloud withScores = cloud;
+  // The scores as columns after the file's own, written without a copy of the cloud.
+  std::vector<vis4gs::ExtraProperty> columns = fileExtras;
   for (const auto& [name, values] : scores)
   {
     vis4gs::ExtraProperty p;
@@ -802,7 +820,7 @@ int Run(const Vis4GSArguments& args)
       const float f = static_cast<float>(values[i]);
       std::memcpy(&p.Bytes[4 * i], &f, 4);
     }
-    withScores.Extra.push_back(std::move(p));
+    columns.push_back(std::move(p));
   }
   if (needCameras)
   {
@@ -810,9 +828,16 @@ int Run(const Vis4GSArguments& args)
     p.Name = "NoVisibleView";
     p.Type = vis4gs::ScalarType::UInt8;
     p.Bytes.assign(flags.begin(), flags.end());
-    withScores.Extra.push_back(std::move(p));
+    columns.push_back(std::move(p));
   }
-  vis4gs::WriteGaussianPly((staging.Get() / "scores.ply").string(), withScores);
+  {
+    vis4gs::GaussianWriteOptions options;
+    options.AppendedExtras = &columns;
+    options.WriteIds = fileHasIds;
+    vis4gs::WriteGaussianPly((staging.Get() / "scores.ply").string(), cloud, options);
+  }
+  columns.clear();
+  columns.shrink_to_fit();
   {
     std::ofstream csv(staging.Get() / "scores.csv");
     csv << "GaussianId";
@@ -910,8 +935,8 @@ int Run(const Vis4GSArguments& args)
       " Gaussians (selection.csv).</p>\n";
     if (args.GetFlag("delete"))
     {
-      vis4gs::WriteGaussianPly(
-        (staging.Get() / "cleaned.ply").string(), vis4gs::RemoveGaussians(cloud, selected));
+      vis4gs::WriteGaussianPly((staging.Get() / "cleaned.ply").string(),
+        vis4gs::RemoveGaussians(AsFileHasIt(cloud, fileExtras, fileHasIds), selected));
       std::cout << "vis4gs analyze: cleaned.ply holds the " << cloud.Count - count
                 << " Gaussians not selected\n";
       cleanupHtml += "<p>cleaned.ply: the scene without them (" +
@@ -936,6 +961,16 @@ int Run(const Vis4GSArguments& args)
   const int overlayViews = std::max(0, args.GetInt("overlay-views"));
   if (needCameras && overlayViews > 0)
   {
+    // One copy of the geometry for every overlay, its colours replaced per score: not the
+    // cloud's SH (of SH degree 3: 80 % of its size).
+    vis4gs::GaussianCloud colored;
+    colored.Count = cloud.Count;
+    colored.Positions = cloud.Positions;
+    colored.LogScales = cloud.LogScales;
+    colored.Rotations = cloud.Rotations;
+    colored.OpacityLogits = cloud.OpacityLogits;
+    colored.ShDegree = 0;
+    colored.SH.assign(3 * cloud.Count, 0.0f);
     for (const auto& [name, values] : scores)
     {
       if (name == vis4gs::arrays::NeedleShape)
@@ -957,9 +992,6 @@ int Run(const Vis4GSArguments& args)
         : std::max(1e-30, sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))]);
       legends.push_back(Legend(name, 0.0, hi));
       const vis4gs::SuspiciousEnd end = vis4gs::SuspiciousEndOf(name);
-      vis4gs::GaussianCloud colored = cloud;
-      colored.ShDegree = 0;
-      colored.SH.assign(3 * cloud.Count, 0.0f);
       for (std::size_t i = 0; i < cloud.Count; ++i)
       {
         const auto c = vis4gs::OverlayColor(values[i], 0.0, hi, end);

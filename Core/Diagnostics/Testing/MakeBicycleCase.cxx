@@ -49,8 +49,13 @@ double Since(Clock::time_point t)
 std::map<std::string, std::string> ParseOptions(int argc, char* argv[])
 {
   const std::map<std::string, std::string> defaults{ { "gaussians", "6100000" },
-    { "views", "194" }, { "width", "1237" }, { "height", "822" }, { "sh-degree", "3" },
-    { "seed", "1" }, { "log", "0" }, { "threads", "0" } };
+    { "views", "194" },
+    { "width", "1237" },
+    { "height", "822" },
+    { "sh-degree", "3" },
+    { "seed", "1" },
+    { "log", "0" },
+    { "threads", "0" } };
   std::map<std::string, std::string> options = defaults;
   for (int i = 2; i < argc; ++i)
   {
@@ -71,7 +76,8 @@ std::map<std::string, std::string> ParseOptions(int argc, char* argv[])
   return options;
 }
 
-long long Number(const std::map<std::string, std::string>& options, const std::string& key,
+long long Number(const std::map<std::string, std::string>& options,
+  const std::string& key,
   long long lowest)
 {
   char* end = nullptr;
@@ -126,7 +132,8 @@ std::vector<std::int64_t> AliveIds(const vis4gs::SyntheticEventLog& log)
   std::vector<char> dead(static_cast<std::size_t>(next), 0);
   for (std::size_t e = 0; e < log.Events.Size(); ++e)
   {
-    if (log.Events.Kind[e] != 1) // split and prune end the parent; clone keeps it
+    if (log.Events.Kind[e] !=
+      static_cast<std::uint8_t>(vis4gs::EventKind::Clone)) // split, prune end it
     {
       dead[static_cast<std::size_t>(log.Events.Parent[e])] = 1;
     }
@@ -201,7 +208,27 @@ int main(int argc, char* argv[])
       p.TotalGaussians = std::max<std::int64_t>(
         p.FinalGaussians + 1, std::llround(static_cast<double>(n) * 1e7 / 4.89e6));
       p.Seed = seed;
-      const vis4gs::SyntheticEventLog events = vis4gs::GenerateSyntheticEventLog(p);
+      vis4gs::SyntheticEventLog events = vis4gs::GenerateSyntheticEventLog(p);
+      cloud.Ids = AliveIds(events);
+      // The generator lands within a few Gaussians of the final count: prunes (or clones) at
+      // the last event's iteration make it exactly the scene's.
+      const std::int32_t last = events.Events.Size() ? events.Events.Iteration.back() : 0;
+      std::int64_t next = p.TotalGaussians;
+      for (std::int64_t child : events.Events.Child)
+      {
+        next = std::max(next, child + 1);
+      }
+      for (std::size_t k = n; k < cloud.Ids.size(); ++k)
+      {
+        events.Events.Append({ last, vis4gs::EventKind::Prune, cloud.Ids[k], -1 });
+        ++events.Prunes;
+      }
+      for (std::size_t k = cloud.Ids.size(); k < n; ++k)
+      {
+        events.Events.Append(
+          { last, vis4gs::EventKind::Clone, cloud.Ids[k % cloud.Ids.size()], next++ });
+        ++events.Clones;
+      }
       cloud.Ids = AliveIds(events);
       if (cloud.Ids.size() != n)
       {
