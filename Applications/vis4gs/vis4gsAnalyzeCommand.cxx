@@ -24,6 +24,7 @@
 #include "Vis4GSDataModel.h"
 #include "Vis4GSMPI.h"
 #include "Vis4GSPipeline.h"
+#include "Vis4GSProgressiveStages.h"
 #include "Vis4GSSceneCameras.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSceneReader.h"
@@ -101,6 +102,14 @@ void Define(Vis4GSArguments& args)
     "0",
     "Occlusion-aware coverage: count a view only when max alpha*T >= T (0: off).");
   args.AddOption("overlay-views", "N", "4", "Number of training views rendered as overlays.");
+  args.AddOption("stop-after-stage",
+    "S",
+    "0",
+    "Progressive scores: 1 stops after the first, approximate stage (every 8th training view, "
+    "loss and coverage maps at 1/4 resolution; its outputs say so); 2 computes that stage, then "
+    "the exact scores with the other options, and reports the first stage's error against them "
+    "(largest difference, overlap of the top 1 %); 0 computes the scores once, as the other "
+    "options say.");
   args.AddOption("select",
     "RULE",
     "",
@@ -716,22 +725,47 @@ int Run(const Vis4GSArguments& args)
   t0 = Clock::now();
   vtkNew<vtkTable> table;
   vis4gs::CamerasToTable(cameras, table);
-  vtkNew<vtkGaussianArtifactScoreFilter> filter;
-  filter->SetInputData(polyData);
-  if (needCameras)
+  const int stopAfter = args.GetInt("stop-after-stage");
+  if (stopAfter < 0 || stopAfter > 2)
   {
-    filter->SetCamerasData(table);
+    throw std::runtime_error("--stop-after-stage must be 0, 1 or 2");
   }
-  filter->SetComputeViewCoverage(want["coverage"]);
-  filter->SetComputeBlurScore(want["blur"]);
-  filter->SetComputeNeedleScore(want["needle"]);
-  filter->SetComputeNeedleShape(want["shape"]);
-  filter->SetLossResolution(args.GetInt("loss-resolution"));
-  filter->SetCoverageResolution(args.GetInt("coverage-resolution"));
-  filter->SetViewStride(args.GetInt("view-stride"));
-  filter->SetFootprintMode(footprint == "ellipse" ? 1 : 0);
-  filter->SetFloatAccumulation(args.GetFlag("float-accumulation"));
-  filter->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
+  auto configure = [&](vtkGaussianArtifactScoreFilter* f, const StageSettings& stage)
+  {
+    f->SetInputData(polyData);
+    if (needCameras)
+    {
+      f->SetCamerasData(table);
+    }
+    f->SetComputeViewCoverage(want["coverage"]);
+    f->SetComputeBlurScore(want["blur"]);
+    f->SetComputeNeedleScore(want["needle"]);
+    f->SetComputeNeedleShape(want["shape"]);
+    f->SetLossResolution(stage.LossResolution);
+    f->SetCoverageResolution(stage.CoverageResolution);
+    f->SetViewStride(stage.ViewStride);
+    f->SetFootprintMode(footprint == "ellipse" ? 1 : 0);
+    f->SetFloatAccumulation(args.GetFlag("float-accumulation"));
+    f->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
+  };
+  const StageSettings asGiven{
+    args.GetInt("view-stride"), args.GetInt("loss-resolution"), args.GetInt("coverage-resolution")
+  };
+  const StageSettings firstStage = FirstStage(asGiven);
+  ScoreColumns firstScores;
+  double tFirstStage = 0;
+  if (stopAfter == 2 && needCameras)
+  {
+    vtkNew<vtkGaussianArtifactScoreFilter> first;
+    configure(first, firstStage);
+    first->Update();
+    firstScores = ScoresOf(first->GetOutput()->GetPointData(), want);
+    tFirstStage = Since(t0);
+    std::cout << "vis4gs analyze: stage 1 of 2 (" << Describe(firstStage)
+              << "): " << Number(tFirstStage, 2) << " s" << std::endl;
+  }
+  vtkNew<vtkGaussianArtifactScoreFilter> filter;
+  configure(filter, stopAfter == 1 ? firstStage : asGiven);
   const bool verbose = args.GetFlag("verbose");
   vtkNew<vtkCallbackCommand> progress;
   progress->SetCallback(
@@ -759,30 +793,39 @@ int Run(const Vis4GSArguments& args)
     std::cerr << "\n";
   }
   vtkPointData* pd = filter->GetOutput()->GetPointData();
-  const std::vector<std::pair<std::string, const char*>> names{ { "coverage",
-                                                                  vis4gs::arrays::ViewCoverage },
-    { "blur", vis4gs::arrays::BlurScore },
-    { "needle", vis4gs::arrays::NeedleScore },
-    { "shape", vis4gs::arrays::NeedleShape } };
-  std::vector<std::pair<std::string, std::vector<double>>> scores;
-  for (const auto& [key, array] : names)
+  const ScoreColumns scores = ScoresOf(pd, want);
+  std::string stageHtml;
+  if (stopAfter == 1 && needCameras)
   {
-    if (!want[key])
-    {
-      continue;
-    }
-    vtkDataArray* a = pd->GetArray(array);
-    if (!a)
-    {
-      throw std::runtime_error("computing " + std::string(array) + " failed (see the error above)");
-    }
-    std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
-    for (std::size_t i = 0; i < v.size(); ++i)
-    {
-      v[i] = a->GetTuple1(static_cast<vtkIdType>(i));
-    }
-    scores.emplace_back(array, std::move(v));
+    std::cout << "vis4gs analyze: stage 1 of 2 only (" << Describe(firstStage)
+              << "): approximate scores\n";
+    stageHtml = "<p><b>Stage 1 of 2 (approximate: " + Describe(firstStage) +
+      ")</b>; the exact scores are stage 2 (--stop-after-stage=2 or 0).</p>\n";
   }
+  else if (stopAfter == 2 && needCameras)
+  {
+    std::ostringstream text;
+    text << "<h2>Progressive stages</h2><p>Stage 1 (" << Describe(firstStage)
+         << "): " << Number(tFirstStage, 2)
+         << " s; stage 2 (exact, these outputs): " << Number(Since(t0) - tFirstStage, 2)
+         << " s.</p><table><tr><th>score</th><th>largest difference</th><th>largest exact "
+            "value</th><th>exact top 1 % in stage 1's top 1 %</th></tr>\n";
+    for (std::size_t k = 0; k < scores.size(); ++k)
+    {
+      const StageError e = CompareStage(
+        firstScores[k].second, scores[k].second, scores[k].first == vis4gs::arrays::ViewCoverage);
+      std::cout << "vis4gs analyze: stage 1 error, " << scores[k].first << ": largest difference "
+                << e.LargestDifference << " (largest exact value " << e.LargestExact
+                << "), exact top 1 % in stage 1's top 1 %: " << e.TopShared << " of " << e.TopCount
+                << std::endl;
+      text << "<tr><td>" << scores[k].first << "</td><td>" << e.LargestDifference << "</td><td>"
+           << e.LargestExact << "</td><td>" << e.TopShared << " of " << e.TopCount
+           << "</td></tr>\n";
+    }
+    text << "</table>\n";
+    stageHtml = text.str();
+  }
+  firstScores.clear();
   std::vector<unsigned char> flags(cloud.Count, 0);
   if (vtkDataArray* f = pd->GetArray("NoVisibleView"))
   {
@@ -1033,7 +1076,8 @@ int Run(const Vis4GSArguments& args)
        << " Gaussians, " << cameras.size() << " cameras, " << filter->GetNumberOfViewsUsed()
        << " training views used, " << filter->GetNumberOfViewsWithoutImage() << " without image, "
        << filter->GetNumberOfFlaggedGaussians()
-       << " Gaussians flagged (no visible view or invalid parameters).</p>\n";
+       << " Gaussians flagged (no visible view or invalid parameters).</p>\n"
+       << stageHtml;
   html << "<h2>Settings</h2><table>";
   for (const char* opt : { "scores",
          "select",
@@ -1042,6 +1086,7 @@ int Run(const Vis4GSArguments& args)
          "loss-resolution",
          "coverage-resolution",
          "view-stride",
+         "stop-after-stage",
          "footprint",
          "occlusion-threshold",
          "top" })
