@@ -24,6 +24,7 @@
 #include "Vis4GSDataModel.h"
 #include "Vis4GSMPI.h"
 #include "Vis4GSPipeline.h"
+#include "Vis4GSProgressiveStages.h"
 #include "Vis4GSSceneCameras.h"
 #include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
@@ -41,6 +42,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -49,6 +51,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -101,6 +104,14 @@ void Define(Vis4GSArguments& args)
     "0",
     "Occlusion-aware coverage: count a view only when max alpha*T >= T (0: off).");
   args.AddOption("overlay-views", "N", "4", "Number of training views rendered as overlays.");
+  args.AddOption("stop-after-stage",
+    "S",
+    "0",
+    "Progressive scores: 1 stops after the first, approximate stage (every 8th training view, "
+    "loss and coverage maps at 1/4 resolution; its outputs say so); 2 computes that stage, then "
+    "the exact scores with the other options, and reports the first stage's error against them "
+    "(largest difference, overlap of the top 1 %); 0 computes the scores once, as the other "
+    "options say.");
   args.AddOption("select",
     "RULE",
     "",
@@ -132,7 +143,7 @@ std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSAr
 // any dataset; others are paths relative to the log. The Gaussians are read as a script reads
 // them, by vtkGaussianTrainingLogReader (every SH degree) into @p gaussians, the score filter's
 // input; the cloud returned is their copy for the Core steps after the scores.
-vis4gs::GaussianCloud ReadLogScene(const std::string& path,
+std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& path,
   const Vis4GSArguments& args,
   const fs::path& output,
   bool needCameras,
@@ -161,14 +172,15 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
   }
   const int logged = reader->GetLoadedIteration();
   gaussians->ShallowCopy(reader->GetGaussiansOutput());
-  vis4gs::GaussianCloud cloud;
   std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(gaussians, cloud, &error))
+  // The reader's own cloud when its arrays are one (no copy of gigabytes).
+  const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
+  if (!cloud)
   {
     throw std::runtime_error(path + ": " + error);
   }
   std::cout << "vis4gs analyze: " << path << ": snapshot of iteration " << logged << ", "
-            << cloud.Count << " Gaussians\n";
+            << cloud->Count << " Gaussians\n";
   if (!needCameras)
   {
     return cloud;
@@ -218,9 +230,11 @@ vis4gs::GaussianCloud ReadLogScene(const std::string& path,
 
 // A scene file read as a script reads it, by vtkGaussianSceneReader into @p gaussians (the
 // score filter's input; its warnings go to VTK's output window, stderr); the cloud returned is
-// their copy for the Core steps after the scores, with the file's extra properties, which
-// scores.ply keeps.
-vis4gs::GaussianCloud ReadSceneFile(const std::string& path, vtkPolyData* gaussians)
+// the reader's own (shared with the arrays, no copy) for the Core steps after the scores, and
+// @p extras the file's other properties, which scores.ply keeps.
+std::shared_ptr<const vis4gs::GaussianCloud> ReadSceneFile(const std::string& path,
+  vtkPolyData* gaussians,
+  std::vector<vis4gs::ExtraProperty>& extras)
 {
   vtkNew<vtkGaussianSceneReader> reader;
   reader->SetFileName(path.c_str());
@@ -230,16 +244,30 @@ vis4gs::GaussianCloud ReadSceneFile(const std::string& path, vtkPolyData* gaussi
     throw std::runtime_error(errors);
   }
   gaussians->ShallowCopy(reader->GetOutput());
-  vis4gs::GaussianCloud cloud;
   std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(gaussians, cloud, &error, true))
+  const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
+  if (!cloud)
   {
     throw std::runtime_error(path + ": " + error);
   }
-  // The reader numbers the rows of a file without an id property (its IdProperty is empty):
-  // the cloud keeps those ids implicit, as the file has them, so scores.ply gets no id column.
-  cloud.Ids.clear();
+  extras = cloud->Extra.empty() ? vis4gs::PolyDataExtraProperties(gaussians) : cloud->Extra;
   return cloud;
+}
+
+// The scene as its file holds it, for a new file of the same kind (cleaned.ply): the other
+// properties of the file, and no id column where the file has none (the reader numbers its
+// rows; such ids stay implicit).
+vis4gs::GaussianCloud AsFileHasIt(const vis4gs::GaussianCloud& cloud,
+  const std::vector<vis4gs::ExtraProperty>& extras,
+  bool fileHasIds)
+{
+  vis4gs::GaussianCloud copy = cloud;
+  copy.Extra = extras;
+  if (!fileHasIds)
+  {
+    copy.Ids.clear();
+  }
+  return copy;
 }
 
 std::string Base64(const std::vector<unsigned char>& bytes)
@@ -629,20 +657,19 @@ int Run(const Vis4GSArguments& args)
   // Read.
   auto t0 = Clock::now();
   const bool needCameras = want["coverage"] || want["blur"] || want["needle"] || measure;
-  vis4gs::GaussianCloud cloud;
   std::vector<vis4gs::Camera> cameras;
   vtkNew<vtkPolyData> polyData; // the score filter's input
-  if (isLog)
+  std::vector<vis4gs::ExtraProperty> fileExtras;
+  const std::shared_ptr<const vis4gs::GaussianCloud> sceneCloud = isLog
+    ? ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0, polyData)
+    : ReadSceneFile(scene, polyData, fileExtras);
+  const vis4gs::GaussianCloud& cloud = *sceneCloud;
+  // A log's snapshot has its ids; a scene file's rows are numbered by the reader unless the
+  // file has an id column, and scores.ply then has none either, as the file.
+  const bool fileHasIds = isLog;
+  if (!isLog && needCameras)
   {
-    cloud = ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0, polyData);
-  }
-  else
-  {
-    cloud = ReadSceneFile(scene, polyData);
-    if (needCameras)
-    {
-      cameras = LoadCameras(scene, args);
-    }
+    cameras = LoadCameras(scene, args);
   }
   if (mpi.Rank() == 0)
   {
@@ -678,22 +705,47 @@ int Run(const Vis4GSArguments& args)
   t0 = Clock::now();
   vtkNew<vtkTable> table;
   vis4gs::CamerasToTable(cameras, table);
-  vtkNew<vtkGaussianArtifactScoreFilter> filter;
-  filter->SetInputData(polyData);
-  if (needCameras)
+  const int stopAfter = args.GetInt("stop-after-stage");
+  if (stopAfter < 0 || stopAfter > 2)
   {
-    filter->SetCamerasData(table);
+    throw std::runtime_error("--stop-after-stage must be 0, 1 or 2");
   }
-  filter->SetComputeViewCoverage(want["coverage"]);
-  filter->SetComputeBlurScore(want["blur"]);
-  filter->SetComputeNeedleScore(want["needle"]);
-  filter->SetComputeNeedleShape(want["shape"]);
-  filter->SetLossResolution(args.GetInt("loss-resolution"));
-  filter->SetCoverageResolution(args.GetInt("coverage-resolution"));
-  filter->SetViewStride(args.GetInt("view-stride"));
-  filter->SetFootprintMode(footprint == "ellipse" ? 1 : 0);
-  filter->SetFloatAccumulation(args.GetFlag("float-accumulation"));
-  filter->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
+  auto configure = [&](vtkGaussianArtifactScoreFilter* f, const StageSettings& stage)
+  {
+    f->SetInputData(polyData);
+    if (needCameras)
+    {
+      f->SetCamerasData(table);
+    }
+    f->SetComputeViewCoverage(want["coverage"]);
+    f->SetComputeBlurScore(want["blur"]);
+    f->SetComputeNeedleScore(want["needle"]);
+    f->SetComputeNeedleShape(want["shape"]);
+    f->SetLossResolution(stage.LossResolution);
+    f->SetCoverageResolution(stage.CoverageResolution);
+    f->SetViewStride(stage.ViewStride);
+    f->SetFootprintMode(footprint == "ellipse" ? 1 : 0);
+    f->SetFloatAccumulation(args.GetFlag("float-accumulation"));
+    f->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
+  };
+  const StageSettings asGiven{
+    args.GetInt("view-stride"), args.GetInt("loss-resolution"), args.GetInt("coverage-resolution")
+  };
+  const StageSettings firstStage = FirstStage(asGiven);
+  ScoreColumns firstScores;
+  double tFirstStage = 0;
+  if (stopAfter == 2 && needCameras)
+  {
+    vtkNew<vtkGaussianArtifactScoreFilter> first;
+    configure(first, firstStage);
+    first->Update();
+    firstScores = ScoresOf(first->GetOutput()->GetPointData(), want);
+    tFirstStage = Since(t0);
+    std::cout << "vis4gs analyze: stage 1 of 2 (" << Describe(firstStage)
+              << "): " << Number(tFirstStage, 2) << " s" << std::endl;
+  }
+  vtkNew<vtkGaussianArtifactScoreFilter> filter;
+  configure(filter, stopAfter == 1 ? firstStage : asGiven);
   const bool verbose = args.GetFlag("verbose");
   vtkNew<vtkCallbackCommand> progress;
   progress->SetCallback(
@@ -721,30 +773,39 @@ int Run(const Vis4GSArguments& args)
     std::cerr << "\n";
   }
   vtkPointData* pd = filter->GetOutput()->GetPointData();
-  const std::vector<std::pair<std::string, const char*>> names{ { "coverage",
-                                                                  vis4gs::arrays::ViewCoverage },
-    { "blur", vis4gs::arrays::BlurScore },
-    { "needle", vis4gs::arrays::NeedleScore },
-    { "shape", vis4gs::arrays::NeedleShape } };
-  std::vector<std::pair<std::string, std::vector<double>>> scores;
-  for (const auto& [key, array] : names)
+  const ScoreColumns scores = ScoresOf(pd, want);
+  std::string stageHtml;
+  if (stopAfter == 1 && needCameras)
   {
-    if (!want[key])
-    {
-      continue;
-    }
-    vtkDataArray* a = pd->GetArray(array);
-    if (!a)
-    {
-      throw std::runtime_error("computing " + std::string(array) + " failed (see the error above)");
-    }
-    std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
-    for (std::size_t i = 0; i < v.size(); ++i)
-    {
-      v[i] = a->GetTuple1(static_cast<vtkIdType>(i));
-    }
-    scores.emplace_back(array, std::move(v));
+    std::cout << "vis4gs analyze: stage 1 of 2 only (" << Describe(firstStage)
+              << "): approximate scores\n";
+    stageHtml = "<p><b>Stage 1 of 2 (approximate: " + Describe(firstStage) +
+      ")</b>; the exact scores are stage 2 (--stop-after-stage=2 or 0).</p>\n";
   }
+  else if (stopAfter == 2 && needCameras)
+  {
+    std::ostringstream text;
+    text << "<h2>Progressive stages</h2><p>Stage 1 (" << Describe(firstStage)
+         << "): " << Number(tFirstStage, 2)
+         << " s; stage 2 (exact, these outputs): " << Number(Since(t0) - tFirstStage, 2)
+         << " s.</p><table><tr><th>score</th><th>largest difference</th><th>largest exact "
+            "value</th><th>exact top 1 % in stage 1's top 1 %</th></tr>\n";
+    for (std::size_t k = 0; k < scores.size(); ++k)
+    {
+      const StageError e = CompareStage(
+        firstScores[k].second, scores[k].second, scores[k].first == vis4gs::arrays::ViewCoverage);
+      std::cout << "vis4gs analyze: stage 1 error, " << scores[k].first << ": largest difference "
+                << e.LargestDifference << " (largest exact value " << e.LargestExact
+                << "), exact top 1 % in stage 1's top 1 %: " << e.TopShared << " of " << e.TopCount
+                << std::endl;
+      text << "<tr><td>" << scores[k].first << "</td><td>" << e.LargestDifference << "</td><td>"
+           << e.LargestExact << "</td><td>" << e.TopShared << " of " << e.TopCount
+           << "</td></tr>\n";
+    }
+    text << "</table>\n";
+    stageHtml = text.str();
+  }
+  firstScores.clear();
   std::vector<unsigned char> flags(cloud.Count, 0);
   if (vtkDataArray* f = pd->GetArray("NoVisibleView"))
   {
@@ -768,7 +829,8 @@ int Run(const Vis4GSArguments& args)
   // Outputs.
   t0 = Clock::now();
   Vis4GSStagingFolder staging(output, "analyze");
-  vis4gs::GaussianCloud withScores = cloud;
+  // The scores as columns after the file's own, written without a copy of the cloud.
+  std::vector<vis4gs::ExtraProperty> columns = fileExtras;
   for (const auto& [name, values] : scores)
   {
     vis4gs::ExtraProperty p;
@@ -780,7 +842,7 @@ int Run(const Vis4GSArguments& args)
       const float f = static_cast<float>(values[i]);
       std::memcpy(&p.Bytes[4 * i], &f, 4);
     }
-    withScores.Extra.push_back(std::move(p));
+    columns.push_back(std::move(p));
   }
   if (needCameras)
   {
@@ -788,11 +850,21 @@ int Run(const Vis4GSArguments& args)
     p.Name = "NoVisibleView";
     p.Type = vis4gs::ScalarType::UInt8;
     p.Bytes.assign(flags.begin(), flags.end());
-    withScores.Extra.push_back(std::move(p));
+    columns.push_back(std::move(p));
   }
-  vis4gs::WriteGaussianPly((staging.Get() / "scores.ply").string(), withScores);
   {
-    std::ostringstream csv;
+    vis4gs::GaussianWriteOptions options;
+    options.AppendedExtras = &columns;
+    options.WriteIds = fileHasIds;
+    vis4gs::WriteGaussianPly((staging.Get() / "scores.ply").string(), cloud, options);
+  }
+  columns.clear();
+  columns.shrink_to_fit();
+  {
+    // Streamed into the staging folder (renamed into place with the other outputs on
+    // success): 6.1M rows would be a 0.4 GB string twice over through WriteTextFile.
+    const fs::path path = staging.Get() / "scores.csv";
+    std::ofstream csv(path);
     csv << "GaussianId";
     for (const auto& s : scores)
     {
@@ -800,7 +872,7 @@ int Run(const Vis4GSArguments& args)
     }
     csv << (needCameras ? ",NoVisibleView\n" : "\n");
     csv << std::setprecision(9);
-    for (std::size_t i = 0; i < cloud.Count; ++i)
+    for (std::size_t i = 0; i < cloud.Count && csv; ++i)
     {
       csv << cloud.GetId(i);
       for (const auto& s : scores)
@@ -813,7 +885,13 @@ int Run(const Vis4GSArguments& args)
       }
       csv << "\n";
     }
-    vis4gs::WriteTextFile((staging.Get() / "scores.csv").string(), csv.str());
+    csv.flush();
+    if (!csv)
+    {
+      const int error = errno;
+      throw std::runtime_error(
+        (output / "scores.csv").string() + ": could not be written (" + std::strerror(error) + ")");
+    }
   }
   // Top-k: highest blur/needle/shape, lowest coverage (floaters).
   std::map<std::string, std::vector<std::size_t>> tops;
@@ -882,8 +960,8 @@ int Run(const Vis4GSArguments& args)
       " Gaussians (selection.csv).</p>\n";
     if (args.GetFlag("delete"))
     {
-      vis4gs::WriteGaussianPly(
-        (staging.Get() / "cleaned.ply").string(), vis4gs::RemoveGaussians(cloud, selected));
+      vis4gs::WriteGaussianPly((staging.Get() / "cleaned.ply").string(),
+        vis4gs::RemoveGaussians(AsFileHasIt(cloud, fileExtras, fileHasIds), selected));
       std::cout << "vis4gs analyze: cleaned.ply holds the " << cloud.Count - count
                 << " Gaussians not selected\n";
       cleanupHtml += "<p>cleaned.ply: the scene without them (" +
@@ -908,6 +986,16 @@ int Run(const Vis4GSArguments& args)
   const int overlayViews = std::max(0, args.GetInt("overlay-views"));
   if (needCameras && overlayViews > 0)
   {
+    // One copy of the geometry for every overlay, its colours replaced per score: not the
+    // cloud's SH (of SH degree 3: 80 % of its size).
+    vis4gs::GaussianCloud colored;
+    colored.Count = cloud.Count;
+    colored.Positions = cloud.Positions;
+    colored.LogScales = cloud.LogScales;
+    colored.Rotations = cloud.Rotations;
+    colored.OpacityLogits = cloud.OpacityLogits;
+    colored.ShDegree = 0;
+    colored.SH.assign(3 * cloud.Count, 0.0f);
     for (const auto& [name, values] : scores)
     {
       if (name == vis4gs::arrays::NeedleShape)
@@ -929,9 +1017,6 @@ int Run(const Vis4GSArguments& args)
         : std::max(1e-30, sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))]);
       legends.push_back(Legend(name, 0.0, hi));
       const vis4gs::SuspiciousEnd end = vis4gs::SuspiciousEndOf(name);
-      vis4gs::GaussianCloud colored = cloud;
-      colored.ShDegree = 0;
-      colored.SH.assign(3 * cloud.Count, 0.0f);
       for (std::size_t i = 0; i < cloud.Count; ++i)
       {
         const auto c = vis4gs::OverlayColor(values[i], 0.0, hi, end);
@@ -973,7 +1058,8 @@ int Run(const Vis4GSArguments& args)
        << " Gaussians, " << cameras.size() << " cameras, " << filter->GetNumberOfViewsUsed()
        << " training views used, " << filter->GetNumberOfViewsWithoutImage() << " without image, "
        << filter->GetNumberOfFlaggedGaussians()
-       << " Gaussians flagged (no visible view or invalid parameters).</p>\n";
+       << " Gaussians flagged (no visible view or invalid parameters).</p>\n"
+       << stageHtml;
   html << "<h2>Settings</h2><table>";
   for (const char* opt : { "scores",
          "select",
@@ -982,6 +1068,7 @@ int Run(const Vis4GSArguments& args)
          "loss-resolution",
          "coverage-resolution",
          "view-stride",
+         "stop-after-stage",
          "footprint",
          "occlusion-threshold",
          "top" })

@@ -127,11 +127,9 @@ std::vector<vis4gs::Camera> FindCameras(const Vis4GSArguments& args,
   }
   if (!args.Get("images").empty())
   {
-    if (!fs::is_directory(args.Get("images")))
-    {
-      throw std::runtime_error(args.Get("images") + ": --images is not a folder");
-    }
-    vis4gs::AttachImages(cameras, args.Get("images"));
+    // As analyze and repair: a camera without a file is measured without image (skipped in the
+    // means), which is no reason to refuse the others.
+    Vis4GSAttachImagesByName(cameras, args.Get("images"));
     imageLog.reset();
   }
   return cameras;

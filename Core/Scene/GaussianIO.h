@@ -92,8 +92,14 @@ struct GaussianWriteOptions
   /// Name of the property that stores GaussianCloud::Ids when they are not empty
   /// (int32 when every id fits, float64 otherwise: PLY has no 64-bit integer type).
   std::string IdProperty = "id";
+  /// Write GaussianCloud::Ids (when not empty). Off for a cloud whose ids are its row
+  /// numbers, given by a reader, that the file it came from does not hold. Default on.
+  bool WriteIds = true;
   /// Comment lines written into the header.
   std::vector<std::string> Comments;
+  /// Properties written after the cloud's own extras (before the ids), so that a caller adds
+  /// columns (scores) without copying a cloud of gigabytes. Default none.
+  const std::vector<ExtraProperty>* AppendedExtras = nullptr;
 };
 
 /**

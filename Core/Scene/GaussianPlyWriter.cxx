@@ -58,11 +58,17 @@ std::vector<Column> WriterColumns(const GaussianCloud& cloud, const GaussianWrit
   {
     throw std::invalid_argument("WriteGaussianPly: Ids size differs from Count");
   }
-  for (const auto& e : cloud.Extra)
+  static const std::vector<ExtraProperty> none;
+  const std::vector<ExtraProperty>& appended =
+    options.AppendedExtras ? *options.AppendedExtras : none;
+  for (const std::vector<ExtraProperty>* extras : { &cloud.Extra, &appended })
   {
-    if (e.Bytes.size() != n * ScalarTypeSize(e.Type))
+    for (const auto& e : *extras)
     {
-      throw std::invalid_argument("WriteGaussianPly: extra '" + e.Name + "' has the wrong size");
+      if (e.Bytes.size() != n * ScalarTypeSize(e.Type))
+      {
+        throw std::invalid_argument("WriteGaussianPly: extra '" + e.Name + "' has the wrong size");
+      }
     }
   }
 
@@ -129,7 +135,15 @@ std::vector<Column> WriterColumns(const GaussianCloud& cloud, const GaussianWrit
     c.Extra = &e;
     cols.push_back(c);
   }
-  if (!cloud.Ids.empty())
+  for (const auto& e : appended)
+  {
+    Column c;
+    c.Name = e.Name;
+    c.Type = e.Type;
+    c.Extra = &e;
+    cols.push_back(c);
+  }
+  if (!cloud.Ids.empty() && options.WriteIds)
   {
     Column c;
     c.Name = options.IdProperty.empty() ? "id" : options.IdProperty;

@@ -526,7 +526,7 @@ Image ImageFromBytes(const unsigned char* bytes, int width, int height, int chan
 }
 
 //------------------------------------------------------------------------------
-void AttachImages(std::vector<Camera>& cameras, const std::string& folder)
+void AttachImages(std::vector<Camera>& cameras, const std::string& folder, bool requireEach)
 {
   DIR* dir = ::opendir(folder.c_str());
   if (!dir)
@@ -552,6 +552,10 @@ void AttachImages(std::vector<Camera>& cameras, const std::string& folder)
   for (Camera& cam : cameras)
   {
     const auto it = byStem.find(cam.Name);
+    if (it == byStem.end() && !requireEach)
+    {
+      continue;
+    }
     if (it == byStem.end())
     {
       throw std::runtime_error(folder + ": no image for camera '" + cam.Name + "' (looked for " +

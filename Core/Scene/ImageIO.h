@@ -76,9 +76,11 @@ Image LoadTrainingImage(const Camera& camera, const std::array<float, 3>& backgr
 /**
  * Matches cameras to image files by name: for each camera, the file in @p folder whose name
  * up to the first '.' equals Camera::Name (the trainer's image_name) becomes its ImagePath.
- * A camera without an image throws std::runtime_error naming the camera and the folder.
+ * A camera without an image throws std::runtime_error naming the camera and the folder when
+ * @p requireEach (default); otherwise it keeps its ImagePath, so that a reader for a purpose
+ * that needs no image (rendering, coverage) takes cameras beside an empty or partial folder.
  */
-void AttachImages(std::vector<Camera>& cameras, const std::string& folder);
+void AttachImages(std::vector<Camera>& cameras, const std::string& folder, bool requireEach = true);
 
 /// What LoadTrainingImage does to an image once read: composited on @p background and
 /// resized to the camera's size. For images that come from elsewhere than a file (a training

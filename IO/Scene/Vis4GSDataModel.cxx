@@ -579,41 +579,55 @@ bool PolyDataToGaussianCloud(vtkPolyData* input,
 
   if (withExtras)
   {
-    static const std::set<std::string> model = { arrays::GaussianId,
-      arrays::LogScale,
-      arrays::Rotation,
-      arrays::OpacityLogit,
-      arrays::SH,
-      arrays::Opacity,
-      arrays::Scale };
-    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* array = pd->GetArray(a);
-      ScalarType type;
-      if (!array || !array->GetName() || model.count(array->GetName()) ||
-        !ScalarTypeFromVTK(array->GetDataType(), type))
-      {
-        continue;
-      }
-      const int components = array->GetNumberOfComponents();
-      const std::size_t size = ScalarTypeSize(type);
-      for (int c = 0; c < components; ++c)
-      {
-        ExtraProperty extra;
-        extra.Name = components == 1 ? std::string(array->GetName())
-                                     : std::string(array->GetName()) + "_" + std::to_string(c);
-        extra.Type = type;
-        extra.Bytes.resize(n * size);
-        const auto* src = static_cast<const unsigned char*>(array->GetVoidPointer(0));
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          std::memcpy(extra.Bytes.data() + i * size, src + (i * components + c) * size, size);
-        }
-        cloud.Extra.push_back(std::move(extra));
-      }
-    }
+    cloud.Extra = PolyDataExtraProperties(input);
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<ExtraProperty> PolyDataExtraProperties(vtkPolyData* input)
+{
+  std::vector<ExtraProperty> extras;
+  vtkPointData* pd = input ? input->GetPointData() : nullptr;
+  const std::size_t n = input ? static_cast<std::size_t>(input->GetNumberOfPoints()) : 0;
+  if (!pd)
+  {
+    return extras;
+  }
+  static const std::set<std::string> model = { arrays::GaussianId,
+    arrays::LogScale,
+    arrays::Rotation,
+    arrays::OpacityLogit,
+    arrays::SH,
+    arrays::Opacity,
+    arrays::Scale };
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    ScalarType type;
+    if (!array || !array->GetName() || model.count(array->GetName()) ||
+      !ScalarTypeFromVTK(array->GetDataType(), type))
+    {
+      continue;
+    }
+    const int components = array->GetNumberOfComponents();
+    const std::size_t size = ScalarTypeSize(type);
+    for (int c = 0; c < components; ++c)
+    {
+      ExtraProperty extra;
+      extra.Name = components == 1 ? std::string(array->GetName())
+                                   : std::string(array->GetName()) + "_" + std::to_string(c);
+      extra.Type = type;
+      extra.Bytes.resize(n * size);
+      const auto* src = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        std::memcpy(extra.Bytes.data() + i * size, src + (i * components + c) * size, size);
+      }
+      extras.push_back(std::move(extra));
+    }
+  }
+  return extras;
 }
 
 //------------------------------------------------------------------------------

@@ -224,6 +224,14 @@ VIS4GSIOSCENE_EXPORT bool PolyDataToGaussianCloud(vtkPolyData* input,
   std::string* error,
   bool withExtras = false);
 
+/**
+ * The point-data arrays of @p input that are not part of the model (scores, normals, other
+ * tools' properties), one property per component, as PolyDataToGaussianCloud's extras: for a
+ * caller that reads the parameters through SharedGaussianCloud without a copy and still keeps
+ * a file's other properties.
+ */
+VIS4GSIOSCENE_EXPORT std::vector<ExtraProperty> PolyDataExtraProperties(vtkPolyData* input);
+
 /// Fills @p table with one row per camera (columns named in vis4gs::arrays).
 VIS4GSIOSCENE_EXPORT void CamerasToTable(const std::vector<Camera>& cameras, vtkTable* table);
 

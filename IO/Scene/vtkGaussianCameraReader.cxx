@@ -88,7 +88,9 @@ int vtkGaussianCameraReader::RequestData(vtkInformation* vtkNotUsed(request),
       }
       if (!folder.empty() && ::stat(folder.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
       {
-        vis4gs::AttachImages(cameras, folder);
+        // Without RequireImages (rendering) an empty or partial images/ beside the file is
+        // no reason to refuse the cameras.
+        vis4gs::AttachImages(cameras, folder, this->RequireImages);
       }
     }
   }

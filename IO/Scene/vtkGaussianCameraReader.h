@@ -19,7 +19,8 @@
  * Resolution scales them like the trainer's `--resolution` (-1: at most 1600 px wide; 1, 2,
  * 4, 8: divided, reading `images_N` when it exists; other positive values: target width).
  * A distorted COLMAP model is read with its distortion parameters and a single warning.
- * For cameras.json, image files in ImageFolder (when it exists) are matched to cameras by name.
+ * For cameras.json, image files in ImageFolder (when it exists) are matched to cameras by name;
+ * with RequireImages off a camera without a matching file keeps no image instead of failing.
  * FileName may also be a NeRF-synthetic / instant-ngp `transforms*.json` (any JSON object with
  * `frames`) or a folder holding transforms_train.json (+ transforms_test.json: Test) or
  * transforms.json (Core/Scene/TransformsJson.h); RequireImages off keeps frames whose image
@@ -92,7 +93,9 @@ public:
 
   ///@{
   /**
-   * Fail when a COLMAP camera has no image file. Default: on.
+   * Fail when a camera has no image file (COLMAP; cameras.json when ImageFolder exists; a
+   * transforms frame without w/h always needs its image). Off for uses that need no image,
+   * such as rendering. Default: on.
    */
   vtkSetMacro(RequireImages, bool);
   vtkGetMacro(RequireImages, bool);

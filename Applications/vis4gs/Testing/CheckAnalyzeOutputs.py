@@ -80,7 +80,7 @@ def compute_scores(scene, options, demo):
 
     known = {"scores", "cameras", "view-stride", "loss-resolution", "coverage-resolution",
              "footprint", "output", "top", "overlay-views", "threads", "log", "no-gui",
-             "occlusion-threshold"}
+             "occlusion-threshold", "images", "stop-after-stage"}
     unknown = set(options) - known
     if unknown:
         stop(f"this checker does not reproduce the option(s) {sorted(unknown)}")
@@ -105,6 +105,8 @@ def compute_scores(scene, options, demo):
             camera_reader = vis4gs.vtkGaussianCameraReader()
             camera_reader.SetFileName(options["cameras"])
             camera_reader.SetRequireImages(False)
+            if "images" in options:
+                camera_reader.SetImageFolder(os.path.abspath(options["images"]))
             cameras_port = camera_reader.GetOutputPort(0)
     score_filter = vis4gs.vtkGaussianArtifactScoreFilter()
     score_filter.SetInputConnection(points_port)
@@ -114,9 +116,16 @@ def compute_scores(scene, options, demo):
     score_filter.SetComputeBlurScore("blur" in wanted)
     score_filter.SetComputeNeedleScore("needle" in wanted)
     score_filter.SetComputeNeedleShape("shape" in wanted)
-    score_filter.SetLossResolution(int(options.get("loss-resolution", 1)))
-    score_filter.SetCoverageResolution(int(options.get("coverage-resolution", 1)))
-    score_filter.SetViewStride(int(options.get("view-stride", 1)))
+    loss = int(options.get("loss-resolution", 1))
+    coverage = int(options.get("coverage-resolution", 1))
+    stride = int(options.get("view-stride", 1))
+    if options.get("stop-after-stage") == "1":
+        # The first stage of progressive scores (vis4gs analyze --help): every 8th of the
+        # views, maps at 1/4 of the resolution (at most 1/8).
+        loss, coverage, stride = min(8, 4 * loss), min(8, 4 * coverage), 8 * stride
+    score_filter.SetLossResolution(loss)
+    score_filter.SetCoverageResolution(coverage)
+    score_filter.SetViewStride(stride)
     score_filter.SetFootprintMode(1 if options.get("footprint") == "ellipse" else 0)
     if "occlusion-threshold" in options:
         score_filter.SetOcclusionThreshold(float(options["occlusion-threshold"]))

@@ -329,6 +329,36 @@ TEST(GaussianPly, RoundTripsAreBitExactInEveryFormat)
   }
 }
 
+TEST(GaussianPly, AppendedExtrasWriteWhatACopyWithThoseExtrasWrites)
+{
+  // vis4gs analyze writes its scores this way instead of copying the cloud (issue 31).
+  GaussianCloud c = Synthetic(40, 3);
+  c.Ids.resize(c.Count);
+  for (std::size_t i = 0; i < c.Count; ++i)
+  {
+    c.Ids[i] = static_cast<std::int64_t>(5 + 3 * i);
+  }
+  GaussianCloud head = c;
+  std::vector<ExtraProperty> tail(head.Extra.end() - 3, head.Extra.end());
+  head.Extra.erase(head.Extra.end() - 3, head.Extra.end());
+  for (PlyFormat f : { PlyFormat::BinaryLittleEndian, PlyFormat::Ascii })
+  {
+    GaussianWriteOptions plain, appended;
+    plain.Format = appended.Format = f;
+    appended.AppendedExtras = &tail;
+    EXPECT_EQ(WriteGaussianPlyToMemory(head, appended), WriteGaussianPlyToMemory(c, plain));
+    // Without the ids: what a copy without ids writes.
+    GaussianCloud noIds = c;
+    noIds.Ids.clear();
+    appended.WriteIds = false;
+    EXPECT_EQ(WriteGaussianPlyToMemory(head, appended), WriteGaussianPlyToMemory(noIds, plain));
+  }
+  tail[0].Bytes.pop_back();
+  GaussianWriteOptions bad;
+  bad.AppendedExtras = &tail;
+  EXPECT_THROW(WriteGaussianPlyToMemory(head, bad), std::invalid_argument);
+}
+
 TEST(GaussianPly, RealFileRoundTripsThroughBigEndianAndAscii)
 {
   VIS4GS_REQUIRE_SHARED_DATA();

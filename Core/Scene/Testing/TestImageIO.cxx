@@ -314,6 +314,17 @@ TEST(ImageIO, UnreadableImagesAndCamerasWithoutImages)
   WriteFile(dir / "imgs/view1.JPG", jpg);
   WriteFile(dir / "imgs/notes.txt", std::string("x"));
   EXPECT_THROW_WITH(AttachImages(cams, dir / "imgs"), "no image for camera 'view2'");
+  // Not required (rendering): view2 keeps no image, view1 still gets its file; an empty
+  // folder refuses no camera.
+  AttachImages(cams, dir / "imgs", false);
+  EXPECT_EQ(cams[0].ImagePath, dir / "imgs/view1.JPG");
+  EXPECT_EQ(cams[1].ImagePath, "");
+  ::mkdir((dir / "empty").c_str(), 0755);
+  std::vector<Camera> none = cams;
+  none[0].ImagePath.clear();
+  AttachImages(none, dir / "empty", false);
+  EXPECT_EQ(none[0].ImagePath, "");
+  EXPECT_THROW_WITH(AttachImages(none, dir / "empty"), "no image for camera 'view1'");
   cams.pop_back();
   AttachImages(cams, dir / "imgs");
   EXPECT_EQ(cams[0].ImagePath, dir / "imgs/view1.JPG");

@@ -86,6 +86,26 @@ int TestGaussianCameraReader(int, char*[])
   auto* jimages = vtkStringArray::SafeDownCast(jt->GetColumnByName(vis4gs::arrays::CameraImage));
   Check(jimages && jimages->GetValue(0) == statue + "/images/DSC_5283.jpg", "json: image matched");
 
+  // An empty images/ beside a cameras.json: rendering needs no image, so RequireImages off
+  // reads every camera (issue 31: `vis4gs render` refused them); on, the missing image is named.
+  iotest::TempDir beside;
+  vis4gs::WriteCamerasJson(beside / "cameras.json", ds.Cameras);
+  Check(std::system(("mkdir '" + (beside / "images") + "'").c_str()) == 0, "images/ made");
+  vtkNew<vtkGaussianCameraReader> noImages;
+  noImages->SetFileName((beside / "cameras.json").c_str());
+  noImages->RequireImagesOff();
+  noImages->Update();
+  Check(noImages->GetOutput()->GetNumberOfRows() == 23, "empty images/: 23 cameras");
+  auto* noPaths = vtkStringArray::SafeDownCast(
+    noImages->GetOutput()->GetColumnByName(vis4gs::arrays::CameraImage));
+  Check(noPaths && noPaths->GetValue(0).empty(), "empty images/: no image path");
+  vtkNew<vtkGaussianCameraReader> needImages;
+  vtkNew<iotest::MessageObserver> needErrors;
+  needErrors->Watch(needImages);
+  needImages->SetFileName((beside / "cameras.json").c_str());
+  needImages->Update();
+  Check(needErrors->ErrorContains("no image for camera 'DSC_5283'"), "required: camera named");
+
   // A NeRF-synthetic folder (TransformsJson.h): splits, the OpenGL -> OpenCV pose, frames kept
   // without images when w/h are given and RequireImages is off.
   const std::string frame = R"({"fl_x": 100, "w": 8, "h": 6, "frames": [{"file_path": "r_0",

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Vis4GSProgressiveStages.h"
+
+#include "Vis4GSDataModel.h"
+
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numeric>
+#include <stdexcept>
+
+//------------------------------------------------------------------------------
+StageSettings FirstStage(const StageSettings& exact)
+{
+  return { 8 * exact.ViewStride,
+    std::min(8, 4 * exact.LossResolution),
+    std::min(8, 4 * exact.CoverageResolution) };
+}
+
+//------------------------------------------------------------------------------
+std::string Describe(const StageSettings& stage)
+{
+  return "every " + std::to_string(stage.ViewStride) + "th training view, loss maps at 1/" +
+    std::to_string(stage.LossResolution) + ", coverage at 1/" +
+    std::to_string(stage.CoverageResolution) + " resolution";
+}
+
+//------------------------------------------------------------------------------
+ScoreColumns ScoresOf(vtkPointData* pd, std::map<std::string, bool>& want)
+{
+  const std::vector<std::pair<std::string, const char*>> names{ { "coverage",
+                                                                  vis4gs::arrays::ViewCoverage },
+    { "blur", vis4gs::arrays::BlurScore },
+    { "needle", vis4gs::arrays::NeedleScore },
+    { "shape", vis4gs::arrays::NeedleShape } };
+  ScoreColumns scores;
+  for (const auto& [key, array] : names)
+  {
+    if (!want[key])
+    {
+      continue;
+    }
+    vtkDataArray* a = pd->GetArray(array);
+    if (!a)
+    {
+      throw std::runtime_error("computing " + std::string(array) + " failed (see the error above)");
+    }
+    std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
+    for (std::size_t i = 0; i < v.size(); ++i)
+    {
+      v[i] = a->GetTuple1(static_cast<vtkIdType>(i));
+    }
+    scores.emplace_back(array, std::move(v));
+  }
+  return scores;
+}
+
+//------------------------------------------------------------------------------
+StageError CompareStage(const std::vector<double>& stage,
+  const std::vector<double>& exact,
+  bool lowestFirst)
+{
+  StageError e;
+  for (std::size_t i = 0; i < exact.size() && i < stage.size(); ++i)
+  {
+    if (std::isfinite(exact[i]) && std::isfinite(stage[i]))
+    {
+      e.LargestDifference = std::max(e.LargestDifference, std::abs(stage[i] - exact[i]));
+      e.LargestExact = std::max(e.LargestExact, std::abs(exact[i]));
+    }
+  }
+  e.TopCount = std::max<std::size_t>(1, exact.size() / 100);
+  auto top = [&](const std::vector<double>& v)
+  {
+    std::vector<std::size_t> order(v.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    auto key = [&](std::size_t i)
+    { return std::isfinite(v[i]) ? (lowestFirst ? -v[i] : v[i]) : -HUGE_VAL; };
+    const std::size_t k = std::min(e.TopCount, order.size());
+    std::partial_sort(order.begin(),
+      order.begin() + k,
+      order.end(),
+      [&](std::size_t a, std::size_t b) { return key(a) > key(b) || (key(a) == key(b) && a < b); });
+    order.resize(k);
+    std::sort(order.begin(), order.end());
+    return order;
+  };
+  const std::vector<std::size_t> a = top(exact), b = top(stage);
+  std::vector<std::size_t> shared;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(shared));
+  e.TopShared = shared.size();
+  return e;
+}

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Vis4GSProgressiveStages.h
+ * @brief The stages of progressive scores for `vis4gs analyze --stop-after-stage` (issue 31):
+ * the first, approximate stage's settings and its error against the exact scores.
+ */
+#ifndef Vis4GSProgressiveStages_h
+#define Vis4GSProgressiveStages_h
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+class vtkPointData;
+
+/// The view subset and resolutions of one stage of the scores.
+struct StageSettings
+{
+  int ViewStride = 1;
+  int LossResolution = 1;
+  int CoverageResolution = 1;
+};
+
+/// The first, approximate stage of progressive scores: every 8th of the views and maps at 1/4
+/// of the resolution @p exact gives (at most 1/8), so its cost is about 1/128 of theirs.
+StageSettings FirstStage(const StageSettings& exact);
+
+/// "every 8th training view, loss maps at 1/4, coverage at 1/4 resolution".
+std::string Describe(const StageSettings& stage);
+
+using ScoreColumns = std::vector<std::pair<std::string, std::vector<double>>>;
+
+/// The scores @p want names (coverage, blur, needle, shape) from the score filter's output
+/// @p pd, in the order of scores.csv; throws std::runtime_error when one is missing.
+ScoreColumns ScoresOf(vtkPointData* pd, std::map<std::string, bool>& want);
+
+/// A stage's error against the exact scores: the largest absolute difference, and how many of
+/// the exact top 1 % most suspicious Gaussians (lowest coverage, highest other scores; ties
+/// by row) the stage ranks in its own top 1 %. Non-finite values are left out of both.
+struct StageError
+{
+  double LargestDifference = 0;
+  double LargestExact = 0;
+  std::size_t TopCount = 0;
+  std::size_t TopShared = 0;
+};
+
+StageError CompareStage(const std::vector<double>& stage,
+  const std::vector<double>& exact,
+  bool lowestFirst);
+
+#endif
