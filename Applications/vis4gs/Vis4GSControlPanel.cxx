@@ -91,6 +91,18 @@ Vis4GSControlPanel::Vis4GSControlPanel(QWidget* parent)
                                 "OpenGL draws every Gaussian with the CPU rasteriser. Selection "
                                 "and scores always use every Gaussian");
   this->Form->addRow("Splats drawn (max)", this->SplatBudget);
+  this->MovingBudget = new QSpinBox(this);
+  this->MovingBudget->setObjectName("moving-budget");
+  this->MovingBudget->setRange(0, 100000000);
+  this->MovingBudget->setSingleStep(50000);
+  this->MovingBudget->setSpecialValueText("all");
+  this->MovingBudget->setValue(400000);
+  this->MovingBudget->setToolTip(
+    "Level of detail of the CPU rasteriser (software OpenGL) while the camera moves: at most "
+    "this many Gaussians, those of highest opacity times projected area, are drawn per moving "
+    "frame; the still frame draws every Gaussian (exact). Documentation/accuracy-vs-runtime.md "
+    "gives the error and frame rate of each budget");
+  this->Form->addRow("Splats while moving (CPU)", this->MovingBudget);
   this->LogText = new QPlainTextEdit(this);
   this->LogText->setReadOnly(true);
   this->LogText->setMaximumHeight(140);

@@ -57,6 +57,7 @@ public:
   QDoubleSpinBox* Threshold = nullptr;
   QCheckBox* DimUnselected = nullptr;
   QSpinBox* SplatBudget = nullptr;
+  QSpinBox* MovingBudget = nullptr;
   QPlainTextEdit* LogText = nullptr;
   Vis4GSSelectionTable* Table = nullptr;
   QPushButton* ExportIds = nullptr;

@@ -326,6 +326,11 @@ void Vis4GSMainWindow::BuildUi()
     this,
     [this](int mode) { d->Scene->SetSelectionMode(mode); });
   d->Scene->SetMaximumNumberOfSplats(panel->SplatBudget->value());
+  d->Scene->SetInteractiveSplatBudget(panel->MovingBudget->value());
+  connect(panel->MovingBudget,
+    QOverload<int>::of(&QSpinBox::valueChanged),
+    this,
+    [this](int value) { d->Scene->SetInteractiveSplatBudget(value); });
   connect(panel->SplatBudget,
     QOverload<int>::of(&QSpinBox::valueChanged),
     this,

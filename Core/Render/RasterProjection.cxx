@@ -431,9 +431,11 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
   ViewProjection<float>& p,
   bool reset,
   PreparedCloudCache* cache,
-  std::uint64_t version)
+  std::uint64_t version,
+  const std::vector<std::uint32_t>* subset)
 {
-  const std::size_t n = cloud.Count;
+  // Projected Gaussian j is the cloud's Gaussian subset[j] (j itself without a subset).
+  const std::size_t n = subset ? subset->size() : cloud.Count;
   const PreparedView w = PrepareView(p);
   const ProjectBlock block = SelectProjectBlock(settings.KernelIsa);
   const bool colors = settings.ComputeColors;
@@ -482,7 +484,7 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
     {
       const std::size_t first = static_cast<std::size_t>(bb) * 16;
       const std::size_t count = std::min<std::size_t>(16, n - first);
-      if (kept)
+      if (kept && !subset)
       {
         block(*kept, first, w, out, 0);
       }
@@ -490,7 +492,29 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
       {
         for (std::size_t k = 0; k < count; ++k)
         {
-          PrepareForLanes(cloud, first + k, mod, shStride, shUsed, colors, in, k);
+          const std::size_t i = subset ? (*subset)[first + k] : first + k;
+          if (kept)
+          {
+            // The kept preparation of Gaussian i, gathered into lane k.
+            for (auto member : { &MultiViewPrepared::X,
+                   &MultiViewPrepared::Y,
+                   &MultiViewPrepared::Z,
+                   &MultiViewPrepared::S00,
+                   &MultiViewPrepared::S01,
+                   &MultiViewPrepared::S02,
+                   &MultiViewPrepared::S11,
+                   &MultiViewPrepared::S12,
+                   &MultiViewPrepared::S22,
+                   &MultiViewPrepared::Opacity })
+            {
+              (in.*member)[k] = ((*kept).*member)[i];
+            }
+            in.Valid[k] = kept->Valid[i];
+          }
+          else
+          {
+            PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, in, k);
+          }
         }
         for (std::size_t k = count; k < 16; ++k)
         {
@@ -536,7 +560,7 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
         g.TileRect[1] = out.Y0[k];
         g.TileRect[2] = out.X1[k];
         g.TileRect[3] = out.Y1[k];
-        g.Opacity = kept ? kept->Opacity[first + k] : in.Opacity[k];
+        g.Opacity = kept && !subset ? kept->Opacity[first + k] : in.Opacity[k];
         if (g.Status != ProjectionStatus::Visible)
         {
           continue; // NonFinite pixel mean or OffScreen: Radius stays 0
@@ -544,7 +568,7 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
         g.Radius = out.Radius[k];
         if (colors)
         {
-          const std::size_t i = first + k;
+          const std::size_t i = subset ? (*subset)[first + k] : first + k;
           g.ClampedChannels = static_cast<std::uint8_t>(ViewColor<float>(
             &cloud.SH[i * shStride], shDegree, &cloud.Positions[3 * i], campos.data(), g.Color));
         }
@@ -574,10 +598,26 @@ void ProjectInto(const GaussianCloud& cloud,
   ViewProjection<T>& p,
   bool reuse,
   PreparedCloudCache* cache = nullptr,
-  std::uint64_t version = 0)
+  std::uint64_t version = 0,
+  const std::vector<std::uint32_t>* subset = nullptr)
 {
   CheckCamera(camera);
   CheckCloud(cloud, settings.ComputeColors);
+  if (subset)
+  {
+    std::uint32_t last = 0;
+    for (std::size_t j = 0; j < subset->size(); ++j)
+    {
+      const std::uint32_t i = (*subset)[j];
+      if (i >= cloud.Count || (j > 0 && i <= last))
+      {
+        throw std::invalid_argument("ProjectGaussianSubset: index " + std::to_string(i) +
+          " at position " + std::to_string(j) + " is out of range or not ascending (" +
+          std::to_string(cloud.Count) + " Gaussians)");
+      }
+      last = i;
+    }
+  }
 
   p.Counts = ProjectionCounts();
   p.Width = camera.Width;
@@ -622,7 +662,7 @@ void ProjectInto(const GaussianCloud& cloud,
     p.CameraCenter[i] = static_cast<T>(center[i]);
   }
 
-  const std::size_t n = cloud.Count;
+  const std::size_t n = subset ? subset->size() : cloud.Count;
   const bool reset = reuse && p.Gaussians.capacity() >= n;
   if (reset)
   {
@@ -639,7 +679,8 @@ void ProjectInto(const GaussianCloud& cloud,
   {
     if (settings.KernelIsa >= 0)
     {
-      ProjectFloatLanes(cloud, settings, ThreadCount(settings.Threads), p, reset, cache, version);
+      ProjectFloatLanes(
+        cloud, settings, ThreadCount(settings.Threads), p, reset, cache, version, subset);
       return;
     }
   }
@@ -668,8 +709,9 @@ void ProjectInto(const GaussianCloud& cloud,
 #pragma omp for schedule(static)
     for (std::int64_t ii = 0; ii < count; ++ii)
     {
-      const std::size_t i = static_cast<std::size_t>(ii);
-      ProjectedGaussian<T>& g = p.Gaussians[i];
+      ProjectedGaussian<T>& g = p.Gaussians[static_cast<std::size_t>(ii)];
+      const std::size_t i =
+        subset ? (*subset)[static_cast<std::size_t>(ii)] : static_cast<std::size_t>(ii);
       if (reset)
       {
         g = ProjectedGaussian<T>();
@@ -794,6 +836,18 @@ void ProjectGaussians(const GaussianCloud& cloud,
   std::uint64_t cloudVersion)
 {
   ProjectInto(cloud, camera, settings, projection, true, &cache, cloudVersion);
+}
+
+//------------------------------------------------------------------------------
+void ProjectGaussianSubset(const GaussianCloud& cloud,
+  const std::vector<std::uint32_t>& subset,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache,
+  std::uint64_t cloudVersion)
+{
+  ProjectInto(cloud, camera, settings, projection, true, &cache, cloudVersion, &subset);
 }
 
 //------------------------------------------------------------------------------

@@ -228,6 +228,23 @@ void ProjectGaussians(const GaussianCloud& cloud,
   PreparedCloudCache& cache,
   std::uint64_t cloudVersion);
 
+/**
+ * ProjectGaussians(cloud, camera, settings, projection, cache, cloudVersion) of the Gaussians
+ * @p subset of @p cloud only: projection.Gaussians[j] is the cloud's Gaussian subset[j],
+ * projected exactly as in the whole cloud's projection, bit for bit, and Counts count the
+ * subset. The indices ascend, so that binning breaks ties in depth as for the whole cloud.
+ * The cache holds the whole cloud's preparation (the same as whole projections use). Throws
+ * std::invalid_argument for an index out of range or not ascending. Level-of-detail frames of
+ * the scene view project a subset (Core/Splats/SplatLevelOfDetail.h).
+ */
+void ProjectGaussianSubset(const GaussianCloud& cloud,
+  const std::vector<std::uint32_t>& subset,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache,
+  std::uint64_t cloudVersion);
+
 /// Per-tile Gaussian lists, front to back.
 struct TileBins
 {

@@ -21,6 +21,7 @@
 #include "Rasterizer.h"
 #include "SplatAttributes.h"
 #include "SplatCamera.h"
+#include "SplatLevelOfDetail.h"
 #include "SplatSort.h"
 #include "Vis4GSDataModel.h"
 
@@ -127,7 +128,7 @@ struct vtkGaussianSplatMapper::vtkInternals
   vis4gs::RasterWorkspace<float> Work;
   std::vector<float> Texels;      // RGBA per pixel, row 0 at the bottom
   std::vector<float> DepthTexels; // expected view depth per pixel, row 0 at the bottom
-  std::array<double, 24> RasterKey{};
+  std::array<double, 25> RasterKey{};
   bool RasterValid = false;
   double AdaptiveDistance = 0.0; // interactive sample distance (auto-adjusted); 0 = not set
   std::size_t RasterDrawn = 0;
@@ -137,6 +138,32 @@ struct vtkGaussianSplatMapper::vtkInternals
   vis4gs::Camera FrameCamera;
   vtkPolyData* FrameInput = nullptr; // identity only
   vtkMTimeType FrameInputTime = 0;
+  // Level of detail of moving frames: the view-independent part for Cloud (made once per
+  // CloudVersion), the Gaussians the last moving frame drew (indices in Cloud, ascending) and
+  // the workspace it drew them with, so that Work keeps the last exact frame.
+  vis4gs::SplatLevelOfDetail Lod;
+  std::uint64_t LodSource = 0; // CloudVersion Lod was made for; 0 = none
+  std::vector<std::uint32_t> LodSubset;
+  vis4gs::RasterWorkspace<float> LodWork;
+  std::vector<double> LodScores;
+  std::vector<std::uint8_t> LodSelected;
+
+  void ReleaseLevelOfDetail()
+  {
+    this->Lod = vis4gs::SplatLevelOfDetail();
+    std::vector<std::uint32_t>().swap(this->LodSubset);
+    this->LodWork = vis4gs::RasterWorkspace<float>();
+    this->LodSource = 0;
+  }
+
+  void UpdateLevelOfDetail(int threads)
+  {
+    if (this->LodSource != this->CloudVersion)
+    {
+      vis4gs::PrepareSplatLevelOfDetail(*this->Cloud, this->Lod, threads);
+      this->LodSource = this->CloudVersion;
+    }
+  }
 
   // GPU side.
   vtkOpenGLRenderWindow* Window = nullptr;
@@ -470,6 +497,7 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     in.ColoredDegree = -2; // force new colours
     in.DisplayTime = 0;
     in.PackDirty = true;
+    in.ReleaseLevelOfDetail();
   }
   const std::size_t n = in.Cloud->Count;
   if (n == 0)
@@ -565,7 +593,11 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   // Re-render only when something that changes the picture changed.
   const vtkMTimeType displayTime =
     std::max(this->GetMTime(), this->SelectedIds ? this->SelectedIds->GetMTime() : vtkMTimeType(0));
-  std::array<double, 24> key{};
+  // A moving frame of a scene larger than the budget draws the level of detail.
+  const std::size_t budget = static_cast<std::size_t>(this->InteractiveSplatBudget);
+  const bool reduced = interactive && budget > 0 && budget < n;
+  this->LastFrameReduced = reduced;
+  std::array<double, 25> key{};
   std::copy(worldToCamera, worldToCamera + 16, key.begin());
   key[16] = fx;
   key[17] = fy;
@@ -575,10 +607,11 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   key[21] = h;
   key[22] = static_cast<double>(displayTime);
   key[23] = static_cast<double>(in.InputTime);
+  key[24] = reduced ? static_cast<double>(budget) : 0.0;
   // The focal lengths come out of vtkCamera's projection matrix with a few ulps of noise
   // between renders of the same view (e.g. vtkWindowToImageFilter's): compare them to 1e-7.
   bool same = in.RasterValid;
-  for (int q = 0; q < 24 && same; ++q)
+  for (int q = 0; q < 25 && same; ++q)
   {
     same = (q == 16 || q == 17)
       ? std::abs(key[q] - in.RasterKey[q]) <= 1e-7 * std::abs(in.RasterKey[q])
@@ -600,12 +633,30 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     settings.Threads = threads;
     std::size_t drawn = 0;
     in.FrameReusable = false;
-    bool unmodified = w == width && h == height && this->ScaleModifier == 1.0;
+    bool unmodified = !reduced && w == width && h == height && this->ScaleModifier == 1.0;
     try
     {
-      vis4gs::ProjectGaussians(
-        *in.Cloud, camera, settings, in.Work.Projection, in.Work.Prepared, in.CloudVersion);
-      vis4gs::ViewProjection<float>& projection = in.Work.Projection;
+      // Gaussian i of a reduced frame is Gaussian LodSubset[i] of the input.
+      vis4gs::RasterWorkspace<float>& work = reduced ? in.LodWork : in.Work;
+      if (reduced)
+      {
+        in.UpdateLevelOfDetail(threads);
+        vis4gs::SelectSplatsForView(*in.Cloud, in.Lod, camera, budget, in.LodSubset, threads);
+        vis4gs::ProjectGaussianSubset(*in.Cloud,
+          in.LodSubset,
+          camera,
+          settings,
+          work.Projection,
+          in.Work.Prepared,
+          in.CloudVersion);
+      }
+      else
+      {
+        vis4gs::ProjectGaussians(
+          *in.Cloud, camera, settings, work.Projection, work.Prepared, in.CloudVersion);
+      }
+      vis4gs::ViewProjection<float>& projection = work.Projection;
+      const std::size_t m = projection.Gaussians.size();
       drawn = projection.Counts.Visible;
       vis4gs::SplatDisplayOptions opt;
       if (!in.FillDisplayOptions(this, input, opt))
@@ -614,16 +665,38 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
       }
       if (opt.ScoreColoring || opt.HideOutsideRange || opt.Selected)
       {
+        if (reduced)
+        {
+          // The scores and selection of the Gaussians drawn.
+          if (opt.Scores)
+          {
+            in.LodScores.resize(m);
+            for (std::size_t i = 0; i < m; ++i)
+            {
+              in.LodScores[i] = opt.Scores[in.LodSubset[i]];
+            }
+            opt.Scores = in.LodScores.data();
+          }
+          if (opt.Selected)
+          {
+            in.LodSelected.resize(m);
+            for (std::size_t i = 0; i < m; ++i)
+            {
+              in.LodSelected[i] = opt.Selected[in.LodSubset[i]];
+            }
+            opt.Selected = in.LodSelected.data();
+          }
+        }
         // Overlay colours, hiding, highlight and dimming replace the projected colours and
         // scale the opacities; hidden Gaussians are left out of the tile lists.
-        in.TrueColors.resize(3 * n);
-        for (std::size_t i = 0; i < n; ++i)
+        in.TrueColors.resize(3 * m);
+        for (std::size_t i = 0; i < m; ++i)
         {
           std::copy_n(projection.Gaussians[i].Color, 3, &in.TrueColors[3 * i]);
         }
-        vis4gs::ComputeSplatDisplay(in.TrueColors.data(), n, opt, in.Display, in.Keep, threads);
+        vis4gs::ComputeSplatDisplay(in.TrueColors.data(), m, opt, in.Display, in.Keep, threads);
         in.ColoredDegree = -2; // TrueColors no longer hold the OpenGL path's colours
-        for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t i = 0; i < m; ++i)
         {
           auto& g = projection.Gaussians[i];
           if (!g.IsVisible())
@@ -642,15 +715,23 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
           g.Opacity *= in.Display[4 * i + 3];
         }
       }
-      vis4gs::BinGaussians<float>(projection, threads, in.Work.Bins, in.Work.Scratch);
+      vis4gs::BinGaussians<float>(projection, threads, work.Bins, work.Scratch);
       // Nothing replays the blending: the compositing reads the kernels from the projection.
-      in.Work.Composite.KeepKernels = false;
+      work.Composite.KeepKernels = false;
       vis4gs::CompositeTiles<float>(
-        projection, in.Work.Bins, settings, in.Image, nullptr, nullptr, &in.Work.Composite);
-      in.FrameReusable = unmodified;
-      in.FrameCamera = camera;
-      in.FrameInput = input;
-      in.FrameInputTime = in.InputTime;
+        projection, work.Bins, settings, in.Image, nullptr, nullptr, &work.Composite);
+      if (!reduced)
+      {
+        in.FrameReusable = unmodified;
+        in.FrameCamera = camera;
+        in.FrameInput = input;
+        in.FrameInputTime = in.InputTime;
+        if (budget > 0 && budget < n)
+        {
+          // Ready for the first moving frame (made once per scene, after its first picture).
+          in.UpdateLevelOfDetail(threads);
+        }
+      }
     }
     catch (const std::exception& e)
     {
@@ -1101,6 +1182,8 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
+  os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
+  os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";
   os << indent << "LastDrawnCount: " << this->LastDrawnCount << "\n";
   os << indent << "LastSortTime: " << this->LastSortTime << "\n";

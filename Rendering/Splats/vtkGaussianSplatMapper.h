@@ -76,7 +76,10 @@
  *  - keeps the rasteriser's per-frame buffers (vis4gs::RasterWorkspace: projection, tile
  *    lists, compositing data; about 300 MB at 1M Gaussians) between frames, so a frame does
  *    not allocate and page-fault them again, and the input's view-independent preparation
- *    (3D covariances, opacities: 44 B per Gaussian) until the input changes.
+ *    (3D covariances, opacities: 44 B per Gaussian) until the input changes;
+ *  - while the camera moves, draws only the InteractiveSplatBudget Gaussians of highest
+ *    expected contribution to the view (a level of detail), so that a moving frame costs in
+ *    proportion to the budget; the still frame after it is the exact one again.
  * MaximumNumberOfSplats and GeometryPath apply to the OpenGL path only.
  *
  * Set the renderer's camera from a vis4gs::Camera with vtkGaussianCameraUtilities.
@@ -320,12 +323,32 @@ public:
 
   ///@{
   /**
+   * CPU path: the level of detail of interactive frames. While the camera moves (see
+   * InteractiveUpdateRate), at most this many Gaussians are drawn: those in the view's frustum
+   * of highest expected contribution to it (opacity times projected area,
+   * Core/Splats/SplatLevelOfDetail.h), selected per frame without a sort; the projection,
+   * colours, binning and blending of a moving frame then cost in proportion to the budget
+   * instead of the scene's size. Still frames draw every Gaussian (exact). 0 draws every
+   * Gaussian while moving too. Default 400000 (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveSplatBudget, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(InteractiveSplatBudget, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * CPU path: the image sample distance of the last frame and the milliseconds its CPU
    * rasterisation took (0 when the cached image was reused).
    */
   vtkGetMacro(LastImageSampleDistance, double);
   vtkGetMacro(LastRasterTime, double);
   ///@}
+
+  /**
+   * CPU path: whether the last frame drew the InteractiveSplatBudget's Gaussians only (a
+   * moving frame of a scene larger than the budget) instead of every Gaussian.
+   */
+  vtkGetMacro(LastFrameReduced, bool);
 
 #ifndef __VTK_WRAP__
   /**
@@ -427,6 +450,8 @@ protected:
   double InteractiveUpdateRate = 1.0;
   double LastImageSampleDistance = 1.0;
   double LastRasterTime = 0.0;
+  vtkIdType InteractiveSplatBudget = 400000;
+  bool LastFrameReduced = false;
   vtkLookupTable* ScoreLookupTable = nullptr;
   vtkIdType LastDrawnCount = 0;
   double LastSortTime = 0.0;

@@ -447,6 +447,18 @@ vtkIdType vtkGaussianSceneView::GetMaximumNumberOfSplats()
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianSceneView::SetInteractiveSplatBudget(vtkIdType splats)
+{
+  this->Internals->Mapper->SetInteractiveSplatBudget(splats);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSceneView::GetInteractiveSplatBudget()
+{
+  return this->Internals->Mapper->GetInteractiveSplatBudget();
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSceneView::UpdateOverlay()
 {
   auto& in = *this->Internals;
@@ -814,6 +826,7 @@ void vtkGaussianSceneView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DimUnselected: " << this->DimUnselected << "\n";
   os << indent << "ShowFrustums: " << this->ShowFrustums << "\n";
   os << indent << "MaximumNumberOfSplats: " << in.Mapper->GetMaximumNumberOfSplats() << "\n";
+  os << indent << "InteractiveSplatBudget: " << in.Mapper->GetInteractiveSplatBudget() << "\n";
   os << indent << "MaximumNumberOfMarkers: " << this->MaximumNumberOfMarkers << "\n";
   os << indent << "HighlightCount: " << this->HighlightCount << "\n";
   os << indent << "LastSelectionMode: " << this->LastSelectionMode << "\n";

@@ -180,6 +180,17 @@ public:
 
   ///@{
   /**
+   * Level of detail of the CPU rasteriser while the camera moves: at most this many
+   * Gaussians, those of highest contribution to the view, drawn per moving frame
+   * (vtkGaussianSplatMapper::InteractiveSplatBudget); still frames draw every Gaussian. 0
+   * draws all. Default the mapper's (400000).
+   */
+  void SetInteractiveSplatBudget(vtkIdType splats);
+  vtkIdType GetInteractiveSplatBudget();
+  ///@}
+
+  ///@{
+  /**
    * Selections with more Gaussians than this get no centre markers. Default 200.
    */
   vtkSetClampMacro(MaximumNumberOfMarkers, vtkIdType, 0, VTK_ID_MAX);

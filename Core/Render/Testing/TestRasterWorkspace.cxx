@@ -436,3 +436,62 @@ TEST(RasterWorkspace, ChosenTilesAreTheFullRenderBitForBit)
   CheckChosenTiles<float>(cloud, camera);
   CheckChosenTiles<double>(cloud, camera);
 }
+
+// ProjectGaussianSubset (the scene view's moving frames): the projection of a subset equals
+// the subset's entries of the whole cloud's projection, every field bit for bit, with the
+// kept preparation (gathered from it), without it, on the scalar path, 1 and 3 threads.
+TEST(RasterWorkspace, SubsetProjectionEqualsTheWholeProjectionsEntries)
+{
+  const GaussianCloud cloud = MixedScene(3001, 3, 21);
+  const Camera cam = LookAt(96, 64, 80.0, 80.0, { 0.5, -0.3, -1.0 }, { 0.0, 0.0, 6.0 });
+  std::vector<std::uint32_t> subset;
+  for (std::uint32_t i = 0; i < cloud.Count; ++i)
+  {
+    if (i % 3 != 1 || i < 10) // every stiff member of MixedScene, then two thirds
+    {
+      subset.push_back(i);
+    }
+  }
+  for (int isa : { 0, -1 })
+  {
+    for (int threads : { 1, 3 })
+    {
+      for (std::uint64_t version : { std::uint64_t(0), std::uint64_t(1) })
+      {
+        SCOPED_TRACE(::testing::Message()
+          << "isa " << isa << " threads " << threads << " version " << version);
+        RasterSettings rs;
+        rs.KernelIsa = isa;
+        rs.Threads = threads;
+        ViewProjection<float> expected = ProjectGaussians<float>(cloud, cam, rs);
+        std::vector<ProjectedGaussian<float>> kept;
+        std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
+        for (std::uint32_t i : subset)
+        {
+          kept.push_back(expected.Gaussians[i]);
+          ++counts[static_cast<int>(expected.Gaussians[i].Status)];
+        }
+        expected.Gaussians = kept;
+        expected.Counts =
+          ProjectionCounts{ counts[0], counts[1], counts[2], counts[3], counts[4], counts[5] };
+        ASSERT_GT(counts[0], 100u);
+        ASSERT_GT(counts[1] + counts[2], 0u);
+        PreparedCloudCache cache;
+        ViewProjection<float> got;
+        // The whole cloud first (the cache is prepared), then the subset twice (reused).
+        ProjectGaussians(cloud, cam, rs, got, cache, version);
+        for (int round = 0; round < 2; ++round)
+        {
+          ProjectGaussianSubset(cloud, subset, cam, rs, got, cache, version);
+          ExpectSameProjection(expected, got);
+        }
+      }
+    }
+  }
+  ViewProjection<float> got;
+  PreparedCloudCache cache;
+  std::vector<std::uint32_t> bad{ 3, 2 };
+  EXPECT_THROW(ProjectGaussianSubset(cloud, bad, cam, {}, got, cache, 1), std::invalid_argument);
+  bad = { 0, static_cast<std::uint32_t>(cloud.Count) };
+  EXPECT_THROW(ProjectGaussianSubset(cloud, bad, cam, {}, got, cache, 1), std::invalid_argument);
+}

@@ -104,6 +104,10 @@ int TestGaussianSceneView(int argc, char* argv[])
   view->SetScene(scene);
   view->SetCameras(cameras);
   view->SetMaximumNumberOfSplats(0);
+  Check(
+    view->GetInteractiveSplatBudget() == 400000, "the CPU path's moving budget defaults to 400000");
+  view->SetInteractiveSplatBudget(1234);
+  Check(view->GetInteractiveSplatBudget() == 1234, "SetInteractiveSplatBudget reaches the mapper");
   Check(view->JumpToCamera(0), "JumpToCamera(0) on the log's first camera");
   Check(!view->JumpToCamera(cameras->GetNumberOfRows()), "JumpToCamera past the last camera fails");
   view->Render();
