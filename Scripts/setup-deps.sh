@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libvtk9-dev libvtk9-qt-dev python3-vtk9 qtbase5-dev
-  libhdf5-dev nlohmann-json3-dev libgtest-dev
+  libeigen3-dev libhdf5-dev nlohmann-json3-dev libgtest-dev
   libpng-dev libjpeg-dev
   zlib1g-dev libzstd-dev
   libwebp-dev libzip-dev
