@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanelInternals.h"
 
+#include "GaussianIO.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
 #include "vtkGaussianSelectionHub.h"
@@ -20,9 +21,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <limits>
+#include <sstream>
 
 using namespace Vis4GSCleanupTable;
 
@@ -299,9 +300,8 @@ bool Vis4GSCleanupPanel::WriteRepairTable(const QString& path) const
   {
     return false;
   }
-  const std::string tmp = path.toStdString() + ".tmp";
+  std::ostringstream csv;
   {
-    std::ofstream csv(tmp);
     const std::vector<std::string>& columns = vis4gs::FineTuneFigureColumns();
     for (std::size_t c = 0; c < columns.size(); ++c)
     {
@@ -317,11 +317,14 @@ bool Vis4GSCleanupPanel::WriteRepairTable(const QString& path) const
       }
       csv << "\n";
     }
-    if (!csv)
-    {
-      return false;
-    }
   }
-  QFile::remove(path);
-  return QFile::rename(QString::fromStdString(tmp), path);
+  try
+  {
+    vis4gs::WriteTextFile(path.toStdString(), csv.str());
+    return true;
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanelInternals.h"
 
+#include "GaussianIO.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSTrainingImages.h"
 #include "vtkGaussianSelectionHub.h"
@@ -16,8 +17,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 
 using namespace Vis4GSCleanupTable;
 
@@ -349,7 +350,7 @@ bool Vis4GSCleanupPanel::WaitForMeasurement()
 //------------------------------------------------------------------------------
 bool Vis4GSCleanupPanel::WriteTable(const QString& path) const
 {
-  std::ofstream csv(path.toStdString());
+  std::ostringstream csv;
   csv << "view,split,affected,psnr_before,psnr_after,ssim_before,ssim_after,l1_before,l1_after\n"
       << std::setprecision(17);
   for (QTableWidget* table : { d->Totals, d->Views })
@@ -372,7 +373,15 @@ bool Vis4GSCleanupPanel::WriteTable(const QString& path) const
       csv << "\n";
     }
   }
-  return static_cast<bool>(csv);
+  try
+  {
+    vis4gs::WriteTextFile(path.toStdString(), csv.str());
+    return true;
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
 }
 
 //------------------------------------------------------------------------------

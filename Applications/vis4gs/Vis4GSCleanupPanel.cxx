@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanelInternals.h"
 
+#include "GaussianIO.h"
 #include "SelectionRule.h"
 #include "Vis4GSCompareWindow.h"
 #include "Vis4GSDataModel.h"
@@ -35,7 +36,7 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
-#include <fstream>
+#include <sstream>
 
 using namespace Vis4GSCleanupTable;
 
@@ -572,21 +573,8 @@ bool Vis4GSCleanupPanel::SaveRule(const QString& path)
   {
     const std::string canonical =
       vis4gs::SelectionRule::Parse(d->Rule->text().toStdString()).ToString();
-    // A temporary file renamed over the target: a failed write leaves no half rule.
-    const std::string tmp = path.toStdString() + ".tmp";
-    {
-      std::ofstream out(tmp);
-      out << canonical << "\n";
-      if (!out)
-      {
-        throw std::runtime_error(path.toStdString() + ": could not be written");
-      }
-    }
-    QFile::remove(path);
-    if (!QFile::rename(QString::fromStdString(tmp), path))
-    {
-      throw std::runtime_error(path.toStdString() + ": could not be written");
-    }
+    // (A failed write leaves no half rule and the old one, and names the problem.)
+    vis4gs::WriteTextFile(path.toStdString(), canonical + "\n");
     d->MeasureLabel->setText("rule saved to " + path);
     return true;
   }
