@@ -3,6 +3,7 @@
 
 #include "Vis4GSComparison.h"
 
+#include "Vis4GSDataModel.h"
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSplatMapper.h"
@@ -495,7 +496,7 @@ void Vis4GSCompareWindow::ShowFirstCamera()
 {
   // The first training camera when there is one, else a view of the whole of A.
   vtkGaussianSceneView* view = d->Views[0].View;
-  if (!view->JumpToCamera(0))
+  if (!view->JumpToCamera(vis4gs::FirstTrainingCamera(view->GetCameras())))
   {
     view->GetRenderer()->ResetCamera();
     view->GetRenderer()->ResetCameraClippingRange();

@@ -799,19 +799,7 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->Scene->ResetCamera();
   if (doc->Cameras && doc->Cameras->GetNumberOfRows() > 0)
   {
-    // The first training camera: what the user trained on is the view they know (a test
-    // camera may come first in the table).
-    vtkIdType first = 0;
-    auto* split =
-      vtkDataArray::SafeDownCast(doc->Cameras->GetColumnByName(vis4gs::arrays::CameraSplit));
-    for (vtkIdType r = 0; split && r < doc->Cameras->GetNumberOfRows(); ++r)
-    {
-      if (split->GetTuple1(r) == 0)
-      {
-        first = r;
-        break;
-      }
-    }
+    const vtkIdType first = vis4gs::FirstTrainingCamera(doc->Cameras);
     d->Panel->CameraList->blockSignals(true);
     d->Panel->CameraList->setCurrentRow(static_cast<int>(first));
     d->Panel->CameraList->blockSignals(false);

@@ -688,6 +688,24 @@ void CamerasToTable(const std::vector<Camera>& cameras, vtkTable* table)
 }
 
 //------------------------------------------------------------------------------
+vtkIdType FirstTrainingCamera(vtkTable* table)
+{
+  if (!table || table->GetNumberOfRows() == 0)
+  {
+    return -1;
+  }
+  auto* split = vtkDataArray::SafeDownCast(table->GetColumnByName(arrays::CameraSplit));
+  for (vtkIdType r = 0; split && r < table->GetNumberOfRows(); ++r)
+  {
+    if (split->GetTuple1(r) == 0)
+    {
+      return r;
+    }
+  }
+  return 0;
+}
+
+//------------------------------------------------------------------------------
 bool TableToCameras(vtkTable* table, std::vector<Camera>& cameras, std::string* error)
 {
   cameras.clear();

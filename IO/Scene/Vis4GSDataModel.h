@@ -240,6 +240,11 @@ VIS4GSIOSCENE_EXPORT bool TableToCameras(vtkTable* table,
   std::vector<Camera>& cameras,
   std::string* error);
 
+/// The first row of @p table that is a training camera (Split 0): the view a user knows the
+/// scene from, where a window starts (a test camera may come first); 0 when none is, -1 for no
+/// table or no row.
+VIS4GSIOSCENE_EXPORT vtkIdType FirstTrainingCamera(vtkTable* table);
+
 /// A new VTK array holding a copy of @p extra (vtkFloatArray for Float32, and so on).
 VIS4GSIOSCENE_EXPORT vtkDataArray* NewArrayFromExtra(const ExtraProperty& extra);
 

@@ -25,6 +25,7 @@
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <utility>
 
 namespace
 {
@@ -225,6 +226,20 @@ int TestVis4GSDataModel(int, char*[])
       cameras2[1].Split == vis4gs::CameraSplit::Test && cameras2[1].WorldToCamera[3] == 2.5 &&
       cameras2[0].Distortion.size() == 1 && cameras2[1].Distortion.empty() && cameras2[0].Fy == 501,
     "camera round trip");
+  // The first training camera: row 0 here; row 1 once the test camera comes first; row 0 when
+  // every camera is a test camera; -1 for an empty table.
+  Check(vis4gs::FirstTrainingCamera(table) == 0, "first training camera, train first");
+  std::swap(cameras[0], cameras[1]);
+  vtkNew<vtkTable> testFirst;
+  vis4gs::CamerasToTable(cameras, testFirst);
+  Check(vis4gs::FirstTrainingCamera(testFirst) == 1, "first training camera after a test camera");
+  cameras[1].Split = vis4gs::CameraSplit::Test;
+  vtkNew<vtkTable> allTest;
+  vis4gs::CamerasToTable(cameras, allTest);
+  Check(vis4gs::FirstTrainingCamera(allTest) == 0, "no training camera: the first row");
+  vtkNew<vtkTable> empty;
+  Check(vis4gs::FirstTrainingCamera(empty) == -1 && vis4gs::FirstTrainingCamera(nullptr) == -1,
+    "no camera: -1");
   table->RemoveColumnByName("Fx");
   Check(!vis4gs::TableToCameras(table, cameras2, &error) && error.find("Fx") != std::string::npos,
     "missing column named");
