@@ -46,8 +46,10 @@ void Define(Vis4GSArguments& args)
     "image matches when at most the fraction F of its pixels differ.");
   args.AddFlag("benchmark",
     false,
-    "Load FILE, print the time from start to all views ready (wall and CPU) and the tree "
-    "view's pan/zoom frames per second, then exit (no scores are computed).");
+    "Load FILE, print the time from start to all views ready (wall and CPU), the scene "
+    "view's orbit (moving frames per second, the longest event-loop gap, the still frame "
+    "after the stop) and the tree view's pan/zoom frames per second, then exit (no scores "
+    "are computed).");
   args.AddOption("splat-budget",
     "N",
     "200000",
