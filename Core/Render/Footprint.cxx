@@ -33,7 +33,8 @@ typedef std::int32_t I8 __attribute__((vector_size(32)));
 
 VIS4GS_INLINE_AVX2 F8 FootprintExp8(F8 x)
 {
-  return raster::KernelExpLanes<F8, I8>(x);
+  raster::KernelExpLanes<F8, I8>(x);
+  return x;
 }
 
 // The alpha test of KernelAlpha for 8 pixels given their powers. Most lanes are decided
@@ -214,7 +215,8 @@ VIS4GS_INLINE_AVX512 F16 SelectF16(I16 m, F16 a, F16 b)
 VIS4GS_INLINE_AVX512 F16 FootprintExp16(F16 x)
 {
   // Called from here, the always-inlined comparisons take this function's instruction set.
-  return raster::KernelExpLanes<F16, I16>(x);
+  raster::KernelExpLanes<F16, I16>(x);
+  return x;
 }
 
 // AlphaTest8 on 16 lanes (same decisions lane by lane), as a bit mask.

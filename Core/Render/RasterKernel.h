@@ -78,10 +78,12 @@ inline double KernelExp(double x)
  * KernelExp(float) on a GCC vector of floats @p V (with @p I the int vector of the same lane
  * count), lane by lane with the same operations, so every lane equals the scalar result bit
  * for bit. The one copy every SIMD path (compositing, footprints, coverage, selection) uses;
- * always inlined, so it compiles with the caller's instruction set.
+ * always inlined, so it compiles with the caller's instruction set. In place through a
+ * reference: clang refuses a vector of 32 or 64 bytes passed or returned by value by a
+ * function without AVX / AVX-512 enabled, even an always-inlined one (the sanitizer build).
  */
 template <typename V, typename I>
-__attribute__((always_inline)) inline V KernelExpLanes(V x)
+__attribute__((always_inline)) inline void KernelExpLanes(V& x)
 {
   const I inRange = x >= -87.33654f;
   x = inRange ? x : V{};
@@ -99,7 +101,7 @@ __attribute__((always_inline)) inline V KernelExpLanes(V x)
   p = p * r2 + r + 1.0f;
   const I bits = (__builtin_convertvector(n, I) + 127) << 23;
   const V res = p * reinterpret_cast<V>(bits);
-  return inRange ? res : V{};
+  x = inRange ? res : V{};
 }
 
 /// Float to int conversion without undefined behaviour: values are clamped to +-2^30 first

@@ -19,12 +19,6 @@ namespace
 typedef float V16 __attribute__((vector_size(64)));
 typedef std::int32_t I16 __attribute__((vector_size(64)));
 
-// raster::KernelExp(float) on 16 lanes with the same operations (bit-identical per lane).
-inline __attribute__((always_inline)) V16 VectorKernelExp(V16 x)
-{
-  return raster::KernelExpLanes<V16, I16>(x);
-}
-
 void AtomicMax(std::uint32_t* slot, float value)
 {
   // Non-negative floats order like their bit patterns.
@@ -339,7 +333,10 @@ inline __attribute__((always_inline)) void ProcessGroup(const GroupContext& ctx,
       const V16 dy = g.V - py[q];
       const V16 power = -0.5f * (g.ConicA * dx * dx + g.ConicC * dy * dy) - g.ConicB * dx * dy;
       const I16 valid = power <= 0.0f;
-      const V16 a = g.Opacity * VectorKernelExp(valid ? power : V16{});
+      // raster::KernelExp(float) on 16 lanes, in place (bit-identical per lane).
+      V16 e = valid ? power : V16{};
+      raster::KernelExpLanes<V16, I16>(e);
+      const V16 a = g.Opacity * e;
       const V16 alpha = a < maxAlpha ? a : V16{} + maxAlpha;
       const I16 ok = alive[q] & valid & (alpha >= minAlpha);
       const V16 Tn = T[q] * (1.0f - alpha);
