@@ -2,7 +2,7 @@
 # The project under sanitizers (issue 35, part 1), each part in its own build folder:
 #
 #   bash Scripts/run-sanitizers.sh core   [build dir, default build-asan-core]
-#       Core only (no VTK), clang with AddressSanitizer + UndefinedBehaviorSanitizer, and every
+#       Core only (no VTK), with AddressSanitizer + UndefinedBehaviorSanitizer, and every
 #       Core test (GoogleTest): the bounded part, meant for Scripts/quickstart.sh test.
 #   bash Scripts/run-sanitizers.sh full   [build dir, default build-asan]
 #       The whole project with ASan + UBSan; runs the Core, IO, filter and Python tests (ctest -L
@@ -29,11 +29,19 @@ export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode=1:
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=1:${UBSAN_OPTIONS:-}"
 export TSAN_OPTIONS="halt_on_error=1:exitcode=1:second_deadlock_stack=1:${TSAN_OPTIONS:-}"
 
+# GCC by default, the compiler of every other build: Core's SIMD kernels use GCC's vector
+# builtins (__builtin_shuffle) that clang does not have. VIS4GS_SANITIZER_CC=clang tries clang.
+cc="${VIS4GS_SANITIZER_CC:-gcc}"
+case "$cc" in
+  clang*) cxx="${cc/clang/clang++}" asanlib=libclang_rt.asan-x86_64.so ;;
+  *) cxx="${cc/gcc/g++}" asanlib=libasan.so ;;
+esac
+
 configure()
 {
   local build="$1" flags="$2"
   shift 2
-  CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  CC="$cc" CXX="$cxx" cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DVIS4GS_WARNINGS_AS_ERRORS=OFF "${launcher[@]}" \
     -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" "$@" >/dev/null
@@ -53,7 +61,7 @@ case "$part" in
     cmake --build "$build" -j "$jobs"
     # Python is not instrumented: the sanitizer runtimes come first, leaks of the interpreter
     # itself are not ours.
-    libasan="$(clang -print-file-name=libclang_rt.asan-x86_64.so)"
+    libasan="$("$cc" -print-file-name="$asanlib")"
     (cd "$build" && LD_PRELOAD="$libasan" ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
       bash "$root/Scripts/with-display.sh" --new \
       ctest --output-on-failure --timeout 1800 -j "$jobs" -L "Core|IO|Filters|Python")
