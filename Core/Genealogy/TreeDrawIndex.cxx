@@ -293,10 +293,14 @@ std::int64_t TreeDrawIndex::VertexOfId(std::int64_t id) const
   }
   if (!this->DenseIdToVertex.empty())
   {
-    const std::int64_t k = id - this->IdMin;
-    return (k >= 0 && k < static_cast<std::int64_t>(this->DenseIdToVertex.size()))
-      ? this->DenseIdToVertex[k]
-      : -1;
+    if (id < this->IdMin)
+    {
+      return -1;
+    }
+    // Unsigned, as above: id - IdMin overflows int64 for ids far apart (UBSan, issue 35).
+    const std::uint64_t k =
+      static_cast<std::uint64_t>(id) - static_cast<std::uint64_t>(this->IdMin);
+    return k < this->DenseIdToVertex.size() ? this->DenseIdToVertex[k] : -1;
   }
   auto it = std::lower_bound(this->SortedIdToVertex.begin(),
     this->SortedIdToVertex.end(),
