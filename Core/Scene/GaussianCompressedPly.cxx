@@ -656,15 +656,7 @@ Encoded Encode(const GaussianCloud& cloud,
   out.Order.reserve(cloud.Count);
   for (std::size_t g = 0; g < cloud.Count; ++g)
   {
-    bool ok = ClassifyGaussian(&cloud.Positions[3 * g],
-                &cloud.LogScales[3 * g],
-                &cloud.Rotations[4 * g],
-                cloud.OpacityLogits[g]) == GaussianClass::Drawn;
-    for (std::size_t i = 0; ok && i < 3 * kOut; ++i)
-    {
-      ok = std::isfinite(cloud.SH[3 * k * g + i]);
-    }
-    if (ok)
+    if (detail::WritableGaussian(cloud, g, kOut))
     {
       out.Order.push_back(g);
     }

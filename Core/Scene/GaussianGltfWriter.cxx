@@ -51,15 +51,7 @@ GaussianCloud Select(const GaussianCloud& cloud, int degree, std::vector<std::si
   const std::size_t kOut = static_cast<std::size_t>((degree + 1) * (degree + 1));
   for (std::size_t g = 0; g < cloud.Count; ++g)
   {
-    bool ok = ClassifyGaussian(&cloud.Positions[3 * g],
-                &cloud.LogScales[3 * g],
-                &cloud.Rotations[4 * g],
-                cloud.OpacityLogits[g]) == GaussianClass::Drawn;
-    for (std::size_t i = 0; ok && i < 3 * kOut; ++i)
-    {
-      ok = std::isfinite(cloud.SH[3 * k * g + i]);
-    }
-    if (ok)
+    if (detail::WritableGaussian(cloud, g, kOut))
     {
       order.push_back(g);
     }

@@ -23,7 +23,9 @@
 #define vis4gs_GaussianIO_h
 
 #include "GaussianCloud.h"
+#include "GaussianMath.h"
 
+#include <cmath>
 #include <cstddef>
 #include <map>
 #include <string>
@@ -463,6 +465,29 @@ void WriteTextFile(const std::string& path, const std::string& text);
 
 namespace detail
 {
+/// The writers' rule for what a lossy or reduced format keeps: Gaussian @p g is drawn by the
+/// reference (ClassifyGaussian) and its first @p coefficients SH coefficients (RGB each), the
+/// ones written, are finite; the rest is left out and counted by the writer.
+inline bool WritableGaussian(const GaussianCloud& cloud, std::size_t g, std::size_t coefficients)
+{
+  if (ClassifyGaussian(&cloud.Positions[3 * g],
+        &cloud.LogScales[3 * g],
+        &cloud.Rotations[4 * g],
+        cloud.OpacityLogits[g]) != GaussianClass::Drawn)
+  {
+    return false;
+  }
+  const float* sh = &cloud.SH[3 * static_cast<std::size_t>(cloud.ShCoefficientCount()) * g];
+  for (std::size_t i = 0; i < 3 * coefficients; ++i)
+  {
+    if (!std::isfinite(sh[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// "N Gaussians written, L left out (...); quantisation error max/RMS: a max/rms; ..." for the
 /// writers' reports (DescribeQuantisation).
 std::string DescribeWriteErrors(std::size_t written,

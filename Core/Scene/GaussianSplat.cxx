@@ -150,12 +150,7 @@ std::size_t WriteSplat(const std::string& path, const GaussianCloud& cloud)
   kept.reserve(cloud.Count);
   for (std::size_t g = 0; g < cloud.Count; ++g)
   {
-    const float* dc = &cloud.SH[3 * k * g];
-    if (ClassifyGaussian(&cloud.Positions[3 * g],
-          &cloud.LogScales[3 * g],
-          &cloud.Rotations[4 * g],
-          cloud.OpacityLogits[g]) == GaussianClass::Drawn &&
-      std::isfinite(dc[0]) && std::isfinite(dc[1]) && std::isfinite(dc[2]))
+    if (detail::WritableGaussian(cloud, g, 1))
     {
       kept.push_back(g);
     }

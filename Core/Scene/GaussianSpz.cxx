@@ -705,15 +705,7 @@ std::vector<unsigned char> WriteSpzToMemory(const GaussianCloud& cloud,
   double maxAbs = 0;
   for (std::size_t g = 0; g < cloud.Count; ++g)
   {
-    const float* sh = &cloud.SH[3 * k * g];
-    bool ok = ClassifyGaussian(&cloud.Positions[3 * g],
-                &cloud.LogScales[3 * g],
-                &cloud.Rotations[4 * g],
-                cloud.OpacityLogits[g]) == GaussianClass::Drawn;
-    for (std::size_t j = 0; ok && j < 3 * k; ++j)
-    {
-      ok = std::isfinite(sh[j]);
-    }
+    bool ok = detail::WritableGaussian(cloud, g, k);
     double m = 0;
     for (int c = 0; ok && c < 3; ++c)
     {
