@@ -4,24 +4,24 @@
 find_package(Qt5 QUIET COMPONENTS Widgets)
 if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLinked AND
     TARGET Vis4GS::ViewsScene)
-  set_property(SOURCE Vis4GSMainWindow.h Vis4GSCompareWindow.h PROPERTY SKIP_AUTOMOC OFF)
+  set_property(SOURCE Window/Vis4GSMainWindow.h Window/Vis4GSCompareWindow.h PROPERTY SKIP_AUTOMOC OFF)
   target_sources(vis4gs PRIVATE
-    vis4gsViewCommand.cxx
-    Vis4GSMainWindow.cxx
-    Vis4GSMainWindow.h
-    Vis4GSSelfTest.cxx
-    Vis4GSBenchmark.cxx
-    Vis4GSControlPanel.cxx
-    Vis4GSSelectionExport.cxx
-    Vis4GSSelectionTable.cxx
-    Vis4GSCleanupPanel.cxx
-    Vis4GSCleanupMeasurement.cxx
-    Vis4GSCleanupFineTune.cxx
-    Vis4GSCleanupSelfTest.cxx
-    Vis4GSCompareWindow.cxx
-    Vis4GSCompareWindow.h
-    Vis4GSComparison.cxx
-    Vis4GSDocument.cxx)
+    Commands/vis4gsViewCommand.cxx
+    Window/Vis4GSMainWindow.cxx
+    Window/Vis4GSMainWindow.h
+    Window/Vis4GSSelfTest.cxx
+    Window/Vis4GSBenchmark.cxx
+    Window/Vis4GSControlPanel.cxx
+    Window/Vis4GSSelectionExport.cxx
+    Window/Vis4GSSelectionTable.cxx
+    Window/Vis4GSCleanupPanel.cxx
+    Window/Vis4GSCleanupMeasurement.cxx
+    Window/Vis4GSCleanupFineTune.cxx
+    Window/Vis4GSCleanupSelfTest.cxx
+    Window/Vis4GSCompareWindow.cxx
+    Window/Vis4GSCompareWindow.h
+    Window/Vis4GSComparison.cxx
+    Window/Vis4GSDocument.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
   target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
     vis4gs::CoreTrainingLog vis4gs::CoreScene VTK::RenderingCore VTK::RenderingOpenGL2
@@ -39,7 +39,7 @@ else ()
 endif ()
 
 # A small SYNTHETIC training log for the application tests and benchmarks.
-add_executable(vis4gsMakeTestLog vis4gsMakeTestLog.cxx)
+add_executable(vis4gsMakeTestLog Commands/vis4gsMakeTestLog.cxx)
 target_compile_options(vis4gsMakeTestLog PRIVATE ${vis4gs_warning_flags})
 target_link_libraries(vis4gsMakeTestLog PRIVATE vis4gs::CoreTrainingLog vis4gs::CoreGenealogy)
 
