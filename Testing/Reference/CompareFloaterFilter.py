@@ -204,6 +204,8 @@ def main(argv=None):
     p.add_argument("--build", help="build folder for install-splat-transform.sh")
     p.add_argument("--splat-transform", help="splat-transform's bin/cli.mjs")
     p.add_argument("--floater-ids", help="ids the filter removed (one a line): skips the filter")
+    p.add_argument("--k", type=int, default=-1,
+                   help="without the filter: each rule removes K (no splat-transform row)")
     p.add_argument("--filter-floaters", default="", help="size,op,min; empty: its defaults")
     p.add_argument("--repair-iterations", type=int, default=30)
     p.add_argument("--rules", default=",".join(DEFAULT_RULES))
@@ -226,7 +228,9 @@ def main(argv=None):
     rows = reference_ply.read_ply(scores_ply)["vertex"]
     print("scores.ply: %d Gaussians" % len(rows))
 
-    if a.floater_ids:
+    if a.k >= 0:
+        filtered = None
+    elif a.floater_ids:
         filtered = np.loadtxt(a.floater_ids, dtype=np.int64, ndmin=1)
     else:
         cli = a.splat_transform or reference_ply.splat_transform(a.build or a.output)
@@ -236,11 +240,15 @@ def main(argv=None):
                   ["node", cli, "-w", scores_ply] + option + [floaters_ply],
                   env=swiftshader_env())
         filtered = removed_ids(rows, reference_ply.read_ply(floaters_ply)["vertex"])
-    k = len(filtered)
-    np.savetxt(os.path.join(a.output, "floater-ids.txt"), filtered, fmt="%d")
-    print("the floater filter removes %d of %d Gaussians" % (k, len(rows)))
-
-    selections = [("splat-transform", filtered, 0), ("none", np.zeros(0, np.int64), 0)]
+    selections = [("none", np.zeros(0, np.int64), 0)]
+    if filtered is None:
+        k, filtered = a.k, np.zeros(0, np.int64)
+        print("no filter: each rule removes %d of %d Gaussians" % (k, len(rows)))
+    else:
+        k = len(filtered)
+        np.savetxt(os.path.join(a.output, "floater-ids.txt"), filtered, fmt="%d")
+        print("the floater filter removes %d of %d Gaussians" % (k, len(rows)))
+        selections.insert(0, ("splat-transform", filtered, 0))
     for r in rules:
         if r == "random":
             rng = np.random.default_rng(0)
