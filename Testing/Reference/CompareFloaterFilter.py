@@ -245,6 +245,11 @@ def main(argv=None):
         k, filtered = a.k, np.zeros(0, np.int64)
         print("no filter: each rule removes %d of %d Gaussians" % (k, len(rows)))
     else:
+        unknown = np.setdiff1d(filtered, np.asarray(rows["id"], np.int64))
+        if unknown.size:
+            print("FAILED: %d of the filter's %d ids are not in %s (first %d): another snapshot?"
+                  % (unknown.size, len(filtered), scores_ply, unknown[0]))
+            sys.exit(1)
         k = len(filtered)
         np.savetxt(os.path.join(a.output, "floater-ids.txt"), filtered, fmt="%d")
         print("the floater filter removes %d of %d Gaussians" % (k, len(rows)))

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -63,8 +64,15 @@ int Run(const Vis4GSArguments& args)
     vis4gs::SnapshotReadOptions o;
     o.Arrays = vis4gs::SnapshotParameters;
     o.ShDegree = shDegree;
+    const std::vector<int>& logged = log.GetSnapshotIterations();
+    if (logged.empty())
+    {
+      throw std::runtime_error(in + ": the training log holds no snapshot to convert");
+    }
+    // ReadNearestSnapshot(-1) would give the first snapshot, the one nearest to -1.
+    const int wanted = args.GetInt("iteration");
     int iteration = 0;
-    cloud = log.ReadNearestSnapshot(args.GetInt("iteration"), o, &iteration);
+    cloud = log.ReadNearestSnapshot(wanted < 0 ? logged.back() : wanted, o, &iteration);
     what = "snapshot " + std::to_string(iteration);
   }
   else
