@@ -108,7 +108,7 @@ int Run(const Vis4GSArguments& args)
   {
     if (args.GetPositional("FILE").empty())
     {
-      std::cerr << "vis4gs view: --dump-inputs needs a FILE\n";
+      std::cerr << "vis4gs view: error: --dump-inputs needs a FILE\n";
       return 1;
     }
     Vis4GSDocument::LoadAndDumpInputs(
@@ -117,7 +117,7 @@ int Run(const Vis4GSArguments& args)
   }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
   {
-    std::cerr << "vis4gs view: no display (set DISPLAY, or run under xvfb-run)\n";
+    std::cerr << "vis4gs view: error: no display (set DISPLAY, or run under xvfb-run)\n";
     return 1;
   }
   // Must come before the QApplication (guide: "More traps").
@@ -132,7 +132,8 @@ int Run(const Vis4GSArguments& args)
     if (args.GetPositional("FILE").empty() || t.size() != 3 ||
       !std::all_of(t.begin(), t.end(), [](double v) { return v >= 0; }))
     {
-      std::cerr << "vis4gs view: --compare needs a FILE and --compare-thresholds M,O,S >= 0\n";
+      std::cerr
+        << "vis4gs view: error: --compare needs a FILE and --compare-thresholds M,O,S >= 0\n";
       return 1;
     }
     Vis4GSCompareWindow compare;
@@ -170,7 +171,7 @@ int Run(const Vis4GSArguments& args)
   {
     if (args.GetPositional("FILE").empty())
     {
-      std::cerr << "vis4gs view: --benchmark needs a FILE\n";
+      std::cerr << "vis4gs view: error: --benchmark needs a FILE\n";
       return 1;
     }
     Vis4GSInstallBenchmark(&window, start, startCpu);
@@ -183,7 +184,7 @@ int Run(const Vis4GSArguments& args)
     const std::vector<double> tolerance = args.GetNumbers("baseline-tolerance");
     if (tolerance.size() != 2)
     {
-      std::cerr << "vis4gs view: --baseline-tolerance expects T,F\n";
+      std::cerr << "vis4gs view: error: --baseline-tolerance expects T,F\n";
       return 1;
     }
     selfTestOptions.BaselineDirectory = QString::fromStdString(args.Get("baseline"));
@@ -195,7 +196,7 @@ int Run(const Vis4GSArguments& args)
     Vis4GSInstallSelfTest(&window, selfTestOptions);
     if (args.GetPositional("FILE").empty())
     {
-      std::cerr << "vis4gs view: --self-test needs a FILE\n";
+      std::cerr << "vis4gs view: error: --self-test needs a FILE\n";
       return 1;
     }
   }
