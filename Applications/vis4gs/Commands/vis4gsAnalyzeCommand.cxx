@@ -193,6 +193,8 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
   }
   cameras = log.ReadCameras();
   const fs::path logDir = fs::path(path).parent_path();
+  std::string writeError; // the first image that could not be written, said once
+  std::size_t notWritten = 0;
   for (vis4gs::Camera& c : cameras)
   {
     const std::string prefix = "/images/";
@@ -203,11 +205,10 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       if (writeImages) // under MPI process 0 writes them once for every process
       {
         int width = 0, height = 0;
+        std::vector<unsigned char> pixels;
         try
         {
-          const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
-          fs::create_directories(file.parent_path());
-          vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          pixels = log.ReadImage(name, width, height);
         }
         catch (const std::exception& e)
         {
@@ -217,6 +218,20 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
                     << " cannot be read (" << e.what()
                     << "); its view is left out of the Blur and Needle scores\n";
         }
+        try
+        {
+          if (!pixels.empty())
+          {
+            fs::create_directories(file.parent_path());
+            vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          }
+        }
+        catch (const std::exception& e)
+        {
+          // An output folder that cannot be written fails every image the same way: said once.
+          writeError = writeError.empty() ? e.what() : writeError;
+          ++notWritten;
+        }
       }
       c.ImagePath = file.string();
     }
@@ -224,6 +239,12 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
     {
       c.ImagePath = (logDir / c.ImagePath).string();
     }
+  }
+  if (notWritten > 0)
+  {
+    std::cerr << "vis4gs analyze: warning: " << notWritten << " training images of the log could "
+              << "not be written to " << (output / "images").string() << " (" << writeError
+              << "); their views are left out of the Blur and Needle scores\n";
   }
   return cloud;
 }
