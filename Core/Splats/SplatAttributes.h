@@ -132,8 +132,8 @@ constexpr float SplatDisplayDimmed = 2.0f;
 /**
  * Display colour of each of @p count Gaussians: @p rgba gets 4 floats per Gaussian (colour,
  * opacity multiplier), @p keep one byte (0 = hidden, never drawn). @p trueColors (3 per
- * Gaussian) is used unless ScoreColoring or DeferTrueColor is on. Throws std::invalid_argument when a needed
- * array is missing.
+ * Gaussian) is used unless ScoreColoring or DeferTrueColor is on. Throws std::invalid_argument when
+ * a needed array is missing.
  */
 void ComputeSplatDisplay(const float* trueColors,
   std::size_t count,

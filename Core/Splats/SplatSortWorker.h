@@ -111,10 +111,10 @@ private:
   std::condition_variable Done; // WaitForLatest waits for a finished sort
   std::thread Thread;
   bool Stop = false;
-  bool Pending = false;         // Next holds a request not yet started
-  bool Fresh = false;           // Ready holds a result not yet taken
-  std::uint64_t Submitted = 0;  // requests submitted
-  std::uint64_t Finished = 0;   // the number of the last request whose sort finished
+  bool Pending = false;        // Next holds a request not yet started
+  bool Fresh = false;          // Ready holds a result not yet taken
+  std::uint64_t Submitted = 0; // requests submitted
+  std::uint64_t Finished = 0;  // the number of the last request whose sort finished
   std::uint64_t SortCount = 0;
   std::string LastError;
   SplatSortRequest Next;

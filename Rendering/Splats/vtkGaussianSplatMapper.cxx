@@ -8,6 +8,11 @@
   See LICENSE for details.
 
 =========================================================================*/
+// Over 1,200 lines on purpose: one mapper with two drawing paths (OpenGL splats, the CPU
+// rasteriser) that share the input's conversion, the display options (scores, hiding,
+// selection), the camera and the render window's interactive/still state; what each path
+// computes lives in Core (SplatSortWorker, SplatAttributes, the rasteriser, the level of detail),
+// this file only holds the VTK and OpenGL side of both.
 #include "vtkGaussianSplatMapper.h"
 
 #include "vtkGaussianCameraUtilities.h"
@@ -1027,7 +1032,8 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
     }
     if (in.Keep != oldKeep || in.KeepVersion == 0)
     {
-      const bool all = std::all_of(in.Keep.begin(), in.Keep.end(), [](std::uint8_t k) { return k; });
+      const bool all =
+        std::all_of(in.Keep.begin(), in.Keep.end(), [](std::uint8_t k) { return k; });
       in.KeepShared = all ? nullptr : std::make_shared<const std::vector<std::uint8_t>>(in.Keep);
       ++in.KeepVersion;
     }
@@ -1044,9 +1050,9 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
     in.CameraW2C = w2c;
     ++in.CameraKey;
   }
-  const std::array<std::uint64_t, 3> scene{ { in.CloudVersion,
-    in.KeepVersion,
-    static_cast<std::uint64_t>(this->MaximumNumberOfSplats) } };
+  const std::array<std::uint64_t, 3> scene{
+    { in.CloudVersion, in.KeepVersion, static_cast<std::uint64_t>(this->MaximumNumberOfSplats) }
+  };
   if (scene != in.OrderScene)
   {
     in.OrderScene = scene;
@@ -1155,8 +1161,8 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
       static_cast<double>(n) * shStride > std::numeric_limits<int>::max())
     {
       vtkErrorMacro("vtkGaussianSplatMapper: the SH coefficients of "
-        << n << " Gaussians need " << floats / 4
-        << " texels; the GL texture buffer limit is " << maxTexels);
+        << n << " Gaussians need " << floats / 4 << " texels; the GL texture buffer limit is "
+        << maxTexels);
       return;
     }
     in.ShBuffer->Upload(data, floats, vtkOpenGLBufferObject::TextureBuffer);

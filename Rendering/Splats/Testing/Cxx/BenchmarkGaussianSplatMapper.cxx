@@ -12,7 +12,8 @@
 //        [interactive splat budget=-1 (CPU rasteriser path: Gaussians drawn while moving;
 //         -1 = the mapper's default, 0 = all)]
 //        [orbit speed=45 degrees per second (OpenGL path: the order's lag in degrees at a
-//         60 fps GPU frame rate)]
+//         60 fps GPU frame rate)] [lag offsets=1,3,10 (OpenGL path: degrees behind the camera
+//         whose order's error is measured, besides the lag of the orbit speed)]
 #include "BenchmarkScene.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraUtilities.h"
@@ -72,6 +73,18 @@ int main(int argc, char* argv[])
   const double sampleDistance = argc > 10 ? std::atof(argv[10]) : 2.0;
   const long long splatBudget = argc > 11 ? std::atoll(argv[11]) : -1;
   const double orbitSpeed = argc > 12 ? std::atof(argv[12]) : 45.0;
+  std::vector<double> offsets;
+  for (const char* p = argc > 13 ? argv[13] : "1,3,10"; *p;)
+  {
+    char* end = nullptr;
+    const double d = std::strtod(p, &end);
+    if (end == p)
+    {
+      break;
+    }
+    offsets.push_back(d);
+    p = *end == ',' ? end + 1 : end;
+  }
   const auto cloud = vis4gs::MakeBenchmarkScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
@@ -126,7 +139,7 @@ int main(int argc, char* argv[])
   // The OpenGL path's orbit is interactive (the last finished order); after each moving frame
   // a still frame at the same camera (the exact order) gives the moving frame's error.
   std::vector<double> moving, movingCpu, sortMs, colorMs, uploadMs, renderThread, drawCall,
-    wholeRender, lag, lagPsnr;
+    wholeRender, lag, lagPsnr, exactFrames, exactCpu;
   const vtkIdType orderUploads0 = mapper->GetOrderUploadCount();
   const vtkIdType sceneUploads0 = mapper->GetSceneUploadCount();
   for (int f = 0; f < frames; ++f)
@@ -147,7 +160,10 @@ int main(int argc, char* argv[])
       sortMs.push_back(mapper->GetLastSortTime());
     }
     colorMs.push_back(mapper->GetLastColorTime());
-    uploadMs.push_back(mapper->GetLastUploadTime());
+    if (!openGL)
+    {
+      uploadMs.push_back(mapper->GetLastUploadTime());
+    }
     renderThread.push_back(mapper->GetLastRenderThreadTime());
     drawCall.push_back(mapper->GetLastDrawCallTime());
     lag.push_back(static_cast<double>(mapper->GetLastOrderLag()));
@@ -155,13 +171,22 @@ int main(int argc, char* argv[])
     {
       const auto lagging = grab();
       win->SetDesiredUpdateRate(0.0001);
-      win->Render();
+      const auto s0 = now();
+      const std::clock_t sc = std::clock();
+      win->Render(); // waits for the order of this camera (sorted on the worker)
+      win->WaitForCompletion();
+      exactFrames.push_back(ms(s0, now()));
+      exactCpu.push_back(1000.0 * static_cast<double>(std::clock() - sc) / CLOCKS_PER_SEC);
+      // (the order arrives in this frame: its sort's and its upload's time)
+      sortMs.push_back(mapper->GetLastSortTime());
+      uploadMs.push_back(mapper->GetLastUploadTime());
       lagPsnr.push_back(Psnr(grab(), lagging));
     }
   }
   win->SetDesiredUpdateRate(0.0001);
+  // (the OpenGL path timed still frames at new cameras above: one here)
   std::vector<double> still, stillCpu;
-  for (int f = 0; f < frames; ++f)
+  for (int f = 0; f < (openGL ? 1 : frames); ++f)
   {
     const auto a = now();
     const std::clock_t c = std::clock();
@@ -225,7 +250,8 @@ int main(int argc, char* argv[])
       sortTime,
       lagFrames,
       lagDegrees);
-    for (double d : { lagDegrees, 1.0, 3.0, 10.0 })
+    offsets.insert(offsets.begin(), lagDegrees);
+    for (double d : offsets)
     {
       vtkGaussianCameraUtilities::ApplyCamera(
         vis4gs::MakeBenchmarkCamera(W, H, target - d * M_PI / 180.0), ren->GetActiveCamera());
@@ -265,6 +291,13 @@ int main(int argc, char* argv[])
     median(still),
     1000.0 / median(still),
     median(stillCpu));
+  if (openGL)
+  {
+    std::printf("  still frame after a move (waits for its exact order): %9.1f ms/frame, CPU %.1f "
+                "ms/frame\n",
+      median(exactFrames),
+      median(exactCpu));
+  }
   if (mapper->GetLastDrawMethod() == vtkGaussianSplatMapper::CPU_RASTERIZER)
   {
     // Interactive frames (the window's DesiredUpdateRate as a vtkRenderWindowInteractor sets

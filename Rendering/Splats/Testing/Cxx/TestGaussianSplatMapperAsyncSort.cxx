@@ -100,7 +100,8 @@ int CheckOrbit()
     // The first moving frame's order cannot have finished before the frame took it.
     if ((f == 1 && lag != 1) || lag < 1 || lag > f)
     {
-      std::printf("FAILED: moving frame %d lags %lld camera changes\n", f, static_cast<long long>(lag));
+      std::printf(
+        "FAILED: moving frame %d lags %lld camera changes\n", f, static_cast<long long>(lag));
       fail = 1;
     }
   }
