@@ -245,6 +245,9 @@ struct vtkGaussianSplatMapper::vtkInternals
     this->GeometryOnGPU = this->ColorsOnGPU = this->OrderOnGPU = this->ShOnGPU = false;
     this->GeometryDirty = this->ColorsDirty = true;
     this->OrderBytes = 0;
+    // The packed geometry and display colours are freed once uploaded: made again.
+    this->PackDirty = true;
+    this->DisplayTime = 0;
   }
 
   // The overlay, hiding, highlight and dimming options of @p self for the current input
@@ -1102,6 +1105,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
     catch (const std::exception& e)
     {
       vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
+      in.FrontValid = false;
       return;
     }
     if (arrived)
@@ -1139,6 +1143,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
       static_cast<unsigned int>(3 * n), 4, VTK_FLOAT, in.GeometryBuffer);
     in.GeometryOnGPU = true;
     in.GeometryDirty = false;
+    std::vector<float>().swap(in.Geometry); // (the GL's copy is the one drawn: 48 B a Gaussian)
     ++in.SceneUploads;
   }
   const int shStride = 3 * in.Cloud->ShCoefficientCount();
@@ -1181,6 +1186,7 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
       static_cast<unsigned int>(n), 4, VTK_FLOAT, in.ColorBuffer);
     in.ColorsOnGPU = true;
     in.ColorsDirty = false;
+    std::vector<float>().swap(in.Display);
     ++in.SceneUploads;
   }
   if (!in.OrderOnGPU && !order.empty())
