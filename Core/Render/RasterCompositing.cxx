@@ -324,6 +324,14 @@ void CompositeTiles(const ViewProjection<T>& projection,
     weights->MaxWeight.assign(n, 0.0f);
     weights->WeightSum.assign(n, 0.0);
     weights->BlendedPixels.assign(n, 0);
+    if (weights->CountEvaluations)
+    {
+      weights->Evaluations.assign(n, 0);
+    }
+    else
+    {
+      weights->Evaluations.clear();
+    }
   }
   std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
   CompositeContext<T> ctx{ projection.Width,
@@ -349,8 +357,9 @@ void CompositeTiles(const ViewProjection<T>& projection,
   }
   else if (weights)
   {
-    fn = work ? SelectTileFunction<T, true, true, true>(isa)
-              : SelectTileFunction<T, true, false, true>(isa);
+    // The evaluations need the per-pixel stop positions that the work counters keep.
+    fn = work || weights->CountEvaluations ? SelectTileFunction<T, true, true, true>(isa)
+                                           : SelectTileFunction<T, true, false, true>(isa);
   }
   else
   {
