@@ -240,6 +240,10 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     out.ContributionSum.assign(n, 0.0);
   }
   std::vector<bool> coveredByScorePass(cameras.size(), false);
+  // The score pass's compositing also gives the render cost of the views it renders at full
+  // resolution (the same projection and blending), so no view is drawn twice for it.
+  const bool shareRenderCost = renderCost && scores && settings.LossResolution == 1;
+  std::vector<bool> costedByScorePass(cameras.size(), false);
   const std::size_t totalSteps = (request.ViewCoverage ? ownViews.size() : 0) +
     (scores ? ownViews.size() : 0) + (renderCost ? ownViews.size() : 0);
   std::size_t done = 0;
@@ -300,13 +304,14 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
 
       ViewProjection<float> projection;
       GaussianWeightStats weights;
+      weights.CountEvaluations = shareRenderCost;
       if (multi)
       {
         t0 = Clock::now();
         multi->Project(view);
         out.Timings.Projection += Seconds(t0);
         t0 = Clock::now();
-        multi->Composite(render);
+        multi->Composite(render, shareRenderCost ? &weights : nullptr);
         out.Timings.Rendering += Seconds(t0);
       }
       else
@@ -316,7 +321,8 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         out.Timings.Projection += Seconds(t0);
         t0 = Clock::now();
         const TileBins bins = BinGaussians(projection, settings.Threads);
-        CompositeTiles(projection, bins, raster, render, wantWeights ? &weights : nullptr);
+        CompositeTiles(
+          projection, bins, raster, render, wantWeights || shareRenderCost ? &weights : nullptr);
         out.Timings.Rendering += Seconds(t0);
       }
 
@@ -369,6 +375,16 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         out.ScoredViews[g] += 1;
         blurSum[g] += omega * lp;
         needleSum[g] += lp;
+      }
+      if (shareRenderCost)
+      {
+#pragma omp parallel for schedule(static)
+        for (std::int64_t g = 0; g < sn; ++g)
+        {
+          out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
+          out.ContributionSum[g] += weights.WeightSum[g];
+        }
+        costedByScorePass[vi] = true;
       }
       if (shareCoverage)
       {
@@ -475,7 +491,8 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   }
 
   // Render-cost pass: every view at full resolution, whatever the loss and coverage
-  // resolutions (the cost is the one of drawing the training views), no image needed.
+  // resolutions (the cost is the one of drawing the training views), no image needed; the
+  // views the score pass rendered at full resolution are done.
   if (renderCost)
   {
     const std::int64_t sn = static_cast<std::int64_t>(n);
@@ -484,6 +501,11 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     weights.CountEvaluations = true;
     for (std::size_t vi : ownViews)
     {
+      if (costedByScorePass[vi])
+      {
+        step();
+        continue;
+      }
       if (viewStarted)
       {
         viewStarted(vi);

@@ -405,6 +405,14 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
   image.Transmittance.resize(pixels);
   image.Depth.resize(pixels);
   image.Contributors.resize(pixels);
+  if (in.Weights)
+  {
+    const std::size_t n = in.KernelCount;
+    in.Weights->MaxWeight.assign(n, 0.0f);
+    in.Weights->WeightSum.assign(n, 0.0);
+    in.Weights->BlendedPixels.assign(n, 0);
+    in.Weights->Evaluations.assign(in.Weights->CountEvaluations ? n : 0, 0);
+  }
   std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
   CompositeContext<float> ctx{ in.Width,
     in.Height,
@@ -414,13 +422,16 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
     sizeof(KernelGaussian<float>),
     in.Bounds,
     &image,
-    nullptr,
+    in.Weights,
     { static_cast<float>(in.Background[0]),
       static_cast<float>(in.Background[1]),
       static_cast<float>(in.Background[2]) },
     &kernelEvals,
     &referenceEvals };
-  const TileFunction<float> fn = SelectTileFunction<float, false, false, true>(in.KernelIsa);
+  const TileFunction<float> fn = !in.Weights
+    ? SelectTileFunction<float, false, false, true>(in.KernelIsa)
+    : in.Weights->CountEvaluations ? SelectTileFunction<float, true, true, true>(in.KernelIsa)
+                                   : SelectTileFunction<float, true, false, true>(in.KernelIsa);
   const std::int64_t tiles = static_cast<std::int64_t>(in.Bins->TileCount());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(in.Threads)
   for (std::int64_t t = 0; t < tiles; ++t)

@@ -336,3 +336,54 @@ TEST(RenderCost, PartialsOfViewSubsetsAddUp)
       (std::isnan(x) && std::isnan(y)) || std::abs(x - y) <= 1e-12 * std::abs(y) || x == y);
   }
 }
+
+TEST(RenderCost, SharedWithTheScorePassIsTheSame)
+{
+  // Asked with blur and needle at full resolution, the render cost comes from the score pass's
+  // compositing (one projection per view); alone, or beside a lower-resolution score pass, it
+  // has its own. The numbers must not depend on which: R exactly, R/A up to the order of the
+  // per-tile sums.
+  GaussianCloud cloud;
+  cloud.Resize(120, 0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    const float p[3] = { 0.6f * u(rng), 0.4f * u(rng), 4.0f + u(rng) };
+    const float ls[3] = { -3 + u(rng), -3 + u(rng), -3 + u(rng) };
+    Set(cloud, i, p, ls, 2 * u(rng) + 1);
+  }
+  std::vector<Camera> views = {
+    MakeView(0, 0, 64, 48), MakeView(0.2, 0, 64, 48), MakeView(-0.2, 0.3, 48, 48)
+  };
+  auto grey = [](std::size_t index, const Camera& c, vis4gs::Image& image)
+  {
+    if (index == 1)
+    {
+      return false; // a view without image: the score pass skips it, the cost pass does not
+    }
+    image.Width = c.Width;
+    image.Height = c.Height;
+    image.Channels = 3;
+    image.Pixels.assign(3 * static_cast<std::size_t>(c.Width) * c.Height, 0.4f);
+    return true;
+  };
+  const vis4gs::GaussianScores alone = RenderCostOf(cloud, views);
+  for (int variant = 0; variant < 3; ++variant)
+  {
+    vis4gs::ScoreSettings settings;
+    settings.Request.RenderCost = settings.Request.CostPerContribution = true;
+    settings.SharedProjection = variant != 1;       // 1: the per-view compositing path
+    settings.LossResolution = variant == 2 ? 2 : 1; // 2: not shared, a pass of its own
+    const auto with = vis4gs::ComputeGaussianScores(cloud, views, settings, grey);
+    EXPECT_EQ(with.RenderCost, alone.RenderCost) << "variant " << variant;
+    for (std::size_t i = 0; i < cloud.Count; ++i)
+    {
+      const double x = with.CostPerContribution[i], y = alone.CostPerContribution[i];
+      EXPECT_TRUE(
+        x == y || (std::isnan(x) && std::isnan(y)) || std::abs(x - y) <= 1e-12 * std::abs(y))
+        << "variant " << variant << ", Gaussian " << i << ": " << x << " vs " << y;
+    }
+    EXPECT_FALSE(with.BlurScore.empty());
+  }
+}
