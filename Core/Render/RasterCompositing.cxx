@@ -80,6 +80,44 @@ struct CompositeContext
   T Background[3];
   std::atomic<std::uint64_t>* KernelEvaluations;
   std::atomic<std::uint64_t>* ReferenceEvaluations;
+  /// With GaussianWeightStats::CountEvaluations: per tile-list entry (index into Bins->Ids), the
+  /// entry's alpha*T sum and evaluated pixels, summed per Gaussian in list order afterwards
+  /// (EntrySums), so that WeightSum does not depend on the order threads finish tiles in.
+  double* EntryWeight = nullptr;
+  std::uint16_t* EntryEvaluations = nullptr;
+};
+
+/// Per-entry buffers of the counted statistics (see CompositeContext), zeroed.
+struct EntrySums
+{
+  std::vector<double> Weight;
+  std::vector<std::uint16_t> Evaluations;
+
+  template <typename T>
+  void Attach(CompositeContext<T>& ctx, const TileBins& bins, const GaussianWeightStats* weights)
+  {
+    if (weights && weights->CountEvaluations)
+    {
+      this->Weight.assign(bins.Ids.size(), 0.0);
+      this->Evaluations.assign(bins.Ids.size(), 0);
+      ctx.EntryWeight = this->Weight.data();
+      ctx.EntryEvaluations = this->Evaluations.data();
+    }
+  }
+
+  /// WeightSum and Evaluations of every Gaussian: its entries in tile order, one thread.
+  void Reduce(const TileBins& bins, GaussianWeightStats* weights) const
+  {
+    if (!weights || !weights->CountEvaluations)
+    {
+      return;
+    }
+    for (std::size_t k = 0; k < bins.Ids.size(); ++k)
+    {
+      weights->WeightSum[bins.Ids[k]] += this->Weight[k];
+      weights->Evaluations[bins.Ids[k]] += this->Evaluations[k];
+    }
+  }
 };
 
 #pragma GCC diagnostic push
@@ -349,6 +387,8 @@ void CompositeTiles(const ViewProjection<T>& projection,
       static_cast<T>(settings.Background[2]) },
     &kernelEvals,
     &referenceEvals };
+  EntrySums entries;
+  entries.Attach(ctx, bins, weights);
   TileFunction<T> fn;
   const int isa = settings.KernelIsa;
   if (!depth)
@@ -372,6 +412,7 @@ void CompositeTiles(const ViewProjection<T>& projection,
   {
     fn(ctx, t);
   }
+  entries.Reduce(bins, weights);
   if (work)
   {
     work->TilePairs = bins.Ids.size();
@@ -428,6 +469,8 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
       static_cast<float>(in.Background[2]) },
     &kernelEvals,
     &referenceEvals };
+  EntrySums entries;
+  entries.Attach(ctx, *in.Bins, in.Weights);
   const TileFunction<float> fn = !in.Weights
     ? SelectTileFunction<float, false, false, true>(in.KernelIsa)
     : in.Weights->CountEvaluations ? SelectTileFunction<float, true, true, true>(in.KernelIsa)
@@ -438,6 +481,7 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
   {
     fn(ctx, t);
   }
+  entries.Reduce(*in.Bins, in.Weights);
 }
 } // namespace internal
 } // namespace raster

@@ -381,11 +381,11 @@ private:
     if (cmp == comparisons.end())
     {
       this->Fail(
-        std::string("expected <, <=, >, >=, ==, != or top/bottom after '") + it->first + "'", op);
+        "expected <, <=, >, >=, ==, != or top/bottom after '" + AttributeNameOf(node) + "'", op);
     }
     node.Type = RuleNode::Kind::Compare;
     node.Comparison = cmp->second;
-    const std::string after = std::string(it->first) + cmp->first;
+    const std::string after = AttributeNameOf(node) + cmp->first;
     this->Next();
     node.Value = this->ExpectNumber(after.c_str());
     return node;
