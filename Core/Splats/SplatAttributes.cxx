@@ -165,20 +165,6 @@ std::array<float, 3> Viridis(double t)
 }
 
 //------------------------------------------------------------------------------
-SuspiciousEnd SuspiciousEndOf(const std::string& arrayName)
-{
-  if (arrayName == "ViewCoverage")
-  {
-    return SuspiciousEnd::Low;
-  }
-  if (arrayName == "BlurScore" || arrayName == "NeedleScore" || arrayName == "NeedleShape")
-  {
-    return SuspiciousEnd::High;
-  }
-  return SuspiciousEnd::None;
-}
-
-//------------------------------------------------------------------------------
 std::array<float, 3> OverlayColor(double value, double lo, double hi, SuspiciousEnd end)
 {
   const double span = hi - lo;

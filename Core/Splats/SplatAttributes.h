@@ -21,6 +21,7 @@
 #define vis4gs_SplatAttributes_h
 
 #include "GaussianCloud.h"
+#include "ScoreRegistry.h" // SuspiciousEnd
 
 #include <array>
 #include <cstddef>
@@ -63,20 +64,7 @@ void EvaluateSplatColors(const GaussianCloud& cloud,
 /// interpolation between 17 samples of the 256-entry table (max error < 0.004 per channel).
 std::array<float, 3> Viridis(double t);
 
-/**
- * Which end of a score marks a Gaussian as suspicious: View Coverage when low (few training
- * views constrain the Gaussian), BlurScore, NeedleScore and NeedleShape when high. Any other
- * array has none.
- */
-enum class SuspiciousEnd
-{
-  None,
-  Low,
-  High
-};
-
-/// The suspicious end of the per-Gaussian array named @p arrayName (DESIGN §4 scores).
-SuspiciousEnd SuspiciousEndOf(const std::string& arrayName);
+// SuspiciousEnd and SuspiciousEndOf(): Core/Diagnostics/ScoreRegistry.h, the list of scores.
 
 /**
  * Overlay colour of @p value over [@p lo, @p hi]: viridis, turned so that its bright (yellow)
