@@ -64,15 +64,12 @@ int Run(const Vis4GSArguments& args)
     vis4gs::SnapshotReadOptions o;
     o.Arrays = vis4gs::SnapshotParameters;
     o.ShDegree = shDegree;
-    const std::vector<int>& logged = log.GetSnapshotIterations();
-    if (logged.empty())
-    {
-      throw std::runtime_error(in + ": the training log holds no snapshot to convert");
-    }
-    // ReadNearestSnapshot(-1) would give the first snapshot, the one nearest to -1.
+    // -1 is the last snapshot, as --help says (the nearest to -1 would be the first).
+    const std::vector<int>& iterations = log.GetSnapshotIterations();
     const int wanted = args.GetInt("iteration");
     int iteration = 0;
-    cloud = log.ReadNearestSnapshot(wanted < 0 ? logged.back() : wanted, o, &iteration);
+    cloud = log.ReadNearestSnapshot(
+      wanted < 0 && !iterations.empty() ? iterations.back() : wanted, o, &iteration);
     what = "snapshot " + std::to_string(iteration);
   }
   else

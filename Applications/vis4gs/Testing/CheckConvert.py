@@ -165,20 +165,16 @@ def main():
     check("missing.ply" in out, "a missing input is named: " + out.strip())
     out = convert(vis4gs, base, os.path.join(work, "x.glb"), "--sh-degree=5", status=1)
     check("--sh-degree" in out, "--sh-degree=5 is refused")
-    # A training log: by default its last snapshot (ReadNearestSnapshot(-1) gave the first).
-    demo = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "Data",
-                        "Demo", "vis4gs-demo.h5")
-    last = convert(vis4gs, demo, os.path.join(work, "demo-last.ply"))
-    explicit = convert(vis4gs, demo, os.path.join(work, "demo-2000.ply"), "--iteration=2000")
-    first = convert(vis4gs, demo, os.path.join(work, "demo-0.ply"), "--iteration=0")
-    snapshot = [re.search(r"\(snapshot (\d+)\): (\d+) Gaussians", o)
-                for o in (last, explicit, first)]
-    check(all(snapshot) and snapshot[0].groups() == snapshot[1].groups() and
-          snapshot[0].group(1) != snapshot[2].group(1) and
-          open(os.path.join(work, "demo-last.ply"), "rb").read() ==
-          open(os.path.join(work, "demo-2000.ply"), "rb").read(),
-          "a log converts its last snapshot by default: %s, as --iteration=2000 (%s), not the "
-          "first (%s)" % tuple(m.group(0) if m else None for m in snapshot))
+    # A training log: its last snapshot by default (--iteration=-1), as --help says.
+    log = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "Data",
+                       "Demo", "vis4gs-demo.h5")
+    import h5py  # noqa: E402 - only this check reads a log
+    with h5py.File(log, "r") as f:
+        snapshots = sorted(int(k) for k in f["snapshots"])
+    for option, expected in (((), snapshots[-1]), (("--iteration=1",), snapshots[0])):
+        out = convert(vis4gs, log, os.path.join(work, "log.ply"), *option)
+        check("(snapshot %d)" % expected in out, "a log converts its snapshot %d with %s: %s" % (
+            expected, " ".join(option) or "no --iteration", out.strip().splitlines()[0]))
     finish("PASSED vis4gs convert: %d pairs of formats" % (len(FORMATS) ** 2))
 
 
