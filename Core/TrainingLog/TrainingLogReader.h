@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file TrainingLogReader.h
- * @brief Reads a training log (DESIGN §3, format version 1) lazily and validates it.
+ * @brief Reads a training log (DESIGN §3, format versions 1 and 2) lazily and validates it.
  *
  * Opening reads only the root attributes and the list of groups and snapshots. Each table
  * and snapshot is read when asked for, and only the arrays asked for: a snapshot read
@@ -19,7 +19,11 @@
  * repaired result instead and lists each repair in GetRepairs(). The file is never written.
  *
  * The reader opens the file without HDF5 file locking, so a log can be read while a trainer
- * still appends to it (it sees the state of the trainer's last flush).
+ * still appends to it (it sees the state of the trainer's last flush). A log that its writer
+ * keeps in HDF5's SWMR mode (format version 2, the Python logger's and `vis4gs train`'s),
+ * live or killed, refuses a plain open; the reader then opens it in SWMR read mode, which
+ * never blocks the writer, and uses only the rows the writer counted in /committed after
+ * flushing them. Refresh() reopens the file to see what was written since (`--follow`).
  */
 #ifndef vis4gs_TrainingLogReader_h
 #define vis4gs_TrainingLogReader_h
@@ -64,6 +68,14 @@ public:
   TrainingLogReader& operator=(const TrainingLogReader&) = delete;
 
   const std::string& GetPath() const;
+  /**
+   * Reopens the file and re-reads its lists (snapshots, table lengths) to see what a running
+   * writer added; true when something changed. A failed reopen (the writer is between
+   * states) keeps the current view and returns false; try again later.
+   */
+  bool Refresh();
+  /// Whether the file was opened in SWMR read mode (its writer runs, or was killed).
+  bool IsOpenForWriting() const;
   const TrainingLogHeader& GetHeader() const;
   /// What the file lacks, one sentence each (empty for a complete log).
   const std::vector<std::string>& GetLacks() const;

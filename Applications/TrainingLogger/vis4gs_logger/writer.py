@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Appending writer of the Vis4GS training log (HDF5, format version 1; see
-Documentation/file-formats.md). Depends on numpy and h5py only; torch tensors are
+"""Appending writer of the Vis4GS training log (HDF5, format version 2 in SWMR mode, the
+default, or 1; see Documentation/file-formats.md). Depends on numpy and h5py only; torch tensors are
 accepted wherever an array is (they are moved to the CPU and converted)."""
 
+import contextlib
 import math
 import os
 import time
@@ -13,8 +14,13 @@ import numpy as np
 __all__ = ["TrainingLogWriter", "to_numpy", "FORMAT", "FORMAT_VERSION", "CLONE", "SPLIT", "PRUNE"]
 
 FORMAT = "vis4gs-training-log"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+#: the layout of format_version 1 (a group per snapshot), written with swmr=False
+FORMAT_VERSION_GROUPS = 1
 CLONE, SPLIT, PRUNE = 1, 2, 3
+#: /committed columns (format version 2): rows of each table a reader may use
+COMMITTED = ("metrics", "metrics/test", "events", "lineage_breaks", "snapshots")
+_WHERE_BYTES = 200  # /lineage_breaks/where in version 2: fixed-length UTF-8 (SWMR appends)
 
 _METRIC_COLUMNS = ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s")
 _BREAK_COLUMNS = (("iteration", "<i4"), ("event_row", "<i8"), ("tracked", "<i8"), ("rows", "<i8"),
@@ -70,11 +76,23 @@ class TrainingLogWriter:
     last flush (None: only at snapshots and close); snapshot_sh_degree: SH degree kept in the
     snapshots (None: all the trainer has; 0: the DC term only); snapshot_sh_float16: store
     the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504).
+
+    swmr (default True): format version 2 in HDF5's single-writer/multiple-reader mode, so
+    that readers (``vis4gs view LOG --follow``, ``vis4gs analyze``) can read the log while
+    the trainer writes it, without blocking it. A SWMR writer cannot create datasets, so the
+    tables are created at the start and the snapshots are rows of concatenated datasets
+    (created at the first snapshot, from its shapes) indexed by /snapshots/iteration, start
+    and count; each flush writes the rows, flushes, then counts them in /committed and
+    flushes again, so a reader (or a SIGKILL) never sees a half-written row counted.
+    Structure added later (cameras, images, the first snapshot's datasets) briefly leaves
+    SWMR mode: log cameras before the training loop. swmr=False writes format version 1 (a
+    group per snapshot) as before.
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
                  deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0,
-                 start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False):
+                 start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False,
+                 swmr=True):
         from . import __version__
 
         self.path = os.fspath(path)
@@ -89,16 +107,15 @@ class TrainingLogWriter:
         self.snapshot_bytes = 0
         self.chunk_rows = int(chunk_rows)
         self.flush_every_s = flush_every_s
-        self._file = h5py.File(self.path, "w", fs_strategy="none", libver="earliest")
-        cfg = self._file.id.get_mdc_config()
-        cfg.evictions_enabled = False
-        cfg.incr_mode = 0  # H5C_incr__off
-        cfg.flash_incr_mode = 0  # H5C_flash_incr__off
-        cfg.decr_mode = 0  # H5C_decr__off
-        self._file.id.set_mdc_config(cfg)
+        self.swmr = bool(swmr)
+        # SWMR needs the newest file format (superblock 3); version 1 files stay readable by
+        # HDF5 1.8 ("earliest").
+        self._file = h5py.File(self.path, "w", fs_strategy="none",
+                               libver="latest" if self.swmr else "earliest")
+        self._keep_metadata()
         f = self._file
         f.attrs["format"] = FORMAT
-        f.attrs["format_version"] = np.int64(FORMAT_VERSION)
+        f.attrs["format_version"] = np.int64(FORMAT_VERSION if self.swmr else FORMAT_VERSION_GROUPS)
         f.attrs["producer"] = producer or "vis4gs_logger " + __version__
         f.attrs["scene"] = scene
         f.attrs["sh_degree"] = np.int64(sh_degree)
@@ -106,7 +123,8 @@ class TrainingLogWriter:
         if start_iteration:
             # A run resumed from a checkpoint: ids restart at 0 for the checkpoint's rows.
             f.attrs["start_iteration"] = np.int64(start_iteration)
-        self._metrics = {False: self._create_metrics("metrics"), True: None}
+        self._metrics = {False: self._create_metrics("metrics"),
+                         True: self._create_metrics("metrics/test") if self.swmr else None}
         self._pending_metrics = {False: [], True: []}
         events = f.create_group("events")
         for name, dtype in (("iteration", "<i4"), ("kind", "u1"), ("parent", "<i8"), ("child", "<i8")):
@@ -115,12 +133,111 @@ class TrainingLogWriter:
         self._event_rows = 0  # rows of /events, written and buffered
         self._pending_breaks = []
         f.create_group("snapshots")
+        if self.swmr:
+            self._create_breaks()
+            f.create_dataset("committed", data=np.zeros(len(COMMITTED), np.int64))
+            self._snapshot_count = 0
         self._last_snapshot = -1
         self._last_flush = time.monotonic()
         self._cameras_written = False
         self.flush()
+        if self.swmr:
+            f.swmr_mode = True
 
     # -- helpers ----------------------------------------------------------------------
+    def _keep_metadata(self):
+        """Between flushes HDF5 writes no metadata: the file stays the log of the last
+        flush (for format version 1; SWMR orders its metadata writes itself)."""
+        cfg = self._file.id.get_mdc_config()
+        cfg.evictions_enabled = False
+        cfg.incr_mode = 0  # H5C_incr__off
+        cfg.flash_incr_mode = 0  # H5C_flash_incr__off
+        cfg.decr_mode = 0  # H5C_decr__off
+        self._file.id.set_mdc_config(cfg)
+
+    @contextlib.contextmanager
+    def _structure(self):
+        """Lets the body create groups and datasets: a SWMR writer cannot, so the file is
+        committed, closed and reopened out of SWMR mode for the moment (readers that try to
+        open it then fail and try again), then back in SWMR mode."""
+        if not self.swmr or not self._file.swmr_mode:
+            yield self._file
+            return
+        self.flush()
+        self._file.close()
+        self._file = h5py.File(self.path, "r+", libver="latest")
+        self._keep_metadata()
+        self._metrics = {test: self._file["metrics/test" if test else "metrics"]
+                         for test in (False, True)}
+        try:
+            yield self._file
+        finally:
+            self._file.flush()
+            self._file.swmr_mode = True
+
+    def _create_breaks(self):
+        g = self._file.create_group("lineage_breaks")
+        for name, dtype in _BREAK_COLUMNS:
+            self._create_table(g, name, dtype, 256)
+        # Fixed-length strings in version 2: a SWMR writer appends them in place.
+        where = h5py.string_dtype("utf-8", _WHERE_BYTES) if self.swmr else h5py.string_dtype("utf-8")
+        g.create_dataset("where", shape=(0,), maxshape=(None,), chunks=(256,), dtype=where)
+        return g
+
+    def _create_packed(self, arrays, ids_dtype=np.int64):
+        """The concatenated snapshot datasets of format version 2, shaped by the first
+        snapshot's arrays (later snapshots are fitted to them: see _fit)."""
+        g = self._file["snapshots"]
+        for name, dtype in (("iteration", "<i4"), ("start", "<i8"), ("count", "<i8")):
+            g.create_dataset(name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(1024,))
+        c = self.chunk_rows
+        level = self.snapshot_deflate
+        g.create_dataset("id", shape=(0,), maxshape=(None,), dtype=ids_dtype, chunks=(c,),
+                         **self._compression(level))
+        for key, value in arrays.items():
+            chunks = (c, 1, 3) if key == "sh" else (c,) + value.shape[1:]
+            g.create_dataset(key, shape=(0,) + value.shape[1:], maxshape=(None,) + value.shape[1:],
+                             dtype=value.dtype, chunks=chunks, **self._compression(level))
+
+    @staticmethod
+    def _fit(dataset, value):
+        """A later snapshot's array in the shape of the packed dataset: SH coefficients cut
+        or padded with zeros, a statistic the snapshot lacks as NaN."""
+        if value is None:
+            return np.full((0,) + dataset.shape[1:], np.nan, dataset.dtype)
+        if value.ndim == 3 and value.shape[1] != dataset.shape[1]:
+            k = dataset.shape[1]
+            fitted = np.zeros((value.shape[0], k, 3), value.dtype)
+            fitted[:, : min(k, value.shape[1])] = value[:, :k]
+            value = fitted
+        return value.astype(dataset.dtype, copy=False)
+
+    def _write_packed(self, iteration, ids, arrays):
+        g = self._file["snapshots"]
+        if "id" not in g:
+            with self._structure() as f:
+                self._create_packed(arrays)
+                g = f["snapshots"]
+        n = len(ids)
+        start = g["id"].shape[0]
+        written = 0
+        for key in ("id",) + tuple(k for k in g if k not in ("id", "iteration", "start", "count")):
+            d = g[key]
+            if key == "id":
+                value = ids
+            else:
+                value = self._fit(d, arrays.get(key))
+                if len(value) == 0 and n > 0:
+                    value = np.full((n,) + d.shape[1:], np.nan, d.dtype)
+            d.resize((start + n,) + d.shape[1:])
+            if n > 0:
+                d[start:start + n] = value
+            written += n * value.dtype.itemsize * int(np.prod(d.shape[1:], dtype=np.int64))
+        for key, value in (("iteration", iteration), ("start", start), ("count", n)):
+            self._append(g[key], np.array([value], g[key].dtype))
+        self._snapshot_count += 1
+        return written
+
     def _compression(self, level=None):
         level = self.deflate if level is None else level
         if level > 0:
@@ -174,6 +291,13 @@ class TrainingLogWriter:
             raise RuntimeError(f"{self.path}: /cameras is already written")
         v = len(names)
         w2c = to_numpy(world_to_camera, np.float64).reshape(v, 4, 4)
+        with self._structure():
+            self._write_cameras(v, names, widths, heights, fx, fy, cx, cy, w2c, splits, images,
+                                source, image_dir)
+        self._cameras_written = True
+
+    def _write_cameras(self, v, names, widths, heights, fx, fy, cx, cy, w2c, splits, images,
+                       source, image_dir):
         g = self._file.create_group("cameras")
         str_type = h5py.string_dtype("utf-8")
         g.create_dataset("name", data=np.array([str(n) for n in names], dtype=object), dtype=str_type)
@@ -188,7 +312,6 @@ class TrainingLogWriter:
         for key, value in (("source", source), ("image_dir", image_dir)):
             if value:
                 g.attrs[key] = os.fspath(value)
-        self._cameras_written = True
 
     def write_image(self, name, image):
         """Embeds an image as /images/<name>: [H,W,3] uint8, or float in [0,1] as
@@ -201,8 +324,8 @@ class TrainingLogWriter:
             a = np.clip(np.rint(a.astype(np.float64) * 255.0), 0, 255).astype(np.uint8)
         if a.ndim != 3 or a.shape[2] != 3 or "/" in name or not name:
             raise ValueError(f"{self.path}: image {name!r} must be [H,W,3]")
-        g = self._file.require_group("images")
-        self._dataset(g, name, a, (256, a.shape[1], 3))
+        with self._structure() as f:
+            self._dataset(f.require_group("images"), name, a, (256, a.shape[1], 3))
 
     def append_metrics(self, iteration, num_gaussians=-1, loss=None, l1=None, psnr=None,
                        ssim=None, lpips=None, elapsed_s=None, test=False):
@@ -272,6 +395,14 @@ class TrainingLogWriter:
             if np.any(ids[1:] == ids[:-1]):
                 raise ValueError(f"{self.path}: snapshot {iteration} has duplicate ids")
             arrays = {key: value[order] for key, value in arrays.items()}
+        if self.swmr:
+            if self.snapshot_sh_float16:
+                arrays["sh"] = arrays["sh"].astype(np.float16)
+            self.snapshot_bytes += self._write_packed(iteration, ids, arrays)
+            self._last_snapshot = iteration
+            if flush:
+                self.flush()
+            return
         g = self._file.create_group(f"snapshots/{iteration:06d}")
         g.attrs["iteration"] = np.int64(iteration)
         c = self.chunk_rows
@@ -313,20 +444,30 @@ class TrainingLogWriter:
         if self._pending_breaks:
             self._flush_breaks()
         self._file.flush()
+        if self.swmr:
+            # Counted only once flushed: a reader (or a kill) never sees a row counted before
+            # its bytes are in the file.
+            f = self._file
+            f["committed"][:] = np.array(
+                [f["metrics/iteration"].shape[0], f["metrics/test/iteration"].shape[0],
+                 f["events/iteration"].shape[0], f["lineage_breaks/iteration"].shape[0],
+                 self._snapshot_count], np.int64)
+            f.flush()
         self._last_flush = time.monotonic()
 
     def _flush_breaks(self):
         g = self._file.get("lineage_breaks")
         if g is None:
-            g = self._file.create_group("lineage_breaks")
-            for name, dtype in _BREAK_COLUMNS:
-                self._create_table(g, name, dtype, 256)
-            g.create_dataset("where", shape=(0,), maxshape=(None,), chunks=(256,),
-                             dtype=h5py.string_dtype("utf-8"))
+            g = self._create_breaks()
         cols = list(zip(*self._pending_breaks))
         for j, (name, dtype) in enumerate(_BREAK_COLUMNS):
             self._append(g[name], np.asarray(cols[j], dtype))
-        self._append(g["where"], np.array(cols[-1], dtype=object))
+        if self.swmr:
+            where = [w.encode("utf-8")[:_WHERE_BYTES].decode("utf-8", "ignore").encode("utf-8")
+                     for w in cols[-1]]
+            self._append(g["where"], np.array(where, dtype=f"S{_WHERE_BYTES}"))
+        else:
+            self._append(g["where"], np.array(cols[-1], dtype=object))
         self._pending_breaks = []
 
     def _maybe_timed_flush(self):
