@@ -9,6 +9,7 @@
 #include "TrainingLogHDF5.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -17,6 +18,7 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 #include <unordered_map>
 
 namespace vis4gs
@@ -219,7 +221,8 @@ struct TrainingLogReader::Internals
   {
     return this->Committed.empty()
       ? rows
-      : std::min(rows, static_cast<std::size_t>(std::max<std::int64_t>(0, this->Committed[column])));
+      : std::min(
+          rows, static_cast<std::size_t>(std::max<std::int64_t>(0, this->Committed[column])));
   }
 
   [[noreturn]] void Throw(const std::string& what) const
@@ -375,19 +378,20 @@ void TrainingLogReader::Internals::ListPackedSnapshots()
     std::vector<hsize_t> dims = h5::Dims(set);
     if (dims.size() != 1 || dims[0] < s)
     {
-      this->Throw(path + " holds fewer rows than the " + std::to_string(s) +
-        " snapshots /committed counts");
+      this->Throw(
+        path + " holds fewer rows than the " + std::to_string(s) + " snapshots /committed counts");
     }
     ReadRowRange(set, c.Type, 0, s, 0, c.Out, this->Path, path);
   }
   for (std::size_t i = 0; i < s; ++i)
   {
-    const std::string row = "/snapshots row " + std::to_string(i) + " (iteration " +
-      std::to_string(iterations[i]) + ")";
+    const std::string row =
+      "/snapshots row " + std::to_string(i) + " (iteration " + std::to_string(iterations[i]) + ")";
     if (starts[i] < 0 || counts[i] < 0 || static_cast<hsize_t>(starts[i] + counts[i]) > rows)
     {
       this->Throw(row + " names rows " + std::to_string(starts[i]) + " + " +
-        std::to_string(counts[i]) + " beyond the " + std::to_string(rows) + " rows of /snapshots/id");
+        std::to_string(counts[i]) + " beyond the " + std::to_string(rows) +
+        " rows of /snapshots/id");
     }
     if (iterations[i] < 0 || (i > 0 && iterations[i] <= iterations[i - 1]))
     {
@@ -414,7 +418,9 @@ std::vector<std::int64_t> TrainingLogReader::Internals::Signature() const
   s.insert(s.end(), this->Committed.begin(), this->Committed.end());
   if (this->Committed.empty())
   {
-    for (const char* path : { "/metrics/iteration", "/metrics/test/iteration", "/events/iteration",
+    for (const char* path : { "/metrics/iteration",
+           "/metrics/test/iteration",
+           "/events/iteration",
            "/lineage_breaks/iteration" })
     {
       if (h5::IsDataset(this->File, path))
@@ -569,22 +575,35 @@ TrainingLogReader::TrainingLogReader(const std::string& path,
 bool TrainingLogReader::Refresh()
 {
   h5::ErrorSilencer silence;
-  std::unique_ptr<Internals> fresh(new Internals);
-  fresh->Path = this->Impl->Path;
-  fresh->Options = this->Impl->Options;
-  try
+  const std::vector<std::int64_t> before = this->Impl->Signature();
+  const std::vector<std::string> lacks = this->Impl->Lacks;
+  // A second H5Fopen of a file this process has open shares the first one's metadata cache
+  // (and so its stale view): close first.
+  this->Impl->File = h5::Handle();
+  std::string error;
+  for (int attempt = 0; attempt < 10; ++attempt)
   {
-    fresh->Open();
+    std::unique_ptr<Internals> fresh(new Internals);
+    fresh->Path = this->Impl->Path;
+    fresh->Options = this->Impl->Options;
+    try
+    {
+      fresh->Open();
+    }
+    catch (const std::exception& e)
+    {
+      // The writer is between states (adding /cameras out of SWMR mode): try again shortly.
+      error = e.what();
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
+    fresh->Repairs = std::move(this->Impl->Repairs);
+    this->Impl = std::move(fresh);
+    return this->Impl->Signature() != before || this->Impl->Lacks != lacks;
   }
-  catch (const std::exception&)
-  {
-    return false; // the writer is between states (e.g. adding /cameras): keep what we had
-  }
-  const bool changed = fresh->Signature() != this->Impl->Signature() ||
-    fresh->Lacks != this->Impl->Lacks;
-  fresh->Repairs = std::move(this->Impl->Repairs);
-  this->Impl = std::move(fresh);
-  return changed;
+  throw std::runtime_error(error +
+    " (on refreshing; the reader has no file open until a "
+    "later Refresh() succeeds)");
 }
 
 //------------------------------------------------------------------------------
@@ -592,7 +611,6 @@ bool TrainingLogReader::IsOpenForWriting() const
 {
   return this->Impl->Swmr;
 }
-
 
 //------------------------------------------------------------------------------
 TrainingLogReader::~TrainingLogReader() = default;

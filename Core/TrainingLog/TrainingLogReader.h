@@ -69,9 +69,10 @@ public:
 
   const std::string& GetPath() const;
   /**
-   * Reopens the file and re-reads its lists (snapshots, table lengths) to see what a running
-   * writer added; true when something changed. A failed reopen (the writer is between
-   * states) keeps the current view and returns false; try again later.
+   * Closes and reopens the file and re-reads its lists (snapshots, table lengths) to see
+   * what a running writer added; true when something changed. A reopen that fails (the
+   * writer is between states) is tried again for about 0.2 s, then throws naming the file;
+   * the reader then has no file open until a later Refresh() succeeds.
    */
   bool Refresh();
   /// Whether the file was opened in SWMR read mode (its writer runs, or was killed).
