@@ -35,6 +35,7 @@ struct SnapshotEntry
   bool Packed = false;
   hsize_t Offset = 0;
   hsize_t Count = 0;
+  int ShDegree = -1; ///< packed: the degree it holds (/snapshots/sh_degree); -1: all of sh
 };
 
 /// Columns of /committed (format version 2): rows of each table a reader may use.
@@ -358,6 +359,7 @@ void TrainingLogReader::Internals::ListPackedSnapshots()
   const std::size_t s = this->Cap(CommittedSnapshots, std::numeric_limits<std::size_t>::max());
   std::vector<std::int32_t> iterations(s);
   std::vector<std::int64_t> starts(s), counts(s);
+  std::vector<std::int32_t> degrees(s, -1);
   hsize_t rows = 0;
   {
     h5::Handle ids = this->OpenDataset(this->File, "/snapshots/id");
@@ -383,6 +385,17 @@ void TrainingLogReader::Internals::ListPackedSnapshots()
     }
     ReadRowRange(set, c.Type, 0, s, 0, c.Out, this->Path, path);
   }
+  if (h5::IsDataset(this->File, "/snapshots/sh_degree"))
+  {
+    // Optional: snapshots of a lower degree than /snapshots/sh holds (the rest unwritten).
+    h5::Handle set = this->OpenDataset(this->File, "/snapshots/sh_degree");
+    if (h5::Dims(set).at(0) < s)
+    {
+      this->Throw("/snapshots/sh_degree holds fewer rows than /snapshots/iteration");
+    }
+    ReadRowRange(
+      set, H5T_NATIVE_INT32, 0, s, 0, degrees.data(), this->Path, "/snapshots/sh_degree");
+  }
   for (std::size_t i = 0; i < s; ++i)
   {
     const std::string row =
@@ -406,6 +419,7 @@ void TrainingLogReader::Internals::ListPackedSnapshots()
     e.Packed = true;
     e.Offset = static_cast<hsize_t>(starts[i]);
     e.Count = static_cast<hsize_t>(counts[i]);
+    e.ShDegree = degrees[i];
     this->Snapshots.push_back(e);
     this->Iterations.push_back(e.Iteration);
   }
@@ -718,7 +732,7 @@ int TrainingLogReader::GetSnapshotShDegree(int iteration) const
   {
     d.Throw(e.Group + "/sh must have the shape [N,K,3] with K = 1, 4, 9 or 16");
   }
-  return degree;
+  return e.ShDegree >= 0 ? std::min(e.ShDegree, degree) : degree;
 }
 
 //------------------------------------------------------------------------------

@@ -6,16 +6,15 @@ import json
 import os
 import subprocess
 
-import h5py
 import numpy as np
 
-from vis4gs_logger.logfile import committed, open_log, read_snapshot, snapshot_iterations
+from vis4gs_logger.logfile import committed, open_log, read_snapshot, read_table, snapshot_iterations
 
 
 def read_events(path):
-    with h5py.File(path, "r") as f:
-        e = f["events"]
-        return (e["iteration"][:], e["kind"][:], e["parent"][:], e["child"][:])
+    with open_log(path) as f:
+        e = read_table(f, "events")
+        return (e["iteration"], e["kind"], e["parent"], e["child"])
 
 
 def check_format(path):

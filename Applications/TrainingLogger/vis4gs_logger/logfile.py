@@ -17,7 +17,7 @@ from .writer import COMMITTED
 
 __all__ = ["open_log", "committed", "snapshot_iterations", "read_snapshot", "read_table"]
 
-_INDEX = ("iteration", "start", "count")
+_INDEX = ("iteration", "start", "count", "sh_degree")
 
 
 def open_log(path):
@@ -65,7 +65,10 @@ def read_snapshot(f, iteration):
         raise KeyError(f"{f.filename}: no snapshot at iteration {iteration} (logged: {iterations})")
     row = iterations.index(int(iteration))
     start, count = int(s["start"][row]), int(s["count"][row])
-    return {name: d[start:start + count] for name, d in s.items() if name not in _INDEX}
+    out = {name: d[start:start + count] for name, d in s.items() if name not in _INDEX}
+    if "sh_degree" in s:  # the coefficients of the snapshot's degree
+        out["sh"] = out["sh"][:, : (int(s["sh_degree"][row]) + 1) ** 2]
+    return out
 
 
 def read_table(f, group):

@@ -188,7 +188,8 @@ class TrainingLogWriter:
         """The concatenated snapshot datasets of format version 2, shaped by the first
         snapshot's arrays (later snapshots are fitted to them: see _fit)."""
         g = self._file["snapshots"]
-        for name, dtype in (("iteration", "<i4"), ("start", "<i8"), ("count", "<i8")):
+        for name, dtype in (("iteration", "<i4"), ("start", "<i8"), ("count", "<i8"),
+                            ("sh_degree", "<i4")):
             g.create_dataset(name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(1024,))
         c = self.chunk_rows
         level = self.snapshot_deflate
@@ -201,15 +202,13 @@ class TrainingLogWriter:
 
     @staticmethod
     def _fit(dataset, value):
-        """A later snapshot's array in the shape of the packed dataset: SH coefficients cut
-        or padded with zeros, a statistic the snapshot lacks as NaN."""
+        """A later snapshot's array for the packed dataset: SH coefficients cut to what it
+        holds (fewer are written alone, the index keeps the degree), a statistic the
+        snapshot lacks as NaN (empty here, filled by the caller)."""
         if value is None:
             return np.full((0,) + dataset.shape[1:], np.nan, dataset.dtype)
-        if value.ndim == 3 and value.shape[1] != dataset.shape[1]:
-            k = dataset.shape[1]
-            fitted = np.zeros((value.shape[0], k, 3), value.dtype)
-            fitted[:, : min(k, value.shape[1])] = value[:, :k]
-            value = fitted
+        if value.ndim == 3:
+            value = value[:, : dataset.shape[1]]
         return value.astype(dataset.dtype, copy=False)
 
     def _write_packed(self, iteration, ids, arrays):
@@ -221,7 +220,10 @@ class TrainingLogWriter:
         n = len(ids)
         start = g["id"].shape[0]
         written = 0
-        for key in ("id",) + tuple(k for k in g if k not in ("id", "iteration", "start", "count")):
+        index = ("iteration", "start", "count", "sh_degree")
+        degree = 0
+        stored_before = self._packed_storage(g)
+        for key in ("id",) + tuple(k for k in g if k != "id" and k not in index):
             d = g[key]
             if key == "id":
                 value = ids
@@ -230,13 +232,29 @@ class TrainingLogWriter:
                 if len(value) == 0 and n > 0:
                     value = np.full((n,) + d.shape[1:], np.nan, d.dtype)
             d.resize((start + n,) + d.shape[1:])
+            if key == "sh":
+                degree = int(round(math.sqrt(value.shape[1]))) - 1
+                if n > 0:  # the other coefficients' chunks stay unwritten (no disk)
+                    d[start:start + n, : value.shape[1]] = value
+                written += value.nbytes
+                continue
             if n > 0:
                 d[start:start + n] = value
             written += n * value.dtype.itemsize * int(np.prod(d.shape[1:], dtype=np.int64))
-        for key, value in (("iteration", iteration), ("start", start), ("count", n)):
+        for key, value in (("iteration", iteration), ("start", start), ("count", n),
+                           ("sh_degree", degree)):
             self._append(g[key], np.array([value], g[key].dtype))
         self._snapshot_count += 1
+        if self.snapshot_deflate > 0:
+            # Compressed: what the chunks take (chunks shared with the next snapshot are
+            # counted when written); uncompressed: the raw bytes, which the whole run's
+            # chunks add up to.
+            return self._packed_storage(g) - stored_before
         return written
+
+    @staticmethod
+    def _packed_storage(g):
+        return sum(d.id.get_storage_size() for d in g.values())
 
     def _compression(self, level=None):
         level = self.deflate if level is None else level
@@ -465,7 +483,7 @@ class TrainingLogWriter:
         if self.swmr:
             where = [w.encode("utf-8")[:_WHERE_BYTES].decode("utf-8", "ignore").encode("utf-8")
                      for w in cols[-1]]
-            self._append(g["where"], np.array(where, dtype=f"S{_WHERE_BYTES}"))
+            self._append(g["where"], np.array(where, dtype=g["where"].dtype))
         else:
             self._append(g["where"], np.array(cols[-1], dtype=object))
         self._pending_breaks = []
