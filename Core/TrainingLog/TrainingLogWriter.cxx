@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -66,6 +67,7 @@ struct TrainingLogWriter::Internals
   int LastSnapshot = -1;
   std::int64_t SnapshotsWritten = 0;
   bool SwmrStarted = false;
+  std::chrono::steady_clock::time_point LastFlush = std::chrono::steady_clock::now();
   h5::Handle Committed; ///< Swmr: /committed
   bool Closed = false;
   bool Renamed = false; ///< WriteToTemporary: the temporary became Path
@@ -660,6 +662,12 @@ void TrainingLogWriter::AppendMetrics(const MetricsRow& row, bool test)
     d.HasTest = true;
   }
   (test ? d.Test : d.Train).Pending.Append(row);
+  if (d.Options.FlushIntervalSeconds > 0 &&
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - d.LastFlush).count() >=
+      d.Options.FlushIntervalSeconds)
+  {
+    this->Flush();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -851,6 +859,7 @@ void TrainingLogWriter::Flush()
   }
   d.FlushEvents();
   h5::CheckStatus(H5Fflush(d.File, H5F_SCOPE_GLOBAL), d.WritePath, "cannot flush the training log");
+  d.LastFlush = std::chrono::steady_clock::now();
   if (d.Committed.Valid())
   {
     // Counted only once flushed: a reader (or a kill) never sees a row counted before its

@@ -67,6 +67,12 @@ struct TrainingLogWriterOptions
   /// Format version 2 in SWMR mode from the first snapshot on (default off: version 1);
   /// not with WriteToTemporary (a reader must find the live file).
   bool Swmr = false;
+  /**
+   * Also flush when a metrics row is appended this many seconds after the last flush (0, the
+   * default: only at snapshots and Flush()), so that a reader following the log sees metrics
+   * and events between snapshots.
+   */
+  double FlushIntervalSeconds = 0.0;
 };
 
 /// Optional per-Gaussian densification statistics of a snapshot (empty = not written).

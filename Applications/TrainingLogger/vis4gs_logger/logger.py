@@ -27,7 +27,11 @@ class TrainingLogger:
     (stored as NaN). ``elapsed_s`` defaults to the wall time since the logger was created.
     ``deflate``, ``snapshot_deflate`` (default 0: snapshots uncompressed; 1-9: gzip level),
     ``snapshot_sh_degree`` (default None: every SH degree), ``snapshot_sh_float16`` (default
-    False), ``chunk_rows`` and ``flush_every_s`` are passed to TrainingLogWriter.
+    False), ``chunk_rows``, ``flush_every_s`` and ``swmr`` (default True: format version 2
+    in SWMR mode, readable while the run writes it) are passed to TrainingLogWriter.
+    ``live_flush_s`` (default 0.5; None: off): with swmr, step() also flushes when this many
+    seconds passed since the last flush, so that `vis4gs view --follow` shows new metrics
+    and events within about 2 s (the flush's cost: Documentation/performance-history.md).
 
     Disk: after each snapshot the size of the whole run is projected (the snapshots so far,
     plus the last one's size for each snapshot still planned up to ``iterations``); a
@@ -49,7 +53,8 @@ class TrainingLogger:
                  snapshot_interval=DEFAULT_SNAPSHOT_INTERVAL, snapshot_sh_rest=True,
                  snapshot_statistics=True, deflate=1, chunk_rows=4096, producer=None,
                  flush_every_s=300.0, snapshot_deflate=0, start_iteration=0,
-                 snapshot_sh_degree=None, snapshot_sh_float16=False, snapshot_budget_bytes=None):
+                 snapshot_sh_degree=None, snapshot_sh_float16=False, snapshot_budget_bytes=None,
+                 swmr=True, live_flush_s=0.5):
         self.start_iteration = int(start_iteration)
         if self.start_iteration > 0 and os.path.exists(path):
             root, ext = os.path.splitext(os.fspath(path))
@@ -65,7 +70,9 @@ class TrainingLogger:
                                         snapshot_deflate=snapshot_deflate,
                                         start_iteration=self.start_iteration,
                                         snapshot_sh_degree=snapshot_sh_degree,
-                                        snapshot_sh_float16=snapshot_sh_float16)
+                                        snapshot_sh_float16=snapshot_sh_float16, swmr=swmr)
+        self.live_flush_s = live_flush_s
+        self._flush_warned = False
         self.path = self.writer.path
         self.snapshot_interval = int(snapshot_interval) if snapshot_interval else 0
         self.iterations = int(iterations)
@@ -217,6 +224,21 @@ class TrainingLogger:
         self.iteration = iteration + 1
         if self.should_snapshot(iteration) and iteration != self.writer.last_snapshot_iteration:
             self._snapshot_or_warn(iteration)
+        elif self.writer.swmr and self.live_flush_s is not None \
+                and time.monotonic() - self.writer.last_flush >= self.live_flush_s:
+            self._flush_or_warn()
+
+    def _flush_or_warn(self):
+        """A flush for readers following the log; a failure (a full disk) is a warning."""
+        t0 = time.perf_counter()
+        try:
+            self.writer.flush()
+        except Exception as error:  # noqa: BLE001 - never stop the training for the log
+            if not self._flush_warned:
+                self._flush_warned = True
+                warnings.warn(f"vis4gs_logger: {self.path}: a flush failed ({type(error).__name__}"
+                              f": {error}); training goes on", RuntimeWarning, stacklevel=3)
+        self.time_spent_s += time.perf_counter() - t0
 
     def _snapshot_or_warn(self, iteration):
         try:

@@ -206,6 +206,7 @@ class Scene:
                                for i in range(self._reader.GetNumberOfSnapshots())]
             if not self.iterations:
                 raise Vis4GSError(f"{path}: the training log holds no snapshot")
+            self._follows_latest = iteration is None  # refresh() moves on to the latest
             self._reader.SetIteration(-1 if iteration is None else int(iteration))
             self._reader.Update(0)
             if self._reader.GetLoadedIteration() < 0:
@@ -290,6 +291,29 @@ class Scene:
             return []
         names = table.GetColumnByName("Name")
         return [names.GetValue(r) for r in range(table.GetNumberOfRows())]
+
+    def refresh(self):
+        """For a log a trainer is still writing (the Python logger and `vis4gs train` write
+        it in SWMR mode): reopens it and returns the snapshot iterations that appeared since
+        (the log is never blocked). A Scene opened without iteration= (the latest snapshot)
+        moves on to the new latest one; one opened at an iteration stays there."""
+        if not self.is_log:
+            raise Vis4GSError(f"{self.path}: not a training log, it has nothing to refresh")
+        self._reader.Modified()
+        self._reader.UpdateInformation()
+        known = set(self.iterations)
+        self.iterations = [self._reader.GetSnapshotIteration(i)
+                           for i in range(self._reader.GetNumberOfSnapshots())]
+        new = [i for i in self.iterations if i not in known]
+        if new and getattr(self, "_follows_latest", False):
+            self._reader.SetIteration(-1)
+            self._reader.Update(0)
+            self.iteration = self._reader.GetLoadedIteration()
+            self.polydata = vtkPolyData()
+            self.polydata.ShallowCopy(self._reader.GetOutputDataObject(0))
+            self._tree = None
+        self._cameras = None  # the trainer may have logged them since
+        return new
 
     def at(self, iteration):
         """The same log at the snapshot nearest to `iteration`."""
