@@ -284,21 +284,26 @@ void TrainingLogReader::Internals::Open()
 #if H5_VERSION_GE(1, 10, 7)
   H5Pset_file_locking(fapl, false, true);
 #endif
-  // A log whose writer is running in SWMR mode, or was killed, refuses a plain read-only
-  // open (its superblock says it is open for writing); SWMR read mode opens it and sees its
-  // last flush. Plain first: files of format version 1 cannot be opened in SWMR mode.
-  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+  // SWMR read mode first: it opens every log (one whose writer runs in SWMR mode, or was
+  // killed, refuses a plain read-only open: its superblock says it is open for writing) and
+  // never blocks a writer. Plain when this process already has the file open otherwise (a
+  // writer: HDF5 refuses other flags then, and shares that open).
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl);
+  this->Swmr = file >= 0;
   if (file < 0)
   {
-    const std::string plainError = h5::LastErrorMessage();
+    const std::string swmrError = h5::LastErrorMessage();
     H5Eclear2(H5E_DEFAULT);
-    file = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl);
+    file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
     if (file < 0)
     {
+      const std::string plainError = h5::LastErrorMessage();
       H5Eclear2(H5E_DEFAULT);
-      this->Throw("cannot open the training log" + (plainError.empty() ? "" : ": " + plainError));
+      this->Throw("cannot open the training log" +
+        (plainError.empty() ? std::string() : ": " + plainError) +
+        (swmrError.empty() || swmrError == plainError ? std::string()
+                                                      : " (in SWMR read mode: " + swmrError + ")"));
     }
-    this->Swmr = true;
   }
   this->File = h5::Handle(file);
   std::string format;
@@ -357,6 +362,10 @@ void TrainingLogReader::Internals::Open()
 void TrainingLogReader::Internals::ListPackedSnapshots()
 {
   const std::size_t s = this->Cap(CommittedSnapshots, std::numeric_limits<std::size_t>::max());
+  if (s == 0 && !h5::IsDataset(this->File, "/snapshots/id"))
+  {
+    return; // the writer creates the snapshot datasets at its first snapshot
+  }
   std::vector<std::int32_t> iterations(s);
   std::vector<std::int64_t> starts(s), counts(s);
   std::vector<std::int32_t> degrees(s, -1);
@@ -621,7 +630,7 @@ bool TrainingLogReader::Refresh()
 }
 
 //------------------------------------------------------------------------------
-bool TrainingLogReader::IsOpenForWriting() const
+bool TrainingLogReader::IsSwmrRead() const
 {
   return this->Impl->Swmr;
 }

@@ -222,6 +222,12 @@ class TrainingLogger:
         iteration = int(iteration)
         self.last_step = iteration
         self.iteration = iteration + 1
+        if self.writer.swmr and self.writer._file is not None and not self.writer._file.swmr_mode:
+            try:
+                self.writer.start_swmr()  # the loop runs: readers may follow (at most once)
+            except Exception as error:  # noqa: BLE001 - never stop the training for the log
+                warnings.warn(f"vis4gs_logger: {self.path}: SWMR mode could not start "
+                              f"({type(error).__name__}: {error})", RuntimeWarning, stacklevel=2)
         if self.should_snapshot(iteration) and iteration != self.writer.last_snapshot_iteration:
             self._snapshot_or_warn(iteration)
         elif self.writer.swmr and self.live_flush_s is not None \

@@ -84,9 +84,11 @@ class TrainingLogWriter:
     (created at the first snapshot, from its shapes) indexed by /snapshots/iteration, start
     and count; each flush writes the rows, flushes, then counts them in /committed and
     flushes again, so a reader (or a SIGKILL) never sees a half-written row counted.
-    Structure added later (cameras, images, the first snapshot's datasets) briefly leaves
-    SWMR mode: log cameras before the training loop. swmr=False writes format version 1 (a
-    group per snapshot) as before.
+    SWMR mode starts at the first metrics row (the training loop) or start_swmr(): the
+    setup before it (first snapshot, cameras, images) creates its datasets directly (a kill
+    then leaves a file that needs ``h5clear -s``; readers cannot open it yet). Structure
+    added after it briefly takes the file out of SWMR mode (a reader kept open across that
+    moment must reopen). swmr=False writes format version 1 (a group per snapshot).
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
@@ -145,8 +147,6 @@ class TrainingLogWriter:
         self._last_flush = time.monotonic()
         self._cameras_written = False
         self.flush()
-        if self.swmr:
-            f.swmr_mode = True
 
     # -- helpers ----------------------------------------------------------------------
     def _keep_metadata(self):
@@ -158,6 +158,16 @@ class TrainingLogWriter:
         cfg.flash_incr_mode = 0  # H5C_flash_incr__off
         cfg.decr_mode = 0  # H5C_decr__off
         self._file.id.set_mdc_config(cfg)
+
+    def start_swmr(self):
+        """Enters SWMR mode (swmr=True; once, at the first metrics row if not before): from
+        then on readers can open the file while it grows and a kill leaves it readable.
+        Before, in the setup (the first snapshot, cameras, images), groups and datasets are
+        created directly; after, adding them reopens the file (_structure)."""
+        self._check_open()
+        if self.swmr and not self._file.swmr_mode:
+            self.flush()
+            self._file.swmr_mode = True
 
     @contextlib.contextmanager
     def _structure(self):
@@ -358,6 +368,8 @@ class TrainingLogWriter:
                        ssim=None, lpips=None, elapsed_s=None, test=False):
         """Buffers one metrics row (test=True: /metrics/test). Unmeasured values: None."""
         self._check_open()
+        if self.swmr and not self._file.swmr_mode:
+            self.start_swmr()  # the training loop has started: readers may follow from here
         row = (int(iteration), int(num_gaussians), _scalar(loss), _scalar(l1), _scalar(psnr),
                _scalar(ssim), _scalar(lpips), _scalar(elapsed_s))
         self._pending_metrics[bool(test)].append(row)

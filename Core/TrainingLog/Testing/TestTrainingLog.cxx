@@ -209,7 +209,7 @@ void ExpectRoundTrip(bool swmr)
   WrittenLog log = WriteSample(swmr ? "roundtrip_swmr" : "roundtrip", 128, 0, swmr);
   TrainingLogReader reader(log.Path);
   EXPECT_EQ(reader.GetHeader().FormatVersion, swmr ? 2 : 1);
-  EXPECT_FALSE(reader.IsOpenForWriting()); // closed: a plain open
+  EXPECT_TRUE(reader.IsSwmrRead()); // no other open of it in this process
   EXPECT_EQ(reader.GetHeader().Producer, "unit-test");
   EXPECT_EQ(reader.GetHeader().Scene, "synthetic");
   EXPECT_EQ(reader.GetHeader().ShDegree, 3);

@@ -58,7 +58,7 @@ int main(int argc, char* argv[])
       }
       nlohmann::json out;
       out["format_version"] = reader.GetHeader().FormatVersion;
-      out["swmr"] = reader.IsOpenForWriting();
+      out["swmr"] = reader.IsSwmrRead();
       out["producer"] = reader.GetHeader().Producer;
       out["scene"] = reader.GetHeader().Scene;
       out["sh_degree"] = reader.GetHeader().ShDegree;
