@@ -50,12 +50,23 @@ void Vis4GSInstallFollow(Vis4GSMainWindow* window, const QString& path, int inte
     [window, state, path]
     {
       const std::shared_ptr<Vis4GSDocument> doc = window->GetDocument();
+      // The Python logger writes LOG.tmp and renames it onto LOG when the run ends.
+      const QString live =
+        QFileInfo::exists(path) || !QFileInfo::exists(path + ".tmp") ? path : path + ".tmp";
       if (!doc && !state->Pending)
       {
         // Not open yet (the trainer has not created it, or not written its first snapshot):
         // try again.
         state->Pending = true;
-        window->Open(path);
+        window->Open(live);
+        return;
+      }
+      if (doc && !state->Pending && QString::fromStdString(doc->Path) != live &&
+        !QFileInfo::exists(QString::fromStdString(doc->Path)))
+      {
+        state->Pending = true; // the temporary became LOG: follow that
+        state->Reloading = doc.get();
+        window->Open(live);
         return;
       }
       if (!doc || !doc->IsLog || !doc->Reader)

@@ -19,7 +19,9 @@ class Vis4GSMainWindow;
 
 /// Makes @p window follow the log @p path, checking every @p intervalMs milliseconds (new data
 /// shows within about intervalMs plus the reload time); a log that cannot be opened yet (its
-/// trainer has not written its first snapshot) is tried again at each tick.
+/// trainer has not written its first snapshot) is tried again at each tick. While @p path does
+/// not exist and "<path>.tmp" does (the Python logger's live file), that one is followed, and
+/// @p path once the temporary is renamed onto it.
 void Vis4GSInstallFollow(Vis4GSMainWindow* window, const QString& path, int intervalMs);
 
 #endif
