@@ -104,13 +104,24 @@ struct SplatDisplayOptions
   bool DimUnselected = false;
   float DimOpacity = 0.15f;
   float DimDesaturation = 0.8f;
+  /// The true colours are evaluated later, per view (the OpenGL path's shader evaluates the
+  /// SH): instead of a colour, the first float of each Gaussian's rgba says what to do to its
+  /// true colour (SplatDisplayUnchanged, SplatDisplayHighlighted or SplatDisplayDimmed, with
+  /// HighlightColor, HighlightMix and DimDesaturation as above), the next two are 0; the
+  /// opacity multiplier and keep are as usual. No effect with ScoreColoring. Default off.
+  bool DeferTrueColor = false;
 };
+
+/// What DeferTrueColor asks to do to a true colour (its first float).
+constexpr float SplatDisplayUnchanged = 0.0f;
+constexpr float SplatDisplayHighlighted = 1.0f;
+constexpr float SplatDisplayDimmed = 2.0f;
 
 /**
  * Display colour of each of @p count Gaussians: @p rgba gets 4 floats per Gaussian (colour,
  * opacity multiplier), @p keep one byte (0 = hidden, never drawn). @p trueColors (3 per
- * Gaussian) is used unless ScoreColoring is on. Throws std::invalid_argument when a needed
- * array is missing.
+ * Gaussian) is used unless ScoreColoring or DeferTrueColor is on. Throws std::invalid_argument when
+ * a needed array is missing.
  */
 void ComputeSplatDisplay(const float* trueColors,
   std::size_t count,

@@ -29,8 +29,7 @@
 #include "Vis4GSSceneCameras.h"
 #include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
-#include "vtkGaussianSceneReader.h"
-#include "vtkGaussianTrainingLogReader.h"
+#include "vtkGaussianSession.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -147,11 +146,30 @@ std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSAr
   return Vis4GSFindSceneCameras(scene, args.Get("cameras"));
 }
 
+// The Gaussians of a scene file or of the snapshot of a log nearest @p iteration (-1: the last)
+// as the application, the Python layer and ParaView read them: the Gaussians port of a
+// vtkGaussianSession (the reader chosen by content) into @p gaussians. The scores are computed
+// by this command's own staged filters. Returns the loaded iteration (-1 for a scene file).
+int ReadGaussians(const std::string& path, int iteration, vtkPolyData* gaussians)
+{
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(path.c_str());
+  session->SetIteration(iteration);
+  session->ComputeScoresOff();
+  const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  gaussians->ShallowCopy(session->GetGaussiansOutput());
+  return session->GetLoadedIteration();
+}
+
 // The snapshot of a training log, its cameras, and its training images: embedded ones
 // ("/images/<name>") are written once to <output>/images so the score filter reads them like
-// any dataset; others are paths relative to the log. The Gaussians are read as a script reads
-// them, by vtkGaussianTrainingLogReader (every SH degree) into @p gaussians, the score filter's
-// input; the cloud returned is their copy for the Core steps after the scores.
+// any dataset; others are paths relative to the log. The Gaussians are read by ReadGaussians
+// (every SH degree) into @p gaussians, the score filter's input; the cloud returned is their
+// copy for the Core steps after the scores.
 std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& path,
   const Vis4GSArguments& args,
   const fs::path& output,
@@ -171,16 +189,7 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
     throw std::runtime_error(path + ": the training log holds no snapshot to analyze");
   }
   const int wanted = args.GetInt("iteration");
-  vtkNew<vtkGaussianTrainingLogReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->SetIteration(wanted < 0 ? iterations.back() : wanted);
-  const std::string errors = Vis4GSUpdate(reader, 0);
-  if (!errors.empty())
-  {
-    throw std::runtime_error(errors);
-  }
-  const int logged = reader->GetLoadedIteration();
-  gaussians->ShallowCopy(reader->GetGaussiansOutput());
+  const int logged = ReadGaussians(path, wanted < 0 ? iterations.back() : wanted, gaussians);
   std::string error;
   // The reader's own cloud when its arrays are one (no copy of gigabytes).
   const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
@@ -202,6 +211,8 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
   }
   cameras = log.ReadCameras();
   const fs::path logDir = fs::path(path).parent_path();
+  std::string writeError; // the first image that could not be written, said once
+  std::size_t notWritten = 0;
   for (vis4gs::Camera& c : cameras)
   {
     const std::string prefix = "/images/";
@@ -212,11 +223,10 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       if (writeImages) // under MPI process 0 writes them once for every process
       {
         int width = 0, height = 0;
+        std::vector<unsigned char> pixels;
         try
         {
-          const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
-          fs::create_directories(file.parent_path());
-          vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          pixels = log.ReadImage(name, width, height);
         }
         catch (const std::exception& e)
         {
@@ -226,6 +236,20 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
                     << " cannot be read (" << e.what()
                     << "); its view is left out of the Blur and Needle scores\n";
         }
+        try
+        {
+          if (!pixels.empty())
+          {
+            fs::create_directories(file.parent_path());
+            vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          }
+        }
+        catch (const std::exception& e)
+        {
+          // An output folder that cannot be written fails every image the same way: said once.
+          writeError = writeError.empty() ? e.what() : writeError;
+          ++notWritten;
+        }
       }
       c.ImagePath = file.string();
     }
@@ -234,25 +258,24 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       c.ImagePath = (logDir / c.ImagePath).string();
     }
   }
+  if (notWritten > 0)
+  {
+    std::cerr << "vis4gs analyze: warning: " << notWritten << " training images of the log could "
+              << "not be written to " << (output / "images").string() << " (" << writeError
+              << "); their views are left out of the Blur and Needle scores\n";
+  }
   return cloud;
 }
 
-// A scene file read as a script reads it, by vtkGaussianSceneReader into @p gaussians (the
-// score filter's input; its warnings go to VTK's output window, stderr); the cloud returned is
-// the reader's own (shared with the arrays, no copy) for the Core steps after the scores, and
+// A scene file read by ReadGaussians into @p gaussians (the score filter's input; the
+// reader's warnings go to VTK's output window, stderr); the cloud returned is the reader's own
+// (shared with the arrays, no copy) for the Core steps after the scores, and
 // @p extras the file's other properties, which scores.ply keeps.
 std::shared_ptr<const vis4gs::GaussianCloud> ReadSceneFile(const std::string& path,
   vtkPolyData* gaussians,
   std::vector<vis4gs::ExtraProperty>& extras)
 {
-  vtkNew<vtkGaussianSceneReader> reader;
-  reader->SetFileName(path.c_str());
-  const std::string errors = Vis4GSUpdate(reader, 0);
-  if (!errors.empty())
-  {
-    throw std::runtime_error(errors);
-  }
-  gaussians->ShallowCopy(reader->GetOutput());
+  ReadGaussians(path, -1, gaussians);
   std::string error;
   const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
   if (!cloud)

@@ -742,7 +742,7 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   if (!doc)
   {
     this->statusBar()->showMessage("could not open: " + error);
-    std::cerr << "vis4gs view: " << error.toStdString() << "\n";
+    std::cerr << "vis4gs view: error: " << error.toStdString() << "\n";
     emit this->loadFailed(error);
     return;
   }
@@ -971,7 +971,7 @@ void Vis4GSMainWindow::StartScores()
           if (!scores)
           {
             this->statusBar()->showMessage("scores: " + error, 5000);
-            std::cerr << "vis4gs view: scores: " << error.toStdString() << "\n";
+            std::cerr << "vis4gs view: error: scores: " << error.toStdString() << "\n";
           }
           else if (current == input.GetPointer())
           {

@@ -32,10 +32,10 @@ def check(cond, what):
         failures.append(what)
 
 
-def same_as_csv(scores, path):
-    """The filter's arrays printed as the application prints scores.csv, row for row; returns
-    the number of rows and the column names."""
-    data = servermanager.Fetch(scores)
+def same_as_csv(scores, path, port=0):
+    """The filter's arrays (output `port`) printed as the application prints scores.csv, row
+    for row; returns the number of rows and the column names."""
+    data = servermanager.Fetch(scores, idx=port)
     pd = data.GetPointData()
     ids = vtk_to_numpy(pd.GetArray("GaussianId"))
     with open(path) as f:
@@ -122,6 +122,16 @@ trace = servermanager.Fetch(lineage)
 traced = [trace.GetValueByName(r, "GaussianId").ToInt() for r in range(trace.GetNumberOfRows())]
 check(traced == expected, f"Vis4GS Lineage of {floater} gives {traced}, root-cause.txt {expected}")
 
+# The session (the pipeline the application, vis4gs analyze and the Python layer use): its
+# Gaussians port equals the demo's scores.csv too, its tree port the genealogy filter's tree.
+session = Vis4GSSession(FileName=log)  # noqa: F821
+session_count, _ = same_as_csv(session, f"{demo_output}/scores.csv", port=0)
+check(session_count == count, "the session's Gaussians are the demo's")
+session_tree = servermanager.Fetch(session, idx=3)
+check(session_tree.GetNumberOfVertices() == tree.GetNumberOfVertices(),
+      f"the session's tree has {session_tree.GetNumberOfVertices()} vertices, the genealogy "
+      f"filter's {tree.GetNumberOfVertices()}")
+
 view = GetActiveViewOrCreate("RenderView")
 view.ViewSize = [640, 480]
 view.ViewTime = times[-1]
@@ -144,5 +154,6 @@ if failures:
     print("FAILED:", *failures, sep="\n  ")
     sys.exit(1)
 print(f"ParaView plugin: {len(times)} time steps; {count} Gaussians' {', '.join(names)} "
-      f"= vis4gs demo's scores.csv; ancestry and Vis4GS Lineage of {floater} = root-cause.txt; "
+      f"= vis4gs demo's scores.csv (the scores filter and the session); ancestry and "
+      f"Vis4GS Lineage of {floater} = root-cause.txt; "
       f"{screenshot}")
