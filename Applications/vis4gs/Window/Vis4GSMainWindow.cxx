@@ -374,8 +374,10 @@ void Vis4GSMainWindow::BuildUi()
         scene ? scene->GetPointData()->GetArray(name.toUtf8().constData()) : nullptr;
       if (array)
       {
+        // Finite values only: a score may hold +inf (CostPerContribution of a Gaussian that
+        // is drawn and never shows), which no spin box can show.
         double range[2];
-        array->GetRange(range);
+        array->GetFiniteRange(range, 0);
         d->Panel->SetOverlayRange(range[0], range[1]);
       }
       this->UpdateOverlay();
