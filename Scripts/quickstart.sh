@@ -6,7 +6,8 @@
 # Environment: VIS4GS_BUILD_DIR (default: build), VIS4GS_JOBS (default: nproc),
 # VIS4GS_FUZZ_SECONDS (per fuzz target in the test command, default: 15), VIS4GS_PARAVIEW
 # (default 1: the test command also builds and tests the ParaView plugin in <build>-paraview;
-# 0 leaves it out).
+# 0 leaves it out), VIS4GS_SANITIZERS (default 1: the test command runs the sanitizers'
+# bounded part in <build>-asan-core; 0 leaves it out, except under CI=true).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -37,6 +38,12 @@ fi
 
 # The parsers' libFuzzer targets, for a bounded time (clang + ASan, Core only, own build dir).
 bash "$here/Scripts/run-fuzzers.sh" "${VIS4GS_FUZZ_SECONDS:-15}" "$build-fuzz"
+
+# The sanitizers' bounded part: Core and its tests under ASan + UBSan (GCC, own build dir, about
+# 15 minutes on 2 cores from scratch); any report fails the test command.
+if [ "${CI:-}" = true ] || [ "${VIS4GS_SANITIZERS:-1}" != 0 ]; then
+  bash "$here/Scripts/run-sanitizers.sh" core "$build-asan-core"
+fi
 
 # One X server (Xvfb, -noreset: Scripts/with-display.sh says why) for every test that renders.
 (cd "$build" && bash "$here/Scripts/with-display.sh" --new \

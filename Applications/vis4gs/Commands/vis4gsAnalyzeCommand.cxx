@@ -17,6 +17,7 @@
 #include "ImageIO.h"
 #include "Rasterizer.h"
 #include "RemovalEffect.h"
+#include "ScoreRegistry.h"
 #include "SelectionRule.h"
 #include "SpecialValues.h"
 #include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
@@ -87,10 +88,18 @@ void Define(Vis4GSArguments& args)
     "DIR",
     "",
     "Folder of training images, matched to cameras by name. Default: the COLMAP dataset's.");
-  args.AddOption("scores",
-    "LIST",
-    "coverage,blur,needle,shape",
-    "Scores to compute: coverage, blur, needle, shape (comma-separated).");
+  std::string scoreHelp = "Scores to compute (comma-separated):";
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    scoreHelp += std::string(" ") + d.Name + " (" + d.ArrayName + ", suspicious when " +
+      (d.Suspicious == vis4gs::SuspiciousEnd::Low ? "low" : "high") +
+      ((d.Needs & vis4gs::NeedsImages)       ? ", needs images"
+          : (d.Needs & vis4gs::NeedsCameras) ? ", needs cameras"
+                                             : "") +
+      "),";
+  }
+  scoreHelp.back() = '.';
+  args.AddOption("scores", "LIST", vis4gs::DefaultScoreList(), scoreHelp);
   args.AddOption("output", "DIR", "vis4gs-analysis", "Folder the results are written to.");
   args.AddOption("top", "K", "20", "Number of most suspicious Gaussians listed per score.");
   args.AddOption("loss-resolution", "F", "1", "Loss-map resolution factor: 1, 2, 4 or 8.");
@@ -202,6 +211,8 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
   }
   cameras = log.ReadCameras();
   const fs::path logDir = fs::path(path).parent_path();
+  std::string writeError; // the first image that could not be written, said once
+  std::size_t notWritten = 0;
   for (vis4gs::Camera& c : cameras)
   {
     const std::string prefix = "/images/";
@@ -212,11 +223,10 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       if (writeImages) // under MPI process 0 writes them once for every process
       {
         int width = 0, height = 0;
+        std::vector<unsigned char> pixels;
         try
         {
-          const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
-          fs::create_directories(file.parent_path());
-          vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          pixels = log.ReadImage(name, width, height);
         }
         catch (const std::exception& e)
         {
@@ -226,6 +236,20 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
                     << " cannot be read (" << e.what()
                     << "); its view is left out of the Blur and Needle scores\n";
         }
+        try
+        {
+          if (!pixels.empty())
+          {
+            fs::create_directories(file.parent_path());
+            vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          }
+        }
+        catch (const std::exception& e)
+        {
+          // An output folder that cannot be written fails every image the same way: said once.
+          writeError = writeError.empty() ? e.what() : writeError;
+          ++notWritten;
+        }
       }
       c.ImagePath = file.string();
     }
@@ -233,6 +257,12 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
     {
       c.ImagePath = (logDir / c.ImagePath).string();
     }
+  }
+  if (notWritten > 0)
+  {
+    std::cerr << "vis4gs analyze: warning: " << notWritten << " training images of the log could "
+              << "not be written to " << (output / "images").string() << " (" << writeError
+              << "); their views are left out of the Blur and Needle scores\n";
   }
   return cloud;
 }
@@ -387,10 +417,16 @@ std::vector<std::size_t> TopK(const std::vector<double>& v, std::size_t k)
     order.end(),
     [&](std::size_t a, std::size_t b)
     {
-      const double x = std::isfinite(v[a]) ? v[a] : -1, y = std::isfinite(v[b]) ? v[b] : -1;
+      // NaN last (a score that could not be computed ranks nowhere); +inf first (R/A of a
+      // Gaussian that costs and never shows).
+      const double x = std::isnan(v[a]) ? -HUGE_VAL : v[a], y = std::isnan(v[b]) ? -HUGE_VAL : v[b];
       return x > y || (x == y && a < b);
     });
   order.resize(k);
+  while (!order.empty() && std::isnan(v[order.back()]))
+  {
+    order.pop_back();
+  }
   return order;
 }
 
@@ -602,21 +638,21 @@ int Run(const Vis4GSArguments& args)
   const std::size_t top = static_cast<std::size_t>(std::max(0, args.GetInt("top")));
   const bool isLog = Vis4GSIsLogPath(scene);
   // Requested scores.
-  std::map<std::string, bool> want{
-    { "coverage", false }, { "blur", false }, { "needle", false }, { "shape", false }
-  };
+  std::map<std::string, bool> want;
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
   {
-    std::stringstream list(args.Get("scores"));
-    std::string item;
-    while (std::getline(list, item, ','))
+    want[d.Name] = false;
+  }
+  try
+  {
+    for (const vis4gs::ScoreDefinition* d : vis4gs::ParseScoreList(args.Get("scores")))
     {
-      if (!want.count(item))
-      {
-        throw std::runtime_error(
-          "--scores: unknown score '" + item + "' (expected coverage, blur, needle, shape)");
-      }
-      want[item] = true;
+      want[d->Name] = true;
     }
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::runtime_error(std::string("--scores: ") + e.what());
   }
   // A selection rule: parsed first (a typo fails before any work) and its scores computed.
   std::optional<vis4gs::SelectionRule> rule;
@@ -633,9 +669,10 @@ int Run(const Vis4GSArguments& args)
   if (!ruleText.empty())
   {
     rule = vis4gs::SelectionRule::Parse(ruleText);
-    want["coverage"] = want["coverage"] || rule->Reads(vis4gs::RuleAttribute::Coverage);
-    want["blur"] = want["blur"] || rule->Reads(vis4gs::RuleAttribute::Blur);
-    want["needle"] = want["needle"] || rule->Reads(vis4gs::RuleAttribute::NeedleScore);
+    for (const std::string& name : rule->ScoresRead())
+    {
+      want[name] = true;
+    }
   }
   else if (args.GetFlag("delete") || args.GetFlag("report"))
   {
@@ -658,7 +695,19 @@ int Run(const Vis4GSArguments& args)
 
   // Read.
   auto t0 = Clock::now();
-  const bool needCameras = want["coverage"] || want["blur"] || want["needle"] || measure;
+  std::string wantedList, needingCameras;
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    if (want[d.Name])
+    {
+      wantedList += (wantedList.empty() ? "" : ",") + std::string(d.Name);
+      if (d.Needs & vis4gs::NeedsCameras)
+      {
+        needingCameras += std::string(needingCameras.empty() ? "" : ", ") + d.Name;
+      }
+    }
+  }
+  const bool needCameras = !needingCameras.empty() || measure;
   std::vector<vis4gs::Camera> cameras;
   vtkNew<vtkPolyData> polyData; // the score filter's input
   std::vector<vis4gs::ExtraProperty> fileExtras;
@@ -689,9 +738,9 @@ int Run(const Vis4GSArguments& args)
   }
   if (needCameras && cameras.empty())
   {
-    throw std::runtime_error(scene +
-      ": coverage, blur, needle and --report need cameras; give --cameras=cameras.json or a "
-      "COLMAP folder");
+    throw std::runtime_error(scene + ": " +
+      (needingCameras.empty() ? std::string("--report needs") : needingCameras + " need") +
+      " cameras; give --cameras=cameras.json or a COLMAP folder");
   }
   if (!args.Get("images").empty())
   {
@@ -719,10 +768,7 @@ int Run(const Vis4GSArguments& args)
     {
       f->SetCamerasData(table);
     }
-    f->SetComputeViewCoverage(want["coverage"]);
-    f->SetComputeBlurScore(want["blur"]);
-    f->SetComputeNeedleScore(want["needle"]);
-    f->SetComputeNeedleShape(want["shape"]);
+    f->SetScores(wantedList.c_str());
     f->SetLossResolution(stage.LossResolution);
     f->SetCoverageResolution(stage.CoverageResolution);
     f->SetViewStride(stage.ViewStride);
@@ -794,8 +840,9 @@ int Run(const Vis4GSArguments& args)
             "value</th><th>exact top 1 % in stage 1's top 1 %</th></tr>\n";
     for (std::size_t k = 0; k < scores.size(); ++k)
     {
-      const StageError e = CompareStage(
-        firstScores[k].second, scores[k].second, scores[k].first == vis4gs::arrays::ViewCoverage);
+      const StageError e = CompareStage(firstScores[k].second,
+        scores[k].second,
+        vis4gs::SuspiciousEndOf(scores[k].first) == vis4gs::SuspiciousEnd::Low);
       std::cout << "vis4gs analyze: stage 1 error, " << scores[k].first << ": largest difference "
                 << e.LargestDifference << " (largest exact value " << e.LargestExact
                 << "), exact top 1 % in stage 1's top 1 %: " << e.TopShared << " of " << e.TopCount
@@ -895,12 +942,13 @@ int Run(const Vis4GSArguments& args)
         (output / "scores.csv").string() + ": could not be written (" + std::strerror(error) + ")");
     }
   }
-  // Top-k: highest blur/needle/shape, lowest coverage (floaters).
+  // Top-k: the suspicious end of each score first (lowest coverage: floaters).
   std::map<std::string, std::vector<std::size_t>> tops;
   for (const auto& [name, values] : scores)
   {
     std::vector<double> key = values;
-    if (name == vis4gs::arrays::ViewCoverage)
+    const bool lowest = vis4gs::SuspiciousEndOf(name) == vis4gs::SuspiciousEnd::Low;
+    if (lowest)
     {
       for (double& k : key)
       {
@@ -909,7 +957,7 @@ int Run(const Vis4GSArguments& args)
     }
     tops[name] = TopK(key, top);
     std::cout << "vis4gs analyze: top " << tops[name].size() << " by " << name
-              << (name == vis4gs::arrays::ViewCoverage ? " (lowest first)" : "") << ":\n";
+              << (lowest ? " (lowest first)" : "") << ":\n";
     for (std::size_t i : tops[name])
     {
       std::cout << "  Gaussian " << cloud.GetId(i) << "  " << values[i] << "\n";
@@ -924,18 +972,7 @@ int Run(const Vis4GSArguments& args)
     inputs.ViewsUsed = filter->GetNumberOfViewsUsed();
     for (const auto& [name, values] : scores)
     {
-      if (name == vis4gs::arrays::ViewCoverage)
-      {
-        inputs.ViewCoverage = &values;
-      }
-      else if (name == vis4gs::arrays::BlurScore)
-      {
-        inputs.BlurScore = &values;
-      }
-      else if (name == vis4gs::arrays::NeedleScore)
-      {
-        inputs.NeedleScore = &values;
-      }
+      inputs.Scores[vis4gs::FindScore(name)->Name] = &values;
     }
     const std::vector<std::uint8_t> selected = rule->Evaluate(inputs);
     const std::string canonical = rule->ToString();
@@ -1000,9 +1037,10 @@ int Run(const Vis4GSArguments& args)
     colored.SH.assign(3 * cloud.Count, 0.0f);
     for (const auto& [name, values] : scores)
     {
-      if (name == vis4gs::arrays::NeedleShape)
+      const vis4gs::ScoreDefinition& score = *vis4gs::FindScore(name);
+      if (!(score.Needs & vis4gs::NeedsCameras))
       {
-        continue;
+        continue; // a property of the Gaussian alone, not of what the views see
       }
       std::vector<double> sorted;
       for (double v : values)
@@ -1013,8 +1051,7 @@ int Run(const Vis4GSArguments& args)
         }
       }
       std::sort(sorted.begin(), sorted.end());
-      const double hi = sorted.empty() ? 1.0
-        : name == vis4gs::arrays::ViewCoverage
+      const double hi = sorted.empty() || score.UnitRange
         ? 1.0
         : std::max(1e-30, sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))]);
       legends.push_back(Legend(name, 0.0, hi));
@@ -1087,10 +1124,10 @@ int Run(const Vis4GSArguments& args)
   {
     html << Histogram(values, name);
   }
-  html << "<h2>Overlays</h2><p>Scores through viridis (coverage 0..1; other scores 0..their "
-          "99th percentile), rendered with the rasteriser on black. The map is turned so that "
-          "the suspicious end of each score is the bright (yellow) end: low View Coverage, high "
-          "Blur and Needle scores.</p>\n";
+  html << "<h2>Overlays</h2><p>Scores through viridis (scores in [0, 1] such as the coverage "
+          "over 0..1; other scores 0..their 99th percentile), rendered with the rasteriser on "
+          "black. The map is turned so that the suspicious end of each score is the bright "
+          "(yellow) end: low View Coverage, high values of the other scores.</p>\n";
   for (const std::string& legend : legends)
   {
     html << legend;
@@ -1105,7 +1142,8 @@ int Run(const Vis4GSArguments& args)
   html << "<h2>Most suspicious Gaussians</h2>\n";
   for (const auto& [name, values] : scores)
   {
-    html << "<h3>" << name << (name == vis4gs::arrays::ViewCoverage ? " (lowest)" : "")
+    html << "<h3>" << name
+         << (vis4gs::SuspiciousEndOf(name) == vis4gs::SuspiciousEnd::Low ? " (lowest)" : "")
          << "</h3><table><tr><th>rank</th><th>GaussianId</th>";
     for (const auto& s : scores)
     {
@@ -1134,6 +1172,7 @@ int Run(const Vis4GSArguments& args)
 }
 
 VIS4GS_REGISTER_COMMAND("analyze",
-  "Compute View Coverage, Blur and Needle scores of a scene; write tables, images and a report.",
+  "Compute the per-Gaussian scores (View Coverage, Blur, Needle, ...) of a scene; write tables, "
+  "images and a report.",
   Define,
   Run)

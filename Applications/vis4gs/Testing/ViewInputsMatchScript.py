@@ -124,8 +124,9 @@ reader.SetFileName(log)
 scores = vis4gs.vtkGaussianArtifactScoreFilter()
 scores.SetInputConnection(reader.GetOutputPort(0))
 scores.SetCamerasConnection(reader.GetOutputPort(1))
-for score in ("ViewCoverage", "BlurScore", "NeedleScore", "NeedleShape"):
-    getattr(scores, f"SetCompute{score}")(True)
+# The application computes every registered score its inputs allow; the demo log has cameras
+# and images, so all of them.
+scores.SetScores(",".join(vis4gs.SCORES))
 genealogy = vis4gs.vtkGaussianGenealogyTreeFilter()
 genealogy.SetInputConnection(reader.GetOutputPort(3))
 genealogy.SetRepairUnknownParents(True)
@@ -155,7 +156,7 @@ check(tree_view.GetTree() is tree, "the tree view holds the genealogy filter's o
 check(same(vtk_to_numpy(app_scene.GetPoints().GetData()),
            vtk_to_numpy(script_scene.GetPoints().GetData())), "scene: positions differ")
 compare_fields("scene", app_scene.GetPointData(), script_scene.GetPointData())
-for score in ("ViewCoverage", "BlurScore", "NeedleScore", "NeedleShape"):
+for score in vis4gs.SCORES.values():
     a = values(app_scene.GetPointData().GetArray(score))
     check(a is not None and np.count_nonzero(np.nan_to_num(a)) > 0.5 * a.size,
           f"scene: the application's {score} is computed (mostly non-zero)")

@@ -9,7 +9,11 @@
       colored by their Blur score in ParaView's Point Gaussian representation.
   pvbatch TestVis4GSPlugin.py folder PLUGIN SCORES_CSV PLY CAMERAS
       a 3DGS PLY with a COLMAP folder: the scores (view stride 8, loss resolution 4) against
-      the scores.csv of `vis4gs analyze` with the same options."""
+      the scores.csv of `vis4gs analyze` with the same options.
+  pvbatch TestVis4GSPlugin.py scores PLUGIN LOG SCORES_CSV ARRAY...
+      the scores named by ARRAY (the filter's Scores list, the score registry's array names) at
+      the log's last snapshot against the scores.csv of `vis4gs analyze LOG --scores=...`: a
+      score added to the registry reaches the plugin with no edit of its XML."""
 import csv
 import re
 import sys
@@ -64,6 +68,25 @@ if mode == "folder":
         sys.exit(1)
     print(f"ParaView plugin: PLY + COLMAP folder, {count} Gaussians' {', '.join(names)} = "
           "vis4gs analyze's scores.csv")
+    sys.exit(0)
+
+if mode == "scores":
+    log, app_csv, arrays = sys.argv[3], sys.argv[4], sys.argv[5:]
+    reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
+    reader.UpdatePipelineInformation()
+    scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0),  # noqa: F821
+                                  Cameras=OutputPort(reader, 1), Scores=arrays)
+    scores.UpdatePipeline(time=list(reader.TimestepValues)[-1])
+    count, names = same_as_csv(scores, app_csv)
+    check(names[:len(arrays)] == arrays, f"scores.csv has {names}, asked for {arrays}")
+    pd = servermanager.Fetch(scores).GetPointData()
+    others = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())
+              if pd.GetArrayName(i) in ("ViewCoverage", "BlurScore", "NeedleScore")]
+    check(not others, f"scores not asked for were computed: {others}")
+    if failures:
+        print("FAILED:", *failures, sep="\n  ")
+        sys.exit(1)
+    print(f"ParaView plugin: {count} Gaussians' {', '.join(names)} = vis4gs analyze's scores.csv")
     sys.exit(0)
 
 log, demo_output, screenshot = sys.argv[3:6]

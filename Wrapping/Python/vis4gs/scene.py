@@ -33,7 +33,7 @@ from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData, vtkTable
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter
+from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter, vtkGaussianScoreRegistry
 from .vis4gsFiltersGenealogy import vtkGaussianGenealogyLineage, vtkGaussianGenealogyTreeFilter
 from .vis4gsFiltersRaster import vtkGaussianRasterizer
 from .vis4gsFiltersSelection import (vtkGaussianFineTuneFilter,
@@ -43,10 +43,15 @@ from .vis4gsFiltersSelection import (vtkGaussianFineTuneFilter,
 from .vis4gsFiltersSession import vtkGaussianSession
 from .vis4gsIOScene import vtkGaussianPLYWriter
 
-# Short score names (as `vis4gs analyze --scores` spells them) and their arrays, in the order
-# the program writes them.
-SCORES = collections.OrderedDict([("coverage", "ViewCoverage"), ("blur", "BlurScore"),
-                                  ("needle", "NeedleScore"), ("shape", "NeedleShape")])
+# The scores of the registry (Core/Diagnostics/ScoreRegistry.h, vtkGaussianScoreRegistry):
+# short names (as `vis4gs analyze --scores` spells them) and their arrays, in the order the
+# program writes them; the default set; what each needs.
+_REGISTRY = vtkGaussianScoreRegistry
+SCORES = collections.OrderedDict((_REGISTRY.GetName(i), _REGISTRY.GetArrayName(i))
+                                 for i in range(_REGISTRY.GetNumberOfScores()))
+DEFAULT_SCORES = tuple(_REGISTRY.GetDefaultScores().split(","))
+_NEEDS_CAMERAS = {_REGISTRY.GetName(i) for i in range(_REGISTRY.GetNumberOfScores())
+                  if _REGISTRY.GetNeedsCameras(i)}
 # vtkGaussianArtifactScoreFilter's parameters, as keywords of Scene.scores().
 _SCORE_PARAMETERS = {"loss_resolution": "LossResolution",
                      "coverage_resolution": "CoverageResolution",
@@ -56,10 +61,11 @@ _SCORE_PARAMETERS = {"loss_resolution": "LossResolution",
 _BIRTH_KINDS = {0: "root", 1: "clone", 2: "split", 3: "clone-split"}
 # How select_rule() combines with a current selection (vtkGaussianRuleSelectionFilter).
 _COMBINE = {None: 0, "replace": 0, "add": 1, "subtract": 2, "intersect": 3}
-# The rule attributes that are scores (SelectionRule.h), with the score each needs; "views" is
-# View Coverage times the views used. "needle" is the shape, computed from the log-scales.
-_RULE_SCORES = {"coverage": "coverage", "views": "coverage", "blur": "blur",
-                "needle_score": "needle"}
+# The rule attributes that are scores (SelectionRule.h: each registered score by its rule
+# name), with the score each needs; "views" is View Coverage times the views used. "needle" is
+# the shape, computed from the log-scales.
+_RULE_SCORES = dict([(_REGISTRY.GetRuleName(i), _REGISTRY.GetName(i))
+                     for i in range(_REGISTRY.GetNumberOfScores())] + [("views", "coverage")])
 # before-after.csv of `vis4gs analyze --report`: its columns, in its order.
 _REMOVAL_CSV = ("view", "split", "affected", "psnr_before", "psnr_after", "ssim_before",
                 "ssim_after", "l1_before", "l1_after")
@@ -310,8 +316,9 @@ class Scene:
         return Scene(self.path, iteration, self._cameras_path, self.images)
 
     # ---------------------------------------------------------------- scores
-    def scores(self, which=("coverage", "blur", "needle", "shape"), **parameters):
-        """Computes only the scores named (coverage, blur, needle, shape) with
+    def scores(self, which=DEFAULT_SCORES, **parameters):
+        """Computes only the scores named (SCORES: coverage, blur, needle, shape, render-cost,
+        ...; default DEFAULT_SCORES) with
         vtkGaussianArtifactScoreFilter; keywords set its parameters (loss_resolution,
         coverage_resolution, view_stride, footprint 0|1 or "alpha"|"ellipse",
         float_accumulation, occlusion_threshold, lam). The arrays (and NoVisibleView) are added
@@ -335,11 +342,11 @@ class Scene:
             defaults = vtkGaussianArtifactScoreFilter()
             for name in _SCORE_PARAMETERS.values():
                 getattr(score_filter, "Set" + name)(getattr(defaults, "Get" + name)())
-        for short, array in SCORES.items():
-            getattr(score_filter, f"SetCompute{array}")(short in which)
-        if any(w != "shape" for w in which):
+        score_filter.SetScores(",".join(which))
+        with_cameras = [w for w in which if w in _NEEDS_CAMERAS]
+        if with_cameras:
             if self.cameras is None:
-                raise Vis4GSError(f"{self.path}: coverage, blur and needle need cameras; "
+                raise Vis4GSError(f"{self.path}: {', '.join(with_cameras)} need cameras; "
                                   "give cameras=cameras.json or a COLMAP folder")
             if not self._from_session:
                 score_filter.SetCamerasData(self.cameras)
@@ -382,7 +389,7 @@ class Scene:
             array = previous.GetAbstractArray(i)
             if self.polydata.GetPointData().GetAbstractArray(array.GetName()) is None:
                 self.polydata.GetPointData().AddArray(array)
-        if any(w != "shape" for w in which):
+        if with_cameras:
             self.views_used = score_filter.GetNumberOfViewsUsed()
         return collections.OrderedDict((w, self[SCORES[w]]) for w in which)
 
@@ -471,7 +478,8 @@ class Scene:
         the language of `vis4gs analyze --select=RULE`, user guide "Guided clean-up"), e.g.
         "views<=3 and opacity>=0.5", "blur top 5%", "needle>=0.8", "isolated r=0.1".
 
-        The scores the rule reads (coverage, views, blur, needle_score) are computed with the
+        The scores the rule reads (coverage, views, blur, needle_score, render_cost, ...) are
+        computed with the
         defaults of scores() when this scene lacks them. combine "add", "subtract" or
         "intersect" combines the rule's selection with `current`: a previous selection (a
         Scene), GaussianIds, or a boolean mask over this scene (a brush, a histogram range).
