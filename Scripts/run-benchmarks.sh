@@ -28,8 +28,8 @@ run "$bin/BenchmarkGaussianPly" --gaussians=1000000,5000000 "--dir=$dir" --repea
 run "$bin/BenchmarkRasterizer" 1000000
 run "$bin/BenchmarkRasterizer" --peak
 run "$bin/BenchmarkArtifactScores" perf
-run "$bin/BenchTrainingLog" "--dir=$dir"
-run "$bin/BenchTrainingLog" "--dir=$dir" --gaussians=0 --events=0 --history-snapshots=60 \
+run "$bin/BenchmarkTrainingLog" "--dir=$dir"
+run "$bin/BenchmarkTrainingLog" "--dir=$dir" --gaussians=0 --events=0 --history-snapshots=60 \
   --history-gaussians=500000
 run "$bin/BenchmarkGenealogy"
 run "$bin/BenchmarkGenealogyTree"

@@ -10,6 +10,7 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     Window/Vis4GSMainWindow.cxx
     Window/Vis4GSMainWindow.h
     Window/Vis4GSSelfTest.cxx
+    Window/Vis4GSSoak.cxx
     Window/Vis4GSBenchmark.cxx
     Window/Vis4GSControlPanel.cxx
     Window/Vis4GSSelectionExport.cxx
@@ -316,6 +317,18 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "${_vis4gs_extreme_dir}/special-values")
   set_tests_properties(vis4gs-SpecialValuesCommands PROPERTIES
     FIXTURES_REQUIRED vis4gsExtremeScene)
+  # The soak (issue 35 part 2, Vis4GSSoak.h): 20 cycles in one process opening the synthetic log
+  # and the extreme scene in turn (iterations, every selection mode, a clean-up rule), within
+  # the bounds: resident memory growth after the warm-up, no descriptor, thread or temporary
+  # file left (a private TMPDIR, so that other programs' files do not count). The long run and
+  # the demo log's (with the clean-up measurement) are in Documentation/soak.md.
+  add_test(NAME vis4gs-ViewSoak
+    COMMAND sh -c "rm -rf \"$1\" && mkdir -p \"$1/tmp\" && TMPDIR=\"$1/tmp\" exec \"$2\" view \"$3\" --soak-also=\"$4\" --soak=20,\"$1\" --resolution=1200,800"
+      sh "${_vis4gs_view_dir}/soak" $<TARGET_FILE:vis4gs> "${_vis4gs_view_dir}/synthetic.h5"
+      "${_vis4gs_extreme_dir}/extreme.ply")
+  set_tests_properties(vis4gs-ViewSoak PROPERTIES LABELS "Application;GUI"
+    FIXTURES_REQUIRED "vis4gsViewLog;vis4gsExtremeScene" PASS_REGULAR_EXPRESSION "soak passed"
+    FAIL_REGULAR_EXPRESSION "FAILED" TIMEOUT 900)
   # The benchmark mode runs (figures of real sizes: Documentation/performance.md), and the
   # window lays its docks out before the scene view's first frame with the Gaussians: start-up
   # draws that frame once (it drew it three times, resized twice, costing ~2 s at 4.89M).

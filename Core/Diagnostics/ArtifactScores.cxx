@@ -143,7 +143,8 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   const auto start = Clock::now();
   const ScoreRequest& request = settings.Request;
   const bool scores = request.Blur || request.Needle;
-  const bool needCameras = scores || request.ViewCoverage;
+  const bool needCameras = request.NeedsCameras();
+  const bool renderCost = request.NeedsCompositing();
   if (!ValidFactor(settings.LossResolution) || !ValidFactor(settings.CoverageResolution))
   {
     throw std::invalid_argument("resolution factors must be 1, 2, 4 or 8 (got loss " +
@@ -167,8 +168,8 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     (cloud.Positions.size() != 3 * n || cloud.LogScales.size() != 3 * n ||
       cloud.Rotations.size() != 4 * n || cloud.OpacityLogits.size() != n))
   {
-    throw std::invalid_argument(
-      "coverage, blur and needle need positions, log-scales, rotations and opacities");
+    throw std::invalid_argument("coverage, blur, needle and render cost need positions, "
+                                "log-scales, rotations and opacities");
   }
   if (scores && !images)
   {
@@ -233,9 +234,18 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     blurSum.assign(n, 0.0);
     needleSum.assign(n, 0.0);
   }
+  if (renderCost)
+  {
+    out.RenderCostSum.assign(n, 0.0);
+    out.ContributionSum.assign(n, 0.0);
+  }
   std::vector<bool> coveredByScorePass(cameras.size(), false);
-  const std::size_t totalSteps =
-    (request.ViewCoverage ? ownViews.size() : 0) + (scores ? ownViews.size() : 0);
+  // The score pass's compositing also gives the render cost of the views it renders at full
+  // resolution (the same projection and blending), so no view is drawn twice for it.
+  const bool shareRenderCost = renderCost && scores && settings.LossResolution == 1;
+  std::vector<bool> costedByScorePass(cameras.size(), false);
+  const std::size_t totalSteps = (request.ViewCoverage ? ownViews.size() : 0) +
+    (scores ? ownViews.size() : 0) + (renderCost ? ownViews.size() : 0);
   std::size_t done = 0;
   auto step = [&]()
   {
@@ -294,13 +304,14 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
 
       ViewProjection<float> projection;
       GaussianWeightStats weights;
+      weights.CountEvaluations = shareRenderCost;
       if (multi)
       {
         t0 = Clock::now();
         multi->Project(view);
         out.Timings.Projection += Seconds(t0);
         t0 = Clock::now();
-        multi->Composite(render);
+        multi->Composite(render, shareRenderCost ? &weights : nullptr);
         out.Timings.Rendering += Seconds(t0);
       }
       else
@@ -310,7 +321,8 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         out.Timings.Projection += Seconds(t0);
         t0 = Clock::now();
         const TileBins bins = BinGaussians(projection, settings.Threads);
-        CompositeTiles(projection, bins, raster, render, wantWeights ? &weights : nullptr);
+        CompositeTiles(
+          projection, bins, raster, render, wantWeights || shareRenderCost ? &weights : nullptr);
         out.Timings.Rendering += Seconds(t0);
       }
 
@@ -363,6 +375,16 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         out.ScoredViews[g] += 1;
         blurSum[g] += omega * lp;
         needleSum[g] += lp;
+      }
+      if (shareRenderCost)
+      {
+#pragma omp parallel for schedule(static)
+        for (std::int64_t g = 0; g < sn; ++g)
+        {
+          out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
+          out.ContributionSum[g] += weights.WeightSum[g];
+        }
+        costedByScorePass[vi] = true;
       }
       if (shareCoverage)
       {
@@ -468,6 +490,42 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     }
   }
 
+  // Render-cost pass: every view at full resolution, whatever the loss and coverage
+  // resolutions (the cost is the one of drawing the training views), no image needed; the
+  // views the score pass rendered at full resolution are done.
+  if (renderCost)
+  {
+    const std::int64_t sn = static_cast<std::int64_t>(n);
+    RasterImage<float> render;
+    GaussianWeightStats weights;
+    weights.CountEvaluations = true;
+    for (std::size_t vi : ownViews)
+    {
+      if (costedByScorePass[vi])
+      {
+        step();
+        continue;
+      }
+      if (viewStarted)
+      {
+        viewStarted(vi);
+      }
+      const auto t0 = Clock::now();
+      const ViewProjection<float> projection =
+        ProjectGaussians<float>(cloud, cameras[vi], projectionOnly);
+      const TileBins bins = BinGaussians(projection, settings.Threads);
+      CompositeTiles(projection, bins, projectionOnly, render, &weights);
+#pragma omp parallel for schedule(static)
+      for (std::int64_t g = 0; g < sn; ++g)
+      {
+        out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
+        out.ContributionSum[g] += weights.WeightSum[g];
+      }
+      out.Timings.RenderCost += Seconds(t0);
+      step();
+    }
+  }
+
   out.Timings.Total = Seconds(start);
   return out;
 }
@@ -480,7 +538,8 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   const auto start = Clock::now();
   const ScoreRequest& request = settings.Request;
   const bool scores = request.Blur || request.Needle;
-  const bool needCameras = scores || request.ViewCoverage;
+  const bool needCameras = request.NeedsCameras();
+  const bool renderCost = request.NeedsCompositing();
   const std::size_t n = cloud.Count;
   if ((request.Needle || request.NeedleShape) && cloud.LogScales.size() != 3 * n)
   {
@@ -489,7 +548,8 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   if ((request.ViewCoverage && partials.CoverageViews.size() != n) ||
     (scores &&
       (partials.ScoredViews.size() != n || partials.BlurSum.size() != n ||
-        partials.NeedleSum.size() != n)))
+        partials.NeedleSum.size() != n)) ||
+    (renderCost && (partials.RenderCostSum.size() != n || partials.ContributionSum.size() != n)))
   {
     throw std::invalid_argument("the partial scores do not match the cloud or the request");
   }
@@ -547,6 +607,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   out.Timings.Footprints = pt.Footprints;
   out.Timings.Accumulation = pt.Accumulation;
   out.Timings.ViewHook = pt.ViewHook;
+  out.Timings.RenderCost = pt.RenderCost;
   if (scores && out.ViewsWithoutImage > 0)
   {
     out.Warnings.push_back(std::to_string(out.ViewsWithoutImage) + " of " +
@@ -618,6 +679,37 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     }
     out.Warnings.push_back(out.ScoresUnavailable);
   }
+  if (renderCost)
+  {
+    if (request.RenderCost)
+    {
+      out.RenderCost = partials.RenderCostSum;
+    }
+    if (request.CostPerContribution)
+    {
+      out.CostPerContribution.assign(n, 0.0);
+    }
+    std::size_t notEvaluated = 0;
+#pragma omp parallel for reduction(+ : notEvaluated) schedule(static)
+    for (std::int64_t g = 0; g < sn; ++g)
+    {
+      const double cost = partials.RenderCostSum[g], contribution = partials.ContributionSum[g];
+      notEvaluated += cost > 0 ? 0 : 1;
+      if (request.CostPerContribution)
+      {
+        out.CostPerContribution[g] = contribution > 0 ? cost / contribution
+          : cost > 0                                  ? std::numeric_limits<double>::infinity()
+                                                      : std::numeric_limits<double>::quiet_NaN();
+      }
+    }
+    out.NotEvaluatedCount = notEvaluated;
+    if (notEvaluated > 0)
+    {
+      out.Warnings.push_back(std::to_string(notEvaluated) + " of " + std::to_string(n) +
+        " Gaussians are evaluated at no pixel of any training view (RenderCost 0" +
+        (request.CostPerContribution ? ", CostPerContribution NaN: no cost to divide)" : ")"));
+    }
+  }
   out.NoCoverageViewCount = noCoverage;
   out.NoScoredViewCount = noScored;
   out.Timings.Accumulation += Seconds(t0);
@@ -642,8 +734,7 @@ GaussianScores ComputeGaussianScores(const GaussianCloud& cloud,
   const TrainingImageProvider& images,
   const ScoreProgress& progress)
 {
-  const ScoreRequest& request = settings.Request;
-  const bool needCameras = request.ViewCoverage || request.Blur || request.Needle;
+  const bool needCameras = settings.Request.NeedsCameras();
   const std::vector<std::size_t> views =
     needCameras ? SelectViews(cameras, settings) : std::vector<std::size_t>();
   return FinishGaussianScores(

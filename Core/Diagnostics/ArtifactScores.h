@@ -15,6 +15,13 @@
  *   E_B(g)   = mean over V~_g of w(g,v) L'(g,v)
  *   E_N(g)   = s(g) mean over V~_g of L'(g,v)          (s from NeedleShape.h)
  *   A Gaussian with no visible view gets E_VC = E_B = E_N = 0 and a flag.
+ *   R(g)     = sum over V of the pixels at which the rasteriser evaluates g: the pixels of the
+ *              image in the tiles g is binned into that have not stopped (T < 1e-4) at an
+ *              earlier Gaussian of their tile list (GaussianWeightStats::Evaluations), at full
+ *              resolution, whether or not alpha >= 1/255 there
+ *   A(g)     = sum over V and pixels of the blending weight alpha T of g
+ *   R/A(g)   = R(g) / A(g); +inf when R > 0 and A = 0 (it costs and never shows), NaN when
+ *              R = A = 0 (never evaluated: nothing to divide, counted in a warning)
  *
  * Approximations (ScoreSettings):
  * - LossResolution f in {1, 2, 4, 8}: blur/needle views are rendered at
@@ -74,6 +81,17 @@ struct ScoreRequest
   bool Blur = true;
   bool Needle = true;
   bool NeedleShape = true;
+  /// R(g) and R/A(g) (the file comment): one compositing pass per view at full resolution,
+  /// shared by the two. Off by default: it renders every view once more.
+  bool RenderCost = false;
+  bool CostPerContribution = false;
+  /// Whether any requested score needs cameras (every one except the needle shape).
+  bool NeedsCameras() const
+  {
+    return this->ViewCoverage || this->Blur || this->Needle || this->NeedsCompositing();
+  }
+  /// Whether the render-cost pass runs.
+  bool NeedsCompositing() const { return this->RenderCost || this->CostPerContribution; }
 };
 
 /// Every parameter of the scores; the defaults are the exact mode.
@@ -142,7 +160,8 @@ struct ScoreTimings
   double Footprints = 0;   ///< ComputeFootprints
   double Accumulation = 0; ///< per-Gaussian sums
   double NeedleShape = 0;
-  double ViewHook = 0; ///< ScoreSettings::ViewRendered
+  double RenderCost = 0; ///< the render-cost pass (projection, binning, compositing)
+  double ViewHook = 0;   ///< ScoreSettings::ViewRendered
   double Total = 0;
 };
 
@@ -153,6 +172,8 @@ struct GaussianScores
   std::vector<double> BlurScore;
   std::vector<double> NeedleScore;
   std::vector<double> NeedleShape;
+  std::vector<double> RenderCost;
+  std::vector<double> CostPerContribution;
   /// ScoreFlag bits per Gaussian (always filled).
   std::vector<std::uint8_t> Flags;
   /// |V~_g| of the coverage pass and of the blur/needle pass (empty when not run).
@@ -168,6 +189,8 @@ struct GaussianScores
   std::size_t NoCoverageViewCount = 0;
   std::size_t NoScoredViewCount = 0;
   std::size_t InvalidCount = 0;
+  /// Gaussians the render-cost pass evaluated in no view (R = 0, R/A NaN).
+  std::size_t NotEvaluatedCount = 0;
   std::vector<std::string> Warnings;
   /// Why BlurScore and NeedleScore are NaN for every Gaussian, or empty when they were
   /// computed: with no training image for any view used, the scores cannot be computed at all,
@@ -225,6 +248,21 @@ struct ScorePartials
   std::vector<std::uint32_t> ScoredViews;
   std::vector<double> BlurSum;
   std::vector<double> NeedleSum;
+  /// Sums of R(g) and A(g) (empty without the render-cost pass). R is an integer, exact in a
+  /// double up to 2^53.
+  std::vector<double> RenderCostSum;
+  std::vector<double> ContributionSum;
+  /// Every per-Gaussian count and sum above, for a reduction over processes that needs to
+  /// know nothing of the scores (the empty ones included: a process sizes its buffers as
+  /// every other, from the same request).
+  std::vector<std::vector<std::uint32_t>*> PerGaussianCounts()
+  {
+    return { &this->CoverageViews, &this->ScoredViews };
+  }
+  std::vector<std::vector<double>*> PerGaussianSums()
+  {
+    return { &this->BlurSum, &this->NeedleSum, &this->RenderCostSum, &this->ContributionSum };
+  }
   /// Views scored (with an image) and skipped for lack of one, among the views rendered.
   std::size_t ViewsScored = 0;
   std::size_t ViewsWithoutImage = 0;

@@ -301,7 +301,7 @@ void MultiViewRenderer::Render(const Camera& camera, RasterImage<float>& image)
 }
 
 //------------------------------------------------------------------------------
-void MultiViewRenderer::Composite(RasterImage<float>& image)
+void MultiViewRenderer::Composite(RasterImage<float>& image, GaussianWeightStats* weights)
 {
   Data& d = *this->Impl;
   if (!d.HasView)
@@ -326,7 +326,35 @@ void MultiViewRenderer::Composite(RasterImage<float>& image)
   in.Background = d.Settings.Background;
   in.KernelIsa = d.Settings.KernelIsa;
   in.Threads = chunks;
+  GaussianWeightStats sorted;
+  if (weights)
+  {
+    sorted.CountEvaluations = weights->CountEvaluations;
+    in.Weights = &sorted;
+    in.KernelCount = static_cast<std::size_t>(nv);
+  }
   raster::internal::CompositeSorted(in, image);
+  if (weights)
+  {
+    // Sorted positions back to input order; a Gaussian not drawn gets zeros.
+    const std::size_t n = d.Count;
+    weights->MaxWeight.assign(n, 0.0f);
+    weights->WeightSum.assign(n, 0.0);
+    weights->BlendedPixels.assign(n, 0);
+    weights->Evaluations.assign(weights->CountEvaluations ? n : 0, 0);
+#pragma omp parallel for schedule(static) num_threads(chunks)
+    for (std::int64_t s = 0; s < nv; ++s)
+    {
+      const std::uint32_t id = d.Sorted[static_cast<std::size_t>(s)];
+      weights->MaxWeight[id] = sorted.MaxWeight[static_cast<std::size_t>(s)];
+      weights->WeightSum[id] = sorted.WeightSum[static_cast<std::size_t>(s)];
+      weights->BlendedPixels[id] = sorted.BlendedPixels[static_cast<std::size_t>(s)];
+      if (weights->CountEvaluations)
+      {
+        weights->Evaluations[id] = sorted.Evaluations[static_cast<std::size_t>(s)];
+      }
+    }
+  }
 }
 
 } // namespace vis4gs

@@ -63,8 +63,12 @@ public:
   /// Projects only (no binning, no compositing); Composite() and Footprints() may follow.
   void Project(const Camera& camera);
 
-  /// Bins and composites the last projected view (Render() = Project() + Composite()).
-  void Composite(RasterImage<float>& image);
+  /**
+   * Bins and composites the last projected view (Render() = Project() + Composite()). With
+   * @p weights, also its per-Gaussian statistics, input order, as CompositeTiles() fills them
+   * (the image is the same bit for bit).
+   */
+  void Composite(RasterImage<float>& image, GaussianWeightStats* weights = nullptr);
 
   /**
    * Footprint statistics of the last projected view: identical (bit for bit, counts and

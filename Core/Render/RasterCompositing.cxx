@@ -80,6 +80,44 @@ struct CompositeContext
   T Background[3];
   std::atomic<std::uint64_t>* KernelEvaluations;
   std::atomic<std::uint64_t>* ReferenceEvaluations;
+  /// With GaussianWeightStats::CountEvaluations: per tile-list entry (index into Bins->Ids), the
+  /// entry's alpha*T sum and evaluated pixels, summed per Gaussian in list order afterwards
+  /// (EntrySums), so that WeightSum does not depend on the order threads finish tiles in.
+  double* EntryWeight = nullptr;
+  std::uint16_t* EntryEvaluations = nullptr;
+};
+
+/// Per-entry buffers of the counted statistics (see CompositeContext), zeroed.
+struct EntrySums
+{
+  std::vector<double> Weight;
+  std::vector<std::uint16_t> Evaluations;
+
+  template <typename T>
+  void Attach(CompositeContext<T>& ctx, const TileBins& bins, const GaussianWeightStats* weights)
+  {
+    if (weights && weights->CountEvaluations)
+    {
+      this->Weight.assign(bins.Ids.size(), 0.0);
+      this->Evaluations.assign(bins.Ids.size(), 0);
+      ctx.EntryWeight = this->Weight.data();
+      ctx.EntryEvaluations = this->Evaluations.data();
+    }
+  }
+
+  /// WeightSum and Evaluations of every Gaussian: its entries in tile order, one thread.
+  void Reduce(const TileBins& bins, GaussianWeightStats* weights) const
+  {
+    if (!weights || !weights->CountEvaluations)
+    {
+      return;
+    }
+    for (std::size_t k = 0; k < bins.Ids.size(); ++k)
+    {
+      weights->WeightSum[bins.Ids[k]] += this->Weight[k];
+      weights->Evaluations[bins.Ids[k]] += this->Evaluations[k];
+    }
+  }
 };
 
 #pragma GCC diagnostic push
@@ -324,6 +362,14 @@ void CompositeTiles(const ViewProjection<T>& projection,
     weights->MaxWeight.assign(n, 0.0f);
     weights->WeightSum.assign(n, 0.0);
     weights->BlendedPixels.assign(n, 0);
+    if (weights->CountEvaluations)
+    {
+      weights->Evaluations.assign(n, 0);
+    }
+    else
+    {
+      weights->Evaluations.clear();
+    }
   }
   std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
   CompositeContext<T> ctx{ projection.Width,
@@ -341,6 +387,8 @@ void CompositeTiles(const ViewProjection<T>& projection,
       static_cast<T>(settings.Background[2]) },
     &kernelEvals,
     &referenceEvals };
+  EntrySums entries;
+  entries.Attach(ctx, bins, weights);
   TileFunction<T> fn;
   const int isa = settings.KernelIsa;
   if (!depth)
@@ -349,8 +397,9 @@ void CompositeTiles(const ViewProjection<T>& projection,
   }
   else if (weights)
   {
-    fn = work ? SelectTileFunction<T, true, true, true>(isa)
-              : SelectTileFunction<T, true, false, true>(isa);
+    // The evaluations need the per-pixel stop positions that the work counters keep.
+    fn = work || weights->CountEvaluations ? SelectTileFunction<T, true, true, true>(isa)
+                                           : SelectTileFunction<T, true, false, true>(isa);
   }
   else
   {
@@ -363,6 +412,7 @@ void CompositeTiles(const ViewProjection<T>& projection,
   {
     fn(ctx, t);
   }
+  entries.Reduce(bins, weights);
   if (work)
   {
     work->TilePairs = bins.Ids.size();
@@ -396,6 +446,14 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
   image.Transmittance.resize(pixels);
   image.Depth.resize(pixels);
   image.Contributors.resize(pixels);
+  if (in.Weights)
+  {
+    const std::size_t n = in.KernelCount;
+    in.Weights->MaxWeight.assign(n, 0.0f);
+    in.Weights->WeightSum.assign(n, 0.0);
+    in.Weights->BlendedPixels.assign(n, 0);
+    in.Weights->Evaluations.assign(in.Weights->CountEvaluations ? n : 0, 0);
+  }
   std::atomic<std::uint64_t> kernelEvals{ 0 }, referenceEvals{ 0 };
   CompositeContext<float> ctx{ in.Width,
     in.Height,
@@ -405,19 +463,25 @@ void CompositeSorted(const CompositeInput& in, RasterImage<float>& image)
     sizeof(KernelGaussian<float>),
     in.Bounds,
     &image,
-    nullptr,
+    in.Weights,
     { static_cast<float>(in.Background[0]),
       static_cast<float>(in.Background[1]),
       static_cast<float>(in.Background[2]) },
     &kernelEvals,
     &referenceEvals };
-  const TileFunction<float> fn = SelectTileFunction<float, false, false, true>(in.KernelIsa);
+  EntrySums entries;
+  entries.Attach(ctx, *in.Bins, in.Weights);
+  const TileFunction<float> fn = !in.Weights
+    ? SelectTileFunction<float, false, false, true>(in.KernelIsa)
+    : in.Weights->CountEvaluations ? SelectTileFunction<float, true, true, true>(in.KernelIsa)
+                                   : SelectTileFunction<float, true, false, true>(in.KernelIsa);
   const std::int64_t tiles = static_cast<std::int64_t>(in.Bins->TileCount());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(in.Threads)
   for (std::int64_t t = 0; t < tiles; ++t)
   {
     fn(ctx, t);
   }
+  entries.Reduce(*in.Bins, in.Weights);
 }
 } // namespace internal
 } // namespace raster

@@ -120,6 +120,10 @@ struct CompositeInput
   std::array<double, 3> Background{ 0.0, 0.0, 0.0 };
   int KernelIsa = 0;
   int Threads = 1;
+  /// Optional per-Gaussian statistics of the KernelCount kernels, indexed like Kernels (sized
+  /// and filled here).
+  GaussianWeightStats* Weights = nullptr;
+  std::size_t KernelCount = 0;
 };
 void CompositeSorted(const CompositeInput& in, RasterImage<float>& image);
 

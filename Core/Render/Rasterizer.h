@@ -304,6 +304,15 @@ struct GaussianWeightStats
   std::vector<float> MaxWeight;             ///< max over pixels of alpha*T
   std::vector<double> WeightSum;            ///< sum over pixels of alpha*T
   std::vector<std::uint32_t> BlendedPixels; ///< pixels where the Gaussian was blended
+  /// Input: also count Evaluations (CompositeTiles() then keeps the per-pixel stop positions
+  /// of the work counters, slightly slower). Default off.
+  bool CountEvaluations = false;
+  /// With CountEvaluations: the pixels at which the reference evaluates the Gaussian, the
+  /// pixels of the image in the tiles it is binned into that have not stopped (T < 1e-4) at an
+  /// earlier Gaussian of their tile list, whether or not its alpha reaches 1/255 there
+  /// (reference §2.6: a pixel evaluates every list entry up to and including the one it
+  /// stops at). Summed over the Gaussian's tiles; empty without CountEvaluations.
+  std::vector<std::uint64_t> Evaluations;
 };
 
 /// Work counters of a rasterisation, for benchmarks and diagnostics.

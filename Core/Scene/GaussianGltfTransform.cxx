@@ -181,11 +181,14 @@ double detail::ShBasis(int k, const double dir[3])
   return rgb[0] - 0.5;
 }
 
-//------------------------------------------------------------------------------
-void detail::GltfToPlyAxes(GaussianCloud& cloud)
+namespace
 {
-  // 180 degrees about z, as splat-transform's Transform.PLY: x and y change sign; the
-  // quaternion is r^-1 * q with r = (0, 0, 0, 1), the inverse of the writer's r * q.
+// A half turn about z, as splat-transform's Transform.PLY: x and y change sign; the
+// quaternion becomes r^-1 * q (reading) or r * q (writing) with
+// r = (0, 0, 0, 1). Both are the same rotation; each matches splat-transform's
+// stored quaternion bit for bit in its direction.
+void HalfTurnAboutZ(GaussianCloud& cloud, bool reading)
+{
   for (std::size_t g = 0; g < cloud.Count && !cloud.Positions.empty(); ++g)
   {
     cloud.Positions[3 * g] = -cloud.Positions[3 * g];
@@ -195,31 +198,26 @@ void detail::GltfToPlyAxes(GaussianCloud& cloud)
   {
     float* q = &cloud.Rotations[4 * g];
     const float w = q[0], x = q[1], y = q[2], z = q[3];
-    q[0] = z;
-    q[1] = y;
-    q[2] = -x;
-    q[3] = -w;
+    // Negation, not a product with -1: it flips the sign bit of NaN too.
+    q[0] = reading ? z : -z;
+    q[1] = reading ? y : -y;
+    q[2] = reading ? -x : x;
+    q[3] = reading ? -w : w;
   }
+}
+}
+
+//------------------------------------------------------------------------------
+void detail::GltfToPlyAxes(GaussianCloud& cloud)
+{
+  HalfTurnAboutZ(cloud, true);
   FlipOddOrderSh(cloud);
 }
 
 //------------------------------------------------------------------------------
 void detail::PlyToGltfAxes(GaussianCloud& cloud)
 {
-  for (std::size_t g = 0; g < cloud.Count && !cloud.Positions.empty(); ++g)
-  {
-    cloud.Positions[3 * g] = -cloud.Positions[3 * g];
-    cloud.Positions[3 * g + 1] = -cloud.Positions[3 * g + 1];
-  }
-  for (std::size_t g = 0; g < cloud.Count && !cloud.Rotations.empty(); ++g)
-  {
-    float* q = &cloud.Rotations[4 * g];
-    const float w = q[0], x = q[1], y = q[2], z = q[3];
-    q[0] = -z;
-    q[1] = -y;
-    q[2] = x;
-    q[3] = w;
-  }
+  HalfTurnAboutZ(cloud, false);
   FlipOddOrderSh(cloud);
 }
 

@@ -3,6 +3,7 @@
 
 #include "GaussianMath.h"
 #include "NeedleShape.h"
+#include "ScoreRegistry.h"
 #include "ThreadCount.h"
 
 #include <algorithm>
@@ -18,16 +19,20 @@ namespace vis4gs
 {
 namespace
 {
-constexpr std::array<std::pair<const char*, RuleAttribute>, 8> AttributeNames{ {
-  { "coverage", RuleAttribute::Coverage },
+// The attributes that are no registered score (the registry's rule names are the others).
+constexpr std::array<std::pair<const char*, RuleAttribute>, 5> AttributeNames{ {
   { "views", RuleAttribute::Views },
-  { "blur", RuleAttribute::Blur },
-  { "needle_score", RuleAttribute::NeedleScore },
   { "needle", RuleAttribute::Needle },
   { "opacity", RuleAttribute::Opacity },
   { "scale", RuleAttribute::Scale },
   { "volume", RuleAttribute::Volume },
 } };
+
+std::string AttributeNameOf(const RuleNode& node)
+{
+  return node.Attribute == RuleAttribute::Score ? ScoreDefinitions().at(node.Score).RuleName
+                                                : RuleAttributeName(node.Attribute);
+}
 
 const char* ComparisonText(RuleComparison c)
 {
@@ -315,19 +320,38 @@ private:
     auto it = std::find_if(AttributeNames.begin(),
       AttributeNames.end(),
       [&name](const auto& entry) { return name.Text == entry.first; });
-    if (it == AttributeNames.end())
+    const auto& scores = ScoreDefinitions();
+    auto score = std::find_if(scores.begin(),
+      scores.end(),
+      [&name](const ScoreDefinition& d) { return name.Text == d.RuleName; });
+    if (it == AttributeNames.end() && score == scores.end())
     {
-      this->Fail("unknown attribute (expected coverage, views, blur, needle_score, needle, "
-                 "opacity, scale, volume or isolated)",
-        name);
+      std::string known;
+      for (const ScoreDefinition& d : scores)
+      {
+        known += std::string(d.RuleName) + ", ";
+      }
+      for (const auto& entry : AttributeNames)
+      {
+        known += std::string(entry.first) + ", ";
+      }
+      this->Fail("unknown attribute (expected " + known + "or isolated)", name);
     }
-    node.Attribute = it->second;
+    if (it != AttributeNames.end())
+    {
+      node.Attribute = it->second;
+    }
+    else
+    {
+      node.Attribute = RuleAttribute::Score;
+      node.Score = static_cast<std::size_t>(score - scores.begin());
+    }
     this->Next();
     const Token& op = this->Peek();
     if (this->IsWord("top") || this->IsWord("bottom"))
     {
       node.Type = op.Text == "top" ? RuleNode::Kind::Top : RuleNode::Kind::Bottom;
-      const std::string after = std::string(it->first) + " " + op.Text;
+      const std::string after = AttributeNameOf(node) + " " + op.Text;
       this->Next();
       const Token& percent = this->Peek();
       node.Value = this->ExpectNumber(after.c_str());
@@ -357,11 +381,11 @@ private:
     if (cmp == comparisons.end())
     {
       this->Fail(
-        std::string("expected <, <=, >, >=, ==, != or top/bottom after '") + it->first + "'", op);
+        "expected <, <=, >, >=, ==, != or top/bottom after '" + AttributeNameOf(node) + "'", op);
     }
     node.Type = RuleNode::Kind::Compare;
     node.Comparison = cmp->second;
-    const std::string after = std::string(it->first) + cmp->first;
+    const std::string after = AttributeNameOf(node) + cmp->first;
     this->Next();
     node.Value = this->ExpectNumber(after.c_str());
     return node;
@@ -397,13 +421,13 @@ void Print(const RuleNode& node, std::string& out)
   switch (node.Type)
   {
     case RuleNode::Kind::Compare:
-      out += RuleAttributeName(node.Attribute);
+      out += AttributeNameOf(node);
       out += ComparisonText(node.Comparison);
       out += NumberText(node.Value);
       return;
     case RuleNode::Kind::Top:
     case RuleNode::Kind::Bottom:
-      out += RuleAttributeName(node.Attribute);
+      out += AttributeNameOf(node);
       out += node.Type == RuleNode::Kind::Top ? " top " : " bottom ";
       out += NumberText(node.Value) + "%";
       return;
@@ -425,16 +449,17 @@ void Print(const RuleNode& node, std::string& out)
   }
 }
 
-bool ReadsAttribute(const RuleNode& node, RuleAttribute attribute)
+bool ReadsAttribute(const RuleNode& node, RuleAttribute attribute, std::size_t score = 0)
 {
   if (node.Type == RuleNode::Kind::Compare || node.Type == RuleNode::Kind::Top ||
     node.Type == RuleNode::Kind::Bottom)
   {
-    return node.Attribute == attribute;
+    return node.Attribute == attribute &&
+      (attribute != RuleAttribute::Score || node.Score == score);
   }
   return std::any_of(node.Children.begin(),
     node.Children.end(),
-    [attribute](const RuleNode& c) { return ReadsAttribute(c, attribute); });
+    [attribute, score](const RuleNode& c) { return ReadsAttribute(c, attribute, score); });
 }
 
 class Evaluator
@@ -459,7 +484,7 @@ public:
     {
       case RuleNode::Kind::Compare:
       {
-        const std::vector<double>& v = this->Values(node.Attribute);
+        const std::vector<double>& v = this->Values(node);
         const double t = node.Value;
         const RuleComparison c = node.Comparison;
 #pragma omp parallel for schedule(static) num_threads(this->Threads())
@@ -495,7 +520,7 @@ public:
       case RuleNode::Kind::Top:
       case RuleNode::Kind::Bottom:
       {
-        const std::vector<double>& v = this->Values(node.Attribute);
+        const std::vector<double>& v = this->Values(node);
         const bool top = node.Type == RuleNode::Kind::Top;
         std::vector<double> finite;
         finite.reserve(n);
@@ -556,8 +581,11 @@ private:
     return ThreadCount(this->Inputs.Threads);
   }
 
-  const std::vector<double>& Score(const std::vector<double>* values, const char* what)
+  const std::vector<double>& Score(const std::string& shortName, const std::string& what)
   {
+    const auto found = this->Inputs.Scores.find(shortName);
+    const std::vector<double>* values =
+      found == this->Inputs.Scores.end() ? nullptr : found->second;
     if (!values)
     {
       throw SelectionRuleError("selection rule '" + this->RuleText + "': '" + what +
@@ -574,21 +602,16 @@ private:
     return *values;
   }
 
-  const std::vector<double>& Values(RuleAttribute attribute)
+  const std::vector<double>& Values(const RuleNode& node)
   {
+    const RuleAttribute attribute = node.Attribute;
+    if (attribute == RuleAttribute::Score)
+    {
+      const ScoreDefinition& d = ScoreDefinitions().at(node.Score);
+      return this->Score(d.Name, d.RuleName);
+    }
     std::vector<double>& cached = this->Cache[static_cast<std::size_t>(attribute)];
     const char* name = RuleAttributeName(attribute);
-    switch (attribute)
-    {
-      case RuleAttribute::Coverage:
-        return this->Score(this->Inputs.ViewCoverage, name);
-      case RuleAttribute::Blur:
-        return this->Score(this->Inputs.BlurScore, name);
-      case RuleAttribute::NeedleScore:
-        return this->Score(this->Inputs.NeedleScore, name);
-      default:
-        break;
-    }
     if (!cached.empty() || this->Inputs.Cloud->Count == 0)
     {
       return cached;
@@ -609,7 +632,7 @@ private:
     {
       case RuleAttribute::Views:
       {
-        const std::vector<double>& coverage = this->Score(this->Inputs.ViewCoverage, name);
+        const std::vector<double>& coverage = this->Score("coverage", name);
         if (this->Inputs.ViewsUsed == 0)
         {
           throw SelectionRuleError("selection rule '" + this->RuleText +
@@ -706,6 +729,10 @@ std::int64_t CellOf(double x, double radius)
 //------------------------------------------------------------------------------
 const char* RuleAttributeName(RuleAttribute attribute)
 {
+  if (attribute == RuleAttribute::Score)
+  {
+    return "score";
+  }
   for (const auto& entry : AttributeNames)
   {
     if (entry.second == attribute)
@@ -735,8 +762,29 @@ std::string SelectionRule::ToString() const
 //------------------------------------------------------------------------------
 bool SelectionRule::Reads(RuleAttribute attribute) const
 {
-  return ReadsAttribute(this->Root, attribute) ||
-    (attribute == RuleAttribute::Coverage && ReadsAttribute(this->Root, RuleAttribute::Views));
+  if (attribute == RuleAttribute::Score)
+  {
+    return !this->ScoresRead().empty();
+  }
+  return ReadsAttribute(this->Root, attribute);
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> SelectionRule::ScoresRead() const
+{
+  std::vector<std::string> out;
+  const auto& scores = ScoreDefinitions();
+  for (std::size_t k = 0; k < scores.size(); ++k)
+  {
+    // "views" is the coverage times |V|.
+    if (ReadsAttribute(this->Root, RuleAttribute::Score, k) ||
+      (std::string(scores[k].Name) == "coverage" &&
+        ReadsAttribute(this->Root, RuleAttribute::Views)))
+    {
+      out.push_back(scores[k].Name);
+    }
+  }
+  return out;
 }
 
 //------------------------------------------------------------------------------

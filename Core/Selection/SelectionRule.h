@@ -18,10 +18,10 @@
  *     OP         := "<" | "<=" | ">" | ">=" | "==" | "!="
  *
  * Attributes (one value per Gaussian, double):
- *   coverage      View Coverage E_VC (a fraction of the training views; needs the scores)
- *   views         visible training views |V~_g| = E_VC |V| (needs the scores)
- *   blur          Blur score E_B (needs the scores)
- *   needle_score  Needle score E_N (needs the scores)
+ *   every score of Core/Diagnostics/ScoreRegistry.h by its rule name (ScoreDefinition::
+ *   RuleName: coverage, blur, needle_score, shape, render_cost, ...; needs the score's values
+ *   in SelectionRuleInputs::Scores)
+ *   views         visible training views |V~_g| = E_VC |V| (needs the coverage)
  *   needle        needle shape s(g) in [0, 1] (NeedleShape.h; from the log-scales)
  *   opacity       sigmoid of the opacity logit
  *   scale         the largest activated scale exp(max log-scale)
@@ -48,6 +48,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -58,17 +59,16 @@ namespace vis4gs
 /// What a condition reads.
 enum class RuleAttribute : std::uint8_t
 {
-  Coverage,
+  Score, ///< a registered score (RuleNode::Score), read from SelectionRuleInputs::Scores
   Views,
-  Blur,
-  NeedleScore,
   Needle,
   Opacity,
   Scale,
   Volume
 };
 
-/// Canonical name of @p attribute in the rule language.
+/// Canonical name of @p attribute in the rule language ("score" for RuleAttribute::Score,
+/// whose name is its score's: RuleNodeAttributeName()).
 const char* RuleAttributeName(RuleAttribute attribute);
 
 enum class RuleComparison : std::uint8_t
@@ -95,7 +95,9 @@ struct RuleNode
     Not
   };
   Kind Type = Kind::Compare;
-  RuleAttribute Attribute = RuleAttribute::Coverage;
+  RuleAttribute Attribute = RuleAttribute::Score;
+  /// With RuleAttribute::Score: the score's index in vis4gs::ScoreDefinitions().
+  std::size_t Score = 0;
   RuleComparison Comparison = RuleComparison::LessEqual;
   double Value = 0;
   std::vector<RuleNode> Children; ///< And/Or: two or more; Not: one
@@ -117,13 +119,12 @@ public:
 };
 
 /// The per-Gaussian scores a rule may read (Core/Diagnostics/ArtifactScores.h's results, or
-/// arrays read back from a scene file). A null pointer means "not computed".
+/// arrays read back from a scene file). A missing or null entry means "not computed".
 struct SelectionRuleInputs
 {
   const GaussianCloud* Cloud = nullptr;
-  const std::vector<double>* ViewCoverage = nullptr;
-  const std::vector<double>* BlurScore = nullptr;
-  const std::vector<double>* NeedleScore = nullptr;
+  /// By the registry's short name ("coverage", "blur", "needle", "render-cost", ...).
+  std::map<std::string, const std::vector<double>*> Scores;
   /// |V| of the scores, for "views"; 0: unknown ("views" then throws).
   std::size_t ViewsUsed = 0;
   /// OpenMP threads; 0 uses OpenMP's default.
@@ -142,8 +143,12 @@ public:
   /// The root of the parse tree.
   const RuleNode& GetRoot() const { return this->Root; }
 
-  /// Whether the rule reads @p attribute anywhere (to compute only the scores it needs).
+  /// Whether the rule reads @p attribute anywhere.
   bool Reads(RuleAttribute attribute) const;
+
+  /// The short names of the registered scores the rule reads, in registry order ("views"
+  /// reads "coverage"), to compute only the scores it needs.
+  std::vector<std::string> ScoresRead() const;
 
   /**
    * One byte per Gaussian of @p inputs.Cloud: 1 where the rule holds. Throws

@@ -165,20 +165,6 @@ std::array<float, 3> Viridis(double t)
 }
 
 //------------------------------------------------------------------------------
-SuspiciousEnd SuspiciousEndOf(const std::string& arrayName)
-{
-  if (arrayName == "ViewCoverage")
-  {
-    return SuspiciousEnd::Low;
-  }
-  if (arrayName == "BlurScore" || arrayName == "NeedleScore" || arrayName == "NeedleShape")
-  {
-    return SuspiciousEnd::High;
-  }
-  return SuspiciousEnd::None;
-}
-
-//------------------------------------------------------------------------------
 std::array<float, 3> OverlayColor(double value, double lo, double hi, SuspiciousEnd end)
 {
   const double span = hi - lo;
@@ -204,7 +190,8 @@ void ComputeSplatDisplay(const float* trueColors,
   {
     throw std::invalid_argument("ComputeSplatDisplay: score colouring or hiding needs scores");
   }
-  if (!options.ScoreColoring && trueColors == nullptr && count > 0)
+  const bool defer = options.DeferTrueColor && !options.ScoreColoring;
+  if (!options.ScoreColoring && !defer && trueColors == nullptr && count > 0)
   {
     throw std::invalid_argument("ComputeSplatDisplay: true colouring needs colours");
   }
@@ -242,6 +229,10 @@ void ComputeSplatDisplay(const float* trueColors,
         c[2] = v[2];
       }
     }
+    else if (defer)
+    {
+      c[0] = c[1] = c[2] = 0.0f;
+    }
     else
     {
       c[0] = trueColors[3 * i];
@@ -249,9 +240,11 @@ void ComputeSplatDisplay(const float* trueColors,
       c[2] = trueColors[3 * i + 2];
     }
     float opacityScale = 1.0f;
+    float change = SplatDisplayUnchanged;
     const bool selected = options.Selected != nullptr && options.Selected[i] != 0;
     if (selected && options.Highlight)
     {
+      change = SplatDisplayHighlighted;
       for (int ch = 0; ch < 3; ++ch)
       {
         c[ch] = c[ch] + options.HighlightMix * (options.HighlightColor[ch] - c[ch]);
@@ -259,6 +252,7 @@ void ComputeSplatDisplay(const float* trueColors,
     }
     else if (!selected && options.DimUnselected)
     {
+      change = SplatDisplayDimmed;
       const float grey = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
       for (int ch = 0; ch < 3; ++ch)
       {
@@ -266,9 +260,9 @@ void ComputeSplatDisplay(const float* trueColors,
       }
       opacityScale = options.DimOpacity;
     }
-    out[0] = c[0];
-    out[1] = c[1];
-    out[2] = c[2];
+    out[0] = defer ? change : c[0];
+    out[1] = defer ? 0.0f : c[1];
+    out[2] = defer ? 0.0f : c[2];
     out[3] = opacityScale;
   }
 }

@@ -21,6 +21,7 @@
 #define vis4gs_SplatAttributes_h
 
 #include "GaussianCloud.h"
+#include "ScoreRegistry.h" // SuspiciousEnd
 
 #include <array>
 #include <cstddef>
@@ -63,20 +64,7 @@ void EvaluateSplatColors(const GaussianCloud& cloud,
 /// interpolation between 17 samples of the 256-entry table (max error < 0.004 per channel).
 std::array<float, 3> Viridis(double t);
 
-/**
- * Which end of a score marks a Gaussian as suspicious: View Coverage when low (few training
- * views constrain the Gaussian), BlurScore, NeedleScore and NeedleShape when high. Any other
- * array has none.
- */
-enum class SuspiciousEnd
-{
-  None,
-  Low,
-  High
-};
-
-/// The suspicious end of the per-Gaussian array named @p arrayName (DESIGN §4 scores).
-SuspiciousEnd SuspiciousEndOf(const std::string& arrayName);
+// SuspiciousEnd and SuspiciousEndOf(): Core/Diagnostics/ScoreRegistry.h, the list of scores.
 
 /**
  * Overlay colour of @p value over [@p lo, @p hi]: viridis, turned so that its bright (yellow)
@@ -116,13 +104,24 @@ struct SplatDisplayOptions
   bool DimUnselected = false;
   float DimOpacity = 0.15f;
   float DimDesaturation = 0.8f;
+  /// The true colours are evaluated later, per view (the OpenGL path's shader evaluates the
+  /// SH): instead of a colour, the first float of each Gaussian's rgba says what to do to its
+  /// true colour (SplatDisplayUnchanged, SplatDisplayHighlighted or SplatDisplayDimmed, with
+  /// HighlightColor, HighlightMix and DimDesaturation as above), the next two are 0; the
+  /// opacity multiplier and keep are as usual. No effect with ScoreColoring. Default off.
+  bool DeferTrueColor = false;
 };
+
+/// What DeferTrueColor asks to do to a true colour (its first float).
+constexpr float SplatDisplayUnchanged = 0.0f;
+constexpr float SplatDisplayHighlighted = 1.0f;
+constexpr float SplatDisplayDimmed = 2.0f;
 
 /**
  * Display colour of each of @p count Gaussians: @p rgba gets 4 floats per Gaussian (colour,
  * opacity multiplier), @p keep one byte (0 = hidden, never drawn). @p trueColors (3 per
- * Gaussian) is used unless ScoreColoring is on. Throws std::invalid_argument when a needed
- * array is missing.
+ * Gaussian) is used unless ScoreColoring or DeferTrueColor is on. Throws std::invalid_argument when
+ * a needed array is missing.
  */
 void ComputeSplatDisplay(const float* trueColors,
   std::size_t count,

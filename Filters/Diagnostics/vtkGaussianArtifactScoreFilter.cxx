@@ -12,6 +12,7 @@
 
 #include "ArtifactScores.h"
 #include "ImageIO.h"
+#include "ScoreRegistry.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSTrainingImages.h"
 
@@ -105,8 +106,7 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
   const auto start = std::chrono::steady_clock::now();
   const int rank = controller->GetLocalProcessId();
   const int ranks = controller->GetNumberOfProcesses();
-  const bool needCameras =
-    settings.Request.ViewCoverage || settings.Request.Blur || settings.Request.Needle;
+  const bool needCameras = settings.Request.NeedsCameras();
   vis4gs::ScorePartials partials;
   std::string error;
   std::size_t current = static_cast<std::size_t>(-1);
@@ -195,15 +195,20 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
     v.swap(sum);
   };
   static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "32-bit unsigned int");
-  if (!partials.CoverageViews.empty())
+  // Every process has the same sizes (the same request): empty ones are skipped everywhere.
+  for (std::vector<std::uint32_t>* counts : partials.PerGaussianCounts())
   {
-    sumU32(partials.CoverageViews);
+    if (!counts->empty())
+    {
+      sumU32(*counts);
+    }
   }
-  if (!partials.ScoredViews.empty())
+  for (std::vector<double>* sums : partials.PerGaussianSums())
   {
-    sumU32(partials.ScoredViews);
-    sumF64(partials.BlurSum);
-    sumF64(partials.NeedleSum);
+    if (!sums->empty())
+    {
+      sumF64(*sums);
+    }
   }
   unsigned long long counts[2] = { partials.ViewsScored, partials.ViewsWithoutImage },
                      totals[2] = { 0, 0 };
@@ -229,6 +234,101 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
 vtkGaussianArtifactScoreFilter::vtkGaussianArtifactScoreFilter()
 {
   this->SetNumberOfInputPorts(2);
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    this->EnabledScores.push_back(d.DefaultOn);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianArtifactScoreFilter::SetScores(const char* list)
+{
+  std::vector<const vis4gs::ScoreDefinition*> chosen;
+  try
+  {
+    chosen = vis4gs::ParseScoreList(list ? list : "");
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("SetScores: " << e.what());
+    return false;
+  }
+  std::vector<bool> enabled(this->EnabledScores.size(), false);
+  for (const vis4gs::ScoreDefinition* d : chosen)
+  {
+    enabled[static_cast<std::size_t>(d - vis4gs::ScoreDefinitions().data())] = true;
+  }
+  if (enabled != this->EnabledScores)
+  {
+    this->EnabledScores = enabled;
+    this->Modified();
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGaussianArtifactScoreFilter::GetScores()
+{
+  std::string list;
+  for (std::size_t k = 0; k < this->EnabledScores.size(); ++k)
+  {
+    if (this->EnabledScores[k])
+    {
+      list += (list.empty() ? "" : ",") + std::string(vis4gs::ScoreDefinitions()[k].Name);
+    }
+  }
+  return list;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianArtifactScoreFilter::EnableScore(const char* name, bool on)
+{
+  const vis4gs::ScoreDefinition* d = vis4gs::FindScore(name ? name : "");
+  if (!d)
+  {
+    vtkErrorMacro("EnableScore: unknown score '" << (name ? name : "") << "' (expected one of "
+                                                 << vis4gs::ScoreNames() << ")");
+    return false;
+  }
+  const std::size_t k = static_cast<std::size_t>(d - vis4gs::ScoreDefinitions().data());
+  if (this->EnabledScores[k] != on)
+  {
+    this->EnabledScores[k] = on;
+    this->Modified();
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianArtifactScoreFilter::IsScoreEnabled(const char* name)
+{
+  const vis4gs::ScoreDefinition* d = vis4gs::FindScore(name ? name : "");
+  return d && this->EnabledScores[static_cast<std::size_t>(d - vis4gs::ScoreDefinitions().data())];
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianArtifactScoreFilter::GetNumberOfScoreArrays()
+{
+  return static_cast<int>(vis4gs::ScoreDefinitions().size());
+}
+
+//------------------------------------------------------------------------------
+const char* vtkGaussianArtifactScoreFilter::GetScoreArrayName(int index)
+{
+  const auto& all = vis4gs::ScoreDefinitions();
+  return index >= 0 && index < static_cast<int>(all.size()) ? all[index].ArrayName : nullptr;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianArtifactScoreFilter::GetScoreArrayStatus(const char* name)
+{
+  return this->IsScoreEnabled(name) ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianArtifactScoreFilter::SetScoreArrayStatus(const char* name, int status)
+{
+  this->EnableScore(name, status != 0);
 }
 
 //------------------------------------------------------------------------------
@@ -278,10 +378,11 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   this->ComputeSeconds = this->ReductionSeconds = 0;
 
   vis4gs::ScoreSettings settings;
-  settings.Request.ViewCoverage = this->ComputeViewCoverage;
-  settings.Request.Blur = this->ComputeBlurScore;
-  settings.Request.Needle = this->ComputeNeedleScore;
-  settings.Request.NeedleShape = this->ComputeNeedleShape;
+  const std::vector<vis4gs::ScoreDefinition>& registry = vis4gs::ScoreDefinitions();
+  for (std::size_t k = 0; k < registry.size(); ++k)
+  {
+    settings.Request.*(registry[k].Request) = this->EnabledScores[k];
+  }
   settings.LossResolution = this->LossResolution;
   settings.CoverageResolution = this->CoverageResolution;
   settings.ViewStride = this->ViewStride;
@@ -292,9 +393,9 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   settings.OcclusionThreshold = this->OcclusionThreshold;
   settings.Lambda = this->Lambda;
   settings.ViewRendered = this->ViewRendered;
-  const bool needCameras =
-    settings.Request.ViewCoverage || settings.Request.Blur || settings.Request.Needle;
-  const bool needImages = settings.Request.Blur || settings.Request.Needle;
+  const unsigned needs = vis4gs::NeedsOf(settings.Request);
+  const bool needCameras = (needs & vis4gs::NeedsCameras) != 0;
+  const bool needImages = (needs & vis4gs::NeedsImages) != 0;
 
   std::string error;
   // (no copy of a reader's scene: its arrays are a shared cloud)
@@ -310,8 +411,17 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   {
     if (!table)
     {
-      vtkErrorMacro("ViewCoverage, BlurScore and NeedleScore need the camera table on input "
-                    "port 1 (SetCamerasData / SetCamerasConnection).");
+      std::string wanting;
+      for (std::size_t k = 0; k < registry.size(); ++k)
+      {
+        if (this->EnabledScores[k] && (registry[k].Needs & vis4gs::NeedsCameras))
+        {
+          wanting += (wanting.empty() ? "" : ", ") + std::string(registry[k].ArrayName);
+        }
+      }
+      vtkErrorMacro(<< wanting
+                    << " need the camera table on input port 1 (SetCamerasData / "
+                       "SetCamerasConnection).");
       return 0;
     }
     if (!vis4gs::TableToCameras(table, cameras, &error))
@@ -403,21 +513,12 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   this->NumberOfViewsUsed = static_cast<vtkIdType>(scores.ViewsUsed);
   this->NumberOfViewsWithoutImage = static_cast<vtkIdType>(scores.ViewsWithoutImage);
 
-  if (settings.Request.ViewCoverage)
+  for (std::size_t k = 0; k < registry.size(); ++k)
   {
-    AddArray(output, vis4gs::arrays::ViewCoverage, scores.ViewCoverage);
-  }
-  if (settings.Request.Blur)
-  {
-    AddArray(output, vis4gs::arrays::BlurScore, scores.BlurScore);
-  }
-  if (settings.Request.Needle)
-  {
-    AddArray(output, vis4gs::arrays::NeedleScore, scores.NeedleScore);
-  }
-  if (settings.Request.NeedleShape)
-  {
-    AddArray(output, vis4gs::arrays::NeedleShape, scores.NeedleShape);
+    if (this->EnabledScores[k])
+    {
+      AddArray(output, registry[k].ArrayName, scores.*(registry[k].Values));
+    }
   }
   // The reasons travel with the data (a script sees them without a warning handler): every
   // warning of the computation, and why the blur and needle arrays are NaN when they are.
@@ -454,10 +555,7 @@ const char* vtkGaussianArtifactScoreFilter::GetViewInProgress()
 void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "ComputeViewCoverage: " << (this->ComputeViewCoverage ? "On" : "Off") << "\n";
-  os << indent << "ComputeBlurScore: " << (this->ComputeBlurScore ? "On" : "Off") << "\n";
-  os << indent << "ComputeNeedleScore: " << (this->ComputeNeedleScore ? "On" : "Off") << "\n";
-  os << indent << "ComputeNeedleShape: " << (this->ComputeNeedleShape ? "On" : "Off") << "\n";
+  os << indent << "Scores: " << this->GetScores() << "\n";
   os << indent << "ImageDirectory: " << this->ImageDirectory << "\n";
   os << indent << "LossResolution: " << this->LossResolution << "\n";
   os << indent << "CoverageResolution: " << this->CoverageResolution << "\n";

@@ -10,7 +10,8 @@
 =========================================================================*/
 /**
  * @class   vtkGaussianArtifactScoreFilter
- * @brief   adds View Coverage, Blur and Needle scores and the needle shape of each Gaussian
+ * @brief   adds the per-Gaussian scores of the score registry (View Coverage, Blur, Needle,
+ * needle shape, render cost, ...) to each Gaussian
  *
  * Input port 0 is a Gaussian scene (vtkPolyData, DESIGN §2); input port 1 (optional when only
  * the needle shape is asked for) is the camera table (one row per view, IO/Scene
@@ -20,13 +21,16 @@
  * folder (the file whose name up to the first '.' is the camera's Name). A view whose image
  * file does not exist is skipped for blur/needle, with one warning giving the count.
  *
- * Only the requested arrays are computed and added: `ViewCoverage`, `BlurScore`,
- * `NeedleScore`, `NeedleShape` (double), and `NoVisibleView` (unsigned char, the bits of
- * vis4gs::ScoreFlag: 1 no visible view for coverage, 2 no visible view with an image for
- * blur/needle, 4 NaN/Inf parameters; 0 for a normal Gaussian) whenever a score needing
- * cameras is computed. Coverage alone renders nothing and reads no image. Every
- * approximation of Core/Diagnostics/ArtifactScores.h is a parameter; the defaults are the
- * exact mode. Progress is reported per view.
+ * The scores are those of Core/Diagnostics/ScoreRegistry.h (vtkGaussianScoreRegistry lists
+ * them): SetScores("coverage,blur"), EnableScore() or SetScoreArrayStatus() choose by short or
+ * array name; the Compute* switches of the first four scores stay for compatibility. Only the
+ * requested arrays are computed and added (double, named by the registry: `ViewCoverage`,
+ * `BlurScore`, `NeedleScore`, `NeedleShape`, `RenderCost`, `CostPerContribution`, ...), and
+ * `NoVisibleView` (unsigned char, the bits of vis4gs::ScoreFlag: 1 no visible view for
+ * coverage, 2 no visible view with an image for blur/needle, 4 NaN/Inf parameters; 0 for a
+ * normal Gaussian) whenever a score needing cameras is computed. Coverage alone renders nothing and
+ * reads no image. Every approximation of Core/Diagnostics/ArtifactScores.h is a parameter; the
+ * defaults are the exact mode. Progress is reported per view.
  */
 #ifndef vtkGaussianArtifactScoreFilter_h
 #define vtkGaussianArtifactScoreFilter_h
@@ -37,6 +41,7 @@
 #include <cstddef>    // For ViewRendered
 #include <functional> // For ViewRendered
 #include <string>     // For ImageDirectory
+#include <vector>     // For EnabledScores
 
 #ifndef __VTK_WRAP__
 namespace vis4gs
@@ -66,20 +71,54 @@ public:
 
   ///@{
   /**
-   * Which arrays to compute. Defaults: ViewCoverage on, BlurScore on, NeedleScore on,
-   * NeedleShape on.
+   * Which scores to compute: a comma-separated list of the registry's short names
+   * (vtkGaussianScoreRegistry, `vis4gs analyze --scores=`). Default: the registry's default
+   * set (vtkGaussianScoreRegistry::GetDefaultScores(): coverage, blur, needle, shape). An
+   * unknown name is an error naming it and the known ones; the selection is then unchanged
+   * and SetScores returns false. GetScores() gives the current list in registry order.
    */
-  vtkSetMacro(ComputeViewCoverage, bool);
-  vtkGetMacro(ComputeViewCoverage, bool);
+  bool SetScores(const char* list);
+  std::string GetScores();
+  ///@}
+
+  ///@{
+  /**
+   * Turns one score on or off by its short name or array name ("render-cost",
+   * "RenderCost"); false (and an error) for an unknown name. IsScoreEnabled() is false for an
+   * unknown name.
+   */
+  bool EnableScore(const char* name, bool on = true);
+  bool IsScoreEnabled(const char* name);
+  ///@}
+
+  ///@{
+  /**
+   * The scores as an array selection, by array name, for ParaView's
+   * ArraySelectionInformationHelper (attribute "Score"): every registered score, its status
+   * 1 when it will be computed.
+   */
+  int GetNumberOfScoreArrays();
+  const char* GetScoreArrayName(int index);
+  int GetScoreArrayStatus(const char* name);
+  void SetScoreArrayStatus(const char* name, int status);
+  ///@}
+
+  ///@{
+  /**
+   * The first four scores' switches (EnableScore() of coverage, blur, needle, shape), kept for
+   * compatibility. Defaults: on.
+   */
+  virtual void SetComputeViewCoverage(bool on) { this->EnableScore("coverage", on); }
+  bool GetComputeViewCoverage() { return this->IsScoreEnabled("coverage"); }
   vtkBooleanMacro(ComputeViewCoverage, bool);
-  vtkSetMacro(ComputeBlurScore, bool);
-  vtkGetMacro(ComputeBlurScore, bool);
+  virtual void SetComputeBlurScore(bool on) { this->EnableScore("blur", on); }
+  bool GetComputeBlurScore() { return this->IsScoreEnabled("blur"); }
   vtkBooleanMacro(ComputeBlurScore, bool);
-  vtkSetMacro(ComputeNeedleScore, bool);
-  vtkGetMacro(ComputeNeedleScore, bool);
+  virtual void SetComputeNeedleScore(bool on) { this->EnableScore("needle", on); }
+  bool GetComputeNeedleScore() { return this->IsScoreEnabled("needle"); }
   vtkBooleanMacro(ComputeNeedleScore, bool);
-  vtkSetMacro(ComputeNeedleShape, bool);
-  vtkGetMacro(ComputeNeedleShape, bool);
+  virtual void SetComputeNeedleShape(bool on) { this->EnableScore("shape", on); }
+  bool GetComputeNeedleShape() { return this->IsScoreEnabled("shape"); }
   vtkBooleanMacro(ComputeNeedleShape, bool);
   ///@}
 
@@ -220,10 +259,8 @@ protected:
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  bool ComputeViewCoverage = true;
-  bool ComputeBlurScore = true;
-  bool ComputeNeedleScore = true;
-  bool ComputeNeedleShape = true;
+  /// One flag per registered score, in registry order (the constructor sets the defaults).
+  std::vector<bool> EnabledScores;
   std::string ImageDirectory;
   int LossResolution = 1;
   int CoverageResolution = 1;

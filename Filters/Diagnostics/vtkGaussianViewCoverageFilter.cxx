@@ -17,10 +17,7 @@ vtkStandardNewMacro(vtkGaussianViewCoverageFilter);
 //------------------------------------------------------------------------------
 vtkGaussianViewCoverageFilter::vtkGaussianViewCoverageFilter()
 {
-  this->ComputeViewCoverage = true;
-  this->ComputeBlurScore = false;
-  this->ComputeNeedleScore = false;
-  this->ComputeNeedleShape = false;
+  this->SetScores("coverage");
 }
 
 //------------------------------------------------------------------------------

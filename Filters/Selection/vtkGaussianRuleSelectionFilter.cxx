@@ -10,6 +10,7 @@
 =========================================================================*/
 #include "vtkGaussianRuleSelectionFilter.h"
 
+#include "ScoreRegistry.h"
 #include "SelectionRule.h"
 #include "Vis4GSDataModel.h"
 
@@ -88,13 +89,18 @@ int vtkGaussianRuleSelectionFilter::RequestData(vtkInformation*,
   {
     const vis4gs::SelectionRule rule = vis4gs::SelectionRule::Parse(this->Rule);
     vtkPointData* pd = input->GetPointData();
-    std::vector<double> coverage, blur, needle;
+    // Only the scores the rule reads are converted.
+    const std::vector<std::string> read = rule.ScoresRead();
+    std::vector<std::vector<double>> values(read.size());
     vis4gs::SelectionRuleInputs inputs;
     inputs.Cloud = &cloud;
-    inputs.ViewCoverage =
-      ReadScore(pd, vis4gs::arrays::ViewCoverage, coverage) ? &coverage : nullptr;
-    inputs.BlurScore = ReadScore(pd, vis4gs::arrays::BlurScore, blur) ? &blur : nullptr;
-    inputs.NeedleScore = ReadScore(pd, vis4gs::arrays::NeedleScore, needle) ? &needle : nullptr;
+    for (std::size_t k = 0; k < read.size(); ++k)
+    {
+      if (ReadScore(pd, vis4gs::FindScore(read[k])->ArrayName, values[k]))
+      {
+        inputs.Scores[read[k]] = &values[k];
+      }
+    }
     inputs.ViewsUsed = static_cast<std::size_t>(this->NumberOfViews);
     mask = rule.Evaluate(inputs);
     this->CanonicalRule = rule.ToString();

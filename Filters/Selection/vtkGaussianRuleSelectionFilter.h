@@ -15,8 +15,9 @@
  *
  * The rule language is Core/Selection/SelectionRule.h's (user guide, "Guided clean-up"), e.g.
  * "views<=3 and opacity>=0.5", "blur top 5%", "needle>=0.8", "isolated r=0.1". The input is a
- * Gaussian scene polydata (DESIGN §2); the scores a rule reads are the point-data arrays
- * ViewCoverage, BlurScore and NeedleScore (vtkGaussianArtifactScoreFilter's output), and
+ * Gaussian scene polydata (DESIGN §2); the scores a rule reads are the point-data arrays of
+ * the score registry (vtkGaussianScoreRegistry: ViewCoverage, BlurScore, NeedleScore,
+ * RenderCost, ...; vtkGaussianArtifactScoreFilter's output) named by their rule names, and
  * "views" needs NumberOfViews (the score filter's GetNumberOfViewsUsed()). The rule's
  * selection is combined with CurrentIds (GaussianId values) by CombineMode.
  *

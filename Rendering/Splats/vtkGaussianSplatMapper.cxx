@@ -8,6 +8,11 @@
   See LICENSE for details.
 
 =========================================================================*/
+// Over 1,200 lines on purpose: one mapper with two drawing paths (OpenGL splats, the CPU
+// rasteriser) that share the input's conversion, the display options (scores, hiding,
+// selection), the camera and the render window's interactive/still state; what each path
+// computes lives in Core (SplatSortWorker, SplatAttributes, the rasteriser, the level of detail),
+// this file only holds the VTK and OpenGL side of both.
 #include "vtkGaussianSplatMapper.h"
 
 #include "vtkGaussianCameraUtilities.h"
@@ -18,11 +23,13 @@
 #include "vtkGaussianSplatProjection.h"
 #include "vtkGaussianSplatRasterImageFS.h"
 
+#include "GaussianMath.h"
 #include "Rasterizer.h"
 #include "SplatAttributes.h"
 #include "SplatCamera.h"
 #include "SplatLevelOfDetail.h"
 #include "SplatSort.h"
+#include "SplatSortWorker.h"
 #include "Vis4GSDataModel.h"
 
 #include "vtkActor.h"
@@ -55,8 +62,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -74,6 +83,19 @@ std::string SplatVertexShader(bool instanced)
 double MsSince(std::chrono::steady_clock::time_point t0)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// CPU time of the calling thread (not the process: the sort worker and the OpenGL driver's
+// threads are not counted), in milliseconds.
+double ThreadCpuMs()
+{
+#if defined(CLOCK_THREAD_CPUTIME_ID)
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+#else
+  return 0.0;
+#endif
 }
 
 std::shared_ptr<const vis4gs::GaussianCloud> EmptyCloud()
@@ -94,7 +116,7 @@ struct vtkGaussianSplatMapper::vtkInternals
   vtkMTimeType SharedInputTime = 0;
   bool HasSH = false;
   std::vector<float> Geometry;    // packed, 12 per Gaussian
-  std::vector<float> TrueColors;  // 3 per Gaussian
+  std::vector<float> TrueColors;  // 3 per Gaussian (CPU path's overlays; grey without SH)
   std::vector<float> Display;     // 4 per Gaussian
   std::vector<std::uint8_t> Keep; // 1 per Gaussian
   std::vector<std::uint8_t> Selected;
@@ -103,17 +125,11 @@ struct vtkGaussianSplatMapper::vtkInternals
   // search in the cloud's ids when they ascend (a reader's output: no table); else IdOrder,
   // the indices sorted by id (4 bytes per Gaussian).
   std::vector<std::uint32_t> IdOrder;
-  std::vector<float> Depths;
-  std::vector<std::uint32_t> Order;
+  std::vector<float> Depths; // scratch of the synchronous sort
   vtkMTimeType InputTime = 0;
   std::uint64_t CloudVersion = 0; // changes whenever Cloud is rebuilt (Work.Prepared's key)
   vtkMTimeType DisplayTime = 0;
-  std::array<double, 16> SortedWorldToCamera{};
-  vtkIdType SortedBudget = 0;
-  std::array<double, 3> ColoredCenter{ { std::nan(""), 0, 0 } };
-  int ColoredDegree = -2;
   bool PackDirty = true;
-  bool OrderDirty = true;
   bool ColorsDirty = true;
   bool GeometryDirty = true;
   double AutoRange[2] = { 0.0, 1.0 };
@@ -165,6 +181,23 @@ struct vtkGaussianSplatMapper::vtkInternals
     }
   }
 
+  // OpenGL path's order: the worker, the order drawn (Front) and the keys of what it was
+  // sorted for. SceneKey counts changes of what an order depends on besides the camera
+  // (cloud, kept set, budget); CameraKey counts camera changes.
+  vis4gs::SplatSortWorker Sorter;
+  vis4gs::SplatSortResult Front;
+  bool FrontValid = false;
+  std::shared_ptr<const std::vector<std::uint8_t>> KeepShared; // nullptr: every one kept
+  std::uint64_t KeepVersion = 0;
+  std::array<std::uint64_t, 3> OrderScene{};
+  std::uint64_t SceneKey = 0;
+  std::array<double, 16> CameraW2C{};
+  std::uint64_t CameraKey = 0;
+  std::uint64_t SubmittedScene = 0;
+  std::uint64_t SubmittedCamera = 0;
+  vtkIdType SceneUploads = 0;
+  vtkIdType OrderUploads = 0;
+
   // GPU side.
   vtkOpenGLRenderWindow* Window = nullptr;
   vtkShaderProgram* Program = nullptr;
@@ -173,7 +206,9 @@ struct vtkGaussianSplatMapper::vtkInternals
   vtkNew<vtkOpenGLBufferObject> GeometryBuffer;
   vtkNew<vtkOpenGLBufferObject> ColorBuffer;
   vtkNew<vtkOpenGLBufferObject> OrderBuffer;
+  vtkNew<vtkOpenGLBufferObject> ShBuffer;
   vtkNew<vtkTextureObject> GeometryTexture;
+  vtkNew<vtkTextureObject> ShTexture;
   vtkNew<vtkTextureObject> ColorTexture;
   vtkNew<vtkTextureObject> OrderTexture;
   vtkNew<vtkTextureObject> ImageTexture;
@@ -182,6 +217,8 @@ struct vtkGaussianSplatMapper::vtkInternals
   bool GeometryOnGPU = false;
   bool ColorsOnGPU = false;
   bool OrderOnGPU = false;
+  bool ShOnGPU = false;
+  std::size_t OrderBytes = 0; // size of OrderBuffer's store
 
   void Release(vtkWindow* w)
   {
@@ -191,11 +228,13 @@ struct vtkGaussianSplatMapper::vtkInternals
       this->GeometryTexture->ReleaseGraphicsResources(w);
       this->ColorTexture->ReleaseGraphicsResources(w);
       this->OrderTexture->ReleaseGraphicsResources(w);
+      this->ShTexture->ReleaseGraphicsResources(w);
       this->ImageTexture->ReleaseGraphicsResources(w);
       this->DepthTexture->ReleaseGraphicsResources(w);
       this->GeometryBuffer->ReleaseGraphicsResources();
       this->ColorBuffer->ReleaseGraphicsResources();
       this->OrderBuffer->ReleaseGraphicsResources();
+      this->ShBuffer->ReleaseGraphicsResources();
     }
     this->Quad.reset();
     this->Program = nullptr;
@@ -203,8 +242,12 @@ struct vtkGaussianSplatMapper::vtkInternals
     this->Window = nullptr;
     this->SoftwareGL = -1;
     this->RasterValid = false;
-    this->GeometryOnGPU = this->ColorsOnGPU = this->OrderOnGPU = false;
-    this->GeometryDirty = this->ColorsDirty = this->OrderDirty = true;
+    this->GeometryOnGPU = this->ColorsOnGPU = this->OrderOnGPU = this->ShOnGPU = false;
+    this->GeometryDirty = this->ColorsDirty = true;
+    this->OrderBytes = 0;
+    // The packed geometry and display colours are freed once uploaded: made again.
+    this->PackDirty = true;
+    this->DisplayTime = 0;
   }
 
   // The overlay, hiding, highlight and dimming options of @p self for the current input
@@ -413,8 +456,10 @@ void vtkGaussianSplatMapper::ReleaseGraphicsResources(vtkWindow* window)
 void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 {
   vtkInternals& in = *this->Internals;
+  const double cpu0 = ThreadCpuMs();
   this->LastDrawnCount = 0;
   this->LastSortTime = this->LastColorTime = this->LastUploadTime = this->LastRasterTime = 0.0;
+  this->LastDrawCallTime = this->LastRenderThreadTime = 0.0;
   vtkPolyData* input = this->GetInput();
   if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector())
   {
@@ -494,8 +539,8 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
         in.IdOrder.end(),
         [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
     }
-    in.ColoredDegree = -2; // force new colours
-    in.DisplayTime = 0;
+    in.DisplayTime = 0; // new display colours
+    in.ShOnGPU = false;
     in.PackDirty = true;
     in.ReleaseLevelOfDetail();
   }
@@ -546,9 +591,24 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   }
   else
   {
+    const double rate = renWin->GetDesiredUpdateRate();
+    const bool interactive = this->InteractiveUpdateRate > 0 && rate >= this->InteractiveUpdateRate;
     this->RenderOpenGLSplats(
-      ren, input, width, height, ox, oy, w2c.data(), fx, fy, center, depthCoeffs);
+      ren, input, width, height, ox, oy, w2c.data(), fx, fy, center, depthCoeffs, interactive);
   }
+  this->LastRenderThreadTime = ThreadCpuMs() - cpu0 - this->LastDrawCallTime;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSplatMapper::GetSceneUploadCount()
+{
+  return this->Internals->SceneUploads;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSplatMapper::GetOrderUploadCount()
+{
+  return this->Internals->OrderUploads;
 }
 
 //------------------------------------------------------------------------------
@@ -695,7 +755,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
           std::copy_n(projection.Gaussians[i].Color, 3, &in.TrueColors[3 * i]);
         }
         vis4gs::ComputeSplatDisplay(in.TrueColors.data(), m, opt, in.Display, in.Keep, threads);
-        in.ColoredDegree = -2; // TrueColors no longer hold the OpenGL path's colours
+        in.DisplayTime = 0; // Display and Keep no longer hold the OpenGL path's
         for (std::size_t i = 0; i < m; ++i)
         {
           auto& g = projection.Gaussians[i];
@@ -916,7 +976,8 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   double fx,
   double fy,
   const double cameraCenter[3],
-  const double depthCoeffsIn[2])
+  const double depthCoeffsIn[2],
+  bool interactive)
 {
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* renWin = in.Window;
@@ -925,7 +986,6 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   const int threads = this->NumberOfThreads;
   std::array<double, 16> w2c{};
   std::copy(worldToCamera, worldToCamera + 16, w2c.begin());
-  const std::array<double, 3> center{ cameraCenter[0], cameraCenter[1], cameraCenter[2] };
 
   // 1. Packed geometry (when the input or the scale modifier changed).
   if (in.PackDirty || in.PackedScale != this->ScaleModifier)
@@ -942,84 +1002,133 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
     }
     in.PackDirty = false;
     in.GeometryDirty = true;
-    in.OrderDirty = true;
   }
 
-  // 2. Colours: SH for the camera centre (only when it moved and the degree needs it).
+  // 2. Display colours (view-independent: the SH colours are evaluated in the shader), only
+  // when a display property or the input changed.
   const auto tc = std::chrono::steady_clock::now();
-  const int degree = in.HasSH
-    ? (this->ShDegree < 0 ? in.Cloud->ShDegree : std::min(this->ShDegree, in.Cloud->ShDegree))
-    : -1;
-  bool colorsChanged = false;
-  if (degree != in.ColoredDegree || (degree > 0 && center != in.ColoredCenter))
-  {
-    if (in.HasSH)
-    {
-      vis4gs::EvaluateSplatColors(*in.Cloud, center, degree, in.TrueColors, threads);
-    }
-    else
-    {
-      in.TrueColors.assign(3 * n, 0.7f); // no SH: light grey
-    }
-    in.ColoredDegree = degree;
-    in.ColoredCenter = center;
-    colorsChanged = true;
-  }
-  // Display colours: overlay, hiding, highlight, dimming.
+  const bool trueColor = in.HasSH && this->SplatColoring != SCORE;
   const vtkMTimeType displayTime =
     std::max(this->GetMTime(), this->SelectedIds ? this->SelectedIds->GetMTime() : vtkMTimeType(0));
-  if (colorsChanged || displayTime != in.DisplayTime)
+  if (displayTime != in.DisplayTime)
   {
     vis4gs::SplatDisplayOptions opt;
     if (!in.FillDisplayOptions(this, input, opt))
     {
       return;
     }
-    const std::vector<std::uint8_t> oldKeep = in.Keep;
-    vis4gs::ComputeSplatDisplay(in.TrueColors.data(), n, opt, in.Display, in.Keep, threads);
-    if (in.Keep != oldKeep)
+    opt.DeferTrueColor = trueColor;
+    if (!in.HasSH)
     {
-      in.OrderDirty = true;
+      in.TrueColors.assign(3 * n, 0.7f); // no SH: light grey
+    }
+    const std::vector<std::uint8_t> oldKeep = in.Keep;
+    try
+    {
+      vis4gs::ComputeSplatDisplay(
+        in.HasSH ? nullptr : in.TrueColors.data(), n, opt, in.Display, in.Keep, threads);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
+      return;
+    }
+    if (in.Keep != oldKeep || in.KeepVersion == 0)
+    {
+      const bool all =
+        std::all_of(in.Keep.begin(), in.Keep.end(), [](std::uint8_t k) { return k; });
+      in.KeepShared = all ? nullptr : std::make_shared<const std::vector<std::uint8_t>>(in.Keep);
+      ++in.KeepVersion;
     }
     in.ColorsDirty = true;
     in.DisplayTime = displayTime;
   }
   this->LastColorTime = MsSince(tc);
 
-  // 3. Back-to-front order (when the view or the kept set changed).
-  if (in.OrderDirty || w2c != in.SortedWorldToCamera ||
-    this->MaximumNumberOfSplats != in.SortedBudget)
+  // 3. Back-to-front order. Asynchronous: take the order that finished before this frame,
+  // ask for this frame's camera, and draw with the taken one while the camera moves (only the
+  // camera may lag: a changed scene, kept set or budget waits, as does a still frame).
+  if (w2c != in.CameraW2C)
   {
-    const auto ts = std::chrono::steady_clock::now();
-    vis4gs::ComputeViewDepths(in.Cloud->Positions.data(), n, w2c, in.Depths, threads);
-    vis4gs::SplatSortOptions so;
-    so.Keep = in.Keep.data();
-    so.Threads = threads;
-    vis4gs::SortBackToFront(in.Depths, in.Order, so);
-    const std::size_t budget = static_cast<std::size_t>(this->MaximumNumberOfSplats);
-    if (budget > 0 && in.Order.size() > budget)
-    {
-      const std::size_t k = (in.Order.size() + budget - 1) / budget;
-      std::size_t m = 0;
-      for (std::size_t i = 0; i < in.Order.size(); i += k)
-      {
-        in.Order[m++] = in.Order[i];
-      }
-      in.Order.resize(m);
-    }
-    in.SortedWorldToCamera = w2c;
-    in.SortedBudget = this->MaximumNumberOfSplats;
-    in.OrderDirty = false;
-    in.OrderOnGPU = false;
-    this->LastSortTime = MsSince(ts);
+    in.CameraW2C = w2c;
+    ++in.CameraKey;
   }
+  const std::array<std::uint64_t, 3> scene{
+    { in.CloudVersion, in.KeepVersion, static_cast<std::uint64_t>(this->MaximumNumberOfSplats) }
+  };
+  if (scene != in.OrderScene)
+  {
+    in.OrderScene = scene;
+    ++in.SceneKey;
+  }
+  vis4gs::SplatSortResult& front = in.Front;
+  if (!in.FrontValid || front.SceneKey != in.SceneKey || front.CameraKey != in.CameraKey)
+  {
+    vis4gs::SplatSortRequest request;
+    request.Cloud = in.Cloud;
+    request.Keep = in.KeepShared;
+    request.WorldToCamera = w2c;
+    request.Budget = static_cast<std::size_t>(this->MaximumNumberOfSplats);
+    request.Threads = threads;
+    request.SceneKey = in.SceneKey;
+    request.CameraKey = in.CameraKey;
+    bool arrived = false;
+    try
+    {
+      if (this->AsynchronousSort)
+      {
+        arrived = in.Sorter.TakeResult(front);
+        if (in.SubmittedScene != in.SceneKey || in.SubmittedCamera != in.CameraKey)
+        {
+          in.Sorter.Submit(std::move(request));
+          in.SubmittedScene = in.SceneKey;
+          in.SubmittedCamera = in.CameraKey;
+        }
+        const bool sameScene = (in.FrontValid || arrived) && front.SceneKey == in.SceneKey;
+        if (!sameScene || (!interactive && front.CameraKey != in.CameraKey))
+        {
+          in.Sorter.WaitForLatest();
+          arrived = in.Sorter.TakeResult(front) || arrived;
+          const std::string error = in.Sorter.GetLastError();
+          if (!error.empty())
+          {
+            throw std::runtime_error(error);
+          }
+        }
+      }
+      else
+      {
+        vis4gs::SplatSortWorker::Sort(request, in.Depths, front);
+        arrived = true;
+      }
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
+      in.FrontValid = false;
+      return;
+    }
+    if (arrived)
+    {
+      in.FrontValid = true;
+      in.OrderOnGPU = false;
+      this->LastSortTime = front.Milliseconds;
+    }
+  }
+  if (!in.FrontValid || front.SceneKey != in.SceneKey)
+  {
+    return; // (an error was reported)
+  }
+  this->LastOrderLag = static_cast<vtkIdType>(in.CameraKey - front.CameraKey);
+  const std::vector<std::uint32_t>& order = front.Order;
 
-  // 4. Uploads.
+  // 4. Uploads: the scene's data once (until the input or a display property changes), each
+  // new order once.
   const auto tu = std::chrono::steady_clock::now();
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
   if (in.GeometryDirty || !in.GeometryOnGPU)
   {
-    GLint maxTexels = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     if (static_cast<double>(3 * n) > static_cast<double>(maxTexels))
     {
       vtkErrorMacro("vtkGaussianSplatMapper: " << n << " Gaussians need " << 3 * n
@@ -1034,6 +1143,39 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
       static_cast<unsigned int>(3 * n), 4, VTK_FLOAT, in.GeometryBuffer);
     in.GeometryOnGPU = true;
     in.GeometryDirty = false;
+    std::vector<float>().swap(in.Geometry); // (the GL's copy is the one drawn: 48 B a Gaussian)
+    ++in.SceneUploads;
+  }
+  const int shStride = 3 * in.Cloud->ShCoefficientCount();
+  if (!in.ShOnGPU)
+  {
+    // The input's SH array as it is, read as RGBA texels (a padded copy when its length is not
+    // a multiple of 4; a dummy texel without SH).
+    const std::vector<float>& sh = in.Cloud->SH;
+    const float* data = sh.data();
+    std::size_t floats = in.HasSH ? sh.size() : 0;
+    std::vector<float> padded;
+    if (floats % 4 != 0 || floats == 0)
+    {
+      padded.assign(data, data + floats);
+      padded.resize(std::max<std::size_t>(4, (floats + 3) / 4 * 4), 0.0f);
+      data = padded.data();
+      floats = padded.size();
+    }
+    if (static_cast<double>(floats / 4) > static_cast<double>(maxTexels) ||
+      static_cast<double>(n) * shStride > std::numeric_limits<int>::max())
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: the SH coefficients of "
+        << n << " Gaussians need " << floats / 4 << " texels; the GL texture buffer limit is "
+        << maxTexels);
+      return;
+    }
+    in.ShBuffer->Upload(data, floats, vtkOpenGLBufferObject::TextureBuffer);
+    in.ShTexture->SetContext(renWin);
+    in.ShTexture->CreateTextureBuffer(
+      static_cast<unsigned int>(floats / 4), 4, VTK_FLOAT, in.ShBuffer);
+    in.ShOnGPU = true;
+    ++in.SceneUploads;
   }
   if (in.ColorsDirty || !in.ColorsOnGPU)
   {
@@ -1044,22 +1186,33 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
       static_cast<unsigned int>(n), 4, VTK_FLOAT, in.ColorBuffer);
     in.ColorsOnGPU = true;
     in.ColorsDirty = false;
+    std::vector<float>().swap(in.Display);
+    ++in.SceneUploads;
   }
-  if (!in.OrderOnGPU)
+  if (!in.OrderOnGPU && !order.empty())
   {
-    if (!in.Order.empty())
+    const std::size_t bytes = order.size() * sizeof(std::uint32_t);
+    if (bytes == in.OrderBytes)
     {
-      in.OrderBuffer->Upload(
-        in.Order.data(), in.Order.size(), vtkOpenGLBufferObject::TextureBuffer);
+      // Same size: into the existing store, without reallocating it.
+      in.OrderBuffer->Bind();
+      glBufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), order.data());
+      in.OrderBuffer->Release();
+    }
+    else
+    {
+      in.OrderBuffer->Upload(order.data(), order.size(), vtkOpenGLBufferObject::TextureBuffer);
       in.OrderTexture->SetContext(renWin);
       in.OrderTexture->SetInternalFormat(GL_R32UI);
       in.OrderTexture->CreateTextureBuffer(
-        static_cast<unsigned int>(in.Order.size()), 1, VTK_UNSIGNED_INT, in.OrderBuffer);
+        static_cast<unsigned int>(order.size()), 1, VTK_UNSIGNED_INT, in.OrderBuffer);
+      in.OrderBytes = bytes;
     }
     in.OrderOnGPU = true;
+    ++in.OrderUploads;
   }
   this->LastUploadTime = MsSince(tu);
-  if (in.Order.empty())
+  if (order.empty())
   {
     return;
   }
@@ -1087,7 +1240,36 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   in.GeometryTexture->Activate();
   in.ColorTexture->Activate();
   in.OrderTexture->Activate();
+  in.ShTexture->Activate();
   prog->SetUniformi("splatGeometry", in.GeometryTexture->GetTextureUnit());
+  prog->SetUniformi("splatSH", in.ShTexture->GetTextureUnit());
+  // SH in the shader: the degree drawn, the input's stride, the reference's constants.
+  const int degree = !in.HasSH ? 0
+    : this->ShDegree < 0       ? in.Cloud->ShDegree
+                               : std::min(this->ShDegree, in.Cloud->ShDegree);
+  prog->SetUniformi("trueColor", trueColor ? 1 : 0);
+  prog->SetUniformi("shDegree", degree);
+  prog->SetUniformi("shStride", shStride);
+  float shC[14] = { static_cast<float>(vis4gs::sh::C0), static_cast<float>(vis4gs::sh::C1) };
+  for (int k = 0; k < 5; ++k)
+  {
+    shC[2 + k] = static_cast<float>(vis4gs::sh::C2[k]);
+  }
+  for (int k = 0; k < 7; ++k)
+  {
+    shC[7 + k] = static_cast<float>(vis4gs::sh::C3[k]);
+  }
+  prog->SetUniform1fv("shC", 14, shC);
+  const float eye[3] = { static_cast<float>(cameraCenter[0]),
+    static_cast<float>(cameraCenter[1]),
+    static_cast<float>(cameraCenter[2]) };
+  prog->SetUniform3f("cameraCenter", eye);
+  const float highlight[3] = { static_cast<float>(this->HighlightColor[0]),
+    static_cast<float>(this->HighlightColor[1]),
+    static_cast<float>(this->HighlightColor[2]) };
+  prog->SetUniform3f("highlightColor", highlight);
+  prog->SetUniformf("highlightMix", static_cast<float>(this->HighlightMix));
+  prog->SetUniformf("dimDesaturation", vis4gs::SplatDisplayOptions().DimDesaturation);
   prog->SetUniformi("splatColor", in.ColorTexture->GetTextureUnit());
   prog->SetUniformi("splatOrder", in.OrderTexture->GetTextureUnit());
   for (int r = 0; r < 3; ++r)
@@ -1126,19 +1308,22 @@ void vtkGaussianSplatMapper::RenderOpenGLSplats(vtkRenderer* ren,
   state->vtkglDisable(GL_CULL_FACE);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   state->vtkglDepthMask(GL_FALSE);
+  const double draw0 = ThreadCpuMs();
   if (instanced)
   {
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(in.Order.size()));
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(order.size()));
   }
   else
   {
-    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(in.Order.size()));
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(order.size()));
   }
+  this->LastDrawCallTime = ThreadCpuMs() - draw0;
+  in.ShTexture->Deactivate();
   in.OrderTexture->Deactivate();
   in.ColorTexture->Deactivate();
   in.GeometryTexture->Deactivate();
   in.VAO->Release();
-  this->LastDrawnCount = static_cast<vtkIdType>(in.Order.size());
+  this->LastDrawnCount = static_cast<vtkIdType>(order.size());
 }
 
 //------------------------------------------------------------------------------
@@ -1189,4 +1374,10 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastSortTime: " << this->LastSortTime << "\n";
   os << indent << "LastColorTime: " << this->LastColorTime << "\n";
   os << indent << "LastUploadTime: " << this->LastUploadTime << "\n";
+  os << indent << "AsynchronousSort: " << this->AsynchronousSort << "\n";
+  os << indent << "LastOrderLag: " << this->LastOrderLag << "\n";
+  os << indent << "LastRenderThreadTime: " << this->LastRenderThreadTime << "\n";
+  os << indent << "LastDrawCallTime: " << this->LastDrawCallTime << "\n";
+  os << indent << "SceneUploadCount: " << this->Internals->SceneUploads << "\n";
+  os << indent << "OrderUploadCount: " << this->Internals->OrderUploads << "\n";
 }

@@ -26,10 +26,18 @@
  *    alpha < 1/255 and writes premultiplied colour;
  *  - splats are blended back to front (dst = src + (1 - alpha_src) dst) in the order of the
  *    view-space depth of their centres, ties by index reversed: the exact reverse of the
- *    reference's per-tile order. The sort is a parallel radix sort on the CPU, redone when
- *    the camera moves (Core/Splats/SplatSort.h);
+ *    reference's per-tile order. The sort is a parallel radix sort on the CPU
+ *    (Core/Splats/SplatSort.h), redone when the camera moves, on a worker thread of the
+ *    mapper (AsynchronousSort, Core/Splats/SplatSortWorker.h): while the camera moves
+ *    (InteractiveUpdateRate) a frame is drawn with the last order that finished, which lags
+ *    the camera by the sort's duration (LastOrderLag); a still frame waits for the order of
+ *    its own camera, so still frames are exact;
  *  - colours come from the SH coefficients for the direction camera -> mean (all degrees the
- *    input holds, or ShDegree), evaluated on the CPU when the camera centre moves.
+ *    input holds, or ShDegree), evaluated in the vertex shader from the coefficients uploaded
+ *    once (a texture buffer): the positions, covariances, coefficients and display colours
+ *    are uploaded when the input or a display property changes, never because the camera
+ *    moved; a moving camera uploads only each new order (GetSceneUploadCount,
+ *    GetOrderUploadCount).
  *
  * Known difference from the CPU rasteriser: the reference stops a pixel once the
  * transmittance would fall below 1e-4 (the Gaussian that would cross it is not blended).
@@ -313,9 +321,9 @@ public:
 
   ///@{
   /**
-   * CPU path: a frame is interactive when the render window's DesiredUpdateRate is >= this
+   * Both paths: a frame is interactive when the render window's DesiredUpdateRate is >= this
    * (a vtkRenderWindowInteractor sets 15 while interacting and 0.0001 for still frames).
-   * Default 1.
+   * 0 makes every frame a still one. Default 1.
    */
   vtkSetClampMacro(InteractiveUpdateRate, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(InteractiveUpdateRate, double);
@@ -400,14 +408,51 @@ public:
 
   ///@{
   /**
-   * Figures of the last render: splats drawn (after culls and hiding), milliseconds spent
-   * sorting (0 when the camera did not move), on colours/display updates, and uploading.
+   * OpenGL path: sort on the mapper's worker thread (one std::thread, joined when the mapper
+   * is destroyed) instead of the render thread. While the camera moves (the render window's
+   * DesiredUpdateRate >= InteractiveUpdateRate) a frame draws with the last order that
+   * finished; a still frame waits for the order of its camera. Off: every frame sorts for
+   * its camera on the render thread. Default on.
+   */
+  vtkSetMacro(AsynchronousSort, bool);
+  vtkGetMacro(AsynchronousSort, bool);
+  vtkBooleanMacro(AsynchronousSort, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Figures of the last render: splats drawn (after culls and hiding); milliseconds the
+   * order that arrived for this frame took to sort (on the worker thread when
+   * AsynchronousSort is on; 0 when no new order arrived); milliseconds on display colours
+   * (SCORE colours, hiding, highlight: only when they changed) and uploading.
    */
   vtkGetMacro(LastDrawnCount, vtkIdType);
   vtkGetMacro(LastSortTime, double);
   vtkGetMacro(LastColorTime, double);
   vtkGetMacro(LastUploadTime, double);
   ///@}
+
+  ///@{
+  /**
+   * OpenGL path, figures of the last render: LastOrderLag, the number of camera changes
+   * between the camera the drawn order was sorted for and the frame's camera (0: exact);
+   * LastRenderThreadTime, the CPU milliseconds of the render thread in RenderPiece
+   * (thread CPU clock) except the draw call; LastDrawCallTime, the render thread's CPU
+   * milliseconds inside the draw call (on a software OpenGL such as llvmpipe this is the
+   * driver running the vertex and geometry shaders on this thread; on a GPU, queueing).
+   */
+  vtkGetMacro(LastOrderLag, vtkIdType);
+  vtkGetMacro(LastRenderThreadTime, double);
+  vtkGetMacro(LastDrawCallTime, double);
+  ///@}
+
+  /**
+   * OpenGL path: how many times the scene's data (geometry, SH coefficients, display colours)
+   * were uploaded, and how many orders, since the mapper was made. For tests: moving the
+   * camera uploads orders only.
+   */
+  vtkIdType GetSceneUploadCount();
+  vtkIdType GetOrderUploadCount();
 
   void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
@@ -457,6 +502,10 @@ protected:
   double LastSortTime = 0.0;
   double LastColorTime = 0.0;
   double LastUploadTime = 0.0;
+  bool AsynchronousSort = true;
+  vtkIdType LastOrderLag = 0;
+  double LastRenderThreadTime = 0.0;
+  double LastDrawCallTime = 0.0;
 
 private:
   vtkGaussianSplatMapper(const vtkGaussianSplatMapper&) = delete;
@@ -475,7 +524,8 @@ private:
     double fx,
     double fy,
     const double center[3],
-    const double depthCoeffs[2]);
+    const double depthCoeffs[2],
+    bool interactive);
   void RenderRasterized(vtkRenderer* ren,
     vtkPolyData* input,
     int width,

@@ -130,11 +130,13 @@ while True:
 def test_killed_run_leaves_a_valid_log(tmp_path, steps):
     """SIGKILL as soon as the run has reported `steps` finished steps (0: at once, before
     or while the file is created); the process is then anywhere in the next step (in
-    densification, a flush or a snapshot). The file reads as a valid log that holds at
-    least every snapshot of the finished steps."""
-    path = str(tmp_path / "killed.h5")
+    densification, a flush or a snapshot). The log is written as <path>.tmp until close():
+    that file reads as a valid log that holds at least every snapshot of the finished
+    steps, and nothing is at path."""
+    final = str(tmp_path / "killed.h5")
+    path = final + ".tmp"
     root = os.path.dirname(HERE)
-    child = subprocess.Popen([sys.executable, "-c", _CHILD, path, HERE, root],
+    child = subprocess.Popen([sys.executable, "-c", _CHILD, final, HERE, root],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         for k in range(steps):
@@ -144,6 +146,7 @@ def test_killed_run_leaves_a_valid_log(tmp_path, steps):
     finally:
         if child.poll() is None:
             child.kill()
+    assert not os.path.exists(final)
     if steps == 0 and not _has_format(path):
         return  # killed before the file's first flush: there is no log to read
     check_format(path)
@@ -162,10 +165,12 @@ def test_killed_run_leaves_a_valid_log(tmp_path, steps):
 @pytest.mark.parametrize("where", ["_dataset:20", "_dataset:45", "_append:30", "_append:61"])
 def test_run_killed_inside_the_writer_leaves_a_valid_log(tmp_path, where):
     """SIGKILL in the middle of writing a snapshot (between two of its datasets) or of a
-    flush (between two appended columns): the log is the one of the last flush."""
-    path = str(tmp_path / "killed.h5")
-    child = subprocess.run([sys.executable, "-c", _CHILD, path, HERE, os.path.dirname(HERE),
+    flush (between two appended columns): the log (<path>.tmp) is the one of the last flush."""
+    final = str(tmp_path / "killed.h5")
+    path = final + ".tmp"
+    child = subprocess.run([sys.executable, "-c", _CHILD, final, HERE, os.path.dirname(HERE),
                             where], capture_output=True, text=True, timeout=120)
+    assert not os.path.exists(final)
     assert child.returncode == -signal.SIGKILL, child.stderr
     reported = [int(line) for line in child.stdout.split()]
     assert reported, "killed before the first step"

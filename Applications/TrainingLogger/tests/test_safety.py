@@ -4,6 +4,7 @@ always in the log, events carry the iteration of the step that made them, and a
 bookkeeping problem never stops the training (it is a warning and a row of
 /lineage_breaks, whose new roots the C++ reader and the genealogy know)."""
 
+import os
 import warnings
 
 import h5py
@@ -212,25 +213,80 @@ def test_ops_imported_before_tracking_and_failing_bookkeeping(tmp_path, monkeypa
         assert info["repairs"] == [] and info["snapshots"] == [0, 2]
 
 
-def test_a_snapshot_that_cannot_be_written_does_not_stop_the_training(tmp_path, monkeypatch):
+def test_a_snapshot_that_fails_in_the_tracker_does_not_stop_the_training(tmp_path, monkeypatch):
+    """An error that is not the disk's (here the tracker's) skips that snapshot only."""
     params, optimizers, state = test_gsplat.make_splats(4, 4)
-    path = str(tmp_path / "full.h5")
+    path = str(tmp_path / "bookkeeping.h5")
     logger = TrainingLogger(path, snapshot_interval=1)
     track_gsplat(params, logger, modules=[mock_gsplat_ops])
 
-    def full_disk(*args, **kwargs):
-        raise OSError(28, "No space left on device")
+    def broken(*args, **kwargs):
+        raise IndexError("a row the tracker does not know")
 
     original = logger.writer.write_snapshot
-    monkeypatch.setattr(logger.writer, "write_snapshot", full_disk)
+    monkeypatch.setattr(logger.writer, "write_snapshot", broken)
     with pytest.warns(RuntimeWarning, match="snapshot of iteration 1 could not be written"):
         logger.step(1)
         logger.step(2)
-    assert len(logger.snapshot_failures) == 2
+    assert len(logger.snapshot_failures) == 2 and logger.failure is None
     monkeypatch.setattr(logger.writer, "write_snapshot", original)
     logger.step(3)
     logger.close()
     assert _snapshots(path) == [0, 3]
+
+
+@pytest.mark.parametrize("earlier", [False, True])
+def test_a_full_disk_stops_the_logging_not_the_training(tmp_path, monkeypatch, earlier):
+    """A failed write (an OSError, as h5py raises for ENOSPC) in a snapshot: one warning naming
+    the path and the problem, nothing written after it and no exception into the loop; the
+    temporary is removed, an earlier log at path stays byte for byte as it was.
+    (CheckFullDisk.py logger runs the same on a real full and read-only file system.)"""
+    params, optimizers, state = test_gsplat.make_splats(4, 4)
+    path = tmp_path / "full.h5"
+    if earlier:
+        path.write_bytes(b"an earlier log")
+    logger = TrainingLogger(str(path), snapshot_interval=1)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    assert (tmp_path / "full.h5.tmp").exists()
+
+    def full_disk(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(logger.writer, "write_snapshot", full_disk)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        logger.step(1)
+        for step in (2, 3):
+            logger.log_metrics(step, loss=0.5)
+            mock_gsplat_ops.duplicate(params, optimizers, state, torch.tensor([True, False, False,
+                                                                               False]))
+            logger.step(step)
+        logger.flush()
+        logger.close()
+    said = [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]
+    assert len(said) == 1, said
+    assert str(path) in said[0] and "No space left on device" in said[0]
+    assert "snapshot of iteration 1" in logger.failure
+    assert sorted(p.name for p in tmp_path.iterdir()) == (["full.h5"] if earlier else [])
+    if earlier:
+        assert path.read_bytes() == b"an earlier log"
+
+
+def test_a_read_only_folder_stops_the_logging_not_the_training(tmp_path):
+    """The log cannot be created: the same warning, the calls of a training do nothing."""
+    if os.geteuid() == 0:
+        pytest.skip("root writes into a read-only folder (CheckFullDisk.py logger mounts one)")
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o555)
+    params, optimizers, state = test_gsplat.make_splats(4, 4)
+    with pytest.warns(RuntimeWarning, match="creating the log failed: Permission denied"):
+        logger = TrainingLogger(str(folder / "run.h5"), snapshot_interval=1)
+    track_gsplat(params, logger, modules=[mock_gsplat_ops])
+    logger.log_metrics(1, loss=0.5)
+    logger.step(1)
+    logger.close()
+    assert list(folder.iterdir()) == []
 
 
 def test_snapshot_options_sh_degree_float16_and_compression(tmp_path):

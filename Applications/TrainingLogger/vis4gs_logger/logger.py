@@ -2,9 +2,13 @@
 """The training-loop side of the logger: iteration bookkeeping, metrics, cameras and
 snapshots at an interval. Id tracking lives in the trackers (gs3d.py, gsplat_hooks.py)."""
 
+import contextlib
 import math
 import os
+import re
+import sys
 import time
+import traceback
 import warnings
 
 import numpy as np
@@ -43,30 +47,44 @@ class TrainingLogger:
     checkpoint's Gaussians, its first snapshot is the checkpoint's iteration and the root
     attribute ``start_iteration`` says so. An existing log at ``path`` is kept, renamed to
     ``<name>.before-<start_iteration>.h5`` (a warning names it).
+
+    Failures of the disk never reach the training loop: the log is written as
+    ``<path>.tmp`` and renamed onto ``path`` at close() (``write_to_temporary``, default True,
+    as `vis4gs train` does; a killed run leaves the temporary, valid up to its last flush).
+    When the file cannot be created or written (a full disk, a read-only folder: any
+    OSError), one RuntimeWarning names the path and the problem, logging stops (every later
+    call does nothing, ``failure`` says why), the temporary is removed and an earlier log at
+    ``path`` stays as it was. Errors of the caller (wrong shapes: ValueError) still raise.
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000,
                  snapshot_interval=DEFAULT_SNAPSHOT_INTERVAL, snapshot_sh_rest=True,
                  snapshot_statistics=True, deflate=1, chunk_rows=4096, producer=None,
                  flush_every_s=300.0, snapshot_deflate=0, start_iteration=0,
-                 snapshot_sh_degree=None, snapshot_sh_float16=False, snapshot_budget_bytes=None):
+                 snapshot_sh_degree=None, snapshot_sh_float16=False, snapshot_budget_bytes=None,
+                 write_to_temporary=True):
         self.start_iteration = int(start_iteration)
-        if self.start_iteration > 0 and os.path.exists(path):
-            root, ext = os.path.splitext(os.fspath(path))
-            kept = f"{root}.before-{self.start_iteration}{ext or '.h5'}"
-            os.replace(path, kept)
-            warnings.warn(f"vis4gs_logger: resuming at iteration {self.start_iteration}: "
-                          f"the previous log is kept as {kept}; {path} is a new log",
-                          RuntimeWarning, stacklevel=2)
-        self.writer = TrainingLogWriter(path, scene=scene, sh_degree=sh_degree,
-                                        iterations=iterations, producer=producer,
-                                        deflate=deflate, chunk_rows=chunk_rows,
-                                        flush_every_s=flush_every_s,
-                                        snapshot_deflate=snapshot_deflate,
-                                        start_iteration=self.start_iteration,
-                                        snapshot_sh_degree=snapshot_sh_degree,
-                                        snapshot_sh_float16=snapshot_sh_float16)
-        self.path = self.writer.path
+        self.path = os.fspath(path)
+        #: why logging stopped ("PATH: problem"), None while it works
+        self.failure = None
+        self.writer = _StoppedWriter(self.path)
+        with self._io("creating the log"):
+            if self.start_iteration > 0 and os.path.exists(path):
+                root, ext = os.path.splitext(self.path)
+                kept = f"{root}.before-{self.start_iteration}{ext or '.h5'}"
+                os.replace(path, kept)
+                warnings.warn(f"vis4gs_logger: resuming at iteration {self.start_iteration}: "
+                              f"the previous log is kept as {kept}; {path} is a new log",
+                              RuntimeWarning, stacklevel=2)
+            self.writer = TrainingLogWriter(path, scene=scene, sh_degree=sh_degree,
+                                            iterations=iterations, producer=producer,
+                                            deflate=deflate, chunk_rows=chunk_rows,
+                                            flush_every_s=flush_every_s,
+                                            snapshot_deflate=snapshot_deflate,
+                                            start_iteration=self.start_iteration,
+                                            snapshot_sh_degree=snapshot_sh_degree,
+                                            snapshot_sh_float16=snapshot_sh_float16,
+                                            write_to_temporary=write_to_temporary)
         self.snapshot_interval = int(snapshot_interval) if snapshot_interval else 0
         self.iterations = int(iterations)
         self.snapshot_budget_bytes = snapshot_budget_bytes
@@ -98,9 +116,10 @@ class TrainingLogger:
             num_gaussians = self.tracker.count() if self.tracker is not None else -1
         if elapsed_s is None:
             elapsed_s = time.perf_counter() - self._start
-        self.writer.append_metrics(iteration, num_gaussians=num_gaussians, loss=loss, l1=l1,
-                                   psnr=psnr, ssim=ssim, lpips=lpips, elapsed_s=elapsed_s,
-                                   test=test)
+        with self._io("writing metrics"):  # a timed flush writes
+            self.writer.append_metrics(iteration, num_gaussians=num_gaussians, loss=loss,
+                                       l1=l1, psnr=psnr, ssim=ssim, lpips=lpips,
+                                       elapsed_s=elapsed_s, test=test)
         self.time_spent_s += time.perf_counter() - t0
 
     def log_events(self, kind, parents, children=None, iteration=None):
@@ -120,8 +139,9 @@ class TrainingLogger:
         and image folder, stored as attributes of /cameras."""
         if images is not None:
             images = [self._relative_image(p) for p in images]
-        self.writer.write_cameras(names, widths, heights, fx, fy, cx, cy, world_to_camera,
-                                  splits, images, source=source, image_dir=image_dir)
+        with self._io("writing the cameras"):
+            self.writer.write_cameras(names, widths, heights, fx, fy, cx, cy, world_to_camera,
+                                      splits, images, source=source, image_dir=image_dir)
 
     def _relative_image(self, image):
         image = str(image)
@@ -189,7 +209,8 @@ class TrainingLogger:
                 w2c.append(m)
             splits.append(0 if i < len(list(train_cameras)) else 1)
             if embed_images and getattr(cam, "original_image", None) is not None:
-                self.writer.write_image(str(cam.image_name), cam.original_image)
+                with self._io("writing the images"):
+                    self.writer.write_image(str(cam.image_name), cam.original_image)
                 images.append("/images/" + str(cam.image_name))
             elif image_paths is not None:
                 images.append(str(image_paths.get(cam.image_name, "")))
@@ -233,10 +254,14 @@ class TrainingLogger:
         """Writes a snapshot of the tracked model now (and flushes the file)."""
         if self.tracker is None:
             raise RuntimeError(f"{self.path}: no model is tracked (call track_3dgs or track_gsplat)")
+        if self.failure is not None:
+            return
         t0 = time.perf_counter()
         before = self.writer.snapshot_bytes
-        self.tracker.write_snapshot(int(iteration))
-        self._plan_disk(int(iteration), self.writer.snapshot_bytes - before)
+        with self._io(f"writing the snapshot of iteration {int(iteration)}"):
+            self.tracker.write_snapshot(int(iteration))
+        if self.failure is None:
+            self._plan_disk(int(iteration), self.writer.snapshot_bytes - before)
         self.time_spent_s += time.perf_counter() - t0
 
     def projected_bytes(self, iteration, last_bytes):
@@ -272,7 +297,28 @@ class TrainingLogger:
                               "snapshot_interval", RuntimeWarning, stacklevel=4)
 
     def flush(self):
-        self.writer.flush()
+        with self._io("flushing the log"):
+            self.writer.flush()
+
+    @contextlib.contextmanager
+    def _io(self, what):
+        """Runs a write; an OSError (a full disk, a read-only folder, a file HDF5 cannot
+        write) stops the logging instead of the training (see the class)."""
+        try:
+            yield
+        except Exception as error:  # noqa: BLE001 - sorted below
+            if not _is_io_error(error):
+                raise
+            self._stop(what, error)
+
+    def _stop(self, what, error):
+        self.failure = f"{self.path}: {what} failed: {_problem(error)}"
+        writer, self.writer = self.writer, _StoppedWriter(self.path)
+        writer.abandon()
+        earlier = "an earlier log there is kept as it was" if os.path.exists(self.path) \
+            else "no log is written"
+        warnings.warn(f"vis4gs_logger: {self.failure}; logging stops ({earlier}), the training "
+                      "goes on", RuntimeWarning, stacklevel=_caller_level())
 
     def final_iteration(self):
         """The iteration of the model as it is now: the last step(), else the last
@@ -285,7 +331,10 @@ class TrainingLogger:
         """Writes the snapshot of the final model (the last step's, when the interval did
         not write it: gsplat's loop ends at max_steps - 1, a 3DGS run's length need not be
         a multiple of the interval), then closes the file."""
-        if self.writer._file is None:
+        if self.failure is not None or self.writer._file is None:
+            if self.tracker is not None:
+                self.tracker.uninstall()
+                self.tracker = None
             return
         final = self.final_iteration()
         if (self.tracker is not None and final is not None
@@ -293,7 +342,8 @@ class TrainingLogger:
             self._snapshot_or_warn(final)
         if self.tracker is not None:
             self.tracker.uninstall()
-        self.writer.close()
+        with self._io("closing the log"):
+            self.writer.close()
 
     def __enter__(self):
         return self
@@ -313,3 +363,54 @@ def _files_by_stem(folder):
             files.setdefault(os.path.splitext(entry)[0], path)
             files[entry] = path  # names given with their extension
     return files
+
+
+def _caller_level():
+    """The stacklevel of warnings.warn that names the trainer's line, the first frame outside
+    this package and contextlib (which the failures pass through)."""
+    package = os.path.dirname(os.path.abspath(__file__))
+    level, frame = 1, sys._getframe(1)
+    while frame is not None and (frame.f_code.co_filename.startswith(package)
+                                 or frame.f_code.co_filename == contextlib.__file__):
+        level += 1
+        frame = frame.f_back
+    return level
+
+
+def _is_io_error(error):
+    """An OSError, or any error raised inside h5py (HDF5 reports a failed write as a
+    RuntimeError or ValueError: "Unable to flush file's cached information (file write
+    failed: ..., errno = 28, ...)")."""
+    if isinstance(error, OSError):
+        return True
+    return any("h5py" in frame.filename for frame in traceback.extract_tb(error.__traceback__))
+
+
+def _problem(error):
+    """The problem in a few words: the system's message for an errno that HDF5 reports
+    inside its own text, then HDF5's first line, then the error as Python says it."""
+    text = str(error)
+    found = re.search(r"errno = (\d+)", text)
+    if isinstance(error, OSError) and error.errno:
+        return os.strerror(error.errno)
+    if found:
+        return os.strerror(int(found.group(1)))
+    return f"{type(error).__name__}: {text.splitlines()[0] if text else ''}"
+
+
+class _StoppedWriter:
+    """Takes the writer's place when logging stopped (or before it started): the trackers
+    and the logger call it as they call the writer, and nothing is written."""
+
+    last_snapshot_iteration = -1
+    snapshot_bytes = 0
+    _file = None
+
+    def __init__(self, path):
+        self.path = path
+
+    def abandon(self):
+        pass
+
+    def __getattr__(self, name):
+        return lambda *args, **kwargs: None

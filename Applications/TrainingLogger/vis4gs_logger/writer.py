@@ -69,14 +69,16 @@ class TrainingLogWriter:
     flush_every_s: also flush buffered rows when this many seconds have passed since the
     last flush (None: only at snapshots and close); snapshot_sh_degree: SH degree kept in the
     snapshots (None: all the trainer has; 0: the DC term only); snapshot_sh_float16: store
-    the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504).
+    the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504);
+    write_to_temporary: write the whole file as ``<path>.tmp`` and rename it onto path at
+    close() (as `vis4gs train` does), so that a failure (a full disk, a read-only folder)
+    leaves an earlier log at path as it was; abandon() then removes the temporary.
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
                  deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0,
-                 start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False):
-        from . import __version__
-
+                 start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False,
+                 write_to_temporary=False):
         self.path = os.fspath(path)
         self.deflate = int(deflate)
         self.snapshot_deflate = int(snapshot_deflate)
@@ -89,7 +91,19 @@ class TrainingLogWriter:
         self.snapshot_bytes = 0
         self.chunk_rows = int(chunk_rows)
         self.flush_every_s = flush_every_s
-        self._file = h5py.File(self.path, "w", fs_strategy="none", libver="earliest")
+        #: the file being written: path, or "<path>.tmp" until close() renames it
+        self.write_path = self.path + ".tmp" if write_to_temporary else self.path
+        self._file = None
+        try:
+            self._file = h5py.File(self.write_path, "w", fs_strategy="none", libver="earliest")
+            self._start(scene, sh_degree, iterations, producer, start_iteration)
+        except BaseException:
+            self.abandon()
+            raise
+
+    def _start(self, scene, sh_degree, iterations, producer, start_iteration):
+        from . import __version__
+
         cfg = self._file.id.get_mdc_config()
         cfg.evictions_enabled = False
         cfg.incr_mode = 0  # H5C_incr__off
@@ -334,11 +348,47 @@ class TrainingLogWriter:
             self.flush()
 
     def close(self):
+        """Flushes and closes the file; with write_to_temporary renames it onto path. On an
+        error (a full disk) the file is abandoned (see abandon()) and the error raised."""
         if self._file is None:
             return
-        self.flush()
-        self._file.close()
-        self._file = None
+        try:
+            self.flush()
+            self._file.close()
+            self._file = None
+            if self.write_path != self.path:
+                os.replace(self.write_path, self.path)
+        except BaseException:
+            self.abandon()
+            raise
+
+    def abandon(self):
+        """Stops writing after a failure: closes the file, ignoring further errors (HDF5
+        reports each on stderr once more), and removes the temporary of write_to_temporary,
+        so that no partial log is left and an earlier log at path stays as it was. Without
+        write_to_temporary the file at path is left as the failure left it."""
+        f, self._file = self._file, None
+        if f is not None:
+            # HDF5 flushes a file when it closes it, and after a failed write that flush
+            # fails again and can crash the process (seen with h5py 3.7 / HDF5 1.10: "Slist
+            # already enabled?", then a segmentation fault at exit). Its descriptor is pointed
+            # at /dev/null first, so that the closing writes go nowhere and succeed.
+            try:
+                fd = f.id.get_vfd_handle()
+                null = os.open(os.devnull, os.O_RDWR)
+                os.dup2(null, fd)
+                os.close(null)
+            except Exception:  # noqa: BLE001 - a driver without a descriptor: close as it is
+                pass
+            try:
+                f.close()
+            except Exception:  # noqa: BLE001 - the file is given up, its state does not matter
+                pass
+        if self.write_path != self.path:
+            try:
+                os.remove(self.write_path)
+            except OSError:
+                pass
 
     def __enter__(self):
         return self

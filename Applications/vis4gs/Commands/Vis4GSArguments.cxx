@@ -70,16 +70,16 @@ Vis4GSArguments::Result Vis4GSArguments::Parse(const std::vector<std::string>& a
       }
       if (!option)
       {
-        err << "vis4gs " << this->Command << ": unknown option '--" << name << "' (see vis4gs "
-            << this->Command << " --help)\n";
+        err << "vis4gs " << this->Command << ": error: unknown option '--" << name
+            << "' (see vis4gs " << this->Command << " --help)\n";
         return Result::Error;
       }
       if (option->IsFlag)
       {
         if (eq != std::string::npos)
         {
-          err << "vis4gs " << this->Command << ": '--" << name << "' takes no value; use --" << name
-              << " or --no-" << name << "\n";
+          err << "vis4gs " << this->Command << ": error: '--" << name << "' takes no value; use --"
+              << name << " or --no-" << name << "\n";
           return Result::Error;
         }
         this->Values[name] = "true";
@@ -88,8 +88,8 @@ Vis4GSArguments::Result Vis4GSArguments::Parse(const std::vector<std::string>& a
       {
         if (eq == std::string::npos)
         {
-          err << "vis4gs " << this->Command << ": '--" << name << "' needs a value: --" << name
-              << "=" << option->Type << "\n";
+          err << "vis4gs " << this->Command << ": error: '--" << name << "' needs a value: --"
+              << name << "=" << option->Type << "\n";
           return Result::Error;
         }
         this->Values[name] = arg.substr(eq + 1);
@@ -99,7 +99,7 @@ Vis4GSArguments::Result Vis4GSArguments::Parse(const std::vector<std::string>& a
     {
       if (positional >= this->Positionals.size())
       {
-        err << "vis4gs " << this->Command << ": unexpected argument '" << arg << "'\n";
+        err << "vis4gs " << this->Command << ": error: unexpected argument '" << arg << "'\n";
         return Result::Error;
       }
       this->PositionalValues[this->Positionals[positional++].Name] = arg;
@@ -113,7 +113,7 @@ Vis4GSArguments::Result Vis4GSArguments::Parse(const std::vector<std::string>& a
   {
     if (this->Positionals[i].Required)
     {
-      err << "vis4gs " << this->Command << ": missing " << this->Positionals[i].Name
+      err << "vis4gs " << this->Command << ": error: missing " << this->Positionals[i].Name
           << " (see vis4gs " << this->Command << " --help)\n";
       return Result::Error;
     }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSProgressiveStages.h"
 
+#include "ScoreRegistry.h"
 #include "Vis4GSDataModel.h"
 
 #include "vtkDataArray.h"
@@ -31,15 +32,11 @@ std::string Describe(const StageSettings& stage)
 //------------------------------------------------------------------------------
 ScoreColumns ScoresOf(vtkPointData* pd, std::map<std::string, bool>& want)
 {
-  const std::vector<std::pair<std::string, const char*>> names{ { "coverage",
-                                                                  vis4gs::arrays::ViewCoverage },
-    { "blur", vis4gs::arrays::BlurScore },
-    { "needle", vis4gs::arrays::NeedleScore },
-    { "shape", vis4gs::arrays::NeedleShape } };
   ScoreColumns scores;
-  for (const auto& [key, array] : names)
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
   {
-    if (!want[key])
+    const char* array = d.ArrayName;
+    if (!want[d.Name])
     {
       continue;
     }

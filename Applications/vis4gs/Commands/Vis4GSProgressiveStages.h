@@ -32,7 +32,7 @@ std::string Describe(const StageSettings& stage);
 
 using ScoreColumns = std::vector<std::pair<std::string, std::vector<double>>>;
 
-/// The scores @p want names (coverage, blur, needle, shape) from the score filter's output
+/// The scores @p want names (the registry's short names) from the score filter's output
 /// @p pd, in the order of scores.csv; throws std::runtime_error when one is missing.
 ScoreColumns ScoresOf(vtkPointData* pd, std::map<std::string, bool>& want);
 

@@ -2,6 +2,7 @@
 // The vis4gs program: one binary, subcommands registered by the vis4gs*Command.cxx files.
 #include "Vis4GSCommand.h"
 #include "Vis4GSProcessTuning.h"
+#include "vtkGaussianOutputWindow.h"
 
 #include <omp.h>
 
@@ -46,6 +47,8 @@ int main(int argc, char* argv[])
     {
       continue;
     }
+    // VTK's errors and warnings in the program's form: "vis4gs NAME: error: FILE: problem".
+    vtkGaussianOutputWindow::Install("vis4gs " + name);
     Vis4GSArguments args(command.Name, command.Summary);
     Vis4GSDefineArguments(command, args);
     const std::vector<std::string> rest(argv + 2, argv + argc);
@@ -74,11 +77,11 @@ int main(int argc, char* argv[])
     }
     catch (const std::exception& e)
     {
-      std::cerr << "vis4gs " << name << ": " << e.what() << "\n";
+      std::cerr << "vis4gs " << name << ": error: " << e.what() << "\n";
       return 1;
     }
   }
-  std::cerr << "vis4gs: unknown command '" << name << "'\n\n";
+  std::cerr << "vis4gs: error: unknown command '" << name << "'\n\n";
   PrintUsage(std::cerr);
   return 2;
 }

@@ -17,6 +17,7 @@
 #include "ImageIO.h"
 #include "Rasterizer.h"
 #include "RemovalEffect.h"
+#include "ScoreRegistry.h"
 #include "SelectionRule.h"
 #include "SpecialValues.h"
 #include "SplatAttributes.h" // vis4gs::OverlayColor, the colour map the splat mapper uses
@@ -28,8 +29,7 @@
 #include "Vis4GSSceneCameras.h"
 #include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
-#include "vtkGaussianSceneReader.h"
-#include "vtkGaussianTrainingLogReader.h"
+#include "vtkGaussianSession.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -88,10 +88,18 @@ void Define(Vis4GSArguments& args)
     "DIR",
     "",
     "Folder of training images, matched to cameras by name. Default: the COLMAP dataset's.");
-  args.AddOption("scores",
-    "LIST",
-    "coverage,blur,needle,shape",
-    "Scores to compute: coverage, blur, needle, shape (comma-separated).");
+  std::string scoreHelp = "Scores to compute (comma-separated):";
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    scoreHelp += std::string(" ") + d.Name + " (" + d.ArrayName + ", suspicious when " +
+      (d.Suspicious == vis4gs::SuspiciousEnd::Low ? "low" : "high") +
+      ((d.Needs & vis4gs::NeedsImages)       ? ", needs images"
+          : (d.Needs & vis4gs::NeedsCameras) ? ", needs cameras"
+                                             : "") +
+      "),";
+  }
+  scoreHelp.back() = '.';
+  args.AddOption("scores", "LIST", vis4gs::DefaultScoreList(), scoreHelp);
   args.AddOption("output", "DIR", "vis4gs-analysis", "Folder the results are written to.");
   args.AddOption("top", "K", "20", "Number of most suspicious Gaussians listed per score.");
   args.AddOption("loss-resolution", "F", "1", "Loss-map resolution factor: 1, 2, 4 or 8.");
@@ -138,11 +146,30 @@ std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSAr
   return Vis4GSFindSceneCameras(scene, args.Get("cameras"));
 }
 
+// The Gaussians of a scene file or of the snapshot of a log nearest @p iteration (-1: the last)
+// as the application, the Python layer and ParaView read them: the Gaussians port of a
+// vtkGaussianSession (the reader chosen by content) into @p gaussians. The scores are computed
+// by this command's own staged filters. Returns the loaded iteration (-1 for a scene file).
+int ReadGaussians(const std::string& path, int iteration, vtkPolyData* gaussians)
+{
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(path.c_str());
+  session->SetIteration(iteration);
+  session->ComputeScoresOff();
+  const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  gaussians->ShallowCopy(session->GetGaussiansOutput());
+  return session->GetLoadedIteration();
+}
+
 // The snapshot of a training log, its cameras, and its training images: embedded ones
 // ("/images/<name>") are written once to <output>/images so the score filter reads them like
-// any dataset; others are paths relative to the log. The Gaussians are read as a script reads
-// them, by vtkGaussianTrainingLogReader (every SH degree) into @p gaussians, the score filter's
-// input; the cloud returned is their copy for the Core steps after the scores.
+// any dataset; others are paths relative to the log. The Gaussians are read by ReadGaussians
+// (every SH degree) into @p gaussians, the score filter's input; the cloud returned is their
+// copy for the Core steps after the scores.
 std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& path,
   const Vis4GSArguments& args,
   const fs::path& output,
@@ -162,16 +189,7 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
     throw std::runtime_error(path + ": the training log holds no snapshot to analyze");
   }
   const int wanted = args.GetInt("iteration");
-  vtkNew<vtkGaussianTrainingLogReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->SetIteration(wanted < 0 ? iterations.back() : wanted);
-  const std::string errors = Vis4GSUpdate(reader, 0);
-  if (!errors.empty())
-  {
-    throw std::runtime_error(errors);
-  }
-  const int logged = reader->GetLoadedIteration();
-  gaussians->ShallowCopy(reader->GetGaussiansOutput());
+  const int logged = ReadGaussians(path, wanted < 0 ? iterations.back() : wanted, gaussians);
   std::string error;
   // The reader's own cloud when its arrays are one (no copy of gigabytes).
   const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
@@ -193,6 +211,8 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
   }
   cameras = log.ReadCameras();
   const fs::path logDir = fs::path(path).parent_path();
+  std::string writeError; // the first image that could not be written, said once
+  std::size_t notWritten = 0;
   for (vis4gs::Camera& c : cameras)
   {
     const std::string prefix = "/images/";
@@ -203,11 +223,10 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       if (writeImages) // under MPI process 0 writes them once for every process
       {
         int width = 0, height = 0;
+        std::vector<unsigned char> pixels;
         try
         {
-          const std::vector<unsigned char> pixels = log.ReadImage(name, width, height);
-          fs::create_directories(file.parent_path());
-          vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          pixels = log.ReadImage(name, width, height);
         }
         catch (const std::exception& e)
         {
@@ -217,6 +236,20 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
                     << " cannot be read (" << e.what()
                     << "); its view is left out of the Blur and Needle scores\n";
         }
+        try
+        {
+          if (!pixels.empty())
+          {
+            fs::create_directories(file.parent_path());
+            vis4gs::WritePng8(file.string(), width, height, 3, pixels.data());
+          }
+        }
+        catch (const std::exception& e)
+        {
+          // An output folder that cannot be written fails every image the same way: said once.
+          writeError = writeError.empty() ? e.what() : writeError;
+          ++notWritten;
+        }
       }
       c.ImagePath = file.string();
     }
@@ -225,25 +258,24 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       c.ImagePath = (logDir / c.ImagePath).string();
     }
   }
+  if (notWritten > 0)
+  {
+    std::cerr << "vis4gs analyze: warning: " << notWritten << " training images of the log could "
+              << "not be written to " << (output / "images").string() << " (" << writeError
+              << "); their views are left out of the Blur and Needle scores\n";
+  }
   return cloud;
 }
 
-// A scene file read as a script reads it, by vtkGaussianSceneReader into @p gaussians (the
-// score filter's input; its warnings go to VTK's output window, stderr); the cloud returned is
-// the reader's own (shared with the arrays, no copy) for the Core steps after the scores, and
+// A scene file read by ReadGaussians into @p gaussians (the score filter's input; the
+// reader's warnings go to VTK's output window, stderr); the cloud returned is the reader's own
+// (shared with the arrays, no copy) for the Core steps after the scores, and
 // @p extras the file's other properties, which scores.ply keeps.
 std::shared_ptr<const vis4gs::GaussianCloud> ReadSceneFile(const std::string& path,
   vtkPolyData* gaussians,
   std::vector<vis4gs::ExtraProperty>& extras)
 {
-  vtkNew<vtkGaussianSceneReader> reader;
-  reader->SetFileName(path.c_str());
-  const std::string errors = Vis4GSUpdate(reader, 0);
-  if (!errors.empty())
-  {
-    throw std::runtime_error(errors);
-  }
-  gaussians->ShallowCopy(reader->GetOutput());
+  ReadGaussians(path, -1, gaussians);
   std::string error;
   const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
   if (!cloud)
@@ -385,10 +417,16 @@ std::vector<std::size_t> TopK(const std::vector<double>& v, std::size_t k)
     order.end(),
     [&](std::size_t a, std::size_t b)
     {
-      const double x = std::isfinite(v[a]) ? v[a] : -1, y = std::isfinite(v[b]) ? v[b] : -1;
+      // NaN last (a score that could not be computed ranks nowhere); +inf first (R/A of a
+      // Gaussian that costs and never shows).
+      const double x = std::isnan(v[a]) ? -HUGE_VAL : v[a], y = std::isnan(v[b]) ? -HUGE_VAL : v[b];
       return x > y || (x == y && a < b);
     });
   order.resize(k);
+  while (!order.empty() && std::isnan(v[order.back()]))
+  {
+    order.pop_back();
+  }
   return order;
 }
 
@@ -600,21 +638,21 @@ int Run(const Vis4GSArguments& args)
   const std::size_t top = static_cast<std::size_t>(std::max(0, args.GetInt("top")));
   const bool isLog = Vis4GSIsLogPath(scene);
   // Requested scores.
-  std::map<std::string, bool> want{
-    { "coverage", false }, { "blur", false }, { "needle", false }, { "shape", false }
-  };
+  std::map<std::string, bool> want;
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
   {
-    std::stringstream list(args.Get("scores"));
-    std::string item;
-    while (std::getline(list, item, ','))
+    want[d.Name] = false;
+  }
+  try
+  {
+    for (const vis4gs::ScoreDefinition* d : vis4gs::ParseScoreList(args.Get("scores")))
     {
-      if (!want.count(item))
-      {
-        throw std::runtime_error(
-          "--scores: unknown score '" + item + "' (expected coverage, blur, needle, shape)");
-      }
-      want[item] = true;
+      want[d->Name] = true;
     }
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::runtime_error(std::string("--scores: ") + e.what());
   }
   // A selection rule: parsed first (a typo fails before any work) and its scores computed.
   std::optional<vis4gs::SelectionRule> rule;
@@ -631,9 +669,10 @@ int Run(const Vis4GSArguments& args)
   if (!ruleText.empty())
   {
     rule = vis4gs::SelectionRule::Parse(ruleText);
-    want["coverage"] = want["coverage"] || rule->Reads(vis4gs::RuleAttribute::Coverage);
-    want["blur"] = want["blur"] || rule->Reads(vis4gs::RuleAttribute::Blur);
-    want["needle"] = want["needle"] || rule->Reads(vis4gs::RuleAttribute::NeedleScore);
+    for (const std::string& name : rule->ScoresRead())
+    {
+      want[name] = true;
+    }
   }
   else if (args.GetFlag("delete") || args.GetFlag("report"))
   {
@@ -656,7 +695,19 @@ int Run(const Vis4GSArguments& args)
 
   // Read.
   auto t0 = Clock::now();
-  const bool needCameras = want["coverage"] || want["blur"] || want["needle"] || measure;
+  std::string wantedList, needingCameras;
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    if (want[d.Name])
+    {
+      wantedList += (wantedList.empty() ? "" : ",") + std::string(d.Name);
+      if (d.Needs & vis4gs::NeedsCameras)
+      {
+        needingCameras += std::string(needingCameras.empty() ? "" : ", ") + d.Name;
+      }
+    }
+  }
+  const bool needCameras = !needingCameras.empty() || measure;
   std::vector<vis4gs::Camera> cameras;
   vtkNew<vtkPolyData> polyData; // the score filter's input
   std::vector<vis4gs::ExtraProperty> fileExtras;
@@ -687,9 +738,9 @@ int Run(const Vis4GSArguments& args)
   }
   if (needCameras && cameras.empty())
   {
-    throw std::runtime_error(scene +
-      ": coverage, blur, needle and --report need cameras; give --cameras=cameras.json or a "
-      "COLMAP folder");
+    throw std::runtime_error(scene + ": " +
+      (needingCameras.empty() ? std::string("--report needs") : needingCameras + " need") +
+      " cameras; give --cameras=cameras.json or a COLMAP folder");
   }
   if (!args.Get("images").empty())
   {
@@ -717,10 +768,7 @@ int Run(const Vis4GSArguments& args)
     {
       f->SetCamerasData(table);
     }
-    f->SetComputeViewCoverage(want["coverage"]);
-    f->SetComputeBlurScore(want["blur"]);
-    f->SetComputeNeedleScore(want["needle"]);
-    f->SetComputeNeedleShape(want["shape"]);
+    f->SetScores(wantedList.c_str());
     f->SetLossResolution(stage.LossResolution);
     f->SetCoverageResolution(stage.CoverageResolution);
     f->SetViewStride(stage.ViewStride);
@@ -792,8 +840,9 @@ int Run(const Vis4GSArguments& args)
             "value</th><th>exact top 1 % in stage 1's top 1 %</th></tr>\n";
     for (std::size_t k = 0; k < scores.size(); ++k)
     {
-      const StageError e = CompareStage(
-        firstScores[k].second, scores[k].second, scores[k].first == vis4gs::arrays::ViewCoverage);
+      const StageError e = CompareStage(firstScores[k].second,
+        scores[k].second,
+        vis4gs::SuspiciousEndOf(scores[k].first) == vis4gs::SuspiciousEnd::Low);
       std::cout << "vis4gs analyze: stage 1 error, " << scores[k].first << ": largest difference "
                 << e.LargestDifference << " (largest exact value " << e.LargestExact
                 << "), exact top 1 % in stage 1's top 1 %: " << e.TopShared << " of " << e.TopCount
@@ -893,12 +942,13 @@ int Run(const Vis4GSArguments& args)
         (output / "scores.csv").string() + ": could not be written (" + std::strerror(error) + ")");
     }
   }
-  // Top-k: highest blur/needle/shape, lowest coverage (floaters).
+  // Top-k: the suspicious end of each score first (lowest coverage: floaters).
   std::map<std::string, std::vector<std::size_t>> tops;
   for (const auto& [name, values] : scores)
   {
     std::vector<double> key = values;
-    if (name == vis4gs::arrays::ViewCoverage)
+    const bool lowest = vis4gs::SuspiciousEndOf(name) == vis4gs::SuspiciousEnd::Low;
+    if (lowest)
     {
       for (double& k : key)
       {
@@ -907,7 +957,7 @@ int Run(const Vis4GSArguments& args)
     }
     tops[name] = TopK(key, top);
     std::cout << "vis4gs analyze: top " << tops[name].size() << " by " << name
-              << (name == vis4gs::arrays::ViewCoverage ? " (lowest first)" : "") << ":\n";
+              << (lowest ? " (lowest first)" : "") << ":\n";
     for (std::size_t i : tops[name])
     {
       std::cout << "  Gaussian " << cloud.GetId(i) << "  " << values[i] << "\n";
@@ -922,18 +972,7 @@ int Run(const Vis4GSArguments& args)
     inputs.ViewsUsed = filter->GetNumberOfViewsUsed();
     for (const auto& [name, values] : scores)
     {
-      if (name == vis4gs::arrays::ViewCoverage)
-      {
-        inputs.ViewCoverage = &values;
-      }
-      else if (name == vis4gs::arrays::BlurScore)
-      {
-        inputs.BlurScore = &values;
-      }
-      else if (name == vis4gs::arrays::NeedleScore)
-      {
-        inputs.NeedleScore = &values;
-      }
+      inputs.Scores[vis4gs::FindScore(name)->Name] = &values;
     }
     const std::vector<std::uint8_t> selected = rule->Evaluate(inputs);
     const std::string canonical = rule->ToString();
@@ -998,9 +1037,10 @@ int Run(const Vis4GSArguments& args)
     colored.SH.assign(3 * cloud.Count, 0.0f);
     for (const auto& [name, values] : scores)
     {
-      if (name == vis4gs::arrays::NeedleShape)
+      const vis4gs::ScoreDefinition& score = *vis4gs::FindScore(name);
+      if (!(score.Needs & vis4gs::NeedsCameras))
       {
-        continue;
+        continue; // a property of the Gaussian alone, not of what the views see
       }
       std::vector<double> sorted;
       for (double v : values)
@@ -1011,8 +1051,7 @@ int Run(const Vis4GSArguments& args)
         }
       }
       std::sort(sorted.begin(), sorted.end());
-      const double hi = sorted.empty() ? 1.0
-        : name == vis4gs::arrays::ViewCoverage
+      const double hi = sorted.empty() || score.UnitRange
         ? 1.0
         : std::max(1e-30, sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))]);
       legends.push_back(Legend(name, 0.0, hi));
@@ -1085,10 +1124,10 @@ int Run(const Vis4GSArguments& args)
   {
     html << Histogram(values, name);
   }
-  html << "<h2>Overlays</h2><p>Scores through viridis (coverage 0..1; other scores 0..their "
-          "99th percentile), rendered with the rasteriser on black. The map is turned so that "
-          "the suspicious end of each score is the bright (yellow) end: low View Coverage, high "
-          "Blur and Needle scores.</p>\n";
+  html << "<h2>Overlays</h2><p>Scores through viridis (scores in [0, 1] such as the coverage "
+          "over 0..1; other scores 0..their 99th percentile), rendered with the rasteriser on "
+          "black. The map is turned so that the suspicious end of each score is the bright "
+          "(yellow) end: low View Coverage, high values of the other scores.</p>\n";
   for (const std::string& legend : legends)
   {
     html << legend;
@@ -1103,7 +1142,8 @@ int Run(const Vis4GSArguments& args)
   html << "<h2>Most suspicious Gaussians</h2>\n";
   for (const auto& [name, values] : scores)
   {
-    html << "<h3>" << name << (name == vis4gs::arrays::ViewCoverage ? " (lowest)" : "")
+    html << "<h3>" << name
+         << (vis4gs::SuspiciousEndOf(name) == vis4gs::SuspiciousEnd::Low ? " (lowest)" : "")
          << "</h3><table><tr><th>rank</th><th>GaussianId</th>";
     for (const auto& s : scores)
     {
@@ -1132,6 +1172,7 @@ int Run(const Vis4GSArguments& args)
 }
 
 VIS4GS_REGISTER_COMMAND("analyze",
-  "Compute View Coverage, Blur and Needle scores of a scene; write tables, images and a report.",
+  "Compute the per-Gaussian scores (View Coverage, Blur, Needle, ...) of a scene; write tables, "
+  "images and a report.",
   Define,
   Run)

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -63,8 +64,12 @@ int Run(const Vis4GSArguments& args)
     vis4gs::SnapshotReadOptions o;
     o.Arrays = vis4gs::SnapshotParameters;
     o.ShDegree = shDegree;
+    // -1 is the last snapshot, as --help says (the nearest to -1 would be the first).
+    const std::vector<int>& iterations = log.GetSnapshotIterations();
+    const int wanted = args.GetInt("iteration");
     int iteration = 0;
-    cloud = log.ReadNearestSnapshot(args.GetInt("iteration"), o, &iteration);
+    cloud = log.ReadNearestSnapshot(
+      wanted < 0 && !iterations.empty() ? iterations.back() : wanted, o, &iteration);
     what = "snapshot " + std::to_string(iteration);
   }
   else

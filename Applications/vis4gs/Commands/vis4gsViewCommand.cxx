@@ -6,6 +6,7 @@
 #include "Vis4GSDocument.h"
 #include "Vis4GSMainWindow.h"
 #include "Vis4GSSelfTest.h"
+#include "Vis4GSSoak.h"
 
 #include "QVTKOpenGLNativeWidget.h"
 
@@ -50,6 +51,20 @@ void Define(Vis4GSArguments& args)
     "view's orbit (moving frames per second, the longest event-loop gap, the still frame "
     "after the stop) and the tree view's pan/zoom frames per second, then exit (no scores "
     "are computed).");
+  args.AddOption("soak",
+    "N,DIR",
+    "",
+    "A soak of the application (issue 35): N cycles in this process, each opening FILE and "
+    "--soak-also in turn, switching iterations, selecting with every mode and measuring a "
+    "clean-up; resident memory, descriptors, threads and temporary files per cycle go to "
+    "DIR/soak.csv; exits 1 when they grow beyond the bounds (--soak-bound).");
+  args.AddOption("soak-also", "FILE", "", "With --soak: the file opened every other cycle.");
+  args.AddOption("soak-bound",
+    "MB",
+    "16",
+    "With --soak: resident memory growth allowed after the warm-up (the mean of the last 5 "
+    "cycles against that of the 5 after the warm-up); descriptors, threads and temporary "
+    "entries may not grow.");
   args.AddOption("splat-budget",
     "N",
     "200000",
@@ -108,7 +123,7 @@ int Run(const Vis4GSArguments& args)
   {
     if (args.GetPositional("FILE").empty())
     {
-      std::cerr << "vis4gs view: --dump-inputs needs a FILE\n";
+      std::cerr << "vis4gs view: error: --dump-inputs needs a FILE\n";
       return 1;
     }
     Vis4GSDocument::LoadAndDumpInputs(
@@ -117,7 +132,7 @@ int Run(const Vis4GSArguments& args)
   }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
   {
-    std::cerr << "vis4gs view: no display (set DISPLAY, or run under xvfb-run)\n";
+    std::cerr << "vis4gs view: error: no display (set DISPLAY, or run under xvfb-run)\n";
     return 1;
   }
   // Must come before the QApplication (guide: "More traps").
@@ -132,7 +147,8 @@ int Run(const Vis4GSArguments& args)
     if (args.GetPositional("FILE").empty() || t.size() != 3 ||
       !std::all_of(t.begin(), t.end(), [](double v) { return v >= 0; }))
     {
-      std::cerr << "vis4gs view: --compare needs a FILE and --compare-thresholds M,O,S >= 0\n";
+      std::cerr
+        << "vis4gs view: error: --compare needs a FILE and --compare-thresholds M,O,S >= 0\n";
       return 1;
     }
     Vis4GSCompareWindow compare;
@@ -170,7 +186,7 @@ int Run(const Vis4GSArguments& args)
   {
     if (args.GetPositional("FILE").empty())
     {
-      std::cerr << "vis4gs view: --benchmark needs a FILE\n";
+      std::cerr << "vis4gs view: error: --benchmark needs a FILE\n";
       return 1;
     }
     Vis4GSInstallBenchmark(&window, start, startCpu);
@@ -183,19 +199,41 @@ int Run(const Vis4GSArguments& args)
     const std::vector<double> tolerance = args.GetNumbers("baseline-tolerance");
     if (tolerance.size() != 2)
     {
-      std::cerr << "vis4gs view: --baseline-tolerance expects T,F\n";
+      std::cerr << "vis4gs view: error: --baseline-tolerance expects T,F\n";
       return 1;
     }
     selfTestOptions.BaselineDirectory = QString::fromStdString(args.Get("baseline"));
     selfTestOptions.Tolerance = static_cast<int>(tolerance[0]);
     selfTestOptions.Fraction = tolerance[1];
   }
+  if (!args.Get("soak").empty())
+  {
+    const std::string soak = args.Get("soak");
+    const auto comma = soak.find(',');
+    Vis4GSSoakOptions o;
+    o.Cycles = std::atoi(soak.substr(0, comma).c_str());
+    o.Directory = QString::fromStdString(comma == std::string::npos ? "." : soak.substr(comma + 1));
+    o.BoundMB = args.GetDouble("soak-bound");
+    o.Files << QString::fromStdString(args.GetPositional("FILE"));
+    if (!args.Get("soak-also").empty())
+    {
+      o.Files << QString::fromStdString(args.Get("soak-also"));
+    }
+    if (args.GetPositional("FILE").empty() || o.Cycles < 10)
+    {
+      std::cerr << "vis4gs view: error: --soak needs a FILE and N >= 10 cycles\n";
+      return 1;
+    }
+    window.show();
+    Vis4GSInstallSoak(&window, o);
+    return app.exec();
+  }
   if (!selfTest.empty())
   {
     Vis4GSInstallSelfTest(&window, selfTestOptions);
     if (args.GetPositional("FILE").empty())
     {
-      std::cerr << "vis4gs view: --self-test needs a FILE\n";
+      std::cerr << "vis4gs view: error: --self-test needs a FILE\n";
       return 1;
     }
   }

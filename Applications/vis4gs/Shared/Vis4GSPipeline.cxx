@@ -3,6 +3,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
+#include "vtkGaussianOutputWindow.h"
 
 //------------------------------------------------------------------------------
 Vis4GSErrorCollector::Vis4GSErrorCollector(vtkAlgorithm* algorithm)
@@ -14,7 +15,10 @@ Vis4GSErrorCollector::Vis4GSErrorCollector(vtkAlgorithm* algorithm)
     {
       auto* messages = static_cast<std::string*>(client);
       const char* text = static_cast<const char*>(callData);
-      *messages += (messages->empty() ? "" : "; ") + std::string(text ? text : "error");
+      // VTK hands the message as its output window would print it: "ERROR: In file, line
+      // N\nvtkClass (0x...): problem"; people are shown the problem.
+      std::string message = vtkGaussianOutputWindow::CleanMessage(text ? text : "");
+      *messages += (messages->empty() ? "" : "; ") + (message.empty() ? "error" : message);
     });
   this->Tag = algorithm->AddObserver(vtkCommand::ErrorEvent, this->Callback);
 }

@@ -14,8 +14,9 @@
 
 class vtkAlgorithm;
 
-/// Collects the error messages @p algorithm reports while this lives (they still go to VTK's
-/// output window too).
+/// Collects the error messages @p algorithm reports while this lives, cleaned of VTK's
+/// decorations (vtkGaussianOutputWindow::CleanMessage). An algorithm observed for its errors
+/// does not print them: the caller shows or throws them.
 class Vis4GSErrorCollector
 {
 public:

@@ -37,8 +37,19 @@ from vtkmodules.vtkCommonCore import vtkObject
 
 vtkObject.GlobalWarningDisplayOff()
 
-SCORE_ARRAYS = {"coverage": "ViewCoverage", "blur": "BlurScore", "needle": "NeedleScore",
-                "shape": "NeedleShape"}
+
+
+def registry():
+    """The score registry as the Python layer reads it: {short name: array}, the default list,
+    the short names that need cameras, the arrays whose suspicious end is low."""
+    import vis4gs
+    from vis4gs import scene
+    reg = vis4gs.vtkGaussianScoreRegistry
+    low = {reg.GetArrayName(i) for i in range(reg.GetNumberOfScores())
+           if reg.GetSuspiciousEnd(i) < 0}
+    return scene.SCORES, scene.DEFAULT_SCORES, scene._NEEDS_CAMERAS, low
+
+
 PLY_TYPES = {"float": "<f4", "float32": "<f4", "double": "<f8", "float64": "<f8",
              "uchar": "u1", "uint8": "u1", "char": "i1", "int8": "i1", "short": "<i2",
              "int16": "<i2", "ushort": "<u2", "uint16": "<u2", "int": "<i4", "int32": "<i4",
@@ -84,8 +95,9 @@ def compute_scores(scene, options, demo):
     unknown = set(options) - known
     if unknown:
         stop(f"this checker does not reproduce the option(s) {sorted(unknown)}")
-    wanted = options.get("scores", "coverage,blur,needle,shape").split(",")
-    need_cameras = any(s in wanted for s in ("coverage", "blur", "needle"))
+    score_arrays, default, needs_cameras, _ = registry()
+    wanted = options["scores"].split(",") if "scores" in options else list(default)
+    need_cameras = any(s in needs_cameras for s in wanted)
     train_views = None
     if scene.endswith(".h5"):
         reader = vis4gs.vtkGaussianTrainingLogReader()
@@ -112,10 +124,7 @@ def compute_scores(scene, options, demo):
     score_filter.SetInputConnection(points_port)
     if need_cameras:
         score_filter.SetCamerasConnection(cameras_port)
-    score_filter.SetComputeViewCoverage("coverage" in wanted)
-    score_filter.SetComputeBlurScore("blur" in wanted)
-    score_filter.SetComputeNeedleScore("needle" in wanted)
-    score_filter.SetComputeNeedleShape("shape" in wanted)
+    score_filter.SetScores(",".join(wanted))
     loss = int(options.get("loss-resolution", 1))
     coverage = int(options.get("coverage-resolution", 1))
     stride = int(options.get("view-stride", 1))
@@ -135,10 +144,10 @@ def compute_scores(scene, options, demo):
     result = {"GaussianId": vtk_to_numpy(pd.GetPedigreeIds()).astype(np.int64),
               "points": vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)}
     for key in wanted:
-        array = pd.GetArray(SCORE_ARRAYS[key])
+        array = pd.GetArray(score_arrays[key])
         if array is None:
-            stop(f"the score filter computed no {SCORE_ARRAYS[key]}")
-        result[SCORE_ARRAYS[key]] = vtk_to_numpy(array).astype(np.float64)
+            stop(f"the score filter computed no {score_arrays[key]}")
+        result[score_arrays[key]] = vtk_to_numpy(array).astype(np.float64)
     if need_cameras and pd.GetArray("NoVisibleView") is not None:
         result["NoVisibleView"] = vtk_to_numpy(pd.GetArray("NoVisibleView")).astype(np.int64)
     if demo:
@@ -220,7 +229,9 @@ def check_outputs(output, wanted, ref, top):
         stop("outputs missing")
     before = len(failures)
     header, csv_cols = read_csv(os.path.join(output, "scores.csv"))
-    names = [SCORE_ARRAYS[k] for k in wanted]
+    score_arrays, _, _, lowest_first = registry()
+    # Registry order, whatever the order asked.
+    names = [a for k, a in score_arrays.items() if k in wanted]
     expected_header = ["GaussianId"] + names + (["NoVisibleView"] if "NoVisibleView" in ref
                                                 else [])
     check(header == expected_header, f"scores.csv header {header}, expected {expected_header}")
@@ -235,7 +246,8 @@ def check_outputs(output, wanted, ref, top):
             continue
         got, exp = csv_cols[name], ref[name]
         # The CSV prints 9 significant digits: a relative 1e-8 covers the printing only.
-        same = np.isclose(got, exp, rtol=1e-8, atol=1e-300) | (np.isnan(got) & np.isnan(exp))
+        same = np.isclose(got, exp, rtol=1e-8, atol=1e-300) | (np.isnan(got) & np.isnan(exp)) | \
+            (np.isinf(got) & (got == exp))
         bad = np.flatnonzero(~same)
         check(bad.size == 0,
               f"scores.csv {name} differs from the score filter's at {bad.size} of {len(got)} "
@@ -258,7 +270,7 @@ def check_outputs(output, wanted, ref, top):
             # float32 of the CSV's 9 digits may round the other way than float32 of the
             # double: one float32 step apart at most.
             same = (np.abs(got - exp) <= np.spacing(np.abs(exp).astype(np.float32))) | \
-                (np.isnan(got) & np.isnan(exp))
+                (np.isnan(got) & np.isnan(exp)) | (np.isinf(got) & (got == exp))
             check(same.all(), f"scores.ply {name} differs from scores.csv's at "
                   f"{int((~same).sum())} rows")
     if "NoVisibleView" in ref:
@@ -279,8 +291,9 @@ def check_outputs(output, wanted, ref, top):
     tables = report_tables(report)
     for name in names:
         values = ref[name]
-        finite = np.isfinite(values)
-        key = np.where(finite, -values if name != "ViewCoverage" else values, np.inf)
+        # NaN ranks nowhere; +inf (a cost for no contribution) ranks first.
+        finite = ~np.isnan(values)
+        key = np.where(finite, values if name in lowest_first else -values, np.inf)
         listed = tables.get(name)
         if not check(listed is not None, f"report.html has no table of the {name} ranking"):
             continue

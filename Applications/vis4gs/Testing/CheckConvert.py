@@ -165,6 +165,16 @@ def main():
     check("missing.ply" in out, "a missing input is named: " + out.strip())
     out = convert(vis4gs, base, os.path.join(work, "x.glb"), "--sh-degree=5", status=1)
     check("--sh-degree" in out, "--sh-degree=5 is refused")
+    # A training log: its last snapshot by default (--iteration=-1), as --help says.
+    log = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "Data",
+                       "Demo", "vis4gs-demo.h5")
+    import h5py  # noqa: E402 - only this check reads a log
+    with h5py.File(log, "r") as f:
+        snapshots = sorted(int(k) for k in f["snapshots"])
+    for option, expected in (((), snapshots[-1]), (("--iteration=1",), snapshots[0])):
+        out = convert(vis4gs, log, os.path.join(work, "log.ply"), *option)
+        check("(snapshot %d)" % expected in out, "a log converts its snapshot %d with %s: %s" % (
+            expected, " ".join(option) or "no --iteration", out.strip().splitlines()[0]))
     finish("PASSED vis4gs convert: %d pairs of formats" % (len(FORMATS) ** 2))
 
 

@@ -10,8 +10,8 @@ For WRITER (one of WRITERS below) the script mounts a small tmpfs in WORKDIR and
    write fails, after some files were written);
 3. remounts the file system read-only and runs it again.
 
-Each failing run must exit with status 1 (a failure the program explains: not a crash, not 0),
-print a message naming a path inside the mount and the problem ("No space left on device",
+Each failing run must exit with status 1 (a failure the program explains: not a crash, not 0;
+the Python logger instead lets its training end, status 0, and warns), print a message naming a path inside the mount and the problem ("No space left on device",
 "Read-only file system"), leave no file behind (no partial output, no temporary) and leave the
 first run's files byte for byte as they were.
 
@@ -110,7 +110,13 @@ def writers(vis4gs, work, source):
                 sys.exit("FAILED: could not make the cleaned scene for repair")
         return path
 
-    logger_script = os.path.join(work, "logger.py")
+    logger_tests = os.path.join(source, "Applications", "TrainingLogger", "tests")
+
+    def convert(suffix):
+        """vis4gs convert of the demo log's last snapshot into one output format."""
+        return ("16m", lambda: None, lambda out: [
+            vis4gs, "convert", demo_log, out + suffix])
+
     return {
         # scores.ply, scores.csv, report.html and an overlay image
         "analyze": ("32m", lambda: None, lambda out: [
@@ -146,6 +152,35 @@ def writers(vis4gs, work, source):
             "w = vis4gs.vtkGaussianPLYWriter(); w.SetInputConnection(r.GetOutputPort(0))\n"
             "w.SetFileName(sys.argv[2] + '/scene.ply')\n"
             "sys.exit(0 if w.Write() == 1 else 1)\n", demo_log, out]),
+        # every format vis4gs convert writes
+        "convert-ply": convert(".ply"),
+        "convert-compressed-ply": convert(".compressed.ply"),
+        "convert-splat": convert(".splat"),
+        "convert-spz": convert(".spz"),
+        "convert-glb": convert(".glb"),
+        "convert-gltf": convert(".gltf"),
+        # the Python training logger in a (stand-in) gsplat training loop: the training must
+        # go on (exit status 0, its last line printed) whatever happens to the log
+        "logger": ("16m", lambda: None, lambda out: [
+            sys.executable, "-c",
+            "import os, sys, warnings\n"
+            "sys.path[:0] = [os.path.dirname(sys.argv[2]), sys.argv[2]]\n"
+            "import torch, mock_gsplat_ops\n"
+            "from test_gsplat import make_splats\n"
+            "from vis4gs_logger import TrainingLogger, track_gsplat\n"
+            "os.makedirs(os.path.dirname(sys.argv[1]), exist_ok=True)\n"
+            "params, optimizers, state = make_splats(500, 4)\n"
+            "logger = TrainingLogger(sys.argv[1], snapshot_interval=5, iterations=50)\n"
+            "track_gsplat(params, logger, modules=[mock_gsplat_ops])\n"
+            "for step in range(1, 51):\n"
+            "    logger.log_metrics(step, loss=1.0 / step)\n"
+            "    mask = torch.zeros(len(params['means']), dtype=torch.bool)\n"
+            "    mask[step % len(mask)] = True\n"
+            "    mock_gsplat_ops.duplicate(params, optimizers, state, mask)\n"
+            "    logger.step(step)\n"
+            "logger.close()\n"
+            "print('the training ended at step', step)\n", out + "/run.h5", logger_tests],
+            0, "the training ended at step 50"),
     }
 
 
@@ -156,7 +191,9 @@ def main():
     table = writers(vis4gs, work, source)
     if name not in table:
         sys.exit(f"FAILED: unknown writer {name} (one of {', '.join(table)})")
-    size, prepare, command = table[name]
+    # A writer that must fail says so with exit status 1; the logger must let its training
+    # end normally (status 0, its last line printed) and only warn.
+    size, prepare, command, status, ended = (table[name] + (1, None))[:5]
     os.makedirs(os.path.join(work, "inputs"), exist_ok=True)
     point = os.path.join(work, "mount")
     if os.path.ismount(point):
@@ -190,7 +227,9 @@ def main():
             rc, text, seconds = run(command(out))
             after = snapshot(point, skip=(filler,) if filler else ())
             what = f"{name}, {label}"
-            check(rc == 1, f"{what}: exit status 1, a failure it explains (got {rc})")
+            check(rc == status, f"{what}: exit status {status} (got {rc})")
+            if ended:
+                check(ended in text, f"{what}: the program goes on to its end ('{ended}')")
             check(problem in text and point in text,
                   f"{what}: the message names a path in {point} and '{problem}'")
             added = sorted(set(after) - set(before))
@@ -198,7 +237,7 @@ def main():
             changed = sorted(k for k in before if after.get(k) != before[k])
             check(not changed, f"{what}: the first run's files are untouched (changed or gone: "
                   f"{changed})")
-            if rc != 1 or problem not in text or point not in text or added or changed:
+            if rc != status or problem not in text or point not in text or added or changed:
                 print("--- its output:\n" + text[-3000:] + "\n---")
             if filler:
                 os.remove(os.path.join(point, filler))

@@ -5,7 +5,8 @@ gets for a selection); this script builds the four views from
 the same VTK classes a user connects (training-log reader, genealogy filter on its events
 port, score filter on its Gaussians and cameras ports, tree / timeline / histogram views) and
 requires every array to be equal, value for value (NaN equal to NaN) and name for name.
-Independently of both, the Gaussians, the metrics and the selection's history (ids, snapshots,
+A vtkGaussianSession on the same log (the selection on its input) must give the same arrays on
+every port. Independently of all, the Gaussians, the metrics and the selection's history (ids, snapshots,
 position, opacity, largest scale) are compared with the log read by h5py and the tree's size
 with the log's events.
 
@@ -123,8 +124,9 @@ reader.SetFileName(log)
 scores = vis4gs.vtkGaussianArtifactScoreFilter()
 scores.SetInputConnection(reader.GetOutputPort(0))
 scores.SetCamerasConnection(reader.GetOutputPort(1))
-for score in ("ViewCoverage", "BlurScore", "NeedleScore", "NeedleShape"):
-    getattr(scores, f"SetCompute{score}")(True)
+# The application computes every registered score its inputs allow; the demo log has cameras
+# and images, so all of them.
+scores.SetScores(",".join(vis4gs.SCORES))
 genealogy = vis4gs.vtkGaussianGenealogyTreeFilter()
 genealogy.SetInputConnection(reader.GetOutputPort(3))
 genealogy.SetRepairUnknownParents(True)
@@ -154,7 +156,7 @@ check(tree_view.GetTree() is tree, "the tree view holds the genealogy filter's o
 check(same(vtk_to_numpy(app_scene.GetPoints().GetData()),
            vtk_to_numpy(script_scene.GetPoints().GetData())), "scene: positions differ")
 compare_fields("scene", app_scene.GetPointData(), script_scene.GetPointData())
-for score in ("ViewCoverage", "BlurScore", "NeedleScore", "NeedleShape"):
+for score in vis4gs.SCORES.values():
     a = values(app_scene.GetPointData().GetArray(score))
     check(a is not None and np.count_nonzero(np.nan_to_num(a)) > 0.5 * a.size,
           f"scene: the application's {score} is computed (mostly non-zero)")
@@ -209,6 +211,31 @@ script_history = vtkTable()
 check(reader.GetPropertyHistory(id_array, script_history) == 1,
       "the script's reader gives the selection's history")
 compare_fields("history", app_history.GetRowData(), script_history.GetRowData())
+
+# The session (vtkGaussianSession: the pipeline object of the Python layer, the ParaView plugin
+# and vis4gs analyze's reading) on the same file, the selection on its input: every port holds
+# the application's arrays.
+session = vis4gs.vtkGaussianSession()
+session.SetFileName(log)
+session.GetGenealogyFilter().SetRepairUnknownParents(True)
+session.SetSelectedIds(id_array)
+for port in range(session.NumberOfPorts):
+    if port < session.RemovalViewsPort:  # (the removal effect is the clean-up's, not a view's)
+        check(session.Update(port, None) == 1, f"the session's port {port} updates")
+session_scene = session.GetGaussiansOutput()
+check(same(vtk_to_numpy(app_scene.GetPoints().GetData()),
+           vtk_to_numpy(session_scene.GetPoints().GetData())), "session: the same points")
+compare_fields("session scene", app_scene.GetPointData(), session_scene.GetPointData())
+compare_fields("session metrics", app_metrics.GetRowData(), session.GetMetricsOutput().GetRowData())
+session_tree = session.GetOutputDataObject(session.TreePort)
+compare_fields("session tree vertices", app_vertices.GetRowData(), session_tree.GetVertexData(),
+               [n for n in (app_vertices.GetColumnName(i)
+                            for i in range(app_vertices.GetNumberOfColumns()))
+                if n != "ParentVertex"])
+compare_fields("session family bands", read_table("bands.vtt").GetRowData(),
+               session.GetOutputDataObject(session.BandsPort).GetRowData())
+compare_fields("session history", app_history.GetRowData(),
+               session.GetHistoryOutput().GetRowData())
 
 # (No selection hub: a hub renders its views on a change, and this test has no display; the
 # history holds the selection only, at most MaximumHistoryLines = 16 Gaussians.)

@@ -2,6 +2,7 @@
 #include "Vis4GSCleanupPanelInternals.h"
 
 #include "GaussianIO.h"
+#include "ScoreRegistry.h"
 #include "SelectionRule.h"
 #include "Vis4GSCompareWindow.h"
 #include "Vis4GSDataModel.h"
@@ -449,15 +450,9 @@ void Vis4GSCleanupPanel::SetScene(vtkPolyData* scene, vtkTable* cameras)
   }
   // Re-apply once the scores the rule reads are there (they are computed after the scene).
   const vis4gs::SelectionRule rule = vis4gs::SelectionRule::Parse(d->AppliedRule.toStdString());
-  const std::pair<vis4gs::RuleAttribute, const char*> scores[] = {
-    { vis4gs::RuleAttribute::Coverage, vis4gs::arrays::ViewCoverage },
-    { vis4gs::RuleAttribute::Views, vis4gs::arrays::ViewCoverage },
-    { vis4gs::RuleAttribute::Blur, vis4gs::arrays::BlurScore },
-    { vis4gs::RuleAttribute::NeedleScore, vis4gs::arrays::NeedleScore }
-  };
-  for (const auto& [attribute, array] : scores)
+  for (const std::string& score : rule.ScoresRead())
   {
-    if (rule.Reads(attribute) && !scene->GetPointData()->GetArray(array))
+    if (!scene->GetPointData()->GetArray(vis4gs::FindScore(score)->ArrayName))
     {
       return;
     }

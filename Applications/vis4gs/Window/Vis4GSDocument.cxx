@@ -3,6 +3,7 @@
 #include "Vis4GSStateFiles.h"
 
 #include "RemovalEffect.h"
+#include "ScoreRegistry.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
@@ -525,10 +526,17 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   {
     filter->SetCamerasData(cameras);
   }
-  filter->SetComputeViewCoverage(haveCameras);
-  filter->SetComputeBlurScore(haveCameras && withImages);
-  filter->SetComputeNeedleScore(haveCameras && withImages);
-  filter->SetComputeNeedleShape(true);
+  // Every registered score the inputs allow.
+  std::string scores;
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    if ((haveCameras || !(d.Needs & vis4gs::NeedsCameras)) &&
+      (withImages || !(d.Needs & vis4gs::NeedsImages)))
+    {
+      scores += (scores.empty() ? "" : ",") + std::string(d.Name);
+    }
+  }
+  filter->SetScores(scores.c_str());
   if (baseline && haveCameras && withImages && filter->GetLossResolution() == 1)
   {
     std::vector<vis4gs::Camera> views;
@@ -551,11 +559,12 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
     throw std::runtime_error("the score filter failed: " + errors);
   }
   auto result = vtkSmartPointer<vtkPolyData>::New();
-  for (const char* name : { vis4gs::arrays::ViewCoverage,
-         vis4gs::arrays::BlurScore,
-         vis4gs::arrays::NeedleScore,
-         vis4gs::arrays::NeedleShape,
-         vis4gs::arrays::NoVisibleView })
+  std::vector<const char*> names{ vis4gs::arrays::NoVisibleView };
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    names.push_back(d.ArrayName);
+  }
+  for (const char* name : names)
   {
     if (vtkAbstractArray* a = filter->GetOutput()->GetPointData()->GetAbstractArray(name))
     {

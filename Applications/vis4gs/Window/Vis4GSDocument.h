@@ -111,8 +111,9 @@ struct Vis4GSDocument
   int CamerasWithImages = 0;
 
   /**
-   * Computes the score arrays of @p scene with vtkGaussianArtifactScoreFilter: NeedleShape
-   * always; ViewCoverage with @p cameras; BlurScore and NeedleScore when @p withImages too.
+   * Computes the score arrays of @p scene with vtkGaussianArtifactScoreFilter: every score of
+   * the registry (Core/Diagnostics/ScoreRegistry.h) that the inputs allow: those that need
+   * cameras with @p cameras, those that need images when @p withImages too.
    * Returns a new polydata holding the arrays (the input is not modified, so this can run in
    * a worker thread while the GUI draws @p scene). Throws std::runtime_error on failure.
    *

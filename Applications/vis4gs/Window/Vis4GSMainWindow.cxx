@@ -374,8 +374,10 @@ void Vis4GSMainWindow::BuildUi()
         scene ? scene->GetPointData()->GetArray(name.toUtf8().constData()) : nullptr;
       if (array)
       {
+        // Finite values only: a score may hold +inf (CostPerContribution of a Gaussian that
+        // is drawn and never shows), which no spin box can show.
         double range[2];
-        array->GetRange(range);
+        array->GetFiniteRange(range, 0);
         d->Panel->SetOverlayRange(range[0], range[1]);
       }
       this->UpdateOverlay();
@@ -740,7 +742,7 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   if (!doc)
   {
     this->statusBar()->showMessage("could not open: " + error);
-    std::cerr << "vis4gs view: " << error.toStdString() << "\n";
+    std::cerr << "vis4gs view: error: " << error.toStdString() << "\n";
     emit this->loadFailed(error);
     return;
   }
@@ -969,7 +971,7 @@ void Vis4GSMainWindow::StartScores()
           if (!scores)
           {
             this->statusBar()->showMessage("scores: " + error, 5000);
-            std::cerr << "vis4gs view: scores: " << error.toStdString() << "\n";
+            std::cerr << "vis4gs view: error: scores: " << error.toStdString() << "\n";
           }
           else if (current == input.GetPointer())
           {

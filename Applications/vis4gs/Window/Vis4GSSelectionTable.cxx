@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSSelectionTable.h"
 
+#include "ScoreRegistry.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianSelectionHub.h"
 
@@ -14,22 +15,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
+
+//------------------------------------------------------------------------------
+namespace
+{
+// The columns after id and centre: opacity, largest scale, then every registered score.
+std::vector<std::string> AttributeColumns()
+{
+  std::vector<std::string> names{ "Opacity", "Scale" };
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    names.emplace_back(d.ArrayName);
+  }
+  return names;
+}
+}
 
 //------------------------------------------------------------------------------
 Vis4GSSelectionTable::Vis4GSSelectionTable(QWidget* parent)
   : QTableWidget(parent)
 {
-  this->setColumnCount(10);
-  this->setHorizontalHeaderLabels({ "GaussianId",
-    "x",
-    "y",
-    "z",
-    "Opacity",
-    "Scale",
-    "ViewCoverage",
-    "BlurScore",
-    "NeedleScore",
-    "NeedleShape" });
+  QStringList headers{ "GaussianId", "x", "y", "z" };
+  for (const std::string& name : AttributeColumns())
+  {
+    headers << QString::fromStdString(name);
+  }
+  this->setColumnCount(headers.size());
+  this->setHorizontalHeaderLabels(headers);
   this->setSortingEnabled(true);
   this->horizontalHeader()->setStretchLastSection(true);
 }
@@ -47,16 +61,14 @@ void Vis4GSSelectionTable::Show(vtkPolyData* scene, const std::vector<vtkIdType>
       scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId),
       rows);
     vtkPointData* pd = scene->GetPointData();
-    vtkDataArray* columns[] = { pd->GetArray(vis4gs::arrays::GaussianId),
-      nullptr,
-      nullptr,
-      nullptr,
-      pd->GetArray("Opacity"),
-      pd->GetArray("Scale"),
-      pd->GetArray(vis4gs::arrays::ViewCoverage),
-      pd->GetArray(vis4gs::arrays::BlurScore),
-      pd->GetArray(vis4gs::arrays::NeedleScore),
-      pd->GetArray(vis4gs::arrays::NeedleShape) };
+    std::vector<vtkDataArray*> columns{
+      pd->GetArray(vis4gs::arrays::GaussianId), nullptr, nullptr, nullptr
+    };
+    for (const std::string& name : AttributeColumns())
+    {
+      columns.push_back(pd->GetArray(name.c_str()));
+    }
+    const int scaleColumn = 5;
     const int shown = static_cast<int>(std::min<vtkIdType>(rows->GetNumberOfTuples(), 1000));
     this->setRowCount(shown);
     for (int k = 0; k < shown; ++k)
@@ -64,18 +76,18 @@ void Vis4GSSelectionTable::Show(vtkPolyData* scene, const std::vector<vtkIdType>
       const vtkIdType r = rows->GetValue(k);
       double p[3];
       scene->GetPoint(r, p);
-      for (int c = 0; c < 10; ++c)
+      for (int c = 0; c < static_cast<int>(columns.size()); ++c)
       {
         double value = NAN;
         if (c >= 1 && c <= 3)
         {
           value = p[c - 1];
         }
-        else if (c == 5 && columns[5])
+        else if (c == scaleColumn && columns[c])
         {
-          value = std::max({ columns[5]->GetComponent(r, 0),
-            columns[5]->GetComponent(r, 1),
-            columns[5]->GetComponent(r, 2) });
+          value = std::max({ columns[c]->GetComponent(r, 0),
+            columns[c]->GetComponent(r, 1),
+            columns[c]->GetComponent(r, 2) });
         }
         else if (columns[c])
         {

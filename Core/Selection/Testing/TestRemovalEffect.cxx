@@ -425,7 +425,7 @@ protected:
     }
     SelectionRuleInputs in;
     in.Cloud = &this->Cloud;
-    in.ViewCoverage = &this->Scores.ViewCoverage;
+    in.Scores["coverage"] = &this->Scores.ViewCoverage;
     in.ViewsUsed = this->Scores.ViewsUsed;
     return SelectionRule::Parse(text).Evaluate(in);
   }
@@ -691,8 +691,8 @@ TEST_F(DemoLogRemoval, ScorePassBaselineAndTileReuse)
   // with tile reuse (the score pass's "before"; the test views rendered here).
   SelectionRuleInputs in;
   in.Cloud = &this->Cloud;
-  in.ViewCoverage = &this->Scores.ViewCoverage;
-  in.BlurScore = &this->Scores.BlurScore;
+  in.Scores["coverage"] = &this->Scores.ViewCoverage;
+  in.Scores["blur"] = &this->Scores.BlurScore;
   in.ViewsUsed = this->Scores.ViewsUsed;
   const std::vector<std::uint8_t> removed = SelectionRule::Parse("views<=3").Evaluate(in);
   this->Options.ReuseTiles = false;

@@ -2,6 +2,7 @@
 // The selection rule language (issue 20): parsing, canonical text, errors, evaluation on
 // hand-built scenes with hand-derived answers, and agreement with an independent numpy
 // evaluation of the same rules over the same arrays (selection_rule_numpy.py).
+#include "ScoreRegistry.h"
 #include "SelectionRule.h"
 
 #include <gtest/gtest.h>
@@ -170,9 +171,7 @@ TEST(SelectionRule, HandBuiltScene)
   const std::vector<double> needle{ 0, 0, 5, 0, 0, 0 };
   SelectionRuleInputs in;
   in.Cloud = &cloud;
-  in.ViewCoverage = &coverage;
-  in.BlurScore = &blur;
-  in.NeedleScore = &needle;
+  in.Scores = { { "coverage", &coverage }, { "blur", &blur }, { "needle", &needle } };
   in.ViewsUsed = 20;
   auto sel = [&in](const std::string& text) { return SelectionRule::Parse(text).Select(in); };
   EXPECT_EQ(sel("coverage<=0.1 and opacity>=0.5"), (V{ 2, 3, 5 }));
@@ -223,12 +222,28 @@ TEST(SelectionRule, HandBuiltScene)
     EXPECT_NE(std::string(e.what()).find("'opacity>0.5 and blur top 5%'"), std::string::npos);
     EXPECT_EQ(e.Token, "blur");
   }
-  EXPECT_TRUE(rule.Reads(RuleAttribute::Coverage));
-  EXPECT_FALSE(rule.Reads(RuleAttribute::Blur));
-  EXPECT_TRUE(SelectionRule::Parse("views<2").Reads(RuleAttribute::Coverage));
+  // The scores a rule reads, by the registry's short names ("views" reads the coverage).
+  EXPECT_EQ(rule.ScoresRead(), std::vector<std::string>{ "coverage" });
+  EXPECT_EQ(SelectionRule::Parse("views<2").ScoresRead(), std::vector<std::string>{ "coverage" });
+  EXPECT_EQ(SelectionRule::Parse("needle_score>1 or blur top 1% or needle>0.5").ScoresRead(),
+    (std::vector<std::string>{ "blur", "needle" }));
+  EXPECT_TRUE(SelectionRule::Parse("opacity<0.1").ScoresRead().empty());
+  // Every registered score is an attribute under its rule name, read from Scores.
+  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
+  {
+    const SelectionRule byName = SelectionRule::Parse(std::string(d.RuleName) + " top 50%");
+    EXPECT_EQ(byName.ToString(), std::string(d.RuleName) + " top 50%");
+    EXPECT_EQ(byName.ScoresRead(), std::vector<std::string>{ d.Name });
+    const std::vector<double> values{ 0.1, 0.5, std::nan(""), 0.3, 0.2, 0.9 };
+    SelectionRuleInputs scored;
+    scored.Cloud = in.Cloud;
+    scored.Scores[d.Name] = &values;
+    // 5 finite values: k = ceil(2.5) = 3, the three largest.
+    EXPECT_EQ(byName.Select(scored), (V{ 1, 3, 5 })) << d.Name;
+  }
   // An array of the wrong size is refused before it is read.
   const std::vector<double> shortCoverage{ 1.0 };
-  in.ViewCoverage = &shortCoverage;
+  in.Scores["coverage"] = &shortCoverage;
   EXPECT_THROW(rule.Select(in), std::invalid_argument);
 }
 
@@ -323,9 +338,7 @@ TEST(SelectionRule, MatchesNumpy)
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   SelectionRuleInputs in;
   in.Cloud = &cloud;
-  in.ViewCoverage = &coverage;
-  in.BlurScore = &blur;
-  in.NeedleScore = &needleScore;
+  in.Scores = { { "coverage", &coverage }, { "blur", &blur }, { "needle", &needleScore } };
   in.ViewsUsed = views;
   for (std::size_t r = 0; r < rules.size(); ++r)
   {

@@ -287,6 +287,33 @@ TEST(SplatAttributes, DisplayModes)
   EXPECT_EQ(rgba[7], 0.15f);
   const float grey = 0.2126f;
   EXPECT_NEAR(rgba[4], 1.0f + 0.8f * (grey - 1.0f), 1e-6);
+  // Deferred true colours: the change to apply instead of the colour, the same opacities
+  // and keep; no colours needed.
+  const double hideScores[3] = { 1.0, 1.0, 0.0 };
+  h.Scores = hideScores;
+  h.HideOutsideRange = true;
+  h.VisibleRange = { 0.5, 2.0 };
+  std::vector<float> direct;
+  std::vector<std::uint8_t> directKeep;
+  ComputeSplatDisplay(colors, 3, h, direct, directKeep);
+  h.DeferTrueColor = true;
+  ComputeSplatDisplay(nullptr, 3, h, rgba, keep);
+  EXPECT_EQ(keep, directKeep);
+  EXPECT_EQ(keep, (std::vector<std::uint8_t>{ 1, 1, 0 }));
+  EXPECT_EQ(rgba[0], SplatDisplayHighlighted);
+  EXPECT_EQ(rgba[4], SplatDisplayDimmed);
+  EXPECT_EQ(rgba[8], SplatDisplayDimmed);
+  for (int i = 0; i < 3; ++i)
+  {
+    EXPECT_EQ(rgba[4 * i + 1], 0.0f);
+    EXPECT_EQ(rgba[4 * i + 2], 0.0f);
+    EXPECT_EQ(rgba[4 * i + 3], direct[4 * i + 3]);
+  }
+  h.Selected = nullptr;
+  h.DimUnselected = false;
+  ComputeSplatDisplay(nullptr, 3, h, rgba, keep);
+  EXPECT_EQ(rgba[0], SplatDisplayUnchanged);
+  EXPECT_EQ(rgba[3], 1.0f);
   SplatDisplayOptions missing;
   missing.ScoreColoring = true;
   EXPECT_THROW(ComputeSplatDisplay(colors, 3, missing, rgba, keep), std::invalid_argument);

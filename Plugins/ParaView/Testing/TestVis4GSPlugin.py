@@ -9,7 +9,11 @@
       colored by their Blur score in ParaView's Point Gaussian representation.
   pvbatch TestVis4GSPlugin.py folder PLUGIN SCORES_CSV PLY CAMERAS
       a 3DGS PLY with a COLMAP folder: the scores (view stride 8, loss resolution 4) against
-      the scores.csv of `vis4gs analyze` with the same options."""
+      the scores.csv of `vis4gs analyze` with the same options.
+  pvbatch TestVis4GSPlugin.py scores PLUGIN LOG SCORES_CSV ARRAY...
+      the scores named by ARRAY (the filter's Scores list, the score registry's array names) at
+      the log's last snapshot against the scores.csv of `vis4gs analyze LOG --scores=...`: a
+      score added to the registry reaches the plugin with no edit of its XML."""
 import csv
 import re
 import sys
@@ -28,10 +32,10 @@ def check(cond, what):
         failures.append(what)
 
 
-def same_as_csv(scores, path):
-    """The filter's arrays printed as the application prints scores.csv, row for row; returns
-    the number of rows and the column names."""
-    data = servermanager.Fetch(scores)
+def same_as_csv(scores, path, port=0):
+    """The filter's arrays (output `port`) printed as the application prints scores.csv, row
+    for row; returns the number of rows and the column names."""
+    data = servermanager.Fetch(scores, idx=port)
     pd = data.GetPointData()
     ids = vtk_to_numpy(pd.GetArray("GaussianId"))
     with open(path) as f:
@@ -66,6 +70,25 @@ if mode == "folder":
           "vis4gs analyze's scores.csv")
     sys.exit(0)
 
+if mode == "scores":
+    log, app_csv, arrays = sys.argv[3], sys.argv[4], sys.argv[5:]
+    reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
+    reader.UpdatePipelineInformation()
+    scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0),  # noqa: F821
+                                  Cameras=OutputPort(reader, 1), Scores=arrays)
+    scores.UpdatePipeline(time=list(reader.TimestepValues)[-1])
+    count, names = same_as_csv(scores, app_csv)
+    check(names[:len(arrays)] == arrays, f"scores.csv has {names}, asked for {arrays}")
+    pd = servermanager.Fetch(scores).GetPointData()
+    others = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())
+              if pd.GetArrayName(i) in ("ViewCoverage", "BlurScore", "NeedleScore")]
+    check(not others, f"scores not asked for were computed: {others}")
+    if failures:
+        print("FAILED:", *failures, sep="\n  ")
+        sys.exit(1)
+    print(f"ParaView plugin: {count} Gaussians' {', '.join(names)} = vis4gs analyze's scores.csv")
+    sys.exit(0)
+
 log, demo_output, screenshot = sys.argv[3:6]
 reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
 reader.UpdatePipelineInformation()
@@ -94,6 +117,16 @@ trace = servermanager.Fetch(lineage)
 traced = [trace.GetValueByName(r, "GaussianId").ToInt() for r in range(trace.GetNumberOfRows())]
 check(traced == expected, f"Vis4GS Lineage of {floater} gives {traced}, root-cause.txt {expected}")
 
+# The session (the pipeline the application, vis4gs analyze and the Python layer use): its
+# Gaussians port equals the demo's scores.csv too, its tree port the genealogy filter's tree.
+session = Vis4GSSession(FileName=log)  # noqa: F821
+session_count, _ = same_as_csv(session, f"{demo_output}/scores.csv", port=0)
+check(session_count == count, "the session's Gaussians are the demo's")
+session_tree = servermanager.Fetch(session, idx=3)
+check(session_tree.GetNumberOfVertices() == tree.GetNumberOfVertices(),
+      f"the session's tree has {session_tree.GetNumberOfVertices()} vertices, the genealogy "
+      f"filter's {tree.GetNumberOfVertices()}")
+
 view = GetActiveViewOrCreate("RenderView")
 view.ViewSize = [640, 480]
 view.ViewTime = times[-1]
@@ -116,5 +149,6 @@ if failures:
     print("FAILED:", *failures, sep="\n  ")
     sys.exit(1)
 print(f"ParaView plugin: {len(times)} time steps; {count} Gaussians' {', '.join(names)} "
-      f"= vis4gs demo's scores.csv; ancestry and Vis4GS Lineage of {floater} = root-cause.txt; "
+      f"= vis4gs demo's scores.csv (the scores filter and the session); ancestry and "
+      f"Vis4GS Lineage of {floater} = root-cause.txt; "
       f"{screenshot}")

@@ -3,8 +3,20 @@
 // buffers; mirrors the reference's preprocessCUDA in float (reference §2.3). Returns false for
 // a culled Gaussian.
 uniform samplerBuffer splatGeometry; // 3 RGBA texels per Gaussian
-uniform samplerBuffer splatColor;    // rgb, opacity scale
+uniform samplerBuffer splatColor;    // rgb (or what to do to the SH colour), opacity scale
 uniform usamplerBuffer splatOrder;   // draw position -> Gaussian index
+// SH colours evaluated here (reference §2.4, ShColor in Core/Scene/GaussianMath.h, same
+// operation order in float) from the coefficients uploaded once: the input's SH array as
+// RGBA texels, shStride floats per Gaussian (3 (degree + 1)^2 of the input's degree).
+uniform samplerBuffer splatSH;
+uniform int trueColor;      // 1: SH colours, splatColor.r says what to do to them; 0: splatColor.rgb
+uniform int shDegree;       // the degree evaluated (<= the input's)
+uniform int shStride;
+uniform float shC[14];      // C0, C1, C2[5], C3[7] of the reference
+uniform vec3 cameraCenter;  // in the frame of the means
+uniform vec3 highlightColor;
+uniform float highlightMix;
+uniform float dimDesaturation;
 uniform vec4 viewRow0;
 uniform vec4 viewRow1;
 uniform vec4 viewRow2;
@@ -12,6 +24,71 @@ uniform vec2 focal;
 uniform vec2 tanFov;
 uniform vec2 imageSize;
 uniform vec2 depthCoeffs;
+vec3 shColor(int idx, vec3 mu)
+{
+  vec3 d = mu - cameraCenter;
+  float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  d = len > 0.0 ? d / len : vec3(0.0);
+  // The coefficients of Gaussian idx: floats base .. base + 3 k - 1 of the buffer.
+  float f[52];
+  int k = (shDegree + 1) * (shDegree + 1);
+  int base = idx * shStride;
+  int first = base / 4;
+  int off = base - 4 * first;
+  int texels = (off + 3 * k + 3) / 4;
+  for (int j = 0; j < texels; ++j)
+  {
+    vec4 v = texelFetch(splatSH, first + j);
+    f[4 * j] = v.x;
+    f[4 * j + 1] = v.y;
+    f[4 * j + 2] = v.z;
+    f[4 * j + 3] = v.w;
+  }
+#define SH(i) vec3(f[off + 3 * (i)], f[off + 3 * (i) + 1], f[off + 3 * (i) + 2])
+  vec3 r = shC[0] * SH(0);
+  if (shDegree > 0)
+  {
+    float x = d.x, y = d.y, z = d.z;
+    r = r - shC[1] * y * SH(1) + shC[1] * z * SH(2) - shC[1] * x * SH(3);
+    if (shDegree > 1)
+    {
+      float xx = x * x, yy = y * y, zz = z * z;
+      float xy = x * y, yz = y * z, xz = x * z;
+      r = r + shC[2] * xy * SH(4) + shC[3] * yz * SH(5) + shC[4] * (2.0 * zz - xx - yy) * SH(6) +
+        shC[5] * xz * SH(7) + shC[6] * (xx - yy) * SH(8);
+      if (shDegree > 2)
+      {
+        r = r + shC[7] * y * (3.0 * xx - yy) * SH(9) + shC[8] * xy * z * SH(10) +
+          shC[9] * y * (4.0 * zz - xx - yy) * SH(11) +
+          shC[10] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy) * SH(12) +
+          shC[11] * x * (4.0 * zz - xx - yy) * SH(13) + shC[12] * z * (xx - yy) * SH(14) +
+          shC[13] * x * (xx - 3.0 * yy) * SH(15);
+      }
+    }
+  }
+#undef SH
+  return max(r + 0.5, vec3(0.0));
+}
+
+// The colour drawn: SplatAttributes' display colour, with the true colour from the SH here and
+// the highlight or dimming (SplatDisplayHighlighted = 1, SplatDisplayDimmed = 2) applied to it
+// as ComputeSplatDisplay does.
+vec3 displayColor(int idx, vec3 mu, vec4 col)
+{
+  if (trueColor == 0) { return col.rgb; }
+  vec3 c = shColor(idx, mu);
+  if (col.r == 1.0)
+  {
+    c = c + highlightMix * (highlightColor - c);
+  }
+  else if (col.r == 2.0)
+  {
+    float grey = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    c = c + dimDesaturation * (vec3(grey) - c);
+  }
+  return c;
+}
+
 // conic: A, B, C, opacity; center: reference pixel coordinates; rect: pixel columns/rows
 // x0, y0, x1, y1 (inclusive), reference convention; depth: NDC z.
 bool projectSplat(int drawIndex, out vec4 conic, out vec3 color, out vec2 center, out vec4 rect,
@@ -82,7 +159,7 @@ bool projectSplat(int drawIndex, out vec4 conic, out vec3 color, out vec2 center
   float y1 = min(min(ry1 * 16.0, imageSize.y) - 1.0, ceil(v + hy));
   if (x1 < x0 || y1 < y0) { return false; }
   conic = vec4(A, B, C, opacity);
-  color = col.rgb;
+  color = displayColor(idx, mu, col);
   center = vec2(u, v);
   rect = vec4(x0, y0, x1, y1);
   float zc = (depthCoeffs.x * (-t.z) + depthCoeffs.y) / t.z;

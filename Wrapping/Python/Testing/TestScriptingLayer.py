@@ -78,9 +78,34 @@ def demo(vis4gs_exe, log, demo_output):
     reader = vis4gs.vtkGaussianTrainingLogReader()
     reader.SetFileName(log)
     plain = plain_scores(reader.GetOutputPort(0), reader.GetOutputPort(1), lambda f: None)
-    for short in vis4gs.SCORES:
+    check(list(plain) == list(vis4gs.DEFAULT_SCORES),
+          f"the filter's defaults {list(plain)} are the registry's {vis4gs.DEFAULT_SCORES}")
+    for short in scores:
         check(same_bits(scores[short], plain[short]),
               f"demo {short}: the layer differs from the plain VTK pipeline")
+
+    # A score only the registry names (issue 33): listed, computed as the plain pipeline does,
+    # and read by a rule under its rule name.
+    check({"render-cost", "cost-per-contribution"} <= set(vis4gs.SCORES),
+          f"the render-cost scores are in vis4gs.SCORES: {list(vis4gs.SCORES)}")
+    costly = vis4gs.open(log)
+    cost = costly.scores(["render-cost", "cost-per-contribution"])
+    plain_cost = plain_scores(reader.GetOutputPort(0), reader.GetOutputPort(1),
+                              lambda f: f.SetScores("render-cost,cost-per-contribution"))
+    for short in cost:
+        check(same_bits(cost[short], plain_cost[short]),
+              f"demo {short}: the layer differs from the plain VTK pipeline")
+    ratio = cost["cost-per-contribution"]
+    shown = np.isfinite(ratio)
+    check(shown.any() and (ratio[shown] >= 1).all() and (cost["render-cost"] >= 0).all(),
+          "render cost >= 0, cost per contribution >= 1 where finite")
+    check(np.array_equal(np.isnan(ratio), cost["render-cost"] == 0),
+          "cost per contribution is NaN exactly where nothing was evaluated")
+    worst = vis4gs.open(log).select_rule("cost_per_contribution top 1%")
+    k = int(np.ceil(0.01 * (~np.isnan(ratio)).sum()))
+    check(int(worst.mask.sum()) >= k and np.all(ratio[worst.mask] >= np.sort(
+        ratio[~np.isnan(ratio)])[-k]), "select_rule('cost_per_contribution top 1%') computes "
+          f"the score and selects its top 1 % ({int(worst.mask.sum())} Gaussians)")
     check(all(np.isfinite(scores[s]).all() for s in ("blur", "needle")),
           "demo blur/needle are computed from the log's images (finite)")
 
@@ -90,7 +115,8 @@ def demo(vis4gs_exe, log, demo_output):
         check(read_bytes(csv) == read_bytes(os.path.join(demo_output, "scores.csv")),
               "demo: the layer's scores.csv differs from vis4gs demo's")
         app = vis4gs.open(os.path.join(demo_output, "scores.ply"))
-        for short, array in vis4gs.SCORES.items():
+        for short in scores:
+            array = vis4gs.SCORES[short]
             check(same_bits(app[array], scores[short].astype(np.float32)),
                   f"demo {array}: differs from vis4gs demo's scores.ply")
 
@@ -197,7 +223,7 @@ def folder(vis4gs_exe):
     cams.SetFileName(colmap)
     plain = plain_scores(plys.GetOutputPort(), cams.GetOutputPort(),
                          lambda f: (f.SetViewStride(8), f.SetLossResolution(4)))
-    for short in vis4gs.SCORES:
+    for short in scores:
         check(same_bits(scores[short], plain[short]),
               f"folder {short}: the layer differs from the plain VTK pipeline")
 

@@ -11,11 +11,12 @@
     scene.at(1600).select_rule(floaters.rule)                   # the rule on another snapshot
     diff = scene.at(400).compare(scene, move=0.01)              # born, died, moved, ... ids
 
-Each call is one VTK pipeline (the readers, vtkGaussianArtifactScoreFilter,
-vtkGaussianGenealogyTreeFilter / Lineage, vtkGaussianRasterizer, vtkGaussianPLYWriter,
-vtkGaussianRuleSelectionFilter, vtkGaussianRemovalEffectFilter,
-vtkGaussianStateComparisonFilter)
-set up the way the `vis4gs` program sets it up, so the arrays are the program's, bit for bit.
+A Scene opened from a file is a vtkGaussianSession (the file's reader, chosen by content, its
+cameras, the score, genealogy and removal-effect filters, in one wrapped VTK algorithm that
+the `vis4gs` program uses too); the other calls connect vtkGaussianGenealogyLineage,
+vtkGaussianRasterizer, vtkGaussianPLYWriter, vtkGaussianRuleSelectionFilter,
+vtkGaussianStateComparisonFilter and vtkGaussianFineTuneFilter the way the program does, so the
+arrays are the program's, bit for bit.
 The VTK objects stay reachable (`scene.polydata`, `scene.cameras`, `scene.tree`) for anything
 this layer does not cover.
 """
@@ -26,25 +27,31 @@ import re
 
 import numpy as np
 from vtkmodules.numpy_interface import dataset_adapter as dsa
-from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdTypeArray, vtkObject
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.vtkCommonCore import VTK_ID_TYPE, VTK_STRING, vtkIdTypeArray, vtkObject
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData, vtkTable
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter
+from .vis4gsFiltersDiagnostics import vtkGaussianArtifactScoreFilter, vtkGaussianScoreRegistry
 from .vis4gsFiltersGenealogy import vtkGaussianGenealogyLineage, vtkGaussianGenealogyTreeFilter
 from .vis4gsFiltersRaster import vtkGaussianRasterizer
 from .vis4gsFiltersSelection import (vtkGaussianFineTuneFilter,
                                      vtkGaussianRemovalEffectFilter,
                                      vtkGaussianRuleSelectionFilter,
                                      vtkGaussianStateComparisonFilter)
-from .vis4gsIOScene import vtkGaussianCameraReader, vtkGaussianSceneReader, vtkGaussianPLYWriter
-from .vis4gsIOTrainingLog import vtkGaussianTrainingLogReader
+from .vis4gsFiltersSession import vtkGaussianSession
+from .vis4gsIOScene import vtkGaussianPLYWriter
 
-# Short score names (as `vis4gs analyze --scores` spells them) and their arrays, in the order
-# the program writes them.
-SCORES = collections.OrderedDict([("coverage", "ViewCoverage"), ("blur", "BlurScore"),
-                                  ("needle", "NeedleScore"), ("shape", "NeedleShape")])
+# The scores of the registry (Core/Diagnostics/ScoreRegistry.h, vtkGaussianScoreRegistry):
+# short names (as `vis4gs analyze --scores` spells them) and their arrays, in the order the
+# program writes them; the default set; what each needs.
+_REGISTRY = vtkGaussianScoreRegistry
+SCORES = collections.OrderedDict((_REGISTRY.GetName(i), _REGISTRY.GetArrayName(i))
+                                 for i in range(_REGISTRY.GetNumberOfScores()))
+DEFAULT_SCORES = tuple(_REGISTRY.GetDefaultScores().split(","))
+_NEEDS_CAMERAS = {_REGISTRY.GetName(i) for i in range(_REGISTRY.GetNumberOfScores())
+                  if _REGISTRY.GetNeedsCameras(i)}
 # vtkGaussianArtifactScoreFilter's parameters, as keywords of Scene.scores().
 _SCORE_PARAMETERS = {"loss_resolution": "LossResolution",
                      "coverage_resolution": "CoverageResolution",
@@ -54,10 +61,11 @@ _SCORE_PARAMETERS = {"loss_resolution": "LossResolution",
 _BIRTH_KINDS = {0: "root", 1: "clone", 2: "split", 3: "clone-split"}
 # How select_rule() combines with a current selection (vtkGaussianRuleSelectionFilter).
 _COMBINE = {None: 0, "replace": 0, "add": 1, "subtract": 2, "intersect": 3}
-# The rule attributes that are scores (SelectionRule.h), with the score each needs; "views" is
-# View Coverage times the views used. "needle" is the shape, computed from the log-scales.
-_RULE_SCORES = {"coverage": "coverage", "views": "coverage", "blur": "blur",
-                "needle_score": "needle"}
+# The rule attributes that are scores (SelectionRule.h: each registered score by its rule
+# name), with the score each needs; "views" is View Coverage times the views used. "needle" is
+# the shape, computed from the log-scales.
+_RULE_SCORES = dict([(_REGISTRY.GetRuleName(i), _REGISTRY.GetName(i))
+                     for i in range(_REGISTRY.GetNumberOfScores())] + [("views", "coverage")])
 # before-after.csv of `vis4gs analyze --report`: its columns, in its order.
 _REMOVAL_CSV = ("view", "split", "affected", "psnr_before", "psnr_after", "ssim_before",
                 "ssim_after", "l1_before", "l1_after")
@@ -77,15 +85,33 @@ class Vis4GSError(RuntimeError):
     """A file that cannot be read or a request that cannot be answered, naming which."""
 
 
-def _find_cameras(scene_path):
-    """The program's default: cameras.json beside the scene, or two folders up (the trainer's
-    model folder)."""
-    folder = os.path.dirname(os.path.abspath(scene_path))
-    for candidate in (folder, os.path.dirname(os.path.dirname(folder))):
-        path = os.path.join(candidate, "cameras.json")
-        if os.path.isfile(path):
-            return path
-    return None
+def _new_session(path, cameras=None, images=None, id_property=None):
+    """A vtkGaussianSession on a file with the options of vis4gs.open()."""
+    session = vtkGaussianSession()
+    session.SetFileName(os.fspath(path))
+    if cameras:
+        session.SetCamerasFileName(os.fspath(cameras))
+    if images:
+        session.SetImageDirectory(os.fspath(images))
+    if id_property:
+        session.SetIdProperty(id_property)
+    return session
+
+
+def _error_collector(messages):
+    """An ErrorEvent observer appending the message text to `messages`."""
+    @calldata_type(VTK_STRING)
+    def collect(caller, event, text):
+        messages.append(text)
+    return collect
+
+
+def _plain_error(messages):
+    """VTK error texts without their "ERROR: In <source>, line <n>" and "<class> (<address>): "
+    prefix: the session's messages name the file and the problem already."""
+    plain = [re.sub(r"^ERROR: In [^\n]*, line \d+\n[A-Za-z0-9_]+ \(0x[0-9a-fA-F]+\): ", "",
+                    m).strip() for m in messages]
+    return "; ".join(m for m in plain if m)
 
 
 def open(path, iteration=None, cameras=None, images=None, id_property=None):  # noqa: A001
@@ -197,37 +223,43 @@ class Scene:
         self._cameras_path = cameras
         self._tree = None
         self.warnings = []
-        self.is_log = os.path.splitext(path)[1].lower() in (".h5", ".hdf5")
+        # The file's pipeline is one vtkGaussianSession, as the application and `vis4gs
+        # analyze` build it: it tells a log from a scene file by content, reads the snapshot,
+        # finds and reads the cameras, and holds the score, genealogy and removal filters.
+        self._session = _new_session(path, cameras, images, id_property)
+        self._session.SetIteration(-1 if iteration is None else int(iteration))
+        self._session.ComputeScoresOff()  # scores() asks for the ones it wants
+        self._update(self._session.GaussiansPort)
+        self.is_log = bool(self._session.GetIsTrainingLog())
         if self.is_log:
-            self._reader = vtkGaussianTrainingLogReader()
-            self._reader.SetFileName(path)
-            self._reader.UpdateInformation()
-            self.iterations = [self._reader.GetSnapshotIteration(i)
-                               for i in range(self._reader.GetNumberOfSnapshots())]
-            if not self.iterations:
-                raise Vis4GSError(f"{path}: the training log holds no snapshot")
-            self._reader.SetIteration(-1 if iteration is None else int(iteration))
-            self._reader.Update(0)
-            if self._reader.GetLoadedIteration() < 0:
-                raise Vis4GSError(f"{path}: no snapshot could be read")
-            self.iteration = self._reader.GetLoadedIteration()
-            source = self._reader.GetOutputDataObject(0)
+            log = self._session.GetLogReader()
+            self.iterations = [log.GetSnapshotIteration(i)
+                               for i in range(log.GetNumberOfSnapshots())]
+            self.iteration = self._session.GetLoadedIteration()
         else:
             if iteration is not None:
                 raise Vis4GSError(f"{path}: iteration= is for training logs only")
-            self._reader = vtkGaussianSceneReader()
-            self._reader.SetFileName(path)
-            if id_property:
-                self._reader.SetIdProperty(id_property)
-            self._reader.Update()
-            source = self._reader.GetOutput()
-            if source is None or source.GetNumberOfPoints() == 0:
+            if self._session.GetGaussiansOutput().GetNumberOfPoints() == 0:
                 raise Vis4GSError(f"{path}: no Gaussians could be read")
             self.iterations = []
             self.iteration = None
         self.polydata = vtkPolyData()
-        self.polydata.ShallowCopy(source)
+        self.polydata.ShallowCopy(self._session.GetGaussiansOutput())
+        # Whether self.polydata is the session's Gaussians port (so that its score filter
+        # computes the scores); not for a selection or a repaired scene.
+        self._from_session = True
         self._cameras = None
+
+    def _update(self, port):
+        """Updates a port of the session; its errors (which name the file) as Vis4GSError."""
+        messages = []
+        tag = self._session.AddObserver("ErrorEvent", _error_collector(messages))
+        try:
+            ok = self._session.Update(port, None)
+        finally:
+            self._session.RemoveObserver(tag)
+        if not ok or messages:
+            raise Vis4GSError(_plain_error(messages) or f"{self.path}: could not be read")
 
     # ---------------------------------------------------------------- data
     def __len__(self):
@@ -262,22 +294,8 @@ class Scene:
     def cameras(self):
         """The camera table (vtkTable, one row per view), or None when there are none."""
         if self._cameras is None:
-            table = None
-            if self._cameras_path:
-                reader = vtkGaussianCameraReader()
-                reader.SetFileName(self._cameras_path)
-                # Images are optional here: the scores that need them say so.
-                reader.SetRequireImages(False)
-                reader.Update()
-                table = reader.GetOutput()
-            elif self.is_log:
-                self._reader.Update(1)
-                table = self._reader.GetOutputDataObject(1)
-            else:
-                found = _find_cameras(self.path)
-                if found:
-                    self._cameras_path = found
-                    return self.cameras
+            self._update(self._session.CamerasPort)
+            table = self._session.GetCamerasOutput()
             if table is not None and table.GetNumberOfRows() > 0:
                 self._cameras = vtkTable()
                 self._cameras.ShallowCopy(table)
@@ -298,8 +316,9 @@ class Scene:
         return Scene(self.path, iteration, self._cameras_path, self.images)
 
     # ---------------------------------------------------------------- scores
-    def scores(self, which=("coverage", "blur", "needle", "shape"), **parameters):
-        """Computes only the scores named (coverage, blur, needle, shape) with
+    def scores(self, which=DEFAULT_SCORES, **parameters):
+        """Computes only the scores named (SCORES: coverage, blur, needle, shape, render-cost,
+        ...; default DEFAULT_SCORES) with
         vtkGaussianArtifactScoreFilter; keywords set its parameters (loss_resolution,
         coverage_resolution, view_stride, footprint 0|1 or "alpha"|"ellipse",
         float_accumulation, occlusion_threshold, lam). The arrays (and NoVisibleView) are added
@@ -312,16 +331,26 @@ class Scene:
         if unknown:
             raise Vis4GSError(f"unknown score {', '.join(unknown)} "
                               f"(expected {', '.join(SCORES)})")
-        score_filter = vtkGaussianArtifactScoreFilter()
-        score_filter.SetInputData(self.polydata)
-        for short, array in SCORES.items():
-            getattr(score_filter, f"SetCompute{array}")(short in which)
-        if any(w != "shape" for w in which):
+        # The scene as opened: the session's own score filter on its Gaussians port. A
+        # selection or a repaired scene: a score filter on its Gaussians.
+        score_filter = (self._session.GetScoreFilter() if self._from_session
+                        else vtkGaussianArtifactScoreFilter())
+        if not self._from_session:
+            score_filter.SetInputData(self.polydata)
+        else:
+            # Each call starts from the defaults, as a new filter would.
+            defaults = vtkGaussianArtifactScoreFilter()
+            for name in _SCORE_PARAMETERS.values():
+                getattr(score_filter, "Set" + name)(getattr(defaults, "Get" + name)())
+        score_filter.SetScores(",".join(which))
+        with_cameras = [w for w in which if w in _NEEDS_CAMERAS]
+        if with_cameras:
             if self.cameras is None:
-                raise Vis4GSError(f"{self.path}: coverage, blur and needle need cameras; "
+                raise Vis4GSError(f"{self.path}: {', '.join(with_cameras)} need cameras; "
                                   "give cameras=cameras.json or a COLMAP folder")
-            score_filter.SetCamerasData(self.cameras)
-        if self.images:
+            if not self._from_session:
+                score_filter.SetCamerasData(self.cameras)
+        if self.images and not self._from_session:
             score_filter.SetImageDirectory(self.images)
         for key, value in parameters.items():
             if key not in _SCORE_PARAMETERS:
@@ -337,7 +366,11 @@ class Scene:
         shown = vtkObject.GetGlobalWarningDisplay()
         vtkObject.GlobalWarningDisplayOff()
         try:
-            score_filter.Update()
+            if self._from_session:
+                self._session.ComputeScoresOn()
+                self._update(self._session.GaussiansPort)
+            else:
+                score_filter.Update()
         finally:
             vtkObject.SetGlobalWarningDisplay(shown)
         out = score_filter.GetOutput()
@@ -348,9 +381,15 @@ class Scene:
         if missing:
             raise Vis4GSError(f"{self.path}: computing {', '.join(missing)} failed "
                               "(see the messages above)")
+        previous = self.polydata.GetPointData()
         self.polydata = vtkPolyData()
         self.polydata.ShallowCopy(out)
-        if any(w != "shape" for w in which):
+        # The same Gaussians: the scores of earlier calls stay beside the new ones.
+        for i in range(previous.GetNumberOfArrays()):
+            array = previous.GetAbstractArray(i)
+            if self.polydata.GetPointData().GetAbstractArray(array.GetName()) is None:
+                self.polydata.GetPointData().AddArray(array)
+        if with_cameras:
             self.views_used = score_filter.GetNumberOfViewsUsed()
         return collections.OrderedDict((w, self[SCORES[w]]) for w in which)
 
@@ -361,12 +400,12 @@ class Scene:
         if not self.is_log:
             raise Vis4GSError(f"{self.path}: not a training log, it has no genealogy")
         if self._tree is None:
-            tree_filter = vtkGaussianGenealogyTreeFilter()
-            tree_filter.SetInputConnection(self._reader.GetOutputPort(3))
-            tree_filter.Update()
-            if tree_filter.GetOutput().GetNumberOfVertices() == 0:
+            self._update(self._session.TreePort)
+            tree = self._session.GetOutputDataObject(self._session.TreePort)
+            if tree is None or tree.GetNumberOfVertices() == 0:
                 raise Vis4GSError(f"{self.path}: no genealogy could be built")
-            self._tree = tree_filter.GetOutput()
+            self._tree = tree.NewInstance()
+            self._tree.ShallowCopy(tree)
         return self._tree
 
     def _query(self, method, ids):
@@ -430,6 +469,7 @@ class Scene:
         subset = Scene.__new__(Scene)
         subset.__dict__.update(self.__dict__)
         subset.polydata = _take(self.polydata, rows)
+        subset._from_session = False
         return subset
 
     # ---------------------------------------------------------------- clean-up (issue 20)
@@ -438,7 +478,8 @@ class Scene:
         the language of `vis4gs analyze --select=RULE`, user guide "Guided clean-up"), e.g.
         "views<=3 and opacity>=0.5", "blur top 5%", "needle>=0.8", "isolated r=0.1".
 
-        The scores the rule reads (coverage, views, blur, needle_score) are computed with the
+        The scores the rule reads (coverage, views, blur, needle_score, render_cost, ...) are
+        computed with the
         defaults of scores() when this scene lacks them. combine "add", "subtract" or
         "intersect" combines the rule's selection with `current`: a previous selection (a
         Scene), GaussianIds, or a boolean mask over this scene (a brush, a histogram range).
@@ -512,23 +553,35 @@ class Scene:
             mask = np.asarray(mask, dtype=bool)
         removed = self._ids_of(mask if mask is not None else ids, "mask")
         # One filter per scene: it keeps the "before", so that measuring another selection of
-        # the same scene renders only the "after" of the views that selection touches.
-        if self._removal is None:
-            self._removal = vtkGaussianRemovalEffectFilter()
-        effect_filter = self._removal
-        effect_filter.SetInputData(self.polydata)
-        effect_filter.SetCamerasData(self.cameras)
-        effect_filter.SetRemovedIds(_id_array(removed))
-        if self.images:
-            effect_filter.SetImageDirectory(self.images)
+        # the same scene renders only the "after" of the views that selection touches. The scene
+        # as opened measures through its session (its removal ports, fed by the selection).
+        through_session = self._from_session and len(removed) > 0
+        if through_session:
+            effect_filter = self._session.GetRemovalEffectFilter()
+        else:
+            if self._removal is None:
+                self._removal = vtkGaussianRemovalEffectFilter()
+            effect_filter = self._removal
+            effect_filter.SetInputData(self.polydata)
+            effect_filter.SetCamerasData(self.cameras)
+            effect_filter.SetRemovedIds(_id_array(removed))
+            if self.images:
+                effect_filter.SetImageDirectory(self.images)
         effect_filter.SetTrainViews(bool(train))
         effect_filter.SetTestViews(bool(test))
         effect_filter.SetBackground(*background)
         effect_filter.SetSHDegree(sh_degree)
         effect_filter.SetReuseTiles(bool(reuse_tiles))
         effect_filter.SetThreads(int(threads))
-        effect_filter.Update()
-        views, totals = effect_filter.GetOutput(0), effect_filter.GetOutput(1)
+        if through_session:
+            self._session.SetSelectedIds(_id_array(removed))
+            self._update(self._session.RemovalViewsPort)
+            views = self._session.GetOutputDataObject(self._session.RemovalViewsPort)
+            self._update(self._session.RemovalTotalsPort)
+            totals = self._session.GetOutputDataObject(self._session.RemovalTotalsPort)
+        else:
+            effect_filter.Update()
+            views, totals = effect_filter.GetOutput(0), effect_filter.GetOutput(1)
         if totals is None or totals.GetNumberOfRows() != 2:
             raise Vis4GSError(f"{self.path}: measuring the removal failed "
                               "(see the messages above)")
@@ -635,9 +688,9 @@ class Scene:
         repaired.path = os.fspath(output) if output else self.path
         repaired.is_log = bool(output) and repaired.is_log
         repaired.iterations = [int(iteration), repaired.iteration] if repaired.is_log else []
+        repaired._from_session = False
         if repaired.is_log:
-            repaired._reader = vtkGaussianTrainingLogReader()
-            repaired._reader.SetFileName(repaired.path)
+            repaired._session = _new_session(repaired.path)
         repaired.figures = dict(_table_columns(fine_tune.GetOutputDataObject(1)))
         return repaired
 

@@ -2,10 +2,13 @@
 // Benchmark of the diagnostic scores (issue 5).
 //
 //   BenchmarkArtifactScores perf [--gaussians=N] [--views=V] [--width=W] [--height=H]
-//       [--straight-views=K] [--only=coverage|blur|footprint [--isa=I] [--shared=0|1]]
+//       [--straight-views=K] [--only=coverage|blur|footprint|render-cost [--isa=I] [--shared=0|1]]
 //     Coverage and blur+needle (loss maps at 1/4) of N synthetic Gaussians in V views, timed,
 //     next to a straightforward implementation (projection + brute-force footprint scan of
 //     every tile rectangle) measured on K views in the same run and extrapolated to V.
+//     --only=render-cost: the render-cost pass (RenderCost and CostPerContribution) on the V
+//     views, next to a plain render of each view (its floor) and the straightforward per-pixel
+//     walk of the tile lists in scalar code on K views (extrapolated), whose counts it checks.
 //
 //   BenchmarkArtifactScores accuracy --output=FILE.md --plot=FILE.png [--colmap=DIR]
 //       [--scene=PLY --cameras=JSON --images=DIR] [--log=LOG.h5] [--gaussians=N] [--views=V]
@@ -175,6 +178,108 @@ struct RenderedImages
   }
 };
 
+// The straightforward render cost of one view: every pixel walks its tile's list as the
+// reference forward pass does, in scalar code, counting evaluations and summing alpha*T.
+void StraightRenderCost(const GaussianCloud& cloud,
+  const Camera& camera,
+  std::vector<double>& cost,
+  std::vector<double>& contribution)
+{
+  RasterSettings rs;
+  rs.ComputeColors = false;
+  const ViewProjection<float> proj = ProjectGaussians<float>(cloud, camera, rs);
+  const TileBins bins = BinGaussians(proj, 0);
+  const float minAlpha = 1.0f / 255.0f;
+  for (int y = 0; y < camera.Height; ++y)
+  {
+    for (int x = 0; x < camera.Width; ++x)
+    {
+      const std::size_t tile = static_cast<std::size_t>(y / 16) * bins.TilesX + x / 16;
+      float T = 1;
+      for (std::uint64_t k = bins.Offsets[tile]; k < bins.Offsets[tile + 1]; ++k)
+      {
+        const std::uint32_t id = bins.Ids[k];
+        const auto& g = proj.Gaussians[id];
+        cost[id] += 1;
+        const float alpha = raster::KernelAlpha<float>(g.Opacity,
+          raster::KernelPower<float>(
+            g.U, g.V, g.ConicA, g.ConicB, g.ConicC, static_cast<float>(x), static_cast<float>(y)));
+        if (alpha < 0)
+        {
+          continue;
+        }
+        const float next = T * (1 - alpha);
+        if (next < static_cast<float>(raster::TransmittanceStop))
+        {
+          break;
+        }
+        contribution[id] += static_cast<double>(alpha * T);
+        T = next;
+      }
+    }
+  }
+}
+
+int RenderCostPerf(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  int straightViews,
+  int threads)
+{
+  const std::size_t n = cloud.Count;
+  std::printf("load average before: %s\n", LoadAverage().c_str());
+  Timer t;
+  for (const Camera& c : cameras)
+  {
+    const auto image = Rasterize<float>(cloud, c);
+    if (image.Width != c.Width)
+    {
+      return 1;
+    }
+  }
+  std::printf("plain render (the floor), %zu views: %s [load %s]\n",
+    cameras.size(),
+    t.Describe(threads).c_str(),
+    LoadAverage().c_str());
+  ScoreSettings settings;
+  settings.Request = ScoreRequest{ false, false, false, false, true, true };
+  t = Timer();
+  const GaussianScores s = ComputeGaussianScores(cloud, cameras, settings);
+  std::printf("render-cost pass (R and R/A), %zu views: %s [load %s]; %zu of %zu Gaussians "
+              "never evaluated\n",
+    cameras.size(),
+    t.Describe(threads).c_str(),
+    LoadAverage().c_str(),
+    s.NotEvaluatedCount,
+    n);
+  const std::vector<Camera> few(
+    cameras.begin(), cameras.begin() + std::min<std::size_t>(cameras.size(), straightViews));
+  std::vector<double> cost(n, 0.0), contribution(n, 0.0);
+  t = Timer();
+  for (const Camera& c : few)
+  {
+    StraightRenderCost(cloud, c, cost, contribution);
+  }
+  const double scale = static_cast<double>(cameras.size()) / few.size();
+  std::printf("straightforward scalar per-pixel walk, %zu views: %s; extrapolated to %zu views: "
+              "wall %.2f s, CPU %.2f s\n",
+    few.size(),
+    t.Describe(1).c_str(),
+    cameras.size(),
+    t.WallSeconds() * scale,
+    t.CpuSecondsUsed() * scale);
+  const GaussianScores check = ComputeGaussianScores(cloud, few, settings);
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    same += check.RenderCost[i] == cost[i] ? 1 : 0;
+  }
+  std::printf("render cost of the %zu views: equal to the walk's for %zu of %zu Gaussians\n",
+    few.size(),
+    same,
+    n);
+  return 0;
+}
+
 int Perf(const std::map<std::string, std::string>& args)
 {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -195,6 +300,10 @@ int Perf(const std::map<std::string, std::string>& args)
   const std::vector<Camera> cameras = bench::RingCameras(views, 3.0, width, height);
   // --only=coverage|blur: time one task's fast path alone (for profiling).
   const std::string only = args.count("only") ? args.at("only") : std::string();
+  if (only == "render-cost")
+  {
+    return RenderCostPerf(cloud, cameras, straight, threads);
+  }
   if (only == "footprint")
   {
     // Footprint pass alone on one view at 1/4 resolution: vector vs scalar, map vs counts.

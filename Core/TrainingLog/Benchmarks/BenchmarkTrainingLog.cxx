@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Training-log benchmark: prints the figures recorded in Documentation/performance.md.
 //
-//   BenchTrainingLog [--dir=/tmp] [--gaussians=5000000] [--events=10000000]
+//   BenchmarkTrainingLog [--dir=/tmp] [--gaussians=5000000] [--events=10000000]
 //                    [--history-snapshots=60] [--history-gaussians=500000] [--level=1]
 //                    [--snapshot-level=0] [--chunk=4096]
 //
@@ -122,9 +122,9 @@ int main(int argc, char** argv)
   const int snapshotLevel = std::stoi(Arg(argc, argv, "snapshot-level", "0"));
   const std::size_t chunk = std::stoull(Arg(argc, argv, "chunk", "4096"));
   const bool keep = Arg(argc, argv, "keep", "0") == "1";
-  std::printf(
-    "BenchTrainingLog: deflate level %d (+shuffle) for tables, %d for snapshots, snapshot chunk "
-    "%zu rows\n",
+  std::printf("BenchmarkTrainingLog: deflate level %d (+shuffle) for tables, %d for snapshots, "
+              "snapshot chunk "
+              "%zu rows\n",
     level,
     snapshotLevel,
     chunk);

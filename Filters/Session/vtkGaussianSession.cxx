@@ -1,0 +1,674 @@
+/*=========================================================================
+
+  Program:   Vis4GS
+  Module:    vtkGaussianSession.cxx
+
+  Copyright (c) Vis4GS developers
+  All rights reserved.
+  See LICENSE for details.
+
+=========================================================================*/
+#include "vtkGaussianSession.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkExecutive.h"
+#include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianCameraReader.h"
+#include "vtkGaussianCompactTree.h"
+#include "vtkGaussianFineTuneFilter.h"
+#include "vtkGaussianGenealogyTreeFilter.h"
+#include "vtkGaussianRemovalEffectFilter.h"
+#include "vtkGaussianRuleSelectionFilter.h"
+#include "vtkGaussianSceneReader.h"
+#include "vtkGaussianStateComparisonFilter.h"
+#include "vtkGaussianTrainingLogReader.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+#include "vtkSmartPointer.h"
+#include "vtkTable.h"
+#include "vtkTree.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <sys/stat.h>
+#include <vector>
+
+vtkStandardNewMacro(vtkGaussianSession);
+vtkCxxSetObjectMacro(vtkGaussianSession, SelectedIds, vtkIdTypeArray);
+
+namespace
+{
+bool IsFile(const std::string& path)
+{
+  struct stat s;
+  return !path.empty() && stat(path.c_str(), &s) == 0 && S_ISREG(s.st_mode);
+}
+
+/// Whether a string setting must be set: VTK 9.1's vtkSetStdStringFromCharMacro calls Modified()
+/// even for the same text, which would make the session's every update re-run the scores.
+bool Differs(const char* current, const std::string& wanted)
+{
+  return wanted != (current ? current : "");
+}
+
+/// The text of a VTK error event, without "ERROR: In <source>, line <n>\n<class> (<address>): ":
+/// the session names the file itself, the user needs no object address.
+std::string MessageText(const char* event)
+{
+  std::string text = event ? event : "";
+  const std::size_t address = text.find("): ");
+  if (text.rfind("ERROR: In ", 0) == 0 && address != std::string::npos)
+  {
+    text = text.substr(address + 3);
+  }
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+  {
+    text.pop_back();
+  }
+  return text;
+}
+}
+
+struct vtkGaussianSession::vtkInternals
+{
+  vtkNew<vtkGaussianTrainingLogReader> Log;
+  // The genealogy reads the events through a reader of its own, so that building the tree
+  // does not make the snapshot reader forget its snapshot (one port is produced at a time).
+  vtkNew<vtkGaussianTrainingLogReader> Events;
+  vtkNew<vtkGaussianSceneReader> Scene;
+  vtkNew<vtkGaussianCameraReader> Cameras;
+  vtkNew<vtkGaussianArtifactScoreFilter> Scores;
+  vtkNew<vtkGaussianGenealogyTreeFilter> Genealogy;
+  vtkNew<vtkGaussianRuleSelectionFilter> Rule;
+  vtkNew<vtkGaussianRemovalEffectFilter> Removal;
+  vtkNew<vtkGaussianFineTuneFilter> FineTune;
+  vtkNew<vtkGaussianStateComparisonFilter> Comparison;
+  vtkNew<vtkTable> NoCameras;
+  vtkNew<vtkCallbackCommand> ErrorObserver;
+  vtkNew<vtkCallbackCommand> ProgressObserver;
+  vtkNew<vtkCallbackCommand> Quiet;
+  std::vector<std::string> Errors;
+  // What Connect() connected for (the kind of file is read from its content once per name).
+  std::string ConnectedFile;
+  std::string CameraFile; // the scene's camera file in use; empty: none
+  vtkAlgorithm* GaussiansSource = nullptr;
+  vtkAlgorithm* GaussiansOutput = nullptr;
+
+  std::vector<vtkAlgorithm*> Algorithms()
+  {
+    return { this->Log,
+      this->Events,
+      this->Scene,
+      this->Cameras,
+      this->Scores,
+      this->Genealogy,
+      this->Rule,
+      this->Removal,
+      this->FineTune,
+      this->Comparison };
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkGaussianSession::vtkGaussianSession()
+  : Internals(new vtkInternals)
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(NumberOfPorts);
+  vtkInternals& d = *this->Internals;
+  d.ErrorObserver->SetClientData(this->Internals);
+  d.ErrorObserver->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void* call) {
+      static_cast<vtkInternals*>(client)->Errors.push_back(MessageText(static_cast<char*>(call)));
+    });
+  d.ProgressObserver->SetClientData(this);
+  d.ProgressObserver->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void*)
+    {
+      static_cast<vtkGaussianSession*>(client)->UpdateProgress(
+        static_cast<vtkAlgorithm*>(caller)->GetProgress());
+    });
+  for (vtkAlgorithm* a : d.Algorithms())
+  {
+    a->AddObserver(vtkCommand::ErrorEvent, d.ErrorObserver);
+    a->AddObserver(vtkCommand::ProgressEvent, d.ProgressObserver);
+    // "Algorithm ... returned failure": the algorithm's own error, collected above, says why.
+    a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, d.Quiet);
+  }
+  d.Events->SetLoadSH(false);
+  d.Genealogy->SetInputConnection(d.Events->GetOutputPort(3));
+  // Cameras of a scene file are optional for what needs no image (coverage, rendering).
+  d.Cameras->SetRequireImages(false);
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSession::~vtkGaussianSession()
+{
+  this->SetSelectedIds(nullptr);
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianTrainingLogReader* vtkGaussianSession::GetLogReader()
+{
+  return this->Internals->Log;
+}
+vtkGaussianSceneReader* vtkGaussianSession::GetSceneReader()
+{
+  return this->Internals->Scene;
+}
+vtkGaussianCameraReader* vtkGaussianSession::GetCameraReader()
+{
+  return this->Internals->Cameras;
+}
+vtkGaussianArtifactScoreFilter* vtkGaussianSession::GetScoreFilter()
+{
+  return this->Internals->Scores;
+}
+vtkGaussianGenealogyTreeFilter* vtkGaussianSession::GetGenealogyFilter()
+{
+  return this->Internals->Genealogy;
+}
+vtkGaussianRuleSelectionFilter* vtkGaussianSession::GetRuleFilter()
+{
+  return this->Internals->Rule;
+}
+vtkGaussianRemovalEffectFilter* vtkGaussianSession::GetRemovalEffectFilter()
+{
+  return this->Internals->Removal;
+}
+vtkGaussianFineTuneFilter* vtkGaussianSession::GetFineTuneFilter()
+{
+  this->Connect();
+  return this->Internals->FineTune;
+}
+vtkGaussianStateComparisonFilter* vtkGaussianSession::GetComparisonFilter()
+{
+  this->Connect();
+  return this->Internals->Comparison;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkGaussianSession::GetGaussiansOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(GaussiansPort));
+}
+vtkTable* vtkGaussianSession::GetCamerasOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(CamerasPort));
+}
+vtkTable* vtkGaussianSession::GetMetricsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(MetricsPort));
+}
+vtkTable* vtkGaussianSession::GetHistoryOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(HistoryPort));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSession::SetSelectionConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(0, output);
+}
+void vtkGaussianSession::SetSelectionData(vtkSelection* selection)
+{
+  this->SetInputDataObject(0, selection);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSession::IsTrainingLogFile(const char* path)
+{
+  static const char signature[8] = { '\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n' };
+  std::ifstream in(path ? path : "", std::ios::binary);
+  // The superblock is at 0 or, after a user block, at 512, 1024, 2048, ... (HDF5 format §2.1).
+  for (std::streamoff offset = 0; in && offset <= (std::streamoff(1) << 20);
+       offset = offset == 0 ? 512 : 2 * offset)
+  {
+    char head[8];
+    in.seekg(offset);
+    if (!in.read(head, sizeof(head)))
+    {
+      return false;
+    }
+    if (std::memcmp(head, signature, sizeof(head)) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkGaussianSession::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  for (vtkAlgorithm* a : this->Internals->Algorithms())
+  {
+    t = std::max(t, a->GetMTime());
+  }
+  if (this->SelectedIds)
+  {
+    t = std::max(t, this->SelectedIds->GetMTime());
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianSession::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSelection");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkGaussianSession::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  const char* type = "vtkTable";
+  if (port == GaussiansPort)
+  {
+    type = "vtkPolyData";
+  }
+  else if (port == TreePort)
+  {
+    type = "vtkTree";
+  }
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), type);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkGaussianSession::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inInfo,
+  vtkInformationVector* outInfo)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    return this->RequestDataObject(outInfo);
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+  {
+    // Only the requested output is produced; the others keep their data and stay out of date
+    // (as in vtkGaussianTrainingLogReader): showing a snapshot builds no tree.
+    const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+      ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+      : -1;
+    for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i)
+    {
+      vtkInformation* info = outInfo->GetInformationObject(i);
+      if (port >= 0 && i != port)
+      {
+        info->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+      }
+      else
+      {
+        info->Remove(vtkDemandDrivenPipeline::DATA_NOT_GENERATED());
+      }
+    }
+    return 1;
+  }
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+  {
+    return this->RequestData(request, inInfo, outInfo);
+  }
+  return this->Superclass::ProcessRequest(request, inInfo, outInfo);
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianSession::RequestDataObject(vtkInformationVector* outInfo)
+{
+  for (int port = 0; port < NumberOfPorts; ++port)
+  {
+    vtkInformation* info = outInfo->GetInformationObject(port);
+    vtkDataObject* output = info->Get(vtkDataObject::DATA_OBJECT());
+    vtkSmartPointer<vtkDataObject> wanted;
+    if (port == GaussiansPort)
+    {
+      wanted = output && output->IsA("vtkPolyData") ? nullptr : vtkSmartPointer<vtkPolyData>::New();
+    }
+    else if (port == TreePort)
+    {
+      // The genealogy filter's compact tree (CompactTree) is passed on as one: a plain vtkTree
+      // would not take its flat arrays by a shallow copy.
+      const bool compact = this->Internals->Genealogy->GetCompactTree();
+      const bool isCompact = output && output->IsA("vtkGaussianCompactTree");
+      if (!output || compact != isCompact)
+      {
+        wanted = compact ? vtkSmartPointer<vtkTree>(vtkSmartPointer<vtkGaussianCompactTree>::New())
+                         : vtkSmartPointer<vtkTree>::New();
+      }
+    }
+    else if (!output || !output->IsA("vtkTable"))
+    {
+      wanted = vtkSmartPointer<vtkTable>::New();
+    }
+    if (wanted)
+    {
+      info->Set(vtkDataObject::DATA_OBJECT(), wanted);
+    }
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSession::Connect()
+{
+  vtkInternals& d = *this->Internals;
+  if (this->FileName.empty())
+  {
+    d.Errors.push_back("no file name");
+    return false;
+  }
+  if (!IsFile(this->FileName))
+  {
+    d.Errors.push_back("no such file");
+    return false;
+  }
+  if (d.ConnectedFile != this->FileName)
+  {
+    this->IsTrainingLog = IsTrainingLogFile(this->FileName.c_str());
+    d.ConnectedFile = this->FileName;
+  }
+  vtkAlgorithm* cameras = nullptr;
+  if (this->IsTrainingLog)
+  {
+    d.Log->SetFileName(this->FileName.c_str());
+    d.Events->SetFileName(this->FileName.c_str());
+    d.Log->UpdateInformation();
+    const int count = d.Log->GetNumberOfSnapshots();
+    if (count == 0)
+    {
+      d.Errors.push_back("the training log holds no snapshot");
+      return false;
+    }
+    const int nearest = this->Iteration < 0 ? d.Log->GetSnapshotIteration(count - 1)
+                                            : d.Log->FindNearestSnapshot(this->Iteration);
+    d.Log->SetIteration(nearest);
+    if (this->FullSHLimit >= 0)
+    {
+      d.Log->SetLoadSHRest(d.Log->GetSnapshotSize(nearest) <= this->FullSHLimit);
+    }
+    d.GaussiansSource = d.Log;
+    cameras = d.Log->HasCameras() ? static_cast<vtkAlgorithm*>(d.Log) : nullptr;
+    if (cameras)
+    {
+      d.Scores->SetCamerasConnection(d.Log->GetOutputPort(1));
+      d.Removal->SetInputConnection(1, d.Log->GetOutputPort(1));
+      d.FineTune->SetCamerasConnection(d.Log->GetOutputPort(1));
+    }
+  }
+  else
+  {
+    if (Differs(d.Scene->GetFileName(), this->FileName))
+    {
+      d.Scene->SetFileName(this->FileName.c_str());
+    }
+    if (Differs(d.Scene->GetIdProperty(), this->IdProperty))
+    {
+      d.Scene->SetIdProperty(this->IdProperty.c_str());
+    }
+    d.GaussiansSource = d.Scene;
+    std::string cameraFile = this->CamerasFileName;
+    if (cameraFile.empty())
+    {
+      // The trainer's layout: cameras.json beside the model or two folders up
+      // (<model>/point_cloud/iteration_N/point_cloud.ply).
+      std::string folder = this->FileName;
+      const std::size_t slash = folder.find_last_of('/');
+      folder = slash == std::string::npos ? "." : folder.substr(0, slash);
+      for (const std::string& candidate :
+        { folder + "/cameras.json", folder + "/../../cameras.json" })
+      {
+        if (IsFile(candidate))
+        {
+          cameraFile = candidate;
+          break;
+        }
+      }
+    }
+    d.CameraFile = cameraFile;
+    if (!cameraFile.empty())
+    {
+      if (Differs(d.Cameras->GetFileName(), cameraFile))
+      {
+        d.Cameras->SetFileName(cameraFile.c_str());
+      }
+      cameras = d.Cameras;
+      d.Scores->SetCamerasConnection(d.Cameras->GetOutputPort());
+      d.Removal->SetInputConnection(1, d.Cameras->GetOutputPort());
+      d.FineTune->SetCamerasConnection(d.Cameras->GetOutputPort());
+    }
+  }
+  if (!cameras)
+  {
+    d.Scores->SetCamerasData(d.NoCameras);
+    d.Removal->SetInputData(1, d.NoCameras);
+    d.FineTune->SetCamerasData(d.NoCameras);
+  }
+  if (Differs(d.Scores->GetImageDirectory(), this->ImageDirectory))
+  {
+    d.Scores->SetImageDirectory(this->ImageDirectory.c_str());
+  }
+  if (Differs(d.Removal->GetImageDirectory(), this->ImageDirectory))
+  {
+    d.Removal->SetImageDirectory(this->ImageDirectory.c_str());
+  }
+  d.Scores->SetInputConnection(d.GaussiansSource->GetOutputPort(0));
+  vtkAlgorithm* last =
+    this->ComputeScores ? static_cast<vtkAlgorithm*>(d.Scores) : d.GaussiansSource;
+  if (!this->Rule.empty())
+  {
+    d.Rule->SetInputConnection(last->GetOutputPort(0));
+    if (Differs(d.Rule->GetRule(), this->Rule))
+    {
+      d.Rule->SetRule(this->Rule.c_str());
+    }
+    last = d.Rule;
+  }
+  d.GaussiansOutput = last;
+  d.Removal->SetInputConnection(0, last->GetOutputPort(0));
+  d.FineTune->SetInputConnection(0, last->GetOutputPort(0));
+  d.Comparison->SetInputConnection(0, last->GetOutputPort(0));
+  return d.Errors.empty(); // (the log reader's, when the log cannot be opened)
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSession::SelectionIds(vtkInformationVector** inInfo, vtkIdTypeArray* ids)
+{
+  std::vector<vtkIdType> values;
+  vtkSelection* selection =
+    inInfo[0]->GetNumberOfInformationObjects() > 0 ? vtkSelection::GetData(inInfo[0], 0) : nullptr;
+  if (selection)
+  {
+    for (unsigned int n = 0; n < selection->GetNumberOfNodes(); ++n)
+    {
+      vtkSelectionNode* node = selection->GetNode(n);
+      vtkDataArray* list = vtkDataArray::SafeDownCast(node->GetSelectionList());
+      if (node->GetContentType() != vtkSelectionNode::PEDIGREEIDS)
+      {
+        this->Internals->Errors.push_back(
+          "the selection must list GaussianIds as pedigree ids (vtkSelectionNode::PEDIGREEIDS)");
+        return false;
+      }
+      for (vtkIdType i = 0; list && i < list->GetNumberOfTuples(); ++i)
+      {
+        values.push_back(static_cast<vtkIdType>(list->GetTuple1(i)));
+      }
+    }
+  }
+  else if (this->SelectedIds)
+  {
+    for (vtkIdType i = 0; i < this->SelectedIds->GetNumberOfValues(); ++i)
+    {
+      values.push_back(this->SelectedIds->GetValue(i));
+    }
+  }
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  ids->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), ids->GetPointer(0));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianSession::RequestData(vtkInformation* request,
+  vtkInformationVector** inInfo,
+  vtkInformationVector* outInfo)
+{
+  vtkInternals& d = *this->Internals;
+  d.Errors.clear();
+  const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+    ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
+    : -1;
+  bool ok = this->Connect();
+  for (int p = 0; ok && p < NumberOfPorts; ++p)
+  {
+    if (port < 0 || p == port)
+    {
+      ok = this->ProducePort(p, inInfo, outInfo);
+    }
+  }
+  if (!ok)
+  {
+    std::string text;
+    for (const std::string& e : d.Errors)
+    {
+      text += (text.empty() ? "" : "; ") + e;
+    }
+    vtkErrorMacro(<< this->FileName << ": " << (text.empty() ? "could not be read" : text));
+    return 0;
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSession::ProducePort(int port,
+  vtkInformationVector** inInfo,
+  vtkInformationVector* outInfo)
+{
+  vtkInternals& d = *this->Internals;
+  vtkDataObject* output = vtkDataObject::GetData(outInfo, port);
+  output->Initialize();
+  // Updates @p algorithm's @p out and shallow-copies it into this port's output.
+  auto pass = [&](vtkAlgorithm* algorithm, int out) -> bool
+  {
+    const std::size_t before = d.Errors.size();
+    if (!algorithm->Update(out, nullptr) || d.Errors.size() > before)
+    {
+      return false;
+    }
+    if (vtkDataObject* data = algorithm->GetOutputDataObject(out))
+    {
+      output->ShallowCopy(data);
+    }
+    return true;
+  };
+  const bool log = this->IsTrainingLog;
+  switch (port)
+  {
+    case GaussiansPort:
+    {
+      if (this->ComputeScores && !this->Rule.empty() && !d.Scores->Update(0, nullptr))
+      {
+        return false;
+      }
+      // The rule's "views" are View Coverage times the views the scores used.
+      d.Rule->SetNumberOfViews(
+        this->ComputeScores ? static_cast<int>(d.Scores->GetNumberOfViewsUsed()) : 0);
+      if (!pass(d.GaussiansOutput, 0))
+      {
+        return false;
+      }
+      if (!this->Rule.empty() && d.Rule->GetLastRuleError() && *d.Rule->GetLastRuleError())
+      {
+        d.Errors.push_back(d.Rule->GetLastRuleError());
+        return false;
+      }
+      this->LoadedIteration = log ? d.Log->GetLoadedIteration() : -1;
+      return true;
+    }
+    case CamerasPort:
+      if (log)
+      {
+        return d.Log->HasCameras() ? pass(d.Log, 1) : true;
+      }
+      return d.CameraFile.empty() ? true : pass(d.Cameras, 0);
+    case MetricsPort:
+      return log && d.Log->HasMetrics() ? pass(d.Log, 2) : true;
+    case TreePort:
+    case BandsPort:
+      return log && d.Log->HasEvents() ? pass(d.Genealogy, port == TreePort ? 0 : 1) : true;
+    case HistoryPort:
+    {
+      vtkNew<vtkIdTypeArray> ids;
+      if (!this->SelectionIds(inInfo, ids))
+      {
+        return false;
+      }
+      if (!log || ids->GetNumberOfValues() == 0)
+      {
+        return true;
+      }
+      return d.Log->GetPropertyHistory(ids, vtkTable::SafeDownCast(output)) != 0;
+    }
+    case RemovalViewsPort:
+    case RemovalTotalsPort:
+    {
+      vtkNew<vtkIdTypeArray> ids;
+      if (!this->SelectionIds(inInfo, ids))
+      {
+        return false;
+      }
+      if (ids->GetNumberOfValues() == 0)
+      {
+        return true;
+      }
+      // The same ids keep the filter's result: a new array would measure the removal again.
+      vtkIdTypeArray* current = d.Removal->GetRemovedIds();
+      if (!current || current->GetNumberOfValues() != ids->GetNumberOfValues() ||
+        !std::equal(ids->GetPointer(0),
+          ids->GetPointer(0) + ids->GetNumberOfValues(),
+          current->GetPointer(0)))
+      {
+        d.Removal->SetRemovedIds(ids);
+      }
+      return pass(d.Removal, port == RemovalViewsPort ? 0 : 1);
+    }
+    default:
+      return true;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSession::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Iteration: " << this->Iteration << "\n";
+  os << indent << "CamerasFileName: " << this->CamerasFileName << "\n";
+  os << indent << "ImageDirectory: " << this->ImageDirectory << "\n";
+  os << indent << "IdProperty: " << this->IdProperty << "\n";
+  os << indent << "FullSHLimit: " << this->FullSHLimit << "\n";
+  os << indent << "ComputeScores: " << this->ComputeScores << "\n";
+  os << indent << "Rule: " << this->Rule << "\n";
+  os << indent << "SelectedIds: ";
+  if (this->SelectedIds)
+  {
+    os << this->SelectedIds->GetNumberOfValues() << " ids\n";
+  }
+  else
+  {
+    os << "(none)\n";
+  }
+  os << indent << "IsTrainingLog: " << this->IsTrainingLog << "\n";
+  os << indent << "LoadedIteration: " << this->LoadedIteration << "\n";
+}
