@@ -40,7 +40,7 @@ fi
 bash "$here/Scripts/run-fuzzers.sh" "${VIS4GS_FUZZ_SECONDS:-15}" "$build-fuzz"
 
 # The sanitizers' bounded part: Core and its tests under ASan + UBSan (GCC, own build dir, about
-# 15 minutes on 2 cores from scratch); any report fails the test command.
+# 16 minutes on 2 idle cores from scratch, TESTING.md); any report fails the test command.
 if [ "${CI:-}" = true ] || [ "${VIS4GS_SANITIZERS:-1}" != 0 ]; then
   bash "$here/Scripts/run-sanitizers.sh" core "$build-asan-core"
 fi

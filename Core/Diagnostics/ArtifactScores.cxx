@@ -244,6 +244,16 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   // resolution (the same projection and blending), so no view is drawn twice for it.
   const bool shareRenderCost = renderCost && scores && settings.LossResolution == 1;
   std::vector<bool> costedByScorePass(cameras.size(), false);
+  auto addRenderCost = [&out, n](const GaussianWeightStats& weights)
+  {
+    const std::int64_t count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t g = 0; g < count; ++g)
+    {
+      out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
+      out.ContributionSum[g] += weights.WeightSum[g];
+    }
+  };
   const std::size_t totalSteps = (request.ViewCoverage ? ownViews.size() : 0) +
     (scores ? ownViews.size() : 0) + (renderCost ? ownViews.size() : 0);
   std::size_t done = 0;
@@ -378,12 +388,7 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
       }
       if (shareRenderCost)
       {
-#pragma omp parallel for schedule(static)
-        for (std::int64_t g = 0; g < sn; ++g)
-        {
-          out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
-          out.ContributionSum[g] += weights.WeightSum[g];
-        }
+        addRenderCost(weights);
         costedByScorePass[vi] = true;
       }
       if (shareCoverage)
@@ -495,7 +500,6 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   // views the score pass rendered at full resolution are done.
   if (renderCost)
   {
-    const std::int64_t sn = static_cast<std::int64_t>(n);
     RasterImage<float> render;
     GaussianWeightStats weights;
     weights.CountEvaluations = true;
@@ -515,12 +519,7 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         ProjectGaussians<float>(cloud, cameras[vi], projectionOnly);
       const TileBins bins = BinGaussians(projection, settings.Threads);
       CompositeTiles(projection, bins, projectionOnly, render, &weights);
-#pragma omp parallel for schedule(static)
-      for (std::int64_t g = 0; g < sn; ++g)
-      {
-        out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
-        out.ContributionSum[g] += weights.WeightSum[g];
-      }
+      addRenderCost(weights);
       out.Timings.RenderCost += Seconds(t0);
       step();
     }

@@ -526,7 +526,7 @@ public:
         finite.reserve(n);
         for (double x : v)
         {
-          if (std::isfinite(x))
+          if (!std::isnan(x)) // +-inf rank (R/A of a Gaussian that never shows is +inf)
           {
             finite.push_back(top ? -x : x);
           }
@@ -543,7 +543,7 @@ public:
         for (std::size_t i = 0; i < n; ++i)
         {
           const double x = v[i];
-          mask[i] = std::isfinite(x) && (top ? x >= threshold : x <= threshold) ? 1 : 0;
+          mask[i] = !std::isnan(x) && (top ? x >= threshold : x <= threshold) ? 1 : 0;
         }
         return mask;
       }

@@ -29,9 +29,10 @@
  *
  * Semantics, chosen so that an independent evaluation (numpy) gives the same set:
  * - a comparison is IEEE: false for a NaN value, so "not (x<t)" holds for NaN values;
- * - "A top p%" holds for the Gaussians whose finite value is >= the k-th largest finite value,
- *   k = ceil(p n / 100), n the number of finite values over the whole cloud (not only those
- *   other conditions keep); ties at the threshold are included; k = 0 selects none. "bottom"
+ * - "A top p%" holds for the Gaussians whose value (not NaN) is >= the k-th largest value,
+ *   k = ceil(p n / 100), n the number of values that are not NaN over the whole cloud (not only
+ *   those other conditions keep); +inf ranks first (CostPerContribution of a Gaussian that is
+ *   drawn and never shows); ties at the threshold are included; k = 0 selects none. "bottom"
  *   is the same from below;
  * - "isolated r=R" holds when the Gaussian's centre is finite and no other finite centre lies
  *   within distance R (|d| <= R is a neighbour); R must be finite and > 0.

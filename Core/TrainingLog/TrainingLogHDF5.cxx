@@ -459,18 +459,38 @@ void Append1D(hid_t dset,
   {
     return;
   }
-  std::vector<hsize_t> dims = Dims(dset);
-  if (dims.size() != 1)
+  if (Dims(dset).size() != 1)
   {
     throw std::runtime_error(file + ": " + what + " is not one-dimensional");
   }
-  hsize_t start = dims[0];
-  hsize_t count = n;
-  hsize_t newSize = start + count;
-  CheckStatus(H5Dset_extent(dset, &newSize), file, "cannot extend " + what);
+  AppendRows(dset, memType, n, data, file, what);
+}
+
+//------------------------------------------------------------------------------
+void AppendRows(hid_t dset,
+  hid_t memType,
+  std::size_t n,
+  const void* data,
+  const std::string& file,
+  const std::string& what)
+{
+  if (n == 0)
+  {
+    return;
+  }
+  std::vector<hsize_t> dims = Dims(dset);
+  if (dims.empty())
+  {
+    throw std::runtime_error(file + ": " + what + " is a scalar");
+  }
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = dims[0];
+  count[0] = n;
+  dims[0] += n;
+  CheckStatus(H5Dset_extent(dset, dims.data()), file, "cannot extend " + what);
   Handle fileSpace(H5Dget_space(dset));
-  H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
-  Handle memSpace(H5Screate_simple(1, &count, nullptr));
+  H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  Handle memSpace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
   CheckStatus(H5Dwrite(dset, memType, memSpace, fileSpace, H5P_DEFAULT, data),
     file,
     "cannot append to " + what);

@@ -133,6 +133,14 @@ void Append1D(hid_t dset,
   const std::string& file,
   const std::string& what);
 
+/// Appends @p n rows (each of the dataset's other dimensions) to an extendable dataset.
+void AppendRows(hid_t dset,
+  hid_t memType,
+  std::size_t n,
+  const void* data,
+  const std::string& file,
+  const std::string& what);
+
 /// Reads a whole dataset converted to @p memType into @p out (which must be large enough).
 void ReadAll(hid_t dset,
   hid_t memType,

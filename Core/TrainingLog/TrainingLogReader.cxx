@@ -9,6 +9,7 @@
 #include "TrainingLogHDF5.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -17,6 +18,7 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 #include <unordered_map>
 
 namespace vis4gs
@@ -27,8 +29,55 @@ namespace
 struct SnapshotEntry
 {
   int Iteration = 0;
-  std::string Group; ///< full path, e.g. "/snapshots/000500"
+  std::string Group; ///< full path, e.g. "/snapshots/000500"; "/snapshots" when packed
+  /// Packed layout (format version 2): the snapshot is rows [Offset, Offset + Count) of the
+  /// concatenated datasets in /snapshots; version 1: a group whose datasets it fills.
+  bool Packed = false;
+  hsize_t Offset = 0;
+  hsize_t Count = 0;
+  int ShDegree = -1; ///< packed: the degree it holds (/snapshots/sh_degree); -1: all of sh
 };
+
+/// Columns of /committed (format version 2): rows of each table a reader may use.
+enum CommittedColumn
+{
+  CommittedMetrics,
+  CommittedTestMetrics,
+  CommittedEvents,
+  CommittedBreaks,
+  CommittedSnapshots,
+  CommittedColumns
+};
+
+/// Reads rows [first, first + n) of a dataset of rank 1, 2 ([N,W]) or 3 ([N,K,3], the first
+/// @p k coefficients) through HDF5's hyperslab path.
+void ReadRowRange(hid_t set,
+  hid_t memType,
+  hsize_t first,
+  hsize_t n,
+  hsize_t k,
+  void* out,
+  const std::string& file,
+  const std::string& path)
+{
+  if (n == 0)
+  {
+    return;
+  }
+  std::vector<hsize_t> dims = h5::Dims(set);
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = first;
+  count[0] = n;
+  if (dims.size() == 3)
+  {
+    count[1] = k;
+  }
+  h5::Handle fileSpace(H5Dget_space(set));
+  H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  h5::Handle memSpace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
+  h5::CheckStatus(
+    H5Dread(set, memType, memSpace, fileSpace, H5P_DEFAULT, out), file, "cannot read " + path);
+}
 
 herr_t CollectName(hid_t, const char* name, const H5L_info_t*, void* data)
 {
@@ -51,8 +100,9 @@ bool ParseIteration(const std::string& name, int& value)
 class IdBlocks
 {
 public:
-  IdBlocks(hid_t dset, hsize_t size, hsize_t blockRows, const std::string& file)
+  IdBlocks(hid_t dset, hsize_t size, hsize_t blockRows, const std::string& file, hsize_t base = 0)
     : Dataset(dset)
+    , Base(base)
     , Size(size)
     , BlockRows(std::max<hsize_t>(1, blockRows))
     , FileBlockRows(std::max<hsize_t>(1, blockRows))
@@ -76,7 +126,7 @@ public:
       const hsize_t start = block * this->BlockRows;
       const hsize_t count = std::min(this->BlockRows, this->Size - start);
       std::vector<std::int64_t> values(count);
-      if (this->UseDirect && this->Direct.Read(start, count, values.data()))
+      if (this->UseDirect && this->Direct.Read(this->Base + start, count, values.data()))
       {
         it = this->Blocks.emplace(block, std::move(values)).first;
         ++this->BlocksRead;
@@ -91,7 +141,8 @@ public:
         return this->At(row);
       }
       h5::Handle fileSpace(H5Dget_space(this->Dataset));
-      H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+      const hsize_t fileStart = this->Base + start;
+      H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, &fileStart, nullptr, &count, nullptr);
       h5::Handle memSpace(H5Screate_simple(1, &count, nullptr));
       h5::CheckStatus(
         H5Dread(this->Dataset, H5T_NATIVE_INT64, memSpace, fileSpace, H5P_DEFAULT, values.data()),
@@ -107,6 +158,7 @@ public:
 
 private:
   hid_t Dataset;
+  hsize_t Base; ///< first row of the snapshot in a packed dataset
   hsize_t Size;
   hsize_t BlockRows;
   hsize_t FileBlockRows;
@@ -161,6 +213,18 @@ struct TrainingLogReader::Internals
        Breaks = false;
   std::vector<SnapshotEntry> Snapshots;
   std::vector<int> Iterations;
+  /// Format version 2: the rows of each table that the writer committed (CommittedColumn).
+  std::vector<std::int64_t> Committed;
+  bool Swmr = false; ///< opened in HDF5's SWMR read mode
+
+  /// @p rows capped at what the writer committed (format version 2).
+  std::size_t Cap(CommittedColumn column, std::size_t rows) const
+  {
+    return this->Committed.empty()
+      ? rows
+      : std::min(
+          rows, static_cast<std::size_t>(std::max<std::int64_t>(0, this->Committed[column])));
+  }
 
   [[noreturn]] void Throw(const std::string& what) const
   {
@@ -204,9 +268,198 @@ struct TrainingLogReader::Internals
       h5::Check(H5Dopen2(loc, path.c_str(), H5P_DEFAULT), this->Path, "cannot open " + path));
   }
 
+  void Open();
   void ListSnapshots();
+  void ListPackedSnapshots();
   void CheckLacks();
+  /// What Refresh() compares: snapshot iterations and table lengths.
+  std::vector<std::int64_t> Signature() const;
 };
+
+//------------------------------------------------------------------------------
+void TrainingLogReader::Internals::Open()
+{
+  const std::string& path = this->Path;
+  h5::Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
+#if H5_VERSION_GE(1, 10, 7)
+  H5Pset_file_locking(fapl, false, true);
+#endif
+  // SWMR read mode first: it opens every log (one whose writer runs in SWMR mode, or was
+  // killed, refuses a plain read-only open: its superblock says it is open for writing) and
+  // never blocks a writer. Plain when this process already has the file open otherwise (a
+  // writer: HDF5 refuses other flags then, and shares that open).
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl);
+  this->Swmr = file >= 0;
+  if (file < 0)
+  {
+    const std::string swmrError = h5::LastErrorMessage();
+    H5Eclear2(H5E_DEFAULT);
+    file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+    if (file < 0)
+    {
+      const std::string plainError = h5::LastErrorMessage();
+      H5Eclear2(H5E_DEFAULT);
+      this->Throw("cannot open the training log" +
+        (plainError.empty() ? std::string() : ": " + plainError) +
+        (swmrError.empty() || swmrError == plainError ? std::string()
+                                                      : " (in SWMR read mode: " + swmrError + ")"));
+    }
+  }
+  this->File = h5::Handle(file);
+  std::string format;
+  if (!h5::ReadStringAttribute(this->File, "format", format, path))
+  {
+    this->Throw("not a Vis4GS training log (the root has no 'format' attribute)");
+  }
+  if (format != "vis4gs-training-log")
+  {
+    this->Throw(
+      "not a Vis4GS training log (format is '" + format + "', expected 'vis4gs-training-log')");
+  }
+  std::int64_t value = 0;
+  if (!h5::ReadIntAttribute(this->File, "format_version", value, path))
+  {
+    this->Throw("the root has no 'format_version' attribute");
+  }
+  if (value != 1 && value != 2)
+  {
+    this->Throw(
+      "format version " + std::to_string(value) + " is not supported (this reader reads 1 and 2)");
+  }
+  this->Header.FormatVersion = static_cast<int>(value);
+  h5::ReadStringAttribute(this->File, "producer", this->Header.Producer, path);
+  h5::ReadStringAttribute(this->File, "scene", this->Header.Scene, path);
+  if (h5::ReadIntAttribute(this->File, "sh_degree", value, path))
+  {
+    this->Header.ShDegree = static_cast<int>(value);
+  }
+  if (h5::ReadIntAttribute(this->File, "iterations", value, path))
+  {
+    this->Header.Iterations = static_cast<int>(value);
+  }
+  if (this->Header.FormatVersion >= 2)
+  {
+    // Read first: every row it counts was flushed before it was written.
+    h5::Handle committed = this->OpenDataset(this->File, "/committed");
+    std::vector<hsize_t> dims = h5::Dims(committed);
+    if (dims.size() != 1 || dims[0] < CommittedColumns)
+    {
+      this->Throw("/committed must hold " + std::to_string(int(CommittedColumns)) + " counts");
+    }
+    this->Committed.assign(static_cast<std::size_t>(dims[0]), 0);
+    h5::ReadAll(committed, H5T_NATIVE_INT64, this->Committed.data(), path, "/committed");
+    this->Committed.resize(CommittedColumns);
+    this->ListPackedSnapshots();
+  }
+  else
+  {
+    this->ListSnapshots();
+  }
+  this->CheckLacks();
+}
+
+//------------------------------------------------------------------------------
+void TrainingLogReader::Internals::ListPackedSnapshots()
+{
+  const std::size_t s = this->Cap(CommittedSnapshots, std::numeric_limits<std::size_t>::max());
+  if (s == 0 && !h5::IsDataset(this->File, "/snapshots/id"))
+  {
+    return; // the writer creates the snapshot datasets at its first snapshot
+  }
+  std::vector<std::int32_t> iterations(s);
+  std::vector<std::int64_t> starts(s), counts(s);
+  std::vector<std::int32_t> degrees(s, -1);
+  hsize_t rows = 0;
+  {
+    h5::Handle ids = this->OpenDataset(this->File, "/snapshots/id");
+    rows = h5::Dims(ids).at(0);
+  }
+  struct Column
+  {
+    const char* Name;
+    hid_t Type;
+    void* Out;
+  };
+  for (const Column& c : { Column{ "iteration", H5T_NATIVE_INT32, iterations.data() },
+         Column{ "start", H5T_NATIVE_INT64, starts.data() },
+         Column{ "count", H5T_NATIVE_INT64, counts.data() } })
+  {
+    const std::string path = std::string("/snapshots/") + c.Name;
+    h5::Handle set = this->OpenDataset(this->File, path);
+    std::vector<hsize_t> dims = h5::Dims(set);
+    if (dims.size() != 1 || dims[0] < s)
+    {
+      this->Throw(
+        path + " holds fewer rows than the " + std::to_string(s) + " snapshots /committed counts");
+    }
+    ReadRowRange(set, c.Type, 0, s, 0, c.Out, this->Path, path);
+  }
+  if (h5::IsDataset(this->File, "/snapshots/sh_degree"))
+  {
+    // Optional: snapshots of a lower degree than /snapshots/sh holds (the rest unwritten).
+    h5::Handle set = this->OpenDataset(this->File, "/snapshots/sh_degree");
+    if (h5::Dims(set).at(0) < s)
+    {
+      this->Throw("/snapshots/sh_degree holds fewer rows than /snapshots/iteration");
+    }
+    ReadRowRange(
+      set, H5T_NATIVE_INT32, 0, s, 0, degrees.data(), this->Path, "/snapshots/sh_degree");
+  }
+  for (std::size_t i = 0; i < s; ++i)
+  {
+    const std::string row =
+      "/snapshots row " + std::to_string(i) + " (iteration " + std::to_string(iterations[i]) + ")";
+    if (starts[i] < 0 || counts[i] < 0 || static_cast<hsize_t>(starts[i] + counts[i]) > rows)
+    {
+      this->Throw(row + " names rows " + std::to_string(starts[i]) + " + " +
+        std::to_string(counts[i]) + " beyond the " + std::to_string(rows) +
+        " rows of /snapshots/id");
+    }
+    if (iterations[i] < 0 || (i > 0 && iterations[i] <= iterations[i - 1]))
+    {
+      this->Problem("snapshots out of order: " + row + " does not follow iteration " +
+          std::to_string(i > 0 ? iterations[i - 1] : 0),
+        "ignored " + row + ", which is out of order");
+      continue;
+    }
+    SnapshotEntry e;
+    e.Iteration = iterations[i];
+    e.Group = "/snapshots";
+    e.Packed = true;
+    e.Offset = static_cast<hsize_t>(starts[i]);
+    e.Count = static_cast<hsize_t>(counts[i]);
+    e.ShDegree = degrees[i];
+    this->Snapshots.push_back(e);
+    this->Iterations.push_back(e.Iteration);
+  }
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::int64_t> TrainingLogReader::Internals::Signature() const
+{
+  std::vector<std::int64_t> s(this->Iterations.begin(), this->Iterations.end());
+  s.insert(s.end(), this->Committed.begin(), this->Committed.end());
+  if (this->Committed.empty())
+  {
+    for (const char* path : { "/metrics/iteration",
+           "/metrics/test/iteration",
+           "/events/iteration",
+           "/lineage_breaks/iteration" })
+    {
+      if (h5::IsDataset(this->File, path))
+      {
+        h5::Handle set(H5Dopen2(this->File, path, H5P_DEFAULT));
+        std::vector<hsize_t> dims = h5::Dims(set);
+        s.push_back(dims.empty() ? -1 : static_cast<std::int64_t>(dims[0]));
+      }
+      else
+      {
+        s.push_back(-1);
+      }
+    }
+  }
+  return s;
+}
 
 //------------------------------------------------------------------------------
 void TrainingLogReader::Internals::ListSnapshots()
@@ -286,6 +539,9 @@ void TrainingLogReader::Internals::CheckLacks()
   this->Images = h5::IsGroup(f, "/images");
   this->Events = h5::IsGroup(f, "/events") && h5::IsDataset(f, "/events/iteration");
   this->Breaks = h5::IsGroup(f, "/lineage_breaks") && h5::IsDataset(f, "/lineage_breaks/iteration");
+  // Format version 2 creates every table up front: one the writer never filled is absent.
+  this->TestMetrics = this->TestMetrics && this->Cap(CommittedTestMetrics, 1) > 0;
+  this->Breaks = this->Breaks && this->Cap(CommittedBreaks, 1) > 0;
   if (!this->Metrics)
   {
     this->Lacks.push_back("no /metrics (required by the format): loss, PSNR, SSIM and Gaussian "
@@ -335,44 +591,48 @@ TrainingLogReader::TrainingLogReader(const std::string& path,
     H5Eclear2(H5E_DEFAULT);
     d.Throw("not an HDF5 file (a Vis4GS training log is HDF5)");
   }
-  h5::Handle fapl(H5Pcreate(H5P_FILE_ACCESS));
-#if H5_VERSION_GE(1, 10, 7)
-  H5Pset_file_locking(fapl, false, true);
-#endif
-  d.File = h5::Handle(
-    h5::Check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl), path, "cannot open the training log"));
-  std::string format;
-  if (!h5::ReadStringAttribute(d.File, "format", format, path))
+  d.Open();
+}
+
+//------------------------------------------------------------------------------
+bool TrainingLogReader::Refresh()
+{
+  h5::ErrorSilencer silence;
+  const std::vector<std::int64_t> before = this->Impl->Signature();
+  const std::vector<std::string> lacks = this->Impl->Lacks;
+  // A second H5Fopen of a file this process has open shares the first one's metadata cache
+  // (and so its stale view): close first.
+  this->Impl->File = h5::Handle();
+  std::string error;
+  for (int attempt = 0; attempt < 10; ++attempt)
   {
-    d.Throw("not a Vis4GS training log (the root has no 'format' attribute)");
+    std::unique_ptr<Internals> fresh(new Internals);
+    fresh->Path = this->Impl->Path;
+    fresh->Options = this->Impl->Options;
+    try
+    {
+      fresh->Open();
+    }
+    catch (const std::exception& e)
+    {
+      // The writer is between states (adding /cameras out of SWMR mode): try again shortly.
+      error = e.what();
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
+    fresh->Repairs = std::move(this->Impl->Repairs);
+    this->Impl = std::move(fresh);
+    return this->Impl->Signature() != before || this->Impl->Lacks != lacks;
   }
-  if (format != "vis4gs-training-log")
-  {
-    d.Throw(
-      "not a Vis4GS training log (format is '" + format + "', expected 'vis4gs-training-log')");
-  }
-  std::int64_t value = 0;
-  if (!h5::ReadIntAttribute(d.File, "format_version", value, path))
-  {
-    d.Throw("the root has no 'format_version' attribute");
-  }
-  if (value != 1)
-  {
-    d.Throw("format version " + std::to_string(value) + " is not supported (this reader reads 1)");
-  }
-  d.Header.FormatVersion = 1;
-  h5::ReadStringAttribute(d.File, "producer", d.Header.Producer, path);
-  h5::ReadStringAttribute(d.File, "scene", d.Header.Scene, path);
-  if (h5::ReadIntAttribute(d.File, "sh_degree", value, path))
-  {
-    d.Header.ShDegree = static_cast<int>(value);
-  }
-  if (h5::ReadIntAttribute(d.File, "iterations", value, path))
-  {
-    d.Header.Iterations = static_cast<int>(value);
-  }
-  d.ListSnapshots();
-  d.CheckLacks();
+  throw std::runtime_error(error +
+    " (on refreshing; the reader has no file open until a "
+    "later Refresh() succeeds)");
+}
+
+//------------------------------------------------------------------------------
+bool TrainingLogReader::IsSwmrRead() const
+{
+  return this->Impl->Swmr;
 }
 
 //------------------------------------------------------------------------------
@@ -454,6 +714,10 @@ std::size_t TrainingLogReader::GetSnapshotSize(int iteration) const
   const Internals& d = *this->Impl;
   h5::ErrorSilencer silence;
   const SnapshotEntry& e = d.Find(iteration);
+  if (e.Packed)
+  {
+    return static_cast<std::size_t>(e.Count);
+  }
   h5::Handle ids = d.OpenDataset(d.File, e.Group + "/id");
   std::vector<hsize_t> dims = h5::Dims(ids);
   if (dims.size() != 1)
@@ -477,7 +741,7 @@ int TrainingLogReader::GetSnapshotShDegree(int iteration) const
   {
     d.Throw(e.Group + "/sh must have the shape [N,K,3] with K = 1, 4, 9 or 16");
   }
-  return degree;
+  return e.ShDegree >= 0 ? std::min(e.ShDegree, degree) : degree;
 }
 
 //------------------------------------------------------------------------------
@@ -528,10 +792,17 @@ GaussianCloud TrainingLogReader::ReadSnapshot(int iteration,
   {
     d.Throw(e.Group + "/id is not one-dimensional");
   }
-  const std::size_t n = static_cast<std::size_t>(dims[0]);
+  // Packed snapshots are a row range of the concatenated datasets (HDF5's hyperslab path);
+  // a group's datasets are whole (the parallel chunk path).
+  const std::size_t n = static_cast<std::size_t>(e.Packed ? e.Count : dims[0]);
+  const hsize_t first = e.Offset;
   cloud.Count = n;
   cloud.Ids.resize(n);
-  if (n > 0 && !h5::FastReadAll(idSet, H5T_NATIVE_INT64, 1, cloud.Ids.data()))
+  if (e.Packed)
+  {
+    ReadRowRange(idSet, H5T_NATIVE_INT64, first, n, 0, cloud.Ids.data(), d.Path, e.Group + "/id");
+  }
+  else if (n > 0 && !h5::FastReadAll(idSet, H5T_NATIVE_INT64, 1, cloud.Ids.data()))
   {
     h5::ReadAll(idSet, H5T_NATIVE_INT64, cloud.Ids.data(), d.Path, e.Group + "/id");
   }
@@ -550,10 +821,10 @@ GaussianCloud TrainingLogReader::ReadSnapshot(int iteration,
     }
     h5::Handle set = d.OpenDataset(d.File, path);
     std::vector<hsize_t> shape = h5::Dims(set);
-    if (shape.empty() || shape[0] != n)
+    if (shape.empty() || (e.Packed ? shape[0] < first + n : shape[0] != n))
     {
       d.Throw(path + " has " + (shape.empty() ? std::string("no") : std::to_string(shape[0])) +
-        " rows but " + e.Group + "/id has " + std::to_string(n));
+        " rows but " + e.Group + "/id has " + std::to_string(e.Packed ? first + n : n));
     }
     if (spec.Flag == SnapshotSH)
     {
@@ -564,6 +835,11 @@ GaussianCloud TrainingLogReader::ReadSnapshot(int iteration,
       cloud.SH.resize(n * k * 3);
       if (n == 0)
       {
+        continue;
+      }
+      if (e.Packed)
+      {
+        ReadRowRange(set, H5T_NATIVE_FLOAT, first, n, k, cloud.SH.data(), d.Path, path);
         continue;
       }
       if (h5::FastReadAll(set, H5T_NATIVE_FLOAT, static_cast<std::size_t>(k), cloud.SH.data()))
@@ -590,7 +866,11 @@ GaussianCloud TrainingLogReader::ReadSnapshot(int iteration,
         (spec.Width == 1 ? std::string("]") : "," + std::to_string(spec.Width) + "]"));
     }
     std::vector<float> values(n * static_cast<std::size_t>(spec.Width));
-    if (n > 0 && !h5::FastReadAll(set, H5T_NATIVE_FLOAT, 1, values.data()))
+    if (e.Packed)
+    {
+      ReadRowRange(set, H5T_NATIVE_FLOAT, first, n, 0, values.data(), d.Path, path);
+    }
+    else if (n > 0 && !h5::FastReadAll(set, H5T_NATIVE_FLOAT, 1, values.data()))
     {
       h5::ReadAll(set, H5T_NATIVE_FLOAT, values.data(), d.Path, path);
     }
@@ -818,7 +1098,8 @@ MetricsTable TrainingLogReader::ReadMetrics(bool test) const
   h5::ErrorSilencer silence;
   const std::string group = test ? "/metrics/test" : "/metrics";
   h5::Handle itSet = d.OpenDataset(d.File, group + "/iteration");
-  std::size_t m = static_cast<std::size_t>(h5::Dims(itSet).at(0));
+  std::size_t m = d.Cap(test ? CommittedTestMetrics : CommittedMetrics,
+    static_cast<std::size_t>(h5::Dims(itSet).at(0)));
   struct Col
   {
     const char* Name;
@@ -853,7 +1134,7 @@ MetricsTable TrainingLogReader::ReadMetrics(bool test) const
       continue;
     }
     present.push_back(name);
-    const std::size_t len = length(path);
+    const std::size_t len = d.Cap(test ? CommittedTestMetrics : CommittedMetrics, length(path));
     if (len != m)
     {
       d.Problem(path + " has " + std::to_string(len) + " rows but " + group + "/iteration has " +
@@ -929,13 +1210,8 @@ LineageBreakTable TrainingLogReader::ReadLineageBreaks() const
     {
       d.Throw(path + " is not one-dimensional");
     }
-    values.resize(static_cast<std::size_t>(dims[0]));
-    if (!values.empty())
-    {
-      h5::CheckStatus(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-        d.Path,
-        "cannot read " + path);
-    }
+    values.resize(d.Cap(CommittedBreaks, static_cast<std::size_t>(dims[0])));
+    ReadRowRange(set, type, 0, values.size(), 0, values.data(), d.Path, path);
   };
   read("iteration", H5T_NATIVE_INT32, t.Iteration);
   for (const Column& c : columns)
@@ -989,7 +1265,7 @@ EventTable TrainingLogReader::ReadEvents() const
     {
       d.Throw(path + " is not one-dimensional");
     }
-    sizes[c] = static_cast<std::size_t>(dims[0]);
+    sizes[c] = d.Cap(CommittedEvents, static_cast<std::size_t>(dims[0]));
   }
   std::size_t e = *std::min_element(sizes, sizes + 4);
   if (*std::max_element(sizes, sizes + 4) != e)
@@ -1009,7 +1285,7 @@ EventTable TrainingLogReader::ReadEvents() const
   {
     const std::string path = std::string("/events/") + names[c];
     h5::Handle set = d.OpenDataset(d.File, path);
-    if (sizes[c] == e && h5::FastReadAll(set, types[c], 1, outs[c]))
+    if (sizes[c] == e && h5::Dims(set).at(0) == e && h5::FastReadAll(set, types[c], 1, outs[c]))
     {
       continue;
     }
@@ -1465,9 +1741,9 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
     for (std::size_t s = 0; s < snapshotCount && !ids.empty(); ++s)
     {
       const std::string path = d.Snapshots[s].Group + "/id";
-      if (!h5::IsDataset(d.File, path))
+      if (d.Snapshots[s].Packed || !h5::IsDataset(d.File, path))
       {
-        continue; // reported by the serial pass below
+        continue; // reported, or searched (a packed snapshot's row range), by the serial pass
       }
       idSets[s] = d.OpenDataset(d.File, path);
       const std::vector<hsize_t> dims = h5::Dims(idSets[s]);
@@ -1517,7 +1793,7 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
     {
       d.Throw(e.Group + "/id is not one-dimensional");
     }
-    const hsize_t n = dims[0];
+    const hsize_t n = e.Packed ? e.Count : dims[0];
     if (n == 0)
     {
       continue;
@@ -1538,7 +1814,7 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
       {
         blockRows = 4096;
       }
-      IdBlocks column(idSet, n, blockRows, d.Path);
+      IdBlocks column(idSet, n, blockRows, d.Path, e.Offset);
       if (!SearchSortedIds(column, n, ids, rows, which))
       {
         unsorted = true;
@@ -1549,7 +1825,7 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
       d.Problem(e.Group + "/id is not strictly increasing, so ids cannot be searched",
         "searched " + e.Group + "/id by a full scan, as its ids are not sorted");
       std::vector<std::int64_t> all(n);
-      h5::ReadAll(idSet, H5T_NATIVE_INT64, all.data(), d.Path, e.Group + "/id");
+      ReadRowRange(idSet, H5T_NATIVE_INT64, e.Offset, n, 0, all.data(), d.Path, e.Group + "/id");
       std::unordered_map<std::int64_t, hsize_t> index;
       index.reserve(static_cast<std::size_t>(n));
       for (hsize_t r = 0; r < n; ++r)
@@ -1572,6 +1848,10 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
     {
       continue;
     }
+    for (hsize_t& r : rows)
+    {
+      r += e.Offset; // rows of the datasets from here on
+    }
     // Read the selected rows of each requested dataset with one point selection each.
     for (int a = 0; a < 7; ++a)
     {
@@ -1591,7 +1871,7 @@ PropertyHistory TrainingLogReader::ReadPropertyHistory(const std::vector<std::in
       }
       h5::Handle set = d.OpenDataset(d.File, path);
       std::vector<hsize_t> shape = h5::Dims(set);
-      if (shape.empty() || shape[0] != n)
+      if (shape.empty() || (e.Packed ? shape[0] < e.Offset + n : shape[0] != n))
       {
         d.Throw(path + " and " + e.Group + "/id differ in length");
       }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file TrainingLogReader.h
- * @brief Reads a training log (DESIGN §3, format version 1) lazily and validates it.
+ * @brief Reads a training log (DESIGN §3, format versions 1 and 2) lazily and validates it.
  *
  * Opening reads only the root attributes and the list of groups and snapshots. Each table
  * and snapshot is read when asked for, and only the arrays asked for: a snapshot read
@@ -18,8 +18,12 @@
  * the file and the problem; with TrainingLogReaderOptions::Repair the reader returns a
  * repaired result instead and lists each repair in GetRepairs(). The file is never written.
  *
- * The reader opens the file without HDF5 file locking, so a log can be read while a trainer
- * still appends to it (it sees the state of the trainer's last flush).
+ * The reader opens the file without HDF5 file locking, in SWMR read mode when it can, so a
+ * log can be read while a trainer still appends to it (it sees the state of the trainer's
+ * last flush) without ever blocking it. Of a log that its writer keeps in HDF5's SWMR mode
+ * (format version 2, the Python logger's and `vis4gs train`'s), live or killed, it uses only
+ * the rows the writer counted in /committed after flushing them. Refresh() reopens the file
+ * to see what was written since (`--follow`).
  */
 #ifndef vis4gs_TrainingLogReader_h
 #define vis4gs_TrainingLogReader_h
@@ -64,6 +68,22 @@ public:
   TrainingLogReader& operator=(const TrainingLogReader&) = delete;
 
   const std::string& GetPath() const;
+  /**
+   * Closes and reopens the file and re-reads its lists (snapshots, table lengths) to see
+   * what a running writer added; true when something changed. A reopen that fails (the
+   * writer is between states) is tried again for about 0.2 s, then throws naming the file;
+   * the reader then has no file open until a later Refresh() succeeds. Follow a live file
+   * with one reader per process: HDF5 shares a second open of a file with the first, and a
+   * reader reopening while another keeps the file open can keep a view that lags the writer
+   * (seen: its datasets shorter than /committed counts, which it then reports as an error).
+   */
+  bool Refresh();
+  /**
+   * Whether the file is open in HDF5's SWMR read mode: the reader's first choice, needed for a
+   * log whose writer runs in SWMR mode or was killed; false when this process already had the
+   * file open otherwise (a writer), whose open is then shared.
+   */
+  bool IsSwmrRead() const;
   const TrainingLogHeader& GetHeader() const;
   /// What the file lacks, one sentence each (empty for a complete log).
   const std::vector<std::string>& GetLacks() const;

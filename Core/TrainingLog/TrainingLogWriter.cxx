@@ -3,9 +3,12 @@
 
 #include "TrainingLogHDF5.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <unistd.h>
@@ -62,6 +65,10 @@ struct TrainingLogWriter::Internals
   std::size_t EventsWritten = 0;
   bool CamerasWritten = false;
   int LastSnapshot = -1;
+  std::int64_t SnapshotsWritten = 0;
+  bool SwmrStarted = false;
+  std::chrono::steady_clock::time_point LastFlush = std::chrono::steady_clock::now();
+  h5::Handle Committed; ///< Swmr: /committed
   bool Closed = false;
   bool Renamed = false; ///< WriteToTemporary: the temporary became Path
 
@@ -73,6 +80,7 @@ struct TrainingLogWriter::Internals
     this->Closed = true;
     this->Train = MetricsSink();
     this->Test = MetricsSink();
+    this->Committed = h5::Handle();
     for (auto& e : this->EventSets)
     {
       e.Reset();
@@ -190,6 +198,23 @@ struct TrainingLogWriter::Internals
     this->PendingEvents = EventTable();
   }
 
+  void EnsureNotSwmr(const std::string& what) const
+  {
+    if (this->SwmrStarted)
+    {
+      throw std::runtime_error(this->Path + ": cannot add " + what +
+        " after the first snapshot of a log written in SWMR mode (write cameras and images "
+        "first)");
+    }
+  }
+
+  /// Format version 2: appends the snapshot as rows of the concatenated datasets (created,
+  /// shaped by it, at the first snapshot) and a row of the index.
+  void WritePackedSnapshot(int iteration,
+    const GaussianCloud& cloud,
+    const std::int64_t* ids,
+    const SnapshotStatistics* statistics);
+
   void EnsureOpen() const
   {
     if (this->Closed)
@@ -198,6 +223,122 @@ struct TrainingLogWriter::Internals
     }
   }
 };
+
+//------------------------------------------------------------------------------
+void TrainingLogWriter::Internals::WritePackedSnapshot(int iteration,
+  const GaussianCloud& cloud,
+  const std::int64_t* ids,
+  const SnapshotStatistics* statistics)
+{
+  const std::string& f = this->WritePath;
+  const std::size_t n = cloud.Count;
+  const hsize_t k = static_cast<hsize_t>(cloud.ShCoefficientCount());
+  const bool grad = statistics && !statistics->GradAccum.empty();
+  const bool denom = statistics && !statistics->Denom.empty();
+  if (!h5::IsDataset(this->File, "/snapshots/id"))
+  {
+    h5::Handle g(H5Gopen2(this->File, "/snapshots", H5P_DEFAULT));
+    const hsize_t c =
+      std::max<hsize_t>(1, std::min<hsize_t>(this->Options.SnapshotChunkRows, 1u << 30));
+    const int level = this->Options.SnapshotDeflateLevel;
+    auto create = [&](const char* name,
+                    hid_t type,
+                    std::vector<hsize_t> dims,
+                    std::vector<hsize_t> chunk,
+                    int deflate)
+    { h5::CreateAndWrite(g, name, type, type, dims, chunk, deflate, nullptr, f); };
+    create("iteration", H5T_STD_I32LE, { 0 }, { 1024 }, 0);
+    create("start", H5T_STD_I64LE, { 0 }, { 1024 }, 0);
+    create("count", H5T_STD_I64LE, { 0 }, { 1024 }, 0);
+    create("sh_degree", H5T_STD_I32LE, { 0 }, { 1024 }, 0);
+    create("id", H5T_STD_I64LE, { 0 }, { c }, level);
+    create("position", H5T_IEEE_F32LE, { 0, 3 }, { c, 3 }, level);
+    create("log_scale", H5T_IEEE_F32LE, { 0, 3 }, { c, 3 }, level);
+    create("rotation", H5T_IEEE_F32LE, { 0, 4 }, { c, 4 }, level);
+    create("opacity_logit", H5T_IEEE_F32LE, { 0 }, { c }, level);
+    // One coefficient per chunk along K, so that the DC term reads without the SH rest; K of
+    // the trainer's degree, so that a snapshot of a lower degree (SnapshotShDegree) leaves
+    // the chunks of the other coefficients unwritten (no disk) and the final one fits.
+    const int degree = std::max(this->Options.ShDegree, cloud.ShDegree);
+    const hsize_t kMax = static_cast<hsize_t>((degree + 1) * (degree + 1));
+    create("sh", H5T_IEEE_F32LE, { 0, kMax, 3 }, { c, 1, 3 }, level);
+    if (grad)
+    {
+      create("grad_accum", H5T_IEEE_F32LE, { 0 }, { c }, level);
+    }
+    if (denom)
+    {
+      create("denom", H5T_IEEE_F32LE, { 0 }, { c }, level);
+    }
+  }
+  auto open = [&](const std::string& name)
+  {
+    const std::string path = "/snapshots/" + name;
+    return h5::Handle(
+      h5::Check(H5Dopen2(this->File, path.c_str(), H5P_DEFAULT), f, "cannot open " + path));
+  };
+  h5::Handle idSet = open("id");
+  const std::int64_t start = static_cast<std::int64_t>(h5::Dims(idSet).at(0));
+  h5::AppendRows(idSet, H5T_NATIVE_INT64, n, ids, f, "/snapshots/id");
+  struct Array
+  {
+    const char* Name;
+    const float* Data;
+  };
+  for (const Array& a : { Array{ "position", cloud.Positions.data() },
+         Array{ "log_scale", cloud.LogScales.data() },
+         Array{ "rotation", cloud.Rotations.data() },
+         Array{ "opacity_logit", cloud.OpacityLogits.data() } })
+  {
+    h5::AppendRows(
+      open(a.Name), H5T_NATIVE_FLOAT, n, a.Data, f, std::string("/snapshots/") + a.Name);
+  }
+  // SH: the snapshot's coefficients only (cut to what /snapshots/sh holds); its degree goes
+  // to the index. A statistic the snapshot lacks is NaN (one it has that the first lacked
+  // is not stored).
+  h5::Handle sh = open("sh");
+  std::vector<hsize_t> shDims = h5::Dims(sh);
+  const hsize_t kept = std::min(shDims.at(1), k);
+  int keptDegree = 0;
+  while (static_cast<hsize_t>((keptDegree + 2) * (keptDegree + 2)) <= kept)
+  {
+    ++keptDegree;
+  }
+  const hsize_t first = shDims[0];
+  shDims[0] += n;
+  h5::CheckStatus(H5Dset_extent(sh, shDims.data()), f, "cannot extend /snapshots/sh");
+  if (n > 0)
+  {
+    const hsize_t fileStart[3] = { first, 0, 0 }, fileCount[3] = { n, kept, 3 };
+    const hsize_t memDims[3] = { n, k, 3 }, memStart[3] = { 0, 0, 0 };
+    h5::Handle fileSpace(H5Dget_space(sh));
+    H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, fileStart, nullptr, fileCount, nullptr);
+    h5::Handle memSpace(H5Screate_simple(3, memDims, nullptr));
+    H5Sselect_hyperslab(memSpace, H5S_SELECT_SET, memStart, nullptr, fileCount, nullptr);
+    h5::CheckStatus(
+      H5Dwrite(sh, H5T_NATIVE_FLOAT, memSpace, fileSpace, H5P_DEFAULT, cloud.SH.data()),
+      f,
+      "cannot append to /snapshots/sh");
+  }
+  const std::vector<float> nan(grad && denom ? 0 : n, std::numeric_limits<float>::quiet_NaN());
+  for (const Array& a : { Array{ "grad_accum", grad ? statistics->GradAccum.data() : nan.data() },
+         Array{ "denom", denom ? statistics->Denom.data() : nan.data() } })
+  {
+    if (h5::IsDataset(this->File, std::string("/snapshots/") + a.Name))
+    {
+      h5::AppendRows(
+        open(a.Name), H5T_NATIVE_FLOAT, n, a.Data, f, std::string("/snapshots/") + a.Name);
+    }
+  }
+  const std::int32_t it = iteration;
+  const std::int64_t count = static_cast<std::int64_t>(n);
+  h5::Append1D(open("iteration"), H5T_NATIVE_INT32, 1, &it, f, "/snapshots/iteration");
+  h5::Append1D(open("start"), H5T_NATIVE_INT64, 1, &start, f, "/snapshots/start");
+  h5::Append1D(open("count"), H5T_NATIVE_INT64, 1, &count, f, "/snapshots/count");
+  const std::int32_t shDegree = keptDegree;
+  h5::Append1D(open("sh_degree"), H5T_NATIVE_INT32, 1, &shDegree, f, "/snapshots/sh_degree");
+  ++this->SnapshotsWritten;
+}
 
 //------------------------------------------------------------------------------
 std::string TrainingLogWriter::SnapshotName(int iteration)
@@ -225,6 +366,10 @@ TrainingLogWriter::TrainingLogWriter(const std::string& path,
   {
     throw std::runtime_error(path + ": chunk sizes must be positive");
   }
+  if (options.Swmr && options.WriteToTemporary)
+  {
+    throw std::runtime_error(path + ": a SWMR log is written in place (not with WriteToTemporary)");
+  }
   h5::ErrorSilencer silence;
 
   // Crash safety: never reuse freed file space (flushed metadata may still point at it) ...
@@ -245,6 +390,11 @@ TrainingLogWriter::TrainingLogWriter(const std::string& path,
   // As the reader does, so that both can have the file open in one process.
   H5Pset_file_locking(fapl, false, true);
 #endif
+  if (options.Swmr)
+  {
+    // SWMR needs the newest file format (superblock version 3).
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
+  }
 
   const bool existed = ::access(d.WritePath.c_str(), F_OK) == 0;
   const hid_t file = H5Fcreate(d.WritePath.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
@@ -280,7 +430,7 @@ void TrainingLogWriter::WriteHeader()
   Internals& d = *this->Impl;
   const TrainingLogWriterOptions& options = d.Options;
   h5::WriteStringAttribute(d.File, "format", "vis4gs-training-log");
-  h5::WriteIntAttribute(d.File, "format_version", 1);
+  h5::WriteIntAttribute(d.File, "format_version", options.Swmr ? 2 : 1);
   h5::WriteStringAttribute(d.File, "producer", options.Producer);
   h5::WriteStringAttribute(d.File, "scene", options.Scene);
   h5::WriteIntAttribute(d.File, "sh_degree", options.ShDegree);
@@ -315,6 +465,22 @@ void TrainingLogWriter::WriteHeader()
     h5::Check(H5Gcreate2(d.File, "/snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
       d.WritePath,
       "cannot create /snapshots"));
+  if (options.Swmr)
+  {
+    // Version 2 creates every table up front (a SWMR writer cannot create them later).
+    d.CreateMetrics(d.Test, "/metrics/test");
+    d.HasTest = true;
+    const std::int64_t zeros[5] = { 0, 0, 0, 0, 0 };
+    const hsize_t columns = 5;
+    h5::Handle space(H5Screate_simple(1, &columns, nullptr));
+    d.Committed = h5::Handle(h5::Check(
+      H5Dcreate2(d.File, "/committed", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      d.WritePath,
+      "cannot create /committed"));
+    h5::CheckStatus(H5Dwrite(d.Committed, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, zeros),
+      d.WritePath,
+      "cannot write /committed");
+  }
   this->Flush();
 }
 
@@ -368,6 +534,7 @@ void TrainingLogWriter::WriteCameras(const std::vector<Camera>& cameras)
 {
   Internals& d = *this->Impl;
   d.EnsureOpen();
+  d.EnsureNotSwmr("/cameras");
   if (d.CamerasWritten)
   {
     throw std::runtime_error(d.Path + ": /cameras is already written");
@@ -462,6 +629,7 @@ void TrainingLogWriter::WriteImage(const std::string& name,
   {
     throw std::runtime_error(d.Path + ": bad embedded image '" + name + "'");
   }
+  d.EnsureNotSwmr("/images/" + name);
   h5::ErrorSilencer silence;
   if (!h5::LinkExists(d.File, "/images"))
   {
@@ -494,6 +662,12 @@ void TrainingLogWriter::AppendMetrics(const MetricsRow& row, bool test)
     d.HasTest = true;
   }
   (test ? d.Test : d.Train).Pending.Append(row);
+  if (d.Options.FlushIntervalSeconds > 0 &&
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - d.LastFlush).count() >=
+      d.Options.FlushIntervalSeconds)
+  {
+    this->Flush();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -568,6 +742,22 @@ void TrainingLogWriter::WriteSnapshot(int iteration,
     }
   }
   h5::ErrorSilencer silence;
+  if (d.Options.Swmr)
+  {
+    d.WritePackedSnapshot(iteration, cloud, idData, statistics);
+    d.LastSnapshot = iteration;
+    if (d.Options.FlushOnSnapshot || !d.SwmrStarted)
+    {
+      this->Flush();
+    }
+    if (!d.SwmrStarted)
+    {
+      // From now on readers may open the file while it grows (no new datasets from here).
+      h5::CheckStatus(H5Fstart_swmr_write(d.File), d.WritePath, "cannot start SWMR writing");
+      d.SwmrStarted = true;
+    }
+    return;
+  }
   h5::Handle group(
     h5::Check(H5Gcreate2(d.File, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
       d.WritePath,
@@ -669,6 +859,22 @@ void TrainingLogWriter::Flush()
   }
   d.FlushEvents();
   h5::CheckStatus(H5Fflush(d.File, H5F_SCOPE_GLOBAL), d.WritePath, "cannot flush the training log");
+  d.LastFlush = std::chrono::steady_clock::now();
+  if (d.Committed.Valid())
+  {
+    // Counted only once flushed: a reader (or a kill) never sees a row counted before its
+    // bytes are in the file.
+    const std::int64_t counts[5] = { static_cast<std::int64_t>(d.Train.Written),
+      static_cast<std::int64_t>(d.Test.Written),
+      static_cast<std::int64_t>(d.EventsWritten),
+      0,
+      d.SnapshotsWritten };
+    h5::CheckStatus(H5Dwrite(d.Committed, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, counts),
+      d.WritePath,
+      "cannot write /committed");
+    h5::CheckStatus(
+      H5Fflush(d.File, H5F_SCOPE_GLOBAL), d.WritePath, "cannot flush the training log");
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -683,6 +889,7 @@ void TrainingLogWriter::Close()
   d.Closed = true;
   d.Train = MetricsSink();
   d.Test = MetricsSink();
+  d.Committed = h5::Handle();
   for (auto& e : d.EventSets)
   {
     e.Reset();

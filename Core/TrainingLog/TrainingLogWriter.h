@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file TrainingLogWriter.h
- * @brief Writes a training log (DESIGN §3, format version 1) while a trainer runs.
+ * @brief Writes a training log (DESIGN §3, format version 1, or 2 in SWMR mode) while a trainer
+ * runs.
  *
  * The writer appends: metrics rows and events are buffered in memory and written at each
  * Flush(); a snapshot is written (and, by default, flushed) when it is handed over. The
@@ -14,6 +15,13 @@
  * without a successful Close() (an error unwinds its owner: a full disk) removes the temporary
  * and leaves what was at @c path untouched. A constructor that fails once the file exists
  * removes it, in both modes.
+ *
+ * With Swmr the file is format version 2 in HDF5's single-writer/multiple-reader mode, which
+ * readers (`vis4gs view LOG --follow`, `vis4gs analyze`) open while the trainer writes it,
+ * without blocking it: the snapshots are rows of concatenated datasets and each Flush()
+ * counts the rows in /committed only after they are flushed. A SWMR writer cannot create
+ * datasets, so SWMR mode starts after the first snapshot: cameras and images must be written
+ * before it (later they throw).
  *
  * Errors throw std::runtime_error naming the file.
  */
@@ -56,6 +64,15 @@ struct TrainingLogWriterOptions
   bool FlushOnSnapshot = true;
   /// Write "<path>.tmp" and rename it onto path in Close() (whole-file writers).
   bool WriteToTemporary = false;
+  /// Format version 2 in SWMR mode from the first snapshot on (default off: version 1);
+  /// not with WriteToTemporary (a reader must find the live file).
+  bool Swmr = false;
+  /**
+   * Also flush when a metrics row is appended this many seconds after the last flush (0, the
+   * default: only at snapshots and Flush()), so that a reader following the log sees metrics
+   * and events between snapshots.
+   */
+  double FlushIntervalSeconds = 0.0;
 };
 
 /// Optional per-Gaussian densification statistics of a snapshot (empty = not written).

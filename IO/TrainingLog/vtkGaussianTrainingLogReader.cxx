@@ -246,6 +246,9 @@ bool vtkGaussianTrainingLogReader::OpenLog()
     // Reopened at each RequestInformation: a log still being written shows its new snapshots.
     vis4gs::TrainingLogReaderOptions options;
     options.Repair = this->Repair;
+    // Closed first: a second open of a file this process has open shares the first one's
+    // metadata cache, and so would not see what a running writer added since.
+    d.Log.reset();
     d.Log.reset(new vis4gs::TrainingLogReader(this->FileName, options));
     d.OpenedName = this->FileName;
     d.OpenedRepair = this->Repair;

@@ -572,11 +572,12 @@ vtkIdType vtkGaussianSceneView::Select(int mode,
   {
     return -1;
   }
-  // The selector computes this mode's pick (REPLACE in its own state); the hub, which also
-  // holds selections made in the other views, combines it with the current selection.
+  // The hub is the one selection state (it holds the other views' selections too): the
+  // selector computes this mode's pick and combines it into the hub by @p combine.
   in.ShareGaussians();
   vtkGaussianSelector* selector = in.Selector;
-  selector->SetModifier(vtkGaussianSelector::REPLACE);
+  selector->SetSelectionHub(in.Hub);
+  selector->SetModifier(combine);
   vtkIdType count = -1;
   switch (mode)
   {
@@ -608,15 +609,6 @@ vtkIdType vtkGaussianSceneView::Select(int mode,
   if (count < 0)
   {
     return -1;
-  }
-  vtkIdTypeArray* ids = selector->GetSelectedIds();
-  if (count == 0 && combine == vtkGaussianSelectionHub::REPLACE)
-  {
-    in.Hub->ClearSelection();
-  }
-  else if (ids && ids->GetNumberOfTuples() > 0)
-  {
-    in.Hub->SelectIds(ids, combine);
   }
   this->LastSelectionMode = mode;
   this->LastSelectionCount = count;

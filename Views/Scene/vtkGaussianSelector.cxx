@@ -21,6 +21,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkGaussianSelectionHub.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -30,6 +31,7 @@
 #include "vtkRenderer.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
+#include "vtkWeakPointer.h"
 
 #include <array>
 #include <chrono>
@@ -92,6 +94,7 @@ struct vtkGaussianSelector::vtkInternals
   vis4gs::GaussianOctree Octree;
   bool OctreeValid = false;
   std::vector<std::int64_t> Current;
+  vtkWeakPointer<vtkGaussianSelectionHub> Hub;
   vtkNew<vtkSelection> Selection;
   vtkNew<vtkIdTypeArray> SelectedIds;
   vtkNew<vtkIdTypeArray> RayIds;
@@ -100,6 +103,13 @@ struct vtkGaussianSelector::vtkInternals
   vtkNew<vtkDoubleArray> RayWeights;
   int Width = 0, Height = 0, OriginX = 0, OriginY = 0;
 };
+
+// The hub combines a pick by the selector's Modifier as by its own mode.
+static_assert(int(vtkGaussianSelector::REPLACE) == int(vtkGaussianSelectionHub::REPLACE) &&
+    int(vtkGaussianSelector::ADD) == int(vtkGaussianSelectionHub::ADD) &&
+    int(vtkGaussianSelector::SUBTRACT) == int(vtkGaussianSelectionHub::SUBTRACT) &&
+    int(vtkGaussianSelector::TOGGLE) == int(vtkGaussianSelectionHub::TOGGLE),
+  "the selector's modifiers are the hub's modes");
 
 vtkStandardNewMacro(vtkGaussianSelector);
 vtkCxxSetObjectMacro(vtkGaussianSelector, Scene, vtkPolyData);
@@ -226,9 +236,28 @@ void vtkGaussianSelector::SetSharedGaussians(vtkPolyData* scene,
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianSelector::SetSelectionHub(vtkGaussianSelectionHub* hub)
+{
+  if (this->Internals->Hub != hub)
+  {
+    this->Internals->Hub = hub;
+    this->Modified();
+  }
+}
+
+vtkGaussianSelectionHub* vtkGaussianSelector::GetSelectionHub()
+{
+  return this->Internals->Hub;
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSelector::ClearSelection()
 {
   this->Internals->Current.clear();
+  if (vtkGaussianSelectionHub* hub = this->Internals->Hub)
+  {
+    hub->ClearSelection();
+  }
   this->GetSelection();
   if (this->AnnotationLink)
   {
@@ -305,9 +334,18 @@ void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indice
   {
     ids.push_back(in.Cloud->GetId(i));
   }
-  in.Current = vis4gs::CombineSelection(
-    in.Current, std::move(ids), static_cast<vis4gs::SelectionModifier>(modifier));
+  vtkGaussianSelectionHub* hub = in.Hub;
+  // With a hub the hub combines (its selection holds the other views' picks too); the selector
+  // keeps the pick alone, sorted and unique.
+  in.Current = vis4gs::CombineSelection(hub ? std::vector<std::int64_t>() : in.Current,
+    std::move(ids),
+    static_cast<vis4gs::SelectionModifier>(hub ? REPLACE : modifier));
   vtkSelection* sel = self->GetSelection();
+  if (hub)
+  {
+    // The selector's modifiers are the hub's modes (both REPLACE, ADD, SUBTRACT, TOGGLE).
+    hub->SelectIds(this->Internals->SelectedIds, modifier);
+  }
   if (link)
   {
     link->SetCurrentSelection(sel);
@@ -573,6 +611,7 @@ void vtkGaussianSelector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Scene: " << this->Scene << "\n";
   os << indent << "Renderer: " << this->Renderer << "\n";
   os << indent << "AnnotationLink: " << this->AnnotationLink << "\n";
+  os << indent << "SelectionHub: " << this->Internals->Hub.GetPointer() << "\n";
   os << indent << "SplatMapper: " << this->SplatMapper << "\n";
   os << indent << "Modifier: " << this->Modifier << "\n";
   os << indent << "WeightThreshold: " << this->WeightThreshold << "\n";

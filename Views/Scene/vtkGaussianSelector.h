@@ -37,7 +37,10 @@
  *
  * Coordinates are VTK display coordinates of the renderer's window (x right, y up, as the
  * interactor reports them). Each selection combines with the current one by Modifier
- * (REPLACE, ADD, SUBTRACT, TOGGLE). The result is a vtkSelection with one node of
+ * (REPLACE, ADD, SUBTRACT, TOGGLE). With a SelectionHub (what vtkGaussianSceneView sets) the hub
+ * is the one selection state: each pick is combined there, by Modifier, with whatever the
+ * other views selected, and the selector keeps only its last pick (GetSelection()). Without
+ * one, the selector combines the picks itself: the result is a vtkSelection with one node of
  * PEDIGREEIDS on POINT data whose list is the GaussianId values (point indices when the scene
  * has no GaussianId array); when an AnnotationLink is set it is published there (the
  * selection hub's link) and the link's AnnotationChangedEvent is fired.
@@ -72,6 +75,7 @@ struct RasterWorkspace;
 #endif
 
 class vtkAnnotationLink;
+class vtkGaussianSelectionHub;
 class vtkDoubleArray;
 class vtkGaussianSplatMapper;
 class vtkIdTypeArray;
@@ -202,6 +206,15 @@ public:
 
   ///@{
   /**
+   * The selection hub each pick is combined into (by Modifier), held weakly; it then holds the
+   * selection and the selector only its last pick. Default none (the selector combines).
+   */
+  void SetSelectionHub(vtkGaussianSelectionHub* hub);
+  vtkGaussianSelectionHub* GetSelectionHub();
+  ///@}
+
+  ///@{
+  /**
    * The selection modes. Return the number of Gaussians the mode picked (before the
    * modifier), or -1 on error (no scene, no renderer, invalid scene).
    */
@@ -214,10 +227,11 @@ public:
   /// Clears the current selection (and publishes the empty selection).
   void ClearSelection();
 
-  /// The current selection (PEDIGREEIDS of GaussianId on POINT data).
+  /// The current selection (PEDIGREEIDS of GaussianId on POINT data); with a SelectionHub, the
+  /// last pick.
   vtkSelection* GetSelection();
 
-  /// The current selection's GaussianId values, ascending.
+  /// GetSelection()'s GaussianId values, ascending.
   vtkIdTypeArray* GetSelectedIds();
 
   ///@{

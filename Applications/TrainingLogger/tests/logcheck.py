@@ -6,21 +6,24 @@ import json
 import os
 import subprocess
 
-import h5py
 import numpy as np
+
+from vis4gs_logger.logfile import committed, open_log, read_snapshot, read_table, snapshot_iterations
 
 
 def read_events(path):
-    with h5py.File(path, "r") as f:
-        e = f["events"]
-        return (e["iteration"][:], e["kind"][:], e["parent"][:], e["child"][:])
+    with open_log(path) as f:
+        e = read_table(f, "events")
+        return (e["iteration"], e["kind"], e["parent"], e["child"])
 
 
 def check_format(path):
-    """Asserts the contract of DESIGN §3 on the file (names, types, shapes, order)."""
-    with h5py.File(path, "r") as f:
+    """Asserts the contract of DESIGN §3 on the file (names, types, shapes, order), in
+    either layout (format version 2: packed snapshots and /committed; 1: a group each)."""
+    with open_log(path) as f:
         assert f.attrs["format"] == "vis4gs-training-log"
-        assert int(f.attrs["format_version"]) == 1
+        version = int(f.attrs["format_version"])
+        assert version in (1, 2)
         for key in ("producer", "scene", "sh_degree", "iterations"):
             assert key in f.attrs
         m = f["metrics"]
@@ -30,13 +33,18 @@ def check_format(path):
         e = f["events"]
         assert e["iteration"].dtype == np.int32 and e["kind"].dtype == np.uint8
         assert e["parent"].dtype == np.int64 and e["child"].dtype == np.int64
+        if version == 2:
+            counts = committed(f)
+            # All committed when closed; a killed writer may leave uncounted rows after them.
+            assert counts["metrics"] <= m["iteration"].shape[0]
+            assert counts["events"] <= e["iteration"].shape[0]
+            assert counts["snapshots"] == len(snapshot_iterations(f))
         last = -1
-        for name in sorted(f["snapshots"].keys()):
-            g = f["snapshots"][name]
-            assert len(name) == 6 and int(name) == int(g.attrs["iteration"])
-            assert int(name) > last
-            last = int(name)
-            ids = g["id"][:]
+        for iteration in snapshot_iterations(f):
+            assert iteration > last
+            last = iteration
+            g = read_snapshot(f, iteration)
+            ids = g["id"]
             n = len(ids)
             assert ids.dtype == np.int64 and np.all(np.diff(ids) > 0)
             assert g["position"].shape == (n, 3) and g["position"].dtype == np.float32
@@ -44,10 +52,19 @@ def check_format(path):
             assert g["rotation"].shape == (n, 4)
             assert g["opacity_logit"].shape == (n,)
             assert g["sh"].ndim == 3 and g["sh"].shape[0] == n and g["sh"].shape[2] == 3
+        datasets = (f[f"snapshots/{name}/position"] for name in f["snapshots"]) if version == 1 \
+            else ([f["snapshots/position"]] if "position" in f["snapshots"] else [])
+        for d in datasets:
             # Chunked; uncompressed by default (snapshot_deflate=0), gzip when asked.
-            assert g["position"].chunks is not None
-            assert g["position"].compression in (None, "gzip")
+            assert d.chunks is not None
+            assert d.compression in (None, "gzip")
         assert e["parent"].compression == "gzip"
+
+
+def snapshot_names(path):
+    """The snapshot iterations of the log at path."""
+    with open_log(path) as f:
+        return snapshot_iterations(f)
 
 
 def dump(path, *args):

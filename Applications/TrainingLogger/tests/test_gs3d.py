@@ -5,12 +5,12 @@ exactly like every other parameter), which is an independent witness of the gene
 
 import math
 
-import h5py
 import numpy as np
 import pytest
 import torch
 
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from vis4gs_logger.logfile import open_log, read_snapshot, snapshot_iterations
 from mock_3dgs import GaussianModel
 from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_3dgs
 
@@ -101,9 +101,9 @@ def test_ids_follow_rows_and_events_replay(tmp_path):
     alive, next_id = replay_genealogy(events, 400)
     assert alive == set(final_ids.tolist())
     assert next_id == tracker.next_id
-    with h5py.File(path, "r") as f:
-        assert sorted(f["snapshots"].keys()) == ["%06d" % i for i in range(0, 601, 100)]
-        last = f["snapshots/000600"]
+    with open_log(path) as f:
+        assert snapshot_iterations(f) == list(range(0, 601, 100))
+        last = read_snapshot(f, 600)
         assert np.array_equal(last["id"][:], final_ids.numpy())
         assert last["sh"].shape[1] == 16
         np.testing.assert_array_equal(last["position"][:], g._xyz.detach().numpy())
@@ -163,7 +163,7 @@ def test_3dgs_cameras(tmp_path):
     logger = TrainingLogger(str(tmp_path / "c.h5"), snapshot_interval=0)
     logger.log_3dgs_cameras(cams[:1], cams[1:], embed_images=True)
     logger.close()
-    with h5py.File(str(tmp_path / "c.h5"), "r") as f:
+    with open_log(str(tmp_path / "c.h5")) as f:
         c = f["cameras"]
         assert [n.decode() if isinstance(n, bytes) else n for n in c["name"][:]] == ["a", "b"]
         assert list(c["split"][:]) == [0, 1]

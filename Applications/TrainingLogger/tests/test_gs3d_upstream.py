@@ -15,13 +15,13 @@ copy it into the children and prune_points removes it with its row."""
 import os
 import types
 
-import h5py
 import numpy as np
 import pytest
 import torch
 
 import upstream
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from vis4gs_logger.logfile import open_log, read_snapshot, snapshot_iterations
 from vis4gs_logger import CLONE, PRUNE, SPLIT
 
 GaussianModel, REDIRECTED = upstream.load_3dgs_model()  # skips the module without a copy
@@ -192,7 +192,7 @@ def test_original_gaussian_model_train_loop(tmp_path):
     run = Run(tmp_path)
     n0, iterations = run.n0, run.iterations
     path, final, _ = run.train(0, iterations, root_value=lambda r: r)
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         np.testing.assert_array_equal(f["metrics/test/iteration"][:], [40, iterations])
         assert list(f["cameras/split"][:]) == [0, 1]
         for rel in f["cameras/image"].asstr()[:]:
@@ -203,8 +203,8 @@ def test_original_gaussian_model_train_loop(tmp_path):
     assert kinds == {CLONE, SPLIT, PRUNE}, kinds
     alive, _ = replay_genealogy(events, n0)
     assert alive == set(final.tolist())
-    with h5py.File(path, "r") as f:
-        snaps = sorted(int(k) for k in f["snapshots"])
+    with open_log(path) as f:
+        snaps = snapshot_iterations(f)
         assert snaps == list(range(0, iterations + 1, 10))
         assert f["metrics/iteration"][0] == 1
     info = dump(path)
@@ -236,13 +236,13 @@ def test_original_gaussian_model_resumed_from_checkpoint(tmp_path):
     assert events[0].min() > 35 and {CLONE, SPLIT} <= set(events[1].tolist())
     alive, _ = replay_genealogy(events, n_start)
     assert alive == set(final.tolist())
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         assert int(f.attrs["start_iteration"]) == 35
-        assert sorted(int(k) for k in f["snapshots"]) == [35, 40, 50, 60, 70, 80]
-        assert f["snapshots/000035/id"][:].tolist() == list(range(n_start))
+        assert snapshot_iterations(f) == [35, 40, 50, 60, 70, 80]
+        assert read_snapshot(f, 35)["id"].tolist() == list(range(n_start))
         assert f["metrics/iteration"][0] == 36
-    with h5py.File(str(tmp_path / "training_log.before-35.h5"), "r") as f:
-        assert sorted(int(k) for k in f["snapshots"]) == [0, 10, 20, 30, 40, 50]
+    with open_log(str(tmp_path / "training_log.before-35.h5")) as f:
+        assert snapshot_iterations(f) == [0, 10, 20, 30, 40, 50]
     info = dump(path)
     if require_dump():
         assert info["repairs"] == [] and info["snapshots"] == [35, 40, 50, 60, 70, 80]

@@ -3,7 +3,6 @@
 the same row operations. sh0[:, 0, 1] carries each Gaussian's id as an independent witness
 (duplicate, split, relocate and sample_add copy it like every other parameter)."""
 
-import h5py
 import numpy as np
 import pytest
 import torch
@@ -11,6 +10,7 @@ import torch
 import mock_gsplat_ops
 import mock_gsplat_strategy
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from vis4gs_logger.logfile import open_log, read_snapshot
 from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_gsplat
 
 
@@ -106,8 +106,8 @@ def test_default_and_mcmc_strategies(tmp_path):
     events = read_events(path)
     alive, next_id = replay_genealogy(events, 300)
     assert alive == set(final.tolist()) and next_id == tracker.next_id
-    with h5py.File(path, "r") as f:
-        snap = f["snapshots/000500"]
+    with open_log(path) as f:
+        snap = read_snapshot(f, 500)
         order = np.argsort(final.numpy())
         np.testing.assert_array_equal(snap["id"][:], final.numpy()[order])
         np.testing.assert_array_equal(snap["position"][:], params["means"].detach().numpy()[order])

@@ -19,13 +19,13 @@ row's id.
 import os
 import types
 
-import h5py
 import numpy as np
 import pytest
 import torch
 
 import upstream
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from vis4gs_logger.logfile import open_log, read_snapshot, snapshot_iterations
 from test_lifecycle import FOCAL, HEIGHT, WIDTH, colmap_parser
 from vis4gs_logger import CLONE, PRUNE, SPLIT
 
@@ -197,7 +197,7 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
     final_means = splats["means"].detach().clone()
     exec(readme["after the loop:"], ns)
     path = f"{result_dir}/training_log.h5"
-    with h5py.File(path, "r") as f:  # test metrics, LPIPS, cameras with their image files
+    with open_log(path) as f:  # test metrics, LPIPS, cameras with their image files
         np.testing.assert_array_equal(f["metrics/test/iteration"][:], [39, max_steps - 1])
         np.testing.assert_array_equal(f["metrics/test/lpips"][:], [0.25, 0.25])
         assert list(f["cameras/split"][:]) == [1, 0, 0, 0, 1, 0]
@@ -207,8 +207,8 @@ def train(tmp_path, strategy, max_steps, n0=300, packed=False, seed=0, name="run
     events = read_events(path)
     check_lineage(splats, type("T", (), {"ids": final_ids})(), root_through_events(events, n0))
     # The last snapshot is the final step's model: its ids and means as the loop left them.
-    with h5py.File(path, "r") as f:
-        last = f[f"snapshots/{max_steps - 1:06d}"]
+    with open_log(path) as f:
+        last = read_snapshot(f, max_steps - 1)
         order = np.argsort(final_ids.numpy(), kind="stable")
         np.testing.assert_array_equal(last["id"][:], final_ids.numpy()[order])
         np.testing.assert_array_equal(last["position"][:], final_means.numpy()[order])
@@ -219,13 +219,13 @@ def check_log(path, splats, final_ids, n0, max_steps, events, snapshot_interval=
     check_format(path)
     alive, _ = replay_genealogy(events, n0)
     assert alive == set(final_ids.tolist())
-    with h5py.File(path, "r") as f:
-        snaps = sorted(int(k) for k in f["snapshots"])
+    with open_log(path) as f:
+        snaps = snapshot_iterations(f)
         expected = sorted(set(range(0, max_steps, snapshot_interval)) | {max_steps - 1})
         assert snaps[0] == 0 and snaps == expected, snaps
         assert f["metrics/iteration"][0] == 0 and len(f["metrics/iteration"]) == max_steps
         # The lineage check on the logged snapshots too: each snapshot's rows exist.
-        last = f[f"snapshots/{snaps[-1]:06d}"]
+        last = read_snapshot(f, snaps[-1])
         assert set(last["id"][:].tolist()) <= set(range(n0)) | set(events[3].tolist())
     info = dump(path)
     if require_dump():
@@ -250,8 +250,8 @@ def test_default_strategy(tmp_path, packed, absgrad, revised):
     assert tracker.warnings == []
     check_log(path, splats, final_ids, 300, max_steps, events)
     if revised:  # the split children's opacity is 1 - sqrt(1 - parent's): recorded as is
-        with h5py.File(path, "r") as f:
-            assert np.isfinite(f["snapshots/000070/opacity_logit"][:]).all()
+        with open_log(path) as f:
+            assert np.isfinite(read_snapshot(f, 70)["opacity_logit"]).all()
 
 
 def test_mcmc_strategy(tmp_path):
@@ -297,6 +297,6 @@ def test_default_strategy_from_one_gaussian_to_none(tmp_path):
         tmp_path, strategy, 41, n0=1, seed=5, before_step=prune_all_at_the_last_refine)
     assert len(final_ids) == 0 and PRUNE in seen and seen & {CLONE, SPLIT}, seen
     check_log(path, splats, final_ids, 1, 41, events)
-    with h5py.File(path, "r") as f:
-        counts = [len(f[f"snapshots/{s:06d}/id"]) for s in (0, 10, 20, 30, 40)]
+    with open_log(path) as f:
+        counts = [len(read_snapshot(f, s)["id"]) for s in (0, 10, 20, 30, 40)]
     assert counts[0] == 1 and counts[1] == 2 and counts[-1] == 0, counts

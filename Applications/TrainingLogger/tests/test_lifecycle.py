@@ -12,7 +12,6 @@ import sys
 import time
 import types
 
-import h5py
 import numpy as np
 import pytest
 import torch
@@ -20,6 +19,7 @@ import torch
 import mock_gsplat_ops
 import test_gsplat
 from logcheck import check_format, dump, read_events, replay_genealogy, require_dump
+from vis4gs_logger.logfile import open_log, read_snapshot, snapshot_iterations
 from vis4gs_logger import CLONE, PRUNE, SPLIT, TrainingLogger, track_gsplat
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -41,8 +41,8 @@ def test_step_zero_after_the_initial_snapshot(tmp_path):
         logger.log_metrics(step, loss=1.0)
         logger.step(step)  # step(0) must not write (nor refuse) snapshot 0 again
     logger.close()
-    with h5py.File(path, "r") as f:
-        assert sorted(f["snapshots"]) == ["000000", "000002", "000004"]
+    with open_log(path) as f:
+        assert snapshot_iterations(f) == [0, 2, 4]
         np.testing.assert_array_equal(f["metrics/iteration"][:], np.arange(5))
     # A second snapshot of one iteration is still refused when asked for explicitly.
     logger = TrainingLogger(str(tmp_path / "again.h5"))
@@ -78,10 +78,10 @@ def test_model_pruned_to_nothing_and_regrown_from_one(tmp_path):
     assert events[2].tolist() == [0, 2, 1, 3, 3, 1, 4, 5]
     alive, next_id = replay_genealogy(events, 3)
     assert alive == set() and next_id == 6
-    with h5py.File(path, "r") as f:
-        assert f["snapshots/000001/id"][:].tolist() == [1]
-        assert f["snapshots/000002/id"][:].tolist() == [1, 4, 5]
-        empty = f["snapshots/000003"]
+    with open_log(path) as f:
+        assert read_snapshot(f, 1)["id"].tolist() == [1]
+        assert read_snapshot(f, 2)["id"].tolist() == [1, 4, 5]
+        empty = read_snapshot(f, 3)
         assert empty["id"].shape == (0,) and empty["sh"].shape == (0, 16, 3)
         assert empty["position"].shape == (0, 3)
     info = dump(path)
@@ -152,8 +152,8 @@ def test_killed_run_leaves_a_valid_log(tmp_path, steps):
     check_format(path)
     events = read_events(path)
     replay_genealogy(events, 200)
-    with h5py.File(path, "r") as f:
-        snaps = sorted(int(k) for k in f["snapshots"])
+    with open_log(path) as f:
+        snaps = snapshot_iterations(f)
         assert set(range(0, steps + 1, 3)) <= set(snaps)
         assert len(f["metrics/iteration"]) >= steps - 1
     info = dump(path)
@@ -162,7 +162,7 @@ def test_killed_run_leaves_a_valid_log(tmp_path, steps):
         assert info["snapshots"] == snaps and info["counts"][0] == 200
 
 
-@pytest.mark.parametrize("where", ["_dataset:20", "_dataset:45", "_append:30", "_append:61"])
+@pytest.mark.parametrize("where", ["_fit:20", "_fit:45", "_append:30", "_append:61"])
 def test_run_killed_inside_the_writer_leaves_a_valid_log(tmp_path, where):
     """SIGKILL in the middle of writing a snapshot (between two of its datasets) or of a
     flush (between two appended columns): the log (<path>.tmp) is the one of the last flush."""
@@ -176,8 +176,8 @@ def test_run_killed_inside_the_writer_leaves_a_valid_log(tmp_path, where):
     assert reported, "killed before the first step"
     check_format(path)
     replay_genealogy(read_events(path), 200)
-    with h5py.File(path, "r") as f:
-        snaps = sorted(int(k) for k in f["snapshots"])
+    with open_log(path) as f:
+        snaps = snapshot_iterations(f)
         assert set(range(0, reported[-1] + 1, 3)) <= set(snaps)
     info = dump(path)
     if require_dump():
@@ -186,8 +186,8 @@ def test_run_killed_inside_the_writer_leaves_a_valid_log(tmp_path, where):
 
 def _has_format(path):
     try:
-        with h5py.File(path, "r") as f:
-            return "format" in f.attrs and "snapshots" in f
+        with open_log(path) as f:
+            return "format" in f.attrs and "snapshots" in f and "committed" in f
     except OSError:
         return False
 
@@ -216,16 +216,16 @@ def test_resumed_run_starts_a_clear_new_log(tmp_path):
         logger.step(it)
     logger.close()
     old = str(tmp_path / "training_log.before-5.h5")
-    with h5py.File(old, "r") as f:
+    with open_log(old) as f:
         # close() kept the model of the last step (7) besides the interval's.
-        assert sorted(f["snapshots"]) == ["000000", "000005", "000007"]
+        assert snapshot_iterations(f) == [0, 5, 7]
         assert "start_iteration" not in f.attrs
     check_format(path)
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         assert int(f.attrs["start_iteration"]) == 5
-        assert sorted(f["snapshots"]) == ["000005", "000010"]
-        assert f["snapshots/000005/id"][:].tolist() == list(range(6))
-        assert f["snapshots/000010/id"][:].tolist() == [1, 2, 3, 4]
+        assert snapshot_iterations(f) == [5, 10]
+        assert read_snapshot(f, 5)["id"].tolist() == list(range(6))
+        assert read_snapshot(f, 10)["id"].tolist() == [1, 2, 3, 4]
         assert f["metrics/iteration"][0] == 6
     events = read_events(path)
     assert events[0].tolist() == [8, 8] and events[2].tolist() == [0, 5]
@@ -264,7 +264,7 @@ def test_cameras_lead_to_their_images(tmp_path):
     track_gsplat(params, logger, modules=[mock_gsplat_ops])
     logger.log_gsplat_cameras(parser)
     logger.close()
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         c = f["cameras"]
         images = list(c["image"].asstr()[:])
         assert images == [os.path.join("..", "..", "garden", "images_4", n)
@@ -292,6 +292,6 @@ def test_cameras_lead_to_their_images(tmp_path):
     logger.log_3dgs_cameras(cams[:1], cams[1:], images_dir=str(tmp_path / "scene" / "images"),
                             source=str(tmp_path / "scene"))
     logger.close()
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         assert list(f["cameras/image"].asstr()[:]) == [
             os.path.join("..", "..", "scene", "images", "a.JPG"), ""]

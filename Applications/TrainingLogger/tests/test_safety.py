@@ -7,7 +7,6 @@ bookkeeping problem never stops the training (it is a warning and a row of
 import os
 import warnings
 
-import h5py
 import numpy as np
 import pytest
 import torch
@@ -15,13 +14,14 @@ import torch
 import mock_gsplat_ops
 import test_gsplat
 from logcheck import check_format, dump, read_events, require_dump
+from vis4gs_logger.logfile import open_log, read_snapshot, snapshot_iterations
 from mock_3dgs import GaussianModel
 from vis4gs_logger import CLONE, PRUNE, TrainingLogger, track_3dgs, track_gsplat
 
 
 def _snapshots(path):
-    with h5py.File(path, "r") as f:
-        return sorted(int(k) for k in f["snapshots"])
+    with open_log(path) as f:
+        return snapshot_iterations(f)
 
 
 def test_gsplat_loop_ends_with_the_final_model(tmp_path):
@@ -43,8 +43,8 @@ def test_gsplat_loop_ends_with_the_final_model(tmp_path):
     means = params["means"].detach().clone()
     logger.close()
     assert _snapshots(path) == [0, 4, 8, max_steps - 1]
-    with h5py.File(path, "r") as f:
-        g = f[f"snapshots/{max_steps - 1:06d}"]
+    with open_log(path) as f:
+        g = read_snapshot(f, max_steps - 1)
         order = np.argsort(ids.numpy())
         np.testing.assert_array_equal(g["id"][:], ids.numpy()[order])
         np.testing.assert_array_equal(g["position"][:], means.numpy()[order])
@@ -151,7 +151,7 @@ def test_rows_changed_outside_the_wrappers_break_the_lineage_not_the_training(tm
     ours = [w for w in caught if "vis4gs_logger" in str(w.message)]
     assert len(ours) == 1 and "lineage lost at iteration 3" in str(ours[0].message)
     assert len(tracker.breaks) == 2
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         b = f["lineage_breaks"]
         assert b["iteration"][:].tolist() == [3, 6]
         assert b["tracked"][:].tolist() == [8, 13] and b["rows"][:].tolist() == [11, 12]
@@ -159,9 +159,9 @@ def test_rows_changed_outside_the_wrappers_break_the_lineage_not_the_training(tm
         assert b["first_new_id"][:].tolist() == [8, 13] and b["new_roots"][:].tolist() == [3, 12]
         assert b["event_row"][:].tolist() == [0, 2]
         assert "duplicate" in b["where"].asstr()[0] and "split" in b["where"].asstr()[1]
-        assert f["snapshots/000004/id"][:].tolist() == list(range(13))
+        assert read_snapshot(f, 4)["id"].tolist() == list(range(13))
         # after the second break: ids 13..24, the split of row 0 (id 13) gives 25, 26
-        assert f["snapshots/000006/id"][:].tolist() == list(range(14, 27))
+        assert read_snapshot(f, 6)["id"].tolist() == list(range(14, 27))
     it, kind, parent, child = read_events(path)
     assert it.tolist() == [3, 3, 6, 6] and parent.tolist() == [1, 9, 13, 13]
     assert child.tolist() == [11, 12, 25, 26]
@@ -203,11 +203,11 @@ def test_ops_imported_before_tracking_and_failing_bookkeeping(tmp_path, monkeypa
         logger.close()
     messages = [str(w.message) for w in caught if "vis4gs_logger" in str(w.message)]
     assert any("bookkeeping of duplicate failed at iteration 2" in m for m in messages)
-    with h5py.File(path, "r") as f:
+    with open_log(path) as f:
         b = f["lineage_breaks"]
         assert b["iteration"][:].tolist() == [1, 2]
         assert b["kept"][:].tolist() == [6, 0] and b["new_roots"][:].tolist() == [2, 16]
-        assert f["snapshots/000002/id"][:].tolist() == list(range(8, 24))
+        assert read_snapshot(f, 2)["id"].tolist() == list(range(8, 24))
     info = dump(path)
     if require_dump():
         assert info["repairs"] == [] and info["snapshots"] == [0, 2]
@@ -307,8 +307,8 @@ def test_snapshot_options_sh_degree_float16_and_compression(tmp_path):
         track_gsplat(params, logger, modules=[mock_gsplat_ops])
         logger.close()
         sizes[name] = logger.writer.snapshot_bytes
-        with h5py.File(path, "r") as f:
-            stored = f["snapshots/000000/sh"]
+        with open_log(path) as f:
+            stored = read_snapshot(f, 0)["sh"]
             k = {"dc": 1, "deg1": 4}.get(name, 16)
             assert stored.shape == (2000, k, 3)
             if name == "half":
@@ -317,7 +317,8 @@ def test_snapshot_options_sh_degree_float16_and_compression(tmp_path):
             else:
                 assert stored.dtype == np.float32
                 np.testing.assert_array_equal(stored[:], sh[:, :k])
-            assert (stored.compression == "gzip") == (name == "gzip")
+            packed = f["snapshots/sh"]  # format version 2: the concatenated dataset
+            assert (packed.compression == "gzip") == (name == "gzip")
         info = dump(path)
         if require_dump():
             assert info["counts"] == [2000] and info["repairs"] == []

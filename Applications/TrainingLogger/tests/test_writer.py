@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from logcheck import check_format, dump, require_dump
-from vis4gs_logger import TrainingLogWriter
+from vis4gs_logger import TrainingLogWriter, open_log, read_snapshot, read_table, snapshot_iterations
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -33,9 +33,9 @@ def test_format_and_sorting(tmp_path):
         with pytest.raises(ValueError):
             w.write_snapshot(6, [1, 1, 2], pos, np.zeros((3, 3)), np.ones((3, 4)), np.zeros(3), np.zeros((3, 1, 3)))
     check_format(path)
-    with h5py.File(path, "r") as f:
-        assert list(f["snapshots/000005/id"][:]) == [0, 2, 3]
-        np.testing.assert_array_equal(f["snapshots/000005/position"][:], pos[[1, 2, 0]])
+    with open_log(path) as f:
+        assert list(read_snapshot(f, 5)["id"]) == [0, 2, 3]
+        np.testing.assert_array_equal(read_snapshot(f, 5)["position"], pos[[1, 2, 0]])
         assert np.isnan(f["metrics/l1"][0])
     with pytest.raises(RuntimeError):
         w.flush()
@@ -56,21 +56,21 @@ def test_snapshot_compression_default(tmp_path, snapshot_deflate):
     check_format(path)
     with h5py.File(path, "r") as f:
         for name in ("id", "position", "sh"):
-            d = f["snapshots/000005/" + name]
+            d = f["snapshots/" + name]  # format version 2: the concatenated datasets
             if snapshot_deflate is None:
                 assert d.compression is None and not d.shuffle, name
             else:
                 assert d.compression == "gzip" and d.compression_opts == 2 and d.shuffle, name
         assert f["events/parent"].compression == "gzip"
         assert f["metrics/loss"].compression == "gzip"
-        np.testing.assert_array_equal(f["snapshots/000005/id"][:], np.arange(50))
+        np.testing.assert_array_equal(read_snapshot(f, 5)["id"], np.arange(50))
 
 
 WRITER = textwrap.dedent("""
     import sys, numpy as np
     sys.path.insert(0, {pkg!r})
     from vis4gs_logger import TrainingLogWriter
-    w = TrainingLogWriter({path!r}, chunk_rows=4096)
+    w = TrainingLogWriter({path!r}, chunk_rows=4096, swmr={swmr!r})
     rng = np.random.default_rng(0)
     s = 0
     while True:
@@ -86,10 +86,11 @@ WRITER = textwrap.dedent("""
 """)
 
 
+@pytest.mark.parametrize("swmr", [True, False])
 @pytest.mark.parametrize("delay", [0.0, 0.004, 0.02])
-def test_killed_writer_leaves_readable_log(tmp_path, delay):
+def test_killed_writer_leaves_readable_log(tmp_path, delay, swmr):
     path = str(tmp_path / "crash.h5")
-    code = WRITER.format(pkg=os.path.dirname(HERE), path=path)
+    code = WRITER.format(pkg=os.path.dirname(HERE), path=path, swmr=swmr)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
     done = -1
     for _ in range(2):
@@ -102,13 +103,13 @@ def test_killed_writer_leaves_readable_log(tmp_path, delay):
     assert proc.returncode == -signal.SIGKILL
     for line in proc.stdout:
         done = int(line)
-    with h5py.File(path, "r") as f:
-        names = sorted(f["snapshots"].keys())
+    with open_log(path) as f:
+        names = snapshot_iterations(f)
         assert len(names) >= done + 1
         for s, name in enumerate(names):
-            assert int(name) == 100 * s
-            assert np.all(f["snapshots"][name]["position"][:] == s)
-        m = f["metrics/iteration"][:]
+            assert name == 100 * s
+            assert np.all(read_snapshot(f, name)["position"] == s)
+        m = read_table(f, "metrics")["iteration"]
         assert np.array_equal(m, np.arange(len(m))) and len(m) >= 100 * len(names)
     check_format(path)
     info = dump(path)

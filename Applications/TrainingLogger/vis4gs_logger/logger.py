@@ -31,7 +31,12 @@ class TrainingLogger:
     (stored as NaN). ``elapsed_s`` defaults to the wall time since the logger was created.
     ``deflate``, ``snapshot_deflate`` (default 0: snapshots uncompressed; 1-9: gzip level),
     ``snapshot_sh_degree`` (default None: every SH degree), ``snapshot_sh_float16`` (default
-    False), ``chunk_rows`` and ``flush_every_s`` are passed to TrainingLogWriter.
+    False), ``chunk_rows``, ``flush_every_s`` and ``swmr`` (default True: format version 2
+    in SWMR mode, readable while the run writes it, from the first step on; with the default
+    ``write_to_temporary`` the live file is ``<path>.tmp``, which `vis4gs view path --follow`
+    finds) are passed to TrainingLogWriter. ``live_flush_s`` (default 0.5; None: off): with
+    swmr, step() also flushes when this many seconds passed since the last flush, so that
+    new metrics and events show within about 2 s (the cost: performance-history.md).
 
     Disk: after each snapshot the size of the whole run is projected (the snapshots so far,
     plus the last one's size for each snapshot still planned up to ``iterations``); a
@@ -49,8 +54,8 @@ class TrainingLogger:
     ``<name>.before-<start_iteration>.h5`` (a warning names it).
 
     Failures of the disk never reach the training loop: the log is written as
-    ``<path>.tmp`` and renamed onto ``path`` at close() (``write_to_temporary``, default True,
-    as `vis4gs train` does; a killed run leaves the temporary, valid up to its last flush).
+    ``<path>.tmp`` and renamed onto ``path`` at close() (``write_to_temporary``, default True;
+    a killed run leaves the temporary, valid up to its last flush).
     When the file cannot be created or written (a full disk, a read-only folder: any
     OSError), one RuntimeWarning names the path and the problem, logging stops (every later
     call does nothing, ``failure`` says why), the temporary is removed and an earlier log at
@@ -62,7 +67,7 @@ class TrainingLogger:
                  snapshot_statistics=True, deflate=1, chunk_rows=4096, producer=None,
                  flush_every_s=300.0, snapshot_deflate=0, start_iteration=0,
                  snapshot_sh_degree=None, snapshot_sh_float16=False, snapshot_budget_bytes=None,
-                 write_to_temporary=True):
+                 write_to_temporary=True, swmr=True, live_flush_s=0.5):
         self.start_iteration = int(start_iteration)
         self.path = os.fspath(path)
         #: why logging stopped ("PATH: problem"), None while it works
@@ -84,7 +89,9 @@ class TrainingLogger:
                                             start_iteration=self.start_iteration,
                                             snapshot_sh_degree=snapshot_sh_degree,
                                             snapshot_sh_float16=snapshot_sh_float16,
-                                            write_to_temporary=write_to_temporary)
+                                            write_to_temporary=write_to_temporary,
+                                            swmr=swmr)
+        self.live_flush_s = live_flush_s
         self.snapshot_interval = int(snapshot_interval) if snapshot_interval else 0
         self.iterations = int(iterations)
         self.snapshot_budget_bytes = snapshot_budget_bytes
@@ -236,8 +243,18 @@ class TrainingLogger:
         iteration = int(iteration)
         self.last_step = iteration
         self.iteration = iteration + 1
+        if self.writer.swmr and not self.writer._file.swmr_mode:
+            with self._io("entering SWMR mode"):  # the loop runs: readers may follow
+                self.writer.start_swmr()
         if self.should_snapshot(iteration) and iteration != self.writer.last_snapshot_iteration:
             self._snapshot_or_warn(iteration)
+        elif self.writer.swmr and self.live_flush_s is not None \
+                and time.monotonic() - self.writer.last_flush >= self.live_flush_s:
+            # For readers following the log: new metrics and events within about 2 s.
+            t0 = time.perf_counter()
+            with self._io("flushing"):
+                self.writer.flush()
+            self.time_spent_s += time.perf_counter() - t0
 
     def _snapshot_or_warn(self, iteration):
         try:
@@ -404,6 +421,7 @@ class _StoppedWriter:
 
     last_snapshot_iteration = -1
     snapshot_bytes = 0
+    swmr = False
     _file = None
 
     def __init__(self, path):

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Appending writer of the Vis4GS training log (HDF5, format version 1; see
-Documentation/file-formats.md). Depends on numpy and h5py only; torch tensors are
+"""Appending writer of the Vis4GS training log (HDF5, format version 2 in SWMR mode, the
+default, or 1; see Documentation/file-formats.md). Depends on numpy and h5py only; torch tensors are
 accepted wherever an array is (they are moved to the CPU and converted)."""
 
+import contextlib
 import math
 import os
 import time
@@ -13,8 +14,13 @@ import numpy as np
 __all__ = ["TrainingLogWriter", "to_numpy", "FORMAT", "FORMAT_VERSION", "CLONE", "SPLIT", "PRUNE"]
 
 FORMAT = "vis4gs-training-log"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+#: the layout of format_version 1 (a group per snapshot), written with swmr=False
+FORMAT_VERSION_GROUPS = 1
 CLONE, SPLIT, PRUNE = 1, 2, 3
+#: /committed columns (format version 2): rows of each table a reader may use
+COMMITTED = ("metrics", "metrics/test", "events", "lineage_breaks", "snapshots")
+_WHERE_BYTES = 200  # /lineage_breaks/where in version 2: fixed-length UTF-8 (SWMR appends)
 
 _METRIC_COLUMNS = ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s")
 _BREAK_COLUMNS = (("iteration", "<i4"), ("event_row", "<i8"), ("tracked", "<i8"), ("rows", "<i8"),
@@ -69,16 +75,31 @@ class TrainingLogWriter:
     flush_every_s: also flush buffered rows when this many seconds have passed since the
     last flush (None: only at snapshots and close); snapshot_sh_degree: SH degree kept in the
     snapshots (None: all the trainer has; 0: the DC term only); snapshot_sh_float16: store
-    the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504);
+    the SH coefficients (colours) as float16 (IEEE half: 3 significant digits, |x| < 65504).
+
+    swmr (default True): format version 2 in HDF5's single-writer/multiple-reader mode, so
+    that readers (``vis4gs view LOG --follow``, ``vis4gs analyze``) can read the log while
+    the trainer writes it, without blocking it. A SWMR writer cannot create datasets, so the
+    tables are created at the start and the snapshots are rows of concatenated datasets
+    (created at the first snapshot, from its shapes) indexed by /snapshots/iteration, start
+    and count; each flush writes the rows, flushes, then counts them in /committed and
+    flushes again, so a reader (or a SIGKILL) never sees a half-written row counted.
+    SWMR mode starts at the first metrics row (the training loop) or start_swmr(): the
+    setup before it (first snapshot, cameras, images) creates its datasets directly (a kill
+    then leaves a file that needs ``h5clear -s``; readers cannot open it yet). Structure
+    added after it briefly takes the file out of SWMR mode (a reader kept open across that
+    moment must reopen). swmr=False writes format version 1 (a group per snapshot).
+
     write_to_temporary: write the whole file as ``<path>.tmp`` and rename it onto path at
-    close() (as `vis4gs train` does), so that a failure (a full disk, a read-only folder)
-    leaves an earlier log at path as it was; abandon() then removes the temporary.
+    close() (as TrainingLogger does by default), so that a failure (a full disk, a read-only
+    folder) leaves an earlier log at path as it was; abandon() then removes the temporary.
+    With swmr, readers follow the live ``<path>.tmp`` (`vis4gs view path --follow` finds it).
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
                  deflate=1, chunk_rows=4096, flush_every_s=300.0, snapshot_deflate=0,
                  start_iteration=0, snapshot_sh_degree=None, snapshot_sh_float16=False,
-                 write_to_temporary=False):
+                 swmr=True, write_to_temporary=False):
         self.path = os.fspath(path)
         self.deflate = int(deflate)
         self.snapshot_deflate = int(snapshot_deflate)
@@ -91,11 +112,15 @@ class TrainingLogWriter:
         self.snapshot_bytes = 0
         self.chunk_rows = int(chunk_rows)
         self.flush_every_s = flush_every_s
+        self.swmr = bool(swmr)
         #: the file being written: path, or "<path>.tmp" until close() renames it
         self.write_path = self.path + ".tmp" if write_to_temporary else self.path
         self._file = None
         try:
-            self._file = h5py.File(self.write_path, "w", fs_strategy="none", libver="earliest")
+            # SWMR needs the newest file format (superblock 3); version 1 files stay readable
+            # by HDF5 1.8 ("earliest").
+            self._file = h5py.File(self.write_path, "w", fs_strategy="none",
+                                   libver="latest" if self.swmr else "earliest")
             self._start(scene, sh_degree, iterations, producer, start_iteration)
         except BaseException:
             self.abandon()
@@ -104,15 +129,10 @@ class TrainingLogWriter:
     def _start(self, scene, sh_degree, iterations, producer, start_iteration):
         from . import __version__
 
-        cfg = self._file.id.get_mdc_config()
-        cfg.evictions_enabled = False
-        cfg.incr_mode = 0  # H5C_incr__off
-        cfg.flash_incr_mode = 0  # H5C_flash_incr__off
-        cfg.decr_mode = 0  # H5C_decr__off
-        self._file.id.set_mdc_config(cfg)
+        self._keep_metadata()
         f = self._file
         f.attrs["format"] = FORMAT
-        f.attrs["format_version"] = np.int64(FORMAT_VERSION)
+        f.attrs["format_version"] = np.int64(FORMAT_VERSION if self.swmr else FORMAT_VERSION_GROUPS)
         f.attrs["producer"] = producer or "vis4gs_logger " + __version__
         f.attrs["scene"] = scene
         f.attrs["sh_degree"] = np.int64(sh_degree)
@@ -120,21 +140,151 @@ class TrainingLogWriter:
         if start_iteration:
             # A run resumed from a checkpoint: ids restart at 0 for the checkpoint's rows.
             f.attrs["start_iteration"] = np.int64(start_iteration)
-        self._metrics = {False: self._create_metrics("metrics"), True: None}
+        self._metrics = {False: self._create_metrics("metrics"),
+                         True: self._create_metrics("metrics/test") if self.swmr else None}
         self._pending_metrics = {False: [], True: []}
         events = f.create_group("events")
+        # Each flush deflates the partly filled last chunk of each column again: with the
+        # frequent flushes of SWMR mode, 4096-row event chunks (32 KiB) make a flush about 10
+        # times cheaper than 65536 (Documentation/performance-history.md).
+        event_chunk = 4096 if self.swmr else 65536
         for name, dtype in (("iteration", "<i4"), ("kind", "u1"), ("parent", "<i8"), ("child", "<i8")):
-            self._create_table(events, name, dtype, 65536)
+            self._create_table(events, name, dtype, event_chunk)
         self._pending_events = []
         self._event_rows = 0  # rows of /events, written and buffered
         self._pending_breaks = []
         f.create_group("snapshots")
+        if self.swmr:
+            self._create_breaks()
+            f.create_dataset("committed", data=np.zeros(len(COMMITTED), np.int64))
+            self._snapshot_count = 0
         self._last_snapshot = -1
         self._last_flush = time.monotonic()
         self._cameras_written = False
         self.flush()
 
     # -- helpers ----------------------------------------------------------------------
+    def _keep_metadata(self):
+        """Between flushes HDF5 writes no metadata: the file stays the log of the last
+        flush (for format version 1; SWMR orders its metadata writes itself)."""
+        cfg = self._file.id.get_mdc_config()
+        cfg.evictions_enabled = False
+        cfg.incr_mode = 0  # H5C_incr__off
+        cfg.flash_incr_mode = 0  # H5C_flash_incr__off
+        cfg.decr_mode = 0  # H5C_decr__off
+        self._file.id.set_mdc_config(cfg)
+
+    def start_swmr(self):
+        """Enters SWMR mode (swmr=True; once, at the first metrics row if not before): from
+        then on readers can open the file while it grows and a kill leaves it readable.
+        Before, in the setup (the first snapshot, cameras, images), groups and datasets are
+        created directly; after, adding them reopens the file (_structure)."""
+        self._check_open()
+        if self.swmr and not self._file.swmr_mode:
+            self.flush()
+            self._file.swmr_mode = True
+
+    @contextlib.contextmanager
+    def _structure(self):
+        """Lets the body create groups and datasets: a SWMR writer cannot, so the file is
+        committed, closed and reopened out of SWMR mode for the moment (readers that try to
+        open it then fail and try again), then back in SWMR mode."""
+        if not self.swmr or not self._file.swmr_mode:
+            yield self._file
+            return
+        self.flush()
+        self._file.close()
+        self._file = h5py.File(self.write_path, "r+", libver="latest")
+        self._keep_metadata()
+        self._metrics = {test: self._file["metrics/test" if test else "metrics"]
+                         for test in (False, True)}
+        try:
+            yield self._file
+        finally:
+            self._file.flush()
+            self._file.swmr_mode = True
+
+    def _create_breaks(self):
+        g = self._file.create_group("lineage_breaks")
+        for name, dtype in _BREAK_COLUMNS:
+            self._create_table(g, name, dtype, 256)
+        # Fixed-length strings in version 2: a SWMR writer appends them in place.
+        where = h5py.string_dtype("utf-8", _WHERE_BYTES) if self.swmr else h5py.string_dtype("utf-8")
+        g.create_dataset("where", shape=(0,), maxshape=(None,), chunks=(256,), dtype=where)
+        return g
+
+    def _create_packed(self, arrays, ids_dtype=np.int64):
+        """The concatenated snapshot datasets of format version 2, shaped by the first
+        snapshot's arrays (later snapshots are fitted to them: see _fit)."""
+        g = self._file["snapshots"]
+        for name, dtype in (("iteration", "<i4"), ("start", "<i8"), ("count", "<i8"),
+                            ("sh_degree", "<i4")):
+            g.create_dataset(name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(1024,))
+        c = self.chunk_rows
+        level = self.snapshot_deflate
+        g.create_dataset("id", shape=(0,), maxshape=(None,), dtype=ids_dtype, chunks=(c,),
+                         **self._compression(level))
+        for key, value in arrays.items():
+            chunks = (c, 1, 3) if key == "sh" else (c,) + value.shape[1:]
+            g.create_dataset(key, shape=(0,) + value.shape[1:], maxshape=(None,) + value.shape[1:],
+                             dtype=value.dtype, chunks=chunks, **self._compression(level))
+
+    @staticmethod
+    def _fit(dataset, value):
+        """A later snapshot's array for the packed dataset: SH coefficients cut to what it
+        holds (fewer are written alone, the index keeps the degree), a statistic the
+        snapshot lacks as NaN (empty here, filled by the caller)."""
+        if value is None:
+            return np.full((0,) + dataset.shape[1:], np.nan, dataset.dtype)
+        if value.ndim == 3:
+            value = value[:, : dataset.shape[1]]
+        return value.astype(dataset.dtype, copy=False)
+
+    def _write_packed(self, iteration, ids, arrays):
+        g = self._file["snapshots"]
+        if "id" not in g:
+            with self._structure() as f:
+                self._create_packed(arrays)
+                g = f["snapshots"]
+        n = len(ids)
+        start = g["id"].shape[0]
+        written = 0
+        index = ("iteration", "start", "count", "sh_degree")
+        degree = 0
+        stored_before = self._packed_storage(g)
+        for key in ("id",) + tuple(k for k in g if k != "id" and k not in index):
+            d = g[key]
+            if key == "id":
+                value = ids
+            else:
+                value = self._fit(d, arrays.get(key))
+                if len(value) == 0 and n > 0:
+                    value = np.full((n,) + d.shape[1:], np.nan, d.dtype)
+            d.resize((start + n,) + d.shape[1:])
+            if key == "sh":
+                degree = int(round(math.sqrt(value.shape[1]))) - 1
+                if n > 0:  # the other coefficients' chunks stay unwritten (no disk)
+                    d[start:start + n, : value.shape[1]] = value
+                written += value.nbytes
+                continue
+            if n > 0:
+                d[start:start + n] = value
+            written += n * value.dtype.itemsize * int(np.prod(d.shape[1:], dtype=np.int64))
+        for key, value in (("iteration", iteration), ("start", start), ("count", n),
+                           ("sh_degree", degree)):
+            self._append(g[key], np.array([value], g[key].dtype))
+        self._snapshot_count += 1
+        if self.snapshot_deflate > 0:
+            # Compressed: what the chunks take (chunks shared with the next snapshot are
+            # counted when written); uncompressed: the raw bytes, which the whole run's
+            # chunks add up to.
+            return self._packed_storage(g) - stored_before
+        return written
+
+    @staticmethod
+    def _packed_storage(g):
+        return sum(d.id.get_storage_size() for d in g.values())
+
     def _compression(self, level=None):
         level = self.deflate if level is None else level
         if level > 0:
@@ -177,6 +327,11 @@ class TrainingLogWriter:
     def last_snapshot_iteration(self):
         return self._last_snapshot
 
+    @property
+    def last_flush(self):
+        """time.monotonic() of the last flush."""
+        return self._last_flush
+
     def write_cameras(self, names, widths, heights, fx, fy, cx, cy, world_to_camera,
                       splits=None, images=None, source=None, image_dir=None):
         """Writes /cameras (once). world_to_camera is [V,4,4]; splits 0 train / 1 test;
@@ -188,6 +343,13 @@ class TrainingLogWriter:
             raise RuntimeError(f"{self.path}: /cameras is already written")
         v = len(names)
         w2c = to_numpy(world_to_camera, np.float64).reshape(v, 4, 4)
+        with self._structure():
+            self._write_cameras(v, names, widths, heights, fx, fy, cx, cy, w2c, splits, images,
+                                source, image_dir)
+        self._cameras_written = True
+
+    def _write_cameras(self, v, names, widths, heights, fx, fy, cx, cy, w2c, splits, images,
+                       source, image_dir):
         g = self._file.create_group("cameras")
         str_type = h5py.string_dtype("utf-8")
         g.create_dataset("name", data=np.array([str(n) for n in names], dtype=object), dtype=str_type)
@@ -202,7 +364,6 @@ class TrainingLogWriter:
         for key, value in (("source", source), ("image_dir", image_dir)):
             if value:
                 g.attrs[key] = os.fspath(value)
-        self._cameras_written = True
 
     def write_image(self, name, image):
         """Embeds an image as /images/<name>: [H,W,3] uint8, or float in [0,1] as
@@ -215,13 +376,15 @@ class TrainingLogWriter:
             a = np.clip(np.rint(a.astype(np.float64) * 255.0), 0, 255).astype(np.uint8)
         if a.ndim != 3 or a.shape[2] != 3 or "/" in name or not name:
             raise ValueError(f"{self.path}: image {name!r} must be [H,W,3]")
-        g = self._file.require_group("images")
-        self._dataset(g, name, a, (256, a.shape[1], 3))
+        with self._structure() as f:
+            self._dataset(f.require_group("images"), name, a, (256, a.shape[1], 3))
 
     def append_metrics(self, iteration, num_gaussians=-1, loss=None, l1=None, psnr=None,
                        ssim=None, lpips=None, elapsed_s=None, test=False):
         """Buffers one metrics row (test=True: /metrics/test). Unmeasured values: None."""
         self._check_open()
+        if self.swmr and not self._file.swmr_mode:
+            self.start_swmr()  # the training loop has started: readers may follow from here
         row = (int(iteration), int(num_gaussians), _scalar(loss), _scalar(l1), _scalar(psnr),
                _scalar(ssim), _scalar(lpips), _scalar(elapsed_s))
         self._pending_metrics[bool(test)].append(row)
@@ -286,6 +449,14 @@ class TrainingLogWriter:
             if np.any(ids[1:] == ids[:-1]):
                 raise ValueError(f"{self.path}: snapshot {iteration} has duplicate ids")
             arrays = {key: value[order] for key, value in arrays.items()}
+        if self.swmr:
+            if self.snapshot_sh_float16:
+                arrays["sh"] = arrays["sh"].astype(np.float16)
+            self.snapshot_bytes += self._write_packed(iteration, ids, arrays)
+            self._last_snapshot = iteration
+            if flush:
+                self.flush()
+            return
         g = self._file.create_group(f"snapshots/{iteration:06d}")
         g.attrs["iteration"] = np.int64(iteration)
         c = self.chunk_rows
@@ -327,20 +498,30 @@ class TrainingLogWriter:
         if self._pending_breaks:
             self._flush_breaks()
         self._file.flush()
+        if self.swmr:
+            # Counted only once flushed: a reader (or a kill) never sees a row counted before
+            # its bytes are in the file.
+            f = self._file
+            f["committed"][:] = np.array(
+                [f["metrics/iteration"].shape[0], f["metrics/test/iteration"].shape[0],
+                 f["events/iteration"].shape[0], f["lineage_breaks/iteration"].shape[0],
+                 self._snapshot_count], np.int64)
+            f.flush()
         self._last_flush = time.monotonic()
 
     def _flush_breaks(self):
         g = self._file.get("lineage_breaks")
         if g is None:
-            g = self._file.create_group("lineage_breaks")
-            for name, dtype in _BREAK_COLUMNS:
-                self._create_table(g, name, dtype, 256)
-            g.create_dataset("where", shape=(0,), maxshape=(None,), chunks=(256,),
-                             dtype=h5py.string_dtype("utf-8"))
+            g = self._create_breaks()
         cols = list(zip(*self._pending_breaks))
         for j, (name, dtype) in enumerate(_BREAK_COLUMNS):
             self._append(g[name], np.asarray(cols[j], dtype))
-        self._append(g["where"], np.array(cols[-1], dtype=object))
+        if self.swmr:
+            where = [w.encode("utf-8")[:_WHERE_BYTES].decode("utf-8", "ignore").encode("utf-8")
+                     for w in cols[-1]]
+            self._append(g["where"], np.array(where, dtype=g["where"].dtype))
+        else:
+            self._append(g["where"], np.array(cols[-1], dtype=object))
         self._pending_breaks = []
 
     def _maybe_timed_flush(self):

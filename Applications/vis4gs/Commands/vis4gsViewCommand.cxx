@@ -4,6 +4,7 @@
 #include "Vis4GSCommand.h"
 #include "Vis4GSCompareWindow.h"
 #include "Vis4GSDocument.h"
+#include "Vis4GSFollow.h"
 #include "Vis4GSMainWindow.h"
 #include "Vis4GSSelfTest.h"
 #include "Vis4GSSoak.h"
@@ -51,6 +52,11 @@ void Define(Vis4GSArguments& args)
     "view's orbit (moving frames per second, the longest event-loop gap, the still frame "
     "after the stop) and the tree view's pan/zoom frames per second, then exit (no scores "
     "are computed).");
+  args.AddFlag("follow",
+    false,
+    "Follow a training log while its trainer writes it (the Python logger and `vis4gs train` "
+    "write it in SWMR mode; LOG.tmp while it is written when LOG does not exist yet): new "
+    "metrics, events and snapshots show within about 2 s, the scene at the latest snapshot.");
   args.AddOption("soak",
     "N,DIR",
     "",
@@ -236,6 +242,15 @@ int Run(const Vis4GSArguments& args)
       std::cerr << "vis4gs view: error: --self-test needs a FILE\n";
       return 1;
     }
+  }
+  if (args.GetFlag("follow"))
+  {
+    if (args.GetPositional("FILE").empty())
+    {
+      std::cerr << "vis4gs view: --follow needs a FILE (a training log)\n";
+      return 1;
+    }
+    Vis4GSInstallFollow(&window, QString::fromStdString(args.GetPositional("FILE")), 1000);
   }
   window.show();
   const std::string file = args.GetPositional("FILE");

@@ -218,6 +218,7 @@ compare_fields("history", app_history.GetRowData(), script_history.GetRowData())
 session = vis4gs.vtkGaussianSession()
 session.SetFileName(log)
 session.GetGenealogyFilter().SetRepairUnknownParents(True)
+session.GetScoreFilter().SetScores(",".join(vis4gs.SCORES))  # every score, as the application
 session.SetSelectedIds(id_array)
 for port in range(session.NumberOfPorts):
     if port < session.RemovalViewsPort:  # (the removal effect is the clean-up's, not a view's)

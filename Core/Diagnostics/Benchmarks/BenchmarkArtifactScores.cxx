@@ -189,7 +189,6 @@ void StraightRenderCost(const GaussianCloud& cloud,
   rs.ComputeColors = false;
   const ViewProjection<float> proj = ProjectGaussians<float>(cloud, camera, rs);
   const TileBins bins = BinGaussians(proj, 0);
-  const float minAlpha = 1.0f / 255.0f;
   for (int y = 0; y < camera.Height; ++y)
   {
     for (int x = 0; x < camera.Width; ++x)

@@ -36,7 +36,7 @@ with np.errstate(all="ignore"):
 
 
 def top(v, p, largest=True):
-    finite = np.isfinite(v)
+    finite = ~np.isnan(v)  # +-inf rank, NaN does not
     values = np.sort(v[finite])
     k = int(np.ceil(p * finite.sum() / 100.0))
     if k < 1:

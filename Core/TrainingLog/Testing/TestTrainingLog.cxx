@@ -83,11 +83,17 @@ struct WrittenLog
   std::vector<unsigned char> Image;
 };
 
-WrittenLog WriteSample(const std::string& tag, std::size_t chunkRows, int snapshotDeflate = 0)
+/// A log of every group; @p swmr: format version 2 in SWMR mode (statistics in the first
+/// snapshot too, so that the packed layout stores them).
+WrittenLog WriteSample(const std::string& tag,
+  std::size_t chunkRows,
+  int snapshotDeflate = 0,
+  bool swmr = false)
 {
   WrittenLog log;
   log.Path = TempLogPath(tag);
   TrainingLogWriterOptions options;
+  options.Swmr = swmr;
   options.SnapshotDeflateLevel = snapshotDeflate;
   options.Producer = "unit-test";
   options.Scene = "synthetic";
@@ -143,7 +149,8 @@ WrittenLog WriteSample(const std::string& tag, std::size_t chunkRows, int snapsh
     GaussianCloud c =
       MakeCloud(MakeIds(n, static_cast<std::int64_t>(n), 11 + s), degrees[s], 5 + s);
     SnapshotStatistics stats;
-    if (s == 1)
+    const bool withStats = s == 1 || (swmr && s == 0);
+    if (withStats)
     {
       stats.GradAccum.resize(c.Count);
       stats.Denom.resize(c.Count);
@@ -153,7 +160,7 @@ WrittenLog WriteSample(const std::string& tag, std::size_t chunkRows, int snapsh
         stats.Denom[i] = static_cast<float>(i % 13);
       }
     }
-    writer.WriteSnapshot(iterations[s], c, s == 1 ? &stats : nullptr);
+    writer.WriteSnapshot(iterations[s], c, withStats ? &stats : nullptr);
     log.Snapshots[iterations[s]] = c;
     log.Stats[iterations[s]] = stats;
   }
@@ -196,10 +203,13 @@ void ExpectSameMetrics(const MetricsTable& a, const MetricsTable& b)
 } // namespace
 
 //------------------------------------------------------------------------------
-TEST(TrainingLog, RoundTripEveryGroup)
+void ExpectRoundTrip(bool swmr)
 {
-  WrittenLog log = WriteSample("roundtrip", 128);
+  SCOPED_TRACE(swmr ? "format version 2 (SWMR)" : "format version 1");
+  WrittenLog log = WriteSample(swmr ? "roundtrip_swmr" : "roundtrip", 128, 0, swmr);
   TrainingLogReader reader(log.Path);
+  EXPECT_EQ(reader.GetHeader().FormatVersion, swmr ? 2 : 1);
+  EXPECT_TRUE(reader.IsSwmrRead()); // no other open of it in this process
   EXPECT_EQ(reader.GetHeader().Producer, "unit-test");
   EXPECT_EQ(reader.GetHeader().Scene, "synthetic");
   EXPECT_EQ(reader.GetHeader().ShDegree, 3);
@@ -255,13 +265,20 @@ TEST(TrainingLog, RoundTripEveryGroup)
     EXPECT_EQ(reader.GetSnapshotSize(entry.first), w0.Count);
     EXPECT_EQ(reader.GetSnapshotShDegree(entry.first), w0.ShDegree);
     const SnapshotStatistics& stats = log.Stats[entry.first];
-    if (!stats.GradAccum.empty())
+    if (!stats.GradAccum.empty() || swmr)
     {
+      // Packed (SWMR) snapshots all have the columns: NaN where a snapshot had none.
       ASSERT_EQ(r.Extra.size(), 2u);
       EXPECT_EQ(r.Extra[0].Name, "grad_accum");
       EXPECT_EQ(r.Extra[1].Name, "denom");
       for (std::size_t i = 0; i < r.Count; ++i)
       {
+        if (stats.GradAccum.empty())
+        {
+          EXPECT_TRUE(std::isnan(r.Extra[0].GetAsDouble(i)));
+          EXPECT_TRUE(std::isnan(r.Extra[1].GetAsDouble(i)));
+          continue;
+        }
         EXPECT_EQ(static_cast<float>(r.Extra[0].GetAsDouble(i)), stats.GradAccum[i]);
         EXPECT_EQ(static_cast<float>(r.Extra[1].GetAsDouble(i)), stats.Denom[i]);
       }
@@ -273,6 +290,55 @@ TEST(TrainingLog, RoundTripEveryGroup)
       EXPECT_EQ(reader.GetSnapshotArrays(entry.first), static_cast<unsigned>(SnapshotParameters));
     }
   }
+}
+
+TEST(TrainingLog, RoundTripEveryGroup)
+{
+  ExpectRoundTrip(false);
+  ExpectRoundTrip(true);
+}
+
+//------------------------------------------------------------------------------
+TEST(TrainingLog, SwmrWriterRefusesStructureAfterTheFirstSnapshot)
+{
+  const std::string path = TempLogPath("swmr_structure");
+  TrainingLogWriterOptions options;
+  options.Swmr = true;
+  options.ShDegree = 1;
+  TrainingLogWriter writer(path, options);
+  writer.WriteSnapshot(0, MakeCloud(MakeIds(10, 10, 1), 1, 2));
+  try
+  {
+    writer.WriteCameras(MakeCameras());
+    ADD_FAILURE() << "cameras after the first snapshot of a SWMR log were accepted";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("SWMR"), std::string::npos) << e.what();
+  }
+  MetricsRow row;
+  row.Iteration = 1;
+  writer.AppendMetrics(row);
+  writer.Flush();
+  // While the writer is open a reader sees what was flushed and Refresh() a later snapshot.
+  // (In one process HDF5 shares the writer's open file with the reader; other processes
+  // open it in SWMR read mode: test_follow.py of the Python logger runs those.)
+  TrainingLogReader reader(path);
+  EXPECT_EQ(reader.GetSnapshotIterations(), std::vector<int>{ 0 });
+  EXPECT_EQ(reader.ReadMetrics().Size(), 1u);
+  EXPECT_FALSE(reader.Refresh());
+  writer.WriteSnapshot(5, MakeCloud(MakeIds(12, 12, 2), 0, 3));
+  EXPECT_TRUE(reader.Refresh());
+  EXPECT_EQ(reader.GetSnapshotIterations(), (std::vector<int>{ 0, 5 }));
+  EXPECT_EQ(reader.GetSnapshotShDegree(0), 1);
+  EXPECT_EQ(reader.GetSnapshotShDegree(5), 0); // the degree written, not /snapshots/sh's
+  EXPECT_EQ(reader.ReadSnapshot(5).Count, 12u);
+  writer.Close();
+  EXPECT_TRUE(Exists(path));
+  EXPECT_FALSE(Exists(path + ".tmp"));
+  options.WriteToTemporary = true;
+  EXPECT_THROW(TrainingLogWriter(path, options), std::runtime_error);
 }
 
 //------------------------------------------------------------------------------
@@ -353,73 +419,79 @@ TEST(TrainingLog, PropertyHistoryMatchesFullReads)
   // more than 256 id chunks, whose addresses are then looked up lazily, under a lock, by
   // the threaded search); uncompressed snapshots (the default: rows read by pread) and
   // deflated ones (chunks inflated by our code).
-  for (int level : { 0, 1 })
-    for (std::size_t chunk : { std::size_t(3), std::size_t(64), std::size_t(100000) })
-    {
-      SCOPED_TRACE("deflate " + std::to_string(level) + ", chunk " + std::to_string(chunk));
-      WrittenLog log =
-        WriteSample("history" + std::to_string(chunk) + "_" + std::to_string(level), chunk, level);
-      TrainingLogReader reader(log.Path);
-      std::mt19937 rng(3);
-      std::vector<std::int64_t> query;
-      std::uniform_int_distribution<std::int64_t> pick(-5, 1400);
-      for (int i = 0; i < 150; ++i)
+  // Packed snapshots (format version 2, SWMR) too: rows found in a row range of each dataset.
+  for (bool swmr : { false, true })
+    for (int level : { 0, 1 })
+      for (std::size_t chunk : { std::size_t(3), std::size_t(64), std::size_t(100000) })
       {
-        query.push_back(pick(rng));
-      }
-      query.push_back(0);
-      query.push_back(log.Snapshots[2500].Ids.back()); // the last row
-      query.push_back(log.Snapshots[2500].Ids.back() + 1);
-      query.push_back(query[3]); // duplicates are merged
-      PropertyHistory h = reader.ReadPropertyHistory(query, SnapshotAll);
-
-      // Reference: full reads of every snapshot.
-      std::vector<std::int64_t> ids = query;
-      std::sort(ids.begin(), ids.end());
-      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-      std::size_t row = 0;
-      for (std::int64_t id : ids)
-      {
-        for (const auto& entry : log.Snapshots)
+        SCOPED_TRACE("deflate " + std::to_string(level) + ", chunk " + std::to_string(chunk) +
+          (swmr ? ", SWMR" : ""));
+        WrittenLog log = WriteSample(
+          "history" + std::to_string(chunk) + "_" + std::to_string(level) + (swmr ? "_swmr" : ""),
+          chunk,
+          level,
+          swmr);
+        TrainingLogReader reader(log.Path);
+        std::mt19937 rng(3);
+        std::vector<std::int64_t> query;
+        std::uniform_int_distribution<std::int64_t> pick(-5, 1400);
+        for (int i = 0; i < 150; ++i)
         {
-          const GaussianCloud& c = entry.second;
-          auto it = std::lower_bound(c.Ids.begin(), c.Ids.end(), id);
-          if (it == c.Ids.end() || *it != id)
-          {
-            continue;
-          }
-          const std::size_t i = static_cast<std::size_t>(it - c.Ids.begin());
-          ASSERT_LT(row, h.Size());
-          EXPECT_EQ(h.Id[row], id);
-          EXPECT_EQ(h.Iteration[row], entry.first);
-          for (int j = 0; j < 3; ++j)
-          {
-            EXPECT_EQ(h.Positions[3 * row + j], c.Positions[3 * i + j]);
-            EXPECT_EQ(h.LogScales[3 * row + j], c.LogScales[3 * i + j]);
-            EXPECT_EQ(h.SHDC[3 * row + j], c.SH[i * 3 * c.ShCoefficientCount() + j]);
-          }
-          for (int j = 0; j < 4; ++j)
-          {
-            EXPECT_EQ(h.Rotations[4 * row + j], c.Rotations[4 * i + j]);
-          }
-          EXPECT_EQ(h.OpacityLogits[row], c.OpacityLogits[i]);
-          const SnapshotStatistics& s = log.Stats[entry.first];
-          if (s.GradAccum.empty())
-          {
-            EXPECT_TRUE(std::isnan(h.GradAccum[row]));
-            EXPECT_TRUE(std::isnan(h.Denom[row]));
-          }
-          else
-          {
-            EXPECT_EQ(h.GradAccum[row], s.GradAccum[i]);
-            EXPECT_EQ(h.Denom[row], s.Denom[i]);
-          }
-          ++row;
+          query.push_back(pick(rng));
         }
+        query.push_back(0);
+        query.push_back(log.Snapshots[2500].Ids.back()); // the last row
+        query.push_back(log.Snapshots[2500].Ids.back() + 1);
+        query.push_back(query[3]); // duplicates are merged
+        PropertyHistory h = reader.ReadPropertyHistory(query, SnapshotAll);
+
+        // Reference: full reads of every snapshot.
+        std::vector<std::int64_t> ids = query;
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        std::size_t row = 0;
+        for (std::int64_t id : ids)
+        {
+          for (const auto& entry : log.Snapshots)
+          {
+            const GaussianCloud& c = entry.second;
+            auto it = std::lower_bound(c.Ids.begin(), c.Ids.end(), id);
+            if (it == c.Ids.end() || *it != id)
+            {
+              continue;
+            }
+            const std::size_t i = static_cast<std::size_t>(it - c.Ids.begin());
+            ASSERT_LT(row, h.Size());
+            EXPECT_EQ(h.Id[row], id);
+            EXPECT_EQ(h.Iteration[row], entry.first);
+            for (int j = 0; j < 3; ++j)
+            {
+              EXPECT_EQ(h.Positions[3 * row + j], c.Positions[3 * i + j]);
+              EXPECT_EQ(h.LogScales[3 * row + j], c.LogScales[3 * i + j]);
+              EXPECT_EQ(h.SHDC[3 * row + j], c.SH[i * 3 * c.ShCoefficientCount() + j]);
+            }
+            for (int j = 0; j < 4; ++j)
+            {
+              EXPECT_EQ(h.Rotations[4 * row + j], c.Rotations[4 * i + j]);
+            }
+            EXPECT_EQ(h.OpacityLogits[row], c.OpacityLogits[i]);
+            const SnapshotStatistics& s = log.Stats[entry.first];
+            if (s.GradAccum.empty())
+            {
+              EXPECT_TRUE(std::isnan(h.GradAccum[row]));
+              EXPECT_TRUE(std::isnan(h.Denom[row]));
+            }
+            else
+            {
+              EXPECT_EQ(h.GradAccum[row], s.GradAccum[i]);
+              EXPECT_EQ(h.Denom[row], s.Denom[i]);
+            }
+            ++row;
+          }
+        }
+        EXPECT_EQ(row, h.Size()) << "chunk " << chunk;
+        EXPECT_GT(row, 100u);
       }
-      EXPECT_EQ(row, h.Size()) << "chunk " << chunk;
-      EXPECT_GT(row, 100u);
-    }
 }
 
 //------------------------------------------------------------------------------

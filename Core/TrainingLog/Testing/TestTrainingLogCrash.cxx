@@ -35,11 +35,12 @@ std::vector<std::int64_t> IdsFor(int snapshot)
 }
 
 /// The child: writes forever, reporting each completed flush on @p fd.
-[[noreturn]] void RunWriter(const std::string& path, int fd)
+[[noreturn]] void RunWriter(const std::string& path, int fd, bool swmr)
 {
   try
   {
     TrainingLogWriterOptions options;
+    options.Swmr = swmr;
     options.SnapshotChunkRows = 4096;
     TrainingLogWriter writer(path, options);
     std::int64_t nextChild = 1000000;
@@ -73,67 +74,75 @@ std::vector<std::int64_t> IdsFor(int snapshot)
 TEST(TrainingLogCrash, KilledWriterLeavesReadableLog)
 {
   // Kill after 1..3 reported flushes, plus a delay that lands inside the next write.
+  // Both layouts: format version 1 (metadata held back between flushes) and 2 (SWMR mode,
+  // rows counted in /committed after each flush; the killed file opens in SWMR read mode).
   const int delaysUs[] = { 0, 1500, 7000, 15000, 30000 };
   int run = 0;
-  for (int delay : delaysUs)
-  {
-    const std::string path = TempLogPath("crash" + std::to_string(run));
-    int fds[2];
-    ASSERT_EQ(::pipe(fds), 0);
-    pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0)
+  for (bool swmr : { false, true })
+    for (int delay : delaysUs)
     {
-      ::close(fds[0]);
-      RunWriter(path, fds[1]);
-    }
-    ::close(fds[1]);
-    const int wanted = 1 + run % 3;
-    int lastFlushed = -1;
-    for (int i = 0; i < wanted; ++i)
-    {
+      SCOPED_TRACE(swmr ? "SWMR" : "version 1");
+      const std::string path = TempLogPath("crash" + std::to_string(run));
+      int fds[2];
+      ASSERT_EQ(::pipe(fds), 0);
+      pid_t pid = ::fork();
+      ASSERT_GE(pid, 0);
+      if (pid == 0)
+      {
+        ::close(fds[0]);
+        RunWriter(path, fds[1], swmr);
+      }
+      ::close(fds[1]);
+      const int wanted = 1 + run % 3;
+      int lastFlushed = -1;
+      for (int i = 0; i < wanted; ++i)
+      {
+        int value = -1;
+        ASSERT_EQ(::read(fds[0], &value, sizeof(value)), static_cast<ssize_t>(sizeof(value)))
+          << "the writer process stopped early";
+        lastFlushed = value;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(delay));
+      ::kill(pid, SIGKILL);
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+      ASSERT_TRUE(WIFSIGNALED(status)) << "the writer ended on its own, status " << status;
+      // Flushes reported after our last read may also be complete.
       int value = -1;
-      ASSERT_EQ(::read(fds[0], &value, sizeof(value)), static_cast<ssize_t>(sizeof(value)))
-        << "the writer process stopped early";
-      lastFlushed = value;
-    }
-    std::this_thread::sleep_for(std::chrono::microseconds(delay));
-    ::kill(pid, SIGKILL);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFSIGNALED(status)) << "the writer ended on its own, status " << status;
-    // Flushes reported after our last read may also be complete.
-    int value = -1;
-    while (::read(fds[0], &value, sizeof(value)) == static_cast<ssize_t>(sizeof(value)))
-    {
-      lastFlushed = value;
-    }
-    ::close(fds[0]);
+      while (::read(fds[0], &value, sizeof(value)) == static_cast<ssize_t>(sizeof(value)))
+      {
+        lastFlushed = value;
+      }
+      ::close(fds[0]);
 
-    TrainingLogReader reader(path);
-    const std::vector<int>& its = reader.GetSnapshotIterations();
-    ASSERT_GE(static_cast<int>(its.size()), lastFlushed + 1) << "delay " << delay;
-    for (std::size_t s = 0; s < its.size(); ++s)
-    {
-      ASSERT_EQ(its[s], static_cast<int>(s) * 100);
-      SnapshotReadOptions options;
-      options.Arrays = SnapshotAll;
-      options.ShDegree = -1;
-      GaussianCloud c = reader.ReadSnapshot(its[s], options);
-      GaussianCloud expected = MakeCloud(IdsFor(static_cast<int>(s)), 1, static_cast<unsigned>(s));
-      EXPECT_EQ(c.Ids, expected.Ids);
-      EXPECT_EQ(c.Positions, expected.Positions);
-      EXPECT_EQ(c.SH, expected.SH);
+      TrainingLogReader reader(path);
+      // The first choice of the reader; the only way to open a killed SWMR writer's file.
+      EXPECT_TRUE(reader.IsSwmrRead());
+      EXPECT_EQ(reader.GetHeader().FormatVersion, swmr ? 2 : 1);
+      const std::vector<int>& its = reader.GetSnapshotIterations();
+      ASSERT_GE(static_cast<int>(its.size()), lastFlushed + 1) << "delay " << delay;
+      for (std::size_t s = 0; s < its.size(); ++s)
+      {
+        ASSERT_EQ(its[s], static_cast<int>(s) * 100);
+        SnapshotReadOptions options;
+        options.Arrays = SnapshotAll;
+        options.ShDegree = -1;
+        GaussianCloud c = reader.ReadSnapshot(its[s], options);
+        GaussianCloud expected =
+          MakeCloud(IdsFor(static_cast<int>(s)), 1, static_cast<unsigned>(s));
+        EXPECT_EQ(c.Ids, expected.Ids);
+        EXPECT_EQ(c.Positions, expected.Positions);
+        EXPECT_EQ(c.SH, expected.SH);
+      }
+      MetricsTable m = reader.ReadMetrics();
+      EXPECT_GE(m.Size(), 100 * its.size());
+      for (std::size_t i = 0; i < m.Size(); ++i)
+      {
+        ASSERT_EQ(m.Iteration[i], static_cast<int>(i));
+      }
+      EventTable e = reader.ReadEvents(); // validates the ids
+      EXPECT_EQ(e.Size(), m.Size());
+      std::remove(path.c_str());
+      ++run;
     }
-    MetricsTable m = reader.ReadMetrics();
-    EXPECT_GE(m.Size(), 100 * its.size());
-    for (std::size_t i = 0; i < m.Size(); ++i)
-    {
-      ASSERT_EQ(m.Iteration[i], static_cast<int>(i));
-    }
-    EventTable e = reader.ReadEvents(); // validates the ids
-    EXPECT_EQ(e.Size(), m.Size());
-    std::remove(path.c_str());
-    ++run;
-  }
 }

@@ -89,16 +89,22 @@ TEST(TrainingLogValidation, BadFiles)
   }
   ExpectError(foreign, "no 'format' attribute", [&] { TrainingLogReader r(foreign); });
 
-  const std::string v2 = WriteLog("v2", {});
-  Edit(v2,
-    [](hid_t f)
+  auto setVersion = [](long long version)
+  {
+    return [version](hid_t f)
     {
       hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
-      long long two = 2;
-      H5Awrite(a, H5T_NATIVE_LLONG, &two);
+      H5Awrite(a, H5T_NATIVE_LLONG, &version);
       H5Aclose(a);
-    });
-  ExpectError(v2, "format version 2 is not supported", [&] { TrainingLogReader r(v2); });
+    };
+  };
+  const std::string v3 = WriteLog("v3", {});
+  Edit(v3, setVersion(3));
+  ExpectError(v3, "format version 3 is not supported", [&] { TrainingLogReader r(v3); });
+  // Version 2 without its /committed counts (a version 1 layout relabelled).
+  const std::string v2 = WriteLog("v2", {});
+  Edit(v2, setVersion(2));
+  ExpectError(v2, "lacks the dataset /committed", [&] { TrainingLogReader r(v2); });
 
   // Truncated files: every cut gives an error or a readable prefix, never a crash.
   const std::string good = WriteLog("good", { { 600, EventKind::Prune, 1, -1 } });

@@ -75,7 +75,12 @@ if mode == "scores":
     reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
     reader.UpdatePipelineInformation()
     scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0),  # noqa: F821
-                                  Cameras=OutputPort(reader, 1), Scores=arrays)
+                                  Cameras=OutputPort(reader, 1))
+    # The list comes from the filter at run time (the score registry), not from the XML.
+    scores.UpdatePropertyInformation()
+    available = list(scores.Scores.Available)
+    check(set(arrays) <= set(available), f"the Scores list {available} lacks {arrays}")
+    scores.Scores = arrays
     scores.UpdatePipeline(time=list(reader.TimestepValues)[-1])
     count, names = same_as_csv(scores, app_csv)
     check(names[:len(arrays)] == arrays, f"scores.csv has {names}, asked for {arrays}")

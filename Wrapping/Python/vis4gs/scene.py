@@ -232,6 +232,7 @@ class Scene:
         self._update(self._session.GaussiansPort)
         self.is_log = bool(self._session.GetIsTrainingLog())
         if self.is_log:
+            self._follows_latest = iteration is None  # refresh() moves on to the latest
             log = self._session.GetLogReader()
             self.iterations = [log.GetSnapshotIteration(i)
                                for i in range(log.GetNumberOfSnapshots())]
@@ -308,6 +309,30 @@ class Scene:
             return []
         names = table.GetColumnByName("Name")
         return [names.GetValue(r) for r in range(table.GetNumberOfRows())]
+
+    def refresh(self):
+        """For a log a trainer is still writing (the Python logger and `vis4gs train` write
+        it in SWMR mode): reopens it and returns the snapshot iterations that appeared since
+        (the log is never blocked). A Scene opened without iteration= (the latest snapshot)
+        moves on to the new latest one; one opened at an iteration stays there. Follow a live
+        log with one Scene per process (TrainingLogReader::Refresh)."""
+        if not self.is_log:
+            raise Vis4GSError(f"{self.path}: not a training log, it has nothing to refresh")
+        log = self._session.GetLogReader()
+        log.Modified()
+        log.UpdateInformation()
+        known = set(self.iterations)
+        self.iterations = [log.GetSnapshotIteration(i) for i in range(log.GetNumberOfSnapshots())]
+        new = [i for i in self.iterations if i not in known]
+        if new and getattr(self, "_follows_latest", False):
+            self._session.Modified()
+            self._update(self._session.GaussiansPort)
+            self.iteration = self._session.GetLoadedIteration()
+            self.polydata = vtkPolyData()
+            self.polydata.ShallowCopy(self._session.GetGaussiansOutput())
+            self._tree = None
+        self._cameras = None  # the trainer may have logged them since
+        return new
 
     def at(self, iteration):
         """The same log at the snapshot nearest to `iteration`."""

@@ -8,6 +8,7 @@
 #include "ScreenSelection.h"
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraUtilities.h"
+#include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
 #include "vtkGaussianSplatMapper.h"
 
@@ -224,6 +225,33 @@ int TestGaussianSelector(int, char*[])
   Check(Ids(sel->GetSelectedIds()) == expected2, "SUBTRACT is the difference");
   sel->ClearSelection();
   Check(sel->GetSelectedIds()->GetNumberOfTuples() == 0, "cleared");
+
+  // With a selection hub the hub is the one state: the same algebra happens there, on top of
+  // what another view selected, and the selector keeps only its last pick.
+  vtkNew<vtkGaussianSelectionHub> hub;
+  const vtkIdType other[1] = { 1000000007 }; // an id the donut has not: another view's pick
+  hub->SelectIds(other, 1);
+  sel->SetSelectionHub(hub);
+  sel->SetModifier(vtkGaussianSelector::ADD);
+  sel->SelectFrame(60, 40, 140, 110);
+  sel->SelectBrush(stroke);
+  std::vector<vtkIdType> inHub = expected;
+  inHub.push_back(other[0]);
+  std::sort(inHub.begin(), inHub.end());
+  vtkNew<vtkIdTypeArray> hubIds;
+  hub->GetSelectedIds(hubIds);
+  Check(Ids(hubIds) == inHub, "the hub holds the union of both picks and the other view's id");
+  Check(Ids(sel->GetSelectedIds()) == brush, "the selector keeps its last pick only");
+  sel->SetModifier(vtkGaussianSelector::SUBTRACT);
+  sel->SelectRay(100, 75);
+  hub->GetSelectedIds(hubIds);
+  std::vector<vtkIdType> afterRay = expected2;
+  afterRay.push_back(other[0]);
+  std::sort(afterRay.begin(), afterRay.end());
+  Check(Ids(hubIds) == afterRay, "SUBTRACT happens in the hub");
+  sel->ClearSelection();
+  Check(hub->GetNumberOfSelectedIds() == 0, "clearing the selector clears the hub");
+  sel->SetSelectionHub(nullptr);
 
   // A camera move invalidates the cached projection.
   ren->GetActiveCamera()->Azimuth(40);
