@@ -366,10 +366,6 @@ TrainingLogWriter::TrainingLogWriter(const std::string& path,
   {
     throw std::runtime_error(path + ": chunk sizes must be positive");
   }
-  if (options.Swmr && options.WriteToTemporary)
-  {
-    throw std::runtime_error(path + ": a SWMR log is written in place (not with WriteToTemporary)");
-  }
   h5::ErrorSilencer silence;
 
   // Crash safety: never reuse freed file space (flushed metadata may still point at it) ...

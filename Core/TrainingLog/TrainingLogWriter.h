@@ -65,7 +65,7 @@ struct TrainingLogWriterOptions
   /// Write "<path>.tmp" and rename it onto path in Close() (whole-file writers).
   bool WriteToTemporary = false;
   /// Format version 2 in SWMR mode from the first snapshot on (default off: version 1);
-  /// not with WriteToTemporary (a reader must find the live file).
+  /// with WriteToTemporary the live file is "<path>.tmp" (`vis4gs view --follow` finds it).
   bool Swmr = false;
   /**
    * Also flush when a metrics row is appended this many seconds after the last flush (0, the

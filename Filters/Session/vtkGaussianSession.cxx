@@ -368,7 +368,9 @@ bool vtkGaussianSession::Connect()
     d.Errors.push_back("no file name");
     return false;
   }
-  if (!IsFile(this->FileName))
+  // A folder is a scene too (a SOG folder, an INRIA output folder): the scene reader says.
+  struct stat st;
+  if (stat(this->FileName.c_str(), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISDIR(st.st_mode)))
   {
     d.Errors.push_back("no such file");
     return false;

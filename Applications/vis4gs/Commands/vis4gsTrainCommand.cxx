@@ -35,8 +35,8 @@ void Define(Vis4GSArguments& args)
   args.AddOption("output",
     "LOG.h5",
     "training-log.h5",
-    "Training log to write (HDF5, DESIGN §3, format version 2 in SWMR mode: `vis4gs view "
-    "LOG.h5 --follow` shows it while the trainer runs).");
+    "Training log to write (HDF5, DESIGN §3, format version 2 in SWMR mode), as LOG.h5.tmp "
+    "while the trainer runs: `vis4gs view LOG.h5 --follow` finds it and shows it live.");
   args.AddOption("iterations", "N", "30000", "Number of training iterations.");
   args.AddFlag("schedule-scale",
     false,
@@ -160,19 +160,21 @@ int Run(const Vis4GSArguments& args)
   wo.ShDegree = o.ShDegree;
   wo.Iterations = o.Iterations;
   wo.SnapshotDeflateLevel = args.GetInt("snapshot-deflate");
-  // Written in place in HDF5's SWMR mode (format version 2), so that `vis4gs view --follow`
-  // and `vis4gs analyze` find the live log and read it without blocking the trainer. SWMR is
-  // itself crash-consistent: a killed or failing trainer (a full disk) leaves a log that
-  // reads up to its last flush, every snapshot completed before it included. (An earlier log
-  // at --output is replaced when the training starts.)
+  // Written as <output>.tmp and renamed when the training ends (interrupted too), so that a
+  // failure (a full disk, a read-only folder) leaves no partial log and an earlier log at
+  // --output as it was (issue 35); in HDF5's SWMR mode (format version 2), so that `vis4gs
+  // view --follow` (which finds the .tmp) and `vis4gs analyze LOG.h5.tmp` read the live log
+  // without blocking the trainer, and a killed trainer leaves a temporary that reads up to its
+  // last flush (issue 32).
+  wo.WriteToTemporary = true;
   wo.Swmr = true;
   wo.FlushIntervalSeconds = 1.0; // metrics and events show within about 2 s when followed
   // Each flush deflates the partly filled last chunk of each /events column again: 4096 rows
   // (32 KiB) instead of 65536 make a flush about 10 times cheaper (performance-history.md).
   wo.TableChunkRows = 4096;
   vis4gs::TrainingLogWriter log(output, wo);
-  std::cout << "vis4gs train: writing " << output << " (follow it with `vis4gs view " << output
-            << " --follow`)\n"
+  std::cout << "vis4gs train: writing " << output << ".tmp (renamed to " << output
+            << " at the end; follow it with `vis4gs view " << output << " --follow`)\n"
             << std::flush;
 
   StopRequested = false;

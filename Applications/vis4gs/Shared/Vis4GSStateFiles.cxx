@@ -3,6 +3,7 @@
 
 #include "GaussianIO.h"
 #include "ImageIO.h"
+#include "vtkGaussianSession.h" // IsTrainingLogFile: a log by its content
 
 #include <algorithm>
 #include <cctype>
@@ -18,7 +19,9 @@ bool Vis4GSIsLogPath(const std::string& path)
     extension.end(),
     extension.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".h5" || extension == ".hdf5";
+  // By content too: a live log is LOG.h5.tmp while its trainer writes it (issue 32).
+  return extension == ".h5" || extension == ".hdf5" ||
+    vtkGaussianSession::IsTrainingLogFile(path.c_str());
 }
 
 //------------------------------------------------------------------------------

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """A training log read while `vis4gs train` writes it (issue 32 item 6).
 
-`vis4gs train` writes its log in place in SWMR mode. While it trains: `vis4gs analyze` on the
+`vis4gs train` writes its log as LOG.tmp in SWMR mode (renamed at the end): analyze reads the
+.tmp, `vis4gs view LOG --follow` finds it. While it trains: `vis4gs analyze` on the
 live log succeeds (twice, the second seeing at least the first's snapshot), and `vis4gs view
 LOG --follow` (under Xvfb) reports new snapshots as they come ("following LOG: S snapshots"
 lines, S increasing). Then the trainer is SIGKILL-ed: the log still opens, with at least the
@@ -20,6 +21,7 @@ vis4gs, scene, work = sys.argv[1:4]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 log = os.path.join(work, "run.h5")
+live = log + ".tmp"  # the trainer's file until it ends
 
 
 def fail(message):
@@ -29,7 +31,7 @@ def fail(message):
 
 def analyze(tag):
     """The iteration of the snapshot `vis4gs analyze` read from the live log."""
-    out = subprocess.run([vis4gs, "analyze", log, "--scores=shape",
+    out = subprocess.run([vis4gs, "analyze", live, "--scores=shape",
                           "--output=" + os.path.join(work, tag)],
                          capture_output=True, text=True, timeout=600)
     if out.returncode != 0:
@@ -56,8 +58,8 @@ try:
         if time.monotonic() > deadline:
             fail("no readable log in 5 minutes")
         time.sleep(1)
-        if os.path.exists(log):
-            probe = subprocess.run([vis4gs, "analyze", log, "--scores=shape",
+        if os.path.exists(live):
+            probe = subprocess.run([vis4gs, "analyze", live, "--scores=shape",
                                     "--output=" + os.path.join(work, "probe")],
                                    capture_output=True, text=True, timeout=600)
             if probe.returncode == 0:

@@ -50,9 +50,9 @@ void Vis4GSInstallFollow(Vis4GSMainWindow* window, const QString& path, int inte
     [window, state, path]
     {
       const std::shared_ptr<Vis4GSDocument> doc = window->GetDocument();
-      // The Python logger writes LOG.tmp and renames it onto LOG when the run ends.
-      const QString live =
-        QFileInfo::exists(path) || !QFileInfo::exists(path + ".tmp") ? path : path + ".tmp";
+      // The Python logger and `vis4gs train` write LOG.tmp and rename it onto LOG when the run
+      // ends: a .tmp is the live run (LOG may be an earlier run's log).
+      const QString live = QFileInfo::exists(path + ".tmp") ? path + ".tmp" : path;
       if (!doc && !state->Pending)
       {
         // Not open yet (the trainer has not created it, or not written its first snapshot):

@@ -337,8 +337,15 @@ TEST(TrainingLog, SwmrWriterRefusesStructureAfterTheFirstSnapshot)
   writer.Close();
   EXPECT_TRUE(Exists(path));
   EXPECT_FALSE(Exists(path + ".tmp"));
+  // With WriteToTemporary the live SWMR file is <path>.tmp, renamed when it is closed.
   options.WriteToTemporary = true;
-  EXPECT_THROW(TrainingLogWriter(path, options), std::runtime_error);
+  {
+    TrainingLogWriter temporary(path, options);
+    EXPECT_TRUE(Exists(path + ".tmp"));
+    temporary.Close();
+  }
+  EXPECT_TRUE(Exists(path));
+  EXPECT_FALSE(Exists(path + ".tmp"));
 }
 
 //------------------------------------------------------------------------------
