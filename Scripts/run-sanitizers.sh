@@ -12,7 +12,8 @@
 #       The vis4gs program's own code with ThreadSanitizer (VIS4GS_TSAN_WHOLE=1: the whole
 #       project), and the scripted session of `vis4gs view` on the demo log (worker-thread
 #       load, scores in the background, iteration changes, the clean-up panel's measurement and
-#       fine-tune): vis4gs view --self-test under Xvfb. Suppressions: tsan-suppressions.txt.
+#       fine-tune): vis4gs view --self-test under Xvfb; and the sort worker's GoogleTests
+#       (its thread, instrumented in that build too). Suppressions: tsan-suppressions.txt.
 #
 # Any report fails the run (halt_on_error, exit status 1), naming the part. ccache is used when
 # installed. VIS4GS_JOBS sets the build's parallelism (default: nproc).
@@ -89,7 +90,10 @@ case "$part" in
         -DVIS4GS_WARNINGS_AS_ERRORS=ON "${launcher[@]}" -DVIS4GS_PROGRAM_SANITIZER=thread \
         >/dev/null
     fi
-    cmake --build "$build" -j "$jobs" --target vis4gs
+    cmake --build "$build" -j "$jobs" --target vis4gs vis4gsCoreSplatsTests
+    # The GPU renderer's sort worker (Core/Splats/SplatSortWorker) runs on hardware OpenGL
+    # only, not in the session under Xvfb: its GoogleTests drive its thread instead.
+    "$build/bin/vis4gsCoreSplatsTests" --gtest_filter='SplatSortWorker.*'
     bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
       "$root/Data/Demo/vis4gs-demo.h5" "--self-test=$build/self-test" --resolution=1200,800
     ;;
