@@ -80,10 +80,15 @@ void SortBackToFront(const std::vector<float>& depths,
   std::vector<std::size_t> kept(static_cast<std::size_t>(threads) + 1, 0);
   std::vector<std::uint64_t> keys; // keys, then the sort's scratch
   std::uint32_t any = 0, all = ~0u;
+  // The team may be smaller than asked (OMP_THREAD_LIMIT, OMP_DYNAMIC, a call from inside
+  // another parallel region): the ranges are those of the team OpenMP gives, or the ranges
+  // of the threads that did not start would be left out of the order.
+  int team = threads;
 #pragma omp parallel num_threads(threads) reduction(| : any) reduction(& : all)
   {
+    const int size = omp_get_num_threads();
     const int t = omp_get_thread_num();
-    const std::size_t b = n * t / threads, e = n * (t + 1) / threads;
+    const std::size_t b = n * t / size, e = n * (t + 1) / size;
     std::size_t c = 0;
     for (std::size_t i = b; i < e; ++i)
     {
@@ -93,11 +98,12 @@ void SortBackToFront(const std::vector<float>& depths,
 #pragma omp barrier
 #pragma omp single
     {
-      for (int k = 0; k < threads; ++k)
+      team = size;
+      for (int k = 0; k < size; ++k)
       {
         kept[k + 1] += kept[k];
       }
-      keys.resize(2 * kept[threads]);
+      keys.resize(2 * kept[size]);
     }
     std::size_t o = kept[t];
     for (std::size_t i = b; i < e; ++i)
@@ -111,7 +117,7 @@ void SortBackToFront(const std::vector<float>& depths,
       }
     }
   }
-  const std::size_t m = kept[threads];
+  const std::size_t m = kept[team];
 
   // 2. Stable radix sort on the depth bits that differ: ascending depth, ties in index order.
   const std::uint64_t* sorted = RadixSortKeys(keys.data(),

@@ -135,8 +135,16 @@ struct SoakState
   bool Running = false; // a cycle's actions are under way (scoresComputed may come again)
 };
 
-/// The actions of one cycle on the loaded, scored document; false when the fine-tune failed.
-bool Exercise(Vis4GSMainWindow& w, const Vis4GSSoakOptions& options)
+/// What the clean-up panel's fine-tune did in a cycle.
+enum class FineTune
+{
+  NotRun, // no training images, or FineTuneIterations 0
+  Done,
+  Failed
+};
+
+/// The actions of one cycle on the loaded, scored document.
+FineTune Exercise(Vis4GSMainWindow& w, const Vis4GSSoakOptions& options)
 {
   const std::shared_ptr<Vis4GSDocument> doc = w.GetDocument();
   auto* slider = w.findChild<QSlider*>("iteration");
@@ -161,7 +169,7 @@ bool Exercise(Vis4GSMainWindow& w, const Vis4GSSoakOptions& options)
   view->SelectBrush(stroke, vtkGaussianSelectionHub::SUBTRACT);
   QApplication::processEvents();
   Vis4GSCleanupPanel* panel = w.GetCleanupPanel();
-  bool ok = true;
+  FineTune tuned = FineTune::NotRun;
   if (panel && panel->ApplyRule("opacity<=0.05", Vis4GSCleanupPanel::REPLACE) &&
     doc->CamerasWithImages > 0 && w.GetScoreCameras())
   {
@@ -171,13 +179,15 @@ bool Exercise(Vis4GSMainWindow& w, const Vis4GSSoakOptions& options)
       // The repaired log is not kept: the cycle exercises the trainer, its writer and the
       // panel's repaired figures, and a file left would count as one more each cycle.
       const QString repaired = options.Directory + "/soak-fine-tune.h5";
-      ok = panel->StartFineTune(repaired, options.FineTuneIterations, false, false) &&
-        panel->WaitForFineTune();
+      tuned = panel->StartFineTune(repaired, options.FineTuneIterations, false, false) &&
+          panel->WaitForFineTune()
+        ? FineTune::Done
+        : FineTune::Failed;
       QFile::remove(repaired);
     }
   }
   QApplication::processEvents();
-  return ok;
+  return tuned;
 }
 
 double Mean(const std::vector<Sample>& s, std::size_t from, std::size_t count, double Sample::*what)
@@ -277,7 +287,7 @@ void Vis4GSInstallSoak(Vis4GSMainWindow* window, const Vis4GSSoakOptions& option
   state->Csv.open((options.Directory + "/soak.csv").toStdString());
   state->Csv << "cycle,file,heap_mb,resident_mb,descriptors,threads,temporary_entries,seconds,"
                 "open_and_score_s,actions_s,malloc_system_mb,heap_segment_mb,anonymous_mb,"
-                "executable_mb,file_mb,mappings\n";
+                "executable_mb,file_mb,mappings,fine_tuned\n";
   state->Started = std::chrono::steady_clock::now();
   QObject::connect(window,
     &Vis4GSMainWindow::scoresComputed,
@@ -294,7 +304,8 @@ void Vis4GSInstallSoak(Vis4GSMainWindow* window, const Vis4GSSoakOptions& option
         [window, state]
         {
           const auto scored = std::chrono::steady_clock::now();
-          if (!Exercise(*window, state->Options))
+          const FineTune tuned = Exercise(*window, state->Options);
+          if (tuned == FineTune::Failed)
           {
             std::cout << "soak FAILED: the clean-up panel's fine-tune failed in cycle "
                       << state->Cycle << std::endl;
@@ -316,7 +327,8 @@ void Vis4GSInstallSoak(Vis4GSMainWindow* window, const Vis4GSSoakOptions& option
                      << "," << std::chrono::duration<double>(scored - state->Opened).count() << ","
                      << std::chrono::duration<double>(acted - scored).count() << ","
                      << s.MallocSystemMB << "," << s.HeapSegmentMB << "," << s.AnonymousMB << ","
-                     << s.ExecutableMB << "," << s.FileMB << "," << s.Mappings << std::endl;
+                     << s.ExecutableMB << "," << s.FileMB << "," << s.Mappings << ","
+                     << (tuned == FineTune::Done ? 1 : 0) << std::endl;
           ++state->Cycle;
           state->Running = false;
           if (state->Cycle >= state->Options.Cycles)
