@@ -273,7 +273,7 @@ void RunBenchmark(Vis4GSMainWindow& w, double start, double startCpu)
     const std::size_t at = summary.rfind("loaded in");
     std::cout << "benchmark:   document " << summary.substr(at == std::string::npos ? 0 : at);
   }
-  OrbitScene(w, 36);
+  OrbitScene(w, 150); // 5 s at 72 degrees a second
   TimePicks(w);
   vtkGaussianTreeItem* item = tree->GetTreeItem();
   auto measure = [&](const char* label, int frames)
