@@ -44,6 +44,7 @@ vtkGaussianSplatRasterFrames::vtkGaussianSplatRasterFrames()
 //------------------------------------------------------------------------------
 vtkGaussianSplatRasterFrames::~vtkGaussianSplatRasterFrames()
 {
+  this->Cancel(); // (the frame in production is finished: the rasteriser cannot be stopped)
   this->SetAsynchronous(false);
   this->ImageTexture->Delete();
   this->DepthTexture->Delete();
