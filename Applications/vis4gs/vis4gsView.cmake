@@ -13,6 +13,7 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     Window/Vis4GSSoak.cxx
     Window/Vis4GSBenchmark.cxx
     Window/Vis4GSFollow.cxx
+    Window/Vis4GSSceneFrames.cxx
     Window/Vis4GSControlPanel.cxx
     Window/Vis4GSSelectionExport.cxx
     Window/Vis4GSSelectionTable.cxx
