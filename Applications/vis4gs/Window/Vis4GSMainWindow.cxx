@@ -5,6 +5,7 @@
 #include "Vis4GSCompareWindow.h"
 #include "Vis4GSControlPanel.h"
 #include "Vis4GSDocument.h"
+#include "Vis4GSSceneFrames.h"
 #include "Vis4GSSelectionExport.h"
 #include "Vis4GSSelectionTable.h"
 
@@ -76,11 +77,11 @@ struct Vis4GSMainWindow::Internals
   QVTKOpenGLNativeWidget* SceneWidget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
   vtkNew<vtkGaussianSceneView> Scene;
+  std::unique_ptr<Vis4GSSceneFrames> SceneFrames; // (after Scene: destroyed before it)
   vtkNew<vtkCallbackCommand> PickCommand;
   // Scores (worker thread).
   QThread* ScoreWorker = nullptr;
-  bool ScoresPending = false;
-  bool ScoresDone = false;
+  bool ScoresPending = false, ScoresDone = false;
   vtkSmartPointer<vtkTable> ScoreCameras;
   std::unique_ptr<QTemporaryDir> ImageDir;
   // B, D, histogram.
@@ -99,8 +100,7 @@ struct Vis4GSMainWindow::Internals
   Vis4GSControlPanel* Panel = nullptr;
   QComboBox* HistogramArray = nullptr; // (in the histogram dock)
   QProgressBar* Progress = nullptr;
-  std::string SceneCameras;
-  std::string SceneImages;
+  std::string SceneCameras, SceneImages;
   int SceneIteration = -1;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
@@ -244,6 +244,7 @@ void Vis4GSMainWindow::BuildUi()
   d->Scene->SetRenderWindow(d->SceneWindow);
   d->Scene->SetInteractor(d->SceneWindow->GetInteractor());
   d->Scene->SetSelectionHub(d->Hub);
+  d->SceneFrames.reset(new Vis4GSSceneFrames(this, d->Scene)); // (issue 30)
   d->PickCommand->SetClientData(this);
   d->PickCommand->SetCallback(
     [](vtkObject*, unsigned long, void* client, void*)
@@ -639,8 +640,7 @@ void Vis4GSMainWindow::SettleLayout()
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::ShowCleanup()
 {
-  // Under the scene with the timeline when there is one (room for the wide table), else with
-  // panel C.
+  // Under the scene with the timeline when there is one (room for the wide table), else panel C.
   QDockWidget* timeline = d->Docks[3];
   const bool under = timeline->isVisible();
   this->tabifyDockWidget(under ? timeline : d->Docks[2], d->CleanupDock);
@@ -1146,6 +1146,7 @@ bool Vis4GSMainWindow::SaveScreenshot(const QString& which, const QString& path)
   {
     return false; // (a hidden dock's grab would lay it out again and resize the others)
   }
+  d->SceneFrames->WaitForCurrent(); // (the scene view's frame may be in the making)
   return widget->grab().save(path);
 }
 
