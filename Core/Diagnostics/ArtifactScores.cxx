@@ -280,6 +280,10 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     }
     FootprintStats stats;
     RasterImage<float> render;
+    // The shared pass's render-cost statistics, in the renderer's sorted order, kept between
+    // views (each view's in input order would be 24 more bytes a Gaussian, allocated anew).
+    GaussianWeightStats sortedWeights;
+    sortedWeights.CountEvaluations = true;
     for (std::size_t vi : ownViews)
     {
       if (viewStarted)
@@ -321,7 +325,14 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         multi->Project(view);
         out.Timings.Projection += Seconds(t0);
         t0 = Clock::now();
-        multi->Composite(render, shareRenderCost ? &weights : nullptr);
+        if (shareRenderCost)
+        {
+          multi->CompositeInSortedOrder(render, sortedWeights);
+        }
+        else
+        {
+          multi->Composite(render);
+        }
         out.Timings.Rendering += Seconds(t0);
       }
       else
@@ -386,7 +397,20 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         blurSum[g] += omega * lp;
         needleSum[g] += lp;
       }
-      if (shareRenderCost)
+      if (shareRenderCost && multi)
+      {
+        const std::vector<std::uint32_t>& ids = multi->SortedIds();
+        const std::int64_t visible = static_cast<std::int64_t>(ids.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t k = 0; k < visible; ++k)
+        {
+          const std::uint32_t g = ids[static_cast<std::size_t>(k)];
+          out.RenderCostSum[g] += static_cast<double>(sortedWeights.Evaluations[k]);
+          out.ContributionSum[g] += sortedWeights.WeightSum[k];
+        }
+        costedByScorePass[vi] = true;
+      }
+      else if (shareRenderCost)
       {
         addRenderCost(weights);
         costedByScorePass[vi] = true;

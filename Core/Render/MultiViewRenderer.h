@@ -71,6 +71,14 @@ public:
   void Composite(RasterImage<float>& image, GaussianWeightStats* weights = nullptr);
 
   /**
+   * Composite() with the per-Gaussian statistics in the order of SortedIds(): entry s is
+   * Gaussian SortedIds()[s]'s, the same values Composite() puts at that Gaussian's index. For a
+   * caller that sums them per Gaussian over views: no buffer in input order, and @p weights'
+   * buffers are reused from one view to the next.
+   */
+  void CompositeInSortedOrder(RasterImage<float>& image, GaussianWeightStats& weights);
+
+  /**
    * Footprint statistics of the last projected view: identical (bit for bit, counts and
    * sums) to ComputeFootprints(ProjectGaussians<float>(cloud, camera, settings), options,
    * map), whatever the options (mode, accumulation, brute force, instruction set), which
@@ -87,6 +95,9 @@ public:
   struct Data;
 
 private:
+  /// Bins and composites the last view; @p sorted (optional) receives the statistics in
+  /// sorted order.
+  void CompositeWith(RasterImage<float>& image, GaussianWeightStats* sorted);
   std::unique_ptr<Data> Impl;
 };
 
