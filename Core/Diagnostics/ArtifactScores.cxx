@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace vis4gs
 {
@@ -604,12 +605,12 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     ComputeNeedleShapes(cloud.LogScales.data(), n, shape.data());
     out.Timings.NeedleShape = Seconds(t0);
   }
-  if (request.NeedleShape)
-  {
-    out.NeedleShape = shape;
-  }
   if (!needCameras)
   {
+    if (request.NeedleShape)
+    {
+      out.NeedleShape = std::move(shape);
+    }
     out.Timings.Total = Seconds(start);
     return out;
   }
@@ -704,10 +705,6 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   }
   if (renderCost)
   {
-    if (request.RenderCost)
-    {
-      out.RenderCost = partials.RenderCostSum;
-    }
     if (request.CostPerContribution)
     {
       out.CostPerContribution.assign(n, 0.0);
@@ -725,6 +722,10 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
                                                       : std::numeric_limits<double>::quiet_NaN();
       }
     }
+    if (request.RenderCost)
+    {
+      out.RenderCost = std::move(partials.RenderCostSum);
+    }
     out.NotEvaluatedCount = notEvaluated;
     if (notEvaluated > 0)
     {
@@ -732,6 +733,10 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
         " Gaussians are evaluated at no pixel of any training view (RenderCost 0" +
         (request.CostPerContribution ? ", CostPerContribution NaN: no cost to divide)" : ")"));
     }
+  }
+  if (request.NeedleShape)
+  {
+    out.NeedleShape = std::move(shape); // the needle score above has read it
   }
   out.NoCoverageViewCount = noCoverage;
   out.NoScoredViewCount = noScored;

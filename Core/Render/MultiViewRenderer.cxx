@@ -297,6 +297,26 @@ void MultiViewRenderer::Render(const Camera& camera, RasterImage<float>& image)
 }
 
 //------------------------------------------------------------------------------
+void MultiViewRenderer::SetColors(const float* rgb)
+{
+  Data& d = *this->Impl;
+  if (!d.HasView)
+  {
+    throw std::logic_error("MultiViewRenderer::SetColors: no view was projected");
+  }
+  const std::int64_t nv = static_cast<std::int64_t>(d.Sorted.size());
+#pragma omp parallel for schedule(static) num_threads(d.Threads)
+  for (std::int64_t ss = 0; ss < nv; ++ss)
+  {
+    const std::size_t s = static_cast<std::size_t>(ss);
+    const float* c = rgb + 3 * static_cast<std::size_t>(d.Sorted[s]);
+    d.Kernels[s].R = c[0];
+    d.Kernels[s].G = c[1];
+    d.Kernels[s].Bl = c[2];
+  }
+}
+
+//------------------------------------------------------------------------------
 void MultiViewRenderer::CompositeInSortedOrder(RasterImage<float>& image,
   GaussianWeightStats& weights)
 {

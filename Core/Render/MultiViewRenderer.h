@@ -86,6 +86,14 @@ public:
    */
   void Footprints(const FootprintOptions& options, const float* map, FootprintStats& stats);
 
+  /**
+   * Replaces the colours of the last projected view: Gaussian i is drawn with
+   * @p rgb[3i..3i+2] (the activated colour, as the rasteriser's after its clamp at 0), for one
+   * projection composited in several colourings (score overlays). Composite() then gives
+   * exactly what Rasterize<float>() gives for a cloud of SH degree 0 with those colours.
+   */
+  void SetColors(const float* rgb);
+
   /// Status counts of the last projected view.
   const ProjectionCounts& Counts() const;
 
