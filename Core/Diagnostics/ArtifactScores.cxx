@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace vis4gs
 {
@@ -280,6 +281,10 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     }
     FootprintStats stats;
     RasterImage<float> render;
+    // The shared pass's render-cost statistics, in the renderer's sorted order, kept between
+    // views (each view's in input order would be 24 more bytes a Gaussian, allocated anew).
+    GaussianWeightStats sortedWeights;
+    sortedWeights.CountEvaluations = true;
     for (std::size_t vi : ownViews)
     {
       if (viewStarted)
@@ -321,7 +326,14 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         multi->Project(view);
         out.Timings.Projection += Seconds(t0);
         t0 = Clock::now();
-        multi->Composite(render, shareRenderCost ? &weights : nullptr);
+        if (shareRenderCost)
+        {
+          multi->CompositeInSortedOrder(render, sortedWeights);
+        }
+        else
+        {
+          multi->Composite(render);
+        }
         out.Timings.Rendering += Seconds(t0);
       }
       else
@@ -386,7 +398,20 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         blurSum[g] += omega * lp;
         needleSum[g] += lp;
       }
-      if (shareRenderCost)
+      if (shareRenderCost && multi)
+      {
+        const std::vector<std::uint32_t>& ids = multi->SortedIds();
+        const std::int64_t visible = static_cast<std::int64_t>(ids.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t k = 0; k < visible; ++k)
+        {
+          const std::uint32_t g = ids[static_cast<std::size_t>(k)];
+          out.RenderCostSum[g] += static_cast<double>(sortedWeights.Evaluations[k]);
+          out.ContributionSum[g] += sortedWeights.WeightSum[k];
+        }
+        costedByScorePass[vi] = true;
+      }
+      else if (shareRenderCost)
       {
         addRenderCost(weights);
         costedByScorePass[vi] = true;
@@ -580,12 +605,12 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     ComputeNeedleShapes(cloud.LogScales.data(), n, shape.data());
     out.Timings.NeedleShape = Seconds(t0);
   }
-  if (request.NeedleShape)
-  {
-    out.NeedleShape = shape;
-  }
   if (!needCameras)
   {
+    if (request.NeedleShape)
+    {
+      out.NeedleShape = std::move(shape);
+    }
     out.Timings.Total = Seconds(start);
     return out;
   }
@@ -680,10 +705,6 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   }
   if (renderCost)
   {
-    if (request.RenderCost)
-    {
-      out.RenderCost = partials.RenderCostSum;
-    }
     if (request.CostPerContribution)
     {
       out.CostPerContribution.assign(n, 0.0);
@@ -701,6 +722,10 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
                                                       : std::numeric_limits<double>::quiet_NaN();
       }
     }
+    if (request.RenderCost)
+    {
+      out.RenderCost = std::move(partials.RenderCostSum);
+    }
     out.NotEvaluatedCount = notEvaluated;
     if (notEvaluated > 0)
     {
@@ -708,6 +733,10 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
         " Gaussians are evaluated at no pixel of any training view (RenderCost 0" +
         (request.CostPerContribution ? ", CostPerContribution NaN: no cost to divide)" : ")"));
     }
+  }
+  if (request.NeedleShape)
+  {
+    out.NeedleShape = std::move(shape); // the needle score above has read it
   }
   out.NoCoverageViewCount = noCoverage;
   out.NoScoredViewCount = noScored;

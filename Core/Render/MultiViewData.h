@@ -59,8 +59,9 @@ struct MultiViewRenderer::Data
   std::vector<raster::detail::KernelGaussian<float>> Kernels;
   std::vector<raster::detail::SpanRecord> Bounds; ///< alpha-level spans (compositing)
   std::vector<std::array<int, 4>> Rects;
-  std::vector<std::int32_t> Radius;
   TileBins Bins; ///< Ids are sorted positions s (ascending within every tile)
+  /// Composite()'s statistics in sorted order, kept between views.
+  GaussianWeightStats SortedWeights;
 
   // Scratch kept between views.
   /// A visible Gaussian's data, one cache line, compacted in index order before the sort.

@@ -71,12 +71,28 @@ public:
   void Composite(RasterImage<float>& image, GaussianWeightStats* weights = nullptr);
 
   /**
+   * Composite() with the per-Gaussian statistics in the order of SortedIds(): entry s is
+   * Gaussian SortedIds()[s]'s, the same values Composite() puts at that Gaussian's index. For a
+   * caller that sums them per Gaussian over views: no buffer in input order, and @p weights'
+   * buffers are reused from one view to the next.
+   */
+  void CompositeInSortedOrder(RasterImage<float>& image, GaussianWeightStats& weights);
+
+  /**
    * Footprint statistics of the last projected view: identical (bit for bit, counts and
    * sums) to ComputeFootprints(ProjectGaussians<float>(cloud, camera, settings), options,
    * map), whatever the options (mode, accumulation, brute force, instruction set), which
    * are honoured exactly as ComputeFootprints() honours them.
    */
   void Footprints(const FootprintOptions& options, const float* map, FootprintStats& stats);
+
+  /**
+   * Replaces the colours of the last projected view: Gaussian i is drawn with
+   * @p rgb[3i..3i+2] (the activated colour, as the rasteriser's after its clamp at 0), for one
+   * projection composited in several colourings (score overlays). Composite() then gives
+   * exactly what Rasterize<float>() gives for a cloud of SH degree 0 with those colours.
+   */
+  void SetColors(const float* rgb);
 
   /// Status counts of the last projected view.
   const ProjectionCounts& Counts() const;
@@ -87,6 +103,9 @@ public:
   struct Data;
 
 private:
+  /// Bins and composites the last view; @p sorted (optional) receives the statistics in
+  /// sorted order.
+  void CompositeWith(RasterImage<float>& image, GaussianWeightStats* sorted);
   std::unique_ptr<Data> Impl;
 };
 

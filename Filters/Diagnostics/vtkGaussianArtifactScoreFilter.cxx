@@ -48,13 +48,11 @@ vtkCxxSetObjectMacro(vtkGaussianArtifactScoreFilter, Controller, vtkMultiProcess
 
 namespace
 {
-void AddArray(vtkPolyData* output, const char* name, const std::vector<double>& values)
+// The array takes the vector's memory: a copy would hold the scores twice at the peak.
+void AddArray(vtkPolyData* output, const char* name, std::vector<double>&& values)
 {
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(name);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-  std::copy(values.begin(), values.end(), array->GetPointer(0));
-  output->GetPointData()->AddArray(array);
+  output->GetPointData()->AddArray(
+    vis4gs::AdoptVector<vtkDoubleArray>(name, std::move(values)).GetPointer());
 }
 
 char ViewInProgress[256] = "";
@@ -517,7 +515,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   {
     if (this->EnabledScores[k])
     {
-      AddArray(output, registry[k].ArrayName, scores.*(registry[k].Values));
+      AddArray(output, registry[k].ArrayName, std::move(scores.*(registry[k].Values)));
     }
   }
   // The reasons travel with the data (a script sees them without a warning handler): every

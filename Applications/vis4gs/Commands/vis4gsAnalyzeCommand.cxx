@@ -27,6 +27,7 @@
 #include "Vis4GSPipeline.h"
 #include "Vis4GSProgressiveStages.h"
 #include "Vis4GSSceneCameras.h"
+#include "Vis4GSScoreOutputs.h"
 #include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSession.h"
@@ -863,6 +864,8 @@ int Run(const Vis4GSArguments& args)
       flags[i] = static_cast<unsigned char>(f->GetTuple1(static_cast<vtkIdType>(i)));
     }
   }
+  // scores and flags are copies: the filter's arrays go (0.3 GB at 6.1M x 6 scores).
+  filter->GetOutput()->Initialize();
   const double tScores = Since(t0);
   if (mpi.Active())
   {
@@ -909,39 +912,12 @@ int Run(const Vis4GSArguments& args)
   }
   columns.clear();
   columns.shrink_to_fit();
-  {
-    // Streamed into the staging folder (renamed into place with the other outputs on
-    // success): 6.1M rows would be a 0.4 GB string twice over through WriteTextFile.
-    const fs::path path = staging.Get() / "scores.csv";
-    std::ofstream csv(path);
-    csv << "GaussianId";
-    for (const auto& s : scores)
-    {
-      csv << "," << s.first;
-    }
-    csv << (needCameras ? ",NoVisibleView\n" : "\n");
-    csv << std::setprecision(9);
-    for (std::size_t i = 0; i < cloud.Count && csv; ++i)
-    {
-      csv << cloud.GetId(i);
-      for (const auto& s : scores)
-      {
-        csv << "," << s.second[i];
-      }
-      if (needCameras)
-      {
-        csv << "," << int(flags[i]);
-      }
-      csv << "\n";
-    }
-    csv.flush();
-    if (!csv)
-    {
-      const int error = errno;
-      throw std::runtime_error(
-        (output / "scores.csv").string() + ": could not be written (" + std::strerror(error) + ")");
-    }
-  }
+  // Into the staging folder (renamed into place with the other outputs on success).
+  Vis4GSWriteScoresCsv(staging.Get() / "scores.csv",
+    (output / "scores.csv").string(),
+    cloud,
+    scores,
+    needCameras ? &flags : nullptr);
   // Top-k: the suspicious end of each score first (lowest coverage: floaters).
   std::map<std::string, std::vector<std::size_t>> tops;
   for (const auto& [name, values] : scores)
@@ -1025,16 +1001,7 @@ int Run(const Vis4GSArguments& args)
   const int overlayViews = std::max(0, args.GetInt("overlay-views"));
   if (needCameras && overlayViews > 0)
   {
-    // One copy of the geometry for every overlay, its colours replaced per score: not the
-    // cloud's SH (of SH degree 3: 80 % of its size).
-    vis4gs::GaussianCloud colored;
-    colored.Count = cloud.Count;
-    colored.Positions = cloud.Positions;
-    colored.LogScales = cloud.LogScales;
-    colored.Rotations = cloud.Rotations;
-    colored.OpacityLogits = cloud.OpacityLogits;
-    colored.ShDegree = 0;
-    colored.SH.assign(3 * cloud.Count, 0.0f);
+    std::vector<Vis4GSOverlayScore> drawn;
     for (const auto& [name, values] : scores)
     {
       const vis4gs::ScoreDefinition& score = *vis4gs::FindScore(name);
@@ -1042,47 +1009,32 @@ int Run(const Vis4GSArguments& args)
       {
         continue; // a property of the Gaussian alone, not of what the views see
       }
-      std::vector<double> sorted;
-      for (double v : values)
-      {
-        if (std::isfinite(v))
-        {
-          sorted.push_back(v);
-        }
-      }
-      std::sort(sorted.begin(), sorted.end());
-      const double hi = sorted.empty() || score.UnitRange
-        ? 1.0
-        : std::max(1e-30, sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))]);
+      const double hi = Vis4GSOverlayUpperEnd(values, score.UnitRange);
       legends.push_back(Legend(name, 0.0, hi));
-      const vis4gs::SuspiciousEnd end = vis4gs::SuspiciousEndOf(name);
-      for (std::size_t i = 0; i < cloud.Count; ++i)
+      drawn.push_back({ name, &values, hi });
+    }
+    // Rendered view by view (one projection each), listed score by score.
+    std::vector<std::vector<std::pair<std::string, fs::path>>> images(drawn.size());
+    int view = 0;
+    std::size_t lastCamera = cameras.size();
+    Vis4GSRenderOverlays(cloud,
+      cameras,
+      drawn,
+      overlayViews,
+      [&](std::size_t k, std::size_t v, const vis4gs::Image& image)
       {
-        const auto c = vis4gs::OverlayColor(values[i], 0.0, hi, end);
-        for (int k = 0; k < 3; ++k)
-        {
-          colored.SH[3 * i + k] = static_cast<float>((c[k] - 0.5) / vis4gs::sh::C0);
-        }
-      }
-      int done = 0;
-      for (std::size_t v = 0; v < cameras.size() && done < overlayViews; ++v)
-      {
-        if (cameras[v].Split != vis4gs::CameraSplit::Train)
-        {
-          continue;
-        }
-        std::cout << "vis4gs analyze: overlay " << name << " in " << cameras[v].Name << " ("
-                  << done + 1 << " of " << overlayViews << ")" << std::endl;
-        const auto render = vis4gs::Rasterize<float>(colored, cameras[v]);
-        vis4gs::Image image;
-        image.Width = render.Width;
-        image.Height = render.Height;
-        image.Pixels = render.Color;
-        const fs::path file = staging.Get() / (std::string(name) + "-" + cameras[v].Name + ".png");
+        view += v != lastCamera ? 1 : 0;
+        lastCamera = v;
+        const std::string& name = drawn[k].Name;
+        std::cout << "vis4gs analyze: overlay " << name << " in " << cameras[v].Name << " (" << view
+                  << " of " << overlayViews << ")" << std::endl;
+        const fs::path file = staging.Get() / (name + "-" + cameras[v].Name + ".png");
         vis4gs::WritePng(file.string(), image);
-        overlays.emplace_back(std::string(name) + " in " + cameras[v].Name, file);
-        ++done;
-      }
+        images[k].emplace_back(name + " in " + cameras[v].Name, file);
+      });
+    for (auto& list : images)
+    {
+      overlays.insert(overlays.end(), list.begin(), list.end());
     }
   }
   const double tOutputs = Since(t0);

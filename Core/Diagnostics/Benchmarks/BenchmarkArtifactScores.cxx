@@ -10,6 +10,12 @@
 //     views, next to a plain render of each view (its floor) and the straightforward per-pixel
 //     walk of the tile lists in scalar code on K views (extrapolated), whose counts it checks.
 //
+//   BenchmarkArtifactScores case --case=DIR [--scores=LIST] [--views=K] [--shared=0|1]
+//       [--loss-resolution=F] [--coverage-resolution=F]
+//     The scores of a case on disk (MakeBicycleCase's scene.ply, cameras.json, images/) on
+//     its first K training views (0: all), with the wall time of each phase, the process's
+//     CPU time and peak RSS, and a checksum of every score.
+//
 //   BenchmarkArtifactScores accuracy --output=FILE.md --plot=FILE.png [--colmap=DIR]
 //       [--scene=PLY --cameras=JSON --images=DIR] [--log=LOG.h5] [--gaussians=N] [--views=V]
 //     Sweeps every mode on (a) a synthetic scene whose images are rendered from a perturbed
@@ -920,13 +926,103 @@ int Accuracy(const std::map<std::string, std::string>& args)
   return 0;
 }
 
+// The diagnosis of a case on disk (MakeBicycleCase's folder), phase by phase: the scores'
+// timings (wall per phase, ScoreTimings), the process's CPU time and its peak RSS, for
+// profiling one view (--views=K: the first K training views) or every view.
+int Case(const std::map<std::string, std::string>& args)
+{
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  const std::string folder = args.count("case") ? args.at("case") : ".";
+  Timer readTimer;
+  const GaussianCloud cloud = ReadGaussianScene(folder + "/scene.ply");
+  std::vector<Camera> cameras = ReadCamerasJson(folder + "/cameras.json");
+  AttachImages(cameras, folder + "/images");
+  std::printf("read %zu Gaussians, %zu cameras: %s\n",
+    cloud.Count,
+    cameras.size(),
+    readTimer.Describe(omp_get_max_threads()).c_str());
+  ScoreSettings settings;
+  const std::string scores =
+    args.count("scores") ? args.at("scores") : "coverage,blur,needle,shape,render-cost";
+  auto has = [&scores](const char* name) { return scores.find(name) != std::string::npos; };
+  settings.Request.ViewCoverage = has("coverage");
+  settings.Request.Blur = has("blur");
+  settings.Request.Needle = has("needle");
+  settings.Request.NeedleShape = has("shape");
+  settings.Request.RenderCost = has("render-cost");
+  settings.Request.CostPerContribution = has("cost-per-contribution");
+  settings.LossResolution = static_cast<int>(Get(args, "loss-resolution", 1));
+  settings.CoverageResolution = static_cast<int>(Get(args, "coverage-resolution", 1));
+  settings.SharedProjection = Get(args, "shared", 1) != 0;
+  const std::size_t views = static_cast<std::size_t>(Get(args, "views", 0));
+  if (views > 0)
+  {
+    for (std::size_t i = 0; i < cameras.size() && settings.ViewList.size() < views; ++i)
+    {
+      if (cameras[i].Split == CameraSplit::Train)
+      {
+        settings.ViewList.push_back(i);
+      }
+    }
+  }
+  auto provider = [](std::size_t, const Camera& c, Image& image)
+  {
+    image = LoadTrainingImage(c);
+    return true;
+  };
+  std::printf("load average before: %s\n", LoadAverage().c_str());
+  Timer t;
+  const GaussianScores result = ComputeGaussianScores(cloud, cameras, settings, provider);
+  const double used = static_cast<double>(result.ViewsUsed);
+  std::printf("scores (%s), %zu views: %s, %.3f s wall and %.3f s CPU a view\n",
+    scores.c_str(),
+    result.ViewsUsed,
+    t.Describe(omp_get_max_threads()).c_str(),
+    t.WallSeconds() / used,
+    t.CpuSecondsUsed() / used);
+  const ScoreTimings& s = result.Timings;
+  std::printf("phases (wall, s): projection %.3f, rendering %.3f, images %.3f, loss maps %.3f, "
+              "footprints %.3f, accumulation %.3f, needle shape %.3f, render cost %.3f, total "
+              "%.3f\n",
+    s.Projection,
+    s.Rendering,
+    s.Images,
+    s.LossMaps,
+    s.Footprints,
+    s.Accumulation,
+    s.NeedleShape,
+    s.RenderCost,
+    s.Total);
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  std::printf("peak RSS %.3f GB; load average after: %s\n",
+    static_cast<double>(u.ru_maxrss) / 1e6,
+    LoadAverage().c_str());
+  // A checksum of every score, to compare variants of the implementation.
+  for (const std::vector<double>* v : { &result.ViewCoverage,
+         &result.BlurScore,
+         &result.NeedleScore,
+         &result.NeedleShape,
+         &result.RenderCost,
+         &result.CostPerContribution })
+  {
+    double sum = 0;
+    for (double x : *v)
+    {
+      sum += std::isfinite(x) ? x : 0.0;
+    }
+    std::printf("sum %.17g over %zu\n", sum, v->size());
+  }
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::cerr << "usage: BenchmarkArtifactScores perf|accuracy [--options]\n";
+    std::cerr << "usage: BenchmarkArtifactScores perf|case|accuracy [--options]\n";
     return 2;
   }
   try
@@ -936,6 +1032,10 @@ int main(int argc, char** argv)
     if (what == "perf")
     {
       return Perf(args);
+    }
+    if (what == "case")
+    {
+      return Case(args);
     }
     if (what == "accuracy")
     {

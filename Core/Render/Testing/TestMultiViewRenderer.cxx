@@ -7,6 +7,7 @@
 
 #include "Footprint.h"
 #include "GaussianIO.h"
+#include "GaussianMath.h"
 #include "MultiViewRenderer.h"
 #include "RasterCompare.h"
 #include "Rasterizer.h"
@@ -14,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -316,4 +318,102 @@ TEST(MultiViewRenderer, ErrorsLikeTheRasterizer)
   ASSERT_EQ(img.Color.size(), 600u);
   EXPECT_EQ(img.Color[0], 0.25f);
   EXPECT_EQ(img.Color[599], 0.75f);
+}
+
+// The per-Gaussian statistics of compositing (render cost), in input order equal to
+// CompositeTiles()', and in sorted order (CompositeInSortedOrder, buffers reused from view to
+// view) equal to those at each sorted position's Gaussian.
+TEST(MultiViewRenderer, WeightStatisticsInInputAndSortedOrder)
+{
+  const GaussianCloud cloud = RandomScene(3000, 3, 29u, 1.0f, 10.0f);
+  RasterSettings rs;
+  rs.Threads = 3;
+  MultiViewRenderer mv(cloud, rs);
+  GaussianWeightStats sorted;
+  sorted.CountEvaluations = true;
+  for (const Camera& cam : Views(160, 120))
+  {
+    const ViewProjection<float> proj = ProjectGaussians<float>(cloud, cam, rs);
+    const TileBins bins = BinGaussians(proj, rs.Threads);
+    RasterImage<float> refImage;
+    GaussianWeightStats ref;
+    ref.CountEvaluations = true;
+    CompositeTiles(proj, bins, rs, refImage, &ref);
+
+    mv.Project(cam);
+    RasterImage<float> image;
+    GaussianWeightStats inputOrder;
+    inputOrder.CountEvaluations = true;
+    mv.Composite(image, &inputOrder);
+    EXPECT_TRUE(SameBits(image.Color, refImage.Color));
+    EXPECT_TRUE(SameBits(inputOrder.WeightSum, ref.WeightSum));
+    EXPECT_TRUE(SameBits(inputOrder.MaxWeight, ref.MaxWeight));
+    EXPECT_EQ(inputOrder.BlendedPixels, ref.BlendedPixels);
+    EXPECT_EQ(inputOrder.Evaluations, ref.Evaluations);
+
+    RasterImage<float> again;
+    mv.CompositeInSortedOrder(again, sorted);
+    EXPECT_TRUE(SameBits(again.Color, refImage.Color));
+    const std::vector<std::uint32_t>& ids = mv.SortedIds();
+    ASSERT_EQ(sorted.WeightSum.size(), ids.size());
+    ASSERT_EQ(sorted.Evaluations.size(), ids.size());
+    std::size_t drawn = 0;
+    for (std::size_t s = 0; s < ids.size(); ++s)
+    {
+      const std::uint32_t g = ids[s];
+      ASSERT_EQ(sorted.Evaluations[s], ref.Evaluations[g]) << s;
+      ASSERT_EQ(sorted.WeightSum[s], ref.WeightSum[g]) << s;
+      ASSERT_EQ(sorted.MaxWeight[s], ref.MaxWeight[g]) << s;
+      ASSERT_EQ(sorted.BlendedPixels[s], ref.BlendedPixels[g]) << s;
+      drawn += ref.Evaluations[g] > 0 ? 1 : 0;
+    }
+    EXPECT_GT(drawn, 100u); // the view draws something, so the comparison means something
+  }
+}
+
+// One projection composited in several colourings (score overlays): SetColors on a renderer
+// that computes no colours gives, bit for bit, the rasteriser's image of a copy of the cloud
+// of SH degree 0 whose DC coefficients make those colours.
+TEST(MultiViewRenderer, SetColorsEqualsRasterizerOfRecolouredCopy)
+{
+  const GaussianCloud cloud = RandomScene(3000, 3, 31u, 1.0f, 10.0f);
+  RasterSettings noColors;
+  noColors.ComputeColors = false;
+  noColors.Threads = 3;
+  MultiViewRenderer mv(cloud, noColors);
+  GaussianCloud copy = cloud;
+  copy.ShDegree = 0;
+  copy.SH.assign(3 * cloud.Count, 0.0f);
+  std::vector<float> rgb(3 * cloud.Count);
+  std::mt19937 rng(5u);
+  std::uniform_real_distribution<float> unit(-0.2f, 1.2f);
+  for (const Camera& cam : Views(160, 120))
+  {
+    mv.Project(cam);
+    for (int colouring = 0; colouring < 2; ++colouring)
+    {
+      for (std::size_t i = 0; i < cloud.Count; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          copy.SH[3 * i + c] = unit(rng);
+        }
+        const float dir[3] = { 0, 0, 0 };
+        float col[3];
+        ShColor<float>(&copy.SH[3 * i], 0, dir, col);
+        for (int c = 0; c < 3; ++c)
+        {
+          rgb[3 * i + c] = std::max(col[c], 0.0f); // below 0: the rasteriser's clamp
+        }
+      }
+      mv.SetColors(rgb.data());
+      RasterImage<float> image;
+      mv.Composite(image);
+      RasterSettings rs;
+      rs.Threads = 3;
+      const RasterImage<float> ref = Rasterize<float>(copy, cam, rs);
+      EXPECT_TRUE(SameBits(image.Color, ref.Color)) << colouring;
+      EXPECT_TRUE(SameBits(image.Alpha, ref.Alpha)) << colouring;
+    }
+  }
 }
