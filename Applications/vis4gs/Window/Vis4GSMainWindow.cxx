@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSMainWindow.h"
+#include "Vis4GSScoreStages.h"
 
 #include "Vis4GSCleanupPanel.h"
 #include "Vis4GSCompareWindow.h"
@@ -77,8 +78,8 @@ struct Vis4GSMainWindow::Internals
   vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
   vtkNew<vtkGaussianSceneView> Scene;
   vtkNew<vtkCallbackCommand> PickCommand;
-  // Scores (worker thread).
-  QThread* ScoreWorker = nullptr;
+  // Scores (worker thread, progressive stages).
+  std::unique_ptr<Vis4GSScoreStages> Scores;
   bool ScoresPending = false;
   bool ScoresDone = false;
   vtkSmartPointer<vtkTable> ScoreCameras;
@@ -135,10 +136,7 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
   {
     d->Worker->wait();
   }
-  if (d->ScoreWorker)
-  {
-    d->ScoreWorker->wait();
-  }
+  d->Scores.reset(); // stops the scores and waits for them
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
@@ -417,6 +415,10 @@ void Vis4GSMainWindow::BuildUi()
   d->Progress->setMaximumWidth(240);
   d->Progress->hide();
   this->statusBar()->addPermanentWidget(d->Progress);
+  d->Scores = std::make_unique<Vis4GSScoreStages>(this);
+  d->Scores->Progress = [this](double f, const QString& m) { this->OnProgress(f, m); };
+  // (Finished disables the button.)
+  connect(d->Panel->StopScores, &QPushButton::clicked, this, [this] { d->Scores->Stop(); });
 
   // Hub -> window.
   d->HubCommand->SetClientData(this);
@@ -746,11 +748,9 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
     emit this->loadFailed(error);
     return;
   }
-  if (d->ScoreWorker)
-  {
-    // Scores of the previous document: let them finish, their result is dropped.
-    d->ScoreWorker->wait();
-  }
+  // Scores of the previous document: stopped (after the view they are on) and dropped.
+  d->Scores->Stop();
+  d->Scores->Wait();
   d->Doc = doc;
   d->Cleanup->SetSceneFile(doc->IsLog ? QString() : QString::fromStdString(doc->Path),
     QString::fromStdString(d->SceneCameras),
@@ -904,9 +904,10 @@ void Vis4GSMainWindow::StartScores()
   {
     return;
   }
-  if (d->ScoreWorker)
+  if (d->Scores->IsRunning())
   {
     d->ScoresPending = true; // restarted for the new snapshot when this one is done
+    d->Scores->Stop();
     return;
   }
   d->ScoresDone = false;
@@ -925,78 +926,76 @@ void Vis4GSMainWindow::StartScores()
       d->ScoreCameras = d->Doc->Cameras;
     }
   }
-  vtkSmartPointer<vtkPolyData> input = scene;
   vtkSmartPointer<vtkTable> cameras = d->ScoreCameras;
   const bool images = d->Doc->CamerasWithImages > 0;
   d->Progress->setValue(0);
   d->Progress->show();
+  d->Panel->StopScores->setEnabled(true);
+  d->Panel->ScoreStage->setText("computing...");
   this->statusBar()->showMessage(cameras
       ? (images ? "computing View Coverage, Blur, Needle scores and needle shape"
                 : "computing View Coverage and needle shape (the log has no training images)")
       : "computing the needle shape (no cameras: no View Coverage, Blur or Needle score)");
   // The blur/needle pass's renders are the clean-up panel's "before" of this snapshot.
   auto baseline = std::make_shared<vis4gs::RemovalBaseline>();
-  d->ScoreWorker = QThread::create(
-    [this, input, cameras, images, baseline]
+  d->Scores->StageDone = [this, cameras, baseline](
+                           vtkPolyData* input, const Vis4GSScoreStages::Stage& stage)
+  {
+    vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+    if (current != input || d->ScoresPending)
     {
-      vtkSmartPointer<vtkPolyData> scores;
-      QString error;
-      try
-      {
-        scores = Vis4GSDocument::ComputeScores(
-          input,
-          cameras,
-          images,
-          [this](double f, const std::string& m)
-          {
-            const QString message = QString::fromStdString(m);
-            QMetaObject::invokeMethod(
-              this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
-          },
-          baseline.get());
-      }
-      catch (const std::exception& e)
-      {
-        error = QString::fromStdString(e.what());
-      }
-      QMetaObject::invokeMethod(
-        this,
-        [this, input, cameras, scores, error, baseline]
-        {
-          d->ScoreWorker->wait();
-          d->ScoreWorker->deleteLater();
-          d->ScoreWorker = nullptr;
-          d->Progress->hide();
-          vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-          if (!scores)
-          {
-            this->statusBar()->showMessage("scores: " + error, 5000);
-            std::cerr << "vis4gs view: error: scores: " << error.toStdString() << "\n";
-          }
-          else if (current == input.GetPointer())
-          {
-            for (int a = 0; a < scores->GetPointData()->GetNumberOfArrays(); ++a)
-            {
-              current->GetPointData()->AddArray(scores->GetPointData()->GetAbstractArray(a));
-            }
-            current->Modified();
-            this->statusBar()->showMessage("scores computed", 3000);
-            this->UpdateScene(); // overlay and histogram lists
-            // (After UpdateScene: it gives the panel the score cameras of the first pass.)
-            d->Cleanup->SetScoreBaseline(current, cameras, *baseline);
-          }
-          if (d->ScoresPending)
-          {
-            d->ScoresPending = false;
-            this->StartScores();
-            return;
-          }
-          d->ScoresDone = true;
-          emit this->scoresComputed();
-        },
-        Qt::QueuedConnection);
-    });
-  d->ScoreWorker->start();
+      return; // a snapshot or document opened since
+    }
+    for (int a = 0; a < stage.Scores->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      current->GetPointData()->AddArray(stage.Scores->GetPointData()->GetAbstractArray(a));
+    }
+    // The stage travels with the scene (what the views and any export of it read).
+    if (vtkAbstractArray* label = stage.Scores->GetFieldData()->GetAbstractArray("ScoreStage"))
+    {
+      current->GetFieldData()->AddArray(label);
+    }
+    current->Modified();
+    const bool last = stage.Number == stage.Of;
+    d->Panel->ScoreStage->setText(QString::fromStdString(stage.Label));
+    this->statusBar()->showMessage("scores: " + QString::fromStdString(stage.Label) +
+        (last ? QString() : QString("; computing the exact scores (Stop keeps these)")),
+      last ? 3000 : 0);
+    this->UpdateScene(); // overlay and histogram lists
+    if (last)
+    {
+      // (After UpdateScene: it gives the panel the score cameras of the first pass.)
+      d->Cleanup->SetScoreBaseline(current, cameras, *baseline);
+    }
+    emit this->scoreStageShown(stage.Number, stage.Of);
+  };
+  d->Scores->Finished = [this](vtkPolyData* input, const QString& error, bool stopped)
+  {
+    d->Progress->hide();
+    d->Panel->StopScores->setEnabled(false);
+    vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+    if (!error.isEmpty())
+    {
+      this->statusBar()->showMessage("scores: " + error, 5000);
+      std::cerr << "vis4gs view: error: scores: " << error.toStdString() << "\n";
+    }
+    else if (stopped && current == input && !d->ScoresPending)
+    {
+      const QString kept = d->Panel->ScoreStage->text();
+      d->Panel->ScoreStage->setText(
+        kept == "computing..." ? QString("stopped: no scores") : kept + " (stopped)");
+      this->statusBar()->showMessage("scores stopped: " + d->Panel->ScoreStage->text(), 5000);
+    }
+    if (d->ScoresPending)
+    {
+      d->ScoresPending = false;
+      this->StartScores();
+      return;
+    }
+    d->ScoresDone = true;
+    emit this->scoresComputed();
+  };
+  d->Scores->Start(scene, cameras, images, baseline);
 }
 
 //------------------------------------------------------------------------------
