@@ -13,7 +13,12 @@
   pvbatch TestVis4GSPlugin.py scores PLUGIN LOG SCORES_CSV ARRAY...
       the scores named by ARRAY (the filter's Scores list, the score registry's array names) at
       the log's last snapshot against the scores.csv of `vis4gs analyze LOG --scores=...`: a
-      score added to the registry reaches the plugin with no edit of its XML."""
+      score added to the registry reaches the plugin with no edit of its XML.
+  mpiexec -n K pvbatch TestVis4GSPlugin.py mpi PLUGIN LOG SCORES_CSV K
+      the scores of the log's last snapshot on K processes (the filter shares the views over
+      them) against one process's scores.csv (`vis4gs demo`): every Gaussian once, View
+      Coverage, needle shape and the flags as printed there, Blur and Needle to its 9 digits
+      (the order of the sums over views differs, 1e-15 relative)."""
 import csv
 import re
 import sys
@@ -68,6 +73,50 @@ if mode == "folder":
         sys.exit(1)
     print(f"ParaView plugin: PLY + COLMAP folder, {count} Gaussians' {', '.join(names)} = "
           "vis4gs analyze's scores.csv")
+    sys.exit(0)
+
+if mode == "mpi":
+    from paraview.modules.vtkRemotingCore import vtkProcessModule
+    log, app_csv, processes = sys.argv[3], sys.argv[4], int(sys.argv[5])
+    ranks = vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+    check(ranks == processes, f"{ranks} processes, expected {processes}")
+    reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
+    reader.UpdatePipelineInformation()
+    scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0),  # noqa: F821
+                                  Cameras=OutputPort(reader, 1))
+    scores.UpdatePipeline(time=list(reader.TimestepValues)[-1])
+    data = servermanager.Fetch(scores)
+    pd = data.GetPointData()
+    with open(app_csv) as f:
+        rows = list(csv.reader(f))
+    header, app = rows[0], rows[1:]
+    check(len(app) == data.GetNumberOfPoints(),
+          f"{data.GetNumberOfPoints()} Gaussians gathered from {ranks} processes, {len(app)} in "
+          f"{app_csv}")
+    ids = vtk_to_numpy(pd.GetArray("GaussianId"))
+    differ = {}
+    for c, name in enumerate(header[1:], start=1):
+        array = pd.GetArray(name)
+        check(array is not None, f"no {name} array")
+        if array is None:
+            continue
+        mine = vtk_to_numpy(array)
+        for r, row in enumerate(app[:data.GetNumberOfPoints()]):
+            if str(int(ids[r])) != row[0]:
+                differ[name] = differ.get(name, 0) + 1
+            elif name in ("BlurScore", "NeedleScore"):
+                theirs = float(row[c])
+                if not (abs(mine[r] - theirs) <= 1e-8 * abs(theirs) or (mine[r] != mine[r]
+                                                                           and theirs != theirs)):
+                    differ[name] = differ.get(name, 0) + 1
+            elif (str(int(mine[r])) if name == "NoVisibleView" else "%.9g" % mine[r]) != row[c]:
+                differ[name] = differ.get(name, 0) + 1
+    check(not differ, f"Gaussians whose scores differ from {app_csv}: {differ}")
+    if failures:
+        print("FAILED:", *failures, sep="\n  ")
+        sys.exit(1)
+    print(f"ParaView plugin on {ranks} processes: {len(app)} Gaussians' {', '.join(header[1:])} "
+          "= one process's scores.csv")
     sys.exit(0)
 
 if mode == "scores":
