@@ -868,7 +868,8 @@ int Run(const Vis4GSArguments& args)
   {
     std::cout << "vis4gs analyze: process " << mpi.Rank() << " of " << mpi.Size() << " rendered "
               << filter->GetNumberOfViewsRendered() << " of " << filter->GetNumberOfViewsUsed()
-              << " views\n";
+              << " views in " << Number(filter->GetComputeSeconds(), 2) << " s, reduction "
+              << Number(filter->GetReductionSeconds(), 3) << " s\n";
     if (mpi.Rank() != 0)
     {
       return 0; // process 0 has the reduced scores too and writes the outputs

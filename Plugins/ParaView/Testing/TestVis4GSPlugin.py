@@ -115,9 +115,9 @@ if mode == "mpi":
     if failures:
         print("FAILED:", *failures, sep="\n  ")
         sys.exit(1)
+    # No sys.exit here: pvbatch under mpiexec ends its other processes when the script ends.
     print(f"ParaView plugin on {ranks} processes: {len(app)} Gaussians' {', '.join(header[1:])} "
           "= one process's scores.csv")
-    sys.exit(0)
 
 if mode == "scores":
     log, app_csv, arrays = sys.argv[3], sys.argv[4], sys.argv[5:]
@@ -143,66 +143,71 @@ if mode == "scores":
     print(f"ParaView plugin: {count} Gaussians' {', '.join(names)} = vis4gs analyze's scores.csv")
     sys.exit(0)
 
-log, demo_output, screenshot = sys.argv[3:6]
-reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
-reader.UpdatePipelineInformation()
-times = list(reader.TimestepValues)
-check(len(times) > 1 and times == sorted(times), f"snapshot iterations as time steps: {times}")
+if mode == "demo":
+    log, demo_output, screenshot = sys.argv[3:6]
+    reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
+    reader.UpdatePipelineInformation()
+    times = list(reader.TimestepValues)
+    check(len(times) > 1 and times == sorted(times), f"snapshot iterations as time steps: {times}")
 
-scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0), Cameras=OutputPort(reader, 1))  # noqa
-scores.UpdatePipeline(time=times[-1])
-count, names = same_as_csv(scores, f"{demo_output}/scores.csv")
+    scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0),  # noqa: F821
+                                  Cameras=OutputPort(reader, 1))
+    scores.UpdatePipeline(time=times[-1])
+    count, names = same_as_csv(scores, f"{demo_output}/scores.csv")
 
-tree_filter = Vis4GSGenealogyTree(Input=OutputPort(reader, 3))  # noqa: F821
-tree = servermanager.Fetch(tree_filter)
-with open(f"{demo_output}/root-cause.txt") as f:
-    lines = f.read().split("\n")
-floater = int(re.match(r"Root-cause trace of Gaussian (\d+)", lines[0]).group(1))
-expected = [int(line.split()[0]) for line in lines[2:] if line.strip()]
-pedigree = tree.GetVertexData().GetPedigreeIds()
-vertex = {pedigree.GetValue(v): v for v in range(tree.GetNumberOfVertices())}
-chain, v = [], vertex.get(floater)
-while v is not None and v != tree.GetRoot():
-    chain.append(pedigree.GetValue(v))
-    v = tree.GetParent(v)
-check(chain == expected, f"the floater's ancestry {chain} differs from root-cause.txt {expected}")
-lineage = Vis4GSLineage(Input=tree_filter, GaussianId=floater)  # noqa: F821
-trace = servermanager.Fetch(lineage)
-traced = [trace.GetValueByName(r, "GaussianId").ToInt() for r in range(trace.GetNumberOfRows())]
-check(traced == expected, f"Vis4GS Lineage of {floater} gives {traced}, root-cause.txt {expected}")
+    tree_filter = Vis4GSGenealogyTree(Input=OutputPort(reader, 3))  # noqa: F821
+    tree = servermanager.Fetch(tree_filter)
+    with open(f"{demo_output}/root-cause.txt") as f:
+        lines = f.read().split("\n")
+    floater = int(re.match(r"Root-cause trace of Gaussian (\d+)", lines[0]).group(1))
+    expected = [int(line.split()[0]) for line in lines[2:] if line.strip()]
+    pedigree = tree.GetVertexData().GetPedigreeIds()
+    vertex = {pedigree.GetValue(v): v for v in range(tree.GetNumberOfVertices())}
+    chain, v = [], vertex.get(floater)
+    while v is not None and v != tree.GetRoot():
+        chain.append(pedigree.GetValue(v))
+        v = tree.GetParent(v)
+    check(chain == expected,
+          f"the floater's ancestry {chain} differs from root-cause.txt {expected}")
+    lineage = Vis4GSLineage(Input=tree_filter, GaussianId=floater)  # noqa: F821
+    trace = servermanager.Fetch(lineage)
+    traced = [trace.GetValueByName(r, "GaussianId").ToInt()
+              for r in range(trace.GetNumberOfRows())]
+    check(traced == expected,
+          f"Vis4GS Lineage of {floater} gives {traced}, root-cause.txt {expected}")
 
-# The session (the pipeline the application, vis4gs analyze and the Python layer use): its
-# Gaussians port equals the demo's scores.csv too, its tree port the genealogy filter's tree.
-session = Vis4GSSession(FileName=log)  # noqa: F821
-session_count, _ = same_as_csv(session, f"{demo_output}/scores.csv", port=0)
-check(session_count == count, "the session's Gaussians are the demo's")
-session_tree = servermanager.Fetch(session, idx=3)
-check(session_tree.GetNumberOfVertices() == tree.GetNumberOfVertices(),
-      f"the session's tree has {session_tree.GetNumberOfVertices()} vertices, the genealogy "
-      f"filter's {tree.GetNumberOfVertices()}")
+    # The session (the pipeline the application, vis4gs analyze and the Python layer use): its
+    # Gaussians port equals the demo's scores.csv too, its tree port the genealogy filter's tree.
+    session = Vis4GSSession(FileName=log)  # noqa: F821
+    session_count, _ = same_as_csv(session, f"{demo_output}/scores.csv", port=0)
+    check(session_count == count, "the session's Gaussians are the demo's")
+    session_tree = servermanager.Fetch(session, idx=3)
+    check(session_tree.GetNumberOfVertices() == tree.GetNumberOfVertices(),
+          f"the session's tree has {session_tree.GetNumberOfVertices()} vertices, the genealogy "
+          f"filter's {tree.GetNumberOfVertices()}")
 
-view = GetActiveViewOrCreate("RenderView")
-view.ViewSize = [640, 480]
-view.ViewTime = times[-1]
-display = Show(scores, view)
-display.SetRepresentationType("Point Gaussian")
-display.GaussianRadius = 0.02
-ColorBy(display, ("POINTS", "BlurScore"))
-display.RescaleTransferFunctionToDataRange(True)
-view.ResetCamera()
-Render(view)
-SaveScreenshot(screenshot, view, ImageResolution=[640, 480])
-png = vtkPNGReader()
-png.SetFileName(screenshot)
-png.Update()
-pixels = vtk_to_numpy(png.GetOutput().GetPointData().GetScalars())
-check(png.GetOutput().GetDimensions()[:2] == (640, 480) and pixels.std() > 1,
-      "the screenshot is 640x480 and not blank")
+    view = GetActiveViewOrCreate("RenderView")
+    view.ViewSize = [640, 480]
+    view.ViewTime = times[-1]
+    display = Show(scores, view)
+    display.SetRepresentationType("Point Gaussian")
+    display.GaussianRadius = 0.02
+    ColorBy(display, ("POINTS", "BlurScore"))
+    display.RescaleTransferFunctionToDataRange(True)
+    view.ResetCamera()
+    Render(view)
+    SaveScreenshot(screenshot, view, ImageResolution=[640, 480])
+    png = vtkPNGReader()
+    png.SetFileName(screenshot)
+    png.Update()
+    pixels = vtk_to_numpy(png.GetOutput().GetPointData().GetScalars())
+    check(png.GetOutput().GetDimensions()[:2] == (640, 480) and pixels.std() > 1,
+          "the screenshot is 640x480 and not blank")
 
-if failures:
-    print("FAILED:", *failures, sep="\n  ")
-    sys.exit(1)
-print(f"ParaView plugin: {len(times)} time steps; {count} Gaussians' {', '.join(names)} "
-      f"= vis4gs demo's scores.csv (the scores filter and the session); ancestry and "
-      f"Vis4GS Lineage of {floater} = root-cause.txt; "
-      f"{screenshot}")
+    if failures:
+        print("FAILED:", *failures, sep="\n  ")
+        sys.exit(1)
+    print(f"ParaView plugin: {len(times)} time steps; {count} Gaussians' {', '.join(names)} "
+          f"= vis4gs demo's scores.csv (the scores filter and the session); ancestry and "
+          f"Vis4GS Lineage of {floater} = root-cause.txt; "
+          f"{screenshot}")
