@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSMainWindow.h"
+#include "Vis4GSMainWindowInternals.h"
 #include "Vis4GSScoreStages.h"
 
 #include "Vis4GSCleanupPanel.h"
@@ -16,6 +17,7 @@
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
+#include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineView.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
@@ -63,58 +65,12 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <iostream>
 #include <string>
 #include <utility>
-
-struct Vis4GSMainWindow::Internals
-{
-  vtkNew<vtkGaussianSelectionHub> Hub;
-  std::shared_ptr<Vis4GSDocument> Doc;
-  // A: scene (Views/Scene).
-  QVTKOpenGLNativeWidget* SceneWidget = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
-  vtkNew<vtkGaussianSceneView> Scene;
-  vtkNew<vtkCallbackCommand> PickCommand;
-  // Scores (worker thread, progressive stages).
-  std::unique_ptr<Vis4GSScoreStages> Scores;
-  bool ScoresPending = false;
-  bool ScoresDone = false;
-  vtkSmartPointer<vtkTable> ScoreCameras;
-  std::unique_ptr<QTemporaryDir> ImageDir;
-  // B, D, histogram.
-  QVTKOpenGLNativeWidget* TreeWidget = nullptr;
-  QStackedWidget* TreeStack = nullptr; // the tree, or TreeMessage: why the log has none
-  QLabel* TreeMessage = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> TreeWindow;
-  vtkNew<vtkGaussianTreeView> Tree;
-  QVTKOpenGLNativeWidget* TimelineWidget = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> TimelineWindow;
-  vtkNew<vtkGaussianTimelineView> Timeline;
-  QVTKOpenGLNativeWidget* HistogramWidget = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> HistogramWindow;
-  vtkNew<vtkGaussianHistogramView> Histogram;
-  // C: panel.
-  Vis4GSControlPanel* Panel = nullptr;
-  QComboBox* HistogramArray = nullptr; // (in the histogram dock)
-  QProgressBar* Progress = nullptr;
-  std::string SceneCameras;
-  std::string SceneImages;
-  int SceneIteration = -1;
-  QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
-  // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
-  Vis4GSCleanupPanel* Cleanup = nullptr;
-  QDockWidget* CleanupDock = nullptr;
-  vtkNew<vtkCallbackCommand> HubCommand;
-  QThread* Worker = nullptr;
-  // A harness's hooks (SetLoadHooks).
-  std::function<void(int, const char*)> StageHook;
-  std::function<void()> LoadedHook;
-  // The dock sizes of the document's layout (LayoutForDocument), applied again by SettleLayout.
-  std::function<void()> DockSizes;
-};
 
 namespace
 {
@@ -137,6 +93,8 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
     d->Worker->wait();
   }
   d->Scores.reset(); // stops the scores and waits for them
+  // (Waits for a call in progress: none posts a render to this window afterwards.)
+  d->Scene->GetSplatMapper()->SetFrameReadyCallback(nullptr);
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
@@ -242,6 +200,26 @@ void Vis4GSMainWindow::BuildUi()
   d->Scene->SetRenderWindow(d->SceneWindow);
   d->Scene->SetInteractor(d->SceneWindow->GetInteractor());
   d->Scene->SetSelectionHub(d->Hub);
+  // The scene view's CPU frames are made on its mapper's worker thread, so that neither
+  // orbiting nor a pick's highlight waits for the rasteriser on this thread (issue 30); a
+  // finished frame posts one render, which draws it.
+  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
+  splats->AsynchronousFramesOn();
+  splats->SetFrameReadyCallback(
+    [this]
+    {
+      if (!d->SceneRenderPosted.exchange(true))
+      {
+        QMetaObject::invokeMethod(
+          this,
+          [this]
+          {
+            d->SceneRenderPosted = false;
+            d->Scene->Render();
+          },
+          Qt::QueuedConnection);
+      }
+    });
   d->PickCommand->SetClientData(this);
   d->PickCommand->SetCallback(
     [](vtkObject*, unsigned long, void* client, void*)
@@ -897,108 +875,6 @@ void Vis4GSMainWindow::UpdateOverlay(bool render)
 }
 
 //------------------------------------------------------------------------------
-void Vis4GSMainWindow::StartScores()
-{
-  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-  if (!scene)
-  {
-    return;
-  }
-  if (d->Scores->IsRunning())
-  {
-    d->ScoresPending = true; // restarted for the new snapshot when this one is done
-    d->Scores->Stop();
-    return;
-  }
-  d->ScoresDone = false;
-  if (d->Doc->Cameras && !d->ScoreCameras)
-  {
-    // Embedded training images are written once per document to a temporary folder (in the
-    // GUI thread: the log's HDF5 file is only read here).
-    try
-    {
-      d->ImageDir = std::make_unique<QTemporaryDir>();
-      d->ScoreCameras = d->Doc->ScoreCameras(d->ImageDir->path().toStdString());
-    }
-    catch (const std::exception& e)
-    {
-      this->statusBar()->showMessage(QString("training images: ") + e.what(), 5000);
-      d->ScoreCameras = d->Doc->Cameras;
-    }
-  }
-  vtkSmartPointer<vtkTable> cameras = d->ScoreCameras;
-  const bool images = d->Doc->CamerasWithImages > 0;
-  d->Progress->setValue(0);
-  d->Progress->show();
-  d->Panel->StopScores->setEnabled(true);
-  d->Panel->ScoreStage->setText("computing...");
-  this->statusBar()->showMessage(cameras
-      ? (images ? "computing View Coverage, Blur, Needle scores and needle shape"
-                : "computing View Coverage and needle shape (the log has no training images)")
-      : "computing the needle shape (no cameras: no View Coverage, Blur or Needle score)");
-  // The blur/needle pass's renders are the clean-up panel's "before" of this snapshot.
-  auto baseline = std::make_shared<vis4gs::RemovalBaseline>();
-  d->Scores->StageDone = [this, cameras, baseline](
-                           vtkPolyData* input, const Vis4GSScoreStages::Stage& stage)
-  {
-    vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-    if (current != input || d->ScoresPending)
-    {
-      return; // a snapshot or document opened since
-    }
-    for (int a = 0; a < stage.Scores->GetPointData()->GetNumberOfArrays(); ++a)
-    {
-      current->GetPointData()->AddArray(stage.Scores->GetPointData()->GetAbstractArray(a));
-    }
-    // The stage travels with the scene (what the views and any export of it read).
-    if (vtkAbstractArray* label = stage.Scores->GetFieldData()->GetAbstractArray("ScoreStage"))
-    {
-      current->GetFieldData()->AddArray(label);
-    }
-    current->Modified();
-    const bool last = stage.Number == stage.Of;
-    d->Panel->ScoreStage->setText(QString::fromStdString(stage.Label));
-    this->statusBar()->showMessage("scores: " + QString::fromStdString(stage.Label) +
-        (last ? QString() : QString("; computing the exact scores (Stop keeps these)")),
-      last ? 3000 : 0);
-    this->UpdateScene(); // overlay and histogram lists
-    if (last)
-    {
-      // (After UpdateScene: it gives the panel the score cameras of the first pass.)
-      d->Cleanup->SetScoreBaseline(current, cameras, *baseline);
-    }
-    emit this->scoreStageShown(stage.Number, stage.Of);
-  };
-  d->Scores->Finished = [this](vtkPolyData* input, const QString& error, bool stopped)
-  {
-    d->Progress->hide();
-    d->Panel->StopScores->setEnabled(false);
-    vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-    if (!error.isEmpty())
-    {
-      this->statusBar()->showMessage("scores: " + error, 5000);
-      std::cerr << "vis4gs view: error: scores: " << error.toStdString() << "\n";
-    }
-    else if (stopped && current == input && !d->ScoresPending)
-    {
-      const QString kept = d->Panel->ScoreStage->text();
-      d->Panel->ScoreStage->setText(
-        kept == "computing..." ? QString("stopped: no scores") : kept + " (stopped)");
-      this->statusBar()->showMessage("scores stopped: " + d->Panel->ScoreStage->text(), 5000);
-    }
-    if (d->ScoresPending)
-    {
-      d->ScoresPending = false;
-      this->StartScores();
-      return;
-    }
-    d->ScoresDone = true;
-    emit this->scoresComputed();
-  };
-  d->Scores->Start(scene, cameras, images, baseline);
-}
-
-//------------------------------------------------------------------------------
 void Vis4GSMainWindow::OnCameraChosen(int row)
 {
   if (!d->Doc || !d->Doc->Cameras || row < 0)
@@ -1144,6 +1020,13 @@ bool Vis4GSMainWindow::SaveScreenshot(const QString& which, const QString& path)
   if (!widget->isVisible())
   {
     return false; // (a hidden dock's grab would lay it out again and resize the others)
+  }
+  // The scene view's current frame may still be in the making (asynchronous frames).
+  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
+  if (splats->GetFramePending())
+  {
+    splats->WaitForFrame();
+    d->Scene->Render();
   }
   return widget->grab().save(path);
 }
