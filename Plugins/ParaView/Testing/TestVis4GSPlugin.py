@@ -14,6 +14,9 @@
       the scores named by ARRAY (the filter's Scores list, the score registry's array names) at
       the log's last snapshot against the scores.csv of `vis4gs analyze LOG --scores=...`: a
       score added to the registry reaches the plugin with no edit of its XML.
+  pvbatch TestVis4GSPlugin.py cameras PLUGIN CAMERAS_JSON COUNT
+      Vis4GS Cameras with its defaults reads every camera of a cameras.json beside an empty
+      images/ folder (issue 31 part 5: no image is needed to read or score cameras).
   mpiexec -n K pvbatch TestVis4GSPlugin.py mpi PLUGIN LOG SCORES_CSV K
       the scores of the log's last snapshot on K processes (the filter shares the views over
       them) against one process's scores.csv (`vis4gs demo`): every Gaussian once, View
@@ -73,6 +76,22 @@ if mode == "folder":
         sys.exit(1)
     print(f"ParaView plugin: PLY + COLMAP folder, {count} Gaussians' {', '.join(names)} = "
           "vis4gs analyze's scores.csv")
+    sys.exit(0)
+
+if mode == "cameras":
+    # A cameras.json beside an empty images/ folder, with the reader's defaults: every camera
+    # is read (without an image), since the scores and rendering do not need one.
+    cameras_json, count = sys.argv[3], int(sys.argv[4])
+    table = servermanager.Fetch(Vis4GSCameras(FileName=cameras_json))  # noqa: F821
+    rows = table.GetNumberOfRows()
+    check(rows == count, f"{rows} cameras read from {cameras_json}, expected {count}")
+    images = table.GetColumnByName("Image")
+    check(images is not None and all(images.GetValue(r) == "" for r in range(rows)),
+          "the cameras have no image")
+    if failures:
+        print("FAILED:", *failures, sep="\n  ")
+        sys.exit(1)
+    print(f"ParaView plugin: {rows} cameras of {cameras_json} beside an empty images/ folder")
     sys.exit(0)
 
 if mode == "mpi":
