@@ -7,6 +7,7 @@
 #include "Vis4GSCompareWindow.h"
 #include "Vis4GSControlPanel.h"
 #include "Vis4GSDocument.h"
+#include "Vis4GSSceneFrames.h"
 #include "Vis4GSSelectionExport.h"
 #include "Vis4GSSelectionTable.h"
 
@@ -17,7 +18,6 @@
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
-#include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineView.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
@@ -65,7 +65,6 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -93,8 +92,6 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
     d->Worker->wait();
   }
   d->Scores.reset(); // stops the scores and waits for them
-  // (Waits for a call in progress: none posts a render to this window afterwards.)
-  d->Scene->GetSplatMapper()->SetFrameReadyCallback(nullptr);
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
@@ -200,26 +197,7 @@ void Vis4GSMainWindow::BuildUi()
   d->Scene->SetRenderWindow(d->SceneWindow);
   d->Scene->SetInteractor(d->SceneWindow->GetInteractor());
   d->Scene->SetSelectionHub(d->Hub);
-  // The scene view's CPU frames are made on its mapper's worker thread, so that neither
-  // orbiting nor a pick's highlight waits for the rasteriser on this thread (issue 30); a
-  // finished frame posts one render, which draws it.
-  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
-  splats->AsynchronousFramesOn();
-  splats->SetFrameReadyCallback(
-    [this]
-    {
-      if (!d->SceneRenderPosted.exchange(true))
-      {
-        QMetaObject::invokeMethod(
-          this,
-          [this]
-          {
-            d->SceneRenderPosted = false;
-            d->Scene->Render();
-          },
-          Qt::QueuedConnection);
-      }
-    });
+  d->SceneFrames.reset(new Vis4GSSceneFrames(this, d->Scene)); // (issue 30)
   d->PickCommand->SetClientData(this);
   d->PickCommand->SetCallback(
     [](vtkObject*, unsigned long, void* client, void*)
@@ -619,8 +597,7 @@ void Vis4GSMainWindow::SettleLayout()
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::ShowCleanup()
 {
-  // Under the scene with the timeline when there is one (room for the wide table), else with
-  // panel C.
+  // Under the scene with the timeline when there is one (room for the wide table), else panel C.
   QDockWidget* timeline = d->Docks[3];
   const bool under = timeline->isVisible();
   this->tabifyDockWidget(under ? timeline : d->Docks[2], d->CleanupDock);
@@ -1021,13 +998,7 @@ bool Vis4GSMainWindow::SaveScreenshot(const QString& which, const QString& path)
   {
     return false; // (a hidden dock's grab would lay it out again and resize the others)
   }
-  // The scene view's current frame may still be in the making (asynchronous frames).
-  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
-  if (splats->GetFramePending())
-  {
-    splats->WaitForFrame();
-    d->Scene->Render();
-  }
+  d->SceneFrames->WaitForCurrent(); // (the scene view's frame may be in the making)
   return widget->grab().save(path);
 }
 

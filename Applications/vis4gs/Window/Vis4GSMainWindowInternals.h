@@ -8,6 +8,7 @@
 #define Vis4GSMainWindowInternals_h
 
 #include "Vis4GSMainWindow.h"
+#include "Vis4GSSceneFrames.h"
 #include "Vis4GSScoreStages.h"
 
 #include "vtkCallbackCommand.h"
@@ -47,13 +48,11 @@ struct Vis4GSMainWindow::Internals
   QVTKOpenGLNativeWidget* SceneWidget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
   vtkNew<vtkGaussianSceneView> Scene;
+  std::unique_ptr<Vis4GSSceneFrames> SceneFrames; // (after Scene: destroyed before it)
   vtkNew<vtkCallbackCommand> PickCommand;
-  // A render of the scene view is posted (its mapper finished a frame on its worker).
-  std::atomic<bool> SceneRenderPosted{ false };
   // Scores (worker thread, progressive stages).
   std::unique_ptr<Vis4GSScoreStages> Scores;
-  bool ScoresPending = false;
-  bool ScoresDone = false;
+  bool ScoresPending = false, ScoresDone = false;
   vtkSmartPointer<vtkTable> ScoreCameras;
   std::unique_ptr<QTemporaryDir> ImageDir;
   // B, D, histogram.
@@ -72,8 +71,7 @@ struct Vis4GSMainWindow::Internals
   Vis4GSControlPanel* Panel = nullptr;
   QComboBox* HistogramArray = nullptr; // (in the histogram dock)
   QProgressBar* Progress = nullptr;
-  std::string SceneCameras;
-  std::string SceneImages;
+  std::string SceneCameras, SceneImages;
   int SceneIteration = -1;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
