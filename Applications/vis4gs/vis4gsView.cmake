@@ -24,7 +24,10 @@ if (TARGET Qt5::Widgets AND TARGET VTK::GUISupportQt AND TARGET Vis4GS::ViewsLin
     Window/Vis4GSCompareWindow.cxx
     Window/Vis4GSCompareWindow.h
     Window/Vis4GSComparison.cxx
-    Window/Vis4GSDocument.cxx)
+    Window/Vis4GSDocument.cxx
+    Window/Vis4GSMainWindowScores.cxx
+    Window/Vis4GSScoreStages.cxx
+    Window/Vis4GSScoreStagesSelfTest.cxx)
   set_target_properties(vis4gs PROPERTIES AUTOMOC ON)
   target_link_libraries(vis4gs PRIVATE VTK::GUISupportQt Qt5::Widgets
     vis4gs::CoreTrainingLog vis4gs::CoreScene VTK::RenderingCore VTK::RenderingOpenGL2
@@ -106,6 +109,23 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       LABELS "Application;GUI;Python" FIXTURES_REQUIRED vis4gsViewDemoShots
       FAIL_REGULAR_EXPRESSION "FAILED:")
   endforeach ()
+  # Progressive scores in the window (issue 31): stage 1 then the exact scores, each equal to
+  # vis4gs analyze's (--stop-after-stage=1, and plain), and Stop after stage 1 keeps it.
+  set(_vis4gs_stages_dir "${_vis4gs_view_dir}/score-stages")
+  foreach (_vis4gs_stage IN ITEMS 1 0)
+    vis4gs_add_app_test(ViewScoreStagesAnalyze${_vis4gs_stage} ARGS analyze
+      "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5" --overlay-views=0 --top=1
+      --stop-after-stage=${_vis4gs_stage} "--output=${_vis4gs_stages_dir}/${_vis4gs_stage}"
+      FILES "${_vis4gs_stages_dir}/${_vis4gs_stage}/scores.csv")
+    set_tests_properties(vis4gs-ViewScoreStagesAnalyze${_vis4gs_stage} PROPERTIES
+      LABELS "Application;GUI" FIXTURES_SETUP vis4gsViewScoreStages)
+  endforeach ()
+  vis4gs_add_app_test(ViewScoreStages ARGS view "${PROJECT_SOURCE_DIR}/Data/Demo/vis4gs-demo.h5"
+    "--stages-test=${_vis4gs_stages_dir}/1/scores.csv,${_vis4gs_stages_dir}/0/scores.csv"
+    --resolution=1200,800 OUTPUT "stages test passed")
+  set_tests_properties(vis4gs-ViewScoreStages PROPERTIES LABELS "Application;GUI"
+    FIXTURES_REQUIRED vis4gsViewScoreStages FAIL_REGULAR_EXPRESSION "FAILED")
+
   # The clean-up panel (issue 20): the self-test above saves its rule, selection and
   # before/after table; analyze re-reads the rule file (--select=@FILE) and must select the
   # same Gaussians and compute the same table.

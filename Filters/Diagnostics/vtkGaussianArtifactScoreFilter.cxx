@@ -26,6 +26,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
@@ -53,6 +54,41 @@ void AddArray(vtkPolyData* output, const char* name, std::vector<double>&& value
 {
   output->GetPointData()->AddArray(
     vis4gs::AdoptVector<vtkDoubleArray>(name, std::move(values)).GetPointer());
+}
+
+// Thrown by the progress callback when StopExecution() was called: not a std::exception, so
+// that no handler of the computation's own errors takes it for one.
+struct ExecutionStopped
+{
+};
+
+// The first stage of progressive scores: every 8th of the views, maps at 1/4 of the resolution
+// (at most 1/8), about 1/128 of the exact pass's pixels.
+void ApplyStage(int stage, int& viewStride, int& lossResolution, int& coverageResolution)
+{
+  if (stage == 1)
+  {
+    viewStride *= 8;
+    lossResolution = std::min(8, 4 * lossResolution);
+    coverageResolution = std::min(8, 4 * coverageResolution);
+  }
+}
+
+std::string EveryKth(int k)
+{
+  if (k <= 1)
+  {
+    return "every training view";
+  }
+  const int tens = k % 100 / 10, last = k % 10;
+  const char* suffix =
+    tens == 1 ? "th" : (last == 1 ? "st" : (last == 2 ? "nd" : (last == 3 ? "rd" : "th")));
+  return "every " + std::to_string(k) + suffix + " training view";
+}
+
+std::string Fraction(int factor)
+{
+  return factor <= 1 ? "full" : "1/" + std::to_string(factor);
 }
 
 char ViewInProgress[256] = "";
@@ -384,13 +420,21 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   settings.LossResolution = this->LossResolution;
   settings.CoverageResolution = this->CoverageResolution;
   settings.ViewStride = this->ViewStride;
+  ApplyStage(this->ProgressiveStage,
+    settings.ViewStride,
+    settings.LossResolution,
+    settings.CoverageResolution);
   settings.Footprint = this->FootprintMode == 1 ? vis4gs::FootprintMode::Ellipse3Sigma
                                                 : vis4gs::FootprintMode::Rasterizer;
   settings.Accumulation = this->FloatAccumulation ? vis4gs::FootprintAccumulation::Float
                                                   : vis4gs::FootprintAccumulation::Double;
   settings.OcclusionThreshold = this->OcclusionThreshold;
   settings.Lambda = this->Lambda;
-  settings.ViewRendered = this->ViewRendered;
+  // A recorder of full-resolution renders (the clean-up's "before") takes only the exact stage.
+  if (this->ProgressiveStage == 0)
+  {
+    settings.ViewRendered = this->ViewRendered;
+  }
   const unsigned needs = vis4gs::NeedsOf(settings.Request);
   const bool needCameras = (needs & vis4gs::NeedsCameras) != 0;
   const bool needImages = (needs & vis4gs::NeedsImages) != 0;
@@ -462,12 +506,25 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
       }
     };
   }
-  auto progress = [this](std::size_t done, std::size_t total)
-  { this->UpdateProgress(total > 0 ? static_cast<double>(done) / total : 1.0); };
-
   vtkMultiProcessController* controller =
     this->Controller ? this->Controller : vtkMultiProcessController::GetGlobalController();
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  // The score pass reports progress between views, outside its parallel loops, so a stop
+  // thrown from here unwinds it there (in one process: see StopExecution()).
+  auto progress = [this, ranks](std::size_t done, std::size_t total)
+  {
+    this->UpdateProgress(total > 0 ? static_cast<double>(done) / total : 1.0);
+    if (ranks <= 1 && this->StopRequested.load())
+    {
+      throw ExecutionStopped{};
+    }
+  };
+  // A request made before this execution was for an earlier one.
+  this->StopRequested = false;
+  this->Stopped = false;
+  vtkNew<vtkStringArray> stage;
+  stage->SetName("ScoreStage");
+  output->GetFieldData()->AddArray(stage);
   vis4gs::GaussianScores scores;
   double seconds[2] = { 0, 0 };
   if (ranks <= 1)
@@ -475,6 +532,18 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
     try
     {
       scores = vis4gs::ComputeGaussianScores(cloud, cameras, settings, images, progress);
+    }
+    catch (const ExecutionStopped&)
+    {
+      this->Stopped = true;
+      stage->InsertNextValue("stopped");
+      // No score of an earlier execution that the input carried passes for this one's.
+      for (const vis4gs::ScoreDefinition& d : registry)
+      {
+        output->GetPointData()->RemoveArray(d.ArrayName);
+      }
+      output->GetPointData()->RemoveArray(vis4gs::arrays::NoVisibleView);
+      return 1;
     }
     catch (const std::exception& e)
     {
@@ -527,6 +596,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
     notes->InsertNextValue(warning);
   }
   output->GetFieldData()->AddArray(notes);
+  stage->InsertNextValue(this->GetStageDescription());
   if (needCameras)
   {
     vtkNew<vtkUnsignedCharArray> flags;
@@ -539,8 +609,65 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
     }
     output->GetPointData()->AddArray(flags);
   }
+  // Pieces other than 0 of a distributed pipeline hold no Gaussian (each is in piece 0).
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) > 1 &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  {
+    vtkNew<vtkFieldData> fields;
+    fields->ShallowCopy(output->GetFieldData());
+    output->Initialize();
+    output->SetFieldData(fields);
+  }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianArtifactScoreFilter::RequestUpdateExtent(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* vtkNotUsed(outputVector))
+{
+  for (int port = 0; port < 2; ++port)
+  {
+    if (vtkInformation* in = inputVector[port]->GetInformationObject(0))
+    {
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGaussianArtifactScoreFilter::GetStageSettings()
+{
+  int stride = this->ViewStride, loss = this->LossResolution, coverage = this->CoverageResolution;
+  ApplyStage(this->ProgressiveStage, stride, loss, coverage);
+  return EveryKth(stride) + ", loss maps at " + Fraction(loss) + ", coverage at " +
+    Fraction(coverage) + " resolution";
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGaussianArtifactScoreFilter::GetStageDescription()
+{
+  if (this->ProgressiveStage == 1)
+  {
+    return "stage 1 of 2, approximate: " + this->GetStageSettings();
+  }
+  const bool exact = this->ViewStride == 1 && this->LossResolution == 1 &&
+    this->CoverageResolution == 1 && this->FootprintMode == 0 && !this->FloatAccumulation;
+  return exact ? std::string("stage 2 of 2, exact")
+               : "stage 2 of 2, approximate as asked: " + this->GetStageSettings() +
+      (this->FootprintMode == 1 ? ", 3-sigma ellipse footprints" : "") +
+      (this->FloatAccumulation ? ", float accumulation" : "");
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianArtifactScoreFilter::StopExecution()
+{
+  this->StopRequested = true;
 }
 
 //------------------------------------------------------------------------------
@@ -562,6 +689,8 @@ void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FloatAccumulation: " << (this->FloatAccumulation ? "On" : "Off") << "\n";
   os << indent << "OcclusionThreshold: " << this->OcclusionThreshold << "\n";
   os << indent << "Lambda: " << this->Lambda << "\n";
+  os << indent << "ProgressiveStage: " << this->ProgressiveStage << "\n";
+  os << indent << "Stopped: " << (this->Stopped ? "On" : "Off") << "\n";
   os << indent << "NumberOfViewsUsed: " << this->NumberOfViewsUsed << "\n";
   os << indent << "NumberOfViewsWithoutImage: " << this->NumberOfViewsWithoutImage << "\n";
   os << indent << "NumberOfFlaggedGaussians: " << this->NumberOfFlaggedGaussians << "\n";

@@ -31,6 +31,11 @@
  * normal Gaussian) whenever a score needing cameras is computed. Coverage alone renders nothing and
  * reads no image. Every approximation of Core/Diagnostics/ArtifactScores.h is a parameter; the
  * defaults are the exact mode. Progress is reported per view.
+ *
+ * In a distributed pipeline (pvbatch or pvserver under mpiexec) every process reads the whole
+ * scene and cameras (RequestUpdateExtent asks the inputs for piece 0 of 1), the processes
+ * share the views (SetController), and the scored Gaussians are the output of piece 0; the
+ * other pieces are empty, so that gathering the pieces gives each Gaussian once.
  */
 #ifndef vtkGaussianArtifactScoreFilter_h
 #define vtkGaussianArtifactScoreFilter_h
@@ -38,6 +43,7 @@
 #include "vis4gsFiltersDiagnosticsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <atomic>     // For StopRequested
 #include <cstddef>    // For ViewRendered
 #include <functional> // For ViewRendered
 #include <string>     // For ImageDirectory
@@ -191,6 +197,48 @@ public:
 
   ///@{
   /**
+   * Progressive scores (issue 31): 0 (default) computes the scores with the settings above;
+   * 1 computes the first, approximate stage of them: every 8th of the views ViewStride
+   * selects, loss and coverage maps at 4 times the LossResolution and CoverageResolution
+   * factors (at most 8), about 1/128 of the pixels. A client shows stage 1, then runs stage 0
+   * (`vis4gs analyze --stop-after-stage`, the application). The output's field data
+   * `ScoreStage` (one string) says which: GetStageDescription(), so that a stage-1 result
+   * stays labelled approximate wherever it goes.
+   */
+  vtkSetClampMacro(ProgressiveStage, int, 0, 1);
+  vtkGetMacro(ProgressiveStage, int);
+  ///@}
+
+  /**
+   * "stage 1 of 2, approximate: every 8th training view, loss maps at 1/4, coverage at 1/4
+   * resolution" for stage 1, "stage 2 of 2, exact" for stage 0 with the exact settings, or
+   * "stage 2 of 2: every 2nd training view, ..." with approximate ones: the label the output's
+   * `ScoreStage` field data carries for the current settings.
+   */
+  std::string GetStageDescription();
+
+  /**
+   * The views and resolutions of the current stage: "every 8th training view, loss maps at
+   * 1/4, coverage at 1/4 resolution" (stage 1 with the defaults), "every training view, loss
+   * maps at full, coverage at full resolution" (stage 0 with the defaults).
+   */
+  std::string GetStageSettings();
+
+  ///@{
+  /**
+   * Stops the execution in progress after the view it is on: thread-safe, for a GUI that
+   * runs the filter in a worker thread. The stopped execution's output has no score arrays,
+   * its `ScoreStage` field data is "stopped", and GetStopped() is true until the next
+   * execution. Each execution starts without a request (one made before it is forgotten: a
+   * client stopping between executions does not start the next). In one process only (with
+   * several, every process would have to stop at the same view: there it is ignored).
+   */
+  void StopExecution();
+  vtkGetMacro(Stopped, bool);
+  ///@}
+
+  ///@{
+  /**
    * Results of the last execution: training views used, views skipped for lack of an image,
    * Gaussians flagged NoVisibleView (any bit).
    */
@@ -255,6 +303,11 @@ protected:
   ~vtkGaussianArtifactScoreFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// Every process needs the whole scene and every camera (the views are split, not the
+  /// Gaussians): asks the inputs for piece 0 of 1 whatever piece the output is asked for.
+  int RequestUpdateExtent(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
@@ -269,6 +322,11 @@ protected:
   bool FloatAccumulation = false;
   double OcclusionThreshold = 0.0;
   double Lambda = 0.2;
+  int ProgressiveStage = 0;
+#ifndef __VTK_WRAP__
+  std::atomic<bool> StopRequested{ false };
+#endif
+  bool Stopped = false;
   vtkIdType NumberOfViewsUsed = 0;
   vtkIdType NumberOfViewsWithoutImage = 0;
   vtkIdType NumberOfFlaggedGaussians = 0;

@@ -14,22 +14,6 @@
 #include <stdexcept>
 
 //------------------------------------------------------------------------------
-StageSettings FirstStage(const StageSettings& exact)
-{
-  return { 8 * exact.ViewStride,
-    std::min(8, 4 * exact.LossResolution),
-    std::min(8, 4 * exact.CoverageResolution) };
-}
-
-//------------------------------------------------------------------------------
-std::string Describe(const StageSettings& stage)
-{
-  return "every " + std::to_string(stage.ViewStride) + "th training view, loss maps at 1/" +
-    std::to_string(stage.LossResolution) + ", coverage at 1/" +
-    std::to_string(stage.CoverageResolution) + " resolution";
-}
-
-//------------------------------------------------------------------------------
 ScoreColumns ScoresOf(vtkPointData* pd, std::map<std::string, bool>& want)
 {
   ScoreColumns scores;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Vis4GSProgressiveStages.h
- * @brief The stages of progressive scores for `vis4gs analyze --stop-after-stage` (issue 31):
- * the first, approximate stage's settings and its error against the exact scores.
+ * @brief The error of the first stage of progressive scores against the exact scores, for
+ * `vis4gs analyze --stop-after-stage=2` (issue 31); the stages themselves are the score
+ * filter's (vtkGaussianArtifactScoreFilter::SetProgressiveStage).
  */
 #ifndef Vis4GSProgressiveStages_h
 #define Vis4GSProgressiveStages_h
@@ -14,21 +15,6 @@
 #include <vector>
 
 class vtkPointData;
-
-/// The view subset and resolutions of one stage of the scores.
-struct StageSettings
-{
-  int ViewStride = 1;
-  int LossResolution = 1;
-  int CoverageResolution = 1;
-};
-
-/// The first, approximate stage of progressive scores: every 8th of the views and maps at 1/4
-/// of the resolution @p exact gives (at most 1/8), so its cost is about 1/128 of theirs.
-StageSettings FirstStage(const StageSettings& exact);
-
-/// "every 8th training view, loss maps at 1/4, coverage at 1/4 resolution".
-std::string Describe(const StageSettings& stage);
 
 using ScoreColumns = std::vector<std::pair<std::string, std::vector<double>>>;
 

@@ -762,7 +762,8 @@ int Run(const Vis4GSArguments& args)
   {
     throw std::runtime_error("--stop-after-stage must be 0, 1 or 2");
   }
-  auto configure = [&](vtkGaussianArtifactScoreFilter* f, const StageSettings& stage)
+  // The stages are the filter's (ProgressiveStage), as in the application and the plugin.
+  auto configure = [&](vtkGaussianArtifactScoreFilter* f, int stage)
   {
     f->SetInputData(polyData);
     if (needCameras)
@@ -770,31 +771,30 @@ int Run(const Vis4GSArguments& args)
       f->SetCamerasData(table);
     }
     f->SetScores(wantedList.c_str());
-    f->SetLossResolution(stage.LossResolution);
-    f->SetCoverageResolution(stage.CoverageResolution);
-    f->SetViewStride(stage.ViewStride);
+    f->SetLossResolution(args.GetInt("loss-resolution"));
+    f->SetCoverageResolution(args.GetInt("coverage-resolution"));
+    f->SetViewStride(args.GetInt("view-stride"));
+    f->SetProgressiveStage(stage);
     f->SetFootprintMode(footprint == "ellipse" ? 1 : 0);
     f->SetFloatAccumulation(args.GetFlag("float-accumulation"));
     f->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
   };
-  const StageSettings asGiven{
-    args.GetInt("view-stride"), args.GetInt("loss-resolution"), args.GetInt("coverage-resolution")
-  };
-  const StageSettings firstStage = FirstStage(asGiven);
   ScoreColumns firstScores;
+  std::string firstStage;
   double tFirstStage = 0;
   if (stopAfter == 2 && needCameras)
   {
     vtkNew<vtkGaussianArtifactScoreFilter> first;
-    configure(first, firstStage);
+    configure(first, 1);
     first->Update();
     firstScores = ScoresOf(first->GetOutput()->GetPointData(), want);
+    firstStage = first->GetStageSettings();
     tFirstStage = Since(t0);
-    std::cout << "vis4gs analyze: stage 1 of 2 (" << Describe(firstStage)
-              << "): " << Number(tFirstStage, 2) << " s" << std::endl;
+    std::cout << "vis4gs analyze: stage 1 of 2 (" << firstStage << "): " << Number(tFirstStage, 2)
+              << " s" << std::endl;
   }
   vtkNew<vtkGaussianArtifactScoreFilter> filter;
-  configure(filter, stopAfter == 1 ? firstStage : asGiven);
+  configure(filter, stopAfter == 1 ? 1 : 0);
   const bool verbose = args.GetFlag("verbose");
   vtkNew<vtkCallbackCommand> progress;
   progress->SetCallback(
@@ -826,15 +826,15 @@ int Run(const Vis4GSArguments& args)
   std::string stageHtml;
   if (stopAfter == 1 && needCameras)
   {
-    std::cout << "vis4gs analyze: stage 1 of 2 only (" << Describe(firstStage)
+    std::cout << "vis4gs analyze: stage 1 of 2 only (" << filter->GetStageSettings()
               << "): approximate scores\n";
-    stageHtml = "<p><b>Stage 1 of 2 (approximate: " + Describe(firstStage) +
+    stageHtml = "<p><b>Stage 1 of 2 (approximate: " + filter->GetStageSettings() +
       ")</b>; the exact scores are stage 2 (--stop-after-stage=2 or 0).</p>\n";
   }
   else if (stopAfter == 2 && needCameras)
   {
     std::ostringstream text;
-    text << "<h2>Progressive stages</h2><p>Stage 1 (" << Describe(firstStage)
+    text << "<h2>Progressive stages</h2><p>Stage 1 (" << firstStage
          << "): " << Number(tFirstStage, 2)
          << " s; stage 2 (exact, these outputs): " << Number(Since(t0) - tFirstStage, 2)
          << " s.</p><table><tr><th>score</th><th>largest difference</th><th>largest exact "
@@ -871,7 +871,8 @@ int Run(const Vis4GSArguments& args)
   {
     std::cout << "vis4gs analyze: process " << mpi.Rank() << " of " << mpi.Size() << " rendered "
               << filter->GetNumberOfViewsRendered() << " of " << filter->GetNumberOfViewsUsed()
-              << " views\n";
+              << " views in " << Number(filter->GetComputeSeconds(), 2) << " s, reduction "
+              << Number(filter->GetReductionSeconds(), 3) << " s\n";
     if (mpi.Rank() != 0)
     {
       return 0; // process 0 has the reduced scores too and writes the outputs

@@ -36,6 +36,13 @@ void Define(Vis4GSArguments& args)
     "Run the scripted end-to-end check after loading (select in the scene, check the tree "
     "lineage and the timeline history, select in the tree, check the scene highlight), save "
     "screenshots of every view into DIR and exit with 0 on success.");
+  args.AddOption("stages-test",
+    "STAGE1_CSV,EXACT_CSV",
+    "",
+    "Scripted check of the progressive scores (issue 31): the window's stage 1 and exact "
+    "scores against the scores.csv of `vis4gs analyze FILE --stop-after-stage=1` and of "
+    "`vis4gs analyze FILE`, then Stop after stage 1 keeps it, labelled approximate; exits 0 "
+    "when every check passed.");
   args.AddOption("baseline",
     "DIR",
     "",
@@ -239,6 +246,21 @@ int Run(const Vis4GSArguments& args)
     window.show();
     Vis4GSInstallSoak(&window, o);
     return app.exec();
+  }
+  if (!args.Get("stages-test").empty())
+  {
+    const std::string csvs = args.Get("stages-test");
+    const auto comma = csvs.find(',');
+    if (args.GetPositional("FILE").empty() || comma == std::string::npos ||
+      !Vis4GSInstallScoreStagesTest(&window,
+        QString::fromStdString(args.GetPositional("FILE")),
+        csvs.substr(0, comma),
+        csvs.substr(comma + 1)))
+    {
+      std::cerr << "vis4gs view: error: --stages-test needs a FILE and two readable "
+                   "scores.csv files, STAGE1_CSV,EXACT_CSV\n";
+      return 1;
+    }
   }
   if (!selfTest.empty())
   {

@@ -53,6 +53,21 @@ Vis4GSControlPanel::Vis4GSControlPanel(QWidget* parent)
   this->Overlay->setObjectName("overlay");
   this->Overlay->addItem("True colour");
   this->Form->addRow("Overlay", this->Overlay);
+  // Progressive scores (issue 31): which stage the overlays and histograms show, and Stop,
+  // which keeps the last finished stage.
+  auto* stageRow = new QWidget(this);
+  auto* stageLayout = new QHBoxLayout(stageRow);
+  stageLayout->setContentsMargins(0, 0, 0, 0);
+  this->ScoreStage = new QLabel("-", stageRow);
+  this->ScoreStage->setObjectName("score-stage");
+  this->ScoreStage->setWordWrap(true);
+  this->StopScores = new QPushButton("Stop", stageRow);
+  this->StopScores->setObjectName("stop-scores");
+  this->StopScores->setToolTip("Stop the scores: the overlays keep the last finished stage");
+  this->StopScores->setEnabled(false);
+  stageLayout->addWidget(this->ScoreStage, 1);
+  stageLayout->addWidget(this->StopScores);
+  this->Form->addRow("Scores", stageRow);
   this->OverlayMin = new QDoubleSpinBox(this);
   this->OverlayMax = new QDoubleSpinBox(this);
   this->OverlayMin->setObjectName("overlay-min");

@@ -50,6 +50,9 @@ public:
   QSlider* IterationSlider = nullptr;
   QLabel* IterationLabel = nullptr;
   QComboBox* Overlay = nullptr;
+  /// The stage of the scores shown ("score-stage") and the button that stops them.
+  QLabel* ScoreStage = nullptr;
+  QPushButton* StopScores = nullptr;
   QDoubleSpinBox* OverlayMin = nullptr;
   QDoubleSpinBox* OverlayMax = nullptr;
   QCheckBox* HideOutside = nullptr;

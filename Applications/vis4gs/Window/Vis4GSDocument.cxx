@@ -511,7 +511,9 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   vtkTable* cameras,
   bool withImages,
   const Progress& progress,
-  vis4gs::RemovalBaseline* baseline)
+  vis4gs::RemovalBaseline* baseline,
+  int stage,
+  const std::atomic<bool>* stop)
 {
   if (!scene)
   {
@@ -537,7 +539,24 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
     }
   }
   filter->SetScores(scores.c_str());
-  if (baseline && haveCameras && withImages && filter->GetLossResolution() == 1)
+  filter->SetProgressiveStage(stage);
+  // The Stop button sets @p stop in the GUI thread; the filter looks at its own flag between
+  // views, and this observer passes the button's on at each view.
+  vtkNew<vtkCallbackCommand> stopper;
+  stopper->SetClientData(const_cast<std::atomic<bool>*>(stop));
+  stopper->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void*)
+    {
+      if (static_cast<const std::atomic<bool>*>(client)->load())
+      {
+        static_cast<vtkGaussianArtifactScoreFilter*>(caller)->StopExecution();
+      }
+    });
+  if (stop)
+  {
+    filter->AddObserver(vtkCommand::ProgressEvent, stopper);
+  }
+  if (baseline && haveCameras && withImages && filter->GetLossResolution() == 1 && stage == 0)
   {
     std::vector<vis4gs::Camera> views;
     std::string error;
@@ -558,7 +577,15 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   {
     throw std::runtime_error("the score filter failed: " + errors);
   }
+  if (filter->GetStopped())
+  {
+    return nullptr;
+  }
   auto result = vtkSmartPointer<vtkPolyData>::New();
+  if (vtkAbstractArray* label = filter->GetOutput()->GetFieldData()->GetAbstractArray("ScoreStage"))
+  {
+    result->GetFieldData()->AddArray(label);
+  }
   std::vector<const char*> names{ vis4gs::arrays::NoVisibleView };
   for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
   {

@@ -14,6 +14,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -121,12 +122,19 @@ struct Vis4GSDocument
    * "before" of a clean-up of @p scene per tile on the renders it makes anyway
    * (vis4gs::RemovalBaselineRecorder): the clean-up panel then renders no training view
    * "before" again. It is left empty when that pass does not run.
+   *
+   * @p stage is the score filter's ProgressiveStage (1: the first, approximate stage of
+   * progressive scores; 0: the settings as given); the result's field data `ScoreStage` says
+   * which. When @p stop becomes true the filter stops after the view it is on and this returns
+   * nullptr.
    */
   static vtkSmartPointer<vtkPolyData> ComputeScores(vtkPolyData* scene,
     vtkTable* cameras,
     bool withImages,
     const Progress& progress,
-    vis4gs::RemovalBaseline* baseline = nullptr);
+    vis4gs::RemovalBaseline* baseline = nullptr,
+    int stage = 0,
+    const std::atomic<bool>* stop = nullptr);
 
   /**
    * Writes the views' inputs into @p folder, for comparing the application with a script

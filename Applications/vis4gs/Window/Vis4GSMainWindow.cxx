@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSMainWindow.h"
+#include "Vis4GSMainWindowInternals.h"
+#include "Vis4GSScoreStages.h"
 
 #include "Vis4GSCleanupPanel.h"
 #include "Vis4GSCompareWindow.h"
@@ -69,52 +71,6 @@
 #include <string>
 #include <utility>
 
-struct Vis4GSMainWindow::Internals
-{
-  vtkNew<vtkGaussianSelectionHub> Hub;
-  std::shared_ptr<Vis4GSDocument> Doc;
-  // A: scene (Views/Scene).
-  QVTKOpenGLNativeWidget* SceneWidget = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
-  vtkNew<vtkGaussianSceneView> Scene;
-  std::unique_ptr<Vis4GSSceneFrames> SceneFrames; // (after Scene: destroyed before it)
-  vtkNew<vtkCallbackCommand> PickCommand;
-  // Scores (worker thread).
-  QThread* ScoreWorker = nullptr;
-  bool ScoresPending = false, ScoresDone = false;
-  vtkSmartPointer<vtkTable> ScoreCameras;
-  std::unique_ptr<QTemporaryDir> ImageDir;
-  // B, D, histogram.
-  QVTKOpenGLNativeWidget* TreeWidget = nullptr;
-  QStackedWidget* TreeStack = nullptr; // the tree, or TreeMessage: why the log has none
-  QLabel* TreeMessage = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> TreeWindow;
-  vtkNew<vtkGaussianTreeView> Tree;
-  QVTKOpenGLNativeWidget* TimelineWidget = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> TimelineWindow;
-  vtkNew<vtkGaussianTimelineView> Timeline;
-  QVTKOpenGLNativeWidget* HistogramWidget = nullptr;
-  vtkNew<vtkGenericOpenGLRenderWindow> HistogramWindow;
-  vtkNew<vtkGaussianHistogramView> Histogram;
-  // C: panel.
-  Vis4GSControlPanel* Panel = nullptr;
-  QComboBox* HistogramArray = nullptr; // (in the histogram dock)
-  QProgressBar* Progress = nullptr;
-  std::string SceneCameras, SceneImages;
-  int SceneIteration = -1;
-  QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
-  // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
-  Vis4GSCleanupPanel* Cleanup = nullptr;
-  QDockWidget* CleanupDock = nullptr;
-  vtkNew<vtkCallbackCommand> HubCommand;
-  QThread* Worker = nullptr;
-  // A harness's hooks (SetLoadHooks).
-  std::function<void(int, const char*)> StageHook;
-  std::function<void()> LoadedHook;
-  // The dock sizes of the document's layout (LayoutForDocument), applied again by SettleLayout.
-  std::function<void()> DockSizes;
-};
-
 namespace
 {
 const char* DockNames[5] = { "scene", "tree", "panel", "timeline", "histogram" };
@@ -135,10 +91,7 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
   {
     d->Worker->wait();
   }
-  if (d->ScoreWorker)
-  {
-    d->ScoreWorker->wait();
-  }
+  d->Scores.reset(); // stops the scores and waits for them
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
@@ -418,6 +371,10 @@ void Vis4GSMainWindow::BuildUi()
   d->Progress->setMaximumWidth(240);
   d->Progress->hide();
   this->statusBar()->addPermanentWidget(d->Progress);
+  d->Scores = std::make_unique<Vis4GSScoreStages>(this);
+  d->Scores->Progress = [this](double f, const QString& m) { this->OnProgress(f, m); };
+  // (Finished disables the button.)
+  connect(d->Panel->StopScores, &QPushButton::clicked, this, [this] { d->Scores->Stop(); });
 
   // Hub -> window.
   d->HubCommand->SetClientData(this);
@@ -746,11 +703,9 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
     emit this->loadFailed(error);
     return;
   }
-  if (d->ScoreWorker)
-  {
-    // Scores of the previous document: let them finish, their result is dropped.
-    d->ScoreWorker->wait();
-  }
+  // Scores of the previous document: stopped (after the view they are on) and dropped.
+  d->Scores->Stop();
+  d->Scores->Wait();
   d->Doc = doc;
   d->Cleanup->SetSceneFile(doc->IsLog ? QString() : QString::fromStdString(doc->Path),
     QString::fromStdString(d->SceneCameras),
@@ -894,109 +849,6 @@ void Vis4GSMainWindow::UpdateOverlay(bool render)
   {
     d->Scene->Render();
   }
-}
-
-//------------------------------------------------------------------------------
-void Vis4GSMainWindow::StartScores()
-{
-  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-  if (!scene)
-  {
-    return;
-  }
-  if (d->ScoreWorker)
-  {
-    d->ScoresPending = true; // restarted for the new snapshot when this one is done
-    return;
-  }
-  d->ScoresDone = false;
-  if (d->Doc->Cameras && !d->ScoreCameras)
-  {
-    // Embedded training images are written once per document to a temporary folder (in the
-    // GUI thread: the log's HDF5 file is only read here).
-    try
-    {
-      d->ImageDir = std::make_unique<QTemporaryDir>();
-      d->ScoreCameras = d->Doc->ScoreCameras(d->ImageDir->path().toStdString());
-    }
-    catch (const std::exception& e)
-    {
-      this->statusBar()->showMessage(QString("training images: ") + e.what(), 5000);
-      d->ScoreCameras = d->Doc->Cameras;
-    }
-  }
-  vtkSmartPointer<vtkPolyData> input = scene;
-  vtkSmartPointer<vtkTable> cameras = d->ScoreCameras;
-  const bool images = d->Doc->CamerasWithImages > 0;
-  d->Progress->setValue(0);
-  d->Progress->show();
-  this->statusBar()->showMessage(cameras
-      ? (images ? "computing View Coverage, Blur, Needle scores and needle shape"
-                : "computing View Coverage and needle shape (the log has no training images)")
-      : "computing the needle shape (no cameras: no View Coverage, Blur or Needle score)");
-  // The blur/needle pass's renders are the clean-up panel's "before" of this snapshot.
-  auto baseline = std::make_shared<vis4gs::RemovalBaseline>();
-  d->ScoreWorker = QThread::create(
-    [this, input, cameras, images, baseline]
-    {
-      vtkSmartPointer<vtkPolyData> scores;
-      QString error;
-      try
-      {
-        scores = Vis4GSDocument::ComputeScores(
-          input,
-          cameras,
-          images,
-          [this](double f, const std::string& m)
-          {
-            const QString message = QString::fromStdString(m);
-            QMetaObject::invokeMethod(
-              this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
-          },
-          baseline.get());
-      }
-      catch (const std::exception& e)
-      {
-        error = QString::fromStdString(e.what());
-      }
-      QMetaObject::invokeMethod(
-        this,
-        [this, input, cameras, scores, error, baseline]
-        {
-          d->ScoreWorker->wait();
-          d->ScoreWorker->deleteLater();
-          d->ScoreWorker = nullptr;
-          d->Progress->hide();
-          vtkPolyData* current = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
-          if (!scores)
-          {
-            this->statusBar()->showMessage("scores: " + error, 5000);
-            std::cerr << "vis4gs view: error: scores: " << error.toStdString() << "\n";
-          }
-          else if (current == input.GetPointer())
-          {
-            for (int a = 0; a < scores->GetPointData()->GetNumberOfArrays(); ++a)
-            {
-              current->GetPointData()->AddArray(scores->GetPointData()->GetAbstractArray(a));
-            }
-            current->Modified();
-            this->statusBar()->showMessage("scores computed", 3000);
-            this->UpdateScene(); // overlay and histogram lists
-            // (After UpdateScene: it gives the panel the score cameras of the first pass.)
-            d->Cleanup->SetScoreBaseline(current, cameras, *baseline);
-          }
-          if (d->ScoresPending)
-          {
-            d->ScoresPending = false;
-            this->StartScores();
-            return;
-          }
-          d->ScoresDone = true;
-          emit this->scoresComputed();
-        },
-        Qt::QueuedConnection);
-    });
-  d->ScoreWorker->start();
 }
 
 //------------------------------------------------------------------------------

@@ -103,8 +103,12 @@ public:
     std::function<void()> loaded);
 
 signals:
-  /// The scores of the document (or of its snapshot) are computed and shown.
+  /// The scores of the document (or of its snapshot) are computed and shown (all stages, or
+  /// those before a stop).
   void scoresComputed();
+  /// Stage @p stage of @p of of the progressive scores is shown (overlays, histograms, the
+  /// panel's "score-stage" label, the scene's `ScoreStage` field data); "stop-scores" stops.
+  void scoreStageShown(int stage, int of);
   /// The file could not be loaded.
   void loadFailed(const QString& error);
 

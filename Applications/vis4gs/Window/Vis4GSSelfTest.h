@@ -16,6 +16,8 @@
 
 #include <QString>
 
+#include <string>
+
 class Vis4GSMainWindow;
 
 struct Vis4GSSelfTestOptions
@@ -31,5 +33,17 @@ struct Vis4GSSelfTestOptions
 
 /// Runs the self-test on @p window once its document is loaded and scored (then exits).
 void Vis4GSInstallSelfTest(Vis4GSMainWindow* window, const Vis4GSSelfTestOptions& options);
+
+/**
+ * `vis4gs view FILE --stages-test=STAGE1_CSV,EXACT_CSV` (Vis4GSScoreStagesSelfTest.cxx): the
+ * progressive scores of @p window (opening @p file) against `vis4gs analyze
+ * --stop-after-stage=1`'s and `vis4gs analyze`'s scores.csv: stage 1 shown and labelled, then
+ * replaced by the exact scores; opened again and stopped after stage 1, which stays,
+ * labelled. Exits the application with 0 or 1; false when a CSV cannot be read.
+ */
+bool Vis4GSInstallScoreStagesTest(Vis4GSMainWindow* window,
+  const QString& file,
+  const std::string& stage1Csv,
+  const std::string& exactCsv);
 
 #endif

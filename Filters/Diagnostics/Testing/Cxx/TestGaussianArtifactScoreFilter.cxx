@@ -23,9 +23,11 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 
 #include "Vis4GSTestCheck.h"
@@ -162,6 +164,71 @@ int TestGaussianArtifactScoreFilter(int, char*[])
   Check(counter.Progress >= 3, "progress per view");
   Check(counter.Errors == 0, "no errors");
   Check(std::abs(pd->GetArray("ViewCoverage")->GetTuple1(0) - 1.0) < 1e-15, "coverage 1");
+
+  // Progressive stages: stage 1 is the Core scores of every 8th view at 1/4 of the resolution,
+  // and the output says which stage it holds.
+  vtkStringArray* label = vtkStringArray::SafeDownCast(
+    filter->GetOutput()->GetFieldData()->GetAbstractArray("ScoreStage"));
+  Check(label && label->GetNumberOfValues() == 1 && label->GetValue(0) == "stage 2 of 2, exact",
+    "the exact stage's label");
+  {
+    vis4gs::ScoreSettings first;
+    first.ViewStride = 8;
+    first.LossResolution = 4;
+    first.CoverageResolution = 4;
+    const vis4gs::GaussianScores approximate =
+      vis4gs::ComputeGaussianScores(cloud, cameras, first, provider);
+    filter->SetProgressiveStage(1);
+    filter->Update();
+    pd = filter->GetOutput()->GetPointData();
+    Check(SameArray(pd->GetArray("ViewCoverage"), approximate.ViewCoverage) &&
+        SameArray(pd->GetArray("BlurScore"), approximate.BlurScore) &&
+        SameArray(pd->GetArray("NeedleScore"), approximate.NeedleScore),
+      "stage 1 == Core at every 8th view, 1/4 resolution");
+    Check(filter->GetNumberOfViewsUsed() == 1, "stage 1 uses 1 of the 2 views");
+    label = vtkStringArray::SafeDownCast(
+      filter->GetOutput()->GetFieldData()->GetAbstractArray("ScoreStage"));
+    Check(label &&
+        label->GetValue(0) ==
+          "stage 1 of 2, approximate: every 8th training view, loss maps at 1/4, coverage at "
+          "1/4 resolution",
+      ("stage 1's label: " + (label ? label->GetValue(0) : std::string("none"))).c_str());
+    // Asked settings compose: stride 2 and loss at 1/4 give every 16th view, 1/8 (the most).
+    filter->SetViewStride(2);
+    filter->SetLossResolution(4);
+    Check(filter->GetStageSettings() ==
+        "every 16th training view, loss maps at 1/8, coverage at 1/4 resolution",
+      ("stage 1 of approximate settings: " + filter->GetStageSettings()).c_str());
+    filter->SetProgressiveStage(0);
+    Check(filter->GetStageDescription() ==
+        "stage 2 of 2, approximate as asked: every 2nd training view, loss maps at 1/4, "
+        "coverage at full resolution",
+      ("approximate settings say so: " + filter->GetStageDescription()).c_str());
+    filter->SetViewStride(1);
+    filter->SetLossResolution(1);
+  }
+  // A stop (here at the first progress event, as a GUI's Stop button would from another
+  // thread) leaves no score array and says "stopped"; the next execution is complete again.
+  {
+    vtkNew<vtkCallbackCommand> stop;
+    stop->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+      { static_cast<vtkGaussianArtifactScoreFilter*>(caller)->StopExecution(); });
+    const unsigned long tag = filter->AddObserver(vtkCommand::ProgressEvent, stop);
+    filter->Modified();
+    filter->Update();
+    pd = filter->GetOutput()->GetPointData();
+    label = vtkStringArray::SafeDownCast(
+      filter->GetOutput()->GetFieldData()->GetAbstractArray("ScoreStage"));
+    Check(filter->GetStopped() && !pd->GetArray("ViewCoverage") && !pd->GetArray("BlurScore") &&
+        !pd->GetArray("NoVisibleView") && label && label->GetValue(0) == "stopped",
+      "a stopped execution has no scores and says so");
+    filter->RemoveObserver(tag);
+    filter->Modified();
+    filter->Update();
+    Check(!filter->GetStopped() &&
+        SameArray(filter->GetOutput()->GetPointData()->GetArray("BlurScore"), expected.BlurScore),
+      "the execution after a stop is complete");
+  }
 
   // ImageDirectory: images found by camera name (view0.png), view1 has none.
   filter->SetImageDirectory(folder.string().c_str());

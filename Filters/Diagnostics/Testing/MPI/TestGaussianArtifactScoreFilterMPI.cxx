@@ -15,8 +15,10 @@
 // views than processes, and a failing view on one process (every process fails, the error
 // names the process and the view).
 #include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianSceneReader.h"
 
 #include "ArtifactScores.h"
+#include "GaussianIO.h"
 #include "ImageIO.h"
 #include "LossMap.h"
 #include "ScoreRegistry.h"
@@ -420,6 +422,52 @@ void TestScene(vtkMPIController* controller, const Scene& scene)
 }
 }
 
+// The pipeline pvbatch under mpiexec runs: every process asks for its own piece of the output,
+// and a reader that cannot split its file gives Gaussians to piece 0 only. The filter asks for
+// the whole scene on every process (else piece 1 had no Gaussians and process 0 waited forever
+// in the reduction), and piece 0 holds every Gaussian with one process's scores.
+void TestPieces(vtkMPIController* controller,
+  const Scene& scene,
+  const std::filesystem::path& folder)
+{
+  const std::string ply = (folder / "pieces.ply").string();
+  if (Rank == 0)
+  {
+    vis4gs::WriteGaussianPly(ply, scene.Cloud);
+  }
+  controller->Barrier();
+  vis4gs::ScoreSettings coverage;
+  coverage.Request.Blur = coverage.Request.Needle = coverage.Request.NeedleShape = false;
+  const vis4gs::GaussianScores one =
+    vis4gs::ComputeGaussianScores(scene.Cloud, scene.Cameras, coverage);
+  vtkNew<vtkGaussianSceneReader> reader;
+  reader->SetFileName(ply.c_str());
+  vtkNew<vtkTable> table;
+  vis4gs::CamerasToTable(scene.Cameras, table);
+  vtkNew<vtkGaussianArtifactScoreFilter> filter;
+  filter->SetController(controller);
+  filter->SetInputConnection(reader->GetOutputPort());
+  filter->SetCamerasData(table);
+  filter->SetScores("coverage");
+  filter->UpdatePiece(Rank, controller->GetNumberOfProcesses(), 0);
+  vtkPolyData* out = filter->GetOutput();
+  const std::string what = scene.Name + ", piece " + std::to_string(Rank) + " of " +
+    std::to_string(controller->GetNumberOfProcesses());
+  if (Rank == 0)
+  {
+    CompareExact(out->GetPointData()->GetArray(vis4gs::arrays::ViewCoverage),
+      one.ViewCoverage,
+      what + ": coverage of a reader's scene");
+  }
+  else
+  {
+    Check(out->GetNumberOfPoints() == 0, what + ": no Gaussian outside piece 0");
+  }
+  long long mine = filter->GetNumberOfViewsRendered(), all = 0;
+  controller->AllReduce(&mine, &all, 1, vtkCommunicator::SUM_OP);
+  Check(all == static_cast<long long>(one.ViewsUsed), what + ": views shared by the processes");
+}
+
 int main(int argc, char* argv[])
 {
   vtkNew<vtkMPIController> controller;
@@ -444,6 +492,7 @@ int main(int argc, char* argv[])
     controller->Barrier(); // process 0's images are written
     TestScene(controller, random);
     TestScene(controller, demo);
+    TestPieces(controller, random, folder);
   }
   catch (const std::exception& e)
   {
