@@ -62,8 +62,11 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "${CMAKE_CURRENT_BINARY_DIR}/Testing/follow")
   set_tests_properties(vis4gs-ViewFollow PROPERTIES LABELS "Application;GUI"
     FAIL_REGULAR_EXPRESSION "FAILED" TIMEOUT 900)
+  # VTK's "number of components do not match" (a 3-component column read as 1: the property
+  # history's print did, 8 times) is a defect of ours, not a message to let pass.
   set_tests_properties(vis4gs-ViewEndToEnd PROPERTIES LABELS "Application;GUI"
-    FIXTURES_REQUIRED vis4gsViewLog FAIL_REGULAR_EXPRESSION "FAILED")
+    FIXTURES_REQUIRED vis4gsViewLog
+    FAIL_REGULAR_EXPRESSION "FAILED;number of components do not match")
   # The embedded demo log (cameras, images, genealogy): the floater case study end to end,
   # opened as `vis4gs demo` opens it (with the welcome panel), with baseline images of the
   # scene and tree views (the self-test's whole-image comparison, tolerant for Xvfb +
@@ -75,7 +78,8 @@ if (BUILD_TESTING AND VIS4GS_HAVE_VIEW_COMMAND)
       "--self-test=${_vis4gs_demo_shots}" --resolution=1200,800 --welcome
       "--baseline=${_vis4gs_baselines}")
   set_tests_properties(vis4gs-ViewDemoEndToEnd PROPERTIES LABELS "Application;GUI"
-    FAIL_REGULAR_EXPRESSION "FAILED" FIXTURES_SETUP vis4gsViewDemoShots)
+    FAIL_REGULAR_EXPRESSION "FAILED;number of components do not match"
+    FIXTURES_SETUP vis4gsViewDemoShots)
   # The same screenshots against the baselines strictly inside masks around the selection's
   # highlight colours, loosely elsewhere (Testing/Python/vis4gs_image_compare.py), and the
   # proof that this catches a missing highlight: the self-test's screenshots of the same views

@@ -8,11 +8,12 @@
   See LICENSE for details.
 
 =========================================================================*/
-// Over 1,200 lines on purpose: one mapper with two drawing paths (OpenGL splats, the CPU
+// Over 1,000 lines on purpose: one mapper with two drawing paths (OpenGL splats, the CPU
 // rasteriser) that share the input's conversion, the display options (scores, hiding,
 // selection), the camera and the render window's interactive/still state; what each path
-// computes lives in Core (SplatSortWorker, SplatAttributes, the rasteriser, the level of detail),
-// this file only holds the VTK and OpenGL side of both.
+// computes lives in Core (SplatSortWorker, SplatAttributes, the rasteriser, the level of detail)
+// and the CPU path's frame production and drawing in vtkGaussianSplatRasterFrames; this file
+// holds the OpenGL splats and what both paths share.
 #include "vtkGaussianSplatMapper.h"
 
 #include "vtkGaussianCameraUtilities.h"
@@ -21,7 +22,7 @@
 #include "vtkGaussianSplatInstancedVS.h"
 #include "vtkGaussianSplatPointVS.h"
 #include "vtkGaussianSplatProjection.h"
-#include "vtkGaussianSplatRasterImageFS.h"
+#include "vtkGaussianSplatRasterFrames.h"
 
 #include "GaussianMath.h"
 #include "Rasterizer.h"
@@ -42,7 +43,6 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
-#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -137,49 +137,21 @@ struct vtkGaussianSplatMapper::vtkInternals
   double PackedScale = std::nan("");
   int SoftwareGL = -1; // -1 not yet known
 
-  // CPU rasteriser path: the last image and what it was rendered for, and the rasteriser's
-  // per-frame buffers (projection, tile lists, compositing data), kept between frames so
-  // that a frame neither allocates nor page-faults them again.
-  vis4gs::RasterImage<float> Image;
-  vis4gs::RasterWorkspace<float> Work;
-  std::vector<float> Texels;      // RGBA per pixel, row 0 at the bottom
-  std::vector<float> DepthTexels; // expected view depth per pixel, row 0 at the bottom
+  // CPU rasteriser path (vtkGaussianSplatRasterFrames): the frames' producer, the key of
+  // the image shown and of the last request, the overlay the requests share.
+  vtkGaussianSplatRasterFrames Frames;
+  vtkGaussianSplatRasterFrames::Frame Shown; // the last image uploaded (its buffers reused)
   std::array<double, 25> RasterKey{};
   bool RasterValid = false;
+  std::array<double, 25> SubmittedKey{};
+  bool SubmittedValid = false;
   double AdaptiveDistance = 0.0; // interactive sample distance (auto-adjusted); 0 = not set
   std::size_t RasterDrawn = 0;
-  // Work's projection and tile lists are the plain scene's for FrameCamera (full resolution,
-  // no hiding or dimming, ScaleModifier 1): GetLastFullFrame().
-  bool FrameReusable = false;
-  vis4gs::Camera FrameCamera;
-  vtkPolyData* FrameInput = nullptr; // identity only
-  vtkMTimeType FrameInputTime = 0;
-  // Level of detail of moving frames: the view-independent part for Cloud (made once per
-  // CloudVersion), the Gaussians the last moving frame drew (indices in Cloud, ascending) and
-  // the workspace it drew them with, so that Work keeps the last exact frame.
-  vis4gs::SplatLevelOfDetail Lod;
-  std::uint64_t LodSource = 0; // CloudVersion Lod was made for; 0 = none
-  std::vector<std::uint32_t> LodSubset;
-  vis4gs::RasterWorkspace<float> LodWork;
-  std::vector<double> LodScores;
-  std::vector<std::uint8_t> LodSelected;
-
-  void ReleaseLevelOfDetail()
-  {
-    this->Lod = vis4gs::SplatLevelOfDetail();
-    std::vector<std::uint32_t>().swap(this->LodSubset);
-    this->LodWork = vis4gs::RasterWorkspace<float>();
-    this->LodSource = 0;
-  }
-
-  void UpdateLevelOfDetail(int threads)
-  {
-    if (this->LodSource != this->CloudVersion)
-    {
-      vis4gs::PrepareSplatLevelOfDetail(*this->Cloud, this->Lod, threads);
-      this->LodSource = this->CloudVersion;
-    }
-  }
+  bool RasterReduced = false;
+  vtkIdType FramesShown = 0;
+  std::shared_ptr<const vtkGaussianSplatRasterFrames::Overlay> Overlay;
+  std::array<double, 2> OverlayKey{ -1.0, -1.0 }; // display time, input time
+  std::uint64_t OverlayVersion = 0;
 
   // OpenGL path's order: the worker, the order drawn (Front) and the keys of what it was
   // sorted for. SceneKey counts changes of what an order depends on besides the camera
@@ -211,9 +183,6 @@ struct vtkGaussianSplatMapper::vtkInternals
   vtkNew<vtkTextureObject> ShTexture;
   vtkNew<vtkTextureObject> ColorTexture;
   vtkNew<vtkTextureObject> OrderTexture;
-  vtkNew<vtkTextureObject> ImageTexture;
-  vtkNew<vtkTextureObject> DepthTexture;
-  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   bool GeometryOnGPU = false;
   bool ColorsOnGPU = false;
   bool OrderOnGPU = false;
@@ -229,19 +198,17 @@ struct vtkGaussianSplatMapper::vtkInternals
       this->ColorTexture->ReleaseGraphicsResources(w);
       this->OrderTexture->ReleaseGraphicsResources(w);
       this->ShTexture->ReleaseGraphicsResources(w);
-      this->ImageTexture->ReleaseGraphicsResources(w);
-      this->DepthTexture->ReleaseGraphicsResources(w);
       this->GeometryBuffer->ReleaseGraphicsResources();
       this->ColorBuffer->ReleaseGraphicsResources();
       this->OrderBuffer->ReleaseGraphicsResources();
       this->ShBuffer->ReleaseGraphicsResources();
     }
-    this->Quad.reset();
+    this->Frames.ReleaseGraphicsResources(w);
     this->Program = nullptr;
     this->InstancedProgram = nullptr;
     this->Window = nullptr;
     this->SoftwareGL = -1;
-    this->RasterValid = false;
+    this->RasterValid = this->SubmittedValid = false; // (the image is gone with its texture)
     this->GeometryOnGPU = this->ColorsOnGPU = this->OrderOnGPU = this->ShOnGPU = false;
     this->GeometryDirty = this->ColorsDirty = true;
     this->OrderBytes = 0;
@@ -542,7 +509,9 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     in.DisplayTime = 0; // new display colours
     in.ShOnGPU = false;
     in.PackDirty = true;
-    in.ReleaseLevelOfDetail();
+    // A frame of the old scene is never shown (TakeFinished drops it by its version).
+    in.Frames.Cancel();
+    in.SubmittedValid = false;
   }
   const std::size_t n = in.Cloud->Count;
   if (n == 0)
@@ -624,7 +593,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* renWin = in.Window;
   const std::size_t n = in.Cloud->Count;
-  const int threads = this->NumberOfThreads;
+  in.Frames.SetAsynchronous(this->AsynchronousFrames);
 
   // Resolution: reduced while interacting (VTK's desired update rate), full for still frames.
   const double rate = ren->GetRenderWindow()->GetDesiredUpdateRate();
@@ -648,15 +617,13 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   }
   const int w = std::max(1, static_cast<int>(std::lround(width / distance)));
   const int h = std::max(1, static_cast<int>(std::lround(height / distance)));
-  this->LastImageSampleDistance = distance;
 
-  // Re-render only when something that changes the picture changed.
+  // A new frame only when something that changes the picture changed.
   const vtkMTimeType displayTime =
     std::max(this->GetMTime(), this->SelectedIds ? this->SelectedIds->GetMTime() : vtkMTimeType(0));
   // A moving frame of a scene larger than the budget draws the level of detail.
   const std::size_t budget = static_cast<std::size_t>(this->InteractiveSplatBudget);
   const bool reduced = interactive && budget > 0 && budget < n;
-  this->LastFrameReduced = reduced;
   std::array<double, 25> key{};
   std::copy(worldToCamera, worldToCamera + 16, key.begin());
   key[16] = fx;
@@ -668,246 +635,138 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   key[22] = static_cast<double>(displayTime);
   key[23] = static_cast<double>(in.InputTime);
   key[24] = reduced ? static_cast<double>(budget) : 0.0;
-  // The focal lengths come out of vtkCamera's projection matrix with a few ulps of noise
-  // between renders of the same view (e.g. vtkWindowToImageFilter's): compare them to 1e-7.
-  bool same = in.RasterValid;
-  for (int q = 0; q < 25 && same; ++q)
+  const bool shown = in.RasterValid && vtkGaussianSplatRasterFrames::SameKey(key, in.RasterKey);
+  const bool requested =
+    in.SubmittedValid && vtkGaussianSplatRasterFrames::SameKey(key, in.SubmittedKey);
+  if (!shown && !requested)
   {
-    same = (q == 16 || q == 17)
-      ? std::abs(key[q] - in.RasterKey[q]) <= 1e-7 * std::abs(in.RasterKey[q])
-      : key[q] == in.RasterKey[q];
-  }
-  if (!same)
-  {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::array<double, 16> w2c{};
-    std::copy(worldToCamera, worldToCamera + 16, w2c.begin());
-    vis4gs::Camera camera = vtkGaussianCameraUtilities::PinholeCamera(width, height, fx, fy, w2c);
-    if (w != width || h != height)
+    // The overlay (scores, selection) is read from the input here, on the render thread, and
+    // shared by the requests until the display options or the input change.
+    if (in.OverlayKey[0] != key[22] || in.OverlayKey[1] != key[23] ||
+      in.OverlayVersion != in.CloudVersion)
     {
-      camera = camera.Resized(w, h);
-    }
-    vis4gs::RasterSettings settings;
-    settings.ShDegree = this->ShDegree;
-    settings.ScaleModifier = this->ScaleModifier;
-    settings.Threads = threads;
-    std::size_t drawn = 0;
-    in.FrameReusable = false;
-    bool unmodified = !reduced && w == width && h == height && this->ScaleModifier == 1.0;
-    try
-    {
-      // Gaussian i of a reduced frame is Gaussian LodSubset[i] of the input.
-      vis4gs::RasterWorkspace<float>& work = reduced ? in.LodWork : in.Work;
-      if (reduced)
-      {
-        in.UpdateLevelOfDetail(threads);
-        vis4gs::SelectSplatsForView(*in.Cloud, in.Lod, camera, budget, in.LodSubset, threads);
-        vis4gs::ProjectGaussianSubset(*in.Cloud,
-          in.LodSubset,
-          camera,
-          settings,
-          work.Projection,
-          in.Work.Prepared,
-          in.CloudVersion);
-      }
-      else
-      {
-        vis4gs::ProjectGaussians(
-          *in.Cloud, camera, settings, work.Projection, work.Prepared, in.CloudVersion);
-      }
-      vis4gs::ViewProjection<float>& projection = work.Projection;
-      const std::size_t m = projection.Gaussians.size();
-      drawn = projection.Counts.Visible;
       vis4gs::SplatDisplayOptions opt;
       if (!in.FillDisplayOptions(this, input, opt))
       {
         return;
       }
+      in.Overlay.reset();
       if (opt.ScoreColoring || opt.HideOutsideRange || opt.Selected)
       {
-        if (reduced)
-        {
-          // The scores and selection of the Gaussians drawn.
-          if (opt.Scores)
-          {
-            in.LodScores.resize(m);
-            for (std::size_t i = 0; i < m; ++i)
-            {
-              in.LodScores[i] = opt.Scores[in.LodSubset[i]];
-            }
-            opt.Scores = in.LodScores.data();
-          }
-          if (opt.Selected)
-          {
-            in.LodSelected.resize(m);
-            for (std::size_t i = 0; i < m; ++i)
-            {
-              in.LodSelected[i] = opt.Selected[in.LodSubset[i]];
-            }
-            opt.Selected = in.LodSelected.data();
-          }
-        }
-        // Overlay colours, hiding, highlight and dimming replace the projected colours and
-        // scale the opacities; hidden Gaussians are left out of the tile lists.
-        in.TrueColors.resize(3 * m);
-        for (std::size_t i = 0; i < m; ++i)
-        {
-          std::copy_n(projection.Gaussians[i].Color, 3, &in.TrueColors[3 * i]);
-        }
-        vis4gs::ComputeSplatDisplay(in.TrueColors.data(), m, opt, in.Display, in.Keep, threads);
-        in.DisplayTime = 0; // Display and Keep no longer hold the OpenGL path's
-        for (std::size_t i = 0; i < m; ++i)
-        {
-          auto& g = projection.Gaussians[i];
-          if (!g.IsVisible())
-          {
-            continue;
-          }
-          if (!in.Keep[i])
-          {
-            g.Status = vis4gs::ProjectionStatus::OffScreen;
-            --drawn;
-            unmodified = false;
-            continue;
-          }
-          std::copy_n(&in.Display[4 * i], 3, g.Color);
-          unmodified = unmodified && in.Display[4 * i + 3] == 1.0f;
-          g.Opacity *= in.Display[4 * i + 3];
-        }
+        auto overlay = std::make_shared<vtkGaussianSplatRasterFrames::Overlay>();
+        overlay->Scores = std::move(in.Scores);
+        overlay->Selected = std::move(in.Selected);
+        overlay->Options = opt;
+        overlay->Options.Scores = opt.Scores ? overlay->Scores.data() : nullptr;
+        overlay->Options.Selected = opt.Selected ? overlay->Selected.data() : nullptr;
+        in.Overlay = std::move(overlay);
       }
-      vis4gs::BinGaussians<float>(projection, threads, work.Bins, work.Scratch);
-      // Nothing replays the blending: the compositing reads the kernels from the projection.
-      work.Composite.KeepKernels = false;
-      vis4gs::CompositeTiles<float>(
-        projection, work.Bins, settings, in.Image, nullptr, nullptr, &work.Composite);
-      if (!reduced)
-      {
-        in.FrameReusable = unmodified;
-        in.FrameCamera = camera;
-        in.FrameInput = input;
-        in.FrameInputTime = in.InputTime;
-        if (budget > 0 && budget < n)
-        {
-          // Ready for the first moving frame (made once per scene, after its first picture).
-          in.UpdateLevelOfDetail(threads);
-        }
-      }
+      in.OverlayKey = { key[22], key[23] };
+      in.OverlayVersion = in.CloudVersion;
     }
-    catch (const std::exception& e)
+    vtkGaussianSplatRasterFrames::Request request;
+    std::array<double, 16> w2c{};
+    std::copy(worldToCamera, worldToCamera + 16, w2c.begin());
+    request.Camera = vtkGaussianCameraUtilities::PinholeCamera(width, height, fx, fy, w2c);
+    if (w != width || h != height)
     {
-      vtkErrorMacro("vtkGaussianSplatMapper: " << e.what());
-      in.RasterValid = false;
+      request.Camera = request.Camera.Resized(w, h);
+    }
+    request.Cloud = in.Cloud;
+    request.CloudVersion = in.CloudVersion;
+    request.Settings.ShDegree = this->ShDegree;
+    request.Settings.ScaleModifier = this->ScaleModifier;
+    request.Settings.Threads = this->NumberOfThreads;
+    request.Budget = budget;
+    request.Reduced = reduced;
+    request.FullResolution = w == width && h == height;
+    request.SampleDistance = distance;
+    request.Interactive = interactive;
+    request.Display = in.Overlay;
+    request.Input = input;
+    request.InputTime = in.InputTime;
+    request.Key = key;
+    in.SubmittedKey = key;
+    in.SubmittedValid = true;
+    in.Frames.Submit(std::move(request));
+  }
+
+  // Show the newest finished frame (synchronous: the one just made).
+  this->LastRasterTime = 0.0;
+  if (in.Frames.TakeFinished(in.CloudVersion, in.Shown))
+  {
+    const vtkGaussianSplatRasterFrames::Frame& frame = in.Shown;
+    if (frame.Failed)
+    {
+      vtkErrorMacro("vtkGaussianSplatMapper: " << frame.Error);
+      in.RasterValid = in.SubmittedValid = false;
       return;
     }
-    // Premultiplied RGBA and expected depth, flipped to OpenGL's bottom-up rows.
-    const std::size_t pixels = static_cast<std::size_t>(w) * h;
-    in.Texels.resize(4 * pixels);
-    in.DepthTexels.resize(pixels);
-    for (int y = 0; y < h; ++y)
-    {
-      const std::size_t src = static_cast<std::size_t>(y) * w;
-      const std::size_t dst = static_cast<std::size_t>(h - 1 - y) * w;
-      for (int x = 0; x < w; ++x)
-      {
-        const std::size_t s = src + x, d = dst + x;
-        const float a = in.Image.Alpha[s];
-        in.Texels[4 * d] = in.Image.Color[3 * s];
-        in.Texels[4 * d + 1] = in.Image.Color[3 * s + 1];
-        in.Texels[4 * d + 2] = in.Image.Color[3 * s + 2];
-        in.Texels[4 * d + 3] = a;
-        in.DepthTexels[d] = a > 0.0f ? in.Image.Depth[s] / a : 1.0e30f;
-      }
-    }
-    const bool magnified = w != width || h != height;
-    in.ImageTexture->SetContext(renWin);
-    in.ImageTexture->SetMinificationFilter(
-      magnified ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
-    in.ImageTexture->SetMagnificationFilter(
-      magnified ? vtkTextureObject::Linear : vtkTextureObject::Nearest);
-    in.ImageTexture->SetWrapS(vtkTextureObject::ClampToEdge);
-    in.ImageTexture->SetWrapT(vtkTextureObject::ClampToEdge);
-    in.DepthTexture->SetContext(renWin);
-    in.DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    in.DepthTexture->SetWrapS(vtkTextureObject::ClampToEdge);
-    in.DepthTexture->SetWrapT(vtkTextureObject::ClampToEdge);
-    if (!in.ImageTexture->Create2DFromRaw(static_cast<unsigned int>(w),
-          static_cast<unsigned int>(h),
-          4,
-          VTK_FLOAT,
-          in.Texels.data()) ||
-      !in.DepthTexture->Create2DFromRaw(static_cast<unsigned int>(w),
-        static_cast<unsigned int>(h),
-        1,
-        VTK_FLOAT,
-        in.DepthTexels.data()))
+    const bool magnified = frame.Width != width || frame.Height != height;
+    if (!in.Frames.Upload(renWin, frame, magnified))
     {
       vtkErrorMacro("vtkGaussianSplatMapper: could not upload the rasterised image");
-      in.RasterValid = false;
+      in.RasterValid = in.SubmittedValid = false;
       return;
     }
-    in.RasterKey = key;
+    in.RasterKey = frame.Key;
     in.RasterValid = true;
-    in.RasterDrawn = drawn;
-    this->LastRasterTime = MsSince(t0);
-    if (interactive && this->AutoAdjustImageSampleDistances && rate > 0)
+    in.RasterDrawn = frame.Drawn;
+    in.RasterReduced = frame.Reduced;
+    ++in.FramesShown;
+    this->LastRasterTime = frame.Milliseconds;
+    this->LastImageSampleDistance = frame.SampleDistance;
+    if (frame.Interactive && this->AutoAdjustImageSampleDistances && rate > 0)
     {
       // Aim at 1 / DesiredUpdateRate: the work shrinks roughly with the pixel count.
+      const double used = this->LastImageSampleDistance;
       const double ratio = this->LastRasterTime / (1000.0 / rate);
       if (ratio > 1.2 || ratio < 0.6)
       {
         in.AdaptiveDistance = std::min(this->MaximumImageSampleDistance,
-          std::max(1.0, distance * std::sqrt(std::min(4.0, std::max(0.25, ratio)))));
+          std::max(1.0, used * std::sqrt(std::min(4.0, std::max(0.25, ratio)))));
       }
     }
   }
+  if (!in.RasterValid)
+  {
+    return; // (asynchronous: nothing finished for this scene yet)
+  }
   this->LastDrawnCount = static_cast<vtkIdType>(in.RasterDrawn);
+  this->LastFrameReduced = in.RasterReduced;
 
   // Draw: blend the image depth-tested at the expected depth, then write that depth.
-  if (!in.Quad)
+  if (!in.Frames.Draw(renWin, depthCoeffs))
   {
-    in.Quad.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkGaussianSplatRasterImageFS, ""));
-    if (!in.Quad->Program)
-    {
-      vtkErrorMacro("vtkGaussianSplatMapper: the image shaders failed to compile");
-      in.Quad.reset();
-      return;
-    }
+    vtkErrorMacro("vtkGaussianSplatMapper: the image shaders failed to compile");
   }
-  else
-  {
-    renWin->GetShaderCache()->ReadyShaderProgram(in.Quad->Program);
-  }
-  vtkShaderProgram* prog = in.Quad->Program;
-  in.ImageTexture->Activate();
-  in.DepthTexture->Activate();
-  prog->SetUniformi("splatImage", in.ImageTexture->GetTextureUnit());
-  prog->SetUniformi("splatDepth", in.DepthTexture->GetTextureUnit());
-  const float coeffs[2] = { static_cast<float>(depthCoeffs[0]),
-    static_cast<float>(depthCoeffs[1]) };
-  prog->SetUniform2f("depthCoeffs", coeffs);
-  vtkOpenGLState* state = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
-  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
-  vtkOpenGLState::ScopedglColorMask colorMaskSaver(state);
-  vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthFunc(GL_LEQUAL);
-  state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  state->vtkglDepthMask(GL_FALSE);
-  prog->SetUniformi("depthPass", 0);
-  in.Quad->Render();
-  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  state->vtkglDepthMask(GL_TRUE);
-  prog->SetUniformi("depthPass", 1);
-  in.Quad->Render();
-  in.DepthTexture->Deactivate();
-  in.ImageTexture->Deactivate();
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSplatMapper::GetFramePending()
+{
+  vtkInternals& in = *this->Internals;
+  return in.Frames.Busy() ||
+    (in.SubmittedValid &&
+      !(in.RasterValid && vtkGaussianSplatRasterFrames::SameKey(in.SubmittedKey, in.RasterKey)));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::WaitForFrame()
+{
+  this->Internals->Frames.Wait();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkGaussianSplatMapper::GetFramesShown()
+{
+  return this->Internals->FramesShown;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatMapper::SetFrameReadyCallback(std::function<void()> callback)
+{
+  this->Internals->Frames.SetFrameReadyCallback(std::move(callback));
 }
 
 //------------------------------------------------------------------------------
@@ -959,10 +818,7 @@ const vis4gs::RasterWorkspace<float>* vtkGaussianSplatMapper::GetLastFullFrame(
   vtkMTimeType& inputTime) const
 {
   const vtkInternals& in = *this->Internals;
-  camera = in.FrameReusable ? &in.FrameCamera : nullptr;
-  input = in.FrameReusable ? in.FrameInput : nullptr;
-  inputTime = in.FrameReusable ? in.FrameInputTime : 0;
-  return in.FrameReusable ? &in.Work : nullptr;
+  return in.Frames.LastFullFrame(camera, input, inputTime);
 }
 
 //------------------------------------------------------------------------------
@@ -1369,6 +1225,7 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
   os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
+  os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";
   os << indent << "LastDrawnCount: " << this->LastDrawnCount << "\n";
   os << indent << "LastSortTime: " << this->LastSortTime << "\n";

@@ -98,8 +98,9 @@
 #include "vis4gsRenderingSplatsModule.h" // For export macro
 #include "vtkPolyDataMapper.h"
 
-#include <memory> // For std::unique_ptr
-#include <string> // For std::string
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
+#include <string>     // For std::string
 
 class vtkIdTypeArray;
 class vtkLookupTable;
@@ -392,6 +393,50 @@ public:
 
   ///@{
   /**
+   * CPU path: produce the frames on a worker thread of the mapper (one std::thread, joined
+   * when the mapper is destroyed or this is switched off) instead of the render thread, so
+   * that a render never waits for the rasteriser. A render hands the worker a request for
+   * its camera and display options (the newest request replaces one not started yet) and
+   * draws the newest finished frame of the current scene (nothing before the first one; never
+   * a frame of a replaced input); the still frame after motion is the exact frame, bit for
+   * bit as in the synchronous mode, drawn by the first render after it is finished. The
+   * frame-ready callback (SetFrameReadyCallback) tells the application when to render again;
+   * WaitForFrame() waits for it. Default off (every render makes its frame).
+   */
+  vtkSetMacro(AsynchronousFrames, bool);
+  vtkGetMacro(AsynchronousFrames, bool);
+  vtkBooleanMacro(AsynchronousFrames, bool);
+  ///@}
+
+  /**
+   * CPU path: whether the frame drawn by the last render is not yet the one for its camera
+   * and display options (being produced, or finished and waiting for a render).
+   */
+  bool GetFramePending();
+
+  /**
+   * CPU path: blocks until the worker has finished the frames requested (AsynchronousFrames);
+   * the next render draws the newest. Returns at once in the synchronous mode.
+   */
+  void WaitForFrame();
+
+  /**
+   * CPU path: how many new images renders have drawn since the mapper was made (a render
+   * that draws the image already drawn does not count).
+   */
+  vtkIdType GetFramesShown();
+
+#ifndef __VTK_WRAP__
+  /**
+   * CPU path, AsynchronousFrames: called on the mapper's worker thread whenever a frame is
+   * finished (e.g. to post a render to the GUI thread's event loop). Setting another, or
+   * nullptr, waits for a call in progress. Default none.
+   */
+  void SetFrameReadyCallback(std::function<void()> callback);
+#endif
+
+  ///@{
+  /**
    * CPU threads for sorting and colours; 0 (default) uses OpenMP's default.
    */
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
@@ -497,6 +542,7 @@ protected:
   double LastRasterTime = 0.0;
   vtkIdType InteractiveSplatBudget = 400000;
   bool LastFrameReduced = false;
+  bool AsynchronousFrames = false;
   vtkLookupTable* ScoreLookupTable = nullptr;
   vtkIdType LastDrawnCount = 0;
   double LastSortTime = 0.0;

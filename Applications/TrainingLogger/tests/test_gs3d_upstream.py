@@ -12,6 +12,7 @@ radii. The lineage check: _features_rest[:, -1, 2] holds each row's root id; the
 never reads _features_rest, so Adam never changes it, while densify_and_clone / _split
 copy it into the children and prune_points removes it with its row."""
 
+import inspect
 import os
 import types
 
@@ -27,6 +28,12 @@ from vis4gs_logger import CLONE, PRUNE, SPLIT
 GaussianModel, REDIRECTED = upstream.load_3dgs_model()  # skips the module without a copy
 
 WIDTH, HEIGHT, FOCAL = 64, 48, 60.0
+#: the current densify_and_prune(max_grad, min_opacity, extent, max_screen_size, radii)
+#: (since 2024-10; train.py passes render()'s radii), or the older one without radii
+TAKES_RADII = "radii" in inspect.signature(GaussianModel.densify_and_prune).parameters
+#: iterations of the run: not a multiple of the snapshot interval (10), so that the last
+#: snapshot is the one close() writes of the final model
+ITERATIONS = 83
 
 
 def dist_cuda2(points):
@@ -76,7 +83,7 @@ def root_through_events(events, n0):
 class Run:
     """The scene, the model and the loss weights of one test run."""
 
-    def __init__(self, tmp_path, n0=300, iterations=80):
+    def __init__(self, tmp_path, n0=300, iterations=ITERATIONS):
         self.n0, self.iterations = n0, iterations
         g = torch.Generator().manual_seed(1)
         self.pcd = types.SimpleNamespace(points=(torch.rand(n0, 3, generator=g) * 2 - 1
@@ -131,7 +138,7 @@ class Run:
         exec(readme[""], ns)
         exec(readme[TRACK], ns)
         logger, tracker = ns["logger"], ns["tracker"]
-        logger.snapshot_interval = 10  # (default 500) to see several in 80 iterations
+        logger.snapshot_interval = 10  # (default 500) to see several in 83 iterations
         n_start = len(tracker.ids)
         first_iter += 1  # train.py
         all_events = []
@@ -150,8 +157,9 @@ class Run:
                     gaussians.add_densification_stats(viewspace_point_tensor, visibility_filter)
                     if iteration > opt.densify_from_iter and iteration % opt.densification_interval == 0:
                         size_threshold = 20 if iteration > opt.opacity_reset_interval else None
+                        extra = (radii,) if TAKES_RADII else ()
                         gaussians.densify_and_prune(opt.densify_grad_threshold, 0.005,
-                                                    1.0, size_threshold)
+                                                    1.0, size_threshold, *extra)
                     if iteration % opt.opacity_reset_interval == 0:
                         gaussians.reset_opacity()
                 if iteration < opt.iterations:
@@ -178,6 +186,7 @@ class Run:
                 assert stored[row] == root_value(root_of[gid]), \
                     f"iteration {iteration}, row {row}, id {gid}"
         final = tracker.ids.clone()
+        self.final_means = gaussians.get_xyz.detach().clone()
         exec(readme["after the loop:"], ns)
         assert tracker.warnings == []
         return ns["logger"].path, final, n_start
@@ -205,21 +214,28 @@ def test_original_gaussian_model_train_loop(tmp_path):
     assert alive == set(final.tolist())
     with open_log(path) as f:
         snaps = snapshot_iterations(f)
-        assert snaps == list(range(0, iterations + 1, 10))
+        assert iterations % 10 != 0
+        assert snaps == list(range(0, iterations + 1, 10)) + [iterations]
         assert f["metrics/iteration"][0] == 1
+        # the last snapshot is the final model: its ids, and each id's position
+        last = read_snapshot(f, iterations)
+        order = np.argsort(final.numpy())
+        np.testing.assert_array_equal(last["id"], final.numpy()[order])
+        np.testing.assert_array_equal(last["position"], run.final_means.numpy()[order])
     info = dump(path)
     if require_dump():
         assert info["repairs"] == [] and info["events"] == len(events[0])
         assert all(os.path.isfile(os.path.join(tmp_path, p)) for p in info["camera_images"])
     counts = {k: int((events[1] == k).sum()) for k in (CLONE, SPLIT, PRUNE)}
-    print(f"original 3DGS {GaussianModel.commit}: {REDIRECTED} device redirections; "
+    print(f"original 3DGS {GaussianModel.commit} (densify_and_prune with radii: "
+          f"{TAKES_RADII}): {REDIRECTED} device redirections; "
           f"{n0} -> {len(final)} Gaussians; events clone {counts[CLONE]}, split "
           f"{counts[SPLIT]}, prune {counts[PRUNE]}; snapshots {snaps}")
 
 
 def test_original_gaussian_model_resumed_from_checkpoint(tmp_path):
-    """Checkpoint at 35, run on until 52 (killed), --start_checkpoint: a clear new log from
-    35 whose ids are the checkpoint's rows; the old log is kept."""
+    """Checkpoint at 35, run on until 52 (stopped there), --start_checkpoint: a clear new
+    log from 35 whose ids are the checkpoint's rows; the old log is kept."""
     torch.manual_seed(0)
     run = Run(tmp_path)
     checkpoint = str(tmp_path / "chkpnt35.pth")
@@ -238,11 +254,11 @@ def test_original_gaussian_model_resumed_from_checkpoint(tmp_path):
     assert alive == set(final.tolist())
     with open_log(path) as f:
         assert int(f.attrs["start_iteration"]) == 35
-        assert snapshot_iterations(f) == [35, 40, 50, 60, 70, 80]
+        assert snapshot_iterations(f) == [35, 40, 50, 60, 70, 80, ITERATIONS]
         assert read_snapshot(f, 35)["id"].tolist() == list(range(n_start))
         assert f["metrics/iteration"][0] == 36
     with open_log(str(tmp_path / "training_log.before-35.h5")) as f:
-        assert snapshot_iterations(f) == [0, 10, 20, 30, 40, 50]
+        assert snapshot_iterations(f) == [0, 10, 20, 30, 40, 50, 52]  # 52: its close()
     info = dump(path)
     if require_dump():
-        assert info["repairs"] == [] and info["snapshots"] == [35, 40, 50, 60, 70, 80]
+        assert info["repairs"] == [] and info["snapshots"] == [35, 40, 50, 60, 70, 80, ITERATIONS]

@@ -4,6 +4,9 @@ default, or 1; see Documentation/file-formats.md). Depends on numpy and h5py onl
 accepted wherever an array is (they are moved to the CPU and converted)."""
 
 import contextlib
+import ctypes
+import ctypes.util
+import errno
 import math
 import os
 import time
@@ -23,6 +26,10 @@ COMMITTED = ("metrics", "metrics/test", "events", "lineage_breaks", "snapshots")
 _WHERE_BYTES = 200  # /lineage_breaks/where in version 2: fixed-length UTF-8 (SWMR appends)
 
 _METRIC_COLUMNS = ("loss", "l1", "psnr", "ssim", "lpips", "elapsed_s")
+#: file space reserved beyond each write's data for HDF5's metadata (object headers, chunk
+#: indices, the superblock at close): the most one write was seen to take is ~30 KiB
+#: (test_safety.py, test_every_write_stays_inside_its_reservation)
+METADATA_RESERVE = 256 << 10
 _BREAK_COLUMNS = (("iteration", "<i4"), ("event_row", "<i8"), ("tracked", "<i8"), ("rows", "<i8"),
                   ("kept", "<i8"), ("first_new_id", "<i8"), ("new_roots", "<i8"))
 
@@ -44,6 +51,45 @@ def _scalar(value):
     if hasattr(value, "item"):
         value = value.item()
     return float(value)
+
+
+_LIBC = []
+
+
+def _reserve_blocks(fd, offset, length):
+    """Allocates the disk blocks of [offset, offset + length) of the open file fd without
+    changing its size (fallocate, FALLOC_FL_KEEP_SIZE): writes there cannot fail for want of
+    space. Raises OSError (ENOSPC when the disk has not that much free; EOPNOTSUPP on a file
+    system or platform without it)."""
+    if not _LIBC:
+        libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
+        call = getattr(libc, "fallocate", None)
+        if call is not None:
+            call.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_int64, ctypes.c_int64]
+            call.restype = ctypes.c_int
+        _LIBC.append(call)
+    call = _LIBC[0]
+    if call is None:
+        raise OSError(errno.EOPNOTSUPP, os.strerror(errno.EOPNOTSUPP))
+    if call(fd, 1, offset, length) != 0:  # 1: FALLOC_FL_KEEP_SIZE
+        code = ctypes.get_errno()
+        raise OSError(code, os.strerror(code))
+
+
+def _append_bytes(before, added, chunk, row_bytes, compressed):
+    """At most the file space HDF5 allocates when ``added`` rows of ``row_bytes`` are
+    appended after ``before`` rows of a dataset chunked by ``chunk`` rows: uncompressed,
+    each chunk not written yet is allocated whole; compressed, each chunk the rows touch is
+    written again at up to its raw size (deflate adds < 1 % to incompressible data) and may
+    move (freed space is never reused: fs_strategy "none")."""
+    if added <= 0:
+        return 0
+    first, last = before // chunk, (before + added - 1) // chunk
+    if compressed:
+        filled = before + added - first * chunk
+        return int(filled * row_bytes * 1.01) + 64 * (last - first + 1)
+    first_new = -(-before // chunk)
+    return max(0, last + 1 - first_new) * chunk * row_bytes
 
 
 def _sh_rows(sh, n):
@@ -94,6 +140,17 @@ class TrainingLogWriter:
     close() (as TrainingLogger does by default), so that a failure (a full disk, a read-only
     folder) leaves an earlier log at path as it was; abandon() then removes the temporary.
     With swmr, readers follow the live ``<path>.tmp`` (`vis4gs view path --follow` finds it).
+
+    A full disk: HDF5 1.10 cannot recover from a write that fails for want of space (its
+    metadata cache stays half flushed, "slist already enabled?", and closing the file then,
+    or at the interpreter's exit, crashes the process). So HDF5 never meets a full disk here:
+    before each write (a flush, a snapshot, the cameras, an image) the writer reserves the
+    file space the write can take at most (its data's chunks plus METADATA_RESERVE) beyond
+    the end of the file (fallocate, FALLOC_FL_KEEP_SIZE: the blocks are the file's, its size
+    unchanged). A reservation that fails raises OSError (ENOSPC) naming the file before
+    anything is written, and the file, still whole, can be closed and removed (abandon()).
+    Where fallocate is not supported the free space of the disk is checked instead (another
+    process may then take it before HDF5 writes).
     """
 
     def __init__(self, path, scene="", sh_degree=3, iterations=30000, producer=None,
@@ -116,11 +173,16 @@ class TrainingLogWriter:
         #: the file being written: path, or "<path>.tmp" until close() renames it
         self.write_path = self.path + ".tmp" if write_to_temporary else self.path
         self._file = None
+        #: the end of the space reserved by the last write (see the class)
+        self.reserved_end = 0
+        self._unflushed = 0  # bytes written since the last flush, perhaps not yet allocated
+        self._healthy = True  # False once an HDF5 call failed: its state is not to be trusted
         try:
             # SWMR needs the newest file format (superblock 3); version 1 files stay readable
             # by HDF5 1.8 ("earliest").
             self._file = h5py.File(self.write_path, "w", fs_strategy="none",
                                    libver="latest" if self.swmr else "earliest")
+            self._reserve(0)
             self._start(scene, sh_degree, iterations, producer, start_iteration)
         except BaseException:
             self.abandon()
@@ -164,6 +226,36 @@ class TrainingLogWriter:
         self.flush()
 
     # -- helpers ----------------------------------------------------------------------
+    def _reserve(self, nbytes):
+        """Reserves the space a write of at most ``nbytes`` of data takes (with what is
+        written but not flushed yet, and METADATA_RESERVE) beyond the end of the file, or
+        raises OSError naming the file (see the class)."""
+        fd = self._file.id.get_vfd_handle()
+        size = os.fstat(fd).st_size
+        # HDF5 may have allocated space it has not written yet (end of allocation > size)
+        end = max(size, int(self._file.id.get_filesize()))
+        want = end - size + int(nbytes) + self._unflushed + METADATA_RESERVE
+        try:
+            _reserve_blocks(fd, size, want)
+        except OSError as error:
+            if error.errno not in (errno.EOPNOTSUPP, errno.ENOSYS):
+                raise OSError(error.errno, os.strerror(error.errno), self.write_path) from None
+            disk = os.statvfs(self.write_path)
+            if disk.f_bavail * disk.f_frsize < want:
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), self.write_path) from None
+        self.reserved_end = size + want
+
+    @contextlib.contextmanager
+    def _writing(self, nbytes):
+        """Runs the HDF5 calls of one write of at most ``nbytes`` of data inside its
+        reservation; an error in them marks the file as not to be trusted (abandon())."""
+        self._reserve(nbytes)
+        try:
+            yield
+        except BaseException:
+            self._healthy = False
+            raise
+
     def _keep_metadata(self):
         """Between flushes HDF5 writes no metadata: the file stays the log of the last
         flush (for format version 1; SWMR orders its metadata writes itself)."""
@@ -239,6 +331,23 @@ class TrainingLogWriter:
         if value.ndim == 3:
             value = value[:, : dataset.shape[1]]
         return value.astype(dataset.dtype, copy=False)
+
+    def _snapshot_bytes(self, ids, arrays):
+        """At most the file space the snapshot's data takes (see _append_bytes)."""
+        n = len(ids)
+        compressed = self.snapshot_deflate > 0
+        g = self._file["snapshots"]
+        if self.swmr:
+            before = g["id"].shape[0] if "id" in g else 0
+            chunk = self.chunk_rows
+        else:
+            before, chunk = 0, max(1, min(self.chunk_rows, n))
+        row_bytes = [ids.itemsize] + [v.itemsize * int(np.prod(v.shape[1:], dtype=np.int64))
+                                      for v in arrays.values()]
+        if self.swmr:  # the index (iteration, start, count, sh_degree) and a statistic the
+            # snapshot lacks (written as NaN)
+            row_bytes += [4 * 3] * 2
+        return sum(_append_bytes(before, n, chunk, b, compressed) for b in row_bytes) + 4 * 1024 * 3
 
     def _write_packed(self, iteration, ids, arrays):
         g = self._file["snapshots"]
@@ -343,7 +452,8 @@ class TrainingLogWriter:
             raise RuntimeError(f"{self.path}: /cameras is already written")
         v = len(names)
         w2c = to_numpy(world_to_camera, np.float64).reshape(v, 4, 4)
-        with self._structure():
+        text = sum(len(str(x).encode("utf-8")) + 32 for x in list(names) + list(images or []))
+        with self._writing(v * 256 + text), self._structure():
             self._write_cameras(v, names, widths, heights, fx, fy, cx, cy, w2c, splits, images,
                                 source, image_dir)
         self._cameras_written = True
@@ -376,7 +486,9 @@ class TrainingLogWriter:
             a = np.clip(np.rint(a.astype(np.float64) * 255.0), 0, 255).astype(np.uint8)
         if a.ndim != 3 or a.shape[2] != 3 or "/" in name or not name:
             raise ValueError(f"{self.path}: image {name!r} must be [H,W,3]")
-        with self._structure() as f:
+        rows = max(1, min(256, a.shape[0]))
+        with self._writing(_append_bytes(0, a.shape[0], rows, a.shape[1] * 3, self.deflate > 0)), \
+                self._structure() as f:
             self._dataset(f.require_group("images"), name, a, (256, a.shape[1], 3))
 
     def append_metrics(self, iteration, num_gaussians=-1, loss=None, l1=None, psnr=None,
@@ -449,34 +561,60 @@ class TrainingLogWriter:
             if np.any(ids[1:] == ids[:-1]):
                 raise ValueError(f"{self.path}: snapshot {iteration} has duplicate ids")
             arrays = {key: value[order] for key, value in arrays.items()}
-        if self.swmr:
-            if self.snapshot_sh_float16:
-                arrays["sh"] = arrays["sh"].astype(np.float16)
-            self.snapshot_bytes += self._write_packed(iteration, ids, arrays)
-            self._last_snapshot = iteration
-            if flush:
-                self.flush()
-            return
+        if self.snapshot_sh_float16:  # readers convert to float32 (HDF5 does)
+            arrays["sh"] = arrays["sh"].astype(np.float16)
+        reserve = self._snapshot_bytes(ids, arrays)
+        with self._writing(reserve):
+            self._unflushed += reserve  # its chunks may be allocated at the flush
+            if self.swmr:
+                self.snapshot_bytes += self._write_packed(iteration, ids, arrays)
+            else:
+                self.snapshot_bytes += self._write_groups(iteration, ids, arrays)
+        self._last_snapshot = iteration
+        if flush:
+            self.flush()
+
+    def _write_groups(self, iteration, ids, arrays):
         g = self._file.create_group(f"snapshots/{iteration:06d}")
         g.attrs["iteration"] = np.int64(iteration)
         c = self.chunk_rows
         level = self.snapshot_deflate
         written = [self._dataset(g, "id", ids, (c,), level)]
         for key, value in arrays.items():
-            if key == "sh":
-                if self.snapshot_sh_float16:  # readers convert to float32 (HDF5 does)
-                    value = value.astype(np.float16)
-                written.append(self._dataset(g, key, value, (c, 1, 3), level))
-            else:
-                written.append(self._dataset(g, key, value, (c,) + value.shape[1:], level))
-        self.snapshot_bytes += sum(d.id.get_storage_size() for d in written)
-        self._last_snapshot = iteration
-        if flush:
-            self.flush()
+            chunk = (c, 1, 3) if key == "sh" else (c,) + value.shape[1:]
+            written.append(self._dataset(g, key, value, chunk, level))
+        return sum(d.id.get_storage_size() for d in written)
 
     def flush(self):
         """Writes the buffered rows and flushes: the file is then a valid log."""
         self._check_open()
+        with self._writing(self._rows_bytes()):
+            self._flush_rows()
+        self._unflushed = 0
+        self._last_flush = time.monotonic()
+
+    def _rows_bytes(self):
+        """At most the file space the buffered rows take (see _append_bytes)."""
+        compressed = self.deflate > 0
+        total = 0
+        for test, rows in self._pending_metrics.items():
+            if rows:
+                g = self._metrics[test]
+                before = g["iteration"].shape[0] if g is not None else 0
+                total += sum(_append_bytes(before, len(rows), 1024, b, compressed)
+                             for b in [4] + [8] * (1 + len(_METRIC_COLUMNS)))
+        pending = sum(len(e[0]) for e in self._pending_events)
+        chunk = 4096 if self.swmr else 65536
+        total += sum(_append_bytes(self._event_rows - pending, pending, chunk, b, compressed)
+                     for b in (4, 1, 8, 8))
+        if self._pending_breaks:
+            g = self._file.get("lineage_breaks")
+            before = g["iteration"].shape[0] if g is not None else 0
+            total += sum(_append_bytes(before, len(self._pending_breaks), 256, b, compressed)
+                         for b in [8] * len(_BREAK_COLUMNS) + [_WHERE_BYTES])
+        return total
+
+    def _flush_rows(self):
         for test in (False, True):
             rows = self._pending_metrics[test]
             if not rows:
@@ -507,7 +645,6 @@ class TrainingLogWriter:
                  f["events/iteration"].shape[0], f["lineage_breaks/iteration"].shape[0],
                  self._snapshot_count], np.int64)
             f.flush()
-        self._last_flush = time.monotonic()
 
     def _flush_breaks(self):
         g = self._file.get("lineage_breaks")
@@ -535,8 +672,15 @@ class TrainingLogWriter:
             return
         try:
             self.flush()
-            self._file.close()
+            try:
+                self._file.close()  # inside the flush's reservation
+            except BaseException:
+                self._healthy = False
+                raise
             self._file = None
+            # The reserved blocks past the end go back to the disk (a truncation to the same
+            # size frees them: tmpfs, ext4).
+            os.truncate(self.write_path, os.path.getsize(self.write_path))
             if self.write_path != self.path:
                 os.replace(self.write_path, self.path)
         except BaseException:
@@ -549,11 +693,13 @@ class TrainingLogWriter:
         so that no partial log is left and an earlier log at path stays as it was. Without
         write_to_temporary the file at path is left as the failure left it."""
         f, self._file = self._file, None
-        if f is not None:
+        if f is not None and not self._healthy:
             # HDF5 flushes a file when it closes it, and after a failed write that flush
             # fails again and can crash the process (seen with h5py 3.7 / HDF5 1.10: "Slist
-            # already enabled?", then a segmentation fault at exit). Its descriptor is pointed
-            # at /dev/null first, so that the closing writes go nowhere and succeed.
+            # already enabled?", then a segmentation fault at exit). The reservations keep
+            # a full disk from getting here (see the class); for any other failed write the
+            # descriptor is pointed at /dev/null first, so that the closing writes go nowhere.
+            # A file whose writes all succeeded (a reservation failed) closes as it is.
             try:
                 fd = f.id.get_vfd_handle()
                 null = os.open(os.devnull, os.O_RDWR)
@@ -561,6 +707,7 @@ class TrainingLogWriter:
                 os.close(null)
             except Exception:  # noqa: BLE001 - a driver without a descriptor: close as it is
                 pass
+        if f is not None:
             try:
                 f.close()
             except Exception:  # noqa: BLE001 - the file is given up, its state does not matter

@@ -71,6 +71,11 @@ void Define(Vis4GSArguments& args)
     "With --soak: resident memory growth allowed after the warm-up (the mean of the last 5 "
     "cycles against that of the 5 after the warm-up); descriptors, threads and temporary "
     "entries may not grow.");
+  args.AddOption("soak-fine-tune",
+    "N",
+    "1",
+    "With --soak: on a document with training images, also fine-tune the measured removal for "
+    "N iterations in the clean-up panel (its log written to DIR and deleted); 0: no fine-tune.");
   args.AddOption("splat-budget",
     "N",
     "200000",
@@ -220,6 +225,7 @@ int Run(const Vis4GSArguments& args)
     o.Cycles = std::atoi(soak.substr(0, comma).c_str());
     o.Directory = QString::fromStdString(comma == std::string::npos ? "." : soak.substr(comma + 1));
     o.BoundMB = args.GetDouble("soak-bound");
+    o.FineTuneIterations = std::atoi(args.Get("soak-fine-tune").c_str());
     o.Files << QString::fromStdString(args.GetPositional("FILE"));
     if (!args.Get("soak-also").empty())
     {

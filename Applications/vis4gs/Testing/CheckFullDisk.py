@@ -11,9 +11,12 @@ For WRITER (one of WRITERS below) the script mounts a small tmpfs in WORKDIR and
 3. remounts the file system read-only and runs it again.
 
 Each failing run must exit with status 1 (a failure the program explains: not a crash, not 0;
-the Python logger instead lets its training end, status 0, and warns), print a message naming a path inside the mount and the problem ("No space left on device",
-"Read-only file system"), leave no file behind (no partial output, no temporary) and leave the
-first run's files byte for byte as they were.
+the Python logger instead lets its training end, status 0, and warns), print a message naming
+a path inside the mount and the problem ("No space left on device", "Read-only file system"),
+leave no file behind (no partial output, no temporary) and leave the first run's files byte for
+byte as they were. The Python training logger (FullDiskTraining.py, with either writer) is
+also run with the disk filling while its training runs (LOGGER_MOMENTS): the same, with one
+warning and no report of HDF5 meeting the full disk.
 
 Mounting needs root (CI runs as root; a read-only folder has to be a read-only mount, since root
 ignores permission bits). Without the permission the script exits 77 (skipped) saying so.
@@ -90,6 +93,16 @@ def fill(point, free):
     return "filler"
 
 
+#: when the disk fills while the training logger's loop runs (FullDiskTraining.py): during
+#: the steps (between snapshots), inside a snapshot (after its first array), before close()
+#: (which writes the final snapshot)
+LOGGER_MOMENTS = ("step:23", "snapshot:10", "snapshot:35", "close")
+#: HDF5's own reports of a failed write: the logger must stop before HDF5 meets a full disk
+#: (after a failed write HDF5 1.10 crashes the process when it closes the file)
+HDF5_FAILED = ("HDF5-DIAG", "Driver write request failed", "slist already enabled",
+               "Segmentation fault", "Fatal Python error")
+
+
 # ------------------------------------------------------------------------------------------
 # The writers. Each is (tmpfs size, prepare(inputs folder) -> None, command(output) -> argv,
 # output(mount) -> the path the command is given). Inputs live outside the mount.
@@ -111,6 +124,12 @@ def writers(vis4gs, work, source):
         return path
 
     logger_tests = os.path.join(source, "Applications", "TrainingLogger", "tests")
+    here = os.path.dirname(os.path.abspath(__file__))
+
+    def training(writer):
+        return ("16m", lambda: None, lambda out: [
+            sys.executable, os.path.join(here, "FullDiskTraining.py"), out + "/run.h5",
+            logger_tests, writer], 0, "the training ended at step 52", LOGGER_MOMENTS)
 
     def convert(suffix):
         """vis4gs convert of the demo log's last snapshot into one output format."""
@@ -159,32 +178,12 @@ def writers(vis4gs, work, source):
         "convert-spz": convert(".spz"),
         "convert-glb": convert(".glb"),
         "convert-gltf": convert(".gltf"),
-        # the Python training logger in a (stand-in) gsplat training loop: the training must
-        # go on (exit status 0, its last line printed) whatever happens to the log
-        "logger": ("16m", lambda: None, lambda out: [
-            sys.executable, "-c",
-            "import os, sys, warnings\n"
-            "sys.path[:0] = [os.path.dirname(sys.argv[2]), sys.argv[2]]\n"
-            "import torch, mock_gsplat_ops\n"
-            "from test_gsplat import make_splats\n"
-            "from vis4gs_logger import TrainingLogger, track_gsplat\n"
-            "os.makedirs(os.path.dirname(sys.argv[1]), exist_ok=True)\n"
-            "params, optimizers, state = make_splats(500, 4)\n"
-            # swmr=False: with the default SWMR writer (format version 2) a nearly full disk
-            # still crashes the process (h5py's deallocation flushes after the failed write;
-            # an open bug, TESTING.md "Full disks"), which this test must not pass over.
-            # Until it is fixed the test covers the version 1 writer.
-            "logger = TrainingLogger(sys.argv[1], snapshot_interval=5, iterations=50, swmr=False)\n"
-            "track_gsplat(params, logger, modules=[mock_gsplat_ops])\n"
-            "for step in range(1, 51):\n"
-            "    logger.log_metrics(step, loss=1.0 / step)\n"
-            "    mask = torch.zeros(len(params['means']), dtype=torch.bool)\n"
-            "    mask[step % len(mask)] = True\n"
-            "    mock_gsplat_ops.duplicate(params, optimizers, state, mask)\n"
-            "    logger.step(step)\n"
-            "logger.close()\n"
-            "print('the training ended at step', step)\n", out + "/run.h5", logger_tests],
-            0, "the training ended at step 50"),
+        # the Python training logger in a stand-in gsplat training loop (FullDiskTraining.py),
+        # with its default writer (SWMR, format version 2) and format version 1: the training
+        # must go on (exit status 0, its last line printed) whatever happens to the log,
+        # also when the disk fills while it runs
+        "logger": training("swmr"),
+        "logger-v1": training("v1"),
     }
 
 
@@ -197,7 +196,7 @@ def main():
         sys.exit(f"FAILED: unknown writer {name} (one of {', '.join(table)})")
     # A writer that must fail says so with exit status 1; the logger must let its training
     # end normally (status 0, its last line printed) and only warn.
-    size, prepare, command, status, ended = (table[name] + (1, None))[:5]
+    size, prepare, command, status, ended, moments = (table[name] + (1, None, ()))[:6]
     os.makedirs(os.path.join(work, "inputs"), exist_ok=True)
     point = os.path.join(work, "mount")
     if os.path.ismount(point):
@@ -219,16 +218,21 @@ def main():
         written = used_bytes(point)
         print(f"{name}: the first run wrote {len(before)} entries, {written} bytes")
 
-        scenarios = [("full, 0 bytes free", 0, ENOSPC),
-                     (f"full, {written // 4} bytes free", written // 4, ENOSPC),
-                     ("read-only", None, EROFS)]
-        for label, free, problem in scenarios:
+        # (label, bytes left free before the run or None: read-only, problem, the moment
+        # the disk fills while the program runs)
+        scenarios = [("full, 0 bytes free", 0, ENOSPC, None),
+                     (f"full, {written // 4} bytes free", written // 4, ENOSPC, None),
+                     ("read-only", None, EROFS, None)]
+        scenarios += [(f"the disk fills at {m}", -1, ENOSPC, m) for m in moments]
+        for label, free, problem, moment in scenarios:
             filler = None
-            if free is not None:
+            if free is None:
+                subprocess.run(["mount", "-o", "remount,ro", point], check=True)
+            elif free >= 0:
                 filler = fill(point, free)
             else:
-                subprocess.run(["mount", "-o", "remount,ro", point], check=True)
-            rc, text, seconds = run(command(out))
+                filler = "filler"  # filled by the program itself (FullDiskTraining.py)
+            rc, text, seconds = run(command(out) + ([moment] if moment else []))
             after = snapshot(point, skip=(filler,) if filler else ())
             what = f"{name}, {label}"
             check(rc == status, f"{what}: exit status {status} (got {rc})")
@@ -236,6 +240,11 @@ def main():
                 check(ended in text, f"{what}: the program goes on to its end ('{ended}')")
             check(problem in text and point in text,
                   f"{what}: the message names a path in {point} and '{problem}'")
+            if moments:  # the training logger: one warning, before HDF5 meets the full disk
+                said = text.count(f"{problem}; logging stops")
+                check(said == 1, f"{what}: one warning says logging stops (said {said} times)")
+                hdf5 = [m for m in HDF5_FAILED if m in text]
+                check(not hdf5, f"{what}: HDF5 never met the full disk (found {hdf5})")
             added = sorted(set(after) - set(before))
             check(not added, f"{what}: nothing left behind (found {added})")
             changed = sorted(k for k in before if after.get(k) != before[k])
@@ -243,7 +252,7 @@ def main():
                   f"{changed})")
             if rc != status or problem not in text or point not in text or added or changed:
                 print("--- its output:\n" + text[-3000:] + "\n---")
-            if filler:
+            if filler and os.path.exists(os.path.join(point, filler)):
                 os.remove(os.path.join(point, filler))
             else:
                 subprocess.run(["mount", "-o", "remount,rw", point], check=True)

@@ -15,6 +15,7 @@
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
+#include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineView.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
@@ -62,6 +63,7 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -77,6 +79,8 @@ struct Vis4GSMainWindow::Internals
   vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
   vtkNew<vtkGaussianSceneView> Scene;
   vtkNew<vtkCallbackCommand> PickCommand;
+  // A render of the scene view is posted (its mapper finished a frame on its worker).
+  std::atomic<bool> SceneRenderPosted{ false };
   // Scores (worker thread).
   QThread* ScoreWorker = nullptr;
   bool ScoresPending = false;
@@ -139,6 +143,8 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
   {
     d->ScoreWorker->wait();
   }
+  // (Waits for a call in progress: none posts a render to this window afterwards.)
+  d->Scene->GetSplatMapper()->SetFrameReadyCallback(nullptr);
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
@@ -244,6 +250,26 @@ void Vis4GSMainWindow::BuildUi()
   d->Scene->SetRenderWindow(d->SceneWindow);
   d->Scene->SetInteractor(d->SceneWindow->GetInteractor());
   d->Scene->SetSelectionHub(d->Hub);
+  // The scene view's CPU frames are made on its mapper's worker thread, so that neither
+  // orbiting nor a pick's highlight waits for the rasteriser on this thread (issue 30); a
+  // finished frame posts one render, which draws it.
+  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
+  splats->AsynchronousFramesOn();
+  splats->SetFrameReadyCallback(
+    [this]
+    {
+      if (!d->SceneRenderPosted.exchange(true))
+      {
+        QMetaObject::invokeMethod(
+          this,
+          [this]
+          {
+            d->SceneRenderPosted = false;
+            d->Scene->Render();
+          },
+          Qt::QueuedConnection);
+      }
+    });
   d->PickCommand->SetClientData(this);
   d->PickCommand->SetCallback(
     [](vtkObject*, unsigned long, void* client, void*)
@@ -1145,6 +1171,13 @@ bool Vis4GSMainWindow::SaveScreenshot(const QString& which, const QString& path)
   if (!widget->isVisible())
   {
     return false; // (a hidden dock's grab would lay it out again and resize the others)
+  }
+  // The scene view's current frame may still be in the making (asynchronous frames).
+  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
+  if (splats->GetFramePending())
+  {
+    splats->WaitForFrame();
+    d->Scene->Render();
   }
   return widget->grab().save(path);
 }

@@ -516,11 +516,20 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
     vtkSmartPointer<vtkTable> h = doc->History({ static_cast<std::int64_t>(targetId) });
     std::cout << "info: Gaussian " << targetId << " over the snapshots (iteration: opacity, "
               << "largest scale):";
-    for (vtkIdType r = 0; r < h->GetNumberOfRows(); ++r)
+    // Scale has 3 components: a vtkVariant of its row is an array, whose ToDouble() read it
+    // as one component (VTK warned "3 != 1" for each row); its largest is what is meant.
+    vtkDataArray* iteration = vtkArrayDownCast<vtkDataArray>(h->GetColumnByName("Iteration"));
+    vtkDataArray* opacity = vtkArrayDownCast<vtkDataArray>(h->GetColumnByName("Opacity"));
+    vtkDataArray* scale = vtkArrayDownCast<vtkDataArray>(h->GetColumnByName("Scale"));
+    for (vtkIdType r = 0; iteration && opacity && scale && r < h->GetNumberOfRows(); ++r)
     {
-      std::cout << " " << h->GetValueByName(r, "Iteration").ToInt() << ": "
-                << h->GetValueByName(r, "Opacity").ToDouble() << ", "
-                << h->GetValueByName(r, "Scale").ToDouble() << ";";
+      double largest = scale->GetComponent(r, 0);
+      for (int c = 1; c < scale->GetNumberOfComponents(); ++c)
+      {
+        largest = std::max(largest, scale->GetComponent(r, c));
+      }
+      std::cout << " " << static_cast<long long>(iteration->GetComponent(r, 0)) << ": "
+                << opacity->GetComponent(r, 0) << ", " << largest << ";";
     }
     std::cout << std::endl;
   }

@@ -26,6 +26,9 @@
 #include <iostream>
 #include <memory>
 #include <numeric>
+#include <sstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -35,6 +38,17 @@ struct Sample
 {
   double ResidentMB = 0;
   double HeapMB = 0;
+  /// What malloc holds from the system (every arena's pages and the blocks mapped whole).
+  double MallocSystemMB = 0;
+  /// The resident size by kind of mapping (/proc/self/smaps), to tell where growth outside the
+  /// heap in use lives: the main arena's [heap]; other anonymous memory (threads' arenas and
+  /// stacks, Mesa's buffers); anonymous executable memory (llvmpipe's compiled shaders);
+  /// file-backed (libraries, the log's and the scene's pages, fonts).
+  double HeapSegmentMB = 0;
+  double AnonymousMB = 0;
+  double ExecutableMB = 0;
+  double FileMB = 0;
+  int Mappings = 0;
   int Descriptors = 0;
   int Threads = 0;
   int TempEntries = 0;
@@ -48,6 +62,45 @@ int CountEntries(const QString& folder)
       .size());
 }
 
+void MeasureMappings(Sample& s)
+{
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  double* kind = nullptr;
+  while (std::getline(smaps, line))
+  {
+    std::istringstream fields(line);
+    std::string first;
+    fields >> first;
+    if (!first.empty() && first.back() != ':')
+    {
+      // A mapping's header: "start-end perms offset dev inode [path]".
+      std::string perms, offset, device, inode, path;
+      fields >> perms >> offset >> device >> inode;
+      std::getline(fields >> std::ws, path);
+      ++s.Mappings;
+      if (path == "[heap]")
+      {
+        kind = &s.HeapSegmentMB;
+      }
+      else if (path.empty() || path[0] == '[')
+      {
+        kind = perms.find('x') != std::string::npos ? &s.ExecutableMB : &s.AnonymousMB;
+      }
+      else
+      {
+        kind = &s.FileMB;
+      }
+    }
+    else if (first == "Rss:" && kind)
+    {
+      double kB = 0;
+      fields >> kB;
+      *kind += kB * 1024.0 / 1e6;
+    }
+  }
+}
+
 Sample Measure()
 {
   Sample s;
@@ -58,6 +111,9 @@ Sample Measure()
   const struct mallinfo2 heap = mallinfo2();
   s.HeapMB = static_cast<double>(heap.uordblks + heap.hblkhd) / 1e6;
   malloc_trim(0);
+  const struct mallinfo2 trimmed = mallinfo2();
+  s.MallocSystemMB = static_cast<double>(trimmed.arena + trimmed.hblkhd) / 1e6;
+  MeasureMappings(s);
   std::ifstream statm("/proc/self/statm");
   long pages = 0, resident = 0;
   statm >> pages >> resident;
@@ -79,8 +135,8 @@ struct SoakState
   bool Running = false; // a cycle's actions are under way (scoresComputed may come again)
 };
 
-/// The actions of one cycle on the loaded, scored document.
-void Exercise(Vis4GSMainWindow& w)
+/// The actions of one cycle on the loaded, scored document; false when the fine-tune failed.
+bool Exercise(Vis4GSMainWindow& w, const Vis4GSSoakOptions& options)
 {
   const std::shared_ptr<Vis4GSDocument> doc = w.GetDocument();
   auto* slider = w.findChild<QSlider*>("iteration");
@@ -105,13 +161,23 @@ void Exercise(Vis4GSMainWindow& w)
   view->SelectBrush(stroke, vtkGaussianSelectionHub::SUBTRACT);
   QApplication::processEvents();
   Vis4GSCleanupPanel* panel = w.GetCleanupPanel();
+  bool ok = true;
   if (panel && panel->ApplyRule("opacity<=0.05", Vis4GSCleanupPanel::REPLACE) &&
     doc->CamerasWithImages > 0 && w.GetScoreCameras())
   {
     panel->MeasureRemoval();
-    panel->WaitForMeasurement();
+    if (panel->WaitForMeasurement() && options.FineTuneIterations > 0)
+    {
+      // The repaired log is not kept: the cycle exercises the trainer, its writer and the
+      // panel's repaired figures, and a file left would count as one more each cycle.
+      const QString repaired = options.Directory + "/soak-fine-tune.h5";
+      ok = panel->StartFineTune(repaired, options.FineTuneIterations, false, false) &&
+        panel->WaitForFineTune();
+      QFile::remove(repaired);
+    }
   }
   QApplication::processEvents();
+  return ok;
 }
 
 double Mean(const std::vector<Sample>& s, std::size_t from, std::size_t count, double Sample::*what)
@@ -161,6 +227,20 @@ int Finish(const SoakState& state)
                  [](const Sample& l, const Sample& r) { return l.ResidentMB < r.ResidentMB; })
                  ->ResidentMB
             << " MB" << std::endl;
+  // Where the resident growth lives (not bounded: the heap in use is; see the header).
+  std::cout << "soak: resident parts after the warm-up -> at the end (means, MB):";
+  const std::pair<const char*, double Sample::*> parts[] = { { "malloc from the system",
+                                                               &Sample::MallocSystemMB },
+    { "[heap]", &Sample::HeapSegmentMB },
+    { "other anonymous", &Sample::AnonymousMB },
+    { "anonymous executable", &Sample::ExecutableMB },
+    { "file-backed", &Sample::FileMB } };
+  for (const auto& part : parts)
+  {
+    std::cout << " " << part.first << " " << Mean(s, warm, window, part.second) << " -> "
+              << Mean(s, n - window, window, part.second) << ";";
+  }
+  std::cout << " mappings " << a.Mappings << " -> " << b.Mappings << std::endl;
   std::cout << "soak: file descriptors " << a.Descriptors << " -> " << b.Descriptors << ", threads "
             << a.Threads << " -> " << b.Threads << ", temporary entries " << a.TempEntries << " -> "
             << b.TempEntries << " (" << QDir::tempPath().toStdString() << ")" << std::endl;
@@ -196,7 +276,8 @@ void Vis4GSInstallSoak(Vis4GSMainWindow* window, const Vis4GSSoakOptions& option
   QDir().mkpath(options.Directory);
   state->Csv.open((options.Directory + "/soak.csv").toStdString());
   state->Csv << "cycle,file,heap_mb,resident_mb,descriptors,threads,temporary_entries,seconds,"
-                "open_and_score_s,actions_s\n";
+                "open_and_score_s,actions_s,malloc_system_mb,heap_segment_mb,anonymous_mb,"
+                "executable_mb,file_mb,mappings\n";
   state->Started = std::chrono::steady_clock::now();
   QObject::connect(window,
     &Vis4GSMainWindow::scoresComputed,
@@ -213,7 +294,13 @@ void Vis4GSInstallSoak(Vis4GSMainWindow* window, const Vis4GSSoakOptions& option
         [window, state]
         {
           const auto scored = std::chrono::steady_clock::now();
-          Exercise(*window);
+          if (!Exercise(*window, state->Options))
+          {
+            std::cout << "soak FAILED: the clean-up panel's fine-tune failed in cycle "
+                      << state->Cycle << std::endl;
+            QApplication::exit(1);
+            return;
+          }
           const auto acted = std::chrono::steady_clock::now();
           const Sample s = Measure();
           state->Samples.push_back(s);
@@ -227,7 +314,9 @@ void Vis4GSInstallSoak(Vis4GSMainWindow* window, const Vis4GSSoakOptions& option
                           std::chrono::steady_clock::now() - state->Started)
                           .count()
                      << "," << std::chrono::duration<double>(scored - state->Opened).count() << ","
-                     << std::chrono::duration<double>(acted - scored).count() << std::endl;
+                     << std::chrono::duration<double>(acted - scored).count() << ","
+                     << s.MallocSystemMB << "," << s.HeapSegmentMB << "," << s.AnonymousMB << ","
+                     << s.ExecutableMB << "," << s.FileMB << "," << s.Mappings << std::endl;
           ++state->Cycle;
           state->Running = false;
           if (state->Cycle >= state->Options.Cycles)

@@ -8,12 +8,16 @@
  * document it replaces is freed), waits for its scores, moves the iteration slider down and
  * back (a log with several snapshots), selects at the scene view's centre with each selection
  * mode (Single, Ray, Frame, Brush), applies a clean-up rule and, where the document has
- * training images, measures the removal in the clean-up panel's worker thread. After each cycle
- * it records the resident memory (/proc/self/statm), the open file descriptors (/proc/self/fd),
+ * training images, measures the removal in the clean-up panel's worker thread and fine-tunes it
+ * (FineTuneIterations, the repaired log written and deleted). After each cycle it records the
+ * heap in use (mallinfo2), what malloc holds from the system, the resident memory
+ * (/proc/self/statm) and its parts by kind of mapping (/proc/self/smaps: malloc's [heap],
+ * other anonymous, executable anonymous, file-backed; and the number of mappings), the open
+ * file descriptors (/proc/self/fd),
  * the threads (/proc/self/task) and the entries of the temporary folder (QDir::tempPath()) in
  * DIR/soak.csv (with the seconds to open and score, and of the actions). At the end it
  * compares cycles of the same files: the warm-up is the first half, at most 20 cycles (caches,
- * allocator arenas and thread pools reach their size), then the mean resident memory of the
+ * allocator arenas and thread pools reach their size), then the mean heap in use of the
  * last rounds of the files (up to 10 cycles) may exceed that of as many cycles after the
  * warm-up by BoundMB at most, and descriptors and threads (last cycle against the first of the
  * same file after the warm-up) and temporary entries (against the first cycle of the same
@@ -37,6 +41,9 @@ struct Vis4GSSoakOptions
   QStringList Files;
   /// Resident memory growth allowed after the warm-up, MB (see the file's comment).
   double BoundMB = 16.0;
+  /// Iterations of the clean-up panel's fine-tune on a document with training images, after
+  /// its measurement (the repaired log goes to Directory and is deleted); 0: none.
+  int FineTuneIterations = 1;
 };
 
 /// Runs the soak on @p window (before it opens a file; it opens them itself).
