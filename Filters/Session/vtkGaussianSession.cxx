@@ -616,7 +616,15 @@ bool vtkGaussianSession::ProducePort(int port,
       return log && d.Log->HasMetrics() ? pass(d.Log, 2) : true;
     case TreePort:
     case BandsPort:
-      return log && d.Log->HasEvents() ? pass(d.Genealogy, port == TreePort ? 0 : 1) : true;
+    {
+      const bool built =
+        log && d.Log->HasEvents() ? pass(d.Genealogy, port == TreePort ? 0 : 1) : true;
+      // The events serve the tree only: their reader lets the file go, so that the log reader
+      // holds the one handle of this process, as a log still being written needs to show its
+      // new snapshots (vtkGaussianTrainingLogReader::CloseFile).
+      d.Events->CloseFile();
+      return built;
+    }
     case HistoryPort:
     {
       vtkNew<vtkIdTypeArray> ids;

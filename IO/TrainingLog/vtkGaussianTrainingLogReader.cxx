@@ -158,10 +158,12 @@ int vtkGaussianTrainingLogReader::GetSnapshotIteration(int i)
 }
 int vtkGaussianTrainingLogReader::FindNearestSnapshot(int iteration)
 {
+  this->ReopenClosedFile();
   return this->Internals->Log ? this->Internals->Log->FindNearestSnapshot(iteration) : -1;
 }
 vtkIdType vtkGaussianTrainingLogReader::GetSnapshotSize(int iteration)
 {
+  this->ReopenClosedFile();
   const auto& its = this->Internals->Iterations;
   if (!this->Internals->Log || !std::binary_search(its.begin(), its.end(), iteration))
   {
@@ -232,6 +234,20 @@ const char* vtkGaussianTrainingLogReader::GetEmbeddedImageName(int i)
   const auto& v = this->Internals->ImageNames;
   return i >= 0 && i < static_cast<int>(v.size()) ? v[static_cast<std::size_t>(i)].c_str()
                                                   : nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTrainingLogReader::CloseFile()
+{
+  this->Internals->Log.reset();
+}
+
+void vtkGaussianTrainingLogReader::ReopenClosedFile()
+{
+  if (!this->Internals->Log && !this->Internals->OpenedName.empty())
+  {
+    this->OpenLog();
+  }
 }
 
 //------------------------------------------------------------------------------
