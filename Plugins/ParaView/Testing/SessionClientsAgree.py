@@ -48,6 +48,12 @@ def arrays_of(polydata):
 shutil.rmtree(output, ignore_errors=True)
 os.makedirs(output)
 
+# Independent: the ids of the log's last snapshot (read first: h5py cannot open a file that this
+# process's session holds open with other locking flags).
+with h5py.File(log, "r") as h5:
+    last = sorted(h5["snapshots"].keys())[-1]
+    ids = h5["snapshots"][last]["id"][()]
+
 # 1. The application's document: what the window gives its views.
 run(program, "view", log, "--dump-inputs=" + os.path.join(output, "app"), "--threads=2")
 reader = vtkXMLPolyDataReader()
@@ -88,11 +94,6 @@ npz = os.path.join(output, "pvbatch.npz")
 run("/usr/bin/pvbatch", script, plugin, log, npz, env=env)
 with np.load(npz) as saved:
     clients["pvbatch"] = {name: saved[name] for name in ["GaussianId"] + SCORES if name in saved}
-
-# Independent: the ids of the log's last snapshot.
-with h5py.File(log, "r") as h5:
-    last = sorted(h5["snapshots"].keys())[-1]
-    ids = h5["snapshots"][last]["id"][()]
 
 for who, arrays in clients.items():
     missing = [n for n in ["GaussianId"] + SCORES if n not in arrays]
