@@ -8,7 +8,7 @@
   See LICENSE for details.
 
 =========================================================================*/
-// Over 1,000 lines on purpose: one mapper with two drawing paths (OpenGL splats, the CPU
+// Over 1,200 lines on purpose: one mapper with two drawing paths (OpenGL splats, the CPU
 // rasteriser) that share the input's conversion, the display options (scores, hiding,
 // selection), the camera and the render window's interactive/still state; what each path
 // computes lives in Core (SplatSortWorker, SplatAttributes, the rasteriser, the level of detail)

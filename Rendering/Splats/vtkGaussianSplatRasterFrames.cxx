@@ -44,6 +44,7 @@ vtkGaussianSplatRasterFrames::vtkGaussianSplatRasterFrames()
 //------------------------------------------------------------------------------
 vtkGaussianSplatRasterFrames::~vtkGaussianSplatRasterFrames()
 {
+  this->Cancel(); // (the frame in production is finished: the rasteriser cannot be stopped)
   this->SetAsynchronous(false);
   this->ImageTexture->Delete();
   this->DepthTexture->Delete();
@@ -121,9 +122,23 @@ void vtkGaussianSplatRasterFrames::Submit(Request request)
   }
   // Synchronous: this thread is the producing one and nothing else touches Back or Ready.
   this->Produce(request, this->Back);
-  std::lock_guard<std::mutex> lock(this->Mutex);
-  std::swap(this->Back, this->Ready);
-  this->HasReady = true;
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    std::swap(this->Back, this->Ready);
+    this->HasReady = true;
+  }
+  this->PrepareWantedLevelOfDetail();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatRasterFrames::PrepareWantedLevelOfDetail()
+{
+  if (this->LodWanted && this->LodSource != this->LodWantedVersion)
+  {
+    vis4gs::PrepareSplatLevelOfDetail(*this->LodWanted, this->Lod, this->LodWantedThreads);
+    this->LodSource = this->LodWantedVersion;
+  }
+  this->LodWanted.reset();
 }
 
 //------------------------------------------------------------------------------
@@ -155,6 +170,13 @@ void vtkGaussianSplatRasterFrames::Run()
       }
     }
     lock.lock();
+    if (!this->Pending && this->LodWanted)
+    {
+      // (Working stays false: this is no frame; a request arriving meanwhile waits for it.)
+      lock.unlock();
+      this->PrepareWantedLevelOfDetail();
+      lock.lock();
+    }
   }
 }
 
@@ -217,6 +239,7 @@ const vis4gs::RasterWorkspace<float>* vtkGaussianSplatRasterFrames::LastFullFram
 void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
 {
   const auto t0 = std::chrono::steady_clock::now();
+  this->LodWanted.reset();
   f.Key = r.Key;
   f.CloudVersion = r.CloudVersion;
   f.Reduced = r.Reduced;
@@ -242,14 +265,6 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
     this->LodWork = vis4gs::RasterWorkspace<float>();
     this->LodSource = 0;
   }
-  auto prepareLevelOfDetail = [&]
-  {
-    if (this->LodSource != r.CloudVersion)
-    {
-      vis4gs::PrepareSplatLevelOfDetail(cloud, this->Lod, threads);
-      this->LodSource = r.CloudVersion;
-    }
-  };
   bool unmodified = !r.Reduced && r.FullResolution && r.Settings.ScaleModifier == 1.0;
   try
   {
@@ -257,7 +272,11 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
     vis4gs::RasterWorkspace<float>& work = r.Reduced ? this->LodWork : this->Work;
     if (r.Reduced)
     {
-      prepareLevelOfDetail();
+      if (this->LodSource != r.CloudVersion)
+      {
+        vis4gs::PrepareSplatLevelOfDetail(cloud, this->Lod, threads);
+        this->LodSource = r.CloudVersion;
+      }
       vis4gs::SelectSplatsForView(cloud, this->Lod, camera, r.Budget, this->LodSubset, threads);
       vis4gs::ProjectGaussianSubset(cloud,
         this->LodSubset,
@@ -341,11 +360,13 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
       this->FrameInput = r.Input;
       this->FrameInputTime = r.InputTime;
     }
-    if (!r.Reduced && r.Budget > 0 && r.Budget < n)
-    {
-      // Ready for the first moving frame (once per scene, after its first picture).
-      prepareLevelOfDetail();
-    }
+    // The level of detail for the first moving frame is made once per scene after its first
+    // picture is handed over (PrepareWantedLevelOfDetail).
+    const bool wanted =
+      !r.Reduced && r.Budget > 0 && r.Budget < n && this->LodSource != r.CloudVersion;
+    this->LodWanted = wanted ? r.Cloud : nullptr;
+    this->LodWantedVersion = wanted ? r.CloudVersion : 0;
+    this->LodWantedThreads = threads;
   }
   catch (const std::exception& e)
   {

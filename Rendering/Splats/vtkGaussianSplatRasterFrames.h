@@ -159,6 +159,7 @@ public:
 private:
   void Produce(const Request& request, Frame& frame);
   void Run();
+  void PrepareWantedLevelOfDetail();
 
   // Producing thread's state: the rasteriser's buffers and the level of detail.
   vis4gs::RasterWorkspace<float> Work;
@@ -166,6 +167,9 @@ private:
   vis4gs::RasterImage<float> Image;
   vis4gs::SplatLevelOfDetail Lod;
   std::uint64_t LodSource = 0;
+  std::shared_ptr<const vis4gs::GaussianCloud> LodWanted; // after the frame is handed over
+  std::uint64_t LodWantedVersion = 0;
+  int LodWantedThreads = 0;
   std::vector<std::uint32_t> LodSubset;
   std::vector<double> LodScores;
   std::vector<std::uint8_t> LodSelected;

@@ -289,6 +289,103 @@ def test_a_read_only_folder_stops_the_logging_not_the_training(tmp_path):
     assert list(folder.iterdir()) == []
 
 
+@pytest.mark.parametrize("swmr", [True, False])
+def test_every_write_stays_inside_its_reservation(tmp_path, monkeypatch, swmr):
+    """The writer reserves a write's file space before HDF5 writes (a full disk must never
+    reach HDF5, see TrainingLogWriter): after every write (a flush, a snapshot, the cameras,
+    an image, the close) the file's size and HDF5's end of allocation are within the
+    reservation, for compressed and uncompressed tables and snapshots, packed snapshots
+    crossing chunk boundaries and growing models."""
+    import contextlib
+
+    from vis4gs_logger import writer as writer_module
+
+    seen = []
+    original = writer_module.TrainingLogWriter._writing
+
+    @contextlib.contextmanager
+    def checked(self, nbytes):
+        with original(self, nbytes):
+            yield
+        end = max(os.path.getsize(self.write_path), int(self._file.id.get_filesize()))
+        seen.append(end)
+        assert end <= self.reserved_end, (end, self.reserved_end)
+
+    monkeypatch.setattr(writer_module.TrainingLogWriter, "_writing", checked)
+    for deflate, snapshot_deflate, n, chunk_rows, float16 in ((1, 0, 1500, 1024, False),
+                                                               (0, 6, 400, 256, True)):
+        path = tmp_path / f"run-{deflate}.h5"
+        params, optimizers, state = test_gsplat.make_splats(n, 6)
+        logger = TrainingLogger(str(path), snapshot_interval=4, iterations=30, swmr=swmr,
+                                deflate=deflate, snapshot_deflate=snapshot_deflate,
+                                chunk_rows=chunk_rows, snapshot_sh_float16=float16)
+        v = 12
+        logger.log_cameras([f"view{i}" for i in range(v)], [64] * v, [48] * v, [50.0] * v,
+                           [50.0] * v, [32.0] * v, [24.0] * v, np.tile(np.eye(4), (v, 1, 1)))
+        logger.writer.write_image("view0", np.random.default_rng(0).integers(0, 255, (70, 64, 3),
+                                                                             dtype=np.uint8))
+        track_gsplat(params, logger, modules=[mock_gsplat_ops])
+        for step in range(1, 31):
+            logger.log_metrics(step, loss=1.0 / step)
+            mask = torch.rand(len(params["means"]), generator=torch.Generator().manual_seed(step))
+            mock_gsplat_ops.duplicate(params, optimizers, state, mask < 0.05)
+            logger.step(step)
+            if step == 17:  # structure added in SWMR mode (the file is reopened)
+                logger.writer.write_image("late", np.zeros((10, 8, 3), np.uint8))
+        logger.close()
+        assert logger.failure is None and path.exists()
+        assert snapshot_iterations(open_log(str(path))) == [0, 4, 8, 12, 16, 20, 24, 28, 30]
+    assert len(seen) > 40
+
+
+def test_a_failed_reservation_at_any_write_leaves_the_training_running(tmp_path):
+    """The disk fills before the k-th write (its reservation fails with ENOSPC), in a
+    training process of its own: one warning naming the log and the problem, the training
+    runs to its end and the process exits with status 0 (HDF5 crashed it at exit when it met
+    the full disk itself), and no temporary is left. (CheckFullDisk.py logger runs this on a
+    real full file system.)"""
+    import subprocess
+    import sys
+
+    here = os.path.dirname(os.path.abspath(__file__))
+    script = (
+        "import errno, os, sys, warnings\n"
+        "sys.path[:0] = [sys.argv[3], os.path.dirname(sys.argv[3])]\n"
+        "import torch, mock_gsplat_ops, test_gsplat\n"
+        "from vis4gs_logger import TrainingLogger, track_gsplat, writer\n"
+        "calls, real = [0], writer._reserve_blocks\n"
+        "def reserve(fd, offset, length):\n"
+        "    calls[0] += 1\n"
+        "    if calls[0] >= int(sys.argv[2]):\n"
+        "        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))\n"
+        "    real(fd, offset, length)\n"
+        "writer._reserve_blocks = reserve\n"
+        "warnings.simplefilter('always')\n"
+        "params, optimizers, state = test_gsplat.make_splats(300, 7)\n"
+        "logger = TrainingLogger(sys.argv[1], snapshot_interval=5, iterations=23, swmr=sys.argv[4] == '1')\n"
+        "track_gsplat(params, logger, modules=[mock_gsplat_ops])\n"
+        "for step in range(1, 24):\n"
+        "    logger.log_metrics(step, loss=1.0 / step)\n"
+        "    mock_gsplat_ops.duplicate(params, optimizers, state, torch.rand(len(params['means'])) < 0.1)\n"
+        "    logger.step(step)\n"
+        "logger.close()\n"
+        "print('ended at', step, 'reservations', calls[0])\n")
+    # the k-th reservation: at the creation, the first snapshot, later flushes and snapshots
+    for swmr, k in ((1, 1), (1, 3), (1, 9), (0, 2), (0, 5)):
+        folder = tmp_path / f"{swmr}-{k}"
+        folder.mkdir()
+        log = folder / "run.h5"
+        p = subprocess.run([sys.executable, "-c", script, str(log), str(k), here, str(swmr)],
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           timeout=300)
+        what = f"swmr={swmr}, the disk full from reservation {k}: {p.stdout[-2000:]}"
+        assert p.returncode == 0, what
+        assert "ended at 23" in p.stdout, what
+        assert p.stdout.count("No space left on device; logging stops") == 1, what
+        assert str(log) in p.stdout and "HDF5-DIAG" not in p.stdout, what
+        assert list(folder.iterdir()) == [], what
+
+
 def test_snapshot_options_sh_degree_float16_and_compression(tmp_path):
     """SH degree kept, float16 colours and a compression level: the stored values are the
     trainer's (the first (d+1)^2 coefficients; float16 within half a unit in the last place),

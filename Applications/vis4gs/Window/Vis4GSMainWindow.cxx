@@ -5,6 +5,7 @@
 #include "Vis4GSCompareWindow.h"
 #include "Vis4GSControlPanel.h"
 #include "Vis4GSDocument.h"
+#include "Vis4GSSceneFrames.h"
 #include "Vis4GSSelectionExport.h"
 #include "Vis4GSSelectionTable.h"
 
@@ -15,7 +16,6 @@
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
-#include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineView.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
@@ -63,7 +63,6 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -78,13 +77,11 @@ struct Vis4GSMainWindow::Internals
   QVTKOpenGLNativeWidget* SceneWidget = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> SceneWindow;
   vtkNew<vtkGaussianSceneView> Scene;
+  std::unique_ptr<Vis4GSSceneFrames> SceneFrames; // (after Scene: destroyed before it)
   vtkNew<vtkCallbackCommand> PickCommand;
-  // A render of the scene view is posted (its mapper finished a frame on its worker).
-  std::atomic<bool> SceneRenderPosted{ false };
   // Scores (worker thread).
   QThread* ScoreWorker = nullptr;
-  bool ScoresPending = false;
-  bool ScoresDone = false;
+  bool ScoresPending = false, ScoresDone = false;
   vtkSmartPointer<vtkTable> ScoreCameras;
   std::unique_ptr<QTemporaryDir> ImageDir;
   // B, D, histogram.
@@ -103,8 +100,7 @@ struct Vis4GSMainWindow::Internals
   Vis4GSControlPanel* Panel = nullptr;
   QComboBox* HistogramArray = nullptr; // (in the histogram dock)
   QProgressBar* Progress = nullptr;
-  std::string SceneCameras;
-  std::string SceneImages;
+  std::string SceneCameras, SceneImages;
   int SceneIteration = -1;
   QDockWidget* Docks[5] = { nullptr, nullptr, nullptr, nullptr, nullptr };
   // Guided clean-up (issue 20): opened from the Selection menu, tabbed with panel C.
@@ -143,8 +139,6 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
   {
     d->ScoreWorker->wait();
   }
-  // (Waits for a call in progress: none posts a render to this window afterwards.)
-  d->Scene->GetSplatMapper()->SetFrameReadyCallback(nullptr);
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
@@ -250,26 +244,7 @@ void Vis4GSMainWindow::BuildUi()
   d->Scene->SetRenderWindow(d->SceneWindow);
   d->Scene->SetInteractor(d->SceneWindow->GetInteractor());
   d->Scene->SetSelectionHub(d->Hub);
-  // The scene view's CPU frames are made on its mapper's worker thread, so that neither
-  // orbiting nor a pick's highlight waits for the rasteriser on this thread (issue 30); a
-  // finished frame posts one render, which draws it.
-  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
-  splats->AsynchronousFramesOn();
-  splats->SetFrameReadyCallback(
-    [this]
-    {
-      if (!d->SceneRenderPosted.exchange(true))
-      {
-        QMetaObject::invokeMethod(
-          this,
-          [this]
-          {
-            d->SceneRenderPosted = false;
-            d->Scene->Render();
-          },
-          Qt::QueuedConnection);
-      }
-    });
+  d->SceneFrames.reset(new Vis4GSSceneFrames(this, d->Scene)); // (issue 30)
   d->PickCommand->SetClientData(this);
   d->PickCommand->SetCallback(
     [](vtkObject*, unsigned long, void* client, void*)
@@ -665,8 +640,7 @@ void Vis4GSMainWindow::SettleLayout()
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::ShowCleanup()
 {
-  // Under the scene with the timeline when there is one (room for the wide table), else with
-  // panel C.
+  // Under the scene with the timeline when there is one (room for the wide table), else panel C.
   QDockWidget* timeline = d->Docks[3];
   const bool under = timeline->isVisible();
   this->tabifyDockWidget(under ? timeline : d->Docks[2], d->CleanupDock);
@@ -1172,13 +1146,7 @@ bool Vis4GSMainWindow::SaveScreenshot(const QString& which, const QString& path)
   {
     return false; // (a hidden dock's grab would lay it out again and resize the others)
   }
-  // The scene view's current frame may still be in the making (asynchronous frames).
-  vtkGaussianSplatMapper* splats = d->Scene->GetSplatMapper();
-  if (splats->GetFramePending())
-  {
-    splats->WaitForFrame();
-    d->Scene->Render();
-  }
+  d->SceneFrames->WaitForCurrent(); // (the scene view's frame may be in the making)
   return widget->grab().save(path);
 }
 
