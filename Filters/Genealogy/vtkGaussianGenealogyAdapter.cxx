@@ -11,6 +11,7 @@
 #include "vtkGaussianGenealogyAdapter.h"
 
 #include "Vis4GSDataModel.h"
+#include "Vis4GSLineageBreaks.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -584,15 +585,7 @@ bool vtkGaussianGenealogyAdapter::BreaksFromFieldData(vtkFieldData* fd,
   {
     breaks.Iteration[i] = static_cast<std::int32_t>(iteration->GetComponent(i, 0));
   }
-  const std::pair<const char*, std::vector<std::int64_t>*> columns[] = {
-    { names::EventBreakEventRow, &breaks.EventRow },
-    { names::EventBreakTracked, &breaks.Tracked },
-    { names::EventBreakRows, &breaks.Rows },
-    { names::EventBreakKept, &breaks.Kept },
-    { names::EventBreakFirstNewId, &breaks.FirstNewId },
-    { names::EventBreakNewRoots, &breaks.NewRoots },
-  };
-  for (const auto& c : columns)
+  for (const auto& c : names::LineageBreakIdColumns(breaks))
   {
     vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(c.first)) : nullptr;
     if (!a || a->GetNumberOfTuples() != b)

@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianSession.h"
 
+#include "Vis4GSRequestedPort.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDemandDrivenPipeline.h"
@@ -37,9 +39,11 @@
 #include "vtkTree.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <fstream>
 #include <sys/stat.h>
+#include <thread>
 #include <vector>
 
 vtkStandardNewMacro(vtkGaussianSession);
@@ -97,6 +101,10 @@ struct vtkGaussianSession::vtkInternals
   vtkNew<vtkCallbackCommand> ProgressObserver;
   vtkNew<vtkCallbackCommand> Quiet;
   std::vector<std::string> Errors;
+  // The thread running RequestData: the sub-filters' errors and progress are the session's
+  // only there. A client may update a sub-filter itself in another thread (the application's
+  // genealogy beside the snapshot read); it hears that filter's events, not the session.
+  std::atomic<std::thread::id> Executing{};
   // What Connect() connected for (the kind of file is read from its content once per name).
   std::string ConnectedFile;
   std::string CameraFile; // the scene's camera file in use; empty: none
@@ -127,15 +135,23 @@ vtkGaussianSession::vtkGaussianSession()
   vtkInternals& d = *this->Internals;
   d.ErrorObserver->SetClientData(this->Internals);
   d.ErrorObserver->SetCallback(
-    [](vtkObject*, unsigned long, void* client, void* call) {
-      static_cast<vtkInternals*>(client)->Errors.push_back(MessageText(static_cast<char*>(call)));
+    [](vtkObject*, unsigned long, void* client, void* call)
+    {
+      auto* internals = static_cast<vtkInternals*>(client);
+      if (internals->Executing.load() == std::this_thread::get_id())
+      {
+        internals->Errors.push_back(MessageText(static_cast<char*>(call)));
+      }
     });
   d.ProgressObserver->SetClientData(this);
   d.ProgressObserver->SetCallback(
     [](vtkObject* caller, unsigned long, void* client, void*)
     {
-      static_cast<vtkGaussianSession*>(client)->UpdateProgress(
-        static_cast<vtkAlgorithm*>(caller)->GetProgress());
+      auto* self = static_cast<vtkGaussianSession*>(client);
+      if (self->Internals->Executing.load() == std::this_thread::get_id())
+      {
+        self->UpdateProgress(static_cast<vtkAlgorithm*>(caller)->GetProgress());
+      }
     });
   for (vtkAlgorithm* a : d.Algorithms())
   {
@@ -176,6 +192,9 @@ vtkGaussianArtifactScoreFilter* vtkGaussianSession::GetScoreFilter()
 }
 vtkGaussianGenealogyTreeFilter* vtkGaussianSession::GetGenealogyFilter()
 {
+  // Connected, so that a client can update it on its own (the application builds the tree in
+  // a second thread beside the snapshot read).
+  this->Connect();
   return this->Internals->Genealogy;
 }
 vtkGaussianRuleSelectionFilter* vtkGaussianSession::GetRuleFilter()
@@ -297,23 +316,9 @@ vtkTypeBool vtkGaussianSession::ProcessRequest(vtkInformation* request,
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
   {
-    // Only the requested output is produced; the others keep their data and stay out of date
-    // (as in vtkGaussianTrainingLogReader): showing a snapshot builds no tree.
-    const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-      ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-      : -1;
-    for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i)
-    {
-      vtkInformation* info = outInfo->GetInformationObject(i);
-      if (port >= 0 && i != port)
-      {
-        info->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-      }
-      else
-      {
-        info->Remove(vtkDemandDrivenPipeline::DATA_NOT_GENERATED());
-      }
-    }
+    // Only the requested output is produced (as in vtkGaussianTrainingLogReader): showing a
+    // snapshot builds no tree.
+    vis4gs::MarkOtherPortsNotGenerated(request, outInfo);
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
@@ -528,9 +533,8 @@ int vtkGaussianSession::RequestData(vtkInformation* request,
 {
   vtkInternals& d = *this->Internals;
   d.Errors.clear();
-  const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-    ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-    : -1;
+  d.Executing = std::this_thread::get_id();
+  const int port = vis4gs::RequestedOutputPort(request);
   bool ok = this->Connect();
   for (int p = 0; ok && p < NumberOfPorts; ++p)
   {
@@ -539,6 +543,7 @@ int vtkGaussianSession::RequestData(vtkInformation* request,
       ok = this->ProducePort(p, inInfo, outInfo);
     }
   }
+  d.Executing = std::thread::id();
   if (!ok)
   {
     std::string text;
@@ -546,7 +551,10 @@ int vtkGaussianSession::RequestData(vtkInformation* request,
     {
       text += (text.empty() ? "" : "; ") + e;
     }
-    vtkErrorMacro(<< this->FileName << ": " << (text.empty() ? "could not be read" : text));
+    // Named once: a reader's message may already start with the file.
+    const bool named = text.rfind(this->FileName, 0) == 0;
+    vtkErrorMacro(<< (named ? "" : this->FileName + ": ")
+                  << (text.empty() ? "could not be read" : text));
     return 0;
   }
   return 1;
@@ -608,7 +616,15 @@ bool vtkGaussianSession::ProducePort(int port,
       return log && d.Log->HasMetrics() ? pass(d.Log, 2) : true;
     case TreePort:
     case BandsPort:
-      return log && d.Log->HasEvents() ? pass(d.Genealogy, port == TreePort ? 0 : 1) : true;
+    {
+      const bool built =
+        log && d.Log->HasEvents() ? pass(d.Genealogy, port == TreePort ? 0 : 1) : true;
+      // The events serve the tree only: their reader lets the file go, so that the log reader
+      // holds the one handle of this process, as a log still being written needs to show its
+      // new snapshots (vtkGaussianTrainingLogReader::CloseFile).
+      d.Events->CloseFile();
+      return built;
+    }
     case HistoryPort:
     {
       vtkNew<vtkIdTypeArray> ids;

@@ -193,6 +193,10 @@ public:
   /**
    * The owned readers and filters, for their settings and their figures after an update. The
    * log reader also answers the header and snapshot queries (GetNumberOfSnapshots, ...).
+   * GetGenealogyFilter, GetFineTuneFilter and GetComparisonFilter connect the session first,
+   * so that a client may update them on their own, also in another thread than the session's
+   * (the application builds the tree beside the snapshot read): the session reports its
+   * sub-filters' errors and progress only while it executes, in its own thread.
    */
   vtkGaussianTrainingLogReader* GetLogReader();
   vtkGaussianSceneReader* GetSceneReader();

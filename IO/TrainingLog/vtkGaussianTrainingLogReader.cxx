@@ -13,6 +13,8 @@
 #include "GaussianMath.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSLineageBreaks.h"
+#include "Vis4GSRequestedPort.h"
 
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
@@ -156,10 +158,12 @@ int vtkGaussianTrainingLogReader::GetSnapshotIteration(int i)
 }
 int vtkGaussianTrainingLogReader::FindNearestSnapshot(int iteration)
 {
+  this->ReopenClosedFile();
   return this->Internals->Log ? this->Internals->Log->FindNearestSnapshot(iteration) : -1;
 }
 vtkIdType vtkGaussianTrainingLogReader::GetSnapshotSize(int iteration)
 {
+  this->ReopenClosedFile();
   const auto& its = this->Internals->Iterations;
   if (!this->Internals->Log || !std::binary_search(its.begin(), its.end(), iteration))
   {
@@ -233,6 +237,20 @@ const char* vtkGaussianTrainingLogReader::GetEmbeddedImageName(int i)
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianTrainingLogReader::CloseFile()
+{
+  this->Internals->Log.reset();
+}
+
+void vtkGaussianTrainingLogReader::ReopenClosedFile()
+{
+  if (!this->Internals->Log && !this->Internals->OpenedName.empty())
+  {
+    this->OpenLog();
+  }
+}
+
+//------------------------------------------------------------------------------
 bool vtkGaussianTrainingLogReader::OpenLog()
 {
   vtkInternals& d = *this->Internals;
@@ -289,21 +307,7 @@ vtkTypeBool vtkGaussianTrainingLogReader::ProcessRequest(vtkInformation* request
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
   {
     // Only the requested output is produced; the others keep their data and stay out of date.
-    const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-      ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-      : -1;
-    for (int i = 0; i < this->GetNumberOfOutputPorts(); ++i)
-    {
-      vtkInformation* info = outInfo->GetInformationObject(i);
-      if (port >= 0 && i != port)
-      {
-        info->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
-      }
-      else
-      {
-        info->Remove(vtkDemandDrivenPipeline::DATA_NOT_GENERATED());
-      }
-    }
+    vis4gs::MarkOtherPortsNotGenerated(request, outInfo);
     return 1;
   }
   if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
@@ -348,9 +352,7 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
   {
     return 0;
   }
-  const int port = request->Has(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-    ? request->Get(vtkDemandDrivenPipeline::FROM_OUTPUT_PORT())
-    : -1;
+  const int port = vis4gs::RequestedOutputPort(request);
   auto wanted = [port](int p) { return port < 0 || port == p; };
   try
   {
@@ -558,15 +560,7 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
       {
         output->GetFieldData()->AddArray(
           MakeColumn<vtkIntArray>(names::EventBreakIteration, breaks.Iteration));
-        const std::pair<const char*, const std::vector<std::int64_t>*> columns[] = {
-          { names::EventBreakEventRow, &breaks.EventRow },
-          { names::EventBreakTracked, &breaks.Tracked },
-          { names::EventBreakRows, &breaks.Rows },
-          { names::EventBreakKept, &breaks.Kept },
-          { names::EventBreakFirstNewId, &breaks.FirstNewId },
-          { names::EventBreakNewRoots, &breaks.NewRoots },
-        };
-        for (const auto& c : columns)
+        for (const auto& c : names::LineageBreakIdColumns(breaks))
         {
           output->GetFieldData()->AddArray(MakeColumn<vtkIdTypeArray>(c.first, *c.second));
         }

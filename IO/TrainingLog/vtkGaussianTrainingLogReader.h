@@ -107,6 +107,15 @@ public:
   /// Iteration of the snapshot in output 0 after the last update (-1 before).
   vtkGetMacro(LoadedIteration, int);
 
+  /**
+   * Lets the file go until the next update or query, which open it again; the outputs stay.
+   * HDF5 shares one open file among the handles of a process, so a reader of a log still being
+   * written sees what the writer added only when no other handle of the file stays open: a
+   * reader whose port is done (vtkGaussianSession's events reader, once the tree is built)
+   * closes it.
+   */
+  void CloseFile();
+
   ///@{
   /// Logged snapshot iterations (valid after UpdateInformation()).
   int GetNumberOfSnapshots();
@@ -178,6 +187,8 @@ protected:
   int RequestInformation(vtkInformation* request, vtkInformationVector* outInfo);
   int RequestData(vtkInformation* request, vtkInformationVector* outInfo);
   bool OpenLog();
+  /// OpenLog() after CloseFile() (a query needs the file).
+  void ReopenClosedFile();
 
   char* FileName = nullptr;
   int Iteration = -1;

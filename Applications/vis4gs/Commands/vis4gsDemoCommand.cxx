@@ -7,12 +7,20 @@
 // densification tree to its root, with the View Coverage of each ancestor at the snapshot
 // nearest its birth.
 #include "Vis4GSCommand.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSStagingFolder.h"
 
-#include "ArtifactScores.h"
 #include "GaussianIO.h"
 #include "Genealogy.h"
 #include "TrainingLogReader.h"
+#include "Vis4GSDataModel.h"
+
+#include "vtkDataArray.h"
+#include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianSession.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 
 #include <algorithm>
 #include <cmath>
@@ -82,32 +90,36 @@ int RunCommand(const std::string& name, const std::vector<std::string>& words)
   return command->Run(args);
 }
 
-// View Coverage of every Gaussian of every snapshot: coverage needs only the Gaussians and
-// the cameras (no rendering), so the whole history costs a few seconds on the demo.
-std::map<std::int32_t, std::map<std::int64_t, double>> CoverageHistory(
-  const vis4gs::TrainingLogReader& log,
-  const std::vector<vis4gs::Camera>& cameras)
+// View Coverage of every Gaussian of every snapshot through the session (the pipeline the
+// application, Python and ParaView use; its score filter asked for the coverage only): coverage
+// needs only the Gaussians and the cameras (no rendering), so the whole history costs a few
+// seconds on the demo.
+std::map<std::int32_t, std::map<std::int64_t, double>> CoverageHistory(const std::string& logPath,
+  const std::vector<int>& iterations)
 {
-  vis4gs::ScoreSettings settings;
-  settings.Request = {};
-  settings.Request.ViewCoverage = true;
-  settings.Request.Blur = false;
-  settings.Request.Needle = false;
-  settings.Request.NeedleShape = false;
-  vis4gs::SnapshotReadOptions options;
-  options.Arrays = vis4gs::SnapshotParameters;
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(logPath.c_str());
+  session->SetFullSHLimit(0); // the coverage needs no colour: the DC coefficients only
+  session->GetScoreFilter()->SetScores("coverage");
   std::map<std::int32_t, std::map<std::int64_t, double>> history;
-  const std::vector<int>& iterations = log.GetSnapshotIterations();
   for (int iteration : iterations)
   {
     std::cout << "vis4gs demo: View Coverage of the snapshot of iteration " << iteration << " ("
               << history.size() + 1 << " of " << iterations.size() << ")" << std::endl;
-    const vis4gs::GaussianCloud cloud = log.ReadSnapshot(iteration, options);
-    const vis4gs::GaussianScores scores = vis4gs::ComputeGaussianScores(cloud, cameras, settings);
-    auto& values = history[iteration];
-    for (std::size_t i = 0; i < cloud.Count; ++i)
+    session->SetIteration(iteration);
+    const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+    vtkPointData* pd = session->GetGaussiansOutput()->GetPointData();
+    vtkDataArray* ids = pd->GetArray(vis4gs::arrays::GaussianId);
+    vtkDataArray* coverage = pd->GetArray(vis4gs::arrays::ViewCoverage);
+    if (!errors.empty() || !ids || !coverage)
     {
-      values[cloud.GetId(i)] = scores.ViewCoverage[i];
+      throw std::runtime_error(
+        logPath + ": no View Coverage of iteration " + std::to_string(iteration) + ": " + errors);
+    }
+    auto& values = history[iteration];
+    for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i)
+    {
+      values[static_cast<std::int64_t>(ids->GetTuple1(i))] = coverage->GetTuple1(i);
     }
   }
   return history;
@@ -128,7 +140,7 @@ int CaseStudy(const std::string& logPath, const fs::path& output, double minOpac
   const auto trainViews = std::count_if(cameras.begin(),
     cameras.end(),
     [](const vis4gs::Camera& c) { return c.Split == vis4gs::CameraSplit::Train; });
-  const auto coverage = CoverageHistory(log, cameras);
+  const auto coverage = CoverageHistory(logPath, snapshots);
 
   // The floater: the visible Gaussian of the last snapshot that the fewest training views see.
   vis4gs::SnapshotReadOptions options;

@@ -12,9 +12,11 @@
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkFieldData.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSceneReader.h"
+#include "vtkGaussianSession.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -137,44 +139,36 @@ std::string PlainError(const std::string& collected)
 
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
 /**
- * The genealogy as a script builds it: a log reader's events port into
- * vtkGaussianGenealogyTreeFilter (initial ids and last iteration from the events table's field
- * data). Its own reader, so that it runs in a second thread beside the snapshot read; the
- * reader and its events table go when this returns (the tree and the bands stay). Returns the
- * filter's error messages (empty: success); the reader's go to @p readError too.
+ * Builds the session's genealogy (@p filter: its events reader into the genealogy filter, as
+ * a script connects them) by updating that filter itself, so that it runs in a second thread
+ * beside the session's snapshot read (the session reports only what runs in its own thread).
+ * The session's tree and bands ports then pass the filter's output on without building it
+ * again. Returns the error messages (empty: success); the events reader's go to @p readError.
  */
-std::string BuildGenealogy(const std::string& path,
+std::string BuildGenealogy(vtkGaussianGenealogyTreeFilter* filter,
   const Vis4GSDocument::Progress& progress,
-  vtkSmartPointer<vtkTree>& tree,
-  vtkSmartPointer<vtkTable>& bands,
   std::size_t& eventCount,
   std::string& readError)
 {
-  vtkNew<vtkGaussianTrainingLogReader> events;
-  events->SetFileName(path.c_str());
-  vtkNew<vtkGaussianGenealogyTreeFilter> filter;
-  filter->SetInputConnection(events->GetOutputPort(3));
-  filter->SetRepairUnknownParents(true);
-  // The same vertices, edges and arrays as a script's default vtkTree, in flat arrays: 40
-  // bytes per vertex instead of ~100 (630 MiB less at 4.89M Gaussians, see
-  // vtkGaussianCompactTree). The views read it through vtkTree's accessors.
-  filter->CompactTreeOn();
-  Vis4GSErrorCollector readErrors(events);
-  ProgressForwarder forward(filter, progress, 0.6, 0.95, "building the genealogy");
-  const std::string errors = Vis4GSUpdate(filter, 0);
-  readError = readErrors.GetMessages();
+  auto* events = vtkGaussianTrainingLogReader::SafeDownCast(filter->GetInputAlgorithm(0, 0));
+  if (!events)
+  {
+    return "the session's genealogy filter has no events reader";
+  }
+  readError = Vis4GSUpdate(events, 3);
   if (!readError.empty())
   {
     return readError;
   }
-  if (!errors.empty())
-  {
-    return errors;
-  }
   eventCount = static_cast<std::size_t>(events->GetEventsOutput()->GetNumberOfRows());
-  tree = vtkTree::SafeDownCast(filter->GetOutputDataObject(0));
-  bands = filter->GetFamilyBands();
-  return std::string();
+  // The window keeps the tree only: the events table (hundreds of MB at millions of Gaussians)
+  // is released once the filter has built it, as the reader of its own did before.
+  if (auto* exec = vtkDemandDrivenPipeline::SafeDownCast(events->GetExecutive()))
+  {
+    exec->SetReleaseDataFlag(3, 1);
+  }
+  ProgressForwarder forward(filter, progress, 0.6, 0.95, "building the genealogy");
+  return Vis4GSUpdate(filter, 0);
 }
 #endif
 }
@@ -195,7 +189,14 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       progress(f, m);
     }
   };
-  const bool isLog = Vis4GSIsLogPath(path);
+  // A log by its name (so that a damaged .h5 gets the log reader's message) or its content.
+  const bool isLog = Vis4GSIsLogPath(path) || vtkGaussianSession::IsTrainingLogFile(path.c_str());
+  // The pipeline (DESIGN §8): the views' inputs are its ports. The scores run on a filter of
+  // their own in the background (ComputeScores), on the Gaussians shown.
+  doc->Session = vtkSmartPointer<vtkGaussianSession>::New();
+  vtkGaussianSession* session = doc->Session;
+  session->SetFileName(path.c_str());
+  session->ComputeScoresOff();
   std::ostringstream text;
   auto lap = start;
   double lapCpu = ProcessCpuNow();
@@ -222,33 +223,47 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       what << " (" << static_cast<double>(bytes) / 1e6 << " MB)";
     }
     report(-1.0, what.str()); // the scene parsers report no fraction
-    vtkNew<vtkGaussianSceneReader> reader;
-    reader->SetFileName(path.c_str());
-    const std::string errors = Vis4GSUpdate(reader, 0);
+    // The session's scene reader and camera reader (cameras.json beside the file or two
+    // folders up, else @p cameraPath), as a script or ParaView reads them.
+    session->SetCamerasFileName(cameraPath.c_str());
+    const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
     if (!errors.empty())
     {
       throw std::runtime_error(errors);
     }
-    doc->Scene = reader->GetOutput();
+    doc->Scene = Detach(session->GetGaussiansOutput());
     text << path << ": " << doc->Scene->GetNumberOfPoints()
          << " Gaussians (a scene file: no training history)\n";
     stage("scene file");
     report(0.8, "reading the cameras");
-    std::vector<vis4gs::Camera> cameras = Vis4GSFindSceneCameras(path, cameraPath);
+    const std::string cameraErrors = Vis4GSUpdate(session, vtkGaussianSession::CamerasPort);
+    if (!cameraErrors.empty())
+    {
+      throw std::runtime_error(cameraErrors);
+    }
+    vtkSmartPointer<vtkTable> cameras = Detach(session->GetCamerasOutput());
+    const vtkIdType count = cameras->GetNumberOfRows();
     if (!imageFolder.empty())
     {
-      if (cameras.empty())
+      if (count == 0)
       {
         throw std::runtime_error(path + ": --images needs cameras (none found; give --cameras)");
       }
       // In the camera table's Image column, where every filter finds them.
-      Vis4GSAttachImagesByName(cameras, imageFolder);
+      std::vector<vis4gs::Camera> views;
+      std::string error;
+      if (!vis4gs::TableToCameras(cameras, views, &error))
+      {
+        throw std::runtime_error(path + ": the cameras: " + error);
+      }
+      Vis4GSAttachImagesByName(views, imageFolder);
+      cameras = vtkSmartPointer<vtkTable>::New();
+      vis4gs::CamerasToTable(views, cameras);
     }
-    if (!cameras.empty())
+    if (count > 0)
     {
-      doc->Cameras = vtkSmartPointer<vtkTable>::New();
-      vis4gs::CamerasToTable(cameras, doc->Cameras);
-      text << "cameras: " << cameras.size() << "\n";
+      doc->Cameras = cameras;
+      text << "cameras: " << count << "\n";
       stage("cameras");
     }
   }
@@ -256,9 +271,11 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
   {
     doc->IsLog = true;
     report(0.05, "opening the training log");
-    doc->Reader = vtkSmartPointer<vtkGaussianTrainingLogReader>::New();
+    // The session's log reader: the header, the snapshot list and the queries of panel C.
+    doc->Reader = session->GetLogReader();
     vtkGaussianTrainingLogReader* log = doc->Reader;
     log->SetFileName(path.c_str());
+    session->SetFullSHLimit(static_cast<vtkIdType>(FullShLimit));
     {
       Vis4GSErrorCollector errors(log);
       log->UpdateInformation(); // opens the log: header, snapshot list, what it holds
@@ -282,42 +299,48 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
     if (log->HasMetrics())
     {
       report(0.1, "reading the metrics");
-      const std::string errors = Vis4GSUpdate(doc->Reader, 2);
+      const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::MetricsPort);
       if (!errors.empty())
       {
         throw std::runtime_error(errors);
       }
-      doc->Metrics = Detach(doc->Reader->GetMetricsOutput());
+      doc->Metrics = Detach(session->GetMetricsOutput());
       text << "metrics rows: " << doc->Metrics->GetNumberOfRows() << "\n";
     }
     if (log->HasCameras())
     {
-      const std::string errors = Vis4GSUpdate(doc->Reader, 1);
+      const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::CamerasPort);
       if (!errors.empty())
       {
         throw std::runtime_error(errors);
       }
-      doc->Cameras = Detach(doc->Reader->GetCamerasOutput());
+      doc->Cameras = Detach(session->GetCamerasOutput());
       text << "cameras: " << doc->Cameras->GetNumberOfRows() << "\n";
     }
     stage("header, metrics, cameras");
-    // The genealogy (its own log reader's events port into the genealogy filter) is built in
-    // a second thread while this one reads the last snapshot, so the two largest steps
-    // overlap on two cores. The HDF5 library is built thread-safe (it serialises its own
-    // calls; the chunk decoding of the Core reader runs outside it).
+    // The genealogy (the session's events reader into its genealogy filter) is built in a
+    // second thread while this one reads the last snapshot through the session, so the two
+    // largest steps overlap on two cores. The HDF5 library is built thread-safe (it serialises
+    // its own calls; the chunk decoding of the Core reader runs outside it).
     std::thread genealogyThread;
     std::string genealogyError, readError, genealogyTimes;
     std::size_t eventCount = 0;
     if (log->HasEvents())
     {
 #ifdef VIS4GS_HAVE_GENEALOGY_FILTER
-      Vis4GSDocument* target = doc.get();
+      // Set up in this thread (GetGenealogyFilter connects the session): the second one only
+      // updates the filter and its events reader.
+      vtkGaussianGenealogyTreeFilter* genealogy = session->GetGenealogyFilter();
+      genealogy->SetRepairUnknownParents(true);
+      // The same vertices, edges and arrays as a script's default vtkTree, in flat arrays: 40
+      // bytes per vertex instead of ~100 (630 MiB less at 4.89M Gaussians, see
+      // vtkGaussianCompactTree). The views read it through vtkTree's accessors.
+      genealogy->CompactTreeOn();
       genealogyThread = std::thread(
-        [target, &progress, &genealogyError, &readError, &genealogyTimes, &eventCount]
+        [genealogy, &progress, &genealogyError, &readError, &genealogyTimes, &eventCount]
         {
           const double w0 = WallNow(), c0 = ThreadCpuNow();
-          genealogyError = BuildGenealogy(
-            target->Path, progress, target->Tree, target->Bands, eventCount, readError);
+          genealogyError = BuildGenealogy(genealogy, progress, eventCount, readError);
           std::ostringstream t;
           t.precision(3);
           t << " second thread: events and genealogy filter " << WallNow() - w0 << " s ("
@@ -354,6 +377,19 @@ std::shared_ptr<Vis4GSDocument> Vis4GSDocument::Load(const std::string& path,
       if (readError.empty())
       {
         text << "events: " << eventCount << "\n";
+      }
+      if (genealogyError.empty())
+      {
+        // The session's ports pass the tree built above on (nothing is built again).
+        genealogyError = Vis4GSUpdate(session, vtkGaussianSession::TreePort);
+        doc->Tree =
+          vtkTree::SafeDownCast(session->GetOutputDataObject(vtkGaussianSession::TreePort));
+        if (genealogyError.empty())
+        {
+          genealogyError = Vis4GSUpdate(session, vtkGaussianSession::BandsPort);
+          doc->Bands =
+            vtkTable::SafeDownCast(session->GetOutputDataObject(vtkGaussianSession::BandsPort));
+        }
       }
       if (!genealogyError.empty())
       {
@@ -418,22 +454,20 @@ void Vis4GSDocument::LoadLatestReadableSnapshot()
 //------------------------------------------------------------------------------
 int Vis4GSDocument::LoadIteration(int iteration)
 {
-  if (!this->Reader || this->Snapshots.empty())
+  if (!this->Session || !this->Reader || this->Snapshots.empty())
   {
     return this->Iteration;
   }
-  this->Reader->UpdateInformation(); // the snapshot list, for the sizes below
-  const int nearest = this->Reader->FindNearestSnapshot(iteration);
-  this->Reader->SetIteration(nearest);
-  this->Reader->SetLoadSHRest(
-    static_cast<std::size_t>(this->Reader->GetSnapshotSize(nearest)) <= FullShLimit);
-  const std::string errors = Vis4GSUpdate(this->Reader, 0);
+  this->Reader->UpdateInformation(); // the snapshot list
+  // The session reads the snapshot nearest this (every SH degree up to FullShLimit Gaussians).
+  this->Session->SetIteration(this->Reader->FindNearestSnapshot(iteration));
+  const std::string errors = Vis4GSUpdate(this->Session, vtkGaussianSession::GaussiansPort);
   if (!errors.empty())
   {
     throw std::runtime_error(errors);
   }
-  this->Scene = Detach(this->Reader->GetGaussiansOutput());
-  this->Iteration = this->Reader->GetLoadedIteration();
+  this->Scene = Detach(this->Session->GetGaussiansOutput());
+  this->Iteration = this->Session->GetLoadedIteration();
   return this->Iteration;
 }
 
@@ -441,7 +475,7 @@ int Vis4GSDocument::LoadIteration(int iteration)
 vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t>& ids) const
 {
   auto table = vtkSmartPointer<vtkTable>::New();
-  if (!this->Reader || ids.empty())
+  if (!this->Session || !this->Reader || ids.empty())
   {
     return table;
   }
@@ -451,11 +485,14 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t
   {
     wanted->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(ids[i]));
   }
-  Vis4GSErrorCollector errors(this->Reader);
-  if (!this->Reader->GetPropertyHistory(wanted, table))
+  // The session's history port for this selection: it reads no snapshot of the scene again.
+  this->Session->SetSelectedIds(wanted);
+  const std::string errors = Vis4GSUpdate(this->Session, vtkGaussianSession::HistoryPort);
+  if (!errors.empty())
   {
-    throw std::runtime_error(errors.GetMessages());
+    throw std::runtime_error(errors);
   }
+  table->ShallowCopy(this->Session->GetHistoryOutput());
   return table;
 }
 

@@ -2,12 +2,13 @@
 /**
  * @file Vis4GSDocument.h
  * @brief What `vis4gs view` opens: a training log (.h5) or a Gaussian scene, read through the
- * same VTK pipeline a Python script or a ParaView state builds (vtkGaussianTrainingLogReader
- * or vtkGaussianSceneReader, vtkGaussianGenealogyTreeFilter on the reader's events port,
- * vtkGaussianArtifactScoreFilter on its Gaussians and cameras ports), so that the views get
- * the arrays a script computes (Documentation/dev/ARCHITECTURE.md, "The application's data
- * flow"). No Qt here: the main window runs Load() in a worker thread (the filters' progress
- * events feed its progress callback) and hands the result to the views in the GUI thread.
+ * vtkGaussianSession a Python script (`vis4gs.open`) or a ParaView state ("Vis4GS Session")
+ * uses: its Gaussians, cameras, metrics, tree, bands and property-history ports are the views'
+ * inputs, so that the views get the arrays a script computes
+ * (Documentation/dev/ARCHITECTURE.md, "The application's data flow"). The scores run in the
+ * background on a vtkGaussianArtifactScoreFilter of their own (ComputeScores). No Qt here:
+ * the main window runs Load() in a worker thread (the filters' progress events feed its
+ * progress callback) and hands the result to the views in the GUI thread.
  */
 #ifndef Vis4GSDocument_h
 #define Vis4GSDocument_h
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+class vtkGaussianSession;
 class vtkGaussianTrainingLogReader;
 class vtkPolyData;
 class vtkTable;
@@ -46,8 +48,10 @@ struct Vis4GSDocument
   vtkSmartPointer<vtkTable> TestMetrics;
   vtkSmartPointer<vtkTree> Tree;   ///< genealogy filter output (null when the log has no events)
   vtkSmartPointer<vtkTable> Bands; ///< the genealogy filter's family bands
-  /// The reader whose Gaussians port gives Scene (snapshots of a log); also the header, the
-  /// snapshot list and sizes and the property history (the text of panel C, History()).
+  /// The pipeline: Scene, Cameras, Metrics, Tree, Bands and History() are its ports' data.
+  vtkSmartPointer<vtkGaussianSession> Session;
+  /// The session's log reader (null for a scene file): the header, the snapshot list and sizes
+  /// (the text of panel C, the iteration slider).
   vtkSmartPointer<vtkGaussianTrainingLogReader> Reader;
   std::vector<int> Snapshots;
   int Iteration = -1;  ///< iteration of Scene (-1 for a PLY)
@@ -85,8 +89,8 @@ struct Vis4GSDocument
   void LoadLatestReadableSnapshot();
 
   /**
-   * Property history of @p ids across the snapshots, the long table
-   * vtkGaussianTrainingLogReader::GetPropertyHistory gives a script and the timeline draws
+   * Property history of @p ids across the snapshots: the session's history port for that
+   * selection, the long table a script gets and the timeline draws
    * (GaussianId, Iteration, Position, LogScale, Rotation, OpacityLogit, SHDC, Opacity, Scale).
    * Empty table without a log or ids; throws std::runtime_error with the reader's errors.
    */

@@ -5,7 +5,8 @@
 // the removal effect of that selection), only the requested port is computed (showing the
 // snapshot builds no tree, a new selection re-reads no snapshot), the file kind comes from
 // the content (a log renamed .ply is still a log), and a missing file or a bad rule is an error
-// naming the file.
+// naming the file; the genealogy filter updated by a client in a second thread while the
+// session reads a snapshot (the application's load) gives the tree port its tree.
 #include "vtkGaussianSession.h"
 
 #include "Vis4GSTestCheck.h"
@@ -34,6 +35,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <unistd.h>
 
 namespace
@@ -178,6 +180,29 @@ int TestGaussianSession(int, char*[])
             ->GetRowData(),
           "bands"),
     "the bands port is the genealogy filter's family bands");
+
+  // The application's pattern: a client updates the genealogy filter in a second thread while
+  // the session reads the snapshot in this one (its sub-filters' events count only in its own
+  // thread); the tree port then passes that tree on without building it again.
+  {
+    vtkNew<vtkGaussianSession> overlapped;
+    overlapped->SetFileName(log.c_str());
+    overlapped->ComputeScoresOff();
+    vtkGaussianGenealogyTreeFilter* filter = overlapped->GetGenealogyFilter();
+    vtkTypeBool built = 0;
+    std::thread second([filter, &built] { built = filter->Update(0, nullptr); });
+    const vtkTypeBool read = overlapped->Update(vtkGaussianSession::GaussiansPort, nullptr);
+    second.join();
+    Check(read && built && overlapped->GetGaussiansOutput()->GetNumberOfPoints() > 0,
+      "the snapshot and the tree are read in two threads at once");
+    const vtkMTimeType builtAt = filter->GetOutput()->GetMTime();
+    Check(overlapped->Update(vtkGaussianSession::TreePort, nullptr) != 0, "the tree port");
+    vtkTree* passed =
+      vtkTree::SafeDownCast(overlapped->GetOutputDataObject(vtkGaussianSession::TreePort));
+    Check(passed && filter->GetOutput()->GetMTime() == builtAt &&
+        passed->GetNumberOfVertices() == genealogy->GetOutput()->GetNumberOfVertices(),
+      "the tree port passes the tree built in the second thread on, not built again");
+  }
 
   // The selection as the hub publishes it: pedigree ids named GaussianId.
   vtkDataArray* idColumn = gaussians->GetPointData()->GetArray("GaussianId");
