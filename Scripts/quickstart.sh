@@ -6,8 +6,8 @@
 # Environment: VIS4GS_BUILD_DIR (default: build), VIS4GS_JOBS (default: nproc),
 # VIS4GS_FUZZ_SECONDS (per fuzz target in the test command, default: 15), VIS4GS_PARAVIEW
 # (default 1: the test command also builds and tests the ParaView plugin in <build>-paraview;
-# 0 leaves it out), VIS4GS_SANITIZERS (default 0 for now; 1: the test command also runs the
-# sanitizers' bounded part in <build>-asan-core, TESTING.md says why it is not yet the default).
+# 0 leaves it out), VIS4GS_SANITIZERS (default 1: the test command also runs the sanitizers'
+# bounded part in <build>-asan-core; 0 leaves it out).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -41,7 +41,7 @@ bash "$here/Scripts/run-fuzzers.sh" "${VIS4GS_FUZZ_SECONDS:-15}" "$build-fuzz"
 
 # The sanitizers' bounded part: Core and its tests under ASan + UBSan (GCC, own build dir, about
 # 16 minutes on 2 idle cores from scratch, TESTING.md); any report fails the test command.
-if [ "${VIS4GS_SANITIZERS:-0}" != 0 ]; then
+if [ "${VIS4GS_SANITIZERS:-1}" != 0 ]; then
   bash "$here/Scripts/run-sanitizers.sh" core "$build-asan-core"
 fi
 
