@@ -32,13 +32,7 @@ import torch  # noqa: E402
 from mock_3dgs import GaussianModel, build_rotation  # noqa: E402
 from vis4gs_logger import TrainingLogger, track_3dgs  # noqa: E402
 from vis4gs_logger.logger import DEFAULT_SNAPSHOT_INTERVAL  # noqa: E402
-
-
-def arg(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith("--" + name + "="):
-            return type(default)(a.split("=", 1)[1])
-    return default
+from bench_common import arg  # noqa: E402
 
 
 def train(n, iterations, logger_path=None):

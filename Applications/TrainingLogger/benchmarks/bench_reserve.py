@@ -26,13 +26,7 @@ import numpy as np  # noqa: E402
 
 from vis4gs_logger import writer as writer_module  # noqa: E402
 from vis4gs_logger.writer import TrainingLogWriter  # noqa: E402
-
-
-def arg(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith("--" + name + "="):
-            return type(default)(a.split("=", 1)[1])
-    return default
+from bench_common import arg  # noqa: E402
 
 
 def write_log(path, swmr, n, snapshots, steps, reserve):

@@ -29,13 +29,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 import numpy as np  # noqa: E402
 
 from vis4gs_logger import TrainingLogWriter  # noqa: E402
-
-
-def arg(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith("--" + name + "="):
-            return type(default)(a.split("=", 1)[1])
-    return default
+from bench_common import arg  # noqa: E402
 
 
 OPTIONS = [
