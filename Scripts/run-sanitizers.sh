@@ -54,9 +54,11 @@ case "$part" in
   core)
     build="${2:-$root/build-asan-core}"
     configure "$build" "$asan" -DVIS4GS_CORE_ONLY=ON
-    # Only the GoogleTest programs: the benchmarks and reference tools are not run here.
+    # The GoogleTest programs, and the converter the decoders' reference tests (label Core)
+    # drive: the benchmarks are not run here, so they are not built.
     mapfile -t targets < <(ninja -C "$build" -t targets all |
       sed -n 's/^\(vis4gsCore[A-Za-z]*Tests\): phony$/\1/p')
+    targets+=(vis4gsSceneConvert)
     cmake --build "$build" -j "$jobs" --target "${targets[@]}"
     ctest --test-dir "$build" --output-on-failure --timeout 1800 -j "$jobs" -L '^Core$'
     ;;
