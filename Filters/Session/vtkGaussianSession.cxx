@@ -37,6 +37,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTable.h"
 #include "vtkTree.h"
+#include "vtkTrivialProducer.h"
 
 #include <algorithm>
 #include <atomic>
@@ -96,6 +97,10 @@ struct vtkGaussianSession::vtkInternals
   vtkNew<vtkGaussianRemovalEffectFilter> Removal;
   vtkNew<vtkGaussianFineTuneFilter> FineTune;
   vtkNew<vtkGaussianStateComparisonFilter> Comparison;
+  vtkNew<vtkTrivialProducer> Given; // SetGaussiansData's Gaussians
+  vtkSmartPointer<vtkPolyData> GivenGaussians;
+  vtkNew<vtkTrivialProducer> GivenCamerasProducer; // SetCamerasData's cameras
+  vtkSmartPointer<vtkTable> GivenCameras;
   vtkNew<vtkTable> NoCameras;
   vtkNew<vtkCallbackCommand> ErrorObserver;
   vtkNew<vtkCallbackCommand> ProgressObserver;
@@ -107,7 +112,10 @@ struct vtkGaussianSession::vtkInternals
   std::atomic<std::thread::id> Executing{};
   // What Connect() connected for (the kind of file is read from its content once per name).
   std::string ConnectedFile;
-  std::string CameraFile; // the scene's camera file in use; empty: none
+  // The cameras' producer and port in use (the log reader's port 1, the camera reader, the
+  // given table); null: none.
+  vtkAlgorithm* CamerasSource = nullptr;
+  int CamerasSourcePort = 0;
   vtkAlgorithm* GaussiansSource = nullptr;
   vtkAlgorithm* GaussiansOutput = nullptr;
 
@@ -122,7 +130,9 @@ struct vtkGaussianSession::vtkInternals
       this->Rule,
       this->Removal,
       this->FineTune,
-      this->Comparison };
+      this->Comparison,
+      this->Given,
+      this->GivenCamerasProducer };
   }
 };
 
@@ -232,6 +242,32 @@ vtkTable* vtkGaussianSession::GetMetricsOutput()
 vtkTable* vtkGaussianSession::GetHistoryOutput()
 {
   return vtkTable::SafeDownCast(this->GetOutputDataObject(HistoryPort));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSession::SetGaussiansData(vtkPolyData* gaussians)
+{
+  if (gaussians != this->Internals->GivenGaussians)
+  {
+    this->Internals->GivenGaussians = gaussians;
+    this->Modified();
+  }
+}
+vtkPolyData* vtkGaussianSession::GetGaussiansData()
+{
+  return this->Internals->GivenGaussians;
+}
+void vtkGaussianSession::SetCamerasData(vtkTable* cameras)
+{
+  if (cameras != this->Internals->GivenCameras)
+  {
+    this->Internals->GivenCameras = cameras;
+    this->Modified();
+  }
+}
+vtkTable* vtkGaussianSession::GetCamerasData()
+{
+  return this->Internals->GivenCameras;
 }
 
 //------------------------------------------------------------------------------
@@ -368,25 +404,34 @@ int vtkGaussianSession::RequestDataObject(vtkInformationVector* outInfo)
 bool vtkGaussianSession::Connect()
 {
   vtkInternals& d = *this->Internals;
-  if (this->FileName.empty())
+  // Given Gaussians and cameras need no file (FileName then only names the errors).
+  const bool fileNeeded = !(d.GivenGaussians && d.GivenCameras);
+  d.CamerasSource = nullptr;
+  d.CamerasSourcePort = 0;
+  if (fileNeeded && this->FileName.empty())
   {
     d.Errors.push_back("no file name");
     return false;
   }
   // A folder is a scene too (a SOG folder, an INRIA output folder): the scene reader says.
   struct stat st;
-  if (stat(this->FileName.c_str(), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISDIR(st.st_mode)))
+  if (fileNeeded &&
+    (stat(this->FileName.c_str(), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISDIR(st.st_mode))))
   {
     d.Errors.push_back("no such file");
     return false;
   }
-  if (d.ConnectedFile != this->FileName)
+  if (!fileNeeded)
+  {
+    this->IsTrainingLog = false;
+    d.ConnectedFile.clear();
+  }
+  else if (d.ConnectedFile != this->FileName)
   {
     this->IsTrainingLog = IsTrainingLogFile(this->FileName.c_str());
     d.ConnectedFile = this->FileName;
   }
-  vtkAlgorithm* cameras = nullptr;
-  if (this->IsTrainingLog)
+  if (fileNeeded && this->IsTrainingLog)
   {
     d.Log->SetFileName(this->FileName.c_str());
     d.Events->SetFileName(this->FileName.c_str());
@@ -405,15 +450,13 @@ bool vtkGaussianSession::Connect()
       d.Log->SetLoadSHRest(d.Log->GetSnapshotSize(nearest) <= this->FullSHLimit);
     }
     d.GaussiansSource = d.Log;
-    cameras = d.Log->HasCameras() ? static_cast<vtkAlgorithm*>(d.Log) : nullptr;
-    if (cameras)
+    if (d.Log->HasCameras())
     {
-      d.Scores->SetCamerasConnection(d.Log->GetOutputPort(1));
-      d.Removal->SetInputConnection(1, d.Log->GetOutputPort(1));
-      d.FineTune->SetCamerasConnection(d.Log->GetOutputPort(1));
+      d.CamerasSource = d.Log;
+      d.CamerasSourcePort = 1;
     }
   }
-  else
+  else if (fileNeeded)
   {
     if (Differs(d.Scene->GetFileName(), this->FileName))
     {
@@ -442,21 +485,36 @@ bool vtkGaussianSession::Connect()
         }
       }
     }
-    d.CameraFile = cameraFile;
     if (!cameraFile.empty())
     {
       if (Differs(d.Cameras->GetFileName(), cameraFile))
       {
         d.Cameras->SetFileName(cameraFile.c_str());
       }
-      cameras = d.Cameras;
-      d.Scores->SetCamerasConnection(d.Cameras->GetOutputPort());
-      d.Removal->SetInputConnection(1, d.Cameras->GetOutputPort());
-      d.FineTune->SetCamerasConnection(d.Cameras->GetOutputPort());
+      d.CamerasSource = d.Cameras;
     }
   }
-  if (!cameras)
+  if (d.GivenGaussians)
   {
+    d.Given->SetOutput(d.GivenGaussians);
+    d.GaussiansSource = d.Given;
+  }
+  if (d.GivenCameras)
+  {
+    d.GivenCamerasProducer->SetOutput(d.GivenCameras);
+    d.CamerasSource = d.GivenCamerasProducer;
+    d.CamerasSourcePort = 0;
+  }
+  if (d.CamerasSource)
+  {
+    vtkAlgorithmOutput* cameras = d.CamerasSource->GetOutputPort(d.CamerasSourcePort);
+    d.Scores->SetCamerasConnection(cameras);
+    d.Removal->SetInputConnection(1, cameras);
+    d.FineTune->SetCamerasConnection(cameras);
+  }
+  else
+  {
+    // No cameras: the scores that need none (the needle shape) still run.
     d.Scores->SetCamerasData(d.NoCameras);
     d.Removal->SetInputData(1, d.NoCameras);
     d.FineTune->SetCamerasData(d.NoCameras);
@@ -603,15 +661,11 @@ bool vtkGaussianSession::ProducePort(int port,
         d.Errors.push_back(d.Rule->GetLastRuleError());
         return false;
       }
-      this->LoadedIteration = log ? d.Log->GetLoadedIteration() : -1;
+      this->LoadedIteration = log && !d.GivenGaussians ? d.Log->GetLoadedIteration() : -1;
       return true;
     }
     case CamerasPort:
-      if (log)
-      {
-        return d.Log->HasCameras() ? pass(d.Log, 1) : true;
-      }
-      return d.CameraFile.empty() ? true : pass(d.Cameras, 0);
+      return d.CamerasSource ? pass(d.CamerasSource, d.CamerasSourcePort) : true;
     case MetricsPort:
       return log && d.Log->HasMetrics() ? pass(d.Log, 2) : true;
     case TreePort:
@@ -635,6 +689,11 @@ bool vtkGaussianSession::ProducePort(int port,
       if (!log || ids->GetNumberOfValues() == 0)
       {
         return true;
+      }
+      if (this->MaximumHistoryIds > 0 && ids->GetNumberOfValues() > this->MaximumHistoryIds)
+      {
+        ids->Resize(this->MaximumHistoryIds); // (sorted: the smallest ids stay)
+        ids->SetNumberOfValues(this->MaximumHistoryIds);
       }
       return d.Log->GetPropertyHistory(ids, vtkTable::SafeDownCast(output)) != 0;
     }
@@ -687,6 +746,9 @@ void vtkGaussianSession::PrintSelf(ostream& os, vtkIndent indent)
   {
     os << "(none)\n";
   }
+  os << indent << "MaximumHistoryIds: " << this->MaximumHistoryIds << "\n";
+  os << indent << "GaussiansData: " << this->Internals->GivenGaussians.GetPointer() << "\n";
+  os << indent << "CamerasData: " << this->Internals->GivenCameras.GetPointer() << "\n";
   os << indent << "IsTrainingLog: " << this->IsTrainingLog << "\n";
   os << indent << "LoadedIteration: " << this->LoadedIteration << "\n";
 }

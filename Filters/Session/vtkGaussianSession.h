@@ -173,6 +173,40 @@ public:
   vtkGetObjectMacro(SelectedIds, vtkIdTypeArray);
   ///@}
 
+  ///@{
+  /**
+   * The history port takes at most this many of the selected ids, the smallest ones (the
+   * property history reads every snapshot for each id: a brush over millions of Gaussians
+   * would read them all for a chart that draws a few lines; the application takes 16).
+   * 0 (the default): every selected id.
+   */
+  vtkSetClampMacro(MaximumHistoryIds, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaximumHistoryIds, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Gaussians given as data in place of FileName's snapshot or scene: the Gaussians port
+   * scores (and marks by Rule) these, while FileName still gives the cameras and their images.
+   * The application scores the snapshot it shows this way on a second session in a worker
+   * thread, sharing the first session's arrays instead of reading the snapshot again. Null
+   * (the default): FileName's Gaussians.
+   */
+  void SetGaussiansData(vtkPolyData* gaussians);
+  vtkPolyData* GetGaussiansData();
+  ///@}
+
+  ///@{
+  /**
+   * Cameras given as data (the table of vis4gs::arrays columns; a log's carry its
+   * TrainingLogFile, through which the images inside it are read) in place of FileName's or
+   * CamerasFileName's. With GaussiansData too the session reads no file at all and FileName
+   * only names its errors. Null (the default): the file's cameras.
+   */
+  void SetCamerasData(vtkTable* cameras);
+  vtkTable* GetCamerasData();
+  ///@}
+
   /// Connects the selection (input port 0), e.g. an annotation link's selection output.
   void SetSelectionConnection(vtkAlgorithmOutput* output);
   void SetSelectionData(vtkSelection* selection);
@@ -242,6 +276,7 @@ protected:
   bool ComputeScores = true;
   std::string Rule;
   vtkIdTypeArray* SelectedIds = nullptr;
+  vtkIdType MaximumHistoryIds = 0;
   bool IsTrainingLog = false;
   int LoadedIteration = -1;
 

@@ -13,6 +13,7 @@
 #include "Vis4GSDataModel.h" // vis4gs::arrays
 
 #include "Vis4GSHubLink.h"
+#include "Vis4GSViewInput.h"
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChartXY.h"
@@ -43,6 +44,7 @@ struct vtkGaussianHistogramView::vtkInternals
   vtkNew<vtkChartXY> Chart;
   vtkNew<vtkTable> Bins;
   vtkSmartPointer<vtkDataObject> Data;
+  Vis4GSViewInput Input;
   Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkNew<vtkCallbackCommand> ChartCommand;
@@ -85,8 +87,49 @@ vtkGaussianHistogramView::~vtkGaussianHistogramView()
 //------------------------------------------------------------------------------
 void vtkGaussianHistogramView::SetInputData(vtkDataObject* data)
 {
+  this->Internals->Input.SetConnection(nullptr);
   this->Internals->Data = data;
   this->UpdateHistogram();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::SetInputConnection(vtkAlgorithmOutput* output)
+{
+  this->Internals->Input.SetConnection(output);
+  this->Modified();
+}
+vtkAlgorithmOutput* vtkGaussianHistogramView::GetInputConnection()
+{
+  return this->Internals->Input.GetConnection();
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianHistogramView::PullInput()
+{
+  vtkSmartPointer<vtkDataObject> data;
+  if (!this->Internals->Input.Pull(data))
+  {
+    return false;
+  }
+  this->Internals->Data = data;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::Update()
+{
+  if (this->PullInput())
+  {
+    this->UpdateHistogram();
+  }
+  this->Superclass::Update();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::Render()
+{
+  this->Update();
+  this->Superclass::Render();
 }
 
 //------------------------------------------------------------------------------
@@ -163,6 +206,7 @@ double ValueOf(vtkDataArray* a, vtkIdType i, int component)
 //------------------------------------------------------------------------------
 void vtkGaussianHistogramView::UpdateHistogram()
 {
+  this->PullInput();
   auto& in = *this->Internals;
   in.Chart->ClearPlots();
   in.AllPlot = in.SelectedPlot = nullptr;
@@ -348,5 +392,6 @@ void vtkGaussianHistogramView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "NumberOfBins: " << this->NumberOfBins << "\n";
   os << indent << "InputData: " << this->Internals->Data.GetPointer() << "\n";
+  os << indent << "InputConnection: " << this->Internals->Input.GetConnection() << "\n";
   os << indent << "SelectionHub: " << this->Internals->Hub.GetPointer() << "\n";
 }

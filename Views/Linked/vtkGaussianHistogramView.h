@@ -30,6 +30,7 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkAlgorithmOutput;
 class vtkChartXY;
 class vtkDataObject;
 class vtkGaussianSelectionHub;
@@ -44,11 +45,27 @@ public:
 
   ///@{
   /**
-   * The Gaussians (vtkPolyData or vtkTable). Default none.
+   * The Gaussians (vtkPolyData or vtkTable). Default none. SetInputData() disconnects
+   * SetInputConnection().
    */
   void SetInputData(vtkDataObject* data);
   vtkDataObject* GetInputData();
   ///@}
+
+  ///@{
+  /**
+   * The Gaussians as a connection (vtkGaussianSession's GaussiansPort), pulled by Update(),
+   * Render() and UpdateHistogram(): new score arrays there are binned without a client
+   * handing them over (Vis4GSViewInput). Default none.
+   */
+  void SetInputConnection(vtkAlgorithmOutput* output);
+  vtkAlgorithmOutput* GetInputConnection();
+  ///@}
+
+  /// Pulls the connection, and bins again when its arrays changed.
+  void Update() override;
+  /// Update(), then draws.
+  void Render() override;
 
   ///@{
   /**
@@ -86,7 +103,8 @@ public:
    */
   vtkIdType SelectRange(double lo, double hi, int mode = 0);
 
-  /// Recomputes the bins from the input and the selection (done on every change).
+  /// Recomputes the bins from the input (pulled first) and the selection (done on every
+  /// change).
   void UpdateHistogram();
 
   ///@{
@@ -119,6 +137,9 @@ private:
 
   struct vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
+
+  /// Takes the connection's data when it changed; true then.
+  bool PullInput();
 };
 
 #endif

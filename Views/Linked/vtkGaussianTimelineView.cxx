@@ -13,6 +13,7 @@
 #include "Vis4GSDataModel.h" // vis4gs::arrays, the column names of the metrics tables
 
 #include "Vis4GSHubLink.h"
+#include "Vis4GSViewInput.h"
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChartLegend.h"
@@ -88,6 +89,7 @@ struct vtkGaussianTimelineView::vtkInternals
   /// The finite rows of metric columns that have NaN (a merged train/test table).
   std::vector<vtkSmartPointer<vtkTable>> FiniteRows;
   vtkNew<vtkTable> Wide;
+  Vis4GSViewInput MetricsInput, HistoryInput;
   Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   vtkNew<vtkCallbackCommand> ClickCommand;
@@ -168,6 +170,7 @@ vtkGaussianTimelineView::~vtkGaussianTimelineView()
 //------------------------------------------------------------------------------
 void vtkGaussianTimelineView::SetMetrics(vtkTable* metrics)
 {
+  this->Internals->MetricsInput.SetConnection(nullptr);
   this->Internals->Metrics = metrics;
   this->UpdatePlots();
 }
@@ -234,6 +237,7 @@ void vtkGaussianTimelineView::SetComparisonRunName(const char* name)
 //------------------------------------------------------------------------------
 void vtkGaussianTimelineView::SetHistory(vtkTable* history)
 {
+  this->Internals->HistoryInput.SetConnection(nullptr);
   this->Internals->History = history;
   this->UpdatePlots();
 }
@@ -242,6 +246,56 @@ void vtkGaussianTimelineView::SetHistory(vtkTable* history)
 vtkTable* vtkGaussianTimelineView::GetHistory()
 {
   return this->Internals->History;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::SetMetricsConnection(vtkAlgorithmOutput* metrics)
+{
+  this->Internals->MetricsInput.SetConnection(metrics);
+  this->Modified();
+}
+vtkAlgorithmOutput* vtkGaussianTimelineView::GetMetricsConnection()
+{
+  return this->Internals->MetricsInput.GetConnection();
+}
+void vtkGaussianTimelineView::SetHistoryConnection(vtkAlgorithmOutput* history)
+{
+  this->Internals->HistoryInput.SetConnection(history);
+  this->Modified();
+}
+vtkAlgorithmOutput* vtkGaussianTimelineView::GetHistoryConnection()
+{
+  return this->Internals->HistoryInput.GetConnection();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::Update()
+{
+  auto& in = *this->Internals;
+  vtkSmartPointer<vtkDataObject> data;
+  bool changed = false;
+  if (in.MetricsInput.Pull(data))
+  {
+    in.Metrics = vtkTable::SafeDownCast(data);
+    changed = true;
+  }
+  if (in.HistoryInput.Pull(data))
+  {
+    in.History = vtkTable::SafeDownCast(data);
+    changed = true;
+  }
+  if (changed)
+  {
+    this->UpdatePlots();
+  }
+  this->Superclass::Update();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianTimelineView::Render()
+{
+  this->Update();
+  this->Superclass::Render();
 }
 
 //------------------------------------------------------------------------------
@@ -608,6 +662,8 @@ void vtkGaussianTimelineView::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RunName: " << str(this->RunName) << "\n";
   os << indent << "ComparisonRunName: " << str(this->ComparisonRunName) << "\n";
   os << indent << "History: " << in.History.GetPointer() << "\n";
+  os << indent << "MetricsConnection: " << in.MetricsInput.GetConnection() << "\n";
+  os << indent << "HistoryConnection: " << in.HistoryInput.GetConnection() << "\n";
   os << indent << "HistoryProperty: " << str(this->HistoryProperty) << "\n";
   os << indent << "MaximumHistoryLines: " << this->MaximumHistoryLines << "\n";
   os << indent << "HistoryComponent: " << this->HistoryComponent << "\n";

@@ -50,6 +50,7 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkAlgorithmOutput;
 class vtkChartMatrix;
 class vtkGaussianSelectionHub;
 class vtkGaussianTimelineChart;
@@ -114,6 +115,25 @@ public:
   void SetHistory(vtkTable* history);
   vtkTable* GetHistory();
   ///@}
+
+  ///@{
+  /**
+   * The metrics and the history as connections (vtkGaussianSession's MetricsPort and
+   * HistoryPort, whose selection input is the hub's annotation link): pulled by Update() and
+   * Render(), so that a new selection's history reaches the chart when the hub renders the
+   * view, without a client fetching it (Vis4GSViewInput). SetMetrics() / SetHistory()
+   * disconnect them. Default none.
+   */
+  void SetMetricsConnection(vtkAlgorithmOutput* metrics);
+  vtkAlgorithmOutput* GetMetricsConnection();
+  void SetHistoryConnection(vtkAlgorithmOutput* history);
+  vtkAlgorithmOutput* GetHistoryConnection();
+  ///@}
+
+  /// Pulls the connections, and rebuilds the plots when one changed.
+  void Update() override;
+  /// Update(), then draws.
+  void Render() override;
 
   ///@{
   /**

@@ -28,6 +28,9 @@
 #include "vtkContextView.h"
 #include "vtkNew.h" // For vtkNew
 
+#include <memory> // For std::unique_ptr
+
+class vtkAlgorithmOutput;
 class vtkGaussianSelectionHub;
 class vtkGaussianTreeItem;
 class vtkTable;
@@ -51,6 +54,23 @@ public:
   vtkTable* GetFamilyBands();
   ///@}
 
+  ///@{
+  /**
+   * The tree and the bands as connections (vtkGaussianSession's TreePort and BandsPort),
+   * pulled in Update() and Render(); the layout is rebuilt only when the port's arrays
+   * changed (Vis4GSViewInput). SetTree() / SetFamilyBands() disconnect them. Default none.
+   */
+  void SetInputConnection(vtkAlgorithmOutput* tree);
+  vtkAlgorithmOutput* GetInputConnection();
+  void SetFamilyBandsConnection(vtkAlgorithmOutput* bands);
+  vtkAlgorithmOutput* GetFamilyBandsConnection();
+  ///@}
+
+  /// Pulls the connections.
+  void Update() override;
+  /// Update(), then draws.
+  void Render() override;
+
   /**
    * Links the view: registers it with @p hub (rendered after every change) and lets the
    * item observe the hub. nullptr unlinks.
@@ -68,6 +88,9 @@ protected:
   vtkNew<vtkGaussianTreeItem> Item;
 
 private:
+  struct vtkInputs;
+  std::unique_ptr<vtkInputs> Inputs;
+
   vtkGaussianTreeView(const vtkGaussianTreeView&) = delete;
   void operator=(const vtkGaussianTreeView&) = delete;
 };

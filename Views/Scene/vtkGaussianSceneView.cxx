@@ -13,6 +13,7 @@
 #include "GaussianCloud.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSHubLink.h"
+#include "Vis4GSViewInput.h"
 #include "vtkGaussianCameraFrustums.h"
 #include "vtkGaussianCameraUtilities.h"
 #include "vtkGaussianSelectionHub.h"
@@ -72,6 +73,8 @@ struct vtkGaussianSceneView::vtkInternals
 {
   vtkSmartPointer<vtkPolyData> Scene;
   vtkSmartPointer<vtkTable> Cameras;
+  Vis4GSViewInput SceneInput;
+  Vis4GSViewInput CamerasInput;
   Vis4GSHubLink Hub;
   vtkNew<vtkCallbackCommand> HubCommand;
   // The one Core form of the scene's Gaussians, shared by the mapper and the selector (the
@@ -289,6 +292,13 @@ void vtkGaussianSceneView::ObserveInteractor(vtkRenderWindowInteractor* interact
 //------------------------------------------------------------------------------
 void vtkGaussianSceneView::SetScene(vtkPolyData* scene)
 {
+  this->Internals->SceneInput.SetConnection(nullptr);
+  this->ApplyScene(scene);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSceneView::ApplyScene(vtkPolyData* scene)
+{
   auto& in = *this->Internals;
   in.Scene = scene;
   in.Mapper->SetInputData(scene);
@@ -309,11 +319,61 @@ vtkPolyData* vtkGaussianSceneView::GetScene()
 //------------------------------------------------------------------------------
 void vtkGaussianSceneView::SetCameras(vtkTable* cameras)
 {
+  this->Internals->CamerasInput.SetConnection(nullptr);
+  this->ApplyCameras(cameras);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSceneView::ApplyCameras(vtkTable* cameras)
+{
   auto& in = *this->Internals;
   in.Cameras = cameras;
   in.Frustums->SetInputData(0, cameras);
   this->UpdateFrustums();
   this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSceneView::SetInputConnection(vtkAlgorithmOutput* output)
+{
+  this->Internals->SceneInput.SetConnection(output);
+  this->Modified();
+}
+vtkAlgorithmOutput* vtkGaussianSceneView::GetInputConnection()
+{
+  return this->Internals->SceneInput.GetConnection();
+}
+void vtkGaussianSceneView::SetCamerasConnection(vtkAlgorithmOutput* output)
+{
+  this->Internals->CamerasInput.SetConnection(output);
+  this->Modified();
+}
+vtkAlgorithmOutput* vtkGaussianSceneView::GetCamerasConnection()
+{
+  return this->Internals->CamerasInput.GetConnection();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSceneView::Update()
+{
+  auto& in = *this->Internals;
+  vtkSmartPointer<vtkDataObject> data;
+  if (in.CamerasInput.Pull(data))
+  {
+    this->ApplyCameras(vtkTable::SafeDownCast(data.GetPointer()));
+  }
+  if (in.SceneInput.Pull(data))
+  {
+    this->ApplyScene(vtkPolyData::SafeDownCast(data.GetPointer()));
+  }
+  this->Superclass::Update();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSceneView::Render()
+{
+  this->Update();
+  this->Superclass::Render();
 }
 
 //------------------------------------------------------------------------------
@@ -806,6 +866,8 @@ void vtkGaussianSceneView::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   auto& in = *this->Internals;
   os << indent << "Scene: " << in.Scene.GetPointer() << "\n";
+  os << indent << "InputConnection: " << in.SceneInput.GetConnection() << "\n";
+  os << indent << "CamerasConnection: " << in.CamerasInput.GetConnection() << "\n";
   os << indent << "Cameras: " << in.Cameras.GetPointer() << "\n";
   os << indent << "SelectionHub: " << in.Hub.GetPointer() << "\n";
   os << indent << "SelectionMode: " << this->SelectionMode << "\n";

@@ -47,6 +47,7 @@
 #include <vector> // For std::vector
 
 class vtkActor;
+class vtkAlgorithmOutput;
 class vtkGaussianCameraFrustums;
 class vtkGaussianSelectionHub;
 class vtkGaussianSelector;
@@ -78,7 +79,8 @@ public:
 
   ///@{
   /**
-   * The Gaussians (DESIGN §2 polydata, with GaussianId). Default none.
+   * The Gaussians (DESIGN §2 polydata, with GaussianId). Default none. SetScene() hands the
+   * data over and disconnects SetInputConnection(); GetScene() is what the view draws.
    */
   void SetScene(vtkPolyData* scene);
   vtkPolyData* GetScene();
@@ -86,12 +88,32 @@ public:
 
   ///@{
   /**
+   * The Gaussians as a connection, e.g. vtkGaussianSession's GaussiansPort: the view updates
+   * it in Update() and Render() and takes a shallow copy of its output when its arrays
+   * changed (Vis4GSViewInput), so that a new snapshot or new score arrays reach the view
+   * without a client handing them over, and the producer may execute again while the splat
+   * mapper's asynchronous frame still draws the previous copy. Null (the default): none.
+   */
+  void SetInputConnection(vtkAlgorithmOutput* output);
+  vtkAlgorithmOutput* GetInputConnection();
+  ///@}
+
+  ///@{
+  /**
    * The cameras (the table of vis4gs::arrays columns) whose frustums are drawn; none draws
-   * none. Default none.
+   * none. Default none. SetCameras() disconnects SetCamerasConnection(), which takes them
+   * from a port (vtkGaussianSession's CamerasPort) as SetInputConnection() does.
    */
   void SetCameras(vtkTable* cameras);
   vtkTable* GetCameras();
+  void SetCamerasConnection(vtkAlgorithmOutput* output);
+  vtkAlgorithmOutput* GetCamerasConnection();
   ///@}
+
+  /// Pulls the connections (nothing is taken again when their arrays are unchanged).
+  void Update() override;
+  /// Update(), then draws.
+  void Render() override;
 
   /// Moves the camera to camera @p row of Cameras; false when there is no such row.
   bool JumpToCamera(vtkIdType row);
@@ -282,6 +304,8 @@ private:
 #endif
   void UpdateOverlay();
   void UpdateFrustums();
+  void ApplyScene(vtkPolyData* scene);
+  void ApplyCameras(vtkTable* cameras);
   void OnSelectionChanged();
   void OnMouse(unsigned long event, bool& abort);
   void OnClick();

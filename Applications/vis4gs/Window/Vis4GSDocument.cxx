@@ -467,6 +467,7 @@ int Vis4GSDocument::LoadIteration(int iteration)
     throw std::runtime_error(errors);
   }
   this->Scene = Detach(this->Session->GetGaussiansOutput());
+  this->Scored = nullptr; // (the scores of the previous snapshot)
   this->Iteration = this->Session->GetLoadedIteration();
   return this->Iteration;
 }
@@ -485,14 +486,19 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t
   {
     wanted->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(ids[i]));
   }
-  // The session's history port for this selection: it reads no snapshot of the scene again.
-  this->Session->SetSelectedIds(wanted);
-  const std::string errors = Vis4GSUpdate(this->Session, vtkGaussianSession::HistoryPort);
-  if (!errors.empty())
+  // What the session's history port computes for a selection of these ids (its log reader's
+  // history query on the sorted ids), asked of the reader itself: in the window the session's
+  // selection input is the hub's, which these ids need not be.
+  std::sort(wanted->GetPointer(0), wanted->GetPointer(0) + wanted->GetNumberOfValues());
+  const vtkIdType unique = static_cast<vtkIdType>(
+    std::unique(wanted->GetPointer(0), wanted->GetPointer(0) + wanted->GetNumberOfValues()) -
+    wanted->GetPointer(0));
+  wanted->SetNumberOfValues(unique);
+  Vis4GSErrorCollector errors(this->Reader);
+  if (!this->Reader->GetPropertyHistory(wanted, table) || !errors.GetMessages().empty())
   {
-    throw std::runtime_error(errors);
+    throw std::runtime_error(this->Path + ": the property history: " + errors.GetMessages());
   }
-  table->ShallowCopy(this->Session->GetHistoryOutput());
   return table;
 }
 
@@ -544,27 +550,28 @@ vtkSmartPointer<vtkTable> Vis4GSDocument::ScoreCameras(const std::string&)
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
+vtkSmartPointer<vtkGaussianSession> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   vtkTable* cameras,
   bool withImages,
   const Progress& progress,
   vis4gs::RemovalBaseline* baseline,
   int stage,
-  const std::atomic<bool>* stop)
+  const std::atomic<bool>* stop,
+  const std::string& name)
 {
   if (!scene)
   {
     throw std::runtime_error("no scene to compute scores for");
   }
-  vtkNew<vtkPolyData> input;
-  input->ShallowCopy(scene);
-  vtkNew<vtkGaussianArtifactScoreFilter> filter;
-  filter->SetInputData(input);
+  // A session of its own, given the Gaussians and cameras (no file read again): what it
+  // computes is the application's Gaussians port once it lands.
+  auto session = vtkSmartPointer<vtkGaussianSession>::New();
+  session->SetFileName(name.c_str());
+  session->SetGaussiansData(scene);
   const bool haveCameras = cameras && cameras->GetNumberOfRows() > 0;
-  if (haveCameras)
-  {
-    filter->SetCamerasData(cameras);
-  }
+  vtkNew<vtkTable> none;
+  session->SetCamerasData(haveCameras ? cameras : none.GetPointer());
+  vtkGaussianArtifactScoreFilter* filter = session->GetScoreFilter();
   // Every registered score the inputs allow.
   std::string scores;
   for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
@@ -609,8 +616,9 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
       vis4gs::RemovalBaselineRecorder(counted, views, vis4gs::RasterSettings{}, 0, *baseline));
   }
   ProgressForwarder forward(filter, progress, 0.0, 1.0, "computing the scores");
-  const std::string errors = Vis4GSUpdate(filter, 0);
-  if (!errors.empty() || !filter->GetOutput())
+  const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+  filter->RemoveObserver(stopper);
+  if (!errors.empty() || !session->GetGaussiansOutput())
   {
     throw std::runtime_error("the score filter failed: " + errors);
   }
@@ -618,28 +626,24 @@ vtkSmartPointer<vtkPolyData> Vis4GSDocument::ComputeScores(vtkPolyData* scene,
   {
     return nullptr;
   }
-  auto result = vtkSmartPointer<vtkPolyData>::New();
-  if (vtkAbstractArray* label = filter->GetOutput()->GetFieldData()->GetAbstractArray("ScoreStage"))
-  {
-    result->GetFieldData()->AddArray(label);
-  }
-  std::vector<const char*> names{ vis4gs::arrays::NoVisibleView };
-  for (const vis4gs::ScoreDefinition& d : vis4gs::ScoreDefinitions())
-  {
-    names.push_back(d.ArrayName);
-  }
-  for (const char* name : names)
-  {
-    if (vtkAbstractArray* a = filter->GetOutput()->GetPointData()->GetAbstractArray(name))
-    {
-      result->GetPointData()->AddArray(a);
-    }
-  }
-  return result;
+  return session;
 }
 
 //------------------------------------------------------------------------------
-void Vis4GSDocument::DumpInputs(const std::string& folder, vtkPolyData* scores) const
+vtkAlgorithmOutput* Vis4GSDocument::GaussiansConnection() const
+{
+  vtkGaussianSession* source = this->Scored ? this->Scored : this->Session;
+  return source ? source->GetOutputPort(vtkGaussianSession::GaussiansPort) : nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* Vis4GSDocument::Shown() const
+{
+  return this->Scored ? this->Scored->GetGaussiansOutput() : this->Scene.GetPointer();
+}
+
+//------------------------------------------------------------------------------
+void Vis4GSDocument::DumpInputs(const std::string& folder) const
 {
   namespace fs = std::filesystem;
   fs::create_directories(folder);
@@ -675,16 +679,10 @@ void Vis4GSDocument::DumpInputs(const std::string& folder, vtkPolyData* scores) 
     }
     fs::rename(partial, file);
   };
-  if (this->Scene)
+  if (vtkPolyData* shown = this->Shown())
   {
-    vtkNew<vtkPolyData> scene;
-    scene->ShallowCopy(this->Scene);
-    for (int a = 0; scores && a < scores->GetPointData()->GetNumberOfArrays(); ++a)
-    {
-      scene->GetPointData()->AddArray(scores->GetPointData()->GetAbstractArray(a));
-    }
     vtkNew<vtkXMLPolyDataWriter> writer;
-    write(writer, scene, "scene.vtp");
+    write(writer, shown, "scene.vtp");
   }
   vtkNew<vtkXMLTableWriter> tables;
   // (No cameras: the NaN padding of their Distortion column gives a range key that VTK 9.1's
@@ -742,10 +740,10 @@ void Vis4GSDocument::LoadAndDumpInputs(const std::string& path,
     std::cerr << "vis4gs view: warning: " << warning << "\n";
   }
   vtkSmartPointer<vtkTable> scoreCameras = doc->ScoreCameras();
-  vtkSmartPointer<vtkPolyData> scores;
   if (doc->Scene)
   {
-    scores = ComputeScores(doc->Scene, scoreCameras, doc->CamerasWithImages > 0, Progress());
+    doc->Scored = ComputeScores(
+      doc->Scene, scoreCameras, doc->CamerasWithImages > 0, Progress(), nullptr, 0, nullptr, path);
   }
-  doc->DumpInputs(folder, scores);
+  doc->DumpInputs(folder);
 }

@@ -6,9 +6,11 @@
  * uses: its Gaussians, cameras, metrics, tree, bands and property-history ports are the views'
  * inputs, so that the views get the arrays a script computes
  * (Documentation/dev/ARCHITECTURE.md, "The application's data flow"). The scores run in the
- * background on a vtkGaussianArtifactScoreFilter of their own (ComputeScores). No Qt here:
- * the main window runs Load() in a worker thread (the filters' progress events feed its
- * progress callback) and hands the result to the views in the GUI thread.
+ * background on a second session given the shown snapshot and the score cameras
+ * (ComputeScores); its Gaussians port, carrying the score arrays, then becomes the views'
+ * input (Scored, GaussiansConnection). No Qt here: the main window runs Load() in a worker
+ * thread (the filters' progress events feed its progress callback) and connects the views to
+ * the ports in the GUI thread.
  */
 #ifndef Vis4GSDocument_h
 #define Vis4GSDocument_h
@@ -22,6 +24,7 @@
 #include <string>
 #include <vector>
 
+class vtkAlgorithmOutput;
 class vtkGaussianSession;
 class vtkGaussianTrainingLogReader;
 class vtkPolyData;
@@ -37,7 +40,11 @@ struct Vis4GSDocument
 {
   std::string Path;
   bool IsLog = false;
-  vtkSmartPointer<vtkPolyData> Scene; ///< Gaussians at Iteration (or the scene file)
+  /// Gaussians at Iteration (or the scene file) as read, without scores: the scores' input.
+  vtkSmartPointer<vtkPolyData> Scene;
+  /// The session that scored Scene (ComputeScores' result for it; null until a first stage
+  /// of scores lands for this snapshot): its Gaussians port is what the views show.
+  vtkSmartPointer<vtkGaussianSession> Scored;
   /// Cameras: the log reader's cameras port (images inside the log named "/images/<name>",
   /// the log in its TrainingLogFile field data), or the scene file's cameras.
   vtkSmartPointer<vtkTable> Cameras;
@@ -82,7 +89,13 @@ struct Vis4GSDocument
     const std::string& cameras = std::string(),
     const std::string& images = std::string());
 
-  /// Replaces Scene with the snapshot nearest @p iteration (logs only); returns its iteration.
+  /// The views' Gaussians: Scored's Gaussians port once the scores landed, else Session's.
+  vtkAlgorithmOutput* GaussiansConnection() const;
+  /// The data of GaussiansConnection() (Scene with the score arrays once they landed).
+  vtkPolyData* Shown() const;
+
+  /// Replaces Scene with the snapshot nearest @p iteration (logs only), drops Scored; returns
+  /// its iteration.
   int LoadIteration(int iteration);
   /// LoadIteration() of the last snapshot, else of the latest one that can be read: those that
   /// cannot are removed from Snapshots and named in Warnings. Throws when none can be read.
@@ -116,11 +129,15 @@ struct Vis4GSDocument
   int CamerasWithImages = 0;
 
   /**
-   * Computes the score arrays of @p scene with vtkGaussianArtifactScoreFilter: every score of
-   * the registry (Core/Diagnostics/ScoreRegistry.h) that the inputs allow: those that need
-   * cameras with @p cameras, those that need images when @p withImages too.
-   * Returns a new polydata holding the arrays (the input is not modified, so this can run in
-   * a worker thread while the GUI draws @p scene). Throws std::runtime_error on failure.
+   * Scores @p scene through a new vtkGaussianSession given @p scene and @p cameras as data
+   * (SetGaussiansData, SetCamerasData: no file is read again; @p name names its errors), its
+   * score filter set to every score of the registry (Core/Diagnostics/ScoreRegistry.h) that
+   * the inputs allow: those that need cameras with @p cameras, those that need images when
+   * @p withImages too. Returns that session with its Gaussians port updated: @p scene's arrays
+   * and the scores. A session per call, which nothing else touches until it returns, is what
+   * lets this run in a worker thread while the GUI draws and reads other snapshots through
+   * the document's Session (the newest call's session wins: the window drops older ones).
+   * Throws std::runtime_error on failure.
    *
    * With @p baseline, the blur/needle pass (full resolution, with images) also keeps the
    * "before" of a clean-up of @p scene per tile on the renders it makes anyway
@@ -132,23 +149,24 @@ struct Vis4GSDocument
    * which. When @p stop becomes true the filter stops after the view it is on and this returns
    * nullptr.
    */
-  static vtkSmartPointer<vtkPolyData> ComputeScores(vtkPolyData* scene,
+  static vtkSmartPointer<vtkGaussianSession> ComputeScores(vtkPolyData* scene,
     vtkTable* cameras,
     bool withImages,
     const Progress& progress,
     vis4gs::RemovalBaseline* baseline = nullptr,
     int stage = 0,
-    const std::atomic<bool>* stop = nullptr);
+    const std::atomic<bool>* stop = nullptr,
+    const std::string& name = std::string());
 
   /**
    * Writes the views' inputs into @p folder, for comparing the application with a script
-   * (`vis4gs view --dump-inputs`): scene.vtp (Scene with the score arrays of @p scores), and
+   * (`vis4gs view --dump-inputs`): scene.vtp (Shown(): Scene with the score arrays), and
    * as .vtt tables metrics, tree-vertices (the tree's vertex data plus ParentVertex),
    * tree-edges (edge data), bands and history (History() of HistoryDumpSelection(), what
    * the timeline gets when those Gaussians are selected), each when present. Throws
    * std::runtime_error naming the file on failure.
    */
-  void DumpInputs(const std::string& folder, vtkPolyData* scores) const;
+  void DumpInputs(const std::string& folder) const;
 
   /**
    * `vis4gs view FILE --dump-inputs=DIR`: loads @p path as the window does, computes the

@@ -18,12 +18,14 @@
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSelector.h"
+#include "vtkGaussianSession.h"
 #include "vtkGaussianTimelineView.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkGaussianTreeItem.h"
 #include "vtkGaussianTreeView.h"
 
 #include "QVTKOpenGLNativeWidget.h"
+#include "vtkAnnotationLink.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -323,7 +325,7 @@ void Vis4GSMainWindow::BuildUi()
     [this](const QString& name)
     {
       // A new overlay starts with the full range of its array.
-      vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+      vtkPolyData* scene = d->Doc ? d->Doc->Shown() : nullptr;
       vtkDataArray* array =
         scene ? scene->GetPointData()->GetArray(name.toUtf8().constData()) : nullptr;
       if (array)
@@ -725,12 +727,42 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   d->TreeMessage->setText(QString::fromStdString(doc->TreeUnavailable));
   d->TreeStack->setCurrentIndex(doc->Tree || doc->TreeUnavailable.empty() ? 0 : 1);
   this->LayoutForDocument();
-  d->Tree->SetTree(doc->Tree);
-  d->Tree->SetFamilyBands(doc->Bands);
+  // The views take the session's ports (as a script connects them); the hub's selection is
+  // the session's selection input, so the timeline's history follows it when the hub renders.
+  vtkGaussianSession* session = doc->Session;
+  if (doc->Tree)
+  {
+    d->Tree->SetInputConnection(session->GetOutputPort(vtkGaussianSession::TreePort));
+    d->Tree->SetFamilyBandsConnection(session->GetOutputPort(vtkGaussianSession::BandsPort));
+    d->Tree->Update();
+  }
+  else
+  {
+    d->Tree->SetTree(nullptr); // (no events, or they are damaged: TreeUnavailable says why)
+    d->Tree->SetFamilyBands(nullptr);
+  }
   d->Tree->GetTreeItem()->ResetViewport();
   this->Stage(0, "tree view input");
-  d->Timeline->SetMetrics(doc->Metrics);
+  session->SetSelectionConnection(d->Hub->GetAnnotationLink()->GetOutputPort(2));
+  session->SetMaximumHistoryIds(Vis4GSDocument::HistoryLines);
+  if (doc->Metrics)
+  {
+    d->Timeline->SetMetricsConnection(session->GetOutputPort(vtkGaussianSession::MetricsPort));
+  }
+  else
+  {
+    d->Timeline->SetMetrics(nullptr);
+  }
+  if (doc->Reader)
+  {
+    d->Timeline->SetHistoryConnection(session->GetOutputPort(vtkGaussianSession::HistoryPort));
+  }
+  else
+  {
+    d->Timeline->SetHistory(nullptr);
+  }
   d->Timeline->SetTestMetrics(doc->TestMetrics);
+  d->Timeline->Update();
   this->Stage(0, "timeline input");
   d->Panel->CameraList->clear();
   if (doc->Cameras)
@@ -779,15 +811,18 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::UpdateScene(bool render)
 {
-  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+  vtkPolyData* scene = d->Doc ? d->Doc->Shown() : nullptr;
   if (!scene)
   {
     return;
   }
   this->Stage(1, nullptr);
-  d->Scene->SetScene(scene);
+  // The session's Gaussians port, or the scoring session's once the scores landed: the view
+  // pulls it (and takes it again only when its arrays changed).
+  d->Scene->SetInputConnection(d->Doc->GaussiansConnection());
+  d->Scene->Update();
   this->Stage(1, "scene view input (its Gaussians for the mapper and the selector)");
-  d->Histogram->SetInputData(scene);
+  d->Histogram->SetInputConnection(d->Doc->GaussiansConnection());
   d->Cleanup->SetScene(scene, d->ScoreCameras);
   const QString overlay = d->Panel->Overlay->currentText();
   const QString hist = d->HistogramArray->currentText();
@@ -828,7 +863,7 @@ void Vis4GSMainWindow::UpdateOverlay(bool render)
 {
   const QString name = d->Panel->Overlay->currentText();
   const std::string array = name.toStdString();
-  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+  vtkPolyData* scene = d->Doc ? d->Doc->Shown() : nullptr;
   const bool score =
     scene && name != "True colour" && scene->GetPointData()->GetArray(array.c_str());
   for (QWidget* w : { static_cast<QWidget*>(d->Panel->OverlayMin),
@@ -868,21 +903,9 @@ void Vis4GSMainWindow::OnCameraChosen(int row)
 void Vis4GSMainWindow::OnSelectionChanged()
 {
   const auto& selected = d->Hub->GetSelectedIdVector();
-  d->Panel->Table->Show(d->Doc ? d->Doc->Scene.GetPointer() : nullptr, selected);
-  // History of the selection (the first HistoryLines) for the timeline, from the log reader.
-  if (d->Doc && d->Doc->Reader)
-  {
-    std::vector<std::int64_t> ids(selected.begin(),
-      selected.begin() + std::min<std::size_t>(Vis4GSDocument::HistoryLines, selected.size()));
-    try
-    {
-      d->Timeline->SetHistory(d->Doc->History(ids));
-    }
-    catch (const std::exception& e)
-    {
-      this->statusBar()->showMessage(QString("history: ") + e.what(), 5000);
-    }
-  }
+  d->Panel->Table->Show(d->Doc ? d->Doc->Shown() : nullptr, selected);
+  // (The timeline's history of the selection is the session's history port: the hub renders
+  // the timeline, which pulls it.)
   this->statusBar()->showMessage(QString("%1 Gaussians selected").arg(selected.size()), 3000);
 }
 
@@ -953,7 +976,7 @@ void Vis4GSMainWindow::ExportIds()
 //------------------------------------------------------------------------------
 void Vis4GSMainWindow::ExportPly(bool deleteSelection)
 {
-  vtkPolyData* scene = d->Doc ? d->Doc->Scene.GetPointer() : nullptr;
+  vtkPolyData* scene = d->Doc ? d->Doc->Shown() : nullptr;
   if (!scene)
   {
     return;

@@ -10,9 +10,7 @@
 
 #include "RemovalEffect.h"
 
-#include "vtkAbstractArray.h"
-#include "vtkFieldData.h"
-#include "vtkPointData.h"
+#include "vtkGaussianSession.h"
 #include "vtkPolyData.h"
 
 #include <QLabel>
@@ -73,16 +71,9 @@ void Vis4GSMainWindow::StartScores()
     {
       return; // a snapshot or document opened since
     }
-    for (int a = 0; a < stage.Scores->GetPointData()->GetNumberOfArrays(); ++a)
-    {
-      current->GetPointData()->AddArray(stage.Scores->GetPointData()->GetAbstractArray(a));
-    }
-    // The stage travels with the scene (what the views and any export of it read).
-    if (vtkAbstractArray* label = stage.Scores->GetFieldData()->GetAbstractArray("ScoreStage"))
-    {
-      current->GetFieldData()->AddArray(label);
-    }
-    current->Modified();
+    // The stage's session is the views' Gaussians port from now on (UpdateScene connects
+    // them): its output is the snapshot with the scores and their `ScoreStage` label.
+    d->Doc->Scored = stage.Session;
     const bool last = stage.Number == stage.Of;
     d->Panel->ScoreStage->setText(QString::fromStdString(stage.Label));
     this->statusBar()->showMessage("scores: " + QString::fromStdString(stage.Label) +
@@ -92,7 +83,7 @@ void Vis4GSMainWindow::StartScores()
     if (last)
     {
       // (After UpdateScene: it gives the panel the score cameras of the first pass.)
-      d->Cleanup->SetScoreBaseline(current, cameras, *baseline);
+      d->Cleanup->SetScoreBaseline(d->Doc->Shown(), cameras, *baseline);
     }
     emit this->scoreStageShown(stage.Number, stage.Of);
   };
@@ -122,5 +113,5 @@ void Vis4GSMainWindow::StartScores()
     d->ScoresDone = true;
     emit this->scoresComputed();
   };
-  d->Scores->Start(scene, cameras, images, baseline);
+  d->Scores->Start(scene, cameras, images, baseline, 2, d->Doc->Path);
 }

@@ -7,6 +7,7 @@
 
 #include "vtkAbstractArray.h"
 #include "vtkFieldData.h"
+#include "vtkGaussianSession.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
@@ -55,7 +56,8 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
   vtkSmartPointer<vtkTable> cameras,
   bool images,
   std::shared_ptr<vis4gs::RemovalBaseline> baseline,
-  int stages)
+  int stages,
+  const std::string& name)
 {
   if (this->Worker || !scene)
   {
@@ -68,7 +70,7 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
   const int of = haveCameras ? 2 : 1;
   const int last = std::max(1, std::min(of, stages));
   this->Worker = QThread::create(
-    [this, scene, cameras, images, baseline, stop, of, last]
+    [this, scene, cameras, images, baseline, stop, of, last, name]
     {
       QString error;
       bool stopped = false;
@@ -91,7 +93,7 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
         stage.Of = of;
         try
         {
-          stage.Scores = Vis4GSDocument::ComputeScores(
+          stage.Session = Vis4GSDocument::ComputeScores(
             scene,
             cameras,
             images,
@@ -110,20 +112,21 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
             },
             filterStage == 0 ? baseline.get() : nullptr,
             filterStage,
-            stop.get());
+            stop.get(),
+            name);
         }
         catch (const std::exception& e)
         {
           error = QString::fromStdString(e.what());
           break;
         }
-        if (!stage.Scores)
+        if (!stage.Session)
         {
           stopped = true;
           break;
         }
         if (auto* label = vtkStringArray::SafeDownCast(
-              stage.Scores->GetFieldData()->GetAbstractArray("ScoreStage")))
+              stage.Session->GetGaussiansOutput()->GetFieldData()->GetAbstractArray("ScoreStage")))
         {
           stage.Label = label->GetNumberOfValues() > 0 ? label->GetValue(0) : std::string();
         }

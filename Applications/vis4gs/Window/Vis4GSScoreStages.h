@@ -19,6 +19,7 @@
 
 class QObject;
 class QThread;
+class vtkGaussianSession;
 class vtkPolyData;
 class vtkTable;
 namespace vis4gs
@@ -30,13 +31,16 @@ class Vis4GSScoreStages
 {
 public:
   /// One finished stage: its number (1 or 2), how many the run has, the filter's label
-  /// ("stage 1 of 2, approximate: every 8th training view, ...") and the score arrays.
+  /// ("stage 1 of 2, approximate: every 8th training view, ...") and the session that
+  /// computed it (Vis4GSDocument::ComputeScores: its Gaussians port holds the scene with the
+  /// score arrays; a session per stage, so the GUI may connect the views to it while the
+  /// worker computes the next).
   struct Stage
   {
     int Number = 0;
     int Of = 0;
     std::string Label;
-    vtkSmartPointer<vtkPolyData> Scores;
+    vtkSmartPointer<vtkGaussianSession> Session;
   };
 
   /// Callbacks run in the thread of @p context (the window): the events of a run are queued
@@ -63,13 +67,15 @@ public:
    * @p baseline for the exact stage) in a worker thread: with cameras, stage 1 (the score
    * filter's ProgressiveStage 1: every 8th view, maps at 1/4) then stage 2 (the exact
    * scores); without cameras (needle shape alone, nothing to approximate) one stage.
-   * @p stages = 1 stops after the first. Does nothing while a run is in progress.
+   * @p stages = 1 stops after the first. @p name (the document's file) names the errors.
+   * Does nothing while a run is in progress.
    */
   void Start(vtkSmartPointer<vtkPolyData> scene,
     vtkSmartPointer<vtkTable> cameras,
     bool images,
     std::shared_ptr<vis4gs::RemovalBaseline> baseline,
-    int stages = 2);
+    int stages = 2,
+    const std::string& name = std::string());
 
   /// Stops the run (returns at once): the running stage ends after the view it is on, no
   /// later stage starts, and Finished reports it stopped.

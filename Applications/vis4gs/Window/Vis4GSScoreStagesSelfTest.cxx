@@ -144,7 +144,7 @@ struct StagesTest
   vtkPolyData* Scene() const
   {
     const auto doc = this->Window->GetDocument();
-    return doc ? doc->Scene.GetPointer() : nullptr;
+    return doc ? doc->Shown() : nullptr;
   }
   std::string PanelLabel() const
   {

@@ -156,7 +156,8 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
   {
     docks[k] = w.GetDock(DockNames[k]);
   }
-  vtkPolyData* scene = doc ? doc->Scene.GetPointer() : nullptr;
+  // What the views show: the scoring session's Gaussians (the snapshot with the scores).
+  vtkPolyData* scene = doc ? doc->Shown() : nullptr;
   check(scene && scene->GetNumberOfPoints() > 0, "the scene has Gaussians");
   if (!scene)
   {
@@ -759,7 +760,8 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
     const int last = doc->Iteration;
     const int previous = doc->Snapshots[doc->Snapshots.size() - 2];
     slider->setValue(slider->maximum() - 1);
-    vtkPolyData* shown = doc->Scene;
+    // The view's copy of the session's Gaussians port (pulled when it changed).
+    vtkPolyData* shown = sceneView->GetScene();
     check(hub->GetIteration() == previous && doc->Iteration == previous && shown &&
         mapper->GetInput() == shown &&
         shown->GetNumberOfPoints() == doc->Reader->GetSnapshotSize(previous),
@@ -767,7 +769,9 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
         " into the scene (" + std::to_string(shown ? shown->GetNumberOfPoints() : 0) +
         " Gaussians)");
     slider->setValue(slider->maximum());
-    check(doc->Iteration == last && mapper->GetInput() == doc->Scene.GetPointer(),
+    shown = sceneView->GetScene();
+    check(doc->Iteration == last && shown && mapper->GetInput() == shown &&
+        shown->GetNumberOfPoints() == doc->Scene->GetNumberOfPoints(),
       "and back to iteration " + std::to_string(last));
   }
   std::cout << (ok ? "self-test passed" : "self-test FAILED") << std::endl;
