@@ -100,6 +100,10 @@ case "$part" in
     "$build/bin/vis4gsCoreSplatsTests" --gtest_filter='SplatSortWorker.*'
     bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
       "$root/Data/Demo/vis4gs-demo.h5" "--self-test=$build/self-test" --resolution=1200,800
+    # The scene view's orbit and the four picks: frames made on the mapper's worker while the
+    # GUI thread moves the camera and the selector reads the last exact frame.
+    bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
+      "$root/Data/Demo/vis4gs-demo.h5" --benchmark --resolution=800,600
     ;;
   *)
     echo "usage: bash Scripts/run-sanitizers.sh core|full|thread [build dir]" >&2
