@@ -6,7 +6,9 @@
 // snapshot builds no tree, a new selection re-reads no snapshot), the file kind comes from
 // the content (a log renamed .ply is still a log), and a missing file or a bad rule is an error
 // naming the file; the genealogy filter updated by a client in a second thread while the
-// session reads a snapshot (the application's load) gives the tree port its tree.
+// session reads a snapshot (the application's load) gives the tree port its tree; a session
+// given Gaussians and cameras as data (the application's scores) reads no file and computes
+// the same scores; MaximumHistoryIds keeps the smallest selected ids' history.
 #include "vtkGaussianSession.h"
 
 #include "Vis4GSTestCheck.h"
@@ -32,11 +34,13 @@
 #include "vtkTable.h"
 #include "vtkTree.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace
 {
@@ -204,6 +208,39 @@ int TestGaussianSession(int, char*[])
       "the tree port passes the tree built in the second thread on, not built again");
   }
 
+  // Given data (the application's scores): a second session given the snapshot without scores
+  // and the cameras reads no file (its FileName does not exist) and computes the scores a script
+  // computes, on the given arrays themselves.
+  {
+    vtkNew<vtkGaussianSession> plain;
+    plain->SetFileName(log.c_str());
+    plain->ComputeScoresOff();
+    plain->Update(vtkGaussianSession::GaussiansPort, nullptr);
+    plain->Update(vtkGaussianSession::CamerasPort, nullptr);
+    vtkNew<vtkPolyData> snapshot;
+    snapshot->ShallowCopy(plain->GetGaussiansOutput());
+    vtkNew<vtkTable> cameras;
+    cameras->ShallowCopy(plain->GetCamerasOutput());
+    vtkNew<vtkGaussianSession> given;
+    given->SetFileName("/nonexistent/vis4gs-given.h5");
+    given->SetGaussiansData(snapshot);
+    given->SetCamerasData(cameras);
+    given->GetScoreFilter()->ComputeBlurScoreOff();
+    given->GetScoreFilter()->ComputeNeedleScoreOff();
+    Check(given->Update(vtkGaussianSession::GaussiansPort, nullptr) != 0 &&
+        !given->GetIsTrainingLog() && given->GetLoadedIteration() == -1,
+      "a session given Gaussians and cameras reads no file");
+    vtkPolyData* scored = given->GetGaussiansOutput();
+    Check(SameFields(scores->GetOutput()->GetPointData(), scored->GetPointData(), "given"),
+      "and its Gaussians port has the scores of the log's snapshot, equal");
+    Check(
+      scored->GetPointData()->GetArray("Opacity") == snapshot->GetPointData()->GetArray("Opacity"),
+      "on the given arrays (no copy)");
+    Check(given->Update(vtkGaussianSession::CamerasPort, nullptr) != 0 &&
+        given->GetCamerasOutput()->GetNumberOfRows() == cameras->GetNumberOfRows(),
+      "its cameras port is the given table");
+  }
+
   // The selection as the hub publishes it: pedigree ids named GaussianId.
   vtkDataArray* idColumn = gaussians->GetPointData()->GetArray("GaussianId");
   vtkNew<vtkIdTypeArray> picked;
@@ -232,6 +269,21 @@ int TestGaussianSession(int, char*[])
       sessionHistory->GetNumberOfRows() == history->GetNumberOfRows() &&
       SameFields(history->GetRowData(), sessionHistory->GetRowData(), "history"),
     "the history port is the reader's history of the selected Gaussians");
+  // At most MaximumHistoryIds of them, the smallest (the application's 16 of a large brush).
+  session->SetMaximumHistoryIds(2);
+  session->Update(vtkGaussianSession::HistoryPort, nullptr);
+  std::vector<vtkIdType> sorted(picked->GetPointer(0), picked->GetPointer(0) + 5);
+  std::sort(sorted.begin(), sorted.end());
+  vtkNew<vtkIdTypeArray> smallest;
+  smallest->InsertNextValue(sorted[0]);
+  smallest->InsertNextValue(sorted[1]);
+  vtkNew<vtkTable> limited;
+  reader->GetPropertyHistory(smallest, limited);
+  Check(limited->GetNumberOfRows() > 0 && limited->GetNumberOfRows() < history->GetNumberOfRows() &&
+      session->GetHistoryOutput()->GetNumberOfRows() == limited->GetNumberOfRows() &&
+      SameFields(limited->GetRowData(), session->GetHistoryOutput()->GetRowData(), "limited"),
+    "MaximumHistoryIds keeps the history of the smallest selected ids");
+  session->SetMaximumHistoryIds(0);
 
   session->GetRemovalEffectFilter()->TestViewsOff();
   session->Update(vtkGaussianSession::RemovalTotalsPort, nullptr);
