@@ -8,9 +8,9 @@
 // numbers when it has none; a missing second file is an error naming it.
 #include "vtkGaussianSession.h"
 
-#include "SessionTestUtils.h"
 #include "CameraJson.h"
 #include "RemovalEffect.h"
+#include "SessionTestUtils.h"
 #include "StateComparison.h"
 #include "TrainingLogReader.h"
 #include "Vis4GSTestCheck.h"
