@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <sys/stat.h>
@@ -51,6 +52,18 @@ vtkCxxSetObjectMacro(vtkGaussianSession, SelectedIds, vtkIdTypeArray);
 
 namespace
 {
+/// Whether @p path ends in .h5 or .hdf5, any case.
+bool HasLogExtension(const std::string& path)
+{
+  std::string tail =
+    path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
+  std::transform(tail.begin(),
+    tail.end(),
+    tail.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return tail == ".h5" || tail == ".hdf5";
+}
+
 /// Whether a string setting must be set: VTK 9.1's vtkSetStdStringFromCharMacro calls Modified()
 /// even for the same text, which would make the session's every update re-run the scores.
 bool Differs(const char* current, const std::string& wanted)
@@ -321,6 +334,14 @@ bool vtkGaussianSession::IsTrainingLogFile(const char* path)
 }
 
 //------------------------------------------------------------------------------
+bool vtkGaussianSession::IsTrainingLogPath(const char* path)
+{
+  // A damaged .h5 is a log that cannot be read (the log reader says "not an HDF5 file"), not a
+  // scene whose reader complains of a missing PLY header.
+  return IsTrainingLogFile(path) || HasLogExtension(path ? path : "");
+}
+
+//------------------------------------------------------------------------------
 vtkMTimeType vtkGaussianSession::GetMTime()
 {
   vtkMTimeType t = this->Superclass::GetMTime();
@@ -439,7 +460,7 @@ bool vtkGaussianSession::Connect()
   }
   if (d.ConnectedFile != this->FileName)
   {
-    this->IsTrainingLog = IsTrainingLogFile(this->FileName.c_str());
+    this->IsTrainingLog = IsTrainingLogPath(this->FileName.c_str());
     d.ConnectedFile = this->FileName;
   }
   vtkAlgorithm* cameras = nullptr;

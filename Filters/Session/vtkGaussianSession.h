@@ -14,8 +14,9 @@
  *          pipeline object"), shared by the application, the commands, Python and ParaView.
  *
  * FileName is a training log or a Gaussian scene file, told apart by content (the HDF5
- * signature), not by name. The session owns the readers and filters a script would connect
- * and connects them the one way every client gets:
+ * signature), not by name; only a file named .h5 or .hdf5 without the signature is taken for a
+ * (damaged) log, so that the error is the log reader's (IsTrainingLogPath()). The session owns the
+ * readers and filters a script would connect and connects them the one way every client gets:
  *
  * - a log: vtkGaussianTrainingLogReader (the snapshot nearest Iteration; -1 the last), its
  *   cameras, metrics and events, and vtkGaussianGenealogyTreeFilter on the events of a second
@@ -213,6 +214,10 @@ public:
 
   /// Whether @p path starts with the HDF5 signature (at offset 0, 512, 1024, ...).
   static bool IsTrainingLogFile(const char* path);
+
+  /// Whether the session reads @p path as a training log: IsTrainingLogFile(), or a name
+  /// ending in .h5 or .hdf5 (any case; a damaged log is then reported by the log reader).
+  static bool IsTrainingLogPath(const char* path);
 
   ///@{
   /**

@@ -109,7 +109,7 @@ int Run(const Vis4GSArguments& args)
   session->SetFileName(sourcePath.c_str());
   session->SetIteration(wanted);
   session->ComputeScoresOff();
-  const bool isLog = vtkGaussianSession::IsTrainingLogFile(sourcePath.c_str());
+  const bool isLog = vtkGaussianSession::IsTrainingLogPath(sourcePath.c_str());
   const std::string imageFolder = isLog ? std::string() : args.Get("images");
   if (!isLog)
   {

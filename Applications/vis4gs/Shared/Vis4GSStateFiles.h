@@ -15,7 +15,8 @@
 #include <memory>
 #include <string>
 
-/// Whether @p path names a training log (DESIGN §3): extension .h5 or .hdf5, any case.
+/// Whether @p path names a training log (DESIGN §3): the HDF5 signature, or the extension .h5
+/// or .hdf5, any case (vtkGaussianSession::IsTrainingLogPath(), the session's own rule).
 bool Vis4GSIsLogPath(const std::string& path);
 
 #endif

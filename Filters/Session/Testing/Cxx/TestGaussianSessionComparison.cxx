@@ -5,7 +5,8 @@
 // figures Core's MeasureViewMetrics gives for both in the log's cameras with its own images; a
 // scene file compared with the log takes the log's cameras (compare's rule); a scene file is
 // read with its ids when it has them (the scene reader's IdPropertyOptional) and with its row
-// numbers when it has none; a missing second file is an error naming it.
+// numbers when it has none; a missing second file is an error naming it, and a damaged .h5 is
+// read as a log (the log reader's error).
 #include "vtkGaussianSession.h"
 
 #include "CameraJson.h"
@@ -34,6 +35,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <unistd.h>
@@ -238,6 +240,24 @@ int TestGaussianSessionComparison(int, char*[])
         error.Text.find(missing + ": no such file") != std::string::npos &&
         error.Text.find(log + ": " + missing) == std::string::npos,
       "a missing second state is an error naming it, once");
+  }
+
+  // A damaged log keeps its name's kind: the log reader's error, not a scene reader's.
+  const std::string damaged = (folder / "damaged.h5").string();
+  {
+    std::ofstream out(damaged, std::ios::binary);
+    out << "not a training log at all\n";
+  }
+  Check(vtkGaussianSession::IsTrainingLogPath(damaged.c_str()) &&
+      !vtkGaussianSession::IsTrainingLogFile(damaged.c_str()),
+    "a .h5 without the HDF5 signature is read as a (damaged) log");
+  vtkNew<vtkGaussianSession> broken;
+  broken->SetFileName(damaged.c_str());
+  {
+    ErrorText error(broken);
+    Check(!broken->Update(vtkGaussianSession::GaussiansPort, nullptr) &&
+        broken->GetIsTrainingLog() && error.Text.find(damaged) != std::string::npos,
+      "its update fails with an error naming it");
   }
   fs::remove_all(folder);
   return Check.ExitCode();
