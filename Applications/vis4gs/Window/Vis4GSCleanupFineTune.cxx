@@ -163,6 +163,7 @@ bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
       {
         job->Error = e.what();
       }
+      job->Finished.store(true, std::memory_order_release);
       QMetaObject::invokeMethod(
         this, [this] { this->OnFineTuned(); }, Qt::QueuedConnection);
     });
@@ -188,6 +189,7 @@ void Vis4GSCleanupPanel::OnFineTuned()
   d->RepairWorker->deleteLater();
   d->RepairWorker = nullptr;
   const std::shared_ptr<Internals::Repair> job = std::move(d->Repairing);
+  job->Finished.load(std::memory_order_acquire);
   d->Measure->setEnabled(d->Scene && d->Cameras);
   this->UpdateButtons();
   const vis4gs::FineTuneResult& r = job->Figures;

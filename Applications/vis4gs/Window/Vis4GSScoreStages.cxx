@@ -130,10 +130,12 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
         {
           stage.Label = label->GetNumberOfValues() > 0 ? label->GetValue(0) : std::string();
         }
+        this->HandedOver.fetch_add(1, std::memory_order_release);
         QMetaObject::invokeMethod(
           this->Context,
           [this, scene, stage]
           {
+            this->HandedOver.load(std::memory_order_acquire);
             if (this->StageDone)
             {
               this->StageDone(scene, stage);
@@ -141,10 +143,12 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
           },
           Qt::QueuedConnection);
       }
+      this->HandedOver.fetch_add(1, std::memory_order_release);
       QMetaObject::invokeMethod(
         this->Context,
         [this, scene, error, stopped]
         {
+          this->HandedOver.load(std::memory_order_acquire);
           this->Worker->wait();
           this->Worker->deleteLater();
           this->Worker = nullptr;
