@@ -30,7 +30,9 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkAbstractArray;
 class vtkChartXY;
+class vtkDataArray;
 class vtkDataObject;
 class vtkGaussianSelectionHub;
 class vtkIdTypeArray;
@@ -86,7 +88,8 @@ public:
    */
   vtkIdType SelectRange(double lo, double hi, int mode = 0);
 
-  /// Recomputes the bins from the input and the selection (done on every change).
+  /// Recomputes the bins from the input and the selection (done on a change of the input or
+  /// the settings; a selection change recounts only the selected Gaussians).
   void UpdateHistogram();
 
   ///@{
@@ -107,6 +110,11 @@ protected:
   ~vtkGaussianHistogramView() override;
 
   void OnChartSelection();
+  /// The orange bars of the current selection over the current bins (no other change).
+  void CountSelected(vtkDataArray* values, vtkAbstractArray* ids);
+  /// After a selection change: the orange bars only when the grey bars' input is unchanged,
+  /// else UpdateHistogram().
+  void UpdateSelectedCounts();
 
   char* ArrayName = nullptr;
   char* IdArrayName = nullptr;
