@@ -401,6 +401,7 @@ vtkIdType vtkGaussianSelector::SelectSingle(double x, double y)
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   this->LastSelectionReusedFrame = false;
+  this->LastSelectionReadWeights = false;
   const vis4gs::RasterWorkspace<float>* frame = nullptr;
   if (!this->PrepareViewOrFrame(frame))
   {
@@ -563,6 +564,7 @@ vtkIdType vtkGaussianSelector::SelectRay(double x, double y)
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   this->LastSelectionReusedFrame = false;
+  this->LastSelectionReadWeights = false;
   std::vector<vis4gs::RayContribution> hits;
   std::vector<vis4gs::RayHit> ellipsoidHits;
   try

@@ -310,6 +310,7 @@ int TestGaussianSelector(int, char*[])
     Check(sel->GetLastSelectionReusedFrame() == expectReuse && ns == (g >= 0 ? 1 : 0) &&
         (g < 0 || Ids(sel->GetSelectedIds()) == std::vector<vtkIdType>{ cloud.Ids[g] }),
       "Single on the reused/own frame equals Core");
+    Check(!sel->GetLastSelectionReadWeights(), "Single reads no kept blends");
     sel->SelectRay(sx, sy);
     std::vector<vtkIdType> rayExpected;
     for (const auto& c : vis4gs::SelectRay(own, sx, H - 1 - sy))
