@@ -352,9 +352,10 @@ public:
    * (vis4gs::PixelWeightRecord, GetLastFullFrame()): vtkGaussianSelector's Brush and Frame with
    * a WeightThreshold at least this large then read the frame's blends over the brushed pixels
    * or the rectangle instead of replaying the compositing there (the same selection). It costs
-   * 9 bytes a kept blend (at most 1 / value blends a pixel; about 190 MB at 4.89M Gaussians,
-   * 1280x800) and a few percent of the exact frame's compositing. 0 keeps none. Default 0.01,
-   * the selector's default WeightThreshold.
+   * 9 bytes a kept blend (at most 1 / value blends a pixel; measured 13 MiB for the 4.89M
+   * scene at 1280x800, 61 MiB for the 6.1M one, Documentation/performance-history.md) and no
+   * measurable compositing time. 0 keeps none. Default 0.01, the selector's default
+   * WeightThreshold.
    */
   vtkSetClampMacro(SelectionWeightThreshold, double, 0.0, 1.0);
   vtkGetMacro(SelectionWeightThreshold, double);
