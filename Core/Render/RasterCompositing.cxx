@@ -85,6 +85,28 @@ struct CompositeContext
   /// (EntrySums), so that WeightSum does not depend on the order threads finish tiles in.
   double* EntryWeight = nullptr;
   std::uint16_t* EntryEvaluations = nullptr;
+  /// The blends to keep (CompositeTiles' record), its running count of blends and its limit.
+  PixelWeightRecord* Record = nullptr;
+  std::atomic<std::uint64_t>* RecordEntries = nullptr;
+};
+
+/// One tile's part of a PixelWeightRecord while the tile is blended (nullptr: not recording).
+struct TileRecorder
+{
+  float Threshold;
+  std::vector<PixelWeight>* Weights;
+  std::vector<std::uint8_t>* Pixels;
+  std::uint32_t Gaussian; // the list entry being blended
+
+  /// Keeps lane l of tile row r when its weight reaches the threshold.
+  void Add(int r, int l, float w)
+  {
+    if (w >= this->Threshold)
+    {
+      this->Weights->push_back({ this->Gaussian, w });
+      this->Pixels->push_back(static_cast<std::uint8_t>(r * 16 + l));
+    }
+  }
 };
 
 /// Per-entry buffers of the counted statistics (see CompositeContext), zeroed.
@@ -292,6 +314,17 @@ void PrepareCompositeData(const ViewProjection<T>& projection, int threads, Comp
 }
 
 //------------------------------------------------------------------------------
+std::size_t PixelWeightRecord::Entries() const
+{
+  std::size_t n = 0;
+  for (const auto& tile : this->Weights)
+  {
+    n += tile.size();
+  }
+  return n;
+}
+
+//------------------------------------------------------------------------------
 template <typename T>
 void CompositeTiles(const ViewProjection<T>& projection,
   const TileBins& bins,
@@ -300,7 +333,8 @@ void CompositeTiles(const ViewProjection<T>& projection,
   GaussianWeightStats* weights,
   RasterWorkCounts* work,
   CompositeData<T>* keep,
-  bool depth)
+  bool depth,
+  PixelWeightRecord* record)
 {
   if (bins.TilesX != projection.TilesX || bins.TilesY != projection.TilesY ||
     bins.Offsets.size() != bins.TileCount() + 1)
@@ -389,6 +423,23 @@ void CompositeTiles(const ViewProjection<T>& projection,
     &referenceEvals };
   EntrySums entries;
   entries.Attach(ctx, bins, weights);
+  std::atomic<std::uint64_t> recordEntries{ 0 };
+  if (record)
+  {
+    if (!(record->Threshold > 0.0f))
+    {
+      throw std::invalid_argument("CompositeTiles: the record's weight threshold must be positive");
+    }
+    record->Width = projection.Width;
+    record->Height = projection.Height;
+    record->TilesX = projection.TilesX;
+    record->Complete = false;
+    // Each tile's vectors keep their capacity from the previous frame (filled by one thread).
+    record->Weights.resize(bins.TileCount());
+    record->Pixels.resize(bins.TileCount());
+    ctx.Record = record;
+    ctx.RecordEntries = &recordEntries;
+  }
   TileFunction<T> fn;
   const int isa = settings.KernelIsa;
   if (!depth)
@@ -413,6 +464,16 @@ void CompositeTiles(const ViewProjection<T>& projection,
     fn(ctx, t);
   }
   entries.Reduce(bins, weights);
+  if (record)
+  {
+    record->Complete = recordEntries.load() <= record->MaximumEntries;
+    if (!record->Complete)
+    {
+      // Over its budget: freed, not kept partial.
+      std::vector<std::vector<PixelWeight>>().swap(record->Weights);
+      std::vector<std::vector<std::uint8_t>>().swap(record->Pixels);
+    }
+  }
   if (work)
   {
     work->TilePairs = bins.Ids.size();
@@ -497,7 +558,8 @@ template void CompositeTiles<float>(const ViewProjection<float>&,
   GaussianWeightStats*,
   RasterWorkCounts*,
   CompositeData<float>*,
-  bool);
+  bool,
+  PixelWeightRecord*);
 template void CompositeTiles<double>(const ViewProjection<double>&,
   const TileBins&,
   const RasterSettings&,
@@ -505,6 +567,7 @@ template void CompositeTiles<double>(const ViewProjection<double>&,
   GaussianWeightStats*,
   RasterWorkCounts*,
   CompositeData<double>*,
-  bool);
+  bool,
+  PixelWeightRecord*);
 
 } // namespace vis4gs

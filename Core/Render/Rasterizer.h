@@ -349,6 +349,41 @@ struct CompositeData
 template <typename T>
 void PrepareCompositeData(const ViewProjection<T>& projection, int threads, CompositeData<T>& data);
 
+/// One blend kept by a PixelWeightRecord: the Gaussian (index in the projection) and its
+/// weight w = alpha T at the pixel.
+struct PixelWeight
+{
+  std::uint32_t Gaussian = 0;
+  float Weight = 0.0f;
+};
+
+/**
+ * Per-pixel blending weights kept by CompositeTiles() on request, so that a selection over
+ * the drawn image's pixels (Brush, Frame) is a lookup instead of a replay of the compositing:
+ * for every tile, each blend (pixel, Gaussian) whose weight w = alpha T is >= Threshold, w
+ * computed by the compositing itself (the float product alpha * T of the blended lane, as its
+ * GaussianWeightStats and MaxWeightsOverPixels() compute it). The weights of one pixel sum to at
+ * most 1, so a pixel holds at most 1 / Threshold blends: 9 bytes each (PixelWeight and the
+ * pixel's byte), at most width * height * 9 / Threshold bytes in all, typically far fewer.
+ */
+struct PixelWeightRecord
+{
+  /// Input: the smallest weight kept (> 0). Default 0.01 (the selections' default).
+  float Threshold = 0.01f;
+  /// Input: the most blends kept; a frame with more drops the record (Complete false) and
+  /// frees it. Default 48M (432 MB).
+  std::size_t MaximumEntries = std::size_t(48) << 20;
+  int Width = 0, Height = 0, TilesX = 0;
+  /// Per tile (row-major): the blends kept, and parallel to them the pixel of each in its
+  /// tile (row * 16 + column).
+  std::vector<std::vector<PixelWeight>> Weights;
+  std::vector<std::vector<std::uint8_t>> Pixels;
+  /// Whether the record holds every blend >= Threshold of the last compositing.
+  bool Complete = false;
+  /// Blends kept in all.
+  std::size_t Entries() const;
+};
+
 /**
  * Blends every pixel (reference §2.6) into @p image (resized as needed). When @p weights
  * is given, it is resized to the Gaussian count and filled. When @p work is given, the
@@ -356,6 +391,8 @@ void PrepareCompositeData(const ViewProjection<T>& projection, int threads, Comp
  * data and spans are left in it (its buffers are reused between calls). With @p depth
  * false, RasterImage::Depth is not computed and left empty (every other output is
  * unchanged, bit for bit); @p weights and @p work need @p depth (std::invalid_argument).
+ * When @p record is given, the blends of weight >= its Threshold are kept in it (every other
+ * output unchanged, bit for bit; std::invalid_argument for a Threshold that is not positive).
  */
 template <typename T>
 void CompositeTiles(const ViewProjection<T>& projection,
@@ -365,7 +402,8 @@ void CompositeTiles(const ViewProjection<T>& projection,
   GaussianWeightStats* weights = nullptr,
   RasterWorkCounts* work = nullptr,
   CompositeData<T>* keep = nullptr,
-  bool depth = true);
+  bool depth = true,
+  PixelWeightRecord* record = nullptr);
 
 /**
  * Everything a rasterisation allocates, kept by a caller that renders repeatedly (the scene
@@ -514,7 +552,8 @@ extern template void CompositeTiles<float>(const ViewProjection<float>&,
   GaussianWeightStats*,
   RasterWorkCounts*,
   CompositeData<float>*,
-  bool);
+  bool,
+  PixelWeightRecord*);
 extern template void CompositeTiles<double>(const ViewProjection<double>&,
   const TileBins&,
   const RasterSettings&,
@@ -522,7 +561,8 @@ extern template void CompositeTiles<double>(const ViewProjection<double>&,
   GaussianWeightStats*,
   RasterWorkCounts*,
   CompositeData<double>*,
-  bool);
+  bool,
+  PixelWeightRecord*);
 extern template std::size_t KeepTiles<float>(ViewProjection<float>&,
   const std::vector<std::uint8_t>&);
 extern template std::size_t KeepTiles<double>(ViewProjection<double>&,

@@ -662,14 +662,14 @@ std::vector<std::uint32_t> FrameFromMaxima(const ViewProjection<float>& proj,
   return out;
 }
 
-std::vector<std::uint32_t> SelectFrameImpl(const ViewProjection<float>& proj,
-  const TileBins& bins,
-  const std::vector<float>* viewMaxima,
-  int x0,
-  int y0,
-  int x1,
-  int y1,
-  const FrameOptions& options)
+// Frame's candidates: the projected Gaussians whose centre lies in [x0, x1] x [y0, y1] (corners
+// in any order; clipped to the image in place), ascending.
+std::vector<std::uint32_t> FrameCandidates(const ViewProjection<float>& proj,
+  int& x0,
+  int& y0,
+  int& x1,
+  int& y1,
+  int threads)
 {
   if (x0 > x1)
   {
@@ -695,7 +695,7 @@ std::vector<std::uint32_t> SelectFrameImpl(const ViewProjection<float>& proj,
     std::vector<std::uint8_t> inside(static_cast<std::size_t>(n));
     const ProjectedGaussian<float>* gs = proj.Gaussians.data();
     std::uint8_t* flags = inside.data();
-#pragma omp parallel for schedule(static) num_threads(ThreadCount(options.Threads))
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
     for (std::int64_t i = 0; i < n; ++i)
     {
       const auto& g = gs[i];
@@ -709,6 +709,20 @@ std::vector<std::uint32_t> SelectFrameImpl(const ViewProjection<float>& proj,
       }
     }
   }
+  return candidates;
+}
+
+std::vector<std::uint32_t> SelectFrameImpl(const ViewProjection<float>& proj,
+  const TileBins& bins,
+  const std::vector<float>* viewMaxima,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options)
+{
+  const std::vector<std::uint32_t> candidates =
+    FrameCandidates(proj, x0, y0, x1, y1, options.Threads);
   if (options.IncludeOccluded || candidates.empty())
   {
     return candidates;
@@ -779,6 +793,151 @@ std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
   }
   return SelectFrameImpl(projection, bins, nullptr, x0, y0, x1, y1, options);
 }
+//------------------------------------------------------------------------------
+bool RecordAnswers(const PixelWeightRecord& record, double threshold)
+{
+  // A weight w passes when double(w) >= threshold; the record kept every w >= its float
+  // threshold, so it holds every passing blend exactly when threshold >= that float.
+  return record.Complete && threshold >= static_cast<double>(record.Threshold);
+}
+
+namespace
+{
+// Flags (one byte per Gaussian, @p count of them) of the Gaussians with a kept weight >=
+// @p threshold at a pixel where @p wanted (one 256-bit mask per tile, empty: none) is set.
+std::vector<std::uint8_t> RecordedAt(const PixelWeightRecord& record,
+  std::size_t count,
+  const std::vector<std::array<std::uint64_t, 4>>& wanted,
+  double threshold)
+{
+  if (!record.Complete || record.Weights.size() != wanted.size())
+  {
+    throw std::invalid_argument("pixel weight record: incomplete, or of another image");
+  }
+  if (!RecordAnswers(record, threshold))
+  {
+    throw std::invalid_argument("pixel weight record: the threshold is below the record's");
+  }
+  std::vector<std::uint8_t> flags(count, 0);
+  for (std::size_t t = 0; t < wanted.size(); ++t)
+  {
+    const auto& mask = wanted[t];
+    if ((mask[0] | mask[1] | mask[2] | mask[3]) == 0)
+    {
+      continue;
+    }
+    const std::vector<PixelWeight>& w = record.Weights[t];
+    const std::vector<std::uint8_t>& p = record.Pixels[t];
+    for (std::size_t k = 0; k < w.size(); ++k)
+    {
+      if (((mask[p[k] >> 6] >> (p[k] & 63)) & 1u) &&
+        static_cast<double>(w[k].Weight) >= threshold && w[k].Gaussian < count)
+      {
+        flags[w[k].Gaussian] = 1;
+      }
+    }
+  }
+  return flags;
+}
+
+// One 256-bit pixel mask per tile of the record's image.
+std::vector<std::array<std::uint64_t, 4>> TileMasks(const PixelWeightRecord& record)
+{
+  const int ts = raster::TileSize;
+  const int tilesY = (record.Height + ts - 1) / ts;
+  return std::vector<std::array<std::uint64_t, 4>>(
+    static_cast<std::size_t>(record.TilesX) * static_cast<std::size_t>(std::max(0, tilesY)),
+    std::array<std::uint64_t, 4>{ 0, 0, 0, 0 });
+}
+
+void SetPixel(const PixelWeightRecord& record,
+  std::vector<std::array<std::uint64_t, 4>>& masks,
+  int x,
+  int y)
+{
+  const int ts = raster::TileSize;
+  if (x < 0 || y < 0 || x >= record.Width || y >= record.Height)
+  {
+    return;
+  }
+  const std::size_t tile =
+    static_cast<std::size_t>(y / ts) * record.TilesX + static_cast<std::size_t>(x / ts);
+  const unsigned bit = static_cast<unsigned>((y % ts) * ts + x % ts);
+  masks[tile][bit >> 6] |= std::uint64_t(1) << (bit & 63);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> SelectBrush(const PixelWeightRecord& record,
+  std::size_t count,
+  const std::vector<std::array<int, 2>>& pixels,
+  double threshold)
+{
+  if (!(threshold > 0))
+  {
+    throw std::invalid_argument("SelectBrush: the weight threshold must be positive");
+  }
+  auto masks = TileMasks(record);
+  for (const auto& p : pixels)
+  {
+    SetPixel(record, masks, p[0], p[1]);
+  }
+  const std::vector<std::uint8_t> flags = RecordedAt(record, count, masks, threshold);
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < flags.size(); ++i)
+  {
+    if (flags[i])
+    {
+      out.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
+  const PixelWeightRecord& record,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options)
+{
+  if (record.Width != projection.Width || record.Height != projection.Height)
+  {
+    throw std::invalid_argument("SelectFrame: the pixel weight record is of another image");
+  }
+  std::vector<std::uint32_t> candidates =
+    FrameCandidates(projection, x0, y0, x1, y1, options.Threads);
+  if (options.IncludeOccluded || candidates.empty())
+  {
+    return candidates;
+  }
+  if (!(options.WeightThreshold > 0))
+  {
+    throw std::invalid_argument("SelectFrame: the weight threshold must be positive");
+  }
+  auto masks = TileMasks(record);
+  for (int y = y0; y <= y1; ++y)
+  {
+    for (int x = x0; x <= x1; ++x)
+    {
+      SetPixel(record, masks, x, y);
+    }
+  }
+  const std::vector<std::uint8_t> flags =
+    RecordedAt(record, projection.Gaussians.size(), masks, options.WeightThreshold);
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i : candidates)
+  {
+    if (flags[i])
+    {
+      out.push_back(i);
+    }
+  }
+  return out;
+}
+
 //------------------------------------------------------------------------------
 RayQuery PixelRay(const Camera& camera, double x, double y, double sigmas)
 {

@@ -201,6 +201,41 @@ std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
   int y1,
   const FrameOptions& options = {});
 
+/**
+ * Whether a Brush or Frame selection of weight threshold @p threshold can be read from
+ * @p record (a complete CompositeTiles() record whose Threshold is <= the selection's): then
+ * every blend that passes the threshold is in it.
+ */
+bool RecordAnswers(const PixelWeightRecord& record, double threshold);
+
+/**
+ * SelectBrush() from the pixel weights the drawn frame's compositing kept (@p record, of
+ * a projection of @p count Gaussians: the frame the tile lists of the other overloads
+ * belong to): a Gaussian's largest weight over @p pixels reaches @p threshold exactly when
+ * one of its blends there does, and the record holds all of those (RecordAnswers()), so the
+ * selection is SelectBrush()'s, without replaying the compositing. Throws
+ * std::invalid_argument when RecordAnswers() is false or the threshold is not positive.
+ */
+std::vector<std::uint32_t> SelectBrush(const PixelWeightRecord& record,
+  std::size_t count,
+  const std::vector<std::array<int, 2>>& pixels,
+  double threshold);
+
+/**
+ * SelectFrame() from @p record, the pixel weights kept by the compositing of @p projection's
+ * frame: the candidates (centre inside the rectangle) with a kept weight >= the threshold at a
+ * pixel of the rectangle; the same selection as the replay (see the Brush overload). Throws
+ * std::invalid_argument when RecordAnswers() is false (visible-only frames) or the record is
+ * of another image size.
+ */
+std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
+  const PixelWeightRecord& record,
+  int x0,
+  int y0,
+  int x1,
+  int y1,
+  const FrameOptions& options = {});
+
 /// The viewing ray through pixel (x, y) (fractional pixels allowed), for the optional 3D
 /// k-sigma ellipsoid test (GaussianOctree::IntersectRay; not the Ray mode, whose set is the
 /// drawn footprints, SelectRay()): origin at the camera centre, unit direction R^T ((x -

@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <numeric>
 #include <vector>
 
@@ -130,40 +131,72 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
   std::vector<std::uint32_t> counts(cams.size(), 0);
   if (scene && this->SelectedIds && this->SelectedIds->GetNumberOfTuples() > 0 && !cams.empty())
   {
-    // Only the selected Gaussians are converted to Core's form: CountVisibleInViews
-    // projects each on its own (occluded or not), so a copy of the selection does, not one of
-    // the scene (1M Gaussians with SH degree 3: 240 MB per selection change).
     std::vector<vtkIdType> wanted(this->SelectedIds->GetPointer(0),
       this->SelectedIds->GetPointer(0) + this->SelectedIds->GetNumberOfTuples());
     std::sort(wanted.begin(), wanted.end());
     const vtkIdType n = scene->GetNumberOfPoints();
     vtkDataArray* ids = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
     const bool haveIds = ids && ids->GetNumberOfTuples() == n;
-    vtkNew<vtkPolyData> subset;
-    vtkNew<vtkPoints> points;
-    subset->GetPointData()->CopyAllocate(scene->GetPointData());
-    for (vtkIdType i = 0; i < n; ++i)
+    // The selected rows. A sorted id column (a snapshot's) is searched per selected id, from
+    // the previous one's place on, instead of looking every row up among the wanted ids.
+    std::vector<std::uint32_t> rows;
+    auto* idArray = haveIds ? vtkIdTypeArray::SafeDownCast(ids) : nullptr;
+    const vtkIdType* idp =
+      idArray && idArray->GetNumberOfComponents() == 1 ? idArray->GetPointer(0) : nullptr;
+    if (idp && std::is_sorted(idp, idp + n))
     {
-      const vtkIdType id = haveIds ? static_cast<vtkIdType>(ids->GetComponent(i, 0)) : i;
-      if (std::binary_search(wanted.begin(), wanted.end(), id))
+      const vtkIdType* from = idp;
+      for (const vtkIdType id : wanted)
+      {
+        const auto range = std::equal_range(from, idp + n, id);
+        for (const vtkIdType* it = range.first; it != range.second; ++it)
+        {
+          rows.push_back(static_cast<std::uint32_t>(it - idp));
+        }
+        from = range.first;
+      }
+      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    }
+    else
+    {
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        const vtkIdType id = haveIds ? static_cast<vtkIdType>(ids->GetComponent(i, 0)) : i;
+        if (std::binary_search(wanted.begin(), wanted.end(), id))
+        {
+          rows.push_back(static_cast<std::uint32_t>(i));
+        }
+      }
+    }
+    // CountVisibleInViews projects only the listed Gaussians: the scene's own Core form when
+    // its arrays are one (a reader's cloud, no copy), else a copy of the selected rows only
+    // (not of the scene: 1M Gaussians with SH degree 3 are 240 MB per selection change).
+    std::shared_ptr<const vis4gs::GaussianCloud> cloud = vis4gs::SharedGaussianCloud(scene);
+    if (!cloud)
+    {
+      vtkNew<vtkPolyData> subset;
+      vtkNew<vtkPoints> points;
+      subset->GetPointData()->CopyAllocate(scene->GetPointData());
+      for (const std::uint32_t i : rows)
       {
         subset->GetPointData()->CopyData(
           scene->GetPointData(), i, points->InsertNextPoint(scene->GetPoint(i)));
       }
+      subset->SetPoints(points);
+      subset->GetFieldData()->ShallowCopy(scene->GetFieldData());
+      auto copy = std::make_shared<vis4gs::GaussianCloud>();
+      if (!vis4gs::PolyDataToGaussianCloud(subset, *copy, &error))
+      {
+        vtkErrorMacro("vtkGaussianCameraFrustums: " << error);
+        return 0;
+      }
+      rows.resize(copy->Count);
+      std::iota(rows.begin(), rows.end(), 0U);
+      cloud = std::move(copy);
     }
-    subset->SetPoints(points);
-    subset->GetFieldData()->ShallowCopy(scene->GetFieldData());
-    vis4gs::GaussianCloud cloud;
-    if (!vis4gs::PolyDataToGaussianCloud(subset, cloud, &error))
-    {
-      vtkErrorMacro("vtkGaussianCameraFrustums: " << error);
-      return 0;
-    }
-    std::vector<std::uint32_t> indices(cloud.Count);
-    std::iota(indices.begin(), indices.end(), 0U);
     try
     {
-      counts = vis4gs::CountVisibleInViews(cloud, indices, cams);
+      counts = vis4gs::CountVisibleInViews(*cloud, rows, cams);
     }
     catch (const std::exception& e)
     {

@@ -268,6 +268,11 @@ struct vtkGaussianSplatMapper::vtkInternals
     {
       const std::vector<std::int64_t>& cloudIds = this->Cloud->Ids;
       this->Selected.assign(n, 0);
+      // Sorted ids (the hub's) are searched from the previous one's place on (on the render
+      // thread, once per selection).
+      const vtkIdType* idp = ids->GetPointer(0);
+      const bool ascending = std::is_sorted(idp, idp + ids->GetNumberOfTuples());
+      auto from = cloudIds.begin();
       for (vtkIdType k = 0; k < ids->GetNumberOfTuples(); ++k)
       {
         const vtkIdType id = ids->GetValue(k);
@@ -280,11 +285,13 @@ struct vtkGaussianSplatMapper::vtkInternals
         }
         else if (this->IdOrder.empty())
         {
-          const auto range = std::equal_range(cloudIds.begin(), cloudIds.end(), id);
+          const auto range =
+            std::equal_range(ascending ? from : cloudIds.begin(), cloudIds.end(), id);
           for (auto it = range.first; it != range.second; ++it)
           {
             this->Selected[static_cast<std::size_t>(it - cloudIds.begin())] = 1;
           }
+          from = range.first;
         }
         else
         {
@@ -685,6 +692,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     request.Display = in.Overlay;
     request.Input = input;
     request.InputTime = in.InputTime;
+    request.RecordThreshold = static_cast<float>(this->SelectionWeightThreshold);
     request.Key = key;
     in.SubmittedKey = key;
     in.SubmittedValid = true;
@@ -815,10 +823,11 @@ void vtkGaussianSplatMapper::SetSharedGaussians(vtkPolyData* input,
 const vis4gs::RasterWorkspace<float>* vtkGaussianSplatMapper::GetLastFullFrame(
   const vis4gs::Camera*& camera,
   vtkPolyData*& input,
-  vtkMTimeType& inputTime) const
+  vtkMTimeType& inputTime,
+  const vis4gs::PixelWeightRecord** weights) const
 {
   const vtkInternals& in = *this->Internals;
-  return in.Frames.LastFullFrame(camera, input, inputTime);
+  return in.Frames.LastFullFrame(camera, input, inputTime, weights);
 }
 
 //------------------------------------------------------------------------------
@@ -1224,6 +1233,7 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
   os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
+  os << indent << "SelectionWeightThreshold: " << this->SelectionWeightThreshold << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";

@@ -223,7 +223,8 @@ void vtkGaussianSplatRasterFrames::Cancel()
 const vis4gs::RasterWorkspace<float>* vtkGaussianSplatRasterFrames::LastFullFrame(
   const vis4gs::Camera*& camera,
   vtkPolyData*& input,
-  vtkMTimeType& inputTime) const
+  vtkMTimeType& inputTime,
+  const vis4gs::PixelWeightRecord** weights) const
 {
   std::lock_guard<std::mutex> lock(this->Mutex);
   // Only a render (this thread) starts a new frame, so the buffers stay as they are until
@@ -232,6 +233,10 @@ const vis4gs::RasterWorkspace<float>* vtkGaussianSplatRasterFrames::LastFullFram
   camera = reusable ? &this->FrameCamera : nullptr;
   input = reusable ? this->FrameInput : nullptr;
   inputTime = reusable ? this->FrameInputTime : 0;
+  if (weights)
+  {
+    *weights = reusable && this->Weights.Complete ? &this->Weights : nullptr;
+  }
   return reusable ? &this->Work : nullptr;
 }
 
@@ -350,8 +355,20 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
     vis4gs::BinGaussians<float>(projection, threads, work.Bins, work.Scratch);
     // Nothing replays the blending: the compositing reads the kernels from the projection.
     work.Composite.KeepKernels = false;
-    vis4gs::CompositeTiles<float>(
-      projection, work.Bins, r.Settings, this->Image, nullptr, nullptr, &work.Composite);
+    // An exact frame keeps the blends the selections read (Brush and Frame then look them
+    // up instead of replaying the compositing); not a reduced or modified frame.
+    const bool record = unmodified && r.RecordThreshold > 0.0f;
+    this->Weights.Complete = false;
+    this->Weights.Threshold = record ? r.RecordThreshold : this->Weights.Threshold;
+    vis4gs::CompositeTiles<float>(projection,
+      work.Bins,
+      r.Settings,
+      this->Image,
+      nullptr,
+      nullptr,
+      &work.Composite,
+      true,
+      record ? &this->Weights : nullptr);
     if (!r.Reduced)
     {
       std::lock_guard<std::mutex> lock(this->Mutex);

@@ -85,6 +85,9 @@ public:
     std::shared_ptr<const Overlay> Display; ///< nullptr: true colours, every Gaussian
     vtkPolyData* Input = nullptr;           ///< identity only (GetLastFullFrame)
     vtkMTimeType InputTime = 0;
+    /// An exact frame (full resolution, unmodified Gaussians) keeps the blends of weight >=
+    /// this for the selections (vis4gs::PixelWeightRecord); 0: none kept.
+    float RecordThreshold = 0.0f;
     std::array<double, 25> Key{};
   };
 
@@ -142,10 +145,13 @@ public:
 
   /// The workspace of the last full-resolution, unmodified, exact frame, the camera and input
   /// it was made for; nullptr while a frame is in production (the buffers are the worker's)
-  /// or when the last frame was not such a frame.
+  /// or when the last frame was not such a frame. With @p weights, also the blends that frame's
+  /// compositing kept (nullptr when it kept none: Request::RecordThreshold 0, or over the
+  /// record's budget).
   const vis4gs::RasterWorkspace<float>* LastFullFrame(const vis4gs::Camera*& camera,
     vtkPolyData*& input,
-    vtkMTimeType& inputTime) const;
+    vtkMTimeType& inputTime,
+    const vis4gs::PixelWeightRecord** weights = nullptr) const;
 
   /// Uploads @p frame (magnified linearly when smaller than the viewport) to @p window.
   bool Upload(vtkOpenGLRenderWindow* window, const Frame& frame, bool magnified);
@@ -177,6 +183,7 @@ private:
   std::vector<float> Display;
   std::vector<std::uint8_t> Keep;
   bool FrameReusable = false;
+  vis4gs::PixelWeightRecord Weights; // the last exact frame's blends (Request::RecordThreshold)
   vis4gs::Camera FrameCamera;
   vtkPolyData* FrameInput = nullptr;
   vtkMTimeType FrameInputTime = 0;

@@ -33,7 +33,9 @@
 #include "vtkTable.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -53,6 +55,19 @@ struct vtkGaussianHistogramView::vtkInternals
   vtkPlot* AllPlot = nullptr;
   vtkPlot* SelectedPlot = nullptr;
   bool Brushing = false;
+  double Lo = 0.0, Hi = 1.0; // the range binned (Edges' ends up to rounding)
+  // What the grey bars were counted from (input, its time, the array, its time, component,
+  // bins): a selection change with the same key recounts only the selected Gaussians.
+  std::array<vtkMTimeType, 6> AllKey{};
+  std::array<vtkMTimeType, 6> Key(vtkGaussianHistogramView* self, vtkAbstractArray* values) const
+  {
+    return { static_cast<vtkMTimeType>(reinterpret_cast<std::uintptr_t>(this->Data.GetPointer())),
+      this->Data ? this->Data->GetMTime() : 0,
+      static_cast<vtkMTimeType>(reinterpret_cast<std::uintptr_t>(values)),
+      values ? values->GetMTime() : 0,
+      static_cast<vtkMTimeType>(self->GetComponent() + 1),
+      static_cast<vtkMTimeType>(self->GetNumberOfBins()) };
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -69,7 +84,7 @@ vtkGaussianHistogramView::vtkGaussianHistogramView()
   in.Chart->SetBarWidthFraction(0.95f);
   in.HubCommand->SetClientData(this);
   in.HubCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
-    { static_cast<vtkGaussianHistogramView*>(client)->UpdateHistogram(); });
+    { static_cast<vtkGaussianHistogramView*>(client)->UpdateSelectedCounts(); });
   in.ChartCommand->SetClientData(this);
   in.ChartCommand->SetCallback([](vtkObject*, unsigned long, void* client, void*)
     { static_cast<vtkGaussianHistogramView*>(client)->OnChartSelection(); });
@@ -187,6 +202,12 @@ vtkAbstractArray* FindArray(vtkDataObject* data, const char* name)
   return nullptr;
 }
 
+// The bin of value v of [lo, hi] in nb bins (the last one closed), for both bar kinds.
+int BinOf(double v, double lo, double hi, int nb)
+{
+  return std::min(nb - 1, std::max(0, static_cast<int>((v - lo) / (hi - lo) * nb)));
+}
+
 double ValueOf(vtkDataArray* a, vtkIdType i, int component)
 {
   const int nc = a->GetNumberOfComponents();
@@ -240,35 +261,22 @@ void vtkGaussianHistogramView::UpdateHistogram()
     hi = lo + 1;
   }
   const int nb = this->NumberOfBins;
+  in.Lo = lo;
+  in.Hi = hi;
   for (int b = 0; b <= nb; ++b)
   {
     in.Edges[b] = lo + (hi - lo) * b / nb;
   }
-  auto binOf = [&](double v)
-  { return std::min(nb - 1, std::max(0, static_cast<int>((v - lo) / (hi - lo) * nb))); };
   for (vtkIdType i = 0; i < n; ++i)
   {
     const double v = ValueOf(values, i, this->Component);
     if (std::isfinite(v))
     {
-      ++in.Counts[binOf(v)];
+      ++in.Counts[BinOf(v, lo, hi, nb)];
     }
   }
-  if (in.Hub && ids && in.Hub->GetNumberOfSelectedIds() > 0)
-  {
-    const auto& sel = in.Hub->GetSelectedIdVector();
-    vtkNew<vtkIdTypeArray> rows;
-    vtkGaussianSelectionHub::IdsToIndices(
-      sel.data(), static_cast<vtkIdType>(sel.size()), ids, rows);
-    for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
-    {
-      const double v = ValueOf(values, rows->GetValue(k), this->Component);
-      if (std::isfinite(v))
-      {
-        ++in.SelectedCounts[binOf(v)];
-      }
-    }
-  }
+  this->CountSelected(values, ids);
+  in.AllKey = in.Key(this, values);
   in.Bins->Initialize();
   vtkNew<vtkDoubleArray> centre, all, selected;
   centre->SetName("Value");
@@ -296,6 +304,58 @@ void vtkGaussianHistogramView::UpdateHistogram()
   in.Chart->GetAxis(vtkAxis::LEFT)->SetTitle("Gaussians");
   in.Chart->SetTitle(std::string("Histogram: ") + (this->ArrayName ? this->ArrayName : ""));
   in.Chart->RecalculateBounds();
+  this->GetScene()->SetDirty(true);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::CountSelected(vtkDataArray* values, vtkAbstractArray* ids)
+{
+  auto& in = *this->Internals;
+  in.SelectedCounts.assign(this->NumberOfBins, 0);
+  const int nb = this->NumberOfBins;
+  const double lo = in.Lo, hi = in.Hi;
+  if (!in.Hub || !ids || in.Hub->GetNumberOfSelectedIds() == 0)
+  {
+    return;
+  }
+  // The same bin rule as the grey bars (UpdateHistogram), over the selected rows only.
+  const auto& sel = in.Hub->GetSelectedIdVector();
+  vtkNew<vtkIdTypeArray> rows;
+  vtkGaussianSelectionHub::IdsToIndices(sel.data(), static_cast<vtkIdType>(sel.size()), ids, rows);
+  for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
+  {
+    const double v = ValueOf(values, rows->GetValue(k), this->Component);
+    if (std::isfinite(v))
+    {
+      ++in.SelectedCounts[BinOf(v, lo, hi, nb)];
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianHistogramView::UpdateSelectedCounts()
+{
+  auto& in = *this->Internals;
+  auto* values = vtkDataArray::SafeDownCast(FindArray(in.Data, this->ArrayName));
+  vtkDataArray* column = in.Bins->GetNumberOfColumns() == 3
+    ? vtkDataArray::SafeDownCast(in.Bins->GetColumn(2))
+    : nullptr;
+  if (!values || !column || !in.SelectedPlot || in.AllKey != in.Key(this, values) ||
+    column->GetNumberOfTuples() != this->NumberOfBins)
+  {
+    this->UpdateHistogram();
+    return;
+  }
+  // A selection of millions is counted in O(selection) (its rows by binary search in the
+  // sorted ids); the 4.89M values of the grey bars are not read again.
+  this->CountSelected(values, FindArray(in.Data, this->IdArrayName));
+  for (int b = 0; b < this->NumberOfBins; ++b)
+  {
+    column->SetComponent(b, 0, static_cast<double>(in.SelectedCounts[b]));
+  }
+  column->Modified();
+  in.Bins->Modified();
   this->GetScene()->SetDirty(true);
   this->Modified();
 }

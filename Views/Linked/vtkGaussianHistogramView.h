@@ -30,8 +30,10 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkAbstractArray;
 class vtkAlgorithmOutput;
 class vtkChartXY;
+class vtkDataArray;
 class vtkDataObject;
 class vtkGaussianSelectionHub;
 class vtkIdTypeArray;
@@ -103,8 +105,8 @@ public:
    */
   vtkIdType SelectRange(double lo, double hi, int mode = 0);
 
-  /// Recomputes the bins from the input (pulled first) and the selection (done on every
-  /// change).
+  /// Recomputes the bins from the input (pulled first) and the selection (done on a change of
+  /// the input or the settings; a selection change recounts only the selected Gaussians).
   void UpdateHistogram();
 
   ///@{
@@ -125,6 +127,11 @@ protected:
   ~vtkGaussianHistogramView() override;
 
   void OnChartSelection();
+  /// The orange bars of the current selection over the current bins (no other change).
+  void CountSelected(vtkDataArray* values, vtkAbstractArray* ids);
+  /// After a selection change: the orange bars only when the grey bars' input is unchanged,
+  /// else UpdateHistogram().
+  void UpdateSelectedCounts();
 
   char* ArrayName = nullptr;
   char* IdArrayName = nullptr;

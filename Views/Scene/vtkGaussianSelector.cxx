@@ -54,8 +54,13 @@ double MsSince(std::chrono::steady_clock::time_point t0)
 const vis4gs::RasterWorkspace<float>* DrawnFrame(vtkGaussianSplatMapper* mapper,
   vtkPolyData* scene,
   const vis4gs::Camera& view,
-  std::size_t count)
+  std::size_t count,
+  const vis4gs::PixelWeightRecord** weights = nullptr)
 {
+  if (weights)
+  {
+    *weights = nullptr;
+  }
   if (!mapper || !scene)
   {
     return nullptr;
@@ -63,7 +68,9 @@ const vis4gs::RasterWorkspace<float>* DrawnFrame(vtkGaussianSplatMapper* mapper,
   const vis4gs::Camera* cam = nullptr;
   vtkPolyData* input = nullptr;
   vtkMTimeType inputTime = 0;
-  const vis4gs::RasterWorkspace<float>* frame = mapper->GetLastFullFrame(cam, input, inputTime);
+  const vis4gs::PixelWeightRecord* kept = nullptr;
+  const vis4gs::RasterWorkspace<float>* frame =
+    mapper->GetLastFullFrame(cam, input, inputTime, &kept);
   if (!frame || !cam || input != scene || inputTime != scene->GetMTime() ||
     cam->WorldToCamera != view.WorldToCamera || cam->Fx != view.Fx || cam->Fy != view.Fy ||
     cam->Width != view.Width || cam->Height != view.Height ||
@@ -71,6 +78,10 @@ const vis4gs::RasterWorkspace<float>* DrawnFrame(vtkGaussianSplatMapper* mapper,
     frame->Projection.Gaussians.size() != count)
   {
     return nullptr;
+  }
+  if (weights && kept && kept->Width == view.Width && kept->Height == view.Height)
+  {
+    *weights = kept;
   }
   return frame;
 }
@@ -324,6 +335,7 @@ vtkDoubleArray* vtkGaussianSelector::GetRayHitWeights()
 //------------------------------------------------------------------------------
 void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indices)
 {
+  const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   const int modifier = this->Modifier;
   vtkAnnotationLink* link = this->AnnotationLink;
@@ -352,22 +364,28 @@ void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indice
     link->InvokeEvent(vtkCommand::AnnotationChangedEvent, sel);
   }
   self->Modified();
+  this->LastPublishTime = MsSince(t0);
 }
 
 //------------------------------------------------------------------------------
 // Single and Brush: the scene view's drawn frame when it is this camera's (no projection
 // needed), else the prepared selection view.
-bool vtkGaussianSelector::PrepareViewOrFrame(const vis4gs::RasterWorkspace<float>*& frame)
+bool vtkGaussianSelector::PrepareViewOrFrame(const vis4gs::RasterWorkspace<float>*& frame,
+  const vis4gs::PixelWeightRecord** weights)
 {
   vtkInternals& in = *this->Internals;
   frame = nullptr;
+  if (weights)
+  {
+    *weights = nullptr;
+  }
   if (!this->PrepareView(false))
   {
     return false;
   }
   if (!in.ViewValid)
   {
-    frame = DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud->Count);
+    frame = DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud->Count, weights);
   }
   if (!frame && !this->PrepareView(true))
   {
@@ -383,6 +401,7 @@ vtkIdType vtkGaussianSelector::SelectSingle(double x, double y)
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   this->LastSelectionReusedFrame = false;
+  this->LastSelectionReadWeights = false;
   const vis4gs::RasterWorkspace<float>* frame = nullptr;
   if (!this->PrepareViewOrFrame(frame))
   {
@@ -417,8 +436,10 @@ vtkIdType vtkGaussianSelector::SelectBrush(vtkPoints* stroke)
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   this->LastSelectionReusedFrame = false;
+  this->LastSelectionReadWeights = false;
   const vis4gs::RasterWorkspace<float>* frame = nullptr;
-  if (!this->PrepareViewOrFrame(frame))
+  const vis4gs::PixelWeightRecord* weights = nullptr;
+  if (!this->PrepareViewOrFrame(frame, &weights))
   {
     return -1;
   }
@@ -434,7 +455,12 @@ vtkIdType vtkGaussianSelector::SelectBrush(vtkPoints* stroke)
   try
   {
     const auto pixels = vis4gs::BrushPixels(pts, this->BrushRadius, in.Width, in.Height);
-    picked = frame
+    this->LastSelectionReadWeights =
+      frame && weights && vis4gs::RecordAnswers(*weights, this->WeightThreshold);
+    picked = this->LastSelectionReadWeights
+      ? vis4gs::SelectBrush(
+          *weights, frame->Projection.Gaussians.size(), pixels, this->WeightThreshold)
+      : frame
       ? vis4gs::SelectBrush(
           frame->Projection, frame->Bins, pixels, this->WeightThreshold, this->NumberOfThreads)
       : vis4gs::SelectBrush(in.View, pixels, this->WeightThreshold, this->NumberOfThreads);
@@ -455,6 +481,7 @@ vtkIdType vtkGaussianSelector::SelectFrame(double x0, double y0, double x1, doub
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   this->LastSelectionReusedFrame = false;
+  this->LastSelectionReadWeights = false;
   // Scene and camera first, without projecting: the scene view's frame may serve.
   if (!this->PrepareView(false))
   {
@@ -479,11 +506,19 @@ vtkIdType vtkGaussianSelector::SelectFrame(double x0, double y0, double x1, doub
   std::vector<std::uint32_t> picked;
   try
   {
+    const vis4gs::PixelWeightRecord* weights = nullptr;
     const vis4gs::RasterWorkspace<float>* frame = in.ViewValid
       ? nullptr
-      : DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud->Count);
+      : DrawnFrame(this->SplatMapper, this->Scene, in.ViewCamera, in.Cloud->Count, &weights);
     this->LastSelectionReusedFrame = frame != nullptr;
-    if (frame && !wantMaxima)
+    this->LastSelectionReadWeights = frame && !this->IncludeOccluded && weights &&
+      vis4gs::RecordAnswers(*weights, this->WeightThreshold);
+    if (this->LastSelectionReadWeights)
+    {
+      // The drawn frame's blends over the rectangle: no replay, no view maxima.
+      picked = vis4gs::SelectFrame(frame->Projection, *weights, ax, ay, bx, by, fo);
+    }
+    else if (frame && !wantMaxima)
     {
       picked = vis4gs::SelectFrame(frame->Projection, frame->Bins, ax, ay, bx, by, fo);
     }
@@ -529,6 +564,7 @@ vtkIdType vtkGaussianSelector::SelectRay(double x, double y)
   const auto t0 = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
   this->LastSelectionReusedFrame = false;
+  this->LastSelectionReadWeights = false;
   std::vector<vis4gs::RayContribution> hits;
   std::vector<vis4gs::RayHit> ellipsoidHits;
   try
@@ -623,5 +659,7 @@ void vtkGaussianSelector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastSelectionTime: " << this->LastSelectionTime << "\n";
   os << indent << "LastPrepareTime: " << this->LastPrepareTime << "\n";
   os << indent << "LastSelectionReusedFrame: " << this->LastSelectionReusedFrame << "\n";
+  os << indent << "LastSelectionReadWeights: " << this->LastSelectionReadWeights << "\n";
+  os << indent << "LastPublishTime: " << this->LastPublishTime << "\n";
   os << indent << "Selected: " << this->Internals->Current.size() << "\n";
 }

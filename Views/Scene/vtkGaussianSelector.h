@@ -54,7 +54,10 @@
  * resolution, with ScaleModifier 1 and no hidden or dimmed Gaussians
  * (vtkGaussianSplatMapper::GetLastFullFrame()); a Frame that computes the view maxima copies
  * that frame into its cached view instead of projecting. Otherwise it projects the scene as
- * above; the selection is the same.
+ * above; the selection is the same. When that frame's compositing also kept its blends of
+ * weight >= the mapper's SelectionWeightThreshold (<= WeightThreshold), Brush and visible-only
+ * Frame read them over the stroke's pixels or the rectangle instead of replaying the
+ * compositing there (GetLastSelectionReadWeights()): the same selection, as a lookup.
  */
 #ifndef vtkGaussianSelector_h
 #define vtkGaussianSelector_h
@@ -69,6 +72,7 @@
 namespace vis4gs
 {
 struct GaussianCloud;
+struct PixelWeightRecord;
 template <typename T>
 struct RasterWorkspace;
 }
@@ -261,6 +265,20 @@ public:
    */
   vtkGetMacro(LastSelectionReusedFrame, bool);
 
+  /**
+   * Whether the last Brush or (visible-only) Frame read the blends the SplatMapper's drawn
+   * frame kept (vtkGaussianSplatMapper::SelectionWeightThreshold, at most this WeightThreshold)
+   * instead of replaying the compositing over the stroke or the rectangle: the same
+   * selection, as a lookup.
+   */
+  vtkGetMacro(LastSelectionReadWeights, bool);
+
+  /**
+   * Milliseconds of the last selection's publishing (the hub, the linked views' updates and
+   * renders): part of LastSelectionTime.
+   */
+  vtkGetMacro(LastPublishTime, double);
+
 protected:
   vtkGaussianSelector();
   ~vtkGaussianSelector() override;
@@ -279,6 +297,8 @@ protected:
   double LastSelectionTime = 0.0;
   double LastPrepareTime = 0.0;
   bool LastSelectionReusedFrame = false;
+  bool LastSelectionReadWeights = false;
+  double LastPublishTime = 0.0;
 
 private:
   vtkGaussianSelector(const vtkGaussianSelector&) = delete;
@@ -286,7 +306,8 @@ private:
 
   bool PrepareView(bool needView);
 #ifndef __VTK_WRAP__
-  bool PrepareViewOrFrame(const vis4gs::RasterWorkspace<float>*& frame);
+  bool PrepareViewOrFrame(const vis4gs::RasterWorkspace<float>*& frame,
+    const vis4gs::PixelWeightRecord** weights = nullptr);
 #endif
   void PublishIndices(const std::vector<unsigned int>& indices);
 

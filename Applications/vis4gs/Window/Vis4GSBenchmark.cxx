@@ -4,6 +4,7 @@
 #include "Vis4GSDocument.h"
 #include "Vis4GSMainWindow.h"
 
+#include "Rasterizer.h"
 #include "Vis4GSDataModel.h"
 
 #include "vtkCallbackCommand.h"
@@ -227,6 +228,18 @@ void OrbitScene(Vis4GSMainWindow& w, int frames)
             << " ms); still frame after the stop " << 1000 * stop
             << " ms (longest event-loop gap meanwhile " << 1000 * stillGap << " ms), "
             << (mapper->GetLastFrameReduced() ? "reduced" : "exact") << std::endl;
+  // What the exact frame kept for the selections (Brush and Frame read it).
+  const vis4gs::Camera* cam = nullptr;
+  vtkPolyData* input = nullptr;
+  vtkMTimeType inputTime = 0;
+  const vis4gs::PixelWeightRecord* weights = nullptr;
+  mapper->GetLastFullFrame(cam, input, inputTime, &weights);
+  const double entries = weights ? static_cast<double>(weights->Entries()) : 0.0;
+  std::cout << "benchmark: the still frame kept " << entries
+            << " blends of weight >= " << mapper->GetSelectionWeightThreshold()
+            << " for the selections (" << entries * 9 / (1 << 20) << " MiB"
+            << (weights ? "" : "; none: no exact frame, or over the record's budget") << ")"
+            << std::endl;
 }
 
 // How long each selection mode takes to answer at the view's centre after the orbit's still
@@ -248,22 +261,27 @@ void TimePicks(Vis4GSMainWindow& w)
   }
   auto time = [&](const char* mode, const std::function<vtkIdType()>& select)
   {
-    const double w0 = Now(), c0 = CpuNow();
+    const double w0 = Now(), c0 = CpuNow(), g0 = ThreadCpuNow();
     const vtkIdType picked = select();
     view->GetRenderWindow()->WaitForCompletion();
     QApplication::processEvents();
-    const double answer = Now() - w0, answerCpu = CpuNow() - c0;
+    const double answer = Now() - w0, answerCpu = CpuNow() - c0, guiCpu = ThreadCpuNow() - g0;
     double longest = 0;
     TurnEventLoop(
       60.0, [&] { return !mapper->GetFramePending(); }, longest);
-    // The selector's own part (the rest: publishing, the views' re-render with the highlight).
+    // The selector's time includes its publishing (the hub, the linked views' updates and
+    // renders); the rest of the answer is the event loop's turn.
     vtkGaussianSelector* selector = view->GetSelector();
     std::cout << "benchmark: pick " << mode << ": " << 1000 * answer << " ms (" << 1000 * answerCpu
-              << " ms CPU), " << picked << " Gaussians; selector "
-              << selector->GetLastSelectionTime() << " ms (projection/binning "
-              << selector->GetLastPrepareTime() << " ms); highlight drawn after "
-              << 1000 * (Now() - w0) << " ms (longest event-loop gap meanwhile " << 1000 * longest
-              << " ms)" << std::endl;
+              << " ms CPU, GUI thread " << 1000 * guiCpu << " ms CPU), " << picked
+              << " Gaussians; selector " << selector->GetLastSelectionTime()
+              << " ms (projection/binning " << selector->GetLastPrepareTime()
+              << " ms; publishing to the hub and the linked views "
+              << selector->GetLastPublishTime() << " ms; "
+              << (selector->GetLastSelectionReadWeights() ? "read the frame's kept blends"
+                                                          : "no kept blends read")
+              << "); highlight drawn after " << 1000 * (Now() - w0)
+              << " ms (longest event-loop gap meanwhile " << 1000 * longest << " ms)" << std::endl;
   };
   time("Single", [&] { return view->SelectSingle(cx, cy); });
   time("Brush", [&] { return view->SelectBrush(stroke); });

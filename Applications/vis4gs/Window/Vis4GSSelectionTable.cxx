@@ -21,6 +21,8 @@
 //------------------------------------------------------------------------------
 namespace
 {
+constexpr vtkIdType MaximumRows = 1000; // rows the table shows of a selection
+
 // The columns after id and centre: opacity, largest scale, then every registered score.
 std::vector<std::string> AttributeColumns()
 {
@@ -55,11 +57,21 @@ void Vis4GSSelectionTable::Show(vtkPolyData* scene, const std::vector<vtkIdType>
   this->setRowCount(0);
   if (scene)
   {
+    // Only the first MaximumRows rows are shown: their rows are looked up for a prefix of the
+    // (sorted) ids, grown until it yields them, not for a selection of millions.
     vtkNew<vtkIdTypeArray> rows;
-    vtkGaussianSelectionHub::IdsToIndices(selected.data(),
-      static_cast<vtkIdType>(selected.size()),
-      scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId),
-      rows);
+    vtkDataArray* idColumn = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+    std::size_t prefix = std::min<std::size_t>(selected.size(), MaximumRows);
+    for (;;)
+    {
+      vtkGaussianSelectionHub::IdsToIndices(
+        selected.data(), static_cast<vtkIdType>(prefix), idColumn, rows);
+      if (rows->GetNumberOfTuples() >= MaximumRows || prefix == selected.size())
+      {
+        break;
+      }
+      prefix = std::min(selected.size(), 4 * prefix);
+    }
     vtkPointData* pd = scene->GetPointData();
     std::vector<vtkDataArray*> columns{
       pd->GetArray(vis4gs::arrays::GaussianId), nullptr, nullptr, nullptr
@@ -69,7 +81,7 @@ void Vis4GSSelectionTable::Show(vtkPolyData* scene, const std::vector<vtkIdType>
       columns.push_back(pd->GetArray(name.c_str()));
     }
     const int scaleColumn = 5;
-    const int shown = static_cast<int>(std::min<vtkIdType>(rows->GetNumberOfTuples(), 1000));
+    const int shown = static_cast<int>(std::min<vtkIdType>(rows->GetNumberOfTuples(), MaximumRows));
     this->setRowCount(shown);
     for (int k = 0; k < shown; ++k)
     {

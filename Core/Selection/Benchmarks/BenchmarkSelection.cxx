@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Selection latency per mode at N Gaussians (synthetic scene, 1280x720 view).
-// Usage: BenchmarkSelection [count=1000000] [threads=2] [repeats=5]
+// Usage: BenchmarkSelection [count=1000000] [threads=2] [repeats=5] [record]
 #include "BenchmarkScene.h"
 #include "BenchmarkTiming.h"
 #include "GaussianOctree.h"
@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 int main(int argc, char* argv[])
@@ -18,6 +19,8 @@ int main(int argc, char* argv[])
   const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int repeats = argc > 3 ? std::atoi(argv[3]) : 5;
+  // "record": stop after the kept blends' figures (the other cases replay whole views).
+  const bool recordOnly = argc > 4 && std::string(argv[4]) == "record";
   std::printf("BenchmarkSelection: %zu Gaussians, 1280x720, %d threads, median of %d runs\n",
     n,
     threads,
@@ -60,6 +63,81 @@ int main(int argc, char* argv[])
     std::printf("  scene view's full frame (for reference)     %8.2f ms (CPU %7.1f ms)\n",
       t,
       timer.LastCpuMs);
+  }
+  {
+    // The blends the scene view's exact frame keeps for Brush and Frame (PixelWeightRecord):
+    // its cost on the compositing, its size, and the lookups against the replays on the same
+    // drawn frame (the straightforward path, what the selector did before).
+    RasterSettings drawn;
+    drawn.Threads = threads;
+    RasterImage<float> image;
+    t = timer.TimeMs(
+      repeats, [&] { CompositeTiles<float>(frame.Projection, frame.Bins, drawn, image); });
+    std::printf("  record: compositing of the frame, plain     %8.2f ms (CPU %7.1f ms)\n",
+      t,
+      timer.LastCpuMs);
+    PixelWeightRecord record;
+    t = timer.TimeMs(repeats,
+      [&]
+      {
+        CompositeTiles<float>(
+          frame.Projection, frame.Bins, drawn, image, nullptr, nullptr, nullptr, true, &record);
+      });
+    std::printf("  record: compositing keeping w >= %.2f       %8.2f ms (CPU %7.1f ms)  (%zu "
+                "blends, %.1f MiB, %.1f a pixel, complete %d)\n",
+      static_cast<double>(record.Threshold),
+      t,
+      timer.LastCpuMs,
+      record.Entries(),
+      9.0 * static_cast<double>(record.Entries()) / (1 << 20),
+      static_cast<double>(record.Entries()) / (1280.0 * 720.0),
+      record.Complete ? 1 : 0);
+    const std::size_t count = frame.Projection.Gaussians.size();
+    std::vector<std::uint32_t> replayed, looked;
+    t = timer.TimeMs(
+      repeats, [&] { replayed = SelectBrush(frame.Projection, frame.Bins, brush, 0.01, threads); });
+    std::printf("  record: Brush, replay on the drawn frame    %8.2f ms (CPU %7.1f ms)  (%zu "
+                "selected)\n",
+      t,
+      timer.LastCpuMs,
+      replayed.size());
+    t = timer.TimeMs(repeats, [&] { looked = SelectBrush(record, count, brush, 0.01); });
+    std::printf(
+      "  record: Brush, lookup                       %8.2f ms (CPU %7.1f ms)  (%zu selected, %s)\n",
+      t,
+      timer.LastCpuMs,
+      looked.size(),
+      looked == replayed ? "same selection" : "DIFFERENT SELECTION");
+    FrameOptions rf;
+    rf.Threads = threads;
+    for (int half : { 100, 640 })
+    {
+      const int x0 = 640 - half, x1 = 640 + half - 1, y0 = std::max(0, 360 - half),
+                y1 = std::min(719, 360 + half - 1);
+      t = timer.TimeMs(
+        repeats, [&] { replayed = SelectFrame(frame.Projection, frame.Bins, x0, y0, x1, y1, rf); });
+      std::printf("  record: Frame %4dx%-4d, culled replay      %8.2f ms (CPU %7.1f ms)  (%zu "
+                  "selected)\n",
+        x1 - x0 + 1,
+        y1 - y0 + 1,
+        t,
+        timer.LastCpuMs,
+        replayed.size());
+      t = timer.TimeMs(
+        repeats, [&] { looked = SelectFrame(frame.Projection, record, x0, y0, x1, y1, rf); });
+      std::printf("  record: Frame %4dx%-4d, lookup             %8.2f ms (CPU %7.1f ms)  (%zu "
+                  "selected, %s)\n",
+        x1 - x0 + 1,
+        y1 - y0 + 1,
+        t,
+        timer.LastCpuMs,
+        looked.size(),
+        looked == replayed ? "same selection" : "DIFFERENT SELECTION");
+    }
+    if (recordOnly)
+    {
+      return 0;
+    }
   }
   {
     // Single and Brush right after a camera move: before, project + bin first; now on the

@@ -645,6 +645,114 @@ TEST(ScreenSelection, FrameOnReusedDrawnProjectionEqualsReplay)
   EXPECT_THROW(SelectFrame(frame.Projection, wrong, 0, 0, 10, 10), std::invalid_argument);
 }
 
+TEST(ScreenSelection, BrushAndFrameFromTheFramesRecordEqualReplay)
+{
+  // The drawn frame's compositing keeps the blends of weight >= the record's threshold; Brush
+  // and Frame read them instead of replaying: the same selections, on every instruction set.
+  auto cloud = TestCloud(3000, 31);
+  for (auto& p : cloud.Positions)
+  {
+    p *= 0.6f; // several layers per pixel: occlusion decides
+  }
+  for (std::size_t i = 0; i < cloud.Count; i += 10)
+  {
+    cloud.LogScales[3 * i] = -1.2f; // large: crosses many tiles
+    if (i % 20 == 0)
+    {
+      cloud.LogScales[3 * i + 1] = -7.0f; // needles and disks
+      cloud.OpacityLogits[i] = 6.0f;
+    }
+  }
+  const Camera cam = TestCamera();
+  const SelectionView view = PrepareSelectionView(cloud, cam, 2);
+  const std::vector<std::vector<std::array<double, 2>>> strokes = {
+    { { 40, 30 } }, { { 5, 5 }, { 90, 60 } }, { { 0, 63 }, { 50, 20 }, { 95, 40 } }
+  };
+  const std::vector<std::array<int, 4>> rects = { { 0, 0, 95, 63 },
+    { 30, 20, 60, 45 },
+    { 70, 50, 10, 5 },
+    { 47, 31, 47, 31 },
+    { -10, -10, 200, 15 } };
+  for (int isa = 1; isa <= 3; ++isa)
+  {
+    RasterSettings settings = view.Settings;
+    settings.KernelIsa = isa;
+    RasterImage<float> plain, recorded;
+    CompositeTiles<float>(view.Projection, view.Bins, settings, plain);
+    PixelWeightRecord record;
+    record.Threshold = 0.01f;
+    CompositeTiles<float>(
+      view.Projection, view.Bins, settings, recorded, nullptr, nullptr, nullptr, true, &record);
+    ASSERT_TRUE(record.Complete);
+    ASSERT_GT(record.Entries(), 1000u);
+    // Recording changes no output.
+    EXPECT_EQ(0,
+      std::memcmp(plain.Color.data(), recorded.Color.data(), plain.Color.size() * sizeof(float)));
+    EXPECT_EQ(plain.Contributors, recorded.Contributors);
+    // Each kept blend is the independent replay's weight at its pixel, and every weight of
+    // the replay >= the threshold is kept (a sample of pixels).
+    for (int y = 0; y < cam.Height; y += 7)
+    {
+      for (int x = 0; x < cam.Width; x += 5)
+      {
+        const auto naive = NaiveMaxWeights(view, { { x, y } });
+        const std::size_t tile = static_cast<std::size_t>(y / 16) * record.TilesX + x / 16;
+        const std::uint8_t at = static_cast<std::uint8_t>((y % 16) * 16 + x % 16);
+        std::vector<std::pair<std::uint32_t, float>> kept, expected;
+        for (std::size_t k = 0; k < record.Weights[tile].size(); ++k)
+        {
+          if (record.Pixels[tile][k] == at)
+          {
+            kept.emplace_back(record.Weights[tile][k].Gaussian, record.Weights[tile][k].Weight);
+          }
+        }
+        for (std::uint32_t i = 0; i < naive.size(); ++i)
+        {
+          if (naive[i] >= 0.01f)
+          {
+            expected.emplace_back(i, naive[i]);
+          }
+        }
+        std::sort(kept.begin(), kept.end());
+        ASSERT_EQ(kept, expected) << "isa " << isa << " pixel " << x << "," << y;
+      }
+    }
+    std::size_t selected = 0;
+    for (const double threshold : { 0.01, 0.05, 0.3 })
+    {
+      ASSERT_TRUE(RecordAnswers(record, threshold));
+      for (const auto& stroke : strokes)
+      {
+        const auto pixels = BrushPixels(stroke, 6.0, cam.Width, cam.Height);
+        const auto fast = SelectBrush(record, cloud.Count, pixels, threshold);
+        EXPECT_EQ(fast, SelectBrush(view, pixels, threshold, 2)) << isa << " " << threshold;
+        selected += fast.size();
+      }
+      FrameOptions fo;
+      fo.WeightThreshold = threshold;
+      for (const auto& r : rects)
+      {
+        const auto fast = SelectFrame(view.Projection, record, r[0], r[1], r[2], r[3], fo);
+        EXPECT_EQ(fast, SelectFrame(view.Projection, view.Bins, r[0], r[1], r[2], r[3], fo))
+          << isa << " " << threshold << " " << r[0] << "," << r[1];
+        selected += fast.size();
+      }
+    }
+    EXPECT_GT(selected, 1000u);
+    // A selection below the record's threshold is not answered from it.
+    EXPECT_FALSE(RecordAnswers(record, 0.005));
+    EXPECT_THROW(SelectBrush(record, cloud.Count, { { 1, 1 } }, 0.005), std::invalid_argument);
+    // Over its budget the record is dropped, not kept partial.
+    PixelWeightRecord small;
+    small.MaximumEntries = 100;
+    CompositeTiles<float>(
+      view.Projection, view.Bins, settings, recorded, nullptr, nullptr, nullptr, true, &small);
+    EXPECT_FALSE(small.Complete);
+    EXPECT_EQ(small.Entries(), 0u);
+    EXPECT_FALSE(RecordAnswers(small, 0.5));
+  }
+}
+
 TEST(ScreenSelection, BrushPixels)
 {
   auto disk = BrushPixels({ { 10.0, 10.0 } }, 2.0, 100, 100);

@@ -121,6 +121,40 @@ int TestGaussianCameraFrustums(int argc, char* argv[])
   }
   frustums->TrainingViewsOnlyOff();
   frustums->Update();
+  {
+    // A reader's scene: its arrays are one shared Core cloud with sorted GaussianIds (every
+    // third id skipped), its rows found by search: the same counts.
+    vis4gs::GaussianCloud withIds = cloud;
+    withIds.Ids.resize(withIds.Count);
+    vtkNew<vtkIdTypeArray> selectedIds;
+    for (std::size_t i = 0; i < withIds.Count; ++i)
+    {
+      withIds.Ids[i] = static_cast<std::int64_t>(3 * i + 1);
+    }
+    for (std::uint32_t i : indices)
+    {
+      selectedIds->InsertNextValue(static_cast<vtkIdType>(3 * i + 1));
+    }
+    selectedIds->InsertNextValue(3); // an id the scene has not
+    vtkNew<vtkPolyData> shared;
+    vis4gs::GaussianCloudToPolyData(std::move(withIds), shared);
+    vtkNew<vtkGaussianCameraFrustums> sharedFrustums;
+    sharedFrustums->SetInputData(0, table);
+    sharedFrustums->SetInputData(1, shared);
+    sharedFrustums->SetSelectedIds(selectedIds);
+    sharedFrustums->Update();
+    auto* sharedCounts = vtkIntArray::SafeDownCast(
+      sharedFrustums->GetOutput()->GetCellData()->GetArray("VisibleSelectedCount"));
+    for (int v = 0; v < 6; ++v)
+    {
+      if (!vis4gs::SharedGaussianCloud(shared) || !sharedCounts ||
+        sharedCounts->GetValue(8 * v) != static_cast<int>(expected[v]))
+      {
+        std::printf("FAILED: view %d count on the shared cloud with ids differs\n", v);
+        fail = 1;
+      }
+    }
+  }
 
   // Picture: frustums coloured by count (dark blue = none, red = most), selection highlighted.
   vtkNew<vtkLookupTable> lut;

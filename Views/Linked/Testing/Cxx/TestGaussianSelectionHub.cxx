@@ -101,6 +101,27 @@ int TestGaussianSelectionHub(int, char*[])
   std::sort(w2.begin(), w2.end());
   vtkGaussianSelectionHub::IdsToIndices(w2.data(), 4, sorted, rows);
   Check(Values(rows) == std::vector<vtkIdType>({ 0, 250, 999 }), "ids to rows, sorted column");
+  // Many sorted ids (a twentieth of the column or more): one merge over the column.
+  std::vector<vtkIdType> many, manyRows;
+  vtkNew<vtkIdTypeArray> manyOut;
+  for (vtkIdType v = 0; v < 600; ++v)
+  {
+    many.push_back(v);
+    if (v % 2 == 0)
+    {
+      manyRows.push_back(v / 2);
+    }
+  }
+  vtkGaussianSelectionHub::IdsToIndices(many.data(), 600, sorted, manyOut);
+  Check(Values(manyOut) == manyRows, "many ids to rows, sorted column (merge)");
+  // The column's order is remembered only until it is modified: now unsorted (hash path).
+  sorted->SetValue(0, 5000);
+  sorted->Modified();
+  vtkGaussianSelectionHub::IdsToIndices(many.data(), 600, sorted, manyOut);
+  manyRows.erase(manyRows.begin());
+  Check(Values(manyOut) == manyRows, "a modified column is checked for order again");
+  sorted->SetValue(0, 0);
+  sorted->Modified();
   vtkNew<vtkIdTypeArray> back;
   rows->InsertNextValue(5000); // out of range: skipped
   vtkGaussianSelectionHub::IndicesToIds(rows, sorted, back);

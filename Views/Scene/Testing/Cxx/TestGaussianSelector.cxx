@@ -297,6 +297,10 @@ int TestGaussianSelector(int, char*[])
     Check(ok, what);
     Check(reuse == expectReuse,
       expectReuse ? "the drawn frame is reused" : "the drawn frame is not reused");
+    // A reused exact frame kept its blends >= 0.01 (the mapper's default): a visible-only
+    // Frame reads them instead of replaying, with the replay's result (checked above).
+    Check(sel->GetLastSelectionReadWeights() == (expectReuse && !occluded),
+      "Frame reads the drawn frame's blends exactly when it reuses the frame (visible only)");
     (reuse ? reused : notReused)++;
     sel->SetIncludeOccluded(false);
     // Single and Brush take the same decision and equal Core on the renderer's camera.
@@ -306,6 +310,7 @@ int TestGaussianSelector(int, char*[])
     Check(sel->GetLastSelectionReusedFrame() == expectReuse && ns == (g >= 0 ? 1 : 0) &&
         (g < 0 || Ids(sel->GetSelectedIds()) == std::vector<vtkIdType>{ cloud.Ids[g] }),
       "Single on the reused/own frame equals Core");
+    Check(!sel->GetLastSelectionReadWeights(), "Single reads no kept blends");
     sel->SelectRay(sx, sy);
     std::vector<vtkIdType> rayExpected;
     for (const auto& c : vis4gs::SelectRay(own, sx, H - 1 - sy))
@@ -324,8 +329,9 @@ int TestGaussianSelector(int, char*[])
       vis4gs::BrushPixels({ { 60.0, H - 1 - 70.0 }, { 140.0, H - 1 - 85.0 } }, 4.0, W, H);
     const auto brushExpected = toIds(vis4gs::SelectBrush(own, brushPixels, 0.01, 1));
     Check(sel->GetLastSelectionReusedFrame() == expectReuse &&
+        sel->GetLastSelectionReadWeights() == expectReuse &&
         Ids(sel->GetSelectedIds()) == brushExpected && !brushExpected.empty(),
-      "Brush on the reused/own frame equals Core");
+      "Brush on the reused/own frame (its kept blends when reused) equals Core");
   };
   ren->GetActiveCamera()->Azimuth(-40);
   win->Render();
@@ -367,19 +373,45 @@ int TestGaussianSelector(int, char*[])
   scene->Modified();
   frameCase("scene modified after drawing", false, false);
   Check(reused == 3 && notReused == 5, "every reuse case exercised");
-  // A frame over most of the view computes the view maxima: the drawn frame is copied into
-  // the selector's view (reused), and the next frame with that camera takes the cached path.
+  // Blends kept above the selector's threshold cannot answer it: the frame is reused and the
+  // stroke replayed, with the same result.
+  mapper->SetSelectionWeightThreshold(0.05);
   ren->GetActiveCamera()->Roll(6);
   win->Render();
-  for (int k = 0; k < 2; ++k)
   {
-    const vtkIdType n = sel->SelectFrame(0, 0, W - 1, H - 1 - 10 * k);
-    const bool reuse = sel->GetLastSelectionReusedFrame();
-    const auto expected = straightFrame(ownView(), 0, 10 * k, W - 1, H - 1, false);
-    Check(Ids(sel->GetSelectedIds()) == expected && n == static_cast<vtkIdType>(expected.size()) &&
-        expected.size() > 10000,
-      "whole-view frame (view maxima) equals Core");
-    Check(reuse == (k == 0), "the drawn frame is copied once, then the cached view is used");
+    vtkNew<vtkPoints> strokeNow;
+    strokeNow->InsertNextPoint(60, 70, 0);
+    strokeNow->InsertNextPoint(140, 85, 0);
+    sel->SelectBrush(strokeNow);
+    const auto brushPixels =
+      vis4gs::BrushPixels({ { 60.0, H - 1 - 70.0 }, { 140.0, H - 1 - 85.0 } }, 4.0, W, H);
+    const auto brushExpected = toIds(vis4gs::SelectBrush(ownView(), brushPixels, 0.01, 1));
+    Check(sel->GetLastSelectionReusedFrame() && !sel->GetLastSelectionReadWeights() &&
+        Ids(sel->GetSelectedIds()) == brushExpected && !brushExpected.empty(),
+      "blends kept above the threshold: the stroke is replayed, same selection");
+  }
+  mapper->SetSelectionWeightThreshold(0.01);
+  // A frame over most of the view, when the drawn frame kept no blends, computes the view
+  // maxima: the drawn frame is copied into the selector's view (reused), and the next frame
+  // with that camera takes the cached path. With the kept blends, both read them.
+  for (const double kept : { 0.0, 0.01 })
+  {
+    mapper->SetSelectionWeightThreshold(kept);
+    ren->GetActiveCamera()->Roll(6);
+    win->Render();
+    for (int k = 0; k < 2; ++k)
+    {
+      const vtkIdType n = sel->SelectFrame(0, 0, W - 1, H - 1 - 10 * k);
+      const bool reuse = sel->GetLastSelectionReusedFrame();
+      const auto expected = straightFrame(ownView(), 0, 10 * k, W - 1, H - 1, false);
+      Check(Ids(sel->GetSelectedIds()) == expected &&
+          n == static_cast<vtkIdType>(expected.size()) && expected.size() > 10000,
+        "whole-view frame (view maxima or kept blends) equals Core");
+      Check(kept > 0 ? reuse && sel->GetLastSelectionReadWeights()
+                     : reuse == (k == 0) && !sel->GetLastSelectionReadWeights(),
+        kept > 0 ? "the drawn frame's kept blends are read"
+                 : "the drawn frame is copied once, then the cached view is used");
+    }
   }
   Check(!errors->GetError(), "no unexpected errors");
   return Check.ExitCode();
