@@ -39,6 +39,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkLookupTable.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -679,6 +680,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     request.Settings.Threads = this->NumberOfThreads;
     request.Budget = budget;
     request.Reduced = reduced;
+    request.ReuseAngle = this->InteractiveReuseAngle * vtkMath::Pi() / 180.0;
     request.FullResolution = w == width && h == height;
     request.SampleDistance = distance;
     request.Interactive = interactive;
@@ -1224,6 +1226,7 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
   os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
+  os << indent << "InteractiveReuseAngle: " << this->InteractiveReuseAngle << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";

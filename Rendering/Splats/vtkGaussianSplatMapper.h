@@ -346,6 +346,20 @@ public:
 
   ///@{
   /**
+   * CPU path: degrees the view may turn (or travel, seen from the drawn Gaussians' median
+   * depth) while moving before the level of detail's Gaussians and their view-dependent
+   * colours are chosen again (vis4gs::SplatMovingSet, Core/Splats/SplatMovingSet.h). In
+   * between, moving frames project a compact copy of the chosen Gaussians with the colours of
+   * the camera that chose them, selected with a margin of this angle around the view. 0
+   * chooses them for every moving frame. Still frames are exact whatever the angle. Default
+   * 6 degrees (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveReuseAngle, double, 0.0, 45.0);
+  vtkGetMacro(InteractiveReuseAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * CPU path: the image sample distance of the last frame and the milliseconds its CPU
    * rasterisation took (0 when the cached image was reused).
    */
@@ -541,6 +555,7 @@ protected:
   double LastImageSampleDistance = 1.0;
   double LastRasterTime = 0.0;
   vtkIdType InteractiveSplatBudget = 400000;
+  double InteractiveReuseAngle = 6.0;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;
   vtkLookupTable* ScoreLookupTable = nullptr;

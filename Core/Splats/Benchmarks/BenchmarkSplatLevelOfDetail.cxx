@@ -7,21 +7,28 @@
 // against the exact full frame of the same camera. The exact frame is the straightforward
 // implementation, timed in the same run.
 // Usage: BenchmarkSplatLevelOfDetail SCENE [width=1280] [height=720] [threads=2]
-//        [sample distance=1] [frames=3] [budget...]
+//        [sample distance=1] [frames=3] [budget[:reuse angle]...]
 //   SCENE: a Gaussian count (the synthetic scene of BenchmarkScene.h, SH degree 3) or a PLY file
 //   (framed from 2.2 times its 90 % extent); budgets default to 5 fractions of the count.
+//   A budget alone selects and projects from the whole scene in every frame (SelectSplatsForView
+//   and ProjectGaussianSubset, the straightforward level of detail); BUDGET:ANGLE keeps the
+//   selection and colours while the view moves less than ANGLE degrees (SplatMovingSet.h; 0 =
+//   rebuilt every frame). The frames follow the orbit in order, 0.05 rad apart; the times are
+//   means over the frames (the rebuilds included), the PSNR the median and the minimum.
 #include "BenchmarkScene.h"
 #include "BenchmarkTiming.h"
 #include "GaussianIO.h"
 #include "Rasterizer.h"
 #include "SplatCamera.h"
 #include "SplatLevelOfDetail.h"
+#include "SplatMovingSet.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -143,16 +150,19 @@ int main(int argc, char* argv[])
     return 1;
   }
   const std::size_t n = cloud.Count;
-  std::vector<std::size_t> budgets;
+  // (budget, reuse angle in degrees; negative: no moving set)
+  std::vector<std::pair<std::size_t, double>> budgets;
   for (int a = 7; a < argc; ++a)
   {
-    budgets.push_back(std::strtoull(argv[a], nullptr, 10));
+    char* end = nullptr;
+    const std::size_t b = std::strtoull(argv[a], &end, 10);
+    budgets.emplace_back(b, *end == ':' ? std::atof(end + 1) : -1.0);
   }
   if (budgets.empty())
   {
     for (double f : { 0.05, 0.1, 0.16, 0.25, 0.4 })
     {
-      budgets.push_back(static_cast<std::size_t>(f * static_cast<double>(n)));
+      budgets.emplace_back(static_cast<std::size_t>(f * static_cast<double>(n)), -1.0);
     }
   }
   std::printf("BenchmarkSplatLevelOfDetail: %s, %zu Gaussians (SH %d), %dx%d, sample distance "
@@ -205,8 +215,9 @@ int main(int argc, char* argv[])
   std::printf("  level-of-detail preparation (once per scene): %.1f ms, CPU %.1f ms\n",
     rankMs,
     timer.LastCpuMs);
-  std::printf("  %10s %8s %10s %10s %10s %10s %8s %8s %8s %8s %7s\n",
+  std::printf("  %10s %6s %8s %10s %10s %10s %10s %8s %8s %8s %8s %8s %7s %8s\n",
     "budget",
+    "reuse",
     "drawn",
     "select CPU",
     "proj. CPU",
@@ -216,31 +227,69 @@ int main(int argc, char* argv[])
     "CPU ms",
     "fps",
     "PSNR dB",
-    "holes");
+    "min dB",
+    "holes",
+    "rebuilds");
+  auto mean = [](const std::vector<double>& v)
+  {
+    double sum = 0;
+    for (double x : v)
+    {
+      sum += x;
+    }
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  };
   // The whole cloud's preparation (the exact frames' too), kept as the scene view keeps it.
   vis4gs::PreparedCloudCache prepared;
-  for (std::size_t budget : budgets)
+  for (const auto& row : budgets)
   {
+    const std::size_t budget = row.first;
+    const bool reuse = row.second >= 0.0;
+    const double angle = reuse ? row.second * M_PI / 180.0 : 0.0;
     vis4gs::RasterWorkspace<float> work;
     std::vector<std::uint32_t> subset;
+    vis4gs::SplatMovingSet set;
     std::vector<double> select, project, bin, blend, frame, cpu, psnr, holes, drawn;
     for (int f = -1; f < frames; ++f)
     {
-      // Frame -1 allocates the budget's buffers (once per budget; not counted).
+      // Frame -1 allocates the budget's buffers (once per budget; not counted), with a moving
+      // set of its own, so that the orbit starts with a rebuild.
+      if (f == 0)
+      {
+        set = vis4gs::SplatMovingSet();
+      }
       const vis4gs::Camera& full = cameras[std::max(0, f)];
       const vis4gs::Camera cam = distance > 1.0
         ? full.Resized(std::max(1, static_cast<int>(std::lround(W / distance))),
             std::max(1, static_cast<int>(std::lround(H / distance))))
         : full;
       double cpuMs = 0, steps[4] = { 0, 0, 0, 0 };
-      const double s = timer.TimeMs(
-        1, [&] { vis4gs::SelectSplatsForView(cloud, lod, cam, budget, subset, threads); });
+      const double s = timer.TimeMs(1,
+        [&]
+        {
+          if (reuse)
+          {
+            vis4gs::UpdateSplatMovingSet(cloud, 1, lod, cam, budget, settings, angle, set);
+          }
+          else
+          {
+            vis4gs::SelectSplatsForView(cloud, lod, cam, budget, subset, threads);
+          }
+        });
       steps[0] = timer.LastCpuMs;
       const double p = timer.TimeMs(1,
         [&]
         {
-          vis4gs::ProjectGaussianSubset(
-            cloud, subset, cam, settings, work.Projection, prepared, std::uint64_t(1));
+          if (reuse)
+          {
+            vis4gs::ProjectGaussians(
+              set.Compact, cam, settings, work.Projection, work.Prepared, set.Generation);
+          }
+          else
+          {
+            vis4gs::ProjectGaussianSubset(
+              cloud, subset, cam, settings, work.Projection, prepared, std::uint64_t(1));
+          }
         });
       steps[1] = timer.LastCpuMs;
       const double b = timer.TimeMs(
@@ -270,18 +319,27 @@ int main(int argc, char* argv[])
       psnr.push_back(Psnr(shown, exact[f]));
       holes.push_back(static_cast<double>(Holes(shown, exact[f])));
     }
-    std::printf("  %10zu %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f %7.0f\n",
+    char reuseText[32] = "-";
+    if (reuse)
+    {
+      std::snprintf(reuseText, sizeof(reuseText), "%.1f", row.second);
+    }
+    std::printf("  %10zu %6s %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f %8.2f "
+                "%7.0f %8zu\n",
       budget,
+      reuseText,
       median(drawn),
-      median(select),
-      median(project),
-      median(bin),
-      median(blend),
-      median(frame),
-      median(cpu),
-      1000.0 / median(frame),
+      mean(select),
+      mean(project),
+      mean(bin),
+      mean(blend),
+      mean(frame),
+      mean(cpu),
+      1000.0 / mean(frame),
       median(psnr),
-      median(holes));
+      *std::min_element(psnr.begin(), psnr.end()),
+      median(holes),
+      reuse ? set.Rebuilds : static_cast<std::size_t>(frames));
   }
   return 0;
 }
