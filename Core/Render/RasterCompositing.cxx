@@ -20,6 +20,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -85,6 +86,9 @@ struct CompositeContext
   /// (EntrySums), so that WeightSum does not depend on the order threads finish tiles in.
   double* EntryWeight = nullptr;
   std::uint16_t* EntryEvaluations = nullptr;
+  /// RasterSettings::TransmittanceStop (the reference's value for every caller but
+  /// CompositeTiles() with another setting).
+  double Stop = raster::TransmittanceStop;
 };
 
 /// Per-entry buffers of the counted statistics (see CompositeContext), zeroed.
@@ -387,6 +391,12 @@ void CompositeTiles(const ViewProjection<T>& projection,
       static_cast<T>(settings.Background[2]) },
     &kernelEvals,
     &referenceEvals };
+  if (!(settings.TransmittanceStop > 0.0) || !(settings.TransmittanceStop < 1.0))
+  {
+    throw std::invalid_argument("CompositeTiles: transmittance stop " +
+      std::to_string(settings.TransmittanceStop) + " is not in (0, 1)");
+  }
+  ctx.Stop = settings.TransmittanceStop;
   EntrySums entries;
   entries.Attach(ctx, bins, weights);
   TileFunction<T> fn;

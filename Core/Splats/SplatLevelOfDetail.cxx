@@ -16,7 +16,8 @@ namespace vis4gs
 {
 namespace
 {
-constexpr std::size_t Bins = 65536;
+constexpr std::size_t Bins = 32768;
+constexpr std::uint32_t RingBit = 0x8000;
 }
 
 //------------------------------------------------------------------------------
@@ -79,7 +80,8 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   std::size_t budget,
   std::vector<std::uint32_t>& subset,
   int threads,
-  double margin)
+  double margin,
+  std::vector<std::uint16_t>* scratch)
 {
   const std::size_t n = cloud.Count;
   if (lod.Mass.size() != n || lod.Reach.size() != n || cloud.Positions.size() != 3 * n)
@@ -104,9 +106,11 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   const int nt = ThreadCount(threads);
   const std::int64_t count = static_cast<std::int64_t>(n);
   // Pass 1: the key of every Gaussian (0 outside the frustum) and a histogram per thread of
-  // those in the view's own frustum; a Gaussian of the margin's ring only is marked in outer.
-  std::vector<std::uint16_t> keys(n);
-  std::vector<std::uint8_t> outer(ring ? n : 0);
+  // those in the view's own frustum. A key is at most 0x7f80 (the top 16 bits of a positive
+  // float), so its bit 15 marks a Gaussian of the margin's ring only.
+  std::vector<std::uint16_t> own;
+  std::vector<std::uint16_t>& keys = scratch ? *scratch : own;
+  keys.resize(n);
   std::vector<std::vector<std::uint32_t>> hist(static_cast<std::size_t>(nt));
   std::size_t inside = 0;
 #pragma omp parallel num_threads(nt) reduction(+ : inside)
@@ -129,12 +133,8 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
       const bool near = ring && !in && z > 0.2f && std::abs(x) - mx * z <= reach * mcx &&
         std::abs(y) - my * z <= reach * mcy;
       std::uint32_t key = in || near ? SplatContributionKey(lod.Mass[i], z) : 0;
-      key = std::min<std::uint32_t>(key, Bins - 1);
-      keys[i] = static_cast<std::uint16_t>(key);
-      if (ring)
-      {
-        outer[i] = near ? 1 : 0;
-      }
+      key = std::min<std::uint32_t>(key, RingBit - 1);
+      keys[i] = static_cast<std::uint16_t>(key | (near ? RingBit : 0));
       if (!near)
       {
         ++h[key];
@@ -170,8 +170,8 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   subset.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
-    const std::uint32_t key = keys[i];
-    if (ring && outer[i])
+    const std::uint32_t key = keys[i] & (RingBit - 1);
+    if (keys[i] & RingBit)
     {
       if (key >= boundary && key > 0)
       {

@@ -49,12 +49,14 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   std::size_t budget,
   const RasterSettings& settings,
   double reuseAngle,
+  double colorAngle,
   SplatMovingSet& set)
 {
-  if (!(reuseAngle >= 0.0) || !std::isfinite(reuseAngle))
+  if (!(reuseAngle >= 0.0) || !std::isfinite(reuseAngle) || !(colorAngle >= 0.0) ||
+    !std::isfinite(colorAngle))
   {
-    throw std::invalid_argument(
-      "UpdateSplatMovingSet: reuse angle " + std::to_string(reuseAngle) + " is not >= 0");
+    throw std::invalid_argument("UpdateSplatMovingSet: reuse angle " + std::to_string(reuseAngle) +
+      " or colour angle " + std::to_string(colorAngle) + " is not a finite angle >= 0");
   }
   const int degree = std::max(
     0, settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree));
@@ -65,17 +67,44 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
     return std::abs(a.TanHalfFovX() - b.TanHalfFovX()) <= 1e-9 * a.TanHalfFovX() &&
       std::abs(a.TanHalfFovY() - b.TanHalfFovY()) <= 1e-9 * a.TanHalfFovY();
   };
-  if (reuseAngle > 0.0 && set.Generation != 0 && set.Cloud == &cloud &&
-    set.CloudVersion == cloudVersion && cloudVersion != 0 && set.Budget == budget &&
-    set.ShDegree == degree && set.Colors == colors && set.ReuseAngle == reuseAngle &&
+  const bool sameScene = set.Generation != 0 && set.Cloud == &cloud &&
+    set.CloudVersion == cloudVersion && cloudVersion != 0 && set.ShDegree == degree &&
+    set.Colors == colors;
+  if (reuseAngle > 0.0 && sameScene && set.Budget == budget && set.ReuseAngle == reuseAngle &&
     sameFov(set.Rank, camera) && SplatViewChangeAngle(set.Rank, camera, set.Depth) <= reuseAngle)
   {
     ++set.Reuses;
     return false;
   }
+  // The Gaussians that stay selected keep their colour while the camera of the last full
+  // colour evaluation is within the colour angle; the others are gathered from the scene.
+  const bool keepColors = colorAngle > 0.0 && sameScene &&
+    SplatViewChangeAngle(set.ColorRank, camera, set.Depth) <= colorAngle;
+  std::swap(set.Subset, set.PreviousSubset);
+  std::swap(set.Compact, set.Previous);
   const int threads = ThreadCount(settings.Threads);
-  SelectSplatsForView(cloud, lod, camera, budget, set.Subset, threads, reuseAngle);
+  SelectSplatsForView(cloud, lod, camera, budget, set.Subset, threads, reuseAngle, &set.Keys);
   const std::size_t m = set.Subset.size();
+  // from[j]: Gaussian j's place in the previous set (kept colour), or -1.
+  std::vector<std::int64_t>& from = set.From;
+  from.assign(m, -1);
+  if (keepColors)
+  {
+    const std::vector<std::uint32_t>& old = set.PreviousSubset;
+    std::size_t k = 0;
+    for (std::size_t j = 0; j < m; ++j)
+    {
+      while (k < old.size() && old[k] < set.Subset[j])
+      {
+        ++k;
+      }
+      if (k < old.size() && old[k] == set.Subset[j])
+      {
+        from[j] = static_cast<std::int64_t>(k);
+      }
+    }
+  }
+  const GaussianCloud& prev = set.Previous;
   GaussianCloud& c = set.Compact;
   c.Count = m;
   c.ShDegree = 0;
@@ -95,7 +124,8 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   };
   const float c0 = static_cast<float>(sh::C0);
   const auto& v = camera.WorldToCamera;
-  std::vector<float> depths(m);
+  std::vector<float>& depths = set.Depths;
+  depths.resize(m);
   constexpr std::size_t Ahead = 8;
   const std::int64_t count = static_cast<std::int64_t>(m);
 #pragma omp parallel for schedule(static) num_threads(threads)
@@ -103,7 +133,7 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   {
     const std::size_t j = static_cast<std::size_t>(jj);
     const std::size_t i = set.Subset[j];
-    if (j + Ahead < m)
+    if (j + Ahead < m && from[j + Ahead] < 0)
     {
       // The gather is bound by memory latency (the selected Gaussians lie about a dozen apart
       // in the scene's arrays, 192 B of SH each at degree 3): ask for a later one's lines now.
@@ -121,22 +151,33 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
       __builtin_prefetch(&cloud.Rotations[4 * a]);
       __builtin_prefetch(&cloud.OpacityLogits[a]);
     }
-    const float* p = &cloud.Positions[3 * i];
+    const std::int64_t k = from[j];
+    // (the previous set's compact copy holds the same parameters, contiguous)
+    const GaussianCloud& src = k >= 0 ? prev : cloud;
+    const std::size_t at = k >= 0 ? static_cast<std::size_t>(k) : i;
+    const float* p = &src.Positions[3 * at];
     std::copy_n(p, 3, &c.Positions[3 * j]);
-    std::copy_n(&cloud.LogScales[3 * i], 3, &c.LogScales[3 * j]);
-    std::copy_n(&cloud.Rotations[4 * i], 4, &c.Rotations[4 * j]);
-    c.OpacityLogits[j] = cloud.OpacityLogits[i];
-    float rgb[3] = { 0.5f, 0.5f, 0.5f };
-    if (haveSh)
+    std::copy_n(&src.LogScales[3 * at], 3, &c.LogScales[3 * j]);
+    std::copy_n(&src.Rotations[4 * at], 4, &c.Rotations[4 * j]);
+    c.OpacityLogits[j] = src.OpacityLogits[at];
+    if (k >= 0)
     {
-      // The projection's colour, seen from this camera (the same function and precision);
-      // a non-finite coefficient gives a non-finite colour, which the compact cloud's
-      // projection skips as the whole cloud's does.
-      ViewColor<float>(&cloud.SH[i * shStride], degree, p, campos, rgb);
+      std::copy_n(&prev.SH[3 * at], 3, &c.SH[3 * j]);
     }
-    for (int k = 0; k < 3; ++k)
+    else
     {
-      c.SH[3 * j + k] = haveSh ? (rgb[k] - 0.5f) / c0 : 0.0f;
+      float rgb[3] = { 0.5f, 0.5f, 0.5f };
+      if (haveSh)
+      {
+        // The projection's colour, seen from this camera (the same function and precision);
+        // a non-finite coefficient gives a non-finite colour, which the compact cloud's
+        // projection skips as the whole cloud's does.
+        ViewColor<float>(&cloud.SH[i * shStride], degree, p, campos, rgb);
+      }
+      for (int q = 0; q < 3; ++q)
+      {
+        c.SH[3 * j + q] = haveSh ? (rgb[q] - 0.5f) / c0 : 0.0f;
+      }
     }
     depths[j] = static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]);
   }
@@ -148,6 +189,11 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
     auto mid = depths.begin() + (front - depths.begin()) / 2;
     std::nth_element(depths.begin(), mid, front);
     depth = *mid;
+  }
+  if (!keepColors)
+  {
+    set.ColorRank = camera;
+    ++set.ColorRefreshes;
   }
   set.Rank = camera;
   set.Cloud = &cloud;

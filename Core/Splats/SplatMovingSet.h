@@ -14,14 +14,16 @@
  * from the camera centre of the rebuild. The frames in between project that compact cloud
  * (contiguous memory, no SH evaluated) with the exact geometry of their own camera.
  *
- * The approximation has one parameter, the reuse angle: the set is rebuilt when the view has
+ * The approximation has two parameters. The reuse angle: the set is rebuilt when the view has
  * turned by more than that angle (the rotation between the two cameras' orientations) or
  * travelled by more than that angle seen from the selected Gaussians' median depth, and the
  * selection of a rebuild takes a margin of that angle around the field of view
- * (SelectSplatsForView's margin), so that what turns into the view is drawn. Its error
- * (selection and colours of a nearby camera) is measured against run time by
- * BenchmarkSplatLevelOfDetail (Documentation/accuracy-vs-runtime.md). Angle 0 rebuilds for
- * every frame (the selection and colours of the frame's own camera, as without reuse).
+ * (SelectSplatsForView's margin), so that what turns into the view is drawn. The colour
+ * angle: a rebuild keeps the colours of the Gaussians that stay selected while the view is
+ * within that angle of the camera that last evaluated every colour. Their error (selection and
+ * colours of a nearby camera) is measured against run time by BenchmarkSplatLevelOfDetail
+ * (Documentation/accuracy-vs-runtime.md). Angles 0 rebuild for every frame (the selection and
+ * colours of the frame's own camera, as without reuse).
  */
 #ifndef vis4gs_SplatMovingSet_h
 #define vis4gs_SplatMovingSet_h
@@ -50,12 +52,23 @@ struct SplatMovingSet
   /// Non-zero once built, a new value at every rebuild: the compact cloud's version for a
   /// PreparedCloudCache (Rasterizer.h).
   std::uint64_t Generation = 0;
-  /// Rebuilds and reuses since construction (tests, benchmarks).
+  /// Rebuilds, reuses and rebuilds that evaluated every colour since construction (tests,
+  /// benchmarks).
   std::size_t Rebuilds = 0;
   std::size_t Reuses = 0;
+  std::size_t ColorRefreshes = 0;
+  /// The previous rebuild's Subset and Compact, and a rebuild's scratch (their buffers are
+  /// reused, so that a rebuild does not page-fault tens of MB again; internal).
+  std::vector<std::uint32_t> PreviousSubset;
+  GaussianCloud Previous;
+  std::vector<std::uint16_t> Keys;
+  std::vector<std::int64_t> From;
+  std::vector<float> Depths;
 
   // What the set was made for.
   Camera Rank;
+  /// The camera of the last rebuild that evaluated every colour.
+  Camera ColorRank;
   const GaussianCloud* Cloud = nullptr;
   std::uint64_t CloudVersion = 0;
   std::size_t Budget = 0;
@@ -78,9 +91,13 @@ double SplatViewChangeAngle(const Camera& rank, const Camera& now, double depth)
  * @p budget (SelectSplatsForView), reusing it when it was made for the same cloud (address and
  * @p cloudVersion), budget, SH degree and colour setting of @p settings, reuse angle and field
  * of view, and the view changed by at most @p reuseAngle radians since (SplatViewChangeAngle).
+ * A rebuild evaluates the colours of the Gaussians newly selected; those of the Gaussians that
+ * stay selected are kept (a copy from the previous compact cloud instead of a gather of 192 B
+ * of SH each from the scene) while the view is within @p colorAngle radians of the camera of
+ * the last rebuild that evaluated every colour (0: every rebuild evaluates every colour).
  * Returns true when it was rebuilt. Parallel with OpenMP (settings.Threads). Throws
- * std::invalid_argument when @p lod does not match the cloud or @p reuseAngle is negative or
- * not finite.
+ * std::invalid_argument when @p lod does not match the cloud or an angle is negative or not
+ * finite.
  */
 bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   std::uint64_t cloudVersion,
@@ -89,6 +106,7 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   std::size_t budget,
   const RasterSettings& settings,
   double reuseAngle,
+  double colorAngle,
   SplatMovingSet& set);
 
 } // namespace vis4gs

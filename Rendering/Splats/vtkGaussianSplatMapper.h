@@ -360,6 +360,29 @@ public:
 
   ///@{
   /**
+   * CPU path: degrees the view may move from the camera that last evaluated every colour of
+   * the level of detail's Gaussians before all are evaluated again; until then a new choice of
+   * Gaussians (InteractiveReuseAngle) evaluates only the colours of those newly chosen and
+   * keeps the others'. 0 evaluates every colour at every choice. Default 18 degrees
+   * (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveColorAngle, double, 0.0, 90.0);
+  vtkGetMacro(InteractiveColorAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: the transmittance at which a moving frame's pixel stops blending
+   * (vis4gs::RasterSettings::TransmittanceStop): what remains behind it, at most this fraction
+   * of the pixel, is left out. Still frames use the reference's 1e-4 whatever this is. Default
+   * 0.004, about one 8-bit level (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveTransmittanceStop, double, 1e-4, 0.5);
+  vtkGetMacro(InteractiveTransmittanceStop, double);
+  ///@}
+
+  ///@{
+  /**
    * CPU path: the image sample distance of the last frame and the milliseconds its CPU
    * rasterisation took (0 when the cached image was reused).
    */
@@ -556,6 +579,8 @@ protected:
   double LastRasterTime = 0.0;
   vtkIdType InteractiveSplatBudget = 400000;
   double InteractiveReuseAngle = 6.0;
+  double InteractiveColorAngle = 18.0;
+  double InteractiveTransmittanceStop = 0.004;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;
   vtkLookupTable* ScoreLookupTable = nullptr;

@@ -279,8 +279,15 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
       }
       // The compact copy of the selected Gaussians, kept while the view moves less than the
       // reuse angle, is projected with its own kept preparation.
-      vis4gs::UpdateSplatMovingSet(
-        cloud, r.CloudVersion, this->Lod, camera, r.Budget, r.Settings, r.ReuseAngle, this->LodSet);
+      vis4gs::UpdateSplatMovingSet(cloud,
+        r.CloudVersion,
+        this->Lod,
+        camera,
+        r.Budget,
+        r.Settings,
+        r.ReuseAngle,
+        r.ColorAngle,
+        this->LodSet);
       vis4gs::ProjectGaussians(this->LodSet.Compact,
         camera,
         r.Settings,

@@ -83,6 +83,9 @@ public:
     /// Radians the view may move before a reduced frame's Gaussians and colours are chosen
     /// again (vis4gs::SplatMovingSet; 0: for every frame).
     double ReuseAngle = 0.0;
+    /// Radians the view may move before the colours of the Gaussians a reduced frame keeps
+    /// drawing are evaluated again (0: at every choice).
+    double ColorAngle = 0.0;
     bool FullResolution = false;
     double SampleDistance = 1.0;            ///< image pixels per screen pixel, for the record
     bool Interactive = false;               ///< a moving frame (the sample distance adapts to it)

@@ -13,8 +13,13 @@
 //   A budget alone selects and projects from the whole scene in every frame (SelectSplatsForView
 //   and ProjectGaussianSubset, the straightforward level of detail); BUDGET:ANGLE keeps the
 //   selection and colours while the view moves less than ANGLE degrees (SplatMovingSet.h; 0 =
-//   rebuilt every frame). The frames follow the orbit in order, 0.05 rad apart; the times are
-//   means over the frames (the rebuilds included), the PSNR the median and the minimum.
+//   rebuilt every frame); BUDGET:ANGLE:STOP also stops each pixel's compositing once its
+//   transmittance would fall below STOP (RasterSettings::TransmittanceStop; the reference's
+//   1e-4 otherwise); BUDGET:ANGLE:STOP:COLOUR keeps the colours of the Gaussians that stay
+//   selected while the view is within COLOUR degrees of the last full colour evaluation (0
+//   otherwise: every rebuild evaluates every colour). The frames follow the orbit in order, 0.05
+//   rad apart; the times are means over the frames (the rebuilds included), the PSNR the median and
+//   the minimum.
 #include "BenchmarkScene.h"
 #include "BenchmarkTiming.h"
 #include "GaussianIO.h"
@@ -150,19 +155,38 @@ int main(int argc, char* argv[])
     return 1;
   }
   const std::size_t n = cloud.Count;
-  // (budget, reuse angle in degrees; negative: no moving set)
-  std::vector<std::pair<std::size_t, double>> budgets;
+  // (budget, reuse angle in degrees (negative: no moving set), transmittance stop)
+  struct Row
+  {
+    std::size_t Budget;
+    double Angle;
+    double Stop;
+    double Color;
+  };
+  std::vector<Row> budgets;
   for (int a = 7; a < argc; ++a)
   {
     char* end = nullptr;
-    const std::size_t b = std::strtoull(argv[a], &end, 10);
-    budgets.emplace_back(b, *end == ':' ? std::atof(end + 1) : -1.0);
+    Row row{ std::strtoull(argv[a], &end, 10), -1.0, 1e-4, 0.0 };
+    if (*end == ':')
+    {
+      row.Angle = std::strtod(end + 1, &end);
+    }
+    if (*end == ':')
+    {
+      row.Stop = std::strtod(end + 1, &end);
+    }
+    if (*end == ':')
+    {
+      row.Color = std::strtod(end + 1, &end);
+    }
+    budgets.push_back(row);
   }
   if (budgets.empty())
   {
     for (double f : { 0.05, 0.1, 0.16, 0.25, 0.4 })
     {
-      budgets.emplace_back(static_cast<std::size_t>(f * static_cast<double>(n)), -1.0);
+      budgets.push_back({ static_cast<std::size_t>(f * static_cast<double>(n)), -1.0, 1e-4, 0.0 });
     }
   }
   std::printf("BenchmarkSplatLevelOfDetail: %s, %zu Gaussians (SH %d), %dx%d, sample distance "
@@ -215,9 +239,10 @@ int main(int argc, char* argv[])
   std::printf("  level-of-detail preparation (once per scene): %.1f ms, CPU %.1f ms\n",
     rankMs,
     timer.LastCpuMs);
-  std::printf("  %10s %6s %8s %10s %10s %10s %10s %8s %8s %8s %8s %8s %7s %8s\n",
+  std::printf("  %10s %6s %7s %8s %10s %10s %10s %10s %8s %8s %8s %8s %8s %7s %8s\n",
     "budget",
     "reuse",
+    "stop",
     "drawn",
     "select CPU",
     "proj. CPU",
@@ -241,22 +266,25 @@ int main(int argc, char* argv[])
   };
   // The whole cloud's preparation (the exact frames' too), kept as the scene view keeps it.
   vis4gs::PreparedCloudCache prepared;
-  for (const auto& row : budgets)
+  for (const Row& row : budgets)
   {
-    const std::size_t budget = row.first;
-    const bool reuse = row.second >= 0.0;
-    const double angle = reuse ? row.second * M_PI / 180.0 : 0.0;
+    const std::size_t budget = row.Budget;
+    const bool reuse = row.Angle >= 0.0;
+    const double angle = reuse ? row.Angle * M_PI / 180.0 : 0.0;
+    const double colorAngle = row.Color * M_PI / 180.0;
+    vis4gs::RasterSettings moving = settings;
+    moving.TransmittanceStop = row.Stop;
     vis4gs::RasterWorkspace<float> work;
     std::vector<std::uint32_t> subset;
     vis4gs::SplatMovingSet set;
     std::vector<double> select, project, bin, blend, frame, cpu, psnr, holes, drawn;
-    for (int f = -1; f < frames; ++f)
+    for (int f = -2; f < frames; ++f)
     {
-      // Frame -1 allocates the budget's buffers (once per budget; not counted), with a moving
-      // set of its own, so that the orbit starts with a rebuild.
-      if (f == 0)
+      // Frames -2 and -1 allocate the budget's buffers (once per budget, as the view keeps
+      // them; not counted); the orbit starts with a rebuild (the set forgets its view).
+      if (f <= 0)
       {
-        set = vis4gs::SplatMovingSet();
+        set.Generation = 0;
       }
       const vis4gs::Camera& full = cameras[std::max(0, f)];
       const vis4gs::Camera cam = distance > 1.0
@@ -269,7 +297,8 @@ int main(int argc, char* argv[])
         {
           if (reuse)
           {
-            vis4gs::UpdateSplatMovingSet(cloud, 1, lod, cam, budget, settings, angle, set);
+            vis4gs::UpdateSplatMovingSet(
+              cloud, 1, lod, cam, budget, settings, angle, colorAngle, set);
           }
           else
           {
@@ -300,7 +329,7 @@ int main(int argc, char* argv[])
         [&]
         {
           vis4gs::CompositeTiles<float>(
-            work.Projection, work.Bins, settings, work.Image, nullptr, nullptr, &work.Composite);
+            work.Projection, work.Bins, moving, work.Image, nullptr, nullptr, &work.Composite);
         });
       steps[3] = timer.LastCpuMs;
       cpuMs = steps[0] + steps[1] + steps[2] + steps[3];
@@ -322,12 +351,13 @@ int main(int argc, char* argv[])
     char reuseText[32] = "-";
     if (reuse)
     {
-      std::snprintf(reuseText, sizeof(reuseText), "%.1f", row.second);
+      std::snprintf(reuseText, sizeof(reuseText), "%.0f/%.0f", row.Angle, row.Color);
     }
-    std::printf("  %10zu %6s %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f %8.2f "
-                "%7.0f %8zu\n",
+    std::printf("  %10zu %6s %7.5f %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f "
+                "%8.2f %7.0f %8zu\n",
       budget,
       reuseText,
+      row.Stop,
       median(drawn),
       mean(select),
       mean(project),

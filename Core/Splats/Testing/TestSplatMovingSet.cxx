@@ -138,7 +138,7 @@ TEST(SplatMovingSet, CompactCloudProjectsLikeTheSubsetOfTheScene)
   RasterSettings settings;
   settings.Threads = 2;
   SplatMovingSet set;
-  ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, cam, 1500, settings, 0.0, set));
+  ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, cam, 1500, settings, 0.0, 0.0, set));
   std::vector<std::uint32_t> expected;
   SelectSplatsForView(c, lod, cam, 1500, expected, 2);
   ASSERT_EQ(set.Subset, expected);
@@ -188,12 +188,12 @@ TEST(SplatMovingSet, ReusedWhileTheViewMovesLessThanTheAngle)
   SplatMovingSet set;
   const double angle = 0.1;
   EXPECT_TRUE(
-    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.0, Origin), 800, settings, angle, set));
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.0, Origin), 800, settings, angle, 0.0, set));
   const std::vector<std::uint32_t> first = set.Subset;
   const std::uint64_t generation = set.Generation;
   // Turned by less than the angle: the same set, colours of the first camera.
   EXPECT_FALSE(
-    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.06, Origin), 800, settings, angle, set));
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.06, Origin), 800, settings, angle, 0.0, set));
   EXPECT_EQ(set.Subset, first);
   EXPECT_EQ(set.Generation, generation);
   EXPECT_EQ(set.Reuses, 1u);
@@ -211,30 +211,93 @@ TEST(SplatMovingSet, ReusedWhileTheViewMovesLessThanTheAngle)
   EXPECT_GT(inSet, inFirst);
   // Beyond the angle, another budget, another version, another SH degree, angle 0: rebuilt.
   EXPECT_TRUE(
-    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.12, Origin), 800, settings, angle, set));
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.12, Origin), 800, settings, angle, 0.0, set));
   EXPECT_NE(set.Generation, generation);
   EXPECT_TRUE(
-    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.12, Origin), 900, settings, angle, set));
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
   EXPECT_TRUE(
-    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, set));
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
   settings.ShDegree = 1;
   EXPECT_TRUE(
-    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, set));
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
   EXPECT_FALSE(
-    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, set));
-  EXPECT_TRUE(UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, 0.0, set));
-  EXPECT_TRUE(UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, 0.0, set));
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, 0.0, 0.0, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, 0.0, 0.0, set));
   // Travel: 0.2 at the median depth (about 6) is about 0.033 rad.
   const double moved[3] = { 0.2, 0.0, 0.0 };
-  EXPECT_TRUE(UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, Origin), 900, settings, 0.05, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, Origin), 900, settings, 0.05, 0.0, set));
   EXPECT_GT(set.Depth, 4.0);
   EXPECT_LT(set.Depth, 8.0);
-  EXPECT_FALSE(UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, moved), 900, settings, 0.05, set));
+  EXPECT_FALSE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, moved), 900, settings, 0.05, 0.0, set));
   const double far[3] = { 0.6, 0.0, 0.0 };
-  EXPECT_TRUE(UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, 0.05, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, 0.05, 0.0, set));
   EXPECT_EQ(set.Rebuilds, 9u);
-  EXPECT_THROW(UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, -1.0, set),
+  EXPECT_THROW(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, -1.0, 0.0, set),
     std::invalid_argument);
+  EXPECT_THROW(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, 0.1, -1.0, set),
+    std::invalid_argument);
+}
+
+TEST(SplatMovingSet, RebuildKeepsTheColoursOfTheGaussiansThatStayWithinTheColourAngle)
+{
+  const GaussianCloud c = RandomCloud(4000, 13);
+  SplatLevelOfDetail lod;
+  PrepareSplatLevelOfDetail(c, lod, 2);
+  RasterSettings settings;
+  settings.Threads = 2;
+  // (the colours depend on the camera's centre only: the second one moves it)
+  const double moved[3] = { 1.0, 0.0, 0.0 };
+  const Camera first = TurnedCamera(0.0, Origin), second = TurnedCamera(0.15, moved);
+  // The reference: every colour of the second camera, and of the first.
+  SplatMovingSet fresh, old;
+  UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, 0.0, fresh);
+  UpdateSplatMovingSet(c, 1, lod, first, 800, settings, 0.1, 0.0, old);
+  for (double colorAngle : { 0.3, 0.0 })
+  {
+    SplatMovingSet set;
+    UpdateSplatMovingSet(c, 1, lod, first, 800, settings, 0.1, colorAngle, set);
+    EXPECT_EQ(set.ColorRefreshes, 1u);
+    ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, colorAngle, set));
+    EXPECT_EQ(set.ColorRefreshes, colorAngle > 0 ? 1u : 2u);
+    ASSERT_EQ(set.Subset, fresh.Subset);
+    EXPECT_EQ(set.Compact.Positions, fresh.Compact.Positions);
+    EXPECT_EQ(set.Compact.LogScales, fresh.Compact.LogScales);
+    EXPECT_EQ(set.Compact.Rotations, fresh.Compact.Rotations);
+    EXPECT_EQ(set.Compact.OpacityLogits, fresh.Compact.OpacityLogits);
+    std::size_t kept = 0, changed = 0;
+    for (std::size_t j = 0; j < set.Subset.size(); ++j)
+    {
+      const auto at = std::lower_bound(old.Subset.begin(), old.Subset.end(), set.Subset[j]);
+      const bool stayed = at != old.Subset.end() && *at == set.Subset[j];
+      const std::size_t k = static_cast<std::size_t>(at - old.Subset.begin());
+      for (int q = 0; q < 3; ++q)
+      {
+        // Kept: the first camera's colour; evaluated: the second camera's.
+        const float expected =
+          colorAngle > 0 && stayed ? old.Compact.SH[3 * k + q] : fresh.Compact.SH[3 * j + q];
+        ASSERT_EQ(set.Compact.SH[3 * j + q], expected) << j;
+      }
+      kept += stayed ? 1 : 0;
+      changed += stayed && old.Compact.SH[3 * k] != fresh.Compact.SH[3 * j] ? 1 : 0;
+    }
+    EXPECT_GT(kept, set.Subset.size() / 2);
+    EXPECT_LT(kept, set.Subset.size());
+    EXPECT_GT(changed, kept / 2); // the view-dependent colours differ between the cameras
+  }
+  // Beyond the colour angle, every colour is evaluated again.
+  SplatMovingSet set;
+  UpdateSplatMovingSet(c, 1, lod, first, 800, settings, 0.1, 0.12, set);
+  UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, 0.12, set);
+  EXPECT_EQ(set.ColorRefreshes, 2u);
+  EXPECT_EQ(set.Compact.SH, fresh.Compact.SH);
 }
 
 } // namespace vis4gs

@@ -16,6 +16,10 @@
 //         whose order's error is measured, besides the lag of the orbit speed)]
 //        [interactive reuse angle=-1 (CPU rasteriser path: degrees the view moves before the
 //         moving frames' Gaussians and colours are chosen again; -1 = the mapper's default)]
+//        [interactive transmittance stop=-1 (CPU rasteriser path: where a moving frame's pixel
+//         stops blending; -1 = the mapper's default)] [interactive colour angle=-1 (CPU
+//         rasteriser path: degrees before every colour of the moving frames' Gaussians is
+//         evaluated again; -1 = the mapper's default)]
 #include "BenchmarkScene.h"
 #include "SplatSortWorker.h"
 #include "Vis4GSDataModel.h"
@@ -90,6 +94,8 @@ int main(int argc, char* argv[])
     p = *end == ',' ? end + 1 : end;
   }
   const double reuseAngle = argc > 14 ? std::atof(argv[14]) : -1.0;
+  const double transmittanceStop = argc > 15 ? std::atof(argv[15]) : -1.0;
+  const double colorAngle = argc > 16 ? std::atof(argv[16]) : -1.0;
   const auto cloud = vis4gs::MakeBenchmarkScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
@@ -106,6 +112,14 @@ int main(int argc, char* argv[])
   if (reuseAngle >= 0)
   {
     mapper->SetInteractiveReuseAngle(reuseAngle);
+  }
+  if (transmittanceStop > 0)
+  {
+    mapper->SetInteractiveTransmittanceStop(transmittanceStop);
+  }
+  if (colorAngle >= 0)
+  {
+    mapper->SetInteractiveColorAngle(colorAngle);
   }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -411,11 +425,14 @@ int main(int argc, char* argv[])
       return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
     };
     std::printf("  interactive (sample distance %.2f, splat budget %lld, reuse angle %.1f deg, "
-                "%.0f drawn; first %.1f ms): %9.1f ms/frame = %6.2f fps, CPU %.1f "
-                "ms/frame, PSNR against the full-quality frame %.2f dB (min %.2f)\n",
+                "colour angle %.1f deg, transmittance stop %g, %.0f drawn; first %.1f ms): %9.1f "
+                "ms/frame = %6.2f fps, CPU %.1f ms/frame, PSNR against the full-quality frame "
+                "%.2f dB (min %.2f)\n",
       median(dist),
       static_cast<long long>(mapper->GetInteractiveSplatBudget()),
       mapper->GetInteractiveReuseAngle(),
+      mapper->GetInteractiveColorAngle(),
+      mapper->GetInteractiveTransmittanceStop(),
       median(drawn),
       firstInteractive,
       median(inter),
