@@ -73,6 +73,20 @@ GaussianCloud RandomCloud(std::size_t n, unsigned seed)
 }
 
 const double Origin[3] = { 0.0, 0.0, 0.0 };
+
+SplatLevelOfDetail PreparedLod(const GaussianCloud& cloud)
+{
+  SplatLevelOfDetail lod;
+  PrepareSplatLevelOfDetail(cloud, lod, 2);
+  return lod;
+}
+
+RasterSettings TwoThreads()
+{
+  RasterSettings settings;
+  settings.Threads = 2;
+  return settings;
+}
 }
 
 TEST(SplatMovingSet, ViewChangeAngleOfATurnAndOfATravel)
@@ -90,8 +104,7 @@ TEST(SplatMovingSet, ViewChangeAngleOfATurnAndOfATravel)
 TEST(SplatMovingSet, MarginAddsTheRingAboveTheBoundaryWithoutThinningTheView)
 {
   const GaussianCloud c = RandomCloud(6000, 3);
-  SplatLevelOfDetail lod;
-  PrepareSplatLevelOfDetail(c, lod, 2);
+  const SplatLevelOfDetail lod = PreparedLod(c);
   const Camera cam = TurnedCamera(0.0, Origin);
   for (std::size_t budget : { std::size_t(500), std::size_t(2000), std::size_t(0) })
   {
@@ -132,11 +145,9 @@ TEST(SplatMovingSet, MarginAddsTheRingAboveTheBoundaryWithoutThinningTheView)
 TEST(SplatMovingSet, CompactCloudProjectsLikeTheSubsetOfTheScene)
 {
   const GaussianCloud c = RandomCloud(5000, 7);
-  SplatLevelOfDetail lod;
-  PrepareSplatLevelOfDetail(c, lod, 2);
+  const SplatLevelOfDetail lod = PreparedLod(c);
   const Camera cam = TurnedCamera(0.05, Origin);
-  RasterSettings settings;
-  settings.Threads = 2;
+  RasterSettings settings = TwoThreads();
   SplatMovingSet set;
   ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, cam, 1500, settings, 0.0, 0.0, set));
   std::vector<std::uint32_t> expected;
@@ -181,10 +192,8 @@ TEST(SplatMovingSet, CompactCloudProjectsLikeTheSubsetOfTheScene)
 TEST(SplatMovingSet, ReusedWhileTheViewMovesLessThanTheAngle)
 {
   const GaussianCloud c = RandomCloud(4000, 11);
-  SplatLevelOfDetail lod;
-  PrepareSplatLevelOfDetail(c, lod, 2);
-  RasterSettings settings;
-  settings.Threads = 2;
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  RasterSettings settings = TwoThreads();
   SplatMovingSet set;
   const double angle = 0.1;
   EXPECT_TRUE(
@@ -249,10 +258,8 @@ TEST(SplatMovingSet, ReusedWhileTheViewMovesLessThanTheAngle)
 TEST(SplatMovingSet, RebuildKeepsTheColoursOfTheGaussiansThatStayWithinTheColourAngle)
 {
   const GaussianCloud c = RandomCloud(4000, 13);
-  SplatLevelOfDetail lod;
-  PrepareSplatLevelOfDetail(c, lod, 2);
-  RasterSettings settings;
-  settings.Threads = 2;
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  RasterSettings settings = TwoThreads();
   // (the colours depend on the camera's centre only: the second one moves it)
   const double moved[3] = { 1.0, 0.0, 0.0 };
   const Camera first = TurnedCamera(0.0, Origin), second = TurnedCamera(0.15, moved);
