@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Plot of the scene view's level of detail, error against run time: reads the output of
 BenchmarkSplatLevelOfDetail (one file per scene) and writes an SVG (no dependencies): PSNR of
-the moving frame against the exact frame over the frame's CPU milliseconds, one line per scene,
+the moving frame against the exact frame over the frame's CPU milliseconds, one line per scene
+and configuration (selected per frame, or kept while the view moves: reuse and colour angles,
+transmittance stop),
 each point labelled with its budget.
 
 Usage: plot-lod-accuracy.py OUTPUT.svg BENCHMARK_OUTPUT.txt...
@@ -13,7 +15,9 @@ import sys
 
 
 def read(path):
-    name, rows = path, []
+    """The series of one benchmark output: one per configuration of the rows (the older
+    11-column rows, or the 15-column rows with the reuse angles and the transmittance stop)."""
+    name, series = path, {}
     with open(path) as f:
         for line in f:
             m = re.match(r"BenchmarkSplatLevelOfDetail: (\S+), (\d+) Gaussians", line)
@@ -23,17 +27,24 @@ def read(path):
                     "%s (%s)" % (scene.split("/")[-2] if "/" in scene else scene, m.group(2))
             parts = line.split()
             if len(parts) == 11 and parts[0].isdigit():
-                budget, cpu, psnr = int(parts[0]), float(parts[7]), float(parts[9])
-                rows.append((budget, cpu, psnr))
-    if not rows:
+                key = name
+                row = (int(parts[0]), float(parts[7]), float(parts[9]))
+            elif len(parts) == 15 and parts[0].isdigit():
+                key = "%s, selected per frame" % name if parts[1] == "-" else \
+                    "%s, kept %s deg, stop %g" % (name, parts[1], float(parts[2]))
+                row = (int(parts[0]), float(parts[9]), float(parts[11]))
+            else:
+                continue
+            series.setdefault(key, []).append(row)
+    if not series:
         sys.exit("plot-lod-accuracy: no table rows in %s" % path)
-    return name, rows
+    return list(series.items())
 
 
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
-    series = [read(p) for p in sys.argv[2:]]
+    series = [s for p in sys.argv[2:] for s in read(p)]
     W, H, L, R, T, B = 720, 420, 70, 20, 30, 50
     xs = [r[1] for _, rows in series for r in rows]
     ys = [r[2] for _, rows in series for r in rows]
@@ -63,7 +74,7 @@ def main():
                'log scale)</text>' % ((L + W - R) // 2, H - 12))
     out.append('<text x="14" y="%d" transform="rotate(-90 14 %d)" text-anchor="middle">PSNR '
                'against the exact frame (dB)</text>' % ((T + H - B) // 2, (T + H - B) // 2))
-    colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd"]
+    colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf"]
     for k, (name, rows) in enumerate(series):
         c = colours[k % len(colours)]
         pts = " ".join("%.1f,%.1f" % (px(r[1]), py(r[2])) for r in rows)

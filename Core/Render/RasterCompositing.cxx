@@ -20,6 +20,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -88,6 +89,9 @@ struct CompositeContext
   /// The blends to keep (CompositeTiles' record), its running count of blends and its limit.
   PixelWeightRecord* Record = nullptr;
   std::atomic<std::uint64_t>* RecordEntries = nullptr;
+  /// RasterSettings::TransmittanceStop (the reference's value for every caller but
+  /// CompositeTiles() with another setting).
+  double Stop = raster::TransmittanceStop;
 };
 
 /// One tile's part of a PixelWeightRecord while the tile is blended (nullptr: not recording).
@@ -421,6 +425,12 @@ void CompositeTiles(const ViewProjection<T>& projection,
       static_cast<T>(settings.Background[2]) },
     &kernelEvals,
     &referenceEvals };
+  if (!(settings.TransmittanceStop > 0.0) || !(settings.TransmittanceStop < 1.0))
+  {
+    throw std::invalid_argument("CompositeTiles: transmittance stop " +
+      std::to_string(settings.TransmittanceStop) + " is not in (0, 1)");
+  }
+  ctx.Stop = settings.TransmittanceStop;
   EntrySums entries;
   entries.Attach(ctx, bins, weights);
   std::atomic<std::uint64_t> recordEntries{ 0 };

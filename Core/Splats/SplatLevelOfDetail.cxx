@@ -16,7 +16,8 @@ namespace vis4gs
 {
 namespace
 {
-constexpr std::size_t Bins = 65536;
+constexpr std::size_t Bins = 32768;
+constexpr std::uint32_t RingBit = 0x8000;
 }
 
 //------------------------------------------------------------------------------
@@ -78,7 +79,9 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   const Camera& camera,
   std::size_t budget,
   std::vector<std::uint32_t>& subset,
-  int threads)
+  int threads,
+  double margin,
+  std::vector<std::uint16_t>* scratch)
 {
   const std::size_t n = cloud.Count;
   if (lod.Mass.size() != n || lod.Reach.size() != n || cloud.Positions.size() != 3 * n)
@@ -94,10 +97,20 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   const float tx = static_cast<float>(camera.Width / (2.0 * camera.Fx));
   const float ty = static_cast<float>(camera.Height / (2.0 * camera.Fy));
   const float cx = std::sqrt(1.0f + tx * tx), cy = std::sqrt(1.0f + ty * ty);
+  // The margin's wider frustum (the same test with the widened half-angles).
+  const bool ring = margin > 0.0;
+  const double half = 1.5; // (below pi/2 so that the tangents stay finite)
+  const float mx = static_cast<float>(std::tan(std::min(half, std::atan(double(tx)) + margin)));
+  const float my = static_cast<float>(std::tan(std::min(half, std::atan(double(ty)) + margin)));
+  const float mcx = std::sqrt(1.0f + mx * mx), mcy = std::sqrt(1.0f + my * my);
   const int nt = ThreadCount(threads);
   const std::int64_t count = static_cast<std::int64_t>(n);
-  // Pass 1: the key of every Gaussian (0 outside the frustum) and a histogram per thread.
-  std::vector<std::uint16_t> keys(n);
+  // Pass 1: the key of every Gaussian (0 outside the frustum) and a histogram per thread of
+  // those in the view's own frustum. A key is at most 0x7f80 (the top 16 bits of a positive
+  // float), so its bit 15 marks a Gaussian of the margin's ring only.
+  std::vector<std::uint16_t> own;
+  std::vector<std::uint16_t>& keys = scratch ? *scratch : own;
+  keys.resize(n);
   std::vector<std::vector<std::uint32_t>> hist(static_cast<std::size_t>(nt));
   std::size_t inside = 0;
 #pragma omp parallel num_threads(nt) reduction(+ : inside)
@@ -117,11 +130,16 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
       // plane (distance of the centre to the plane x = tx z is (x - tx z) / sqrt(1 + tx^2)).
       const bool in =
         z > 0.2f && std::abs(x) - tx * z <= reach * cx && std::abs(y) - ty * z <= reach * cy;
-      std::uint32_t key = in ? SplatContributionKey(lod.Mass[i], z) : 0;
-      key = std::min<std::uint32_t>(key, Bins - 1);
-      keys[i] = static_cast<std::uint16_t>(key);
-      ++h[key];
-      inside += key > 0 ? 1 : 0;
+      const bool near = ring && !in && z > 0.2f && std::abs(x) - mx * z <= reach * mcx &&
+        std::abs(y) - my * z <= reach * mcy;
+      std::uint32_t key = in || near ? SplatContributionKey(lod.Mass[i], z) : 0;
+      key = std::min<std::uint32_t>(key, RingBit - 1);
+      keys[i] = static_cast<std::uint16_t>(key | (near ? RingBit : 0));
+      if (!near)
+      {
+        ++h[key];
+        inside += key > 0 ? 1 : 0;
+      }
     }
   }
   std::vector<std::uint64_t> total(Bins, 0);
@@ -152,8 +170,15 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   subset.clear();
   for (std::size_t i = 0; i < n; ++i)
   {
-    const std::uint32_t key = keys[i];
-    if (key > boundary || (key == boundary && take > 0))
+    const std::uint32_t key = keys[i] & (RingBit - 1);
+    if (keys[i] & RingBit)
+    {
+      if (key >= boundary && key > 0)
+      {
+        subset.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    else if (key > boundary || (key == boundary && take > 0))
     {
       take -= key == boundary ? 1 : 0;
       subset.push_back(static_cast<std::uint32_t>(i));

@@ -57,13 +57,22 @@ void PrepareSplatLevelOfDetail(const GaussianCloud& cloud,
  * kept. With @p budget 0, every Gaussian in the frustum with a positive mass. Returns the
  * number of Gaussians in the frustum. Throws std::invalid_argument when @p lod does not
  * match the cloud.
+ *
+ * @p margin (radians, default 0) widens the field of view by that angle on every side for a
+ * selection kept while the camera turns (SplatMovingSet.h): the Gaussians of the margin's
+ * ring are added when their key reaches the budget's boundary key, but the budget counts the
+ * view's own frustum only, so that the margin does not thin the visible picture.
+ * @p scratch, when given, holds the per-Gaussian keys (2 B each), kept by a caller that
+ * selects repeatedly so that they are not allocated and page-faulted again.
  */
 std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   const SplatLevelOfDetail& lod,
   const Camera& camera,
   std::size_t budget,
   std::vector<std::uint32_t>& subset,
-  int threads = 0);
+  int threads = 0,
+  double margin = 0.0,
+  std::vector<std::uint16_t>* scratch = nullptr);
 
 /// The ranking key of SelectSplatsForView() for a Gaussian of @p mass at view depth @p z
 /// (0 = never selected): the top 16 bits of the float mass / z^2.

@@ -39,6 +39,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkLookupTable.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -686,6 +687,12 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     request.Settings.Threads = this->NumberOfThreads;
     request.Budget = budget;
     request.Reduced = reduced;
+    request.ReuseAngle = this->InteractiveReuseAngle * vtkMath::Pi() / 180.0;
+    request.ColorAngle = this->InteractiveColorAngle * vtkMath::Pi() / 180.0;
+    if (reduced)
+    {
+      request.Settings.TransmittanceStop = this->InteractiveTransmittanceStop;
+    }
     request.FullResolution = w == width && h == height;
     request.SampleDistance = distance;
     request.Interactive = interactive;
@@ -1234,6 +1241,9 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
   os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
   os << indent << "SelectionWeightThreshold: " << this->SelectionWeightThreshold << "\n";
+  os << indent << "InteractiveReuseAngle: " << this->InteractiveReuseAngle << "\n";
+  os << indent << "InteractiveColorAngle: " << this->InteractiveColorAngle << "\n";
+  os << indent << "InteractiveTransmittanceStop: " << this->InteractiveTransmittanceStop << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";

@@ -363,6 +363,43 @@ public:
 
   ///@{
   /**
+   * CPU path: degrees the view may turn (or travel, seen from the drawn Gaussians' median
+   * depth) while moving before the level of detail's Gaussians and their view-dependent
+   * colours are chosen again (vis4gs::SplatMovingSet, Core/Splats/SplatMovingSet.h). In
+   * between, moving frames project a compact copy of the chosen Gaussians with the colours of
+   * the camera that chose them, selected with a margin of this angle around the view. 0
+   * chooses them for every moving frame. Still frames are exact whatever the angle. Default
+   * 6 degrees (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveReuseAngle, double, 0.0, 45.0);
+  vtkGetMacro(InteractiveReuseAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: degrees the view may move from the camera that last evaluated every colour of
+   * the level of detail's Gaussians before all are evaluated again; until then a new choice of
+   * Gaussians (InteractiveReuseAngle) evaluates only the colours of those newly chosen and
+   * keeps the others'. 0 evaluates every colour at every choice. Default 18 degrees
+   * (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveColorAngle, double, 0.0, 90.0);
+  vtkGetMacro(InteractiveColorAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: the transmittance at which a moving frame's pixel stops blending
+   * (vis4gs::RasterSettings::TransmittanceStop): what remains behind it, at most this fraction
+   * of the pixel, is left out. Still frames use the reference's 1e-4 whatever this is. Default
+   * 0.004, about one 8-bit level (Documentation/accuracy-vs-runtime.md).
+   */
+  vtkSetClampMacro(InteractiveTransmittanceStop, double, 1e-4, 0.5);
+  vtkGetMacro(InteractiveTransmittanceStop, double);
+  ///@}
+
+  ///@{
+  /**
    * CPU path: the image sample distance of the last frame and the milliseconds its CPU
    * rasterisation took (0 when the cached image was reused).
    */
@@ -562,6 +599,9 @@ protected:
   double LastRasterTime = 0.0;
   vtkIdType InteractiveSplatBudget = 400000;
   double SelectionWeightThreshold = 0.01;
+  double InteractiveReuseAngle = 6.0;
+  double InteractiveColorAngle = 18.0;
+  double InteractiveTransmittanceStop = 0.004;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;
   vtkLookupTable* ScoreLookupTable = nullptr;

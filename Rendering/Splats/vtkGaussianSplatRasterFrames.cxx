@@ -266,14 +266,14 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
   {
     // A new scene: the old one's level of detail is not needed any more.
     this->Lod = vis4gs::SplatLevelOfDetail();
-    std::vector<std::uint32_t>().swap(this->LodSubset);
+    this->LodSet = vis4gs::SplatMovingSet();
     this->LodWork = vis4gs::RasterWorkspace<float>();
     this->LodSource = 0;
   }
   bool unmodified = !r.Reduced && r.FullResolution && r.Settings.ScaleModifier == 1.0;
   try
   {
-    // Gaussian i of a reduced frame is Gaussian LodSubset[i] of the cloud.
+    // Gaussian i of a reduced frame is Gaussian LodSet.Subset[i] of the cloud.
     vis4gs::RasterWorkspace<float>& work = r.Reduced ? this->LodWork : this->Work;
     if (r.Reduced)
     {
@@ -282,14 +282,23 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         vis4gs::PrepareSplatLevelOfDetail(cloud, this->Lod, threads);
         this->LodSource = r.CloudVersion;
       }
-      vis4gs::SelectSplatsForView(cloud, this->Lod, camera, r.Budget, this->LodSubset, threads);
-      vis4gs::ProjectGaussianSubset(cloud,
-        this->LodSubset,
+      // The compact copy of the selected Gaussians, kept while the view moves less than the
+      // reuse angle, is projected with its own kept preparation.
+      vis4gs::UpdateSplatMovingSet(cloud,
+        r.CloudVersion,
+        this->Lod,
+        camera,
+        r.Budget,
+        r.Settings,
+        r.ReuseAngle,
+        r.ColorAngle,
+        this->LodSet);
+      vis4gs::ProjectGaussians(this->LodSet.Compact,
         camera,
         r.Settings,
         work.Projection,
-        this->Work.Prepared,
-        r.CloudVersion);
+        work.Prepared,
+        this->LodSet.Generation);
     }
     else
     {
@@ -310,7 +319,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
           this->LodScores.resize(m);
           for (std::size_t i = 0; i < m; ++i)
           {
-            this->LodScores[i] = opt.Scores[this->LodSubset[i]];
+            this->LodScores[i] = opt.Scores[this->LodSet.Subset[i]];
           }
           opt.Scores = this->LodScores.data();
         }
@@ -319,7 +328,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
           this->LodSelected.resize(m);
           for (std::size_t i = 0; i < m; ++i)
           {
-            this->LodSelected[i] = opt.Selected[this->LodSubset[i]];
+            this->LodSelected[i] = opt.Selected[this->LodSet.Subset[i]];
           }
           opt.Selected = this->LodSelected.data();
         }

@@ -38,6 +38,7 @@
 #include "Rasterizer.h"
 #include "SplatAttributes.h"
 #include "SplatLevelOfDetail.h"
+#include "SplatMovingSet.h"
 
 #include "vtkType.h"
 
@@ -79,6 +80,12 @@ public:
     vis4gs::RasterSettings Settings;
     std::size_t Budget = 0; ///< level of detail (0: none)
     bool Reduced = false;   ///< draw the Budget's Gaussians only (a moving frame)
+    /// Radians the view may move before a reduced frame's Gaussians and colours are chosen
+    /// again (vis4gs::SplatMovingSet; 0: for every frame).
+    double ReuseAngle = 0.0;
+    /// Radians the view may move before the colours of the Gaussians a reduced frame keeps
+    /// drawing are evaluated again (0: at every choice).
+    double ColorAngle = 0.0;
     bool FullResolution = false;
     double SampleDistance = 1.0;            ///< image pixels per screen pixel, for the record
     bool Interactive = false;               ///< a moving frame (the sample distance adapts to it)
@@ -176,7 +183,7 @@ private:
   std::shared_ptr<const vis4gs::GaussianCloud> LodWanted; // after the frame is handed over
   std::uint64_t LodWantedVersion = 0;
   int LodWantedThreads = 0;
-  std::vector<std::uint32_t> LodSubset;
+  vis4gs::SplatMovingSet LodSet; // the reduced frames' Gaussians, kept while the view moves
   std::vector<double> LodScores;
   std::vector<std::uint8_t> LodSelected;
   std::vector<float> TrueColors;

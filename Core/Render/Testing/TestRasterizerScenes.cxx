@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 
 using namespace vis4gs;
 using namespace vis4gs::rastertest;
@@ -288,4 +290,59 @@ TEST(RasterizerScenes, RealSceneMatchesNaive)
   FootprintOptions brute;
   brute.BruteForce = true;
   EXPECT_EQ(ComputeFootprints(proj).PixelCount, ComputeFootprints(proj, brute).PixelCount);
+}
+
+TEST(RasterizerScenes, TransmittanceStopCutsPixelsEarlyWithinItsBound)
+{
+  // A dense scene, so that many pixels reach the reference's stop.
+  const GaussianCloud cloud = RandomScene(4000, 1, 29, 2.0f, 6.0f, -3.0f, -1.5f);
+  const Camera cam = AxisCamera(96, 64, 80.0, 80.0);
+  RasterSettings settings;
+  settings.Threads = 2;
+  const RasterImage<float> ref = Rasterize<float>(cloud, cam, settings);
+  settings.TransmittanceStop = 1e-4; // the default, set: the same bits
+  const RasterImage<float> same = Rasterize<float>(cloud, cam, settings);
+  EXPECT_EQ(std::memcmp(ref.Color.data(), same.Color.data(), ref.Color.size() * sizeof(float)), 0);
+  const ViewProjection<float> proj = ProjectGaussians<float>(cloud, cam, settings);
+  float brightest = 0.0f;
+  for (const auto& g : proj.Gaussians)
+  {
+    if (g.IsVisible())
+    {
+      brightest = std::max({ brightest, g.Color[0], g.Color[1], g.Color[2] });
+    }
+  }
+  const double stop = 0.05;
+  settings.TransmittanceStop = stop;
+  const RasterImage<float> cut = Rasterize<float>(cloud, cam, settings);
+  std::size_t early = 0, differ = 0;
+  for (std::size_t p = 0; p < ref.Alpha.size(); ++p)
+  {
+    const float t = cut.Transmittance[p];
+    if (ref.Transmittance[p] >= stop)
+    {
+      // No blend of this pixel brought it below the stop: the reference's pixel, bit for bit.
+      ASSERT_EQ(std::memcmp(&ref.Color[3 * p], &cut.Color[3 * p], 3 * sizeof(float)), 0) << p;
+      continue;
+    }
+    ++early;
+    // It stopped before the Gaussian that would bring it below the stop; what the reference
+    // blends after that is at most its remaining transmittance times the brightest colour.
+    EXPECT_GE(t, ref.Transmittance[p]) << p;
+    EXPECT_GE(t, static_cast<float>(stop) * 0.999f) << p;
+    for (int c = 0; c < 3; ++c)
+    {
+      const float d = ref.Color[3 * p + c] - cut.Color[3 * p + c];
+      EXPECT_GE(d, -1e-5f) << p;
+      EXPECT_LE(d, t * brightest + 1e-5f) << p;
+      differ += d != 0.0f ? 1 : 0;
+    }
+  }
+  EXPECT_GT(early, ref.Alpha.size() / 4);
+  EXPECT_GT(differ, early / 2);
+  for (double bad : { 0.0, 1.0, -0.5, std::nan("") })
+  {
+    settings.TransmittanceStop = bad;
+    EXPECT_THROW(Rasterize<float>(cloud, cam, settings), std::invalid_argument) << bad;
+  }
 }

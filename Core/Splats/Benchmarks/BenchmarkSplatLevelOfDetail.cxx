@@ -7,21 +7,33 @@
 // against the exact full frame of the same camera. The exact frame is the straightforward
 // implementation, timed in the same run.
 // Usage: BenchmarkSplatLevelOfDetail SCENE [width=1280] [height=720] [threads=2]
-//        [sample distance=1] [frames=3] [budget...]
+//        [sample distance=1] [frames=3] [budget[:reuse angle]...]
 //   SCENE: a Gaussian count (the synthetic scene of BenchmarkScene.h, SH degree 3) or a PLY file
 //   (framed from 2.2 times its 90 % extent); budgets default to 5 fractions of the count.
+//   A budget alone selects and projects from the whole scene in every frame (SelectSplatsForView
+//   and ProjectGaussianSubset, the straightforward level of detail); BUDGET:ANGLE keeps the
+//   selection and colours while the view moves less than ANGLE degrees (SplatMovingSet.h; 0 =
+//   rebuilt every frame); BUDGET:ANGLE:STOP also stops each pixel's compositing once its
+//   transmittance would fall below STOP (RasterSettings::TransmittanceStop; the reference's
+//   1e-4 otherwise); BUDGET:ANGLE:STOP:COLOUR keeps the colours of the Gaussians that stay
+//   selected while the view is within COLOUR degrees of the last full colour evaluation (0
+//   otherwise: every rebuild evaluates every colour). The frames follow the orbit in order, 0.05
+//   rad apart; the times are means over the frames (the rebuilds included), the PSNR the median and
+//   the minimum.
 #include "BenchmarkScene.h"
 #include "BenchmarkTiming.h"
 #include "GaussianIO.h"
 #include "Rasterizer.h"
 #include "SplatCamera.h"
 #include "SplatLevelOfDetail.h"
+#include "SplatMovingSet.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -143,16 +155,38 @@ int main(int argc, char* argv[])
     return 1;
   }
   const std::size_t n = cloud.Count;
-  std::vector<std::size_t> budgets;
+  // (budget, reuse angle in degrees (negative: no moving set), transmittance stop)
+  struct Row
+  {
+    std::size_t Budget;
+    double Angle;
+    double Stop;
+    double Color;
+  };
+  std::vector<Row> budgets;
   for (int a = 7; a < argc; ++a)
   {
-    budgets.push_back(std::strtoull(argv[a], nullptr, 10));
+    char* end = nullptr;
+    Row row{ std::strtoull(argv[a], &end, 10), -1.0, 1e-4, 0.0 };
+    if (*end == ':')
+    {
+      row.Angle = std::strtod(end + 1, &end);
+    }
+    if (*end == ':')
+    {
+      row.Stop = std::strtod(end + 1, &end);
+    }
+    if (*end == ':')
+    {
+      row.Color = std::strtod(end + 1, &end);
+    }
+    budgets.push_back(row);
   }
   if (budgets.empty())
   {
     for (double f : { 0.05, 0.1, 0.16, 0.25, 0.4 })
     {
-      budgets.push_back(static_cast<std::size_t>(f * static_cast<double>(n)));
+      budgets.push_back({ static_cast<std::size_t>(f * static_cast<double>(n)), -1.0, 1e-4, 0.0 });
     }
   }
   std::printf("BenchmarkSplatLevelOfDetail: %s, %zu Gaussians (SH %d), %dx%d, sample distance "
@@ -205,8 +239,10 @@ int main(int argc, char* argv[])
   std::printf("  level-of-detail preparation (once per scene): %.1f ms, CPU %.1f ms\n",
     rankMs,
     timer.LastCpuMs);
-  std::printf("  %10s %8s %10s %10s %10s %10s %8s %8s %8s %8s %7s\n",
+  std::printf("  %10s %6s %7s %8s %10s %10s %10s %10s %8s %8s %8s %8s %8s %7s %8s\n",
     "budget",
+    "reuse",
+    "stop",
     "drawn",
     "select CPU",
     "proj. CPU",
@@ -216,31 +252,73 @@ int main(int argc, char* argv[])
     "CPU ms",
     "fps",
     "PSNR dB",
-    "holes");
+    "min dB",
+    "holes",
+    "rebuilds");
+  auto mean = [](const std::vector<double>& v)
+  {
+    double sum = 0;
+    for (double x : v)
+    {
+      sum += x;
+    }
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  };
   // The whole cloud's preparation (the exact frames' too), kept as the scene view keeps it.
   vis4gs::PreparedCloudCache prepared;
-  for (std::size_t budget : budgets)
+  for (const Row& row : budgets)
   {
+    const std::size_t budget = row.Budget;
+    const bool reuse = row.Angle >= 0.0;
+    const double angle = reuse ? row.Angle * M_PI / 180.0 : 0.0;
+    const double colorAngle = row.Color * M_PI / 180.0;
+    vis4gs::RasterSettings moving = settings;
+    moving.TransmittanceStop = row.Stop;
     vis4gs::RasterWorkspace<float> work;
     std::vector<std::uint32_t> subset;
+    vis4gs::SplatMovingSet set;
     std::vector<double> select, project, bin, blend, frame, cpu, psnr, holes, drawn;
-    for (int f = -1; f < frames; ++f)
+    for (int f = -2; f < frames; ++f)
     {
-      // Frame -1 allocates the budget's buffers (once per budget; not counted).
+      // Frames -2 and -1 allocate the budget's buffers (once per budget, as the view keeps
+      // them; not counted); the orbit starts with a rebuild (the set forgets its view).
+      if (f <= 0)
+      {
+        set.Generation = 0;
+      }
       const vis4gs::Camera& full = cameras[std::max(0, f)];
       const vis4gs::Camera cam = distance > 1.0
         ? full.Resized(std::max(1, static_cast<int>(std::lround(W / distance))),
             std::max(1, static_cast<int>(std::lround(H / distance))))
         : full;
       double cpuMs = 0, steps[4] = { 0, 0, 0, 0 };
-      const double s = timer.TimeMs(
-        1, [&] { vis4gs::SelectSplatsForView(cloud, lod, cam, budget, subset, threads); });
+      const double s = timer.TimeMs(1,
+        [&]
+        {
+          if (reuse)
+          {
+            vis4gs::UpdateSplatMovingSet(
+              cloud, 1, lod, cam, budget, settings, angle, colorAngle, set);
+          }
+          else
+          {
+            vis4gs::SelectSplatsForView(cloud, lod, cam, budget, subset, threads);
+          }
+        });
       steps[0] = timer.LastCpuMs;
       const double p = timer.TimeMs(1,
         [&]
         {
-          vis4gs::ProjectGaussianSubset(
-            cloud, subset, cam, settings, work.Projection, prepared, std::uint64_t(1));
+          if (reuse)
+          {
+            vis4gs::ProjectGaussians(
+              set.Compact, cam, settings, work.Projection, work.Prepared, set.Generation);
+          }
+          else
+          {
+            vis4gs::ProjectGaussianSubset(
+              cloud, subset, cam, settings, work.Projection, prepared, std::uint64_t(1));
+          }
         });
       steps[1] = timer.LastCpuMs;
       const double b = timer.TimeMs(
@@ -251,7 +329,7 @@ int main(int argc, char* argv[])
         [&]
         {
           vis4gs::CompositeTiles<float>(
-            work.Projection, work.Bins, settings, work.Image, nullptr, nullptr, &work.Composite);
+            work.Projection, work.Bins, moving, work.Image, nullptr, nullptr, &work.Composite);
         });
       steps[3] = timer.LastCpuMs;
       cpuMs = steps[0] + steps[1] + steps[2] + steps[3];
@@ -270,18 +348,28 @@ int main(int argc, char* argv[])
       psnr.push_back(Psnr(shown, exact[f]));
       holes.push_back(static_cast<double>(Holes(shown, exact[f])));
     }
-    std::printf("  %10zu %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f %7.0f\n",
+    char reuseText[32] = "-";
+    if (reuse)
+    {
+      std::snprintf(reuseText, sizeof(reuseText), "%.0f/%.0f", row.Angle, row.Color);
+    }
+    std::printf("  %10zu %6s %7.5f %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f "
+                "%8.2f %7.0f %8zu\n",
       budget,
+      reuseText,
+      row.Stop,
       median(drawn),
-      median(select),
-      median(project),
-      median(bin),
-      median(blend),
-      median(frame),
-      median(cpu),
-      1000.0 / median(frame),
+      mean(select),
+      mean(project),
+      mean(bin),
+      mean(blend),
+      mean(frame),
+      mean(cpu),
+      1000.0 / mean(frame),
       median(psnr),
-      median(holes));
+      *std::min_element(psnr.begin(), psnr.end()),
+      median(holes),
+      reuse ? set.Rebuilds : static_cast<std::size_t>(frames));
   }
   return 0;
 }

@@ -14,6 +14,12 @@
 //        [orbit speed=45 degrees per second (OpenGL path: the order's lag in degrees at a
 //         60 fps GPU frame rate)] [lag offsets=1,3,10 (OpenGL path: degrees behind the camera
 //         whose order's error is measured, besides the lag of the orbit speed)]
+//        [interactive reuse angle=-1 (CPU rasteriser path: degrees the view moves before the
+//         moving frames' Gaussians and colours are chosen again; -1 = the mapper's default)]
+//        [interactive transmittance stop=-1 (CPU rasteriser path: where a moving frame's pixel
+//         stops blending; -1 = the mapper's default)] [interactive colour angle=-1 (CPU
+//         rasteriser path: degrees before every colour of the moving frames' Gaussians is
+//         evaluated again; -1 = the mapper's default)]
 #include "BenchmarkScene.h"
 #include "SplatSortWorker.h"
 #include "Vis4GSDataModel.h"
@@ -87,6 +93,9 @@ int main(int argc, char* argv[])
     offsets.push_back(d);
     p = *end == ',' ? end + 1 : end;
   }
+  const double reuseAngle = argc > 14 ? std::atof(argv[14]) : -1.0;
+  const double transmittanceStop = argc > 15 ? std::atof(argv[15]) : -1.0;
+  const double colorAngle = argc > 16 ? std::atof(argv[16]) : -1.0;
   const auto cloud = vis4gs::MakeBenchmarkScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
@@ -99,6 +108,18 @@ int main(int argc, char* argv[])
   if (splatBudget >= 0)
   {
     mapper->SetInteractiveSplatBudget(splatBudget);
+  }
+  if (reuseAngle >= 0)
+  {
+    mapper->SetInteractiveReuseAngle(reuseAngle);
+  }
+  if (transmittanceStop > 0)
+  {
+    mapper->SetInteractiveTransmittanceStop(transmittanceStop);
+  }
+  if (colorAngle >= 0)
+  {
+    mapper->SetInteractiveColorAngle(colorAngle);
   }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -394,11 +415,24 @@ int main(int argc, char* argv[])
         }
       }
     }
-    std::printf("  interactive (sample distance %.2f, splat budget %lld, %.0f drawn; first "
-                "%.1f ms): %9.1f ms/frame = %6.2f fps, CPU %.1f "
-                "ms/frame, PSNR against the full-quality frame %.2f dB (min %.2f)\n",
+    auto mean = [](const std::vector<double>& v)
+    {
+      double sum = 0;
+      for (double x : v)
+      {
+        sum += x;
+      }
+      return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+    };
+    std::printf("  interactive (sample distance %.2f, splat budget %lld, reuse angle %.1f deg, "
+                "colour angle %.1f deg, transmittance stop %g, %.0f drawn; first %.1f ms): %9.1f "
+                "ms/frame = %6.2f fps, CPU %.1f ms/frame, PSNR against the full-quality frame "
+                "%.2f dB (min %.2f)\n",
       median(dist),
       static_cast<long long>(mapper->GetInteractiveSplatBudget()),
+      mapper->GetInteractiveReuseAngle(),
+      mapper->GetInteractiveColorAngle(),
+      mapper->GetInteractiveTransmittanceStop(),
       median(drawn),
       firstInteractive,
       median(inter),
@@ -406,6 +440,15 @@ int main(int argc, char* argv[])
       median(interCpu),
       median(psnr),
       *std::min_element(psnr.begin(), psnr.end()));
+    // The frames that choose the Gaussians again cost more than those that reuse them: the
+    // mean and the slowest frame of the orbit too.
+    std::printf("  interactive mean over the orbit: %9.1f ms/frame = %6.2f fps, CPU %.1f ms/frame; "
+                "slowest %.1f ms, CPU %.1f ms\n",
+      mean(inter),
+      1000.0 / mean(inter),
+      mean(interCpu),
+      *std::max_element(inter.begin(), inter.end()),
+      *std::max_element(interCpu.begin(), interCpu.end()));
     std::printf("  holes: %.0f pixels per moving frame covered in the full frame, background in "
                 "the moving one\n",
       static_cast<double>(holes) / std::max<std::size_t>(1, psnr.size()));

@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SplatMovingSet.h"
+
+#include "GaussianMath.h"
+#include "ThreadCount.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace vis4gs
+{
+
+//------------------------------------------------------------------------------
+double SplatViewChangeAngle(const Camera& rank, const Camera& now, double depth)
+{
+  const auto& a = rank.WorldToCamera;
+  const auto& b = now.WorldToCamera;
+  // trace(R_now R_rank^T) = sum of the products of corresponding entries of the 3x3 parts.
+  double trace = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      trace += a[4 * r + c] * b[4 * r + c];
+    }
+  }
+  const double rotation = std::acos(std::min(1.0, std::max(-1.0, 0.5 * (trace - 1.0))));
+  if (!(depth > 0.0))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  const auto p = rank.Center(), q = now.Center();
+  const double travel = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                          (p[2] - q[2]) * (p[2] - q[2])) /
+    depth;
+  const double angle = std::max(rotation, travel);
+  return std::isnan(angle) ? std::numeric_limits<double>::infinity() : angle;
+}
+
+//------------------------------------------------------------------------------
+bool UpdateSplatMovingSet(const GaussianCloud& cloud,
+  std::uint64_t cloudVersion,
+  const SplatLevelOfDetail& lod,
+  const Camera& camera,
+  std::size_t budget,
+  const RasterSettings& settings,
+  double reuseAngle,
+  double colorAngle,
+  SplatMovingSet& set)
+{
+  if (!(reuseAngle >= 0.0) || !std::isfinite(reuseAngle) || !(colorAngle >= 0.0) ||
+    !std::isfinite(colorAngle))
+  {
+    throw std::invalid_argument("UpdateSplatMovingSet: reuse angle " + std::to_string(reuseAngle) +
+      " or colour angle " + std::to_string(colorAngle) + " is not a finite angle >= 0");
+  }
+  const int degree = std::max(
+    0, settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree));
+  const bool colors = settings.ComputeColors;
+  // The field of view as tangents: a resized camera (another sample distance) keeps it.
+  auto sameFov = [](const Camera& a, const Camera& b)
+  {
+    return std::abs(a.TanHalfFovX() - b.TanHalfFovX()) <= 1e-9 * a.TanHalfFovX() &&
+      std::abs(a.TanHalfFovY() - b.TanHalfFovY()) <= 1e-9 * a.TanHalfFovY();
+  };
+  const bool sameScene = set.Generation != 0 && set.Cloud == &cloud &&
+    set.CloudVersion == cloudVersion && cloudVersion != 0 && set.ShDegree == degree &&
+    set.Colors == colors;
+  if (reuseAngle > 0.0 && sameScene && set.Budget == budget && set.ReuseAngle == reuseAngle &&
+    sameFov(set.Rank, camera) && SplatViewChangeAngle(set.Rank, camera, set.Depth) <= reuseAngle)
+  {
+    ++set.Reuses;
+    return false;
+  }
+  // The Gaussians that stay selected keep their colour while the camera of the last full
+  // colour evaluation is within the colour angle; the others are gathered from the scene.
+  const bool keepColors = colorAngle > 0.0 && sameScene &&
+    SplatViewChangeAngle(set.ColorRank, camera, set.Depth) <= colorAngle;
+  std::swap(set.Subset, set.PreviousSubset);
+  std::swap(set.Compact, set.Previous);
+  const int threads = ThreadCount(settings.Threads);
+  SelectSplatsForView(cloud, lod, camera, budget, set.Subset, threads, reuseAngle, &set.Keys);
+  const std::size_t m = set.Subset.size();
+  // from[j]: Gaussian j's place in the previous set (kept colour), or -1.
+  std::vector<std::int64_t>& from = set.From;
+  from.assign(m, -1);
+  if (keepColors)
+  {
+    const std::vector<std::uint32_t>& old = set.PreviousSubset;
+    std::size_t k = 0;
+    for (std::size_t j = 0; j < m; ++j)
+    {
+      while (k < old.size() && old[k] < set.Subset[j])
+      {
+        ++k;
+      }
+      if (k < old.size() && old[k] == set.Subset[j])
+      {
+        from[j] = static_cast<std::int64_t>(k);
+      }
+    }
+  }
+  const GaussianCloud& prev = set.Previous;
+  GaussianCloud& c = set.Compact;
+  c.Count = m;
+  c.ShDegree = 0;
+  c.Ids.clear();
+  c.Extra.clear();
+  c.Positions.resize(3 * m);
+  c.LogScales.resize(3 * m);
+  c.Rotations.resize(4 * m);
+  c.OpacityLogits.resize(m);
+  c.SH.resize(3 * m);
+  const bool haveSh = colors &&
+    cloud.SH.size() == cloud.Count * 3 * static_cast<std::size_t>(cloud.ShCoefficientCount());
+  const std::size_t shStride = 3 * static_cast<std::size_t>(cloud.ShCoefficientCount());
+  const auto centre = camera.Center();
+  const float campos[3] = {
+    static_cast<float>(centre[0]), static_cast<float>(centre[1]), static_cast<float>(centre[2])
+  };
+  const float c0 = static_cast<float>(sh::C0);
+  const auto& v = camera.WorldToCamera;
+  std::vector<float>& depths = set.Depths;
+  depths.resize(m);
+  constexpr std::size_t Ahead = 8;
+  const std::int64_t count = static_cast<std::int64_t>(m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t jj = 0; jj < count; ++jj)
+  {
+    const std::size_t j = static_cast<std::size_t>(jj);
+    const std::size_t i = set.Subset[j];
+    if (j + Ahead < m && from[j + Ahead] < 0)
+    {
+      // The gather is bound by memory latency (the selected Gaussians lie about a dozen apart
+      // in the scene's arrays, 192 B of SH each at degree 3): ask for a later one's lines now.
+      const std::size_t a = set.Subset[j + Ahead];
+      if (haveSh)
+      {
+        const char* q = reinterpret_cast<const char*>(&cloud.SH[a * shStride]);
+        for (std::size_t b = 0; b < shStride * sizeof(float); b += 64)
+        {
+          __builtin_prefetch(q + b);
+        }
+      }
+      __builtin_prefetch(&cloud.Positions[3 * a]);
+      __builtin_prefetch(&cloud.LogScales[3 * a]);
+      __builtin_prefetch(&cloud.Rotations[4 * a]);
+      __builtin_prefetch(&cloud.OpacityLogits[a]);
+    }
+    const std::int64_t k = from[j];
+    // (the previous set's compact copy holds the same parameters, contiguous)
+    const GaussianCloud& src = k >= 0 ? prev : cloud;
+    const std::size_t at = k >= 0 ? static_cast<std::size_t>(k) : i;
+    const float* p = &src.Positions[3 * at];
+    std::copy_n(p, 3, &c.Positions[3 * j]);
+    std::copy_n(&src.LogScales[3 * at], 3, &c.LogScales[3 * j]);
+    std::copy_n(&src.Rotations[4 * at], 4, &c.Rotations[4 * j]);
+    c.OpacityLogits[j] = src.OpacityLogits[at];
+    if (k >= 0)
+    {
+      std::copy_n(&prev.SH[3 * at], 3, &c.SH[3 * j]);
+    }
+    else
+    {
+      float rgb[3] = { 0.5f, 0.5f, 0.5f };
+      if (haveSh)
+      {
+        // The projection's colour, seen from this camera (the same function and precision);
+        // a non-finite coefficient gives a non-finite colour, which the compact cloud's
+        // projection skips as the whole cloud's does.
+        ViewColor<float>(&cloud.SH[i * shStride], degree, p, campos, rgb);
+      }
+      for (int q = 0; q < 3; ++q)
+      {
+        c.SH[3 * j + q] = haveSh ? (rgb[q] - 0.5f) / c0 : 0.0f;
+      }
+    }
+    depths[j] = static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]);
+  }
+  // The median depth of those in front (the scale of the travel test).
+  auto front = std::partition(depths.begin(), depths.end(), [](float z) { return z > 0.2f; });
+  double depth = 0.0;
+  if (front != depths.begin())
+  {
+    auto mid = depths.begin() + (front - depths.begin()) / 2;
+    std::nth_element(depths.begin(), mid, front);
+    depth = *mid;
+  }
+  if (!keepColors)
+  {
+    set.ColorRank = camera;
+    ++set.ColorRefreshes;
+  }
+  set.Rank = camera;
+  set.Cloud = &cloud;
+  set.CloudVersion = cloudVersion;
+  set.Budget = budget;
+  set.ShDegree = degree;
+  set.Colors = colors;
+  set.ReuseAngle = reuseAngle;
+  set.Depth = depth;
+  // Unique in the process, so that no cache keyed by it mistakes another set's compact cloud
+  // (at the same addresses) for this one.
+  static std::atomic<std::uint64_t> generations{ 0 };
+  set.Generation = ++generations;
+  ++set.Rebuilds;
+  return true;
+}
+
+} // namespace vis4gs

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SplatMovingSet.h
+ * @brief The Gaussians a moving frame of the scene view draws, kept between frames while the
+ * view turns or travels less than an angle: the level of detail's selection
+ * (SplatLevelOfDetail.h) and a compact copy of the selected Gaussians with their colours.
+ *
+ * A moving frame that selects and projects its budget of Gaussians from the whole scene reads
+ * every Gaussian's position for the ranking and about ten scattered cache lines per selected
+ * Gaussian (its parameters and SH of degree 3) for the projection. While the view barely
+ * moves, neither the selection nor the view-dependent colours change much, so they are made
+ * once (a rebuild) and reused: the set holds the selected Gaussians' parameters in a compact
+ * GaussianCloud of SH degree 0 whose constant term gives the colour each Gaussian had seen
+ * from the camera centre of the rebuild. The frames in between project that compact cloud
+ * (contiguous memory, no SH evaluated) with the exact geometry of their own camera.
+ *
+ * The approximation has two parameters. The reuse angle: the set is rebuilt when the view has
+ * turned by more than that angle (the rotation between the two cameras' orientations) or
+ * travelled by more than that angle seen from the selected Gaussians' median depth, and the
+ * selection of a rebuild takes a margin of that angle around the field of view
+ * (SelectSplatsForView's margin), so that what turns into the view is drawn. The colour
+ * angle: a rebuild keeps the colours of the Gaussians that stay selected while the view is
+ * within that angle of the camera that last evaluated every colour. Their error (selection and
+ * colours of a nearby camera) is measured against run time by BenchmarkSplatLevelOfDetail
+ * (Documentation/accuracy-vs-runtime.md). Angles 0 rebuild for every frame (the selection and
+ * colours of the frame's own camera, as without reuse).
+ */
+#ifndef vis4gs_SplatMovingSet_h
+#define vis4gs_SplatMovingSet_h
+
+#include "Camera.h"
+#include "GaussianCloud.h"
+#include "Rasterizer.h"
+#include "SplatLevelOfDetail.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace vis4gs
+{
+
+/// A moving frame's Gaussians and what they were made for (see the file's comment).
+struct SplatMovingSet
+{
+  /// Indices in the cloud of the selected Gaussians, ascending: Gaussian j of Compact is the
+  /// cloud's Subset[j].
+  std::vector<std::uint32_t> Subset;
+  /// The selected Gaussians' positions, scales, rotations and opacities, and SH of degree 0
+  /// holding their colour seen from the rebuild's camera centre (SH zero when colours are off).
+  GaussianCloud Compact;
+  /// Non-zero once built, a new value at every rebuild: the compact cloud's version for a
+  /// PreparedCloudCache (Rasterizer.h).
+  std::uint64_t Generation = 0;
+  /// Rebuilds, reuses and rebuilds that evaluated every colour since construction (tests,
+  /// benchmarks).
+  std::size_t Rebuilds = 0;
+  std::size_t Reuses = 0;
+  std::size_t ColorRefreshes = 0;
+  /// The previous rebuild's Subset and Compact, and a rebuild's scratch (their buffers are
+  /// reused, so that a rebuild does not page-fault tens of MB again; internal).
+  std::vector<std::uint32_t> PreviousSubset;
+  GaussianCloud Previous;
+  std::vector<std::uint16_t> Keys;
+  std::vector<std::int64_t> From;
+  std::vector<float> Depths;
+
+  // What the set was made for.
+  Camera Rank;
+  /// The camera of the last rebuild that evaluated every colour.
+  Camera ColorRank;
+  const GaussianCloud* Cloud = nullptr;
+  std::uint64_t CloudVersion = 0;
+  std::size_t Budget = 0;
+  int ShDegree = 0;
+  bool Colors = true;
+  double ReuseAngle = 0.0;
+  /// Median view depth of the selected Gaussians in front of the rebuild's camera.
+  double Depth = 0.0;
+};
+
+/**
+ * The angle (radians) by which @p now differs from @p rank for the reuse test: the larger of
+ * the rotation angle between their orientations and the distance between their centres seen
+ * from @p depth (infinite for a non-positive @p depth).
+ */
+double SplatViewChangeAngle(const Camera& rank, const Camera& now, double depth);
+
+/**
+ * Makes @p set hold the Gaussians of @p cloud a moving frame of @p camera draws under
+ * @p budget (SelectSplatsForView), reusing it when it was made for the same cloud (address and
+ * @p cloudVersion), budget, SH degree and colour setting of @p settings, reuse angle and field
+ * of view, and the view changed by at most @p reuseAngle radians since (SplatViewChangeAngle).
+ * A rebuild evaluates the colours of the Gaussians newly selected; those of the Gaussians that
+ * stay selected are kept (a copy from the previous compact cloud instead of a gather of 192 B
+ * of SH each from the scene) while the view is within @p colorAngle radians of the camera of
+ * the last rebuild that evaluated every colour (0: every rebuild evaluates every colour).
+ * Returns true when it was rebuilt. Parallel with OpenMP (settings.Threads). Throws
+ * std::invalid_argument when @p lod does not match the cloud or an angle is negative or not
+ * finite.
+ */
+bool UpdateSplatMovingSet(const GaussianCloud& cloud,
+  std::uint64_t cloudVersion,
+  const SplatLevelOfDetail& lod,
+  const Camera& camera,
+  std::size_t budget,
+  const RasterSettings& settings,
+  double reuseAngle,
+  double colorAngle,
+  SplatMovingSet& set);
+
+} // namespace vis4gs
+
+#endif

@@ -1,0 +1,310 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SplatMovingSet.h"
+
+#include "GaussianCloud.h"
+#include "Rasterizer.h"
+#include "SplatLevelOfDetail.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace vis4gs
+{
+namespace
+{
+// A camera at @p centre turned by @p yaw radians about the world's y axis from looking down +z
+// (world-to-camera R = rotation by -yaw, t = -R centre), 160x120, 90 degrees wide.
+Camera TurnedCamera(double yaw, const double centre[3])
+{
+  Camera c;
+  c.Width = 160;
+  c.Height = 120;
+  c.Fx = 80;
+  c.Fy = 80;
+  c.Cx = 80;
+  c.Cy = 60;
+  const double co = std::cos(yaw), si = std::sin(yaw);
+  const double r[3][3] = { { co, 0, -si }, { 0, 1, 0 }, { si, 0, co } };
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      c.WorldToCamera[4 * i + k] = r[i][k];
+    }
+    c.WorldToCamera[4 * i + 3] = -(r[i][0] * centre[0] + r[i][1] * centre[1] + r[i][2] * centre[2]);
+  }
+  return c;
+}
+
+// Random Gaussians of SH degree 3 in front of the origin, within z in [2, 10].
+GaussianCloud RandomCloud(std::size_t n, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  GaussianCloud c;
+  c.Resize(n, 3);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const float z = 6.0f + 4.0f * u(rng);
+    c.Positions[3 * i] = 1.5f * z * u(rng);
+    c.Positions[3 * i + 1] = 1.0f * z * u(rng);
+    c.Positions[3 * i + 2] = z;
+    for (int k = 0; k < 3; ++k)
+    {
+      c.LogScales[3 * i + k] = -3.0f + 1.5f * u(rng);
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      c.Rotations[4 * i + k] = u(rng) + (k == 0 ? 1.5f : 0.0f);
+    }
+    c.OpacityLogits[i] = 3.0f * u(rng);
+    for (std::size_t k = 0; k < 48; ++k)
+    {
+      c.SH[48 * i + k] = 0.5f * u(rng);
+    }
+  }
+  return c;
+}
+
+const double Origin[3] = { 0.0, 0.0, 0.0 };
+
+SplatLevelOfDetail PreparedLod(const GaussianCloud& cloud)
+{
+  SplatLevelOfDetail lod;
+  PrepareSplatLevelOfDetail(cloud, lod, 2);
+  return lod;
+}
+
+RasterSettings TwoThreads()
+{
+  RasterSettings settings;
+  settings.Threads = 2;
+  return settings;
+}
+}
+
+TEST(SplatMovingSet, ViewChangeAngleOfATurnAndOfATravel)
+{
+  const Camera a = TurnedCamera(0.0, Origin);
+  EXPECT_NEAR(SplatViewChangeAngle(a, a, 5.0), 0.0, 1e-7);
+  EXPECT_NEAR(SplatViewChangeAngle(a, TurnedCamera(0.1, Origin), 5.0), 0.1, 1e-9);
+  EXPECT_NEAR(SplatViewChangeAngle(a, TurnedCamera(-0.3, Origin), 5.0), 0.3, 1e-9);
+  const double moved[3] = { 0.0, 0.2, 0.0 };
+  EXPECT_NEAR(SplatViewChangeAngle(a, TurnedCamera(0.0, moved), 4.0), 0.05, 1e-12);
+  EXPECT_NEAR(SplatViewChangeAngle(a, TurnedCamera(0.01, moved), 4.0), 0.05, 1e-12);
+  EXPECT_TRUE(std::isinf(SplatViewChangeAngle(a, a, 0.0)));
+}
+
+TEST(SplatMovingSet, MarginAddsTheRingAboveTheBoundaryWithoutThinningTheView)
+{
+  const GaussianCloud c = RandomCloud(6000, 3);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  const Camera cam = TurnedCamera(0.0, Origin);
+  for (std::size_t budget : { std::size_t(500), std::size_t(2000), std::size_t(0) })
+  {
+    std::vector<std::uint32_t> plain, wide;
+    const std::size_t inside = SelectSplatsForView(c, lod, cam, budget, plain, 2);
+    EXPECT_EQ(SelectSplatsForView(c, lod, cam, budget, wide, 2, 0.2), inside);
+    // Everything of the view's own selection is kept, and the ring brings more.
+    EXPECT_TRUE(std::includes(wide.begin(), wide.end(), plain.begin(), plain.end()))
+      << "budget " << budget;
+    EXPECT_GT(wide.size(), plain.size()) << "budget " << budget;
+    // The added ones are outside the view's frustum and inside the widened one, with a key
+    // at least the smallest kept inside.
+    std::uint32_t lowest = 0xffffffffu;
+    for (std::uint32_t i : plain)
+    {
+      const float* p = &c.Positions[3 * i];
+      lowest = std::min(lowest, SplatContributionKey(lod.Mass[i], p[2]));
+    }
+    const double widened = std::tan(std::atan(1.0) + 0.2);
+    for (std::uint32_t i : wide)
+    {
+      if (std::binary_search(plain.begin(), plain.end(), i))
+      {
+        continue;
+      }
+      const float* p = &c.Positions[3 * i];
+      const double z = p[2], reach = lod.Reach[i];
+      EXPECT_TRUE(std::abs(p[0]) - z > reach * std::sqrt(2.0) - 1e-4 ||
+        std::abs(p[1]) - 0.75 * z > reach * 1.25 - 1e-4)
+        << i;
+      EXPECT_LE(std::abs(p[0]) - widened * z, reach * std::sqrt(1 + widened * widened) + 1e-4);
+      EXPECT_GE(std::min<std::uint32_t>(SplatContributionKey(lod.Mass[i], p[2]), 65535), lowest)
+        << i;
+    }
+  }
+}
+
+TEST(SplatMovingSet, CompactCloudProjectsLikeTheSubsetOfTheScene)
+{
+  const GaussianCloud c = RandomCloud(5000, 7);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  const Camera cam = TurnedCamera(0.05, Origin);
+  RasterSettings settings = TwoThreads();
+  SplatMovingSet set;
+  ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, cam, 1500, settings, 0.0, 0.0, set));
+  std::vector<std::uint32_t> expected;
+  SelectSplatsForView(c, lod, cam, 1500, expected, 2);
+  ASSERT_EQ(set.Subset, expected);
+  ASSERT_EQ(set.Compact.Count, expected.size());
+  EXPECT_EQ(set.Compact.ShDegree, 0);
+  ASSERT_NE(set.Generation, 0u);
+  PreparedCloudCache wholeCache, compactCache;
+  ViewProjection<float> whole, compact;
+  ProjectGaussianSubset(c, set.Subset, cam, settings, whole, wholeCache, 1);
+  ProjectGaussians(set.Compact, cam, settings, compact, compactCache, set.Generation);
+  ASSERT_EQ(whole.Gaussians.size(), compact.Gaussians.size());
+  std::size_t visible = 0;
+  for (std::size_t j = 0; j < whole.Gaussians.size(); ++j)
+  {
+    const auto& a = whole.Gaussians[j];
+    const auto& b = compact.Gaussians[j];
+    ASSERT_EQ(a.Status, b.Status) << j;
+    if (!a.IsVisible())
+    {
+      continue;
+    }
+    ++visible;
+    // The geometry is the same computation on the same parameters: bit for bit.
+    EXPECT_EQ(a.U, b.U);
+    EXPECT_EQ(a.V, b.V);
+    EXPECT_EQ(a.ConicA, b.ConicA);
+    EXPECT_EQ(a.ConicC, b.ConicC);
+    EXPECT_EQ(a.Depth, b.Depth);
+    EXPECT_EQ(a.Opacity, b.Opacity);
+    EXPECT_EQ(a.Radius, b.Radius);
+    // The colour goes through the degree-0 term: a few ulps.
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_NEAR(a.Color[k], b.Color[k], 1e-6f * std::max(1.0f, a.Color[k])) << j << " " << k;
+    }
+  }
+  EXPECT_GT(visible, 1000u);
+}
+
+TEST(SplatMovingSet, ReusedWhileTheViewMovesLessThanTheAngle)
+{
+  const GaussianCloud c = RandomCloud(4000, 11);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  RasterSettings settings = TwoThreads();
+  SplatMovingSet set;
+  const double angle = 0.1;
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.0, Origin), 800, settings, angle, 0.0, set));
+  const std::vector<std::uint32_t> first = set.Subset;
+  const std::uint64_t generation = set.Generation;
+  // Turned by less than the angle: the same set, colours of the first camera.
+  EXPECT_FALSE(
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.06, Origin), 800, settings, angle, 0.0, set));
+  EXPECT_EQ(set.Subset, first);
+  EXPECT_EQ(set.Generation, generation);
+  EXPECT_EQ(set.Reuses, 1u);
+  // The margin holds Gaussians outside the first view that the turned view sees.
+  std::vector<std::uint32_t> turned;
+  SelectSplatsForView(c, lod, TurnedCamera(0.06, Origin), 800, turned, 2);
+  std::vector<std::uint32_t> plain;
+  SelectSplatsForView(c, lod, TurnedCamera(0.0, Origin), 800, plain, 2);
+  std::size_t inFirst = 0, inSet = 0;
+  for (std::uint32_t i : turned)
+  {
+    inFirst += std::binary_search(plain.begin(), plain.end(), i) ? 1 : 0;
+    inSet += std::binary_search(first.begin(), first.end(), i) ? 1 : 0;
+  }
+  EXPECT_GT(inSet, inFirst);
+  // Beyond the angle, another budget, another version, another SH degree, angle 0: rebuilt.
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.12, Origin), 800, settings, angle, 0.0, set));
+  EXPECT_NE(set.Generation, generation);
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 1, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
+  settings.ShDegree = 1;
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
+  EXPECT_FALSE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, angle, 0.0, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, 0.0, 0.0, set));
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.12, Origin), 900, settings, 0.0, 0.0, set));
+  // Travel: 0.2 at the median depth (about 6) is about 0.033 rad.
+  const double moved[3] = { 0.2, 0.0, 0.0 };
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, Origin), 900, settings, 0.05, 0.0, set));
+  EXPECT_GT(set.Depth, 4.0);
+  EXPECT_LT(set.Depth, 8.0);
+  EXPECT_FALSE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, moved), 900, settings, 0.05, 0.0, set));
+  const double far[3] = { 0.6, 0.0, 0.0 };
+  EXPECT_TRUE(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, 0.05, 0.0, set));
+  EXPECT_EQ(set.Rebuilds, 9u);
+  EXPECT_THROW(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, -1.0, 0.0, set),
+    std::invalid_argument);
+  EXPECT_THROW(
+    UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, far), 900, settings, 0.1, -1.0, set),
+    std::invalid_argument);
+}
+
+TEST(SplatMovingSet, RebuildKeepsTheColoursOfTheGaussiansThatStayWithinTheColourAngle)
+{
+  const GaussianCloud c = RandomCloud(4000, 13);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  RasterSettings settings = TwoThreads();
+  // (the colours depend on the camera's centre only: the second one moves it)
+  const double moved[3] = { 1.0, 0.0, 0.0 };
+  const Camera first = TurnedCamera(0.0, Origin), second = TurnedCamera(0.15, moved);
+  // The reference: every colour of the second camera, and of the first.
+  SplatMovingSet fresh, old;
+  UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, 0.0, fresh);
+  UpdateSplatMovingSet(c, 1, lod, first, 800, settings, 0.1, 0.0, old);
+  for (double colorAngle : { 0.3, 0.0 })
+  {
+    SplatMovingSet set;
+    UpdateSplatMovingSet(c, 1, lod, first, 800, settings, 0.1, colorAngle, set);
+    EXPECT_EQ(set.ColorRefreshes, 1u);
+    ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, colorAngle, set));
+    EXPECT_EQ(set.ColorRefreshes, colorAngle > 0 ? 1u : 2u);
+    ASSERT_EQ(set.Subset, fresh.Subset);
+    EXPECT_EQ(set.Compact.Positions, fresh.Compact.Positions);
+    EXPECT_EQ(set.Compact.LogScales, fresh.Compact.LogScales);
+    EXPECT_EQ(set.Compact.Rotations, fresh.Compact.Rotations);
+    EXPECT_EQ(set.Compact.OpacityLogits, fresh.Compact.OpacityLogits);
+    std::size_t kept = 0, changed = 0;
+    for (std::size_t j = 0; j < set.Subset.size(); ++j)
+    {
+      const auto at = std::lower_bound(old.Subset.begin(), old.Subset.end(), set.Subset[j]);
+      const bool stayed = at != old.Subset.end() && *at == set.Subset[j];
+      const std::size_t k = static_cast<std::size_t>(at - old.Subset.begin());
+      for (int q = 0; q < 3; ++q)
+      {
+        // Kept: the first camera's colour; evaluated: the second camera's.
+        const float expected =
+          colorAngle > 0 && stayed ? old.Compact.SH[3 * k + q] : fresh.Compact.SH[3 * j + q];
+        ASSERT_EQ(set.Compact.SH[3 * j + q], expected) << j;
+      }
+      kept += stayed ? 1 : 0;
+      changed += stayed && old.Compact.SH[3 * k] != fresh.Compact.SH[3 * j] ? 1 : 0;
+    }
+    EXPECT_GT(kept, set.Subset.size() / 2);
+    EXPECT_LT(kept, set.Subset.size());
+    EXPECT_GT(changed, kept / 2); // the view-dependent colours differ between the cameras
+  }
+  // Beyond the colour angle, every colour is evaluated again.
+  SplatMovingSet set;
+  UpdateSplatMovingSet(c, 1, lod, first, 800, settings, 0.1, 0.12, set);
+  UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, 0.12, set);
+  EXPECT_EQ(set.ColorRefreshes, 2u);
+  EXPECT_EQ(set.Compact.SH, fresh.Compact.SH);
+}
+
+} // namespace vis4gs
