@@ -614,7 +614,7 @@ std::uint32_t MultiViewFootprintPass(const MultiViewRenderer::Data& d,
         const auto& k = d.Records[s].Kernel;
         BoxHint& h = hints[ss - first];
         h.Ok = EllipseBox<float>(
-          k.U, k.V, k.A, k.B, k.C, rasterMode ? d.Levels[s] : -4.5, h.X0, h.X1, h.Y0, h.Y1);
+          k.U, k.V, k.A, k.B, k.C, rasterMode ? d.Records[s].Level : -4.5, h.X0, h.X1, h.Y0, h.Y1);
       }
     }
     // Every field FootprintOne reads is set below for each Gaussian (the others keep their
@@ -651,7 +651,7 @@ std::uint32_t MultiViewFootprintPass(const MultiViewRenderer::Data& d,
         W,
         H,
         map,
-        rasterMode ? &d.Levels[s] : nullptr,
+        rasterMode ? &rec.Level : nullptr,
         cnt,
         sum,
         evals,

@@ -53,9 +53,6 @@ struct MultiViewRenderer::Data
   MultiViewPrepared Prepared;
   PreparedView Camera{};
   ViewProjection<float> Frame; ///< the view's parameters (no Gaussians)
-  /// Alpha level of every Gaussian, min(0, log((1/255) / o)) (0 when o < 1/255): it depends on
-  /// the opacity alone, so it is computed once here instead of once per view (padded to 16).
-  raster::internal::RawVector<double> Levels;
   ProjectionCounts Counts;
   bool HasView = false;
 
@@ -73,12 +70,14 @@ struct MultiViewRenderer::Data
   /// A Gaussian's projection in one view, one cache line, written straight from the
   /// projection's lanes at the Gaussian's index (no per-Gaussian projection buffer in between:
   /// 48 bytes a Gaussian less). Id is the index, or Invisible when the view does not draw it.
+  /// Level: the alpha level min(0, log((1/255) / o)), 0 when o < 1/255.
   struct alignas(64) VisibleRecord
   {
     raster::detail::KernelGaussian<float> Kernel;
-    std::int32_t Rect[4];
+    std::array<std::uint16_t, 4> Rect;
     std::int32_t Radius;
     std::uint32_t Id;
+    double Level;
   };
   static constexpr std::uint32_t Invisible = 0xffffffffu;
   raster::internal::RawVector<VisibleRecord> Records; ///< index order, padded to 16

@@ -44,7 +44,6 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
     ResizeKeep(*v, d.Padded);
   }
   ResizeKeep(p.Valid, d.Padded);
-  ResizeKeep(d.Levels, d.Padded);
   if (d.Colors && d.ViewIndependentColor)
   {
     ResizeKeep(p.Color, 3 * d.Padded);
@@ -60,10 +59,6 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
   {
     const std::size_t i = static_cast<std::size_t>(ii);
     PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, p, i);
-    const float o = p.Opacity[i];
-    d.Levels[i] = o >= raster::MinAlpha<float>()
-      ? std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(o)))
-      : 0.0;
     if (colors && viewIndependent)
     {
       float col[3] = { 0, 0, 0 };
@@ -199,12 +194,16 @@ void MultiViewRenderer::Project(const Camera& camera)
             col[1],
             col[2],
             out.Depth[l] };
-          rec.Rect[0] = out.X0[l];
-          rec.Rect[1] = out.Y0[l];
-          rec.Rect[2] = out.X1[l];
-          rec.Rect[3] = out.Y1[l];
+          rec.Rect = { static_cast<std::uint16_t>(out.X0[l]),
+            static_cast<std::uint16_t>(out.Y0[l]),
+            static_cast<std::uint16_t>(out.X1[l]),
+            static_cast<std::uint16_t>(out.Y1[l]) };
           rec.Radius = out.Radius[l];
           rec.Id = static_cast<std::uint32_t>(i);
+          const float o = prep.Opacity[i];
+          rec.Level = o >= raster::MinAlpha<float>()
+            ? std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(o)))
+            : 0.0;
           std::uint32_t bits;
           std::memcpy(&bits, &out.Depth[l], sizeof(bits));
           depthOr |= bits;
@@ -257,7 +256,6 @@ void MultiViewRenderer::Project(const Camera& camera)
     d.Sorted[static_cast<std::size_t>(ss)] =
       static_cast<std::uint32_t>(sorted[static_cast<std::size_t>(ss)]);
   }
-  const double* levels = d.Levels.data();
   const std::uint32_t* order = d.Sorted.data();
   ResizeKeep(d.Kernels, visible);
   ResizeKeep(d.Bounds, visible);
@@ -270,20 +268,16 @@ void MultiViewRenderer::Project(const Camera& camera)
     {
       const std::uint32_t ahead = order[s + 16];
       __builtin_prefetch(&records[ahead]);
-      __builtin_prefetch(&levels[ahead]);
     }
     const std::uint32_t pos = order[s];
     const Data::VisibleRecord& rec = records[pos];
     const raster::detail::KernelGaussian<float> k = rec.Kernel;
     d.Kernels[s] = k;
-    d.Rects[s] = { static_cast<std::uint16_t>(rec.Rect[0]),
-      static_cast<std::uint16_t>(rec.Rect[1]),
-      static_cast<std::uint16_t>(rec.Rect[2]),
-      static_cast<std::uint16_t>(rec.Rect[3]) };
+    d.Rects[s] = rec.Rect;
     if (k.O >= raster::MinAlpha<float>())
     {
       raster::detail::SpanBounds sb =
-        raster::detail::MakeSpanBounds<float>(k.U, k.V, k.A, k.B, k.C, levels[pos]);
+        raster::detail::MakeSpanBounds<float>(k.U, k.V, k.A, k.B, k.C, rec.Level);
       if (sb.Bounded)
       {
         // Tighter candidate rows from the same conservative ellipse: its exact half-height
