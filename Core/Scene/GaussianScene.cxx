@@ -4,15 +4,40 @@
 #include "GaussianIO.h"
 #include "PlyHeader.h"
 #include "SceneFile.h"
+#include "SceneIds.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 namespace vis4gs
 {
+
+//------------------------------------------------------------------------------
+bool IdsFromExtraProperty(GaussianCloud& cloud, const std::string& name, const std::string& path)
+{
+  const ExtraProperty* id = cloud.FindExtra(name);
+  if (!id)
+  {
+    return false;
+  }
+  cloud.Ids.resize(cloud.Count);
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    const double v = id->GetAsDouble(i);
+    if (!(v == std::floor(v)) || std::abs(v) > 9.0e15)
+    {
+      throw std::runtime_error(
+        path + ": vertex " + std::to_string(i) + ": id " + std::to_string(v) + " is no integer");
+    }
+    cloud.Ids[i] = static_cast<std::int64_t>(v);
+  }
+  return true;
+}
 
 //------------------------------------------------------------------------------
 GaussianCloud ReadGaussianScene(const std::string& path,

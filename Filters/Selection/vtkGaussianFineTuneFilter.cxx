@@ -181,13 +181,14 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
   // The images as the score and removal filters find them (Vis4GSTrainingImages); the log the
   // camera table names also gives the repaired log its scene name and whether it embeds them.
   vis4gs::TrainingImageProvider images;
-  if (!Vis4GSTrainingImages(cameraTable, std::string(), { 0.f, 0.f, 0.f }, cameras, images, error))
+  if (!Vis4GSTrainingImages(
+        cameraTable, this->ImageDirectory, { 0.f, 0.f, 0.f }, cameras, images, error))
   {
     vtkErrorMacro(<< error);
     return 0;
   }
   vis4gs::FineTuneOptions options;
-  options.Producer = "vtkGaussianFineTuneFilter";
+  options.Producer = this->Producer;
   options.EmbedImages = false;
   auto* logName = vtkStringArray::SafeDownCast(
     cameraTable->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile));
@@ -211,6 +212,9 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
     options.EmbedImages = log->HasImages();
   }
 
+  options.Scene = this->SceneName.empty() ? options.Scene : this->SceneName;
+  options.EmbedImages = this->EmbedImages < 0 ? options.EmbedImages : this->EmbedImages == 1;
+  options.MetricsInterval = this->MetricsInterval;
   options.Iterations = this->Iterations;
   options.WarmupIterations = this->WarmupIterations;
   options.FreePositions = this->FreePositions;
@@ -294,6 +298,11 @@ void vtkGaussianFineTuneFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "OutputLogFileName: " << this->OutputLogFileName << "\n";
+  os << indent << "ImageDirectory: " << this->ImageDirectory << "\n";
+  os << indent << "Producer: " << this->Producer << "\n";
+  os << indent << "SceneName: " << this->SceneName << "\n";
+  os << indent << "EmbedImages: " << this->EmbedImages << "\n";
+  os << indent << "MetricsInterval: " << this->MetricsInterval << "\n";
   os << indent << "NumberOfRemoved: " << this->NumberOfRemoved << "\n";
   os << indent << "LastIteration: " << this->LastIteration << "\n";
   os << indent << "TrainSeconds: " << this->TrainSeconds << "\n";

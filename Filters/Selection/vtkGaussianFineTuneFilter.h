@@ -127,6 +127,28 @@ public:
   ///@}
 
   ///@{
+  /**
+   * For `vis4gs repair` (issue 33), each default the filter's earlier behaviour:
+   * ImageDirectory, training images matched to the cameras by name (up to the first '.')
+   * instead of the cameras' own (default empty: their own); the repaired log's Producer
+   * (default "vtkGaussianFineTuneFilter"), SceneName (default empty: the cameras' log's scene
+   * name, if any) and EmbedImages (1 embeds the images, 0 names their files; default -1: as
+   * the cameras' log does, 0 without one); MetricsInterval, the log's metrics rows every N
+   * iterations (vis4gs::FineTuneOptions::MetricsInterval; default 0: at most 10 rows).
+   */
+  vtkSetStdStringFromCharMacro(ImageDirectory);
+  vtkGetCharFromStdStringMacro(ImageDirectory);
+  vtkSetStdStringFromCharMacro(Producer);
+  vtkGetCharFromStdStringMacro(Producer);
+  vtkSetStdStringFromCharMacro(SceneName);
+  vtkGetCharFromStdStringMacro(SceneName);
+  vtkSetClampMacro(EmbedImages, int, -1, 1);
+  vtkGetMacro(EmbedImages, int);
+  vtkSetClampMacro(MetricsInterval, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MetricsInterval, int);
+  ///@}
+
+  ///@{
   /// After an update: the Gaussians deleted, the last completed iteration (-1 before), the
   /// seconds of the iterations and of the measurement.
   vtkGetMacro(NumberOfRemoved, vtkIdType);
@@ -155,6 +177,11 @@ protected:
   vtkTypeUInt64 Seed = 0;
   int NumberOfThreads = 0;
   std::string OutputLogFileName;
+  std::string ImageDirectory;
+  std::string Producer = "vtkGaussianFineTuneFilter";
+  std::string SceneName;
+  int EmbedImages = -1;
+  int MetricsInterval = 0;
   vtkIdType NumberOfRemoved = 0;
   int LastIteration = -1;
   double TrainSeconds = 0;

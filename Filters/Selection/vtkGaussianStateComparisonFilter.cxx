@@ -10,8 +10,10 @@
 =========================================================================*/
 #include "vtkGaussianStateComparisonFilter.h"
 
+#include "RemovalEffect.h"
 #include "StateComparison.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSTrainingImages.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
@@ -24,21 +26,129 @@
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <cmath>
 #include <exception>
+#include <limits>
 #include <string>
+#include <vector>
+
+namespace
+{
+/// Both states measured in every camera of @p cameraTable into @p output (the class comment's
+/// columns); false with the reason in @p error. Returns the cameras measured in @p measured.
+bool MeasureBothStates(const vis4gs::GaussianCloud* clouds,
+  vtkTable* cameraTable,
+  const std::string& imageDirectory,
+  int threads,
+  vtkTable* output,
+  vtkIdType& measured,
+  std::string& error)
+{
+  std::vector<vis4gs::Camera> cameras;
+  if (!vis4gs::TableToCameras(cameraTable, cameras, &error))
+  {
+    error = "The camera table is not usable: " + error;
+    return false;
+  }
+  vis4gs::TrainingImageProvider images;
+  if (!Vis4GSTrainingImages(cameraTable, imageDirectory, { 0.f, 0.f, 0.f }, cameras, images, error))
+  {
+    return false;
+  }
+  vis4gs::RemovalEffectOptions options;
+  options.Threads = threads;
+  std::vector<vis4gs::ViewMetrics> figures[2];
+  try
+  {
+    for (int s = 0; s < 2; ++s)
+    {
+      figures[s] = vis4gs::MeasureViewMetrics(clouds[s], cameras, options, images);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    return false;
+  }
+  const vtkIdType rows = static_cast<vtkIdType>(cameras.size());
+  vtkNew<vtkIdTypeArray> camera;
+  camera->SetName("Camera");
+  vtkNew<vtkStringArray> name, split;
+  name->SetName("Name");
+  split->SetName("Split");
+  camera->SetNumberOfTuples(rows);
+  name->SetNumberOfValues(rows);
+  split->SetNumberOfValues(rows);
+  const char* columns[] = { "PSNR_A", "SSIM_A", "L1_A", "PSNR_B", "SSIM_B", "L1_B" };
+  vtkNew<vtkDoubleArray> values[6];
+  for (int k = 0; k < 6; ++k)
+  {
+    values[k]->SetName(columns[k]);
+    values[k]->SetNumberOfTuples(rows);
+  }
+  measured = 0;
+  for (vtkIdType r = 0; r < rows; ++r)
+  {
+    const std::size_t i = static_cast<std::size_t>(r);
+    camera->SetValue(r, r);
+    name->SetValue(r, cameras[i].Name);
+    split->SetValue(r, cameras[i].Split == vis4gs::CameraSplit::Train ? "train" : "test");
+    for (int s = 0; s < 2; ++s)
+    {
+      const vis4gs::ViewMetrics& m = figures[s][i];
+      values[3 * s]->SetValue(r, m.Psnr);
+      values[3 * s + 1]->SetValue(r, m.Ssim);
+      values[3 * s + 2]->SetValue(r, m.L1);
+    }
+    measured += std::isfinite(figures[0][i].L1) ? 1 : 0;
+  }
+  output->AddColumn(camera);
+  output->AddColumn(name);
+  output->AddColumn(split);
+  for (auto& column : values)
+  {
+    output->AddColumn(column);
+  }
+  return true;
+}
+}
 
 vtkStandardNewMacro(vtkGaussianStateComparisonFilter);
 
 //------------------------------------------------------------------------------
 vtkGaussianStateComparisonFilter::vtkGaussianStateComparisonFilter()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
+  this->SetNumberOfOutputPorts(2);
 }
 
 //------------------------------------------------------------------------------
-int vtkGaussianStateComparisonFilter::FillInputPortInformation(int, vtkInformation* info)
+void vtkGaussianStateComparisonFilter::SetCamerasData(vtkTable* cameras)
 {
+  this->SetInputData(2, cameras);
+}
+
+vtkTable* vtkGaussianStateComparisonFilter::GetViewsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
+int vtkGaussianStateComparisonFilter::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 2)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkTable");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkGaussianStateComparisonFilter::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
   return 1;
 }
 
@@ -47,7 +157,9 @@ int vtkGaussianStateComparisonFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkTable* output = vtkTable::GetData(outputVector);
+  vtkTable* output = vtkTable::GetData(outputVector, 0);
+  vtkTable* views = vtkTable::GetData(outputVector, 1);
+  this->NumberOfViewsMeasured = 0;
   vis4gs::GaussianCloud clouds[2];
   for (int port = 0; port < 2; ++port)
   {
@@ -113,6 +225,24 @@ int vtkGaussianStateComparisonFilter::RequestData(vtkInformation*,
   this->NumberOpacityChanged = static_cast<vtkIdType>(c.OpacityChanged);
   this->NumberScaleChanged = static_cast<vtkIdType>(c.ScaleChanged);
   this->NumberUnchanged = static_cast<vtkIdType>(c.Unchanged);
+  vtkTable* cameras = inputVector[2]->GetNumberOfInformationObjects() > 0
+    ? vtkTable::GetData(inputVector[2])
+    : nullptr;
+  if (this->MeasureViews && cameras && cameras->GetNumberOfRows() > 0)
+  {
+    std::string error;
+    if (!MeasureBothStates(clouds,
+          cameras,
+          this->ImageDirectory,
+          this->NumberOfThreads,
+          views,
+          this->NumberOfViewsMeasured,
+          error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+  }
   return 1;
 }
 
@@ -123,6 +253,10 @@ void vtkGaussianStateComparisonFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MoveThreshold: " << this->MoveThreshold << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "ScaleThreshold: " << this->ScaleThreshold << "\n";
+  os << indent << "MeasureViews: " << this->MeasureViews << "\n";
+  os << indent << "ImageDirectory: " << this->ImageDirectory << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "NumberOfViewsMeasured: " << this->NumberOfViewsMeasured << "\n";
   os << indent << "NumberMatched: " << this->NumberMatched << "\n";
   os << indent << "NumberBorn: " << this->NumberBorn << "\n";
   os << indent << "NumberDied: " << this->NumberDied << "\n";

@@ -24,12 +24,24 @@
  * "died", "unchanged" or e.g. "moved+opacity"), Move (|centre change|), OpacityChange
  * (sigmoid(logit) B - A) and ScaleChange (log-scale change of largest magnitude); the three
  * are NaN for born and died Gaussians. The counts are returned by the getters after an update.
+ *
+ * Input port 2 (optional) is a camera table (vis4gs::CamerasToTable columns, e.g.
+ * vtkGaussianCameraReader's or the log reader's port 1). With it and MeasureViews on, both
+ * states are rendered in every camera with an image and measured against it
+ * (vis4gs::MeasureViewMetrics: PSNR, SSIM, L1 of the render clamped to [0, 1], what `vis4gs
+ * compare` writes to metrics.csv); the images are found as the score filter finds them
+ * (Vis4GSTrainingImages: the Image column, "/images/<name>" from the log the table names, or
+ * ImageDirectory by name). Output port 1 is then a vtkTable with one row per camera, in table
+ * order: Camera (row of the camera table), Name, Split ("train" / "test"), PSNR_A, SSIM_A, L1_A,
+ * PSNR_B, SSIM_B, L1_B (NaN for a camera without image). Without cameras it is empty.
  */
 #ifndef vtkGaussianStateComparisonFilter_h
 #define vtkGaussianStateComparisonFilter_h
 
 #include "vis4gsFiltersSelectionModule.h" // For export macro
 #include "vtkTableAlgorithm.h"
+
+#include <string> // For ImageDirectory
 
 class VIS4GSFILTERSSELECTION_EXPORT vtkGaussianStateComparisonFilter : public vtkTableAlgorithm
 {
@@ -40,6 +52,35 @@ public:
 
   /// The second state (input port 1); the first is SetInputConnection(0, ...).
   void SetSecondStateConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+
+  ///@{
+  /// The cameras both states are measured in (input port 2, optional).
+  void SetCamerasConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(2, output); }
+  void SetCamerasData(vtkTable* cameras);
+  ///@}
+
+  /// The per-camera figures (output port 1) after an update.
+  vtkTable* GetViewsOutput();
+
+  ///@{
+  /// Measure both states in the cameras of input port 2. Default on.
+  vtkSetMacro(MeasureViews, bool);
+  vtkGetMacro(MeasureViews, bool);
+  vtkBooleanMacro(MeasureViews, bool);
+  ///@}
+
+  ///@{
+  /// Training images matched to the cameras by name (up to the first '.'), instead of the
+  /// cameras' own. Default empty: the cameras' own.
+  vtkSetStdStringFromCharMacro(ImageDirectory);
+  vtkGetCharFromStdStringMacro(ImageDirectory);
+  ///@}
+
+  ///@{
+  /// OpenMP threads of the renders; default 0: OpenMP's default.
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
 
   ///@{
   /// Thresholds, strict: centre distance (scene units), activated-opacity change and
@@ -64,11 +105,15 @@ public:
   vtkGetMacro(NumberUnchanged, vtkIdType);
   ///@}
 
+  /// After an update: the cameras whose image both states were measured against.
+  vtkGetMacro(NumberOfViewsMeasured, vtkIdType);
+
 protected:
   vtkGaussianStateComparisonFilter();
   ~vtkGaussianStateComparisonFilter() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
@@ -76,6 +121,10 @@ protected:
   double MoveThreshold = 0;
   double OpacityThreshold = 0;
   double ScaleThreshold = 0;
+  bool MeasureViews = true;
+  std::string ImageDirectory;
+  int NumberOfThreads = 0;
+  vtkIdType NumberOfViewsMeasured = 0;
   vtkIdType NumberMatched = 0;
   vtkIdType NumberBorn = 0;
   vtkIdType NumberDied = 0;

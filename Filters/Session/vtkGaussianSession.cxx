@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <sys/stat.h>
@@ -51,10 +52,16 @@ vtkCxxSetObjectMacro(vtkGaussianSession, SelectedIds, vtkIdTypeArray);
 
 namespace
 {
-bool IsFile(const std::string& path)
+/// Whether @p path ends in .h5 or .hdf5, any case.
+bool HasLogExtension(const std::string& path)
 {
-  struct stat s;
-  return !path.empty() && stat(path.c_str(), &s) == 0 && S_ISREG(s.st_mode);
+  std::string tail =
+    path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
+  std::transform(tail.begin(),
+    tail.end(),
+    tail.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return tail == ".h5" || tail == ".hdf5";
 }
 
 /// Whether a string setting must be set: VTK 9.1's vtkSetStdStringFromCharMacro calls Modified()
@@ -110,6 +117,8 @@ struct vtkGaussianSession::vtkInternals
   std::string CameraFile; // the scene's camera file in use; empty: none
   vtkAlgorithm* GaussiansSource = nullptr;
   vtkAlgorithm* GaussiansOutput = nullptr;
+  // The comparison's second state (CompareFileName), created on first use.
+  vtkSmartPointer<vtkGaussianSession> Compared;
 
   std::vector<vtkAlgorithm*> Algorithms()
   {
@@ -167,6 +176,52 @@ vtkGaussianSession::vtkGaussianSession()
 }
 
 //------------------------------------------------------------------------------
+vtkGaussianSession* vtkGaussianSession::GetComparedSession()
+{
+  vtkInternals& d = *this->Internals;
+  if (!d.Compared)
+  {
+    d.Compared = vtkSmartPointer<vtkGaussianSession>::New();
+    d.Compared->ComputeScoresOff();
+    // Its errors (already naming its file) and progress are this session's while it executes.
+    d.Compared->AddObserver(vtkCommand::ErrorEvent, d.ErrorObserver);
+    d.Compared->AddObserver(vtkCommand::ProgressEvent, d.ProgressObserver);
+    d.Compared->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, d.Quiet);
+  }
+  return d.Compared;
+}
+
+void vtkGaussianSession::SetCompareFileName(const char* name)
+{
+  const std::string wanted = name ? name : "";
+  if (wanted == this->GetCompareFileName())
+  {
+    return;
+  }
+  this->GetComparedSession()->SetFileName(wanted.c_str());
+  this->Modified();
+}
+
+const char* vtkGaussianSession::GetCompareFileName()
+{
+  return this->Internals->Compared ? this->Internals->Compared->GetFileName() : "";
+}
+
+void vtkGaussianSession::SetCompareIteration(int iteration)
+{
+  if (iteration != this->GetCompareIteration())
+  {
+    this->GetComparedSession()->SetIteration(iteration);
+    this->Modified();
+  }
+}
+
+int vtkGaussianSession::GetCompareIteration()
+{
+  return this->Internals->Compared ? this->Internals->Compared->GetIteration() : -1;
+}
+
+//------------------------------------------------------------------------------
 vtkGaussianSession::~vtkGaussianSession()
 {
   this->SetSelectedIds(nullptr);
@@ -212,7 +267,10 @@ vtkGaussianFineTuneFilter* vtkGaussianSession::GetFineTuneFilter()
 }
 vtkGaussianStateComparisonFilter* vtkGaussianSession::GetComparisonFilter()
 {
-  this->Connect();
+  if (this->Connect())
+  {
+    this->ConnectComparison();
+  }
   return this->Internals->Comparison;
 }
 
@@ -232,6 +290,14 @@ vtkTable* vtkGaussianSession::GetMetricsOutput()
 vtkTable* vtkGaussianSession::GetHistoryOutput()
 {
   return vtkTable::SafeDownCast(this->GetOutputDataObject(HistoryPort));
+}
+vtkTable* vtkGaussianSession::GetComparisonOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(ComparisonPort));
+}
+vtkTable* vtkGaussianSession::GetComparisonViewsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(ComparisonViewsPort));
 }
 
 //------------------------------------------------------------------------------
@@ -268,6 +334,14 @@ bool vtkGaussianSession::IsTrainingLogFile(const char* path)
 }
 
 //------------------------------------------------------------------------------
+bool vtkGaussianSession::IsTrainingLogPath(const char* path)
+{
+  // A damaged .h5 is a log that cannot be read (the log reader says "not an HDF5 file"), not a
+  // scene whose reader complains of a missing PLY header.
+  return IsTrainingLogFile(path) || HasLogExtension(path ? path : "");
+}
+
+//------------------------------------------------------------------------------
 vtkMTimeType vtkGaussianSession::GetMTime()
 {
   vtkMTimeType t = this->Superclass::GetMTime();
@@ -278,6 +352,10 @@ vtkMTimeType vtkGaussianSession::GetMTime()
   if (this->SelectedIds)
   {
     t = std::max(t, this->SelectedIds->GetMTime());
+  }
+  if (this->Internals->Compared)
+  {
+    t = std::max(t, this->Internals->Compared->GetMTime());
   }
   return t;
 }
@@ -382,7 +460,7 @@ bool vtkGaussianSession::Connect()
   }
   if (d.ConnectedFile != this->FileName)
   {
-    this->IsTrainingLog = IsTrainingLogFile(this->FileName.c_str());
+    this->IsTrainingLog = IsTrainingLogPath(this->FileName.c_str());
     d.ConnectedFile = this->FileName;
   }
   vtkAlgorithm* cameras = nullptr;
@@ -424,24 +502,9 @@ bool vtkGaussianSession::Connect()
       d.Scene->SetIdProperty(this->IdProperty.c_str());
     }
     d.GaussiansSource = d.Scene;
-    std::string cameraFile = this->CamerasFileName;
-    if (cameraFile.empty())
-    {
-      // The trainer's layout: cameras.json beside the model or two folders up
-      // (<model>/point_cloud/iteration_N/point_cloud.ply).
-      std::string folder = this->FileName;
-      const std::size_t slash = folder.find_last_of('/');
-      folder = slash == std::string::npos ? "." : folder.substr(0, slash);
-      for (const std::string& candidate :
-        { folder + "/cameras.json", folder + "/../../cameras.json" })
-      {
-        if (IsFile(candidate))
-        {
-          cameraFile = candidate;
-          break;
-        }
-      }
-    }
+    const std::string cameraFile = this->CamerasFileName.empty()
+      ? vtkGaussianCameraReader::FindSceneCamerasFile(this->FileName)
+      : this->CamerasFileName;
     d.CameraFile = cameraFile;
     if (!cameraFile.empty())
     {
@@ -469,6 +532,14 @@ bool vtkGaussianSession::Connect()
   {
     d.Removal->SetImageDirectory(this->ImageDirectory.c_str());
   }
+  if (Differs(d.FineTune->GetImageDirectory(), this->ImageDirectory))
+  {
+    d.FineTune->SetImageDirectory(this->ImageDirectory.c_str());
+  }
+  if (Differs(d.Comparison->GetImageDirectory(), this->ImageDirectory))
+  {
+    d.Comparison->SetImageDirectory(this->ImageDirectory.c_str());
+  }
   d.Scores->SetInputConnection(d.GaussiansSource->GetOutputPort(0));
   vtkAlgorithm* last =
     this->ComputeScores ? static_cast<vtkAlgorithm*>(d.Scores) : d.GaussiansSource;
@@ -486,6 +557,44 @@ bool vtkGaussianSession::Connect()
   d.FineTune->SetInputConnection(0, last->GetOutputPort(0));
   d.Comparison->SetInputConnection(0, last->GetOutputPort(0));
   return d.Errors.empty(); // (the log reader's, when the log cannot be opened)
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianSession::ConnectComparison()
+{
+  vtkInternals& d = *this->Internals;
+  if (!d.Compared || d.Compared->FileName.empty())
+  {
+    return false;
+  }
+  d.Comparison->SetInputConnection(1, d.Compared->GetOutputPort(GaussiansPort));
+  // The cameras, by `vis4gs compare`'s rule: the ones given, a log's own, the compared log's, the
+  // cameras.json beside the file.
+  vtkAlgorithmOutput* cameras = nullptr;
+  std::string file = this->CamerasFileName;
+  if (file.empty() && this->IsTrainingLog && d.Log->HasCameras())
+  {
+    cameras = d.Log->GetOutputPort(1);
+  }
+  else if (file.empty() && d.Compared->Connect() && d.Compared->IsTrainingLog &&
+    d.Compared->Internals->Log->HasCameras())
+  {
+    cameras = d.Compared->GetOutputPort(CamerasPort);
+  }
+  else if (file.empty())
+  {
+    file = vtkGaussianCameraReader::FindSceneCamerasFile(this->FileName);
+  }
+  if (!file.empty())
+  {
+    if (Differs(d.Cameras->GetFileName(), file))
+    {
+      d.Cameras->SetFileName(file.c_str());
+    }
+    cameras = d.Cameras->GetOutputPort();
+  }
+  d.Comparison->SetInputConnection(2, cameras);
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -551,8 +660,9 @@ int vtkGaussianSession::RequestData(vtkInformation* request,
     {
       text += (text.empty() ? "" : "; ") + e;
     }
-    // Named once: a reader's message may already start with the file.
-    const bool named = text.rfind(this->FileName, 0) == 0;
+    // Named once: a reader's message, or the compared session's, may already start with its file.
+    const bool named = text.rfind(this->FileName, 0) == 0 ||
+      (d.Compared && !d.Compared->FileName.empty() && text.rfind(d.Compared->FileName, 0) == 0);
     vtkErrorMacro(<< (named ? "" : this->FileName + ": ")
                   << (text.empty() ? "could not be read" : text));
     return 0;
@@ -661,6 +771,9 @@ bool vtkGaussianSession::ProducePort(int port,
       }
       return pass(d.Removal, port == RemovalViewsPort ? 0 : 1);
     }
+    case ComparisonPort:
+    case ComparisonViewsPort:
+      return this->ConnectComparison() ? pass(d.Comparison, port == ComparisonPort ? 0 : 1) : true;
     default:
       return true;
   }
@@ -678,6 +791,8 @@ void vtkGaussianSession::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FullSHLimit: " << this->FullSHLimit << "\n";
   os << indent << "ComputeScores: " << this->ComputeScores << "\n";
   os << indent << "Rule: " << this->Rule << "\n";
+  os << indent << "CompareFileName: " << this->GetCompareFileName() << "\n";
+  os << indent << "CompareIteration: " << this->GetCompareIteration() << "\n";
   os << indent << "SelectedIds: ";
   if (this->SelectedIds)
   {

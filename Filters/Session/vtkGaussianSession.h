@@ -14,8 +14,9 @@
  *          pipeline object"), shared by the application, the commands, Python and ParaView.
  *
  * FileName is a training log or a Gaussian scene file, told apart by content (the HDF5
- * signature), not by name. The session owns the readers and filters a script would connect
- * and connects them the one way every client gets:
+ * signature), not by name; only a file named .h5 or .hdf5 without the signature is taken for a
+ * (damaged) log, so that the error is the log reader's (IsTrainingLogPath()). The session owns the
+ * readers and filters a script would connect and connects them the one way every client gets:
  *
  * - a log: vtkGaussianTrainingLogReader (the snapshot nearest Iteration; -1 the last), its
  *   cameras, metrics and events, and vtkGaussianGenealogyTreeFilter on the events of a second
@@ -43,8 +44,14 @@
  * selection re-executes ports 5 to 7; ports 0 to 4 then only pass their cached data on.
  *
  * The fine-tune and comparison filters take the session's Gaussians (and cameras) as their
- * inputs: GetFineTuneFilter() and GetComparisonFilter() (whose second state a client sets:
- * another session's Gaussians port). The sub-filters' settings are theirs (GetScoreFilter(),
+ * inputs: GetFineTuneFilter() and GetComparisonFilter(). The comparison's second state is
+ * CompareFileName (a log's snapshot nearest CompareIteration, or a scene file), read by a second
+ * session of its own (GetComparedSession(), no scores); ports 8 and 9 are the comparison's
+ * Gaussian-by-Gaussian table and its per-camera figures of both states (empty without
+ * CompareFileName; the figures also without cameras). The cameras of the comparison are
+ * CamerasFileName when set (also for a log), else the log's own, else the compared log's, else
+ * the cameras.json found beside FileName (vtkGaussianCameraReader::FindSceneCamerasFile), the
+ * rule of `vis4gs compare`. The sub-filters' settings are theirs (GetScoreFilter(),
  * ...); changing them re-executes the session. Errors of any of them are reported as the
  * session's, naming FileName.
  */
@@ -88,7 +95,9 @@ public:
     HistoryPort = 5,
     RemovalViewsPort = 6,
     RemovalTotalsPort = 7,
-    NumberOfPorts = 8
+    ComparisonPort = 8,
+    ComparisonViewsPort = 9,
+    NumberOfPorts = 10
   };
 
   ///@{
@@ -120,8 +129,8 @@ public:
 
   ///@{
   /**
-   * Training images matched to the cameras by name, for the scores and the removal effect.
-   * Default empty: the cameras' own images (a log's are inside it).
+   * Training images matched to the cameras by name, for the scores, the removal effect, the
+   * fine-tune and the comparison. Default empty: the cameras' own images (a log's are inside it).
    */
   vtkSetStdStringFromCharMacro(ImageDirectory);
   vtkGetCharFromStdStringMacro(ImageDirectory);
@@ -143,6 +152,23 @@ public:
    */
   vtkSetMacro(FullSHLimit, vtkIdType);
   vtkGetMacro(FullSHLimit, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * The second state of the comparison (ports 8 and 9): a training log or a scene file, by
+   * content. Default empty: no comparison.
+   */
+  void SetCompareFileName(const char* name);
+  const char* GetCompareFileName();
+  ///@}
+
+  ///@{
+  /**
+   * For a log as CompareFileName: the snapshot nearest this iteration; -1 (the default) the last.
+   */
+  void SetCompareIteration(int iteration);
+  int GetCompareIteration();
   ///@}
 
   ///@{
@@ -189,6 +215,10 @@ public:
   /// Whether @p path starts with the HDF5 signature (at offset 0, 512, 1024, ...).
   static bool IsTrainingLogFile(const char* path);
 
+  /// Whether the session reads @p path as a training log: IsTrainingLogFile(), or a name
+  /// ending in .h5 or .hdf5 (any case; a damaged log is then reported by the log reader).
+  static bool IsTrainingLogPath(const char* path);
+
   ///@{
   /**
    * The owned readers and filters, for their settings and their figures after an update. The
@@ -209,6 +239,12 @@ public:
   vtkGaussianStateComparisonFilter* GetComparisonFilter();
   ///@}
 
+  /**
+   * The session reading CompareFileName (its readers' settings, its Gaussians and cameras
+   * ports), created on first use.
+   */
+  vtkGaussianSession* GetComparedSession();
+
   ///@{
   /**
    * The outputs, typed.
@@ -217,6 +253,8 @@ public:
   vtkTable* GetCamerasOutput();
   vtkTable* GetMetricsOutput();
   vtkTable* GetHistoryOutput();
+  vtkTable* GetComparisonOutput();
+  vtkTable* GetComparisonViewsOutput();
   ///@}
 
   /// Includes the owned readers' and filters' settings.
@@ -253,6 +291,7 @@ private:
   vtkInternals* Internals;
 
   bool Connect();
+  bool ConnectComparison();
   int RequestDataObject(vtkInformationVector* outInfo);
   int RequestData(vtkInformation* request,
     vtkInformationVector** inInfo,

@@ -22,7 +22,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkTable.h"
 
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 #include <sys/stat.h>
 
@@ -101,6 +103,25 @@ int vtkGaussianCameraReader::RequestData(vtkInformation* vtkNotUsed(request),
   }
   vis4gs::CamerasToTable(cameras, output);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkGaussianCameraReader::FindSceneCamerasFile(const std::string& scene)
+{
+  namespace fs = std::filesystem;
+  // Two folders up lexically, also from a relative path of one part or none ("x.ply":
+  // "../../cameras.json"), where parent_path() would run out and name the working folder.
+  const fs::path dir = fs::path(scene).parent_path();
+  const fs::path up = ((dir.empty() ? fs::path(".") : dir) / ".." / "..").lexically_normal();
+  for (const fs::path& candidate : { dir / "cameras.json", up / "cameras.json" })
+  {
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec))
+    {
+      return candidate.string();
+    }
+  }
+  return std::string();
 }
 
 //------------------------------------------------------------------------------

@@ -26,6 +26,10 @@
  * transforms.json (Core/Scene/TransformsJson.h); RequireImages off keeps frames whose image
  * is missing when the file gives `w`/`h`.
  *
+ * FindSceneCamerasFile() is the one rule for the cameras of a scene file given without them
+ * (vtkGaussianSession, the commands, the comparison window): the trainer's cameras.json beside
+ * the scene or two folders up.
+ *
  * Errors (missing files, bad records, cameras without images) are reported with
  * vtkErrorMacro naming the file and the problem. The parsing is done by Core/Scene
  * (CameraJson.h, ColmapDataset.h).
@@ -101,6 +105,13 @@ public:
   vtkGetMacro(RequireImages, bool);
   vtkBooleanMacro(RequireImages, bool);
   ///@}
+
+  /**
+   * The cameras file of the scene file @p scene when none is given: `cameras.json` beside it or
+   * two folders up (the trainer's `<model>/point_cloud/iteration_N/point_cloud.ply`), the first
+   * that is a regular file; empty when neither is.
+   */
+  static std::string FindSceneCamerasFile(const std::string& scene);
 
   ///@{
   /**

@@ -13,6 +13,7 @@
 #include "Vis4GSDataModel.h"
 
 #include "GaussianIO.h"
+#include "SceneIds.h"
 
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -50,13 +51,18 @@ int vtkGaussianSceneReader::RequestData(vtkInformation* vtkNotUsed(request),
   options.LoadRotations = this->LoadRotations;
   options.LoadOpacities = this->LoadOpacities;
   options.LoadExtras = this->LoadExtras;
-  options.IdProperty = this->IdProperty;
+  const bool optionalIds = this->IdPropertyOptional && !this->IdProperty.empty();
+  options.IdProperty = optionalIds ? std::string() : this->IdProperty;
   vis4gs::GaussianReadReport report;
   vis4gs::GaussianCloud cloud;
   this->UpdateProgress(0.0);
   try
   {
     cloud = vis4gs::ReadGaussianScene(this->FileName, options, &report);
+    if (optionalIds)
+    {
+      vis4gs::IdsFromExtraProperty(cloud, this->IdProperty, this->FileName);
+    }
   }
   catch (const std::exception& e)
   {
@@ -91,6 +97,7 @@ void vtkGaussianSceneReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LoadExtras: " << this->LoadExtras << "\n";
   os << indent << "ActivatedArrays: " << this->ActivatedArrays << "\n";
   os << indent << "IdProperty: " << this->IdProperty << "\n";
+  os << indent << "IdPropertyOptional: " << this->IdPropertyOptional << "\n";
   os << indent << "FileSHDegree: " << this->FileSHDegree << "\n";
   os << indent << "FileFormat: " << this->FileFormat << "\n";
   os << indent << "NumberOfNonFiniteGaussians: " << this->NumberOfNonFiniteGaussians << "\n";

@@ -109,6 +109,17 @@ public:
 
   ///@{
   /**
+   * Whether a file without IdProperty is read all the same, its row indices being the ids (the
+   * commands read a scene "with its ids when it has them", vis4gs::IdsFromExtraProperty). The
+   * property is then kept as an extra array too. Default: off (a file without it is an error).
+   */
+  vtkSetMacro(IdPropertyOptional, bool);
+  vtkGetMacro(IdPropertyOptional, bool);
+  vtkBooleanMacro(IdPropertyOptional, bool);
+  ///@}
+
+  ///@{
+  /**
    * Facts about the last file read: its SH degree, its format ("binary_little_endian",
    * "binary_big_endian", "ascii", "splat", "ksplat", "compressed_ply", "sog", or "spz v2".."spz
    * v4", followed by " antialiased" when the SPZ header says so), and the number of Gaussians
@@ -137,6 +148,7 @@ protected:
   bool LoadExtras = true;
   bool ActivatedArrays = true;
   std::string IdProperty;
+  bool IdPropertyOptional = false;
   int FileSHDegree = 0;
   std::string FileFormat;
   vtkIdType NumberOfNonFiniteGaussians = 0;

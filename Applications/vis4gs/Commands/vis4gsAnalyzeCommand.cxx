@@ -32,10 +32,12 @@
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSceneReader.h"
 #include "vtkGaussianSession.h"
+#include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -144,19 +146,30 @@ void Define(Vis4GSArguments& args)
 }
 
 // ---------------------------------------------------------------------------------------
-std::vector<vis4gs::Camera> LoadCameras(const std::string& scene, const Vis4GSArguments& args)
+// The cameras of @p session (its cameras port: a log's own, or a scene file's --cameras or the
+// cameras.json beside it, read by Vis4GSSceneCameraRules), as the score filter gets them.
+std::vector<vis4gs::Camera> SessionCameras(vtkGaussianSession* session)
 {
-  return Vis4GSFindSceneCameras(scene, args.Get("cameras"));
+  const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::CamerasPort);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  std::vector<vis4gs::Camera> cameras;
+  std::string error;
+  if (!vis4gs::TableToCameras(session->GetCamerasOutput(), cameras, &error))
+  {
+    throw std::runtime_error(std::string(session->GetFileName()) + ": the cameras: " + error);
+  }
+  return cameras;
 }
 
 // The Gaussians of a scene file or of the snapshot of a log nearest @p iteration (-1: the last)
-// as the application, the Python layer and ParaView read them: the Gaussians port of a
-// vtkGaussianSession (the reader chosen by content) into @p gaussians. The scores are computed
-// by this command's own staged filters. Returns the loaded iteration (-1 for a scene file).
-int ReadGaussians(const std::string& path, int iteration, vtkPolyData* gaussians)
+// as the application, the Python layer and ParaView read them: the Gaussians port of the
+// command's vtkGaussianSession (the reader chosen by content, no scores yet) into @p gaussians.
+// Returns the loaded iteration (-1 for a scene file).
+int ReadGaussians(vtkGaussianSession* session, int iteration, vtkPolyData* gaussians)
 {
-  vtkNew<vtkGaussianSession> session;
-  session->SetFileName(path.c_str());
   session->SetIteration(iteration);
   session->ComputeScoresOff();
   // The activated opacity and scale arrays are for display; nothing here reads them (93 MB at
@@ -171,12 +184,12 @@ int ReadGaussians(const std::string& path, int iteration, vtkPolyData* gaussians
   return session->GetLoadedIteration();
 }
 
-// The snapshot of a training log, its cameras, and its training images: embedded ones
-// ("/images/<name>") are written once to <output>/images so the score filter reads them like
-// any dataset; others are paths relative to the log. The Gaussians are read by ReadGaussians
-// (every SH degree) into @p gaussians, the score filter's input; the cloud returned is their
-// copy for the Core steps after the scores.
-std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& path,
+// The snapshot of a training log, its cameras, and its training images: the session's score
+// filter reads embedded ones ("/images/<name>") from the log; they are also written once to
+// <output>/images, where the overlays and the clean-up measurement read them. The Gaussians are
+// read by ReadGaussians (every SH degree) into @p gaussians; the cloud returned is theirs (no
+// copy) for the Core steps after the scores.
+std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(vtkGaussianSession* session,
   const Vis4GSArguments& args,
   const fs::path& output,
   bool needCameras,
@@ -184,18 +197,26 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
   bool writeImages,
   vtkPolyData* gaussians)
 {
-  const vis4gs::TrainingLogReader log(path);
-  for (const std::string& lack : log.GetLacks())
+  const std::string path = session->GetFileName();
+  vtkGaussianTrainingLogReader* reader = session->GetLogReader();
+  reader->SetFileName(path.c_str());
+  const std::string errors = Vis4GSUpdateInformation(reader);
+  if (!errors.empty())
   {
-    std::cerr << "vis4gs analyze: note: " << path << ": " << lack << "\n";
+    throw std::runtime_error(errors);
   }
-  const std::vector<int>& iterations = log.GetSnapshotIterations();
-  if (iterations.empty())
+  for (int i = 0; i < reader->GetNumberOfLacks(); ++i)
+  {
+    std::cerr << "vis4gs analyze: note: " << path << ": " << reader->GetLack(i) << "\n";
+  }
+  const int snapshots = reader->GetNumberOfSnapshots();
+  if (snapshots == 0)
   {
     throw std::runtime_error(path + ": the training log holds no snapshot to analyze");
   }
   const int wanted = args.GetInt("iteration");
-  const int logged = ReadGaussians(path, wanted < 0 ? iterations.back() : wanted, gaussians);
+  const int logged = ReadGaussians(
+    session, wanted < 0 ? reader->GetSnapshotIteration(snapshots - 1) : wanted, gaussians);
   std::string error;
   // The reader's own cloud when its arrays are one (no copy of gigabytes).
   const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
@@ -209,14 +230,15 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
   {
     return cloud;
   }
-  if (!log.HasCameras())
+  if (!reader->HasCameras())
   {
     throw std::runtime_error(path +
       ": the training log has no /cameras, which coverage, blur "
       "and needle need");
   }
-  cameras = log.ReadCameras();
-  const fs::path logDir = fs::path(path).parent_path();
+  cameras = SessionCameras(session);
+  // Only to write the embedded images out as PNG files (an output of the command).
+  std::unique_ptr<vis4gs::TrainingLogReader> images;
   std::string writeError; // the first image that could not be written, said once
   std::size_t notWritten = 0;
   for (vis4gs::Camera& c : cameras)
@@ -232,7 +254,11 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
         std::vector<unsigned char> pixels;
         try
         {
-          pixels = log.ReadImage(name, width, height);
+          if (!images)
+          {
+            images = std::make_unique<vis4gs::TrainingLogReader>(path);
+          }
+          pixels = images->ReadImage(name, width, height);
         }
         catch (const std::exception& e)
         {
@@ -259,10 +285,6 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
       }
       c.ImagePath = file.string();
     }
-    else if (!c.ImagePath.empty() && fs::path(c.ImagePath).is_relative())
-    {
-      c.ImagePath = (logDir / c.ImagePath).string();
-    }
   }
   if (notWritten > 0)
   {
@@ -277,11 +299,12 @@ std::shared_ptr<const vis4gs::GaussianCloud> ReadLogScene(const std::string& pat
 // reader's warnings go to VTK's output window, stderr); the cloud returned is the reader's own
 // (shared with the arrays, no copy) for the Core steps after the scores, and
 // @p extras the file's other properties, which scores.ply keeps.
-std::shared_ptr<const vis4gs::GaussianCloud> ReadSceneFile(const std::string& path,
+std::shared_ptr<const vis4gs::GaussianCloud> ReadSceneFile(vtkGaussianSession* session,
   vtkPolyData* gaussians,
   std::vector<vis4gs::ExtraProperty>& extras)
 {
-  ReadGaussians(path, -1, gaussians);
+  const std::string path = session->GetFileName();
+  ReadGaussians(session, -1, gaussians);
   std::string error;
   const auto cloud = vis4gs::GaussianCloudOf(gaussians, &error);
   if (!cloud)
@@ -729,18 +752,23 @@ int Run(const Vis4GSArguments& args)
   }
   const bool needCameras = !needingCameras.empty() || measure;
   std::vector<vis4gs::Camera> cameras;
-  vtkNew<vtkPolyData> polyData; // the score filter's input
+  // One session reads, finds the cameras and scores (its score filter, staged below).
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(scene.c_str());
+  session->SetCamerasFileName(args.Get("cameras").c_str());
+  Vis4GSSceneCameraRules(session->GetCameraReader());
+  vtkNew<vtkPolyData> polyData; // the Gaussians before the scores
   std::vector<vis4gs::ExtraProperty> fileExtras;
   std::shared_ptr<const vis4gs::GaussianCloud> sceneCloud = isLog
-    ? ReadLogScene(scene, args, output, needCameras, cameras, mpi.Rank() == 0, polyData)
-    : ReadSceneFile(scene, polyData, fileExtras);
+    ? ReadLogScene(session, args, output, needCameras, cameras, mpi.Rank() == 0, polyData)
+    : ReadSceneFile(session, polyData, fileExtras);
   const vis4gs::GaussianCloud& cloud = *sceneCloud;
   // A log's snapshot has its ids; a scene file's rows are numbered by the reader unless the
   // file has an id column, and scores.ply then has none either, as the file.
   const bool fileHasIds = isLog;
   if (!isLog && needCameras)
   {
-    cameras = LoadCameras(scene, args);
+    cameras = SessionCameras(session);
   }
   if (mpi.Rank() == 0)
   {
@@ -765,30 +793,28 @@ int Run(const Vis4GSArguments& args)
   if (!args.Get("images").empty())
   {
     Vis4GSAttachImagesByName(cameras, args.Get("images"));
+    session->SetImageDirectory(args.Get("images").c_str()); // the score filter's, by the same rule
   }
   if (controller)
   {
-    controller->Barrier(); // the images process 0 extracted from a log are on disk
+    // Every process has read before any scores (the scores read a log's images from the log;
+    // the PNG files process 0 writes are outputs, read only by its overlays and clean-up).
+    controller->Barrier();
   }
   const double tRead = Since(t0);
 
-  // Scores, through the VTK filter.
+  // Scores, through the session's score filter.
   t0 = Clock::now();
-  vtkNew<vtkTable> table;
-  vis4gs::CamerasToTable(cameras, table);
   const int stopAfter = args.GetInt("stop-after-stage");
   if (stopAfter < 0 || stopAfter > 2)
   {
     throw std::runtime_error("--stop-after-stage must be 0, 1 or 2");
   }
   // The stages are the filter's (ProgressiveStage), as in the application and the plugin.
+  vtkGaussianArtifactScoreFilter* filter = session->GetScoreFilter();
+  session->ComputeScoresOn();
   auto configure = [&](vtkGaussianArtifactScoreFilter* f, int stage)
   {
-    f->SetInputData(polyData);
-    if (needCameras)
-    {
-      f->SetCamerasData(table);
-    }
     f->SetScores(wantedList.c_str());
     f->SetLossResolution(args.GetInt("loss-resolution"));
     f->SetCoverageResolution(args.GetInt("coverage-resolution"));
@@ -801,18 +827,26 @@ int Run(const Vis4GSArguments& args)
   ScoreColumns firstScores;
   std::string firstStage;
   double tFirstStage = 0;
+  // Runs the scores of the configured stage: the session's Gaussians port (the snapshot is not
+  // read again).
+  auto score = [&]()
+  {
+    const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+    if (!errors.empty())
+    {
+      throw std::runtime_error(errors);
+    }
+    return session->GetGaussiansOutput()->GetPointData();
+  };
   if (stopAfter == 2 && needCameras)
   {
-    vtkNew<vtkGaussianArtifactScoreFilter> first;
-    configure(first, 1);
-    first->Update();
-    firstScores = ScoresOf(first->GetOutput()->GetPointData(), want);
-    firstStage = first->GetStageSettings();
+    configure(filter, 1);
+    firstScores = ScoresOf(score(), want);
+    firstStage = filter->GetStageSettings();
     tFirstStage = Since(t0);
     std::cout << "vis4gs analyze: stage 1 of 2 (" << firstStage << "): " << Number(tFirstStage, 2)
               << " s" << std::endl;
   }
-  vtkNew<vtkGaussianArtifactScoreFilter> filter;
   configure(filter, stopAfter == 1 ? 1 : 0);
   const bool verbose = args.GetFlag("verbose");
   vtkNew<vtkCallbackCommand> progress;
@@ -835,12 +869,11 @@ int Run(const Vis4GSArguments& args)
     filter->SetViewRendered(vis4gs::RemovalBaselineRecorder(
       cloud, cameras, vis4gs::RasterSettings{}, args.GetInt("threads"), baseline));
   }
-  filter->Update();
+  vtkPointData* pd = score();
   if (verbose)
   {
     std::cerr << "\n";
   }
-  vtkPointData* pd = filter->GetOutput()->GetPointData();
   const ScoreColumns scores = ScoresOf(pd, want);
   std::string stageHtml;
   if (stopAfter == 1 && needCameras)
@@ -882,6 +915,7 @@ int Run(const Vis4GSArguments& args)
   }
   // scores and flags are copies: the filter's arrays go (0.3 GB at 6.1M x 6 scores).
   filter->GetOutput()->Initialize();
+  session->GetGaussiansOutput()->Initialize();
   const double tScores = Since(t0);
   if (mpi.Active())
   {
@@ -1027,6 +1061,14 @@ int Run(const Vis4GSArguments& args)
     geometry = GeometryOf(cloud);
     shown = &geometry;
     polyData->Initialize();
+    for (vtkAlgorithm* reader : { static_cast<vtkAlgorithm*>(session->GetSceneReader()),
+           static_cast<vtkAlgorithm*>(session->GetLogReader()) })
+    {
+      if (reader && reader->GetOutputDataObject(0))
+      {
+        reader->GetOutputDataObject(0)->ReleaseData();
+      }
+    }
     sceneCloud.reset(); // `cloud` is not read below this line
   }
   if (needCameras && overlayViews > 0)

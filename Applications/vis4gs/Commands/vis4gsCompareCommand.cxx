@@ -8,17 +8,29 @@
 #include "Vis4GSCommand.h"
 
 #include "GaussianIO.h"
-#include "ImageIO.h"
 #include "RemovalEffect.h"
 #include "StateComparison.h"
 #include "TrainingLogReader.h"
+#include "Vis4GSDataModel.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 #include "Vis4GSStagingFolder.h"
 #include "Vis4GSStateFiles.h"
+#include "vtkGaussianSceneReader.h"
+#include "vtkGaussianSession.h"
+#include "vtkGaussianStateComparisonFilter.h"
+
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -56,83 +68,48 @@ void Define(Vis4GSArguments& args)
   args.AddOption("output", "DIR", "vis4gs-compare", "Folder the results are written to.");
 }
 
-// One side of the comparison: the cloud, and its log when it came from one.
+// One side of the comparison, as its session read it; its log for the /metrics curves.
 struct State
 {
   std::string Path;
   std::shared_ptr<vis4gs::TrainingLogReader> Log;
   int Iteration = -1; ///< logged iteration; -1 for a scene file
-  vis4gs::GaussianCloud Cloud;
+  vtkIdType Count = 0;
 };
 
-State ReadState(const std::string& path, int iteration, const char* which)
+// Reads @p session's Gaussians port (a scene "with its ids when it has them": the id property).
+State ReadState(vtkGaussianSession* session, const char* which)
 {
   State s;
-  s.Path = path;
-  if (Vis4GSIsLogPath(path))
+  s.Path = session->GetFileName();
+  session->SetIdProperty("id");
+  session->GetSceneReader()->IdPropertyOptionalOn();
+  const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+  if (!errors.empty())
   {
-    s.Log = std::make_shared<vis4gs::TrainingLogReader>(path);
-    if (s.Log->GetSnapshotIterations().empty())
-    {
-      throw std::runtime_error(path + ": the training log holds no snapshot to compare");
-    }
-    vis4gs::SnapshotReadOptions options;
-    options.ShDegree = -1;
-    s.Cloud = s.Log->ReadNearestSnapshot(
-      iteration < 0 ? s.Log->GetSnapshotIterations().back() : iteration, options, &s.Iteration);
+    throw std::runtime_error(errors);
   }
-  else
+  s.Count = session->GetGaussiansOutput()->GetNumberOfPoints();
+  if (session->GetIsTrainingLog())
   {
-    s.Cloud = Vis4GSReadSceneWithIds(path, "compare");
+    s.Iteration = session->GetLoadedIteration();
+    // Only for its /metrics table, which the session's metrics port merges by iteration.
+    s.Log = std::make_shared<vis4gs::TrainingLogReader>(s.Path);
   }
-  std::cout << "vis4gs compare: " << which << " = " << path;
+  std::cout << "vis4gs compare: " << which << " = " << s.Path;
   if (s.Log)
   {
     std::cout << ", snapshot of iteration " << s.Iteration;
   }
-  std::cout << ": " << s.Cloud.Count << " Gaussians\n";
+  std::cout << ": " << s.Count << " Gaussians\n";
   return s;
 }
 
-// The cameras and where their images come from: a log's embedded /images or files.
-std::vector<vis4gs::Camera> FindCameras(const Vis4GSArguments& args,
-  const State& a,
-  const State& b,
-  std::shared_ptr<vis4gs::TrainingLogReader>& imageLog)
+// A column of the comparison's per-camera table.
+double Figure(vtkTable* views, const char* column, vtkIdType row)
 {
-  std::vector<vis4gs::Camera> cameras;
-  if (args.Get("cameras").empty())
-  {
-    for (const State* s : { &a, &b })
-    {
-      if (s->Log && s->Log->HasCameras())
-      {
-        cameras = s->Log->ReadCameras();
-        imageLog = s->Log;
-        const fs::path folder = fs::path(s->Path).parent_path();
-        for (vis4gs::Camera& c : cameras)
-        {
-          if (!c.ImagePath.empty() && c.ImagePath[0] != '/' && fs::path(c.ImagePath).is_relative())
-          {
-            c.ImagePath = (folder / c.ImagePath).string();
-          }
-        }
-        break;
-      }
-    }
-  }
-  if (cameras.empty())
-  {
-    cameras = Vis4GSFindSceneCameras(a.Path, args.Get("cameras"));
-  }
-  if (!args.Get("images").empty())
-  {
-    // As analyze and repair: a camera without a file is measured without image (skipped in the
-    // means), which is no reason to refuse the others.
-    Vis4GSAttachImagesByName(cameras, args.Get("images"));
-    imageLog.reset();
-  }
-  return cameras;
+  vtkDataArray* values = vtkDataArray::SafeDownCast(views->GetColumnByName(column));
+  return values ? values->GetTuple1(row) : std::numeric_limits<double>::quiet_NaN();
 }
 
 std::string Number(double v, int precision = 4)
@@ -208,33 +185,77 @@ int Run(const Vis4GSArguments& args)
       throw std::runtime_error("--move, --opacity and --scale must be >= 0");
     }
   }
-  const State a = ReadState(args.GetPositional("A"), args.GetInt("iteration-a"), "A");
-  const State b = ReadState(args.GetPositional("B"), args.GetInt("iteration-b"), "B");
-  const vis4gs::StateComparison c = vis4gs::CompareStates(a.Cloud, b.Cloud, thresholds);
-  std::cout << "vis4gs compare: " << c.Matched << " Gaussians in both, " << c.Born << " born, "
-            << c.Died << " died; of those in both " << c.Moved << " moved, " << c.OpacityChanged
-            << " changed opacity, " << c.ScaleChanged << " changed scale, " << c.Unchanged
-            << " unchanged\n";
+  // One session: A, B as its compared state, the cameras by compare's rule (--cameras, log A's,
+  // log B's, cameras.json beside A), the comparison filter's tables on its ports 8 and 9.
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(args.GetPositional("A").c_str());
+  session->SetIteration(args.GetInt("iteration-a"));
+  session->ComputeScoresOff();
+  session->SetCamerasFileName(args.Get("cameras").c_str());
+  Vis4GSSceneCameraRules(session->GetCameraReader());
+  session->SetCompareFileName(args.GetPositional("B").c_str());
+  session->SetCompareIteration(args.GetInt("iteration-b"));
+  const State a = ReadState(session, "A");
+  const State b = ReadState(session->GetComparedSession(), "B");
+  vtkGaussianStateComparisonFilter* comparison = session->GetComparisonFilter();
+  comparison->SetMoveThreshold(thresholds.Move);
+  comparison->SetOpacityThreshold(thresholds.Opacity);
+  comparison->SetScaleThreshold(thresholds.Scale);
+  comparison->SetNumberOfThreads(args.GetInt("threads"));
+  comparison->SetMeasureViews(args.GetFlag("metrics"));
+  // As analyze and repair: a camera without a file is measured without image (skipped in the
+  // means), which is no reason to refuse the others.
+  if (!args.Get("images").empty() && !fs::is_directory(args.Get("images")))
+  {
+    throw std::runtime_error(args.Get("images") + ": --images is not a folder");
+  }
+  session->SetImageDirectory(args.Get("images").c_str());
+  std::string errors = Vis4GSUpdate(session, vtkGaussianSession::ComparisonPort);
+  if (!errors.empty())
+  {
+    throw std::runtime_error(errors);
+  }
+  vtkTable* differences = session->GetComparisonOutput();
+  std::cout << "vis4gs compare: " << comparison->GetNumberMatched() << " Gaussians in both, "
+            << comparison->GetNumberBorn() << " born, " << comparison->GetNumberDied()
+            << " died; of those in both " << comparison->GetNumberMoved() << " moved, "
+            << comparison->GetNumberOpacityChanged() << " changed opacity, "
+            << comparison->GetNumberScaleChanged() << " changed scale, "
+            << comparison->GetNumberUnchanged() << " unchanged\n";
 
   // Per-camera figures of both states.
   std::vector<vis4gs::Camera> cameras;
   std::vector<vis4gs::ViewMetrics> ma, mb;
   if (args.GetFlag("metrics"))
   {
-    std::shared_ptr<vis4gs::TrainingLogReader> imageLog;
-    cameras = FindCameras(args, a, b, imageLog);
-    if (cameras.empty())
+    // The figures the comparison measured with its table (no second run).
+    errors = Vis4GSUpdate(session, vtkGaussianSession::ComparisonViewsPort);
+    if (!errors.empty())
+    {
+      throw std::runtime_error(errors);
+    }
+    vtkTable* views = session->GetComparisonViewsOutput();
+    if (views->GetNumberOfRows() == 0)
     {
       std::cerr << "vis4gs compare: note: no cameras found (give --cameras): the states are "
                    "not measured against images\n";
     }
     else
     {
-      vis4gs::RemovalEffectOptions options;
-      options.Threads = args.GetInt("threads");
-      const vis4gs::TrainingImageProvider images = Vis4GSLogImages(imageLog);
-      ma = vis4gs::MeasureViewMetrics(a.Cloud, cameras, options, images);
-      mb = vis4gs::MeasureViewMetrics(b.Cloud, cameras, options, images);
+      // The cameras measured, for their names and splits.
+      vtkTable* table = vtkTable::SafeDownCast(comparison->GetInputDataObject(2, 0));
+      std::string error;
+      if (!table || !vis4gs::TableToCameras(table, cameras, &error))
+      {
+        throw std::runtime_error(a.Path + ": the cameras: " + error);
+      }
+      for (vtkIdType r = 0; r < views->GetNumberOfRows(); ++r)
+      {
+        ma.push_back(
+          { Figure(views, "PSNR_A", r), Figure(views, "SSIM_A", r), Figure(views, "L1_A", r) });
+        mb.push_back(
+          { Figure(views, "PSNR_B", r), Figure(views, "SSIM_B", r), Figure(views, "L1_B", r) });
+      }
     }
   }
 
@@ -243,10 +264,13 @@ int Run(const Vis4GSArguments& args)
   {
     std::ostringstream csv;
     csv << "id,status,dmove,dopacity,dscale\n" << std::setprecision(9);
-    for (const vis4gs::GaussianStateDifference& d : c.Gaussians)
+    auto* ids = vtkIdTypeArray::SafeDownCast(differences->GetColumnByName("GaussianId"));
+    auto* status = vtkStringArray::SafeDownCast(differences->GetColumnByName("Status"));
+    for (vtkIdType r = 0; r < differences->GetNumberOfRows(); ++r)
     {
-      csv << d.Id << "," << vis4gs::StateChangeName(d.Change) << "," << d.Move << "," << d.Opacity
-          << "," << d.Scale << "\n";
+      csv << static_cast<std::int64_t>(ids->GetValue(r)) << "," << status->GetValue(r) << ","
+          << Figure(differences, "Move", r) << "," << Figure(differences, "OpacityChange", r) << ","
+          << Figure(differences, "ScaleChange", r) << "\n";
     }
     vis4gs::WriteTextFile((staging.Get() / "differences.csv").string(), csv.str());
   }
@@ -271,8 +295,7 @@ int Run(const Vis4GSArguments& args)
       if (views > 0)
       {
         csv << source << "," << SplitName(split) << "," << states[s]->Iteration << ",mean,"
-            << states[s]->Cloud.Count << "," << mean.Psnr << "," << mean.Ssim << "," << mean.L1
-            << "\n";
+            << states[s]->Count << "," << mean.Psnr << "," << mean.Ssim << "," << mean.L1 << "\n";
         means << "<tr><td>" << source << "</td><td>" << SplitName(split) << "</td><td>" << views
               << "</td><td>" << Number(mean.Psnr) << "</td><td>" << Number(mean.Ssim) << "</td><td>"
               << Number(mean.L1) << "</td></tr>";
@@ -284,8 +307,8 @@ int Run(const Vis4GSArguments& args)
       if (std::isfinite(m.L1))
       {
         csv << source << "," << SplitName(cameras[i].Split) << "," << states[s]->Iteration << ","
-            << cameras[i].Name << "," << states[s]->Cloud.Count << "," << m.Psnr << "," << m.Ssim
-            << "," << m.L1 << "\n";
+            << cameras[i].Name << "," << states[s]->Count << "," << m.Psnr << "," << m.Ssim << ","
+            << m.L1 << "\n";
       }
     }
   }
@@ -325,16 +348,18 @@ int Run(const Vis4GSArguments& args)
        << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
        << "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}</style></head><body>"
        << "<h1>Two states compared</h1><p>A: <code>" << Vis4GSHtml(a.Path) << "</code>"
-       << (a.Log ? ", iteration " + std::to_string(a.Iteration) : std::string()) << " ("
-       << a.Cloud.Count << " Gaussians)<br>B: <code>" << Vis4GSHtml(b.Path) << "</code>"
-       << (b.Log ? ", iteration " + std::to_string(b.Iteration) : std::string()) << " ("
-       << b.Cloud.Count << " Gaussians)</p><p>Thresholds (strict): move &gt; " << thresholds.Move
+       << (a.Log ? ", iteration " + std::to_string(a.Iteration) : std::string()) << " (" << a.Count
+       << " Gaussians)<br>B: <code>" << Vis4GSHtml(b.Path) << "</code>"
+       << (b.Log ? ", iteration " + std::to_string(b.Iteration) : std::string()) << " (" << b.Count
+       << " Gaussians)</p><p>Thresholds (strict): move &gt; " << thresholds.Move
        << ", |opacity change| &gt; " << thresholds.Opacity << ", |log scale change| &gt; "
        << thresholds.Scale << ".</p>\n<h2>Gaussians by id</h2><table><tr><th>in both</th>"
        << "<th>born</th><th>died</th><th>moved</th><th>opacity changed</th><th>scale changed</th>"
-       << "<th>unchanged</th></tr><tr><td>" << c.Matched << "</td><td>" << c.Born << "</td><td>"
-       << c.Died << "</td><td>" << c.Moved << "</td><td>" << c.OpacityChanged << "</td><td>"
-       << c.ScaleChanged << "</td><td>" << c.Unchanged << "</td></tr></table>\n";
+       << "<th>unchanged</th></tr><tr><td>" << comparison->GetNumberMatched() << "</td><td>"
+       << comparison->GetNumberBorn() << "</td><td>" << comparison->GetNumberDied() << "</td><td>"
+       << comparison->GetNumberMoved() << "</td><td>" << comparison->GetNumberOpacityChanged()
+       << "</td><td>" << comparison->GetNumberScaleChanged() << "</td><td>"
+       << comparison->GetNumberUnchanged() << "</td></tr></table>\n";
   if (!means.str().empty())
   {
     html << "<h2>Against the images</h2><p>Both states rendered in every camera with an image "

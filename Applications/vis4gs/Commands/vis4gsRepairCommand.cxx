@@ -10,13 +10,25 @@
 // holds PSNR, SSIM and L1 per view of the source, the cleaned scene and the repaired one
 // (RemovalEffect.h's figures).
 #include "Vis4GSCommand.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 #include "Vis4GSStagingFolder.h"
 
-#include "FineTune.h"
+#include "FineTune.h" // FineTuneFigureColumns: repair.csv's header
 #include "GaussianIO.h"
-#include "TrainingLogReader.h"
-#include "Vis4GSStateFiles.h"
+#include "Vis4GSDataModel.h"
+#include "vtkGaussianFineTuneFilter.h"
+#include "vtkGaussianSceneReader.h"
+#include "vtkGaussianSession.h"
+#include "vtkGaussianTrainingLogReader.h"
+
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkTable.h"
+#include "vtkVariant.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +39,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace
 {
@@ -89,57 +103,70 @@ int Run(const Vis4GSArguments& args)
     throw std::runtime_error("--warmup must be >= 0");
   }
   const int wanted = args.GetInt("iteration");
-  std::shared_ptr<vis4gs::TrainingLogReader> log; // null for a scene file
-  vis4gs::GaussianCloud snapshot;
-  std::vector<vis4gs::Camera> cameras;
-  int source = 0;
-  if (Vis4GSIsLogPath(sourcePath))
+  // One session: the source (a log's snapshot and cameras, or a scene file "with its ids when
+  // it has them" and its cameras), the cleaned scene as its second state, its fine-tune filter.
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(sourcePath.c_str());
+  session->SetIteration(wanted);
+  session->ComputeScoresOff();
+  const bool isLog = vtkGaussianSession::IsTrainingLogPath(sourcePath.c_str());
+  const std::string imageFolder = isLog ? std::string() : args.Get("images");
+  if (!isLog)
   {
-    log = std::make_shared<vis4gs::TrainingLogReader>(sourcePath);
-    if (log->GetSnapshotIterations().empty() || !log->HasCameras())
+    session->SetIdProperty("id");
+    session->GetSceneReader()->IdPropertyOptionalOn();
+    session->SetCamerasFileName(args.Get("cameras").c_str());
+    Vis4GSSceneCameraRules(session->GetCameraReader());
+    if (!imageFolder.empty() && !fs::is_directory(imageFolder))
     {
-      throw std::runtime_error(sourcePath + ": the training log needs a snapshot and /cameras");
+      throw std::runtime_error(imageFolder + ": --images is not a folder");
     }
-    vis4gs::SnapshotReadOptions readOptions;
-    readOptions.ShDegree = -1;
-    snapshot = log->ReadNearestSnapshot(
-      wanted < 0 ? log->GetSnapshotIterations().back() : wanted, readOptions, &source);
-    // The log's cameras, image paths relative to the log made absolute.
-    cameras = log->ReadCameras();
-    const fs::path logDir = fs::path(sourcePath).parent_path();
-    for (vis4gs::Camera& c : cameras)
-    {
-      if (!c.ImagePath.empty() && c.ImagePath.rfind("/images/", 0) != 0 &&
-        fs::path(c.ImagePath).is_relative())
-      {
-        c.ImagePath = (logDir / c.ImagePath).string();
-      }
-    }
+    session->SetImageDirectory(imageFolder.c_str());
   }
   else
   {
-    snapshot = Vis4GSReadSceneWithIds(sourcePath, "repair");
-    if (snapshot.Ids.empty()) // no id property: the rows are the ids, as for every reader
+    vtkGaussianTrainingLogReader* log = session->GetLogReader();
+    log->SetFileName(sourcePath.c_str());
+    const std::string errors = Vis4GSUpdateInformation(log);
+    if (!errors.empty())
     {
-      snapshot.Ids.resize(snapshot.Count);
-      for (std::size_t i = 0; i < snapshot.Count; ++i)
-      {
-        snapshot.Ids[i] = static_cast<std::int64_t>(i);
-      }
+      throw std::runtime_error(errors);
     }
-    source = std::max(wanted, 0);
-    cameras = Vis4GSFindSceneCameras(sourcePath, args.Get("cameras"));
+    if (log->GetNumberOfSnapshots() == 0 || !log->HasCameras())
+    {
+      throw std::runtime_error(sourcePath + ": the training log needs a snapshot and /cameras");
+    }
+  }
+  for (const int port : { vtkGaussianSession::GaussiansPort, vtkGaussianSession::CamerasPort })
+  {
+    const std::string errors = Vis4GSUpdate(session, port);
+    if (!errors.empty())
+    {
+      throw std::runtime_error(errors);
+    }
+  }
+  vtkPolyData* snapshot = session->GetGaussiansOutput();
+  const int source = isLog ? session->GetLoadedIteration() : std::max(wanted, 0);
+  if (!isLog)
+  {
+    std::vector<vis4gs::Camera> cameras;
+    std::string error;
+    if (!vis4gs::TableToCameras(session->GetCamerasOutput(), cameras, &error))
+    {
+      throw std::runtime_error(sourcePath + ": the cameras: " + error);
+    }
     if (cameras.empty())
     {
       throw std::runtime_error(sourcePath +
         ": no cameras found; give --cameras=cameras.json, a COLMAP folder or a transforms.json");
     }
-    if (!args.Get("images").empty())
+    // Every camera needs its image; the fine-tune finds them by the same rule.
+    if (!imageFolder.empty())
     {
-      Vis4GSAttachImagesByName(cameras, args.Get("images"));
+      Vis4GSAttachImagesByName(cameras, imageFolder);
     }
     const std::string imageSource =
-      args.Get("images").empty() ? "the cameras of " + sourcePath : args.Get("images");
+      imageFolder.empty() ? "the cameras of " + sourcePath : imageFolder;
     for (const vis4gs::Camera& c : cameras)
     {
       std::error_code ec;
@@ -152,58 +179,81 @@ int Run(const Vis4GSArguments& args)
     }
   }
   const std::string cleanedPath = args.GetPositional("CLEANED");
-  const vis4gs::GaussianCloud kept = Vis4GSReadSceneWithIds(cleanedPath, "repair");
+  vtkGaussianSession* cleaned = session->GetComparedSession();
+  cleaned->SetFileName(cleanedPath.c_str());
+  cleaned->SetIdProperty("id");
+  cleaned->GetSceneReader()->IdPropertyOptionalOn();
+  {
+    const std::string errors = Vis4GSUpdate(cleaned, vtkGaussianSession::GaussiansPort);
+    if (!errors.empty())
+    {
+      throw std::runtime_error(errors);
+    }
+  }
 
   // The deleted Gaussians: the snapshot's ids the cleaned scene lacks. The fine-tune starts
   // from the snapshot's own rows (every SH coefficient, exactly as logged).
-  std::vector<std::int64_t> keptIds(kept.Count);
-  for (std::size_t i = 0; i < kept.Count; ++i)
+  auto* keptArray = vtkIdTypeArray::SafeDownCast(
+    cleaned->GetGaussiansOutput()->GetPointData()->GetArray(vis4gs::arrays::GaussianId));
+  auto* snapshotIds =
+    vtkIdTypeArray::SafeDownCast(snapshot->GetPointData()->GetArray(vis4gs::arrays::GaussianId));
+  if (!keptArray || !snapshotIds)
   {
-    keptIds[i] = kept.GetId(i);
+    throw std::runtime_error((keptArray ? sourcePath : cleanedPath) + ": no GaussianId");
   }
+  std::vector<vtkIdType> keptIds(
+    keptArray->GetPointer(0), keptArray->GetPointer(0) + keptArray->GetNumberOfValues());
   std::sort(keptIds.begin(), keptIds.end());
-  std::vector<std::uint8_t> removed(snapshot.Count, 1);
-  std::vector<std::int64_t> prunes;
+  vtkNew<vtkIdTypeArray> prunes;
   std::size_t found = 0;
-  for (std::size_t i = 0; i < snapshot.Count; ++i)
+  for (vtkIdType i = 0; i < snapshotIds->GetNumberOfValues(); ++i)
   {
-    const bool keep = std::binary_search(keptIds.begin(), keptIds.end(), snapshot.GetId(i));
-    removed[i] = keep ? 0 : 1;
+    const bool keep = std::binary_search(keptIds.begin(), keptIds.end(), snapshotIds->GetValue(i));
     found += keep ? 1 : 0;
     if (!keep)
     {
-      prunes.push_back(snapshot.GetId(i));
+      prunes->InsertNextValue(snapshotIds->GetValue(i));
     }
   }
   if (found != keptIds.size())
   {
     throw std::runtime_error(cleanedPath + ": holds " + std::to_string(keptIds.size() - found) +
       " ids that " +
-      (log ? "the snapshot of iteration " + std::to_string(source) + " of " : std::string()) +
+      (isLog ? "the snapshot of iteration " + std::to_string(source) + " of " : std::string()) +
       sourcePath + " lacks (is it cleaned from this source, with its id property?)");
   }
-  std::cout << "vis4gs repair: " << sourcePath << ", iteration " << source << ": " << snapshot.Count
-            << " Gaussians, " << prunes.size() << " deleted in " << cleanedPath << "\n";
+  std::cout << "vis4gs repair: " << sourcePath << ", iteration " << source << ": "
+            << snapshotIds->GetNumberOfValues() << " Gaussians, " << prunes->GetNumberOfValues()
+            << " deleted in " << cleanedPath << "\n";
 
   const fs::path output = args.Get("output");
   // Both outputs are moved into place together: a failure leaves an earlier run's pair as it was.
   Vis4GSStagingFolder staging(output, "repair");
   const fs::path logOut = output / "repaired.h5";
-  vis4gs::FineTuneOptions options;
-  options.Iterations = iterations;
-  options.WarmupIterations = warmup;
-  options.MetricsInterval = std::max(0, args.GetInt("metrics-interval"));
-  options.FreePositions = args.GetFlag("free-positions");
-  options.Densify = args.GetFlag("densify");
-  options.Seed = static_cast<std::uint64_t>(std::stoull(args.Get("seed")));
-  options.Threads = args.GetInt("threads");
-  options.LogPath = (staging.Get() / logOut.filename()).string();
-  options.Producer = std::string("vis4gs repair ") + VIS4GS_VERSION;
-  // A scene file's images are embedded so that the repaired log stands on its own.
-  options.Scene = log ? log->GetHeader().Scene : fs::path(sourcePath).stem().string();
-  options.EmbedImages = log ? log->HasImages() : true;
-  const vis4gs::FineTuneResult result =
-    vis4gs::FineTune(snapshot, source, removed, cameras, Vis4GSLogImages(log), options);
+  vtkGaussianFineTuneFilter* tune = session->GetFineTuneFilter();
+  tune->SetRemovedIds(prunes);
+  tune->SetSourceIteration(source);
+  tune->SetIterations(iterations);
+  tune->SetWarmupIterations(warmup);
+  tune->SetMetricsInterval(std::max(0, args.GetInt("metrics-interval")));
+  tune->SetFreePositions(args.GetFlag("free-positions"));
+  tune->SetDensify(args.GetFlag("densify"));
+  tune->SetSeed(static_cast<vtkTypeUInt64>(std::stoull(args.Get("seed"))));
+  tune->SetNumberOfThreads(std::max(0, args.GetInt("threads")));
+  tune->SetOutputLogFileName((staging.Get() / logOut.filename()).string().c_str());
+  tune->SetProducer((std::string("vis4gs repair ") + VIS4GS_VERSION).c_str());
+  // A scene file's images are embedded so that the repaired log stands on its own; a log's
+  // scene name and embedding are its own (the filter reads them from the cameras' log).
+  tune->SetSceneName(isLog ? "" : fs::path(sourcePath).stem().string().c_str());
+  tune->SetEmbedImages(isLog ? -1 : 1);
+  {
+    const std::string errors = Vis4GSUpdate(tune, 1);
+    if (!errors.empty())
+    {
+      throw std::runtime_error(errors);
+    }
+  }
+  vtkTable* figures = tune->GetFiguresOutput();
 
   std::ostringstream csv;
   const std::vector<std::string>& columns = vis4gs::FineTuneFigureColumns();
@@ -212,27 +262,35 @@ int Run(const Vis4GSArguments& args)
     csv << (c > 0 ? "," : "") << columns[c];
   }
   csv << "\n" << std::setprecision(9);
-  for (const vis4gs::FineTuneFigureRow& row : vis4gs::FineTuneFigureRows(result, cameras))
+  for (vtkIdType r = 0; r < figures->GetNumberOfRows(); ++r)
   {
-    csv << row.View << "," << row.Split;
-    for (double x : row.Values)
+    const std::string view = figures->GetValueByName(r, columns[0].c_str()).ToString();
+    const std::string split = figures->GetValueByName(r, columns[1].c_str()).ToString();
+    std::vector<double> values;
+    for (std::size_t c = 2; c < columns.size(); ++c)
+    {
+      values.push_back(
+        vtkDataArray::SafeDownCast(figures->GetColumnByName(columns[c].c_str()))->GetTuple1(r));
+    }
+    csv << view << "," << split;
+    for (double x : values)
     {
       csv << "," << x;
     }
     csv << "\n";
-    if (row.View == "mean")
+    if (view == "mean")
     {
-      std::cout << "vis4gs repair: " << row.Split << " PSNR " << row.Values[0]
-                << " dB, after deleting " << row.Values[1] << " dB, after " << iterations
-                << " iterations " << row.Values[2] << " dB\n";
+      std::cout << "vis4gs repair: " << split << " PSNR " << values[0] << " dB, after deleting "
+                << values[1] << " dB, after " << iterations << " iterations " << values[2]
+                << " dB\n";
     }
   }
   const fs::path csvPath = output / "repair.csv";
   vis4gs::WriteTextFile((staging.Get() / csvPath.filename()).string(), csv.str());
   staging.Commit();
-  std::cout << "vis4gs repair: wrote " << logOut.string() << " (" << prunes.size()
+  std::cout << "vis4gs repair: wrote " << logOut.string() << " (" << prunes->GetNumberOfValues()
             << " prune events at iteration " << source << ", iterations " << source + 1 << ".."
-            << result.LastIteration << ", " << result.TrainSeconds / iterations
+            << tune->GetLastIteration() << ", " << tune->GetTrainSeconds() / iterations
             << " s per iteration) and " << csvPath.string() << "\n";
   return 0;
 }

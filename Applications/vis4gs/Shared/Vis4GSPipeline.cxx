@@ -36,3 +36,11 @@ std::string Vis4GSUpdate(vtkAlgorithm* algorithm, int port)
   algorithm->Update(port);
   return errors.GetMessages();
 }
+
+//------------------------------------------------------------------------------
+std::string Vis4GSUpdateInformation(vtkAlgorithm* algorithm)
+{
+  Vis4GSErrorCollector errors(algorithm);
+  algorithm->UpdateInformation();
+  return errors.GetMessages();
+}

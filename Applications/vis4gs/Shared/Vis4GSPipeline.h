@@ -37,4 +37,8 @@ private:
 /// Updates output @p port of @p algorithm; returns the errors it reported (empty: success).
 std::string Vis4GSUpdate(vtkAlgorithm* algorithm, int port = 0);
 
+/// Updates @p algorithm's information (a reader opens its file: header, what it holds); returns
+/// the errors it reported (empty: success).
+std::string Vis4GSUpdateInformation(vtkAlgorithm* algorithm);
+
 #endif

@@ -3,53 +3,19 @@
 
 #include "TrainingLogReader.h"
 
-#include "CameraJson.h"
-#include "ColmapDataset.h"
-#include "TransformsJson.h"
+#include "vtkGaussianCameraReader.h"
 
 #include <filesystem>
-#include <iostream>
 #include <map>
+#include <stdexcept>
 
-std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
-  const std::string& cameras)
+void Vis4GSSceneCameraRules(vtkGaussianCameraReader* reader)
 {
-  namespace fs = std::filesystem;
-  std::string path = cameras;
-  if (path.empty())
-  {
-    const fs::path dir = fs::path(scene).parent_path();
-    for (const fs::path& p :
-      { dir / "cameras.json", dir.parent_path().parent_path() / "cameras.json" })
-    {
-      if (fs::is_regular_file(p))
-      {
-        path = p.string();
-        break;
-      }
-    }
-  }
-  if (path.empty())
-  {
-    return {};
-  }
-  if (vis4gs::IsTransformsFolder(path) || vis4gs::IsTransformsJson(path))
-  {
-    // Rendering needs no images: keep frames whose image is missing when w/h are given.
-    vis4gs::TransformsCameras tc = vis4gs::LoadTransformsDataset(path, false);
-    for (const std::string& w : tc.Warnings)
-    {
-      std::cerr << "warning: " << w << "\n";
-    }
-    return std::move(tc.Cameras);
-  }
-  if (fs::is_directory(path))
-  {
-    vis4gs::DatasetOptions options;
-    options.RequireImages = false;
-    return vis4gs::LoadColmapDataset(path, options).Cameras;
-  }
-  return vis4gs::ReadCamerasJson(path);
+  // Rendering and measuring need no image: a camera without one is measured without it.
+  reader->RequireImagesOff();
+  // cameras.json keeps its cameras' own image paths (--images matches files by name instead);
+  // a COLMAP dataset still finds its images/ ("" is its default folder).
+  reader->SetImageFolder("");
 }
 
 bool Vis4GSLoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)

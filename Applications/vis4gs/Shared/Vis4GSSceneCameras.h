@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Vis4GSSceneCameras.h
- * @brief The cameras of a Gaussian scene file, for `vis4gs analyze` and `vis4gs view`.
+ * @brief The cameras of a Gaussian scene file as the commands and the comparison window read
+ * them (through vtkGaussianSession's camera reader), and their training images.
  */
 #ifndef Vis4GSSceneCameras_h
 #define Vis4GSSceneCameras_h
@@ -14,16 +15,14 @@
 #include <string>
 #include <vector>
 
+class vtkGaussianCameraReader;
+
 /**
- * The cameras of the scene file @p scene: @p cameras names a cameras.json, a COLMAP dataset
- * folder (sparse/0; images not required), or a NeRF-synthetic / instant-ngp transforms*.json
- * or folder (TransformsJson.h; detected by content, frames without image need w/h); empty looks for
- * cameras.json next to @p scene and two folders up (the INRIA model layout,
- * point_cloud/iteration_N/point_cloud.ply). Returns none when nothing is found; the readers throw
- * std::runtime_error naming the file when one cannot be read.
+ * Sets @p reader to read cameras as the commands and the comparison window do: no image
+ * required (a camera without one is rendered, and measured without it), cameras.json without
+ * the images/ folder beside it (--images matches files by name instead).
  */
-std::vector<vis4gs::Camera> Vis4GSFindSceneCameras(const std::string& scene,
-  const std::string& cameras);
+void Vis4GSSceneCameraRules(vtkGaussianCameraReader* reader);
 
 /**
  * Sets each camera's ImagePath to the file of @p folder whose name up to its first dot is the

@@ -2,10 +2,12 @@
 #include "Vis4GSComparison.h"
 
 #include "Vis4GSDataModel.h"
+#include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
 #include "Vis4GSStateFiles.h"
+#include "vtkGaussianSceneReader.h"
+#include "vtkGaussianSession.h"
 #include "vtkGaussianStateComparisonFilter.h"
-#include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -117,43 +119,49 @@ Vis4GSComparison::State ReadState(const std::string& path,
   Vis4GSComparison::State s;
   s.Path = path;
   s.Name = fs::path(path).filename().string();
-  if (Vis4GSIsLogPath(path))
+  const bool log = Vis4GSIsLogPath(path);
+  if (!log && iteration >= 0)
   {
-    vtkNew<vtkGaussianTrainingLogReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->SetIteration(iteration);
-    reader->Update(0);
-    auto* scene = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-    if (!scene || reader->GetLoadedIteration() < 0)
+    throw std::runtime_error(path + ": @ITERATION needs a training log, not a scene file");
+  }
+  // A session per state, as `vis4gs compare` reads them: a log's snapshot, cameras and metrics,
+  // or a scene file with its ids when it has them and the cameras found for it.
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(path.c_str());
+  session->SetIteration(iteration);
+  session->ComputeScoresOff();
+  session->SetIdProperty("id");
+  session->GetSceneReader()->IdPropertyOptionalOn();
+  session->SetCamerasFileName(cameras.c_str());
+  Vis4GSSceneCameraRules(session->GetCameraReader());
+  for (const int port : { vtkGaussianSession::GaussiansPort,
+         vtkGaussianSession::CamerasPort,
+         vtkGaussianSession::MetricsPort })
+  {
+    const std::string errors = Vis4GSUpdate(session, port);
+    if (!errors.empty())
     {
-      throw std::runtime_error(path + ": the training log holds no snapshot to compare");
+      throw std::runtime_error(errors);
     }
-    s.Scene = scene;
-    s.Iteration = reader->GetLoadedIteration();
+  }
+  s.Scene = vtkSmartPointer<vtkPolyData>::New();
+  s.Scene->ShallowCopy(session->GetGaussiansOutput());
+  if (vtkTable* table = session->GetCamerasOutput())
+  {
+    if (table->GetNumberOfRows() > 0)
+    {
+      s.Cameras = vtkSmartPointer<vtkTable>::New();
+      s.Cameras->ShallowCopy(table);
+    }
+  }
+  if (session->GetIsTrainingLog())
+  {
+    s.Iteration = session->GetLoadedIteration();
     s.Name += " @" + std::to_string(s.Iteration);
-    reader->Update(1);
-    auto* table = vtkTable::SafeDownCast(reader->GetOutputDataObject(1));
-    s.Cameras = table && table->GetNumberOfRows() > 0 ? table : nullptr;
-    reader->Update(2);
-    if (auto* merged = vtkTable::SafeDownCast(reader->GetOutputDataObject(2)))
+    if (vtkTable* merged = session->GetMetricsOutput())
     {
       s.Metrics = MetricRows(merged, "");
       s.TestMetrics = MetricRows(merged, vis4gs::arrays::MetricTestPrefix);
-    }
-  }
-  else
-  {
-    if (iteration >= 0)
-    {
-      throw std::runtime_error(path + ": @ITERATION needs a training log, not a scene file");
-    }
-    s.Scene = vtkSmartPointer<vtkPolyData>::New();
-    vis4gs::GaussianCloudToPolyData(Vis4GSReadSceneWithIds(path, "view"), s.Scene);
-    const std::vector<vis4gs::Camera> found = Vis4GSFindSceneCameras(path, cameras);
-    if (!found.empty())
-    {
-      s.Cameras = vtkSmartPointer<vtkTable>::New();
-      vis4gs::CamerasToTable(found, s.Cameras);
     }
   }
   return s;

@@ -73,9 +73,9 @@ struct Vis4GSDocument
    * do not fail the load when the rest is intact: damaged events leave the tree out
    * (TreeUnavailable), a last snapshot that cannot be read is replaced by the latest one that
    * can (and left out of Snapshots); both go to Warnings. A scene file gets
-   * the cameras of @p cameras (Vis4GSFindSceneCameras(); a log has its own and ignores both)
-   * and the training images of @p images, matched to them by name (Vis4GSAttachImagesByName(),
-   * in the table's Image column).
+   * the cameras of @p cameras (vtkGaussianCameraReader::FindSceneCamerasFile(); a log has its own
+   * and ignores both) and the training images of @p images, matched to them by name
+   * (Vis4GSAttachImagesByName(), in the table's Image column).
    */
   static std::shared_ptr<Vis4GSDocument> Load(const std::string& path,
     const Progress& progress,

@@ -43,7 +43,8 @@ public:
 
   /**
    * Cameras for the scene files opened next (a cameras.json or a COLMAP folder; empty, the
-   * default, looks for cameras.json next to the scene, Vis4GSFindSceneCameras()).
+   * default, looks for cameras.json next to the scene,
+   * vtkGaussianCameraReader::FindSceneCamerasFile()).
    */
   void SetSceneCameras(const QString& cameras);
   /**

@@ -9,6 +9,7 @@
 // session reads a snapshot (the application's load) gives the tree port its tree.
 #include "vtkGaussianSession.h"
 
+#include "SessionTestUtils.h"
 #include "Vis4GSTestCheck.h"
 #include "Vis4GSTestData.h"
 
@@ -40,6 +41,7 @@
 
 namespace
 {
+using sessiontest::ErrorText;
 vis4gs::testing::CheckCounter Check;
 
 /// Whether @p a and @p b hold the same values, NaN equal to NaN.
@@ -93,23 +95,6 @@ bool SameFields(vtkDataSetAttributes* expected, vtkDataSetAttributes* actual, co
   }
   return same;
 }
-
-/// Collects the errors @p algorithm reports (and keeps its executive's "returned failure" off
-/// the output window) while it lives.
-struct ErrorText
-{
-  std::string Text;
-  vtkNew<vtkCallbackCommand> Command;
-  vtkNew<vtkCallbackCommand> Quiet;
-  explicit ErrorText(vtkAlgorithm* algorithm)
-  {
-    this->Command->SetClientData(this);
-    this->Command->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
-      { static_cast<ErrorText*>(client)->Text += static_cast<const char*>(call); });
-    algorithm->AddObserver(vtkCommand::ErrorEvent, this->Command);
-    algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Quiet);
-  }
-};
 }
 
 int TestGaussianSession(int, char*[])
