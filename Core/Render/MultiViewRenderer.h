@@ -18,8 +18,8 @@
  *    rasteriser's bit for bit; colours of SH degree > 0 use the rasteriser's scalar code;
  *  - each block of 16 projected lanes goes straight into one 64-byte record per Gaussian (no
  *    per-Gaussian projection arrays between), the sort keys live in the kernels' memory until
- *    the kernels are written, tile rectangles take 16 bits a coordinate: about 210 bytes a
- *    Gaussian in all (the view-independent 52 included) when every Gaussian is visible;
+ *    the kernels are written, tile rectangles take 16 bits a coordinate: about 200 bytes a
+ *    Gaussian in all (the view-independent 44 included) when every Gaussian is visible;
  *  - the visible Gaussians are stored in their global (depth, index) order, so every tile's
  *    list (a subsequence of that order, as in BinGaussians()) walks the per-Gaussian data
  *    forwards instead of gathering it at random;
