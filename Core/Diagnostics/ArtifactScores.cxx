@@ -366,15 +366,52 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         1.0 / area);
       out.Timings.LossMaps += Seconds(t0);
 
-      t0 = Clock::now();
       if (multi)
       {
-        multi->Footprints(footprint, loss.data(), stats);
+        // The footprints' statistics go straight into the sums (the same operations on the
+        // same values as below), without two vectors of the cloud's size.
+        t0 = Clock::now();
+        multi->AddFootprints(footprint,
+          loss.data(),
+          [&](std::uint32_t g, std::uint32_t count, double mapSum, std::uint32_t maxCount)
+          {
+            if (count == 0)
+            {
+              return;
+            }
+            const double lp = area * mapSum;
+            const double omega = count * (1.0 / maxCount);
+            out.ScoredViews[g] += 1;
+            blurSum[g] += omega * lp;
+            needleSum[g] += lp;
+            if (shareCoverage)
+            {
+              out.CoverageViews[g] += 1;
+            }
+          });
+        out.Timings.Footprints += Seconds(t0);
+        t0 = Clock::now();
+        if (shareRenderCost)
+        {
+          const std::vector<std::uint32_t>& ids = multi->SortedIds();
+          const std::int64_t visible = static_cast<std::int64_t>(ids.size());
+#pragma omp parallel for schedule(static)
+          for (std::int64_t k = 0; k < visible; ++k)
+          {
+            const std::uint32_t g = ids[static_cast<std::size_t>(k)];
+            out.RenderCostSum[g] += static_cast<double>(sortedWeights.Evaluations[k]);
+            out.ContributionSum[g] += sortedWeights.WeightSum[k];
+          }
+          costedByScorePass[vi] = true;
+        }
+        coveredByScorePass[vi] = shareCoverage;
+        out.Timings.Accumulation += Seconds(t0);
+        ++out.ViewsScored;
+        step();
+        continue;
       }
-      else
-      {
-        stats = ComputeFootprints(projection, footprint, loss.data());
-      }
+      t0 = Clock::now();
+      stats = ComputeFootprints(projection, footprint, loss.data());
       out.Timings.Footprints += Seconds(t0);
 
       t0 = Clock::now();
@@ -398,20 +435,7 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
         blurSum[g] += omega * lp;
         needleSum[g] += lp;
       }
-      if (shareRenderCost && multi)
-      {
-        const std::vector<std::uint32_t>& ids = multi->SortedIds();
-        const std::int64_t visible = static_cast<std::int64_t>(ids.size());
-#pragma omp parallel for schedule(static)
-        for (std::int64_t k = 0; k < visible; ++k)
-        {
-          const std::uint32_t g = ids[static_cast<std::size_t>(k)];
-          out.RenderCostSum[g] += static_cast<double>(sortedWeights.Evaluations[k]);
-          out.ContributionSum[g] += sortedWeights.WeightSum[k];
-        }
-        costedByScorePass[vi] = true;
-      }
-      else if (shareRenderCost)
+      if (shareRenderCost)
       {
         addRenderCost(weights);
         costedByScorePass[vi] = true;
@@ -559,13 +583,70 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   const ScoreSettings& settings,
   ScorePartials partials)
 {
+  return FinishGaussianScores(cloud, settings, std::move(partials), 0, cloud.Count);
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> ScoreWarnings(const GaussianScores& scores,
+  const ScoreRequest& request,
+  std::size_t gaussians)
+{
+  std::vector<std::string> warnings;
+  if (!request.NeedsCameras())
+  {
+    return warnings;
+  }
+  if ((request.Blur || request.Needle) && scores.ViewsWithoutImage > 0)
+  {
+    warnings.push_back(std::to_string(scores.ViewsWithoutImage) + " of " +
+      std::to_string(scores.ViewsUsed) +
+      " training views have no image and were skipped for the blur and needle scores");
+  }
+  if (!scores.ScoresUnavailable.empty())
+  {
+    warnings.push_back(scores.ScoresUnavailable);
+  }
+  if (request.NeedsCompositing() && scores.NotEvaluatedCount > 0)
+  {
+    warnings.push_back(std::to_string(scores.NotEvaluatedCount) + " of " +
+      std::to_string(gaussians) +
+      " Gaussians are evaluated at no pixel of any training view (RenderCost 0" +
+      (request.CostPerContribution ? ", CostPerContribution NaN: no cost to divide)" : ")"));
+  }
+  if (scores.NoCoverageViewCount > 0)
+  {
+    warnings.push_back(std::to_string(scores.NoCoverageViewCount) + " of " +
+      std::to_string(gaussians) +
+      " Gaussians are visible in no training view (ViewCoverage 0, flagged)");
+  }
+  if (scores.InvalidCount > 0)
+  {
+    warnings.push_back(std::to_string(scores.InvalidCount) +
+      " Gaussians have NaN or infinite parameters; they are never visible and are flagged");
+  }
+  return warnings;
+}
+
+//------------------------------------------------------------------------------
+GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
+  const ScoreSettings& settings,
+  ScorePartials partials,
+  std::size_t first,
+  std::size_t count)
+{
   const auto start = Clock::now();
   const ScoreRequest& request = settings.Request;
   const bool scores = request.Blur || request.Needle;
   const bool needCameras = request.NeedsCameras();
   const bool renderCost = request.NeedsCompositing();
-  const std::size_t n = cloud.Count;
-  if ((request.Needle || request.NeedleShape) && cloud.LogScales.size() != 3 * n)
+  const std::size_t n = count;
+  if (first > cloud.Count || count > cloud.Count - first)
+  {
+    throw std::invalid_argument("Gaussians " + std::to_string(first) + " to " +
+      std::to_string(first + count) + " are not all in the cloud of " +
+      std::to_string(cloud.Count));
+  }
+  if ((request.Needle || request.NeedleShape) && cloud.LogScales.size() != 3 * cloud.Count)
   {
     throw std::invalid_argument("the needle shape needs the log-scales of every Gaussian");
   }
@@ -587,7 +668,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     for (std::int64_t g = 0; g < sn; ++g)
     {
       const std::size_t i = static_cast<std::size_t>(g);
-      if (ClassOf(cloud, i) != GaussianClass::Drawn)
+      if (ClassOf(cloud, first + i) != GaussianClass::Drawn)
       {
         out.Flags[i] |= InvalidParameters;
         ++invalid;
@@ -602,7 +683,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   {
     const auto t0 = Clock::now();
     shape.resize(n);
-    ComputeNeedleShapes(cloud.LogScales.data(), n, shape.data());
+    ComputeNeedleShapes(cloud.LogScales.data() + 3 * first, n, shape.data());
     out.Timings.NeedleShape = Seconds(t0);
   }
   if (!needCameras)
@@ -621,8 +702,6 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   out.ViewsWithoutImage = partials.ViewsWithoutImage;
   out.CoverageViews = std::move(partials.CoverageViews);
   out.ScoredViews = std::move(partials.ScoredViews);
-  const std::vector<double>& blurSum = partials.BlurSum;
-  const std::vector<double>& needleSum = partials.NeedleSum;
   const ScoreTimings& pt = partials.Timings;
   out.Timings.Projection = pt.Projection;
   out.Timings.Rendering = pt.Rendering;
@@ -632,12 +711,6 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   out.Timings.Accumulation = pt.Accumulation;
   out.Timings.ViewHook = pt.ViewHook;
   out.Timings.RenderCost = pt.RenderCost;
-  if (scores && out.ViewsWithoutImage > 0)
-  {
-    out.Warnings.push_back(std::to_string(out.ViewsWithoutImage) + " of " +
-      std::to_string(out.ViewsUsed) +
-      " training views have no image and were skipped for the blur and needle scores");
-  }
 
   // Final scores.
   const auto t0 = Clock::now();
@@ -645,13 +718,15 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   {
     out.ViewCoverage.assign(n, 0.0);
   }
+  // The means are taken in the sums' memory (no second 8 bytes a Gaussian to allocate and
+  // touch): the sum of Gaussian g is read once, then replaced by its mean.
   if (request.Blur)
   {
-    out.BlurScore.assign(n, 0.0);
+    out.BlurScore = std::move(partials.BlurSum);
   }
   if (request.Needle)
   {
-    out.NeedleScore.assign(n, 0.0);
+    out.NeedleScore = std::move(partials.NeedleSum);
   }
   const double invViews = out.ViewsUsed > 0 ? 1.0 / out.ViewsUsed : 0.0;
   std::size_t noCoverage = 0, noScored = 0;
@@ -676,15 +751,23 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
       {
         out.Flags[g] |= NoVisibleScoredView;
         ++noScored;
+        if (request.Blur)
+        {
+          out.BlurScore[g] = 0.0;
+        }
+        if (request.Needle)
+        {
+          out.NeedleScore[g] = 0.0;
+        }
         continue;
       }
       if (request.Blur)
       {
-        out.BlurScore[g] = blurSum[g] / k;
+        out.BlurScore[g] = out.BlurScore[g] / k;
       }
       if (request.Needle)
       {
-        out.NeedleScore[g] = shape[g] * (needleSum[g] / k);
+        out.NeedleScore[g] = shape[g] * (out.NeedleScore[g] / k);
       }
     }
   }
@@ -701,7 +784,6 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     {
       std::fill(out.NeedleScore.begin(), out.NeedleScore.end(), nan);
     }
-    out.Warnings.push_back(out.ScoresUnavailable);
   }
   if (renderCost)
   {
@@ -727,12 +809,6 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
       out.RenderCost = std::move(partials.RenderCostSum);
     }
     out.NotEvaluatedCount = notEvaluated;
-    if (notEvaluated > 0)
-    {
-      out.Warnings.push_back(std::to_string(notEvaluated) + " of " + std::to_string(n) +
-        " Gaussians are evaluated at no pixel of any training view (RenderCost 0" +
-        (request.CostPerContribution ? ", CostPerContribution NaN: no cost to divide)" : ")"));
-    }
   }
   if (request.NeedleShape)
   {
@@ -741,16 +817,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   out.NoCoverageViewCount = noCoverage;
   out.NoScoredViewCount = noScored;
   out.Timings.Accumulation += Seconds(t0);
-  if (noCoverage > 0)
-  {
-    out.Warnings.push_back(std::to_string(noCoverage) + " of " + std::to_string(n) +
-      " Gaussians are visible in no training view (ViewCoverage 0, flagged)");
-  }
-  if (out.InvalidCount > 0)
-  {
-    out.Warnings.push_back(std::to_string(out.InvalidCount) +
-      " Gaussians have NaN or infinite parameters; they are never visible and are flagged");
-  }
+  out.Warnings = ScoreWarnings(out, request, cloud.Count);
   out.Timings.Total = pt.Total + Seconds(start);
   return out;
 }

@@ -295,6 +295,30 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   ScorePartials partials);
 
 /**
+ * FinishGaussianScores() of the Gaussians [first, first + count) alone: the per-Gaussian
+ * vectors of @p partials hold theirs (count entries, every selected view summed), and so do
+ * those of the result. For processes that each finish a slice of the Gaussians after a
+ * reduce-scatter of the partials (vtkGaussianArtifactScoreFilter under MPI): its counts
+ * (NoCoverageViewCount, ...) are the slice's, its warnings those of ScoreWarnings() for them.
+ * Throws std::invalid_argument when the range is not in the cloud.
+ */
+GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
+  const ScoreSettings& settings,
+  ScorePartials partials,
+  std::size_t first,
+  std::size_t count);
+
+/**
+ * The warnings of finished scores of @p gaussians Gaussians, from their counts (views without
+ * image, ScoresUnavailable, Gaussians never evaluated, without a visible view, with invalid
+ * parameters): what FinishGaussianScores() puts in GaussianScores::Warnings, for a caller that
+ * sums the counts of slices.
+ */
+std::vector<std::string> ScoreWarnings(const GaussianScores& scores,
+  const ScoreRequest& request,
+  std::size_t gaussians);
+
+/**
  * Estimated cost of each view of @p views: its pixels (at the blur/needle or coverage
  * resolution, whichever is rendered) times the Gaussians whose mean projects into it, counted
  * on a deterministic sample of at most 4096 Gaussians (every process gets the same numbers).

@@ -574,16 +574,20 @@ void FootprintPass(const ViewProjection<T>& proj,
 
 //------------------------------------------------------------------------------
 // The same pass over a MultiViewRenderer's visible Gaussians (the per-Gaussian result does
-// not depend on the order in which Gaussians are visited).
-template <typename Acc>
-void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
+// not depend on the order in which Gaussians are visited): @p store(slot, count, sum) takes
+// each one's statistics. Returns the largest count.
+template <typename Acc, typename Store>
+std::uint32_t MultiViewFootprintPass(const MultiViewRenderer::Data& d,
   const FootprintOptions& opt,
   const float* map,
-  FootprintStats& stats)
+  const Store& store,
+  std::uint64_t& total,
+  std::uint64_t& evaluated)
 {
   const int W = d.Camera.W, H = d.Camera.H;
+  // Every slot (Gaussian index, padded to 16); the view's invisible ones are skipped.
   const std::int64_t nv = static_cast<std::int64_t>(d.Records.size());
-  std::uint64_t total = 0, evaluated = 0;
+  std::uint32_t largest = 0;
   const int threads = ThreadCount(opt.Threads);
   const int vector = VectorLevel<float>(opt);
   const bool rasterMode = opt.Mode == FootprintMode::Rasterizer;
@@ -592,7 +596,7 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
   // instead of each waiting behind the previous Gaussian's pixel work.
   constexpr std::int64_t batch = 16;
   const std::int64_t batches = (nv + batch - 1) / batch;
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) reduction(+ : total, evaluated)
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) reduction(+ : total, evaluated) reduction(max : largest)
   for (std::int64_t bb = 0; bb < batches; ++bb)
   {
     const std::int64_t first = bb * batch;
@@ -603,10 +607,14 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
       for (std::int64_t ss = first; ss < last; ++ss)
       {
         const std::size_t s = static_cast<std::size_t>(ss);
+        if (d.Records[s].Id == MultiViewRenderer::Data::Invisible)
+        {
+          continue;
+        }
         const auto& k = d.Records[s].Kernel;
         BoxHint& h = hints[ss - first];
         h.Ok = EllipseBox<float>(
-          k.U, k.V, k.A, k.B, k.C, rasterMode ? d.CompactLevels[s] : -4.5, h.X0, h.X1, h.Y0, h.Y1);
+          k.U, k.V, k.A, k.B, k.C, rasterMode ? d.Records[s].Level : -4.5, h.X0, h.X1, h.Y0, h.Y1);
       }
     }
     // Every field FootprintOne reads is set below for each Gaussian (the others keep their
@@ -614,9 +622,13 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
     ProjectedGaussian<float> g;
     for (std::int64_t ss = first; ss < last; ++ss)
     {
-      // Compact index order: records, levels and the outputs are all walked forwards.
+      // Index order: records, levels and the outputs are all walked forwards.
       const std::size_t s = static_cast<std::size_t>(ss);
       const auto& rec = d.Records[s];
+      if (rec.Id == MultiViewRenderer::Data::Invisible)
+      {
+        continue;
+      }
       const auto& k = rec.Kernel;
       g.U = k.U;
       g.V = k.V;
@@ -639,23 +651,32 @@ void MultiViewFootprintPass(const MultiViewRenderer::Data& d,
         W,
         H,
         map,
-        rasterMode ? &d.CompactLevels[s] : nullptr,
+        rasterMode ? &rec.Level : nullptr,
         cnt,
         sum,
         evals,
         vector ? &hints[ss - first] : nullptr);
-      const std::uint32_t id = rec.Id;
-      stats.PixelCount[id] = cnt;
-      if (map)
-      {
-        stats.MapSum[id] = static_cast<double>(sum);
-      }
+      store(s, cnt, static_cast<double>(sum));
+      largest = std::max(largest, cnt);
       total += cnt;
       evaluated += evals;
     }
   }
-  stats.TotalPixels = total;
-  stats.EvaluatedPixels = evaluated;
+  return largest;
+}
+
+template <typename Store>
+std::uint32_t MultiViewFootprints(const MultiViewRenderer::Data& d,
+  const FootprintOptions& opt,
+  const float* map,
+  const Store& store,
+  std::uint64_t& total,
+  std::uint64_t& evaluated)
+{
+  total = evaluated = 0;
+  return opt.Accumulation == FootprintAccumulation::Float
+    ? MultiViewFootprintPass<float>(d, opt, map, store, total, evaluated)
+    : MultiViewFootprintPass<double>(d, opt, map, store, total, evaluated);
 }
 
 } // namespace
@@ -703,13 +724,65 @@ void MultiViewRenderer::Footprints(const FootprintOptions& options,
   {
     stats.MapSum.clear();
   }
-  if (options.Accumulation == FootprintAccumulation::Float)
+  const Data::VisibleRecord* records = d.Records.data();
+  MultiViewFootprints(
+    d,
+    options,
+    map,
+    [&stats, records, map](std::size_t s, std::uint32_t count, double sum)
+    {
+      stats.PixelCount[records[s].Id] = count;
+      if (map)
+      {
+        stats.MapSum[records[s].Id] = sum;
+      }
+    },
+    stats.TotalPixels,
+    stats.EvaluatedPixels);
+}
+
+//------------------------------------------------------------------------------
+void MultiViewRenderer::AddFootprints(const FootprintOptions& options,
+  const float* map,
+  const FootprintAdder& add)
+{
+  Data& d = *this->Impl;
+  if (!d.HasView)
   {
-    MultiViewFootprintPass<float>(d, options, map, stats);
+    throw std::logic_error("MultiViewRenderer::AddFootprints: no view was projected");
   }
-  else
+  // A record's kernel and radius are read before its statistics are known; its first 8 bytes
+  // then keep the map sum and its radius the count.
+  Data::VisibleRecord* records = d.Records.data();
+  static_assert(sizeof(records->Kernel) >= sizeof(double) && alignof(Data::VisibleRecord) >= 8,
+    "a map sum fits at the start of a record");
+  std::uint64_t total = 0, evaluated = 0;
+  const std::uint32_t largest = MultiViewFootprints(
+    d,
+    options,
+    map,
+    [records](std::size_t s, std::uint32_t count, double sum)
+    {
+      std::memcpy(&records[s].Kernel, &sum, sizeof(sum));
+      std::memcpy(&records[s].Radius, &count, sizeof(count));
+    },
+    total,
+    evaluated);
+  d.HasView = false;
+  const std::int64_t slots = static_cast<std::int64_t>(d.Records.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(options.Threads))
+  for (std::int64_t ss = 0; ss < slots; ++ss)
   {
-    MultiViewFootprintPass<double>(d, options, map, stats);
+    const Data::VisibleRecord& rec = records[ss];
+    if (rec.Id == Data::Invisible)
+    {
+      continue;
+    }
+    double sum;
+    std::uint32_t count;
+    std::memcpy(&sum, &rec.Kernel, sizeof(sum));
+    std::memcpy(&count, &rec.Radius, sizeof(count));
+    add(rec.Id, count, map ? sum : 0.0, largest);
   }
 }
 

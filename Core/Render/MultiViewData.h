@@ -9,6 +9,7 @@
 
 #include "MultiViewRenderer.h"
 #include "RasterBounds.h"
+#include "RawVector.h"
 
 #include <array>
 #include <cstdint>
@@ -16,15 +17,17 @@
 
 namespace vis4gs
 {
-/// View-independent part of ProjectGaussians<float>, structure of arrays padded to 16.
+/// View-independent part of ProjectGaussians<float>, structure of arrays padded to 16 (not
+/// cleared on growth: the preparation writes every element, padding included).
 struct MultiViewPrepared
 {
-  std::vector<float> X, Y, Z, S00, S01, S02, S11, S12, S22, Opacity;
-  std::vector<float> Color; ///< 3 per Gaussian when the colour is view-independent (degree 0)
-  std::vector<std::int32_t> Valid; ///< -1 finite parameters, 0 not (or padding)
+  raster::internal::RawVector<float> X, Y, Z, S00, S01, S02, S11, S12, S22, Opacity;
+  /// 3 per Gaussian when the colour is view-independent (degree 0)
+  raster::internal::RawVector<float> Color;
+  raster::internal::RawVector<std::int32_t> Valid; ///< -1 finite parameters, 0 not (or padding)
 };
 
-/// Per-Gaussian projection of one view (index order, padded to 16).
+/// The projection's lane outputs: 16 Gaussians of one view (MultiViewRenderer, ProjectGaussians).
 struct MultiViewProjected
 {
   std::vector<std::int32_t> Status;
@@ -50,31 +53,35 @@ struct MultiViewRenderer::Data
   MultiViewPrepared Prepared;
   PreparedView Camera{};
   ViewProjection<float> Frame; ///< the view's parameters (no Gaussians)
-  MultiViewProjected Projected;
   ProjectionCounts Counts;
   bool HasView = false;
 
   // Visible Gaussians in (depth, index) order: position s holds Gaussian Sorted[s].
   std::vector<std::uint32_t> Sorted;
-  std::vector<raster::detail::KernelGaussian<float>> Kernels;
+  raster::internal::RawVector<raster::detail::KernelGaussian<float>> Kernels;
   std::vector<raster::detail::SpanRecord> Bounds; ///< alpha-level spans (compositing)
-  std::vector<std::array<int, 4>> Rects;
+  /// Tile rectangles in 16 bits per coordinate (Project() refuses grids over 65535 tiles).
+  raster::internal::RawVector<std::array<std::uint16_t, 4>> Rects;
   TileBins Bins; ///< Ids are sorted positions s (ascending within every tile)
   /// Composite()'s statistics in sorted order, kept between views.
   GaussianWeightStats SortedWeights;
 
   // Scratch kept between views.
-  /// A visible Gaussian's data, one cache line, compacted in index order before the sort.
+  /// A Gaussian's projection in one view, one cache line, written straight from the
+  /// projection's lanes at the Gaussian's index (no per-Gaussian projection buffer in between:
+  /// 48 bytes a Gaussian less). Id is the index, or Invisible when the view does not draw it.
+  /// Level: the alpha level min(0, log((1/255) / o)), 0 when o < 1/255.
   struct alignas(64) VisibleRecord
   {
     raster::detail::KernelGaussian<float> Kernel;
-    std::int32_t Rect[4];
+    std::array<std::uint16_t, 4> Rect;
     std::int32_t Radius;
     std::uint32_t Id;
+    double Level;
   };
-  std::vector<VisibleRecord> Records; ///< compact index order
-  std::vector<double> CompactLevels;  ///< alpha level of Records[k] (0 when o < 1/255)
-  std::vector<std::uint64_t> Keys;
+  static constexpr std::uint32_t Invisible = 0xffffffffu;
+  raster::internal::RawVector<VisibleRecord> Records; ///< index order, padded to 16
+  /// Visible Gaussians per projection chunk.
   std::vector<std::uint64_t> ChunkVisible;
   std::vector<std::int64_t> Diff;
 };

@@ -36,32 +36,37 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
   d.ShDegree = std::max(0, d.ShDegree);
   d.ViewIndependentColor = d.ShDegree == 0;
   d.Threads = ThreadCount(settings.Threads);
+  // Not cleared: the loop below writes every element (padding too), on every thread, so that
+  // the fresh pages are touched in parallel.
   MultiViewPrepared& p = d.Prepared;
   for (auto* v : { &p.X, &p.Y, &p.Z, &p.S00, &p.S01, &p.S02, &p.S11, &p.S12, &p.S22, &p.Opacity })
   {
-    v->assign(d.Padded, 0.0f);
+    ResizeKeep(*v, d.Padded);
   }
-  p.Valid.assign(d.Padded, 0);
+  ResizeKeep(p.Valid, d.Padded);
   if (d.Colors && d.ViewIndependentColor)
   {
-    p.Color.assign(3 * d.Padded, 0.0f);
+    ResizeKeep(p.Color, 3 * d.Padded);
   }
   const int shStride = d.Colors ? 3 * cloud.ShCoefficientCount() : 0;
   const int shUsed = 3 * (d.ShDegree + 1) * (d.ShDegree + 1);
   const bool colors = d.Colors;
   const bool viewIndependent = d.ViewIndependentColor;
   const float mod = static_cast<float>(settings.ScaleModifier);
-  const std::int64_t count = static_cast<std::int64_t>(d.Count);
+  const std::int64_t count = static_cast<std::int64_t>(d.Padded);
 #pragma omp parallel for schedule(static) num_threads(d.Threads)
   for (std::int64_t ii = 0; ii < count; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
     PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, p, i);
-    if (p.Valid[i] != 0 && colors && viewIndependent)
+    if (colors && viewIndependent)
     {
-      const float dir[3] = { 0, 0, 0 }; // unused at degree 0
-      float col[3];
-      ShColor<float>(&cloud.SH[i * shStride], 0, dir, col);
+      float col[3] = { 0, 0, 0 };
+      if (p.Valid[i] != 0)
+      {
+        const float dir[3] = { 0, 0, 0 }; // unused at degree 0
+        ShColor<float>(&cloud.SH[i * shStride], 0, dir, col);
+      }
       for (int ch = 0; ch < 3; ++ch)
       {
         p.Color[3 * i + ch] = std::max(col[ch], 0.0f);
@@ -97,39 +102,116 @@ void MultiViewRenderer::Project(const Camera& camera)
   d.Camera = PrepareView(d.Frame);
   const PreparedView& w = d.Camera;
 
-  MultiViewProjected& out = d.Projected;
-  for (auto* v : { &out.U, &out.V, &out.A, &out.B, &out.C, &out.Depth })
-  {
-    ResizeKeep(*v, d.Padded);
-  }
-  for (auto* v : { &out.Status, &out.Radius, &out.X0, &out.Y0, &out.X1, &out.Y1 })
-  {
-    ResizeKeep(*v, d.Padded);
-  }
   const ProjectBlockFunction block = SelectProjection(d.Settings.KernelIsa);
   const int chunks = d.Threads;
   const std::int64_t blocks = static_cast<std::int64_t>(d.Padded / 16);
   const std::size_t n = d.Count;
+  if (w.Gx > 0xFFFF || w.Gy > 0xFFFF)
+  {
+    throw std::invalid_argument("camera '" + camera.Name + "': " + std::to_string(camera.Width) +
+      "x" + std::to_string(camera.Height) +
+      " pixels is over the many-view renderer's 65535 x 65535 tiles of 16 pixels");
+  }
+  // Every slot is written below (a record, or Invisible), so no clearing is needed.
+  ResizeKeep(d.Records, d.Padded);
+  // The sort keys (two buffers of 8 bytes a visible Gaussian) live in the kernels' memory (40
+  // bytes a Gaussian), free until step 4 writes the kernels, once the keys are read.
+  static_assert(sizeof(raster::detail::KernelGaussian<float>) >= 2 * sizeof(std::uint64_t),
+    "two sort keys fit in a kernel's place");
+  ResizeKeep(d.Kernels, d.Padded);
   d.ChunkVisible.assign(static_cast<std::size_t>(chunks) + 1, 0);
+  Data::VisibleRecord* records = d.Records.data();
+  std::uint64_t* keys = reinterpret_cast<std::uint64_t*>(d.Kernels.data());
+  const MultiViewPrepared& prep = d.Prepared;
+  const bool colors = d.Colors;
+  const bool viewIndependent = d.ViewIndependentColor;
+  const int shDegree = d.ShDegree;
+  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
   std::size_t counts[6] = { 0, 0, 0, 0, 0, 0 };
-  // (1) Projection, chunks of contiguous blocks.
-#pragma omp parallel num_threads(chunks)
+  std::uint32_t depthOr = 0, depthAnd = ~0u;
+  // (1) Projection of chunks of contiguous blocks, 16 lanes at a time into a scratch, and (2)
+  // each visible Gaussian's record at its index with its (depth bits, index) key, the keys of
+  // a chunk from the chunk's first index on. The colour of SH degree > 0 is evaluated here, in
+  // index order, where the coefficients (192 bytes a Gaussian at degree 3) stream through the
+  // cache; in depth order (step 4) each Gaussian's were three random misses.
+#pragma omp parallel num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
   {
     std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
+    MultiViewProjected out;
+    for (auto* v : { &out.U, &out.V, &out.A, &out.B, &out.C, &out.Depth })
+    {
+      v->assign(16, 0.0f);
+    }
+    for (auto* v : { &out.Status, &out.Radius, &out.X0, &out.Y0, &out.X1, &out.Y1 })
+    {
+      v->assign(16, 0);
+    }
 #pragma omp for schedule(static, 1)
     for (int c = 0; c < chunks; ++c)
     {
       const std::int64_t b = blocks * c / chunks, e = blocks * (c + 1) / chunks;
-      for (std::int64_t k = b; k < e; ++k)
+      std::size_t k = static_cast<std::size_t>(b) * 16;
+      for (std::int64_t bb = b; bb < e; ++bb)
       {
-        const std::size_t first = static_cast<std::size_t>(k) * 16;
-        block(d.Prepared, first, w, out, first);
-        const std::size_t last = std::min(n, first + 16);
-        for (std::size_t i = first; i < last; ++i)
+        const std::size_t first = static_cast<std::size_t>(bb) * 16;
+        block(prep, first, w, out, 0);
+        for (std::size_t l = 0; l < 16; ++l)
         {
-          ++local[out.Status[i]];
+          const std::size_t i = first + l;
+          Data::VisibleRecord& rec = records[i];
+          const std::int32_t status = i < n ? out.Status[l] : -1;
+          if (status >= 0)
+          {
+            ++local[status];
+          }
+          if (status != 0)
+          {
+            rec.Id = Data::Invisible;
+            continue;
+          }
+          float col[3] = { 0, 0, 0 };
+          if (colors && viewIndependent)
+          {
+            col[0] = prep.Color[3 * i];
+            col[1] = prep.Color[3 * i + 1];
+            col[2] = prep.Color[3 * i + 2];
+          }
+          else if (colors)
+          {
+            ViewColor<float>(&cloud.SH[i * static_cast<std::size_t>(shStride)],
+              shDegree,
+              &cloud.Positions[3 * i],
+              w.Center,
+              col);
+          }
+          rec.Kernel = { out.U[l],
+            out.V[l],
+            out.A[l],
+            out.B[l],
+            out.C[l],
+            prep.Opacity[i],
+            col[0],
+            col[1],
+            col[2],
+            out.Depth[l] };
+          rec.Rect = { static_cast<std::uint16_t>(out.X0[l]),
+            static_cast<std::uint16_t>(out.Y0[l]),
+            static_cast<std::uint16_t>(out.X1[l]),
+            static_cast<std::uint16_t>(out.Y1[l]) };
+          rec.Radius = out.Radius[l];
+          rec.Id = static_cast<std::uint32_t>(i);
+          const float o = prep.Opacity[i];
+          rec.Level = o >= raster::MinAlpha<float>()
+            ? std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(o)))
+            : 0.0;
+          std::uint32_t bits;
+          std::memcpy(&bits, &out.Depth[l], sizeof(bits));
+          depthOr |= bits;
+          depthAnd &= bits;
+          keys[k++] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(i);
         }
       }
+      d.ChunkVisible[static_cast<std::size_t>(c) + 1] = k - static_cast<std::size_t>(b) * 16;
     }
 #pragma omp critical(vis4gsMultiViewCounts)
     for (int k = 0; k < 6; ++k)
@@ -143,105 +225,38 @@ void MultiViewRenderer::Project(const Camera& camera)
   d.Counts.Degenerate = counts[3];
   d.Counts.NonFinite = counts[4];
   d.Counts.OffScreen = counts[5];
-
-  // (2) Visible Gaussians in index order, with (depth bits, compact position) keys; chunks of
-  // Gaussian indices (a chunk's visible count first).
-  const std::int64_t sn = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static, 1) num_threads(chunks)
+  // The chunks' keys made contiguous, in chunk (so index) order. A chunk's keys move down
+  // (its first key stays at or after where the previous chunks' keys end), and in chunk order
+  // no move overwrites keys not yet moved.
+  std::size_t visible = 0;
   for (int c = 0; c < chunks; ++c)
   {
-    const std::int64_t b = sn * c / chunks, e = sn * (c + 1) / chunks;
-    std::uint64_t k = 0;
-    for (std::int64_t i = b; i < e; ++i)
+    const std::size_t from = static_cast<std::size_t>(blocks * c / chunks) * 16;
+    const std::size_t count =
+      static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(c) + 1]);
+    if (from != visible && count > 0)
     {
-      k += out.Status[static_cast<std::size_t>(i)] == 0 ? 1 : 0;
+      std::memmove(keys + visible, keys + from, count * sizeof(std::uint64_t));
     }
-    d.ChunkVisible[static_cast<std::size_t>(c) + 1] = k;
+    visible += count;
   }
-  for (int c = 0; c < chunks; ++c)
-  {
-    d.ChunkVisible[static_cast<std::size_t>(c) + 1] += d.ChunkVisible[static_cast<std::size_t>(c)];
-  }
-  const std::size_t visible =
-    static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(chunks)]);
   const std::int64_t nv = static_cast<std::int64_t>(visible);
-  ResizeKeep(d.Keys, 2 * visible);
-  ResizeKeep(d.Records, visible);
-  ResizeKeep(d.CompactLevels, visible);
-  double* levels = d.CompactLevels.data();
-  std::uint64_t* keys = d.Keys.data();
-  Data::VisibleRecord* records = d.Records.data();
-  const MultiViewPrepared& prep = d.Prepared;
-  const bool colors = d.Colors;
-  const bool viewIndependent = d.ViewIndependentColor;
-  const int shDegree = d.ShDegree;
-  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
-  std::uint32_t depthOr = 0, depthAnd = ~0u;
-#pragma omp parallel for schedule(static, 1) num_threads(chunks) reduction(| : depthOr) reduction(& : depthAnd)
-  for (int c = 0; c < chunks; ++c)
-  {
-    const std::int64_t b = sn * c / chunks, e = sn * (c + 1) / chunks;
-    std::size_t k = static_cast<std::size_t>(d.ChunkVisible[static_cast<std::size_t>(c)]);
-    for (std::int64_t ii = b; ii < e; ++ii)
-    {
-      const std::size_t i = static_cast<std::size_t>(ii);
-      if (out.Status[i] != 0)
-      {
-        continue;
-      }
-      Data::VisibleRecord& rec = records[k];
-      float col[3] = { 0, 0, 0 };
-      if (colors && viewIndependent)
-      {
-        col[0] = prep.Color[3 * i];
-        col[1] = prep.Color[3 * i + 1];
-        col[2] = prep.Color[3 * i + 2];
-      }
-      else if (colors)
-      {
-        // Here, in index order, the SH coefficients (192 bytes a Gaussian at degree 3) stream
-        // through the cache; in depth order (step 4) each Gaussian's were three random misses.
-        ViewColor<float>(&cloud.SH[i * static_cast<std::size_t>(shStride)],
-          shDegree,
-          &cloud.Positions[3 * i],
-          w.Center,
-          col);
-      }
-      rec.Kernel = { out.U[i],
-        out.V[i],
-        out.A[i],
-        out.B[i],
-        out.C[i],
-        prep.Opacity[i],
-        col[0],
-        col[1],
-        col[2],
-        out.Depth[i] };
-      rec.Rect[0] = out.X0[i];
-      rec.Rect[1] = out.Y0[i];
-      rec.Rect[2] = out.X1[i];
-      rec.Rect[3] = out.Y1[i];
-      rec.Radius = out.Radius[i];
-      rec.Id = static_cast<std::uint32_t>(i);
-      const float o = prep.Opacity[i];
-      levels[k] = o >= raster::MinAlpha<float>()
-        ? std::min(0.0, std::log(raster::MinAlpha<double>() / static_cast<double>(o)))
-        : 0.0;
-      std::uint32_t bits;
-      std::memcpy(&bits, &out.Depth[i], sizeof(bits));
-      depthOr |= bits;
-      depthAnd &= bits;
-      keys[k] = (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(k);
-      ++k;
-    }
-  }
   // (3) Global (depth, index) order: stable radix sort on the depth bits that differ (as
   // BinGaussians<float>; depth > 0.2, so the bits order like the values).
   const std::uint64_t* sorted =
     RadixSortKeys(keys, keys + visible, nv, 32, 32 + DifferingBits(depthOr, depthAnd), chunks);
 
-  // (4) Per-Gaussian data in sorted order: kernel and colour, tile rectangle, spans.
+  // (4) The visible Gaussians in sorted order (the keys' low bits), which frees the keys'
+  // memory for the kernels; then their data in that order: kernel and colour, tile rectangle,
+  // spans.
   ResizeKeep(d.Sorted, visible);
+#pragma omp parallel for schedule(static) num_threads(chunks)
+  for (std::int64_t ss = 0; ss < nv; ++ss)
+  {
+    d.Sorted[static_cast<std::size_t>(ss)] =
+      static_cast<std::uint32_t>(sorted[static_cast<std::size_t>(ss)]);
+  }
+  const std::uint32_t* order = d.Sorted.data();
   ResizeKeep(d.Kernels, visible);
   ResizeKeep(d.Bounds, visible);
   ResizeKeep(d.Rects, visible);
@@ -251,21 +266,18 @@ void MultiViewRenderer::Project(const Camera& camera)
     const std::size_t s = static_cast<std::size_t>(ss);
     if (ss + 16 < nv)
     {
-      const std::uint32_t ahead = static_cast<std::uint32_t>(sorted[s + 16]);
+      const std::uint32_t ahead = order[s + 16];
       __builtin_prefetch(&records[ahead]);
-      __builtin_prefetch(&levels[ahead]);
     }
-    const std::uint32_t pos = static_cast<std::uint32_t>(sorted[s]);
+    const std::uint32_t pos = order[s];
     const Data::VisibleRecord& rec = records[pos];
-    const std::uint32_t id = rec.Id;
-    d.Sorted[s] = id;
     const raster::detail::KernelGaussian<float> k = rec.Kernel;
     d.Kernels[s] = k;
-    d.Rects[s] = { rec.Rect[0], rec.Rect[1], rec.Rect[2], rec.Rect[3] };
+    d.Rects[s] = rec.Rect;
     if (k.O >= raster::MinAlpha<float>())
     {
       raster::detail::SpanBounds sb =
-        raster::detail::MakeSpanBounds<float>(k.U, k.V, k.A, k.B, k.C, levels[pos]);
+        raster::detail::MakeSpanBounds<float>(k.U, k.V, k.A, k.B, k.C, rec.Level);
       if (sb.Bounded)
       {
         // Tighter candidate rows from the same conservative ellipse: its exact half-height

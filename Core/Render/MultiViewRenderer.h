@@ -16,6 +16,10 @@
  *    scalar order (no contraction, correctly rounded division and square root, the
  *    reference's double ndc2Pix), so culls, conics, radii and tile rectangles are the
  *    rasteriser's bit for bit; colours of SH degree > 0 use the rasteriser's scalar code;
+ *  - each block of 16 projected lanes goes straight into one 64-byte record per Gaussian (no
+ *    per-Gaussian projection arrays between), the sort keys live in the kernels' memory until
+ *    the kernels are written, tile rectangles take 16 bits a coordinate: about 200 bytes a
+ *    Gaussian in all (the view-independent 44 included) when every Gaussian is visible;
  *  - the visible Gaussians are stored in their global (depth, index) order, so every tile's
  *    list (a subsequence of that order, as in BinGaussians()) walks the per-Gaussian data
  *    forwards instead of gathering it at random;
@@ -33,6 +37,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -56,7 +61,8 @@ public:
   /**
    * Projects every Gaussian into @p camera, bins and composites: @p image receives exactly
    * what Rasterize<float>(cloud, camera, settings) gives. The projection is kept for
-   * Footprints(). Throws std::invalid_argument like ProjectGaussians() for a bad camera.
+   * Footprints(). Throws std::invalid_argument like ProjectGaussians() for a bad camera, and
+   * for an image over 65535 tiles of 16 pixels wide or high (about 1M pixels).
    */
   void Render(const Camera& camera, RasterImage<float>& image);
 
@@ -85,6 +91,23 @@ public:
    * are honoured exactly as ComputeFootprints() honours them.
    */
   void Footprints(const FootprintOptions& options, const float* map, FootprintStats& stats);
+
+  /// Called by AddFootprints() with a visible Gaussian's index, its pixel count and map sum
+  /// (FootprintStats' values) and the view's largest pixel count.
+  using FootprintAdder = std::function<void(std::uint32_t gaussian,
+    std::uint32_t pixelCount,
+    double mapSum,
+    std::uint32_t largestPixelCount)>;
+
+  /**
+   * Footprints() for a caller that sums the statistics over views, without its two vectors of
+   * the cloud's size (12 bytes a Gaussian): each visible Gaussian's statistics are kept in
+   * place of its projection, then @p add is called once for each visible Gaussian, with the
+   * values Footprints() gives it, from several threads (never twice for one Gaussian) when the
+   * renderer has more than one. The projection is then spent: Composite(), Footprints() and
+   * SetColors() need a new Project().
+   */
+  void AddFootprints(const FootprintOptions& options, const float* map, const FootprintAdder& add);
 
   /**
    * Replaces the colours of the last projected view: Gaussian i is drawn with

@@ -23,49 +23,17 @@ namespace vis4gs
 using raster::internal::ResizeKeep;
 
 //------------------------------------------------------------------------------
-// BinScratch: BinGaussians' intermediate buffers, uninitialised on growth (default-init
-// allocator: every element is written before it is read) and kept between calls.
+// BinScratch: BinGaussians' intermediate buffers, uninitialised on growth (RawVector: every
+// element is written before it is read) and kept between calls.
 namespace
 {
-template <typename U>
-struct DefaultInitAllocator : std::allocator<U>
-{
-  template <typename V>
-  struct rebind
-  {
-    using other = DefaultInitAllocator<V>;
-  };
-  DefaultInitAllocator() = default;
-  template <typename V>
-  DefaultInitAllocator(const DefaultInitAllocator<V>&) noexcept
-  {
-  }
-  template <typename V>
-  void construct(V* p) noexcept
-  {
-    ::new (static_cast<void*>(p)) V;
-  }
-  template <typename V, typename... A>
-  void construct(V* p, A&&... a)
-  {
-    ::new (static_cast<void*>(p)) V(std::forward<A>(a)...);
-  }
-};
-template <typename U>
-using RawVector = std::vector<U, DefaultInitAllocator<U>>;
+using raster::internal::RawVector;
 
-/// Resizes @p v to @p n without initialising; a new allocation gets 1/8 of slack and huge
-/// pages (as ResizeKeep). Returns the data pointer.
+/// ResizeKeep() that returns the data pointer.
 template <typename U>
 U* GrowRaw(RawVector<U>& v, std::size_t n)
 {
-  if (v.capacity() < n)
-  {
-    RawVector<U>().swap(v);
-    v.reserve(n + n / 8);
-    raster::internal::HugePages(v.data(), (n + n / 8) * sizeof(U));
-  }
-  v.resize(n);
+  ResizeKeep(v, n);
   return v.data();
 }
 } // namespace
@@ -336,7 +304,8 @@ void BinSortedRectsOf(const Rect* rects,
 
 } // namespace
 
-void BinSortedRects(const std::array<int, 4>* rects,
+template <typename Rect>
+void BinSortedRects(const Rect* rects,
   const std::uint32_t* ids,
   std::int64_t count,
   int gx,
@@ -363,6 +332,15 @@ void BinSortedRects(const std::array<int, 4>* rects,
       bins);
   }
 }
+
+template void BinSortedRects<NarrowRect>(const NarrowRect*,
+  const std::uint32_t*,
+  std::int64_t,
+  int,
+  int,
+  int,
+  std::vector<std::int64_t>&,
+  TileBins&);
 
 template <typename Rect>
 void BinSortedKeys(const Rect* rects,

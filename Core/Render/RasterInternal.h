@@ -11,6 +11,7 @@
 #include "MultiViewData.h"
 #include "RasterBounds.h"
 #include "Rasterizer.h"
+#include "RawVector.h"
 
 #include <array>
 #include <cstddef>
@@ -24,34 +25,12 @@ namespace raster
 namespace internal
 {
 
-/// madvise(MADV_HUGEPAGE) on the whole 2 MiB pages of a large buffer (before first touch).
-void HugePages(const void* data, std::size_t bytes);
-
-/// Resizes @p v to @p n, keeping its memory when it is large enough (no clearing). A new
-/// allocation gets 1/8 of slack: per-view sizes (visible Gaussians, tile pairs) vary from
-/// view to view, and growing by a few elements must not re-allocate (and page-fault) the
-/// whole buffer for every new maximum.
-template <typename U>
-void ResizeKeep(std::vector<U>& v, std::size_t n)
-{
-  if (v.size() != n)
-  {
-    if (v.capacity() < n)
-    {
-      const std::size_t capacity = n + n / 8;
-      std::vector<U>().swap(v);
-      v.reserve(capacity);
-      HugePages(v.data(), capacity * sizeof(U));
-    }
-    v.resize(n);
-  }
-}
-
 /// ProjectGaussians()'s checks of the cloud's arrays (throws std::invalid_argument).
 void ValidateCloud(const GaussianCloud& cloud, bool colors);
 
 /// View-independent part of ProjectGaussians<float> step 3 for Gaussian @p i into slot @p k
-/// of @p p (Valid -1, or 0 and zeros when a parameter it would use is not finite).
+/// of @p p (Valid -1, or 0 and zeros when a parameter it would use is not finite, or for
+/// padding: @p i at or past the cloud's Count).
 void PrepareGaussianForLanes(const GaussianCloud& cloud,
   std::size_t i,
   float mod,
@@ -71,13 +50,18 @@ using ProjectBlockFunction = void (*)(const MultiViewPrepared&,
 /// 0 best, 1 generic vectors, 2 AVX2, 3 AVX-512 (each falls back to what the machine has).
 ProjectBlockFunction SelectProjection(int isa);
 
+/// A tile rectangle in 16 bits per coordinate (tile grids of at most 65535 x 65535 tiles):
+/// half the bytes of BinGaussians()' sorted rectangles.
+using NarrowRect = std::array<std::uint16_t, 4>;
+
 /// BinGaussians()'s step 3: the per-tile lists of @p count tile rectangles given in depth
 /// order (tile-major; depth order inside a tile). Each of @p chunks consecutive parts of the
 /// sequence counts its rectangles per tile with a 2D difference array ((gx+1) x (gy+1),
 /// kept in @p diff between calls) and scatters into its own range of every tile, so the
 /// lists do not depend on the number of chunks. The entries are @p ids[k], or the sorted
-/// positions k when @p ids is null.
-void BinSortedRects(const std::array<int, 4>* rects,
+/// positions k when @p ids is null. Rectangles narrow (NarrowRect) or not (std::array<int, 4>).
+template <typename Rect>
+void BinSortedRects(const Rect* rects,
   const std::uint32_t* ids,
   std::int64_t count,
   int gx,
@@ -85,10 +69,6 @@ void BinSortedRects(const std::array<int, 4>* rects,
   int chunks,
   std::vector<std::int64_t>& diff,
   TileBins& bins);
-
-/// A tile rectangle in 16 bits per coordinate (tile grids of at most 65535 x 65535 tiles):
-/// half the bytes of BinGaussians()' sorted rectangles.
-using NarrowRect = std::array<std::uint16_t, 4>;
 
 /// BinSortedRects() with the entries in the low 32 bits of @p keys (BinGaussians()' sorted
 /// keys: a Gaussian's index below its depth bits), rectangles narrow (NarrowRect) or not

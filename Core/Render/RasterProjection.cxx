@@ -391,17 +391,7 @@ const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
   for (std::int64_t ii = 0; ii < count; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
-    if (i < n)
-    {
-      PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, d, i);
-    }
-    else
-    {
-      d.X[i] = d.Y[i] = d.Z[i] = 0.0f;
-      d.S00[i] = d.S01[i] = d.S02[i] = d.S11[i] = d.S12[i] = d.S22[i] = 0.0f;
-      d.Opacity[i] = 0.0f;
-      d.Valid[i] = 0;
-    }
+    raster::internal::PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, d, i);
   }
   c.Version = version;
   c.Cloud = &cloud;
@@ -899,7 +889,15 @@ void PrepareGaussianForLanes(const GaussianCloud& cloud,
   MultiViewPrepared& p,
   std::size_t k)
 {
-  PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, p, k);
+  if (i < cloud.Count)
+  {
+    PrepareForLanes(cloud, i, mod, shStride, shUsed, colors, p, k);
+    return;
+  }
+  p.X[k] = p.Y[k] = p.Z[k] = 0.0f;
+  p.S00[k] = p.S01[k] = p.S02[k] = p.S11[k] = p.S12[k] = p.S22[k] = 0.0f;
+  p.Opacity[k] = 0.0f;
+  p.Valid[k] = 0;
 }
 
 ProjectBlockFunction SelectProjection(int isa)

@@ -42,6 +42,7 @@
 #include <mutex>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkGaussianArtifactScoreFilter);
@@ -211,37 +212,55 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
     }
     return false;
   }
-  // The element-wise sums of the partials (ScorePartials says why that is exact).
-  auto sumU32 = [controller](std::vector<std::uint32_t>& v)
-  {
-    std::vector<std::uint32_t> sum(v.size(), 0);
-    controller->AllReduce(reinterpret_cast<const unsigned int*>(v.data()),
-      reinterpret_cast<unsigned int*>(sum.data()),
-      static_cast<vtkIdType>(v.size()),
-      vtkCommunicator::SUM_OP);
-    v.swap(sum);
-  };
-  auto sumF64 = [controller](std::vector<double>& v)
-  {
-    std::vector<double> sum(v.size(), 0.0);
-    controller->AllReduce(
-      v.data(), sum.data(), static_cast<vtkIdType>(v.size()), vtkCommunicator::SUM_OP);
-    v.swap(sum);
-  };
+  // The element-wise sums of the partials (ScorePartials says why that is exact), each slice of
+  // the Gaussians summed on the process that finishes it (a reduce-scatter): no process sums,
+  // holds or finishes every Gaussian's partials, and the finished scores travel once.
+  const std::size_t n = cloud.Count;
+  auto sliceStart = [n, ranks](int r)
+  { return static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / ranks); };
+  const std::size_t first = sliceStart(rank), count = sliceStart(rank + 1) - first;
   static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "32-bit unsigned int");
+  auto scatterU32 = [&](std::vector<std::uint32_t>& v)
+  {
+    std::vector<std::uint32_t> mine(count, 0);
+    for (int r = 0; r < ranks; ++r)
+    {
+      const std::size_t b = sliceStart(r);
+      controller->Reduce(reinterpret_cast<const unsigned int*>(v.data() + b),
+        reinterpret_cast<unsigned int*>(mine.data()),
+        static_cast<vtkIdType>(sliceStart(r + 1) - b),
+        vtkCommunicator::SUM_OP,
+        r);
+    }
+    v.swap(mine);
+  };
+  auto scatterF64 = [&](std::vector<double>& v)
+  {
+    std::vector<double> mine(count, 0.0);
+    for (int r = 0; r < ranks; ++r)
+    {
+      const std::size_t b = sliceStart(r);
+      controller->Reduce(v.data() + b,
+        mine.data(),
+        static_cast<vtkIdType>(sliceStart(r + 1) - b),
+        vtkCommunicator::SUM_OP,
+        r);
+    }
+    v.swap(mine);
+  };
   // Every process has the same sizes (the same request): empty ones are skipped everywhere.
   for (std::vector<std::uint32_t>* counts : partials.PerGaussianCounts())
   {
     if (!counts->empty())
     {
-      sumU32(*counts);
+      scatterU32(*counts);
     }
   }
   for (std::vector<double>* sums : partials.PerGaussianSums())
   {
     if (!sums->empty())
     {
-      sumF64(*sums);
+      scatterF64(*sums);
     }
   }
   unsigned long long counts[2] = { partials.ViewsScored, partials.ViewsWithoutImage },
@@ -249,17 +268,76 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
   controller->AllReduce(counts, totals, 2, vtkCommunicator::SUM_OP);
   partials.ViewsScored = static_cast<std::size_t>(totals[0]);
   partials.ViewsWithoutImage = static_cast<std::size_t>(totals[1]);
-  seconds[1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - reduction).count();
+  vis4gs::GaussianScores part;
+  std::string finishError;
+  const auto finish = std::chrono::steady_clock::now();
   try
   {
-    scores = vis4gs::FinishGaussianScores(cloud, settings, std::move(partials));
+    part = vis4gs::FinishGaussianScores(cloud, settings, std::move(partials), first, count);
   }
   catch (const std::exception& e)
   {
-    vtkErrorWithObjectMacro(
-      self, "Scores failed on process " << rank << " of " << ranks << ": " << e.what());
+    finishError = e.what();
+  }
+  // (finishing is computation, as in one process's ComputeSeconds, not reduction)
+  const double finishSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - finish).count();
+  seconds[0] += finishSeconds;
+  int finishFailed = finishError.empty() ? 0 : 1, anyFinishFailed = 0;
+  controller->AllReduce(&finishFailed, &anyFinishFailed, 1, vtkCommunicator::MAX_OP);
+  if (anyFinishFailed)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Scores failed on process " << rank << " of " << ranks << ": "
+                                  << (finishError.empty() ? "on another process" : finishError));
     return false;
   }
+  // Every process gets every slice's scores (each process's output holds them all).
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)),
+    offsets(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r)
+  {
+    offsets[static_cast<std::size_t>(r)] = static_cast<vtkIdType>(sliceStart(r));
+    lengths[static_cast<std::size_t>(r)] =
+      static_cast<vtkIdType>(sliceStart(r + 1) - sliceStart(r));
+  }
+  auto gather = [&](auto& slice, bool wanted)
+  {
+    using Vector = std::remove_reference_t<decltype(slice)>;
+    Vector all;
+    if (wanted)
+    {
+      all.resize(n);
+      controller->AllGatherV(
+        slice.data(), all.data(), static_cast<vtkIdType>(count), lengths.data(), offsets.data());
+    }
+    slice.swap(all);
+  };
+  const vis4gs::ScoreRequest& req = settings.Request;
+  const bool views = needCameras, imageScores = needCameras && (req.Blur || req.Needle);
+  gather(part.ViewCoverage, views && req.ViewCoverage);
+  gather(part.BlurScore, views && req.Blur);
+  gather(part.NeedleScore, views && req.Needle);
+  gather(part.NeedleShape, req.NeedleShape);
+  gather(part.RenderCost, req.RenderCost);
+  gather(part.CostPerContribution, req.CostPerContribution);
+  gather(part.Flags, true);
+  gather(part.CoverageViews, views && req.ViewCoverage);
+  gather(part.ScoredViews, imageScores);
+  unsigned long long flagged[4] = { part.NoCoverageViewCount,
+    part.NoScoredViewCount,
+    part.InvalidCount,
+    part.NotEvaluatedCount },
+                     flaggedAll[4] = { 0, 0, 0, 0 };
+  controller->AllReduce(flagged, flaggedAll, 4, vtkCommunicator::SUM_OP);
+  part.NoCoverageViewCount = static_cast<std::size_t>(flaggedAll[0]);
+  part.NoScoredViewCount = static_cast<std::size_t>(flaggedAll[1]);
+  part.InvalidCount = static_cast<std::size_t>(flaggedAll[2]);
+  part.NotEvaluatedCount = static_cast<std::size_t>(flaggedAll[3]);
+  part.Warnings = vis4gs::ScoreWarnings(part, settings.Request, n);
+  scores = std::move(part);
+  seconds[1] = std::chrono::duration<double>(std::chrono::steady_clock::now() - reduction).count() -
+    finishSeconds;
   return true;
 }
 }

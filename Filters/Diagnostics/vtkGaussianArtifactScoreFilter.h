@@ -255,9 +255,10 @@ public:
    * uses MPI runs in one process exactly as before. With more than one process, every
    * process must hold the whole scene and the same cameras and settings; each renders the
    * views SplitViewsByCost() gives it (Core/Diagnostics/ArtifactScores.h) and reads only
-   * their images, the per-Gaussian partials are summed with AllReduce, and every process
-   * gets the full scores. If a process fails, every process's RequestData fails and the
-   * error names the failing process and the view it was on.
+   * their images, the per-Gaussian partials are summed slice by slice (a reduce-scatter:
+   * process r sums and finishes the r-th of the Gaussians), and every process gets the full
+   * scores (an all-gather of the finished slices). If a process fails, every process's RequestData
+   * fails and the error names the failing process and the view it was on.
    */
   virtual void SetController(vtkMultiProcessController* controller);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
@@ -273,8 +274,9 @@ public:
   ///@{
   /**
    * Seconds of the last execution spent by this process on its views (projection, rendering,
-   * images, loss maps, footprints, sums) and on the reduction over the processes (0 in one
-   * process), for the benchmarks (Documentation/performance.md).
+   * images, loss maps, footprints, sums) and finishing its scores, and on the communication
+   * between the processes (the reduce-scatter of the partials, the all-gather of the scores;
+   * 0 in one process), for the benchmarks (Documentation/performance.md).
    */
   vtkGetMacro(ComputeSeconds, double);
   vtkGetMacro(ReductionSeconds, double);

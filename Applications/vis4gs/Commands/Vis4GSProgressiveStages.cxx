@@ -5,6 +5,7 @@
 #include "Vis4GSDataModel.h"
 
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkPointData.h"
 
 #include <algorithm>
@@ -29,10 +30,21 @@ ScoreColumns ScoresOf(vtkPointData* pd, std::map<std::string, bool>& want)
     {
       throw std::runtime_error("computing " + std::string(array) + " failed (see the error above)");
     }
-    std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
-    for (std::size_t i = 0; i < v.size(); ++i)
+    std::vector<double> v;
+    vtkDoubleArray* values = vtkDoubleArray::SafeDownCast(a);
+    if (values && values->GetNumberOfComponents() == 1)
     {
-      v[i] = a->GetTuple1(static_cast<vtkIdType>(i));
+      // (the filter's arrays: one copy, not a virtual call per Gaussian)
+      const double* first = values->GetPointer(0);
+      v.assign(first, first + values->GetNumberOfTuples());
+    }
+    else
+    {
+      v.resize(static_cast<std::size_t>(a->GetNumberOfTuples()));
+      for (std::size_t i = 0; i < v.size(); ++i)
+      {
+        v[i] = a->GetTuple1(static_cast<vtkIdType>(i));
+      }
     }
     scores.emplace_back(array, std::move(v));
   }

@@ -30,17 +30,20 @@
 #include "Vis4GSScoreOutputs.h"
 #include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianSceneReader.h"
 #include "vtkGaussianSession.h"
 #include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cctype>
@@ -169,6 +172,9 @@ int ReadGaussians(vtkGaussianSession* session, int iteration, vtkPolyData* gauss
 {
   session->SetIteration(iteration);
   session->ComputeScoresOff();
+  // The activated opacity and scale arrays are for display; nothing here reads them (93 MB at
+  // 6.1M Gaussians, held through the score pass's peak).
+  session->GetSceneReader()->ActivatedArraysOff();
   const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
   if (!errors.empty())
   {
@@ -323,6 +329,20 @@ vis4gs::GaussianCloud AsFileHasIt(const vis4gs::GaussianCloud& cloud,
     copy.Ids.clear();
   }
   return copy;
+}
+
+// What the overlays and the report read of @p cloud (positions, log-scales, rotations,
+// opacity logits, ids), without the SH.
+vis4gs::GaussianCloud GeometryOf(const vis4gs::GaussianCloud& cloud)
+{
+  vis4gs::GaussianCloud g;
+  g.Count = cloud.Count;
+  g.Positions = cloud.Positions;
+  g.LogScales = cloud.LogScales;
+  g.Rotations = cloud.Rotations;
+  g.OpacityLogits = cloud.OpacityLogits;
+  g.Ids = cloud.Ids;
+  return g;
 }
 
 std::string Base64(const std::vector<unsigned char>& bytes)
@@ -739,7 +759,7 @@ int Run(const Vis4GSArguments& args)
   Vis4GSSceneCameraRules(session->GetCameraReader());
   vtkNew<vtkPolyData> polyData; // the Gaussians before the scores
   std::vector<vis4gs::ExtraProperty> fileExtras;
-  const std::shared_ptr<const vis4gs::GaussianCloud> sceneCloud = isLog
+  std::shared_ptr<const vis4gs::GaussianCloud> sceneCloud = isLog
     ? ReadLogScene(session, args, output, needCameras, cameras, mpi.Rank() == 0, polyData)
     : ReadSceneFile(session, polyData, fileExtras);
   const vis4gs::GaussianCloud& cloud = *sceneCloud;
@@ -889,12 +909,9 @@ int Run(const Vis4GSArguments& args)
   }
   firstScores.clear();
   std::vector<unsigned char> flags(cloud.Count, 0);
-  if (vtkDataArray* f = pd->GetArray("NoVisibleView"))
+  if (auto* f = vtkUnsignedCharArray::SafeDownCast(pd->GetArray("NoVisibleView")))
   {
-    for (std::size_t i = 0; i < flags.size(); ++i)
-    {
-      flags[i] = static_cast<unsigned char>(f->GetTuple1(static_cast<vtkIdType>(i)));
-    }
+    std::copy(f->GetPointer(0), f->GetPointer(0) + flags.size(), flags.begin());
   }
   // scores and flags are copies: the filter's arrays go (0.3 GB at 6.1M x 6 scores).
   filter->GetOutput()->Initialize();
@@ -1033,6 +1050,27 @@ int Run(const Vis4GSArguments& args)
   std::vector<std::pair<std::string, fs::path>> overlays;
   std::vector<std::string> legends;
   const int overlayViews = std::max(0, args.GetInt("overlay-views"));
+  // The Gaussians the rest of the command reads: the scene, or its geometry alone.
+  const vis4gs::GaussianCloud* shown = &cloud;
+  vis4gs::GaussianCloud geometry;
+  if (needCameras && overlayViews > 0)
+  {
+    // The overlays read the geometry only, and nothing after them the SH (80 % of the scene
+    // at degree 3): the scene is let go for a copy without them, so that the overlays'
+    // renderer does not come on top of the whole scene (issue 31: the run's peak memory).
+    geometry = GeometryOf(cloud);
+    shown = &geometry;
+    polyData->Initialize();
+    for (vtkAlgorithm* reader : { static_cast<vtkAlgorithm*>(session->GetSceneReader()),
+           static_cast<vtkAlgorithm*>(session->GetLogReader()) })
+    {
+      if (reader && reader->GetOutputDataObject(0))
+      {
+        reader->GetOutputDataObject(0)->ReleaseData();
+      }
+    }
+    sceneCloud.reset(); // `cloud` is not read below this line
+  }
   if (needCameras && overlayViews > 0)
   {
     std::vector<Vis4GSOverlayScore> drawn;
@@ -1051,7 +1089,7 @@ int Run(const Vis4GSArguments& args)
     std::vector<std::vector<std::pair<std::string, fs::path>>> images(drawn.size());
     int view = 0;
     std::size_t lastCamera = cameras.size();
-    Vis4GSRenderOverlays(cloud,
+    Vis4GSRenderOverlays(geometry,
       cameras,
       drawn,
       overlayViews,
@@ -1079,7 +1117,7 @@ int Run(const Vis4GSArguments& args)
        << Vis4GSHtml(scene) << "</title><style>body{font-family:sans-serif;margin:2em}"
        << "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
        << "text-align:right}figure{display:inline-block;margin:8px}</style></head><body>\n"
-       << "<h1>Gaussian diagnosis of " << Vis4GSHtml(scene) << "</h1>\n<p>" << cloud.Count
+       << "<h1>Gaussian diagnosis of " << Vis4GSHtml(scene) << "</h1>\n<p>" << shown->Count
        << " Gaussians, " << cameras.size() << " cameras, " << filter->GetNumberOfViewsUsed()
        << " training views used, " << filter->GetNumberOfViewsWithoutImage() << " without image, "
        << filter->GetNumberOfFlaggedGaussians()
@@ -1139,7 +1177,7 @@ int Run(const Vis4GSArguments& args)
     int rank = 1;
     for (std::size_t i : tops[name])
     {
-      html << "<tr><td>" << rank++ << "</td><td>" << cloud.GetId(i) << "</td>";
+      html << "<tr><td>" << rank++ << "</td><td>" << shown->GetId(i) << "</td>";
       for (const auto& s : scores)
       {
         html << "<td>" << s.second[i] << "</td>";

@@ -820,6 +820,96 @@ TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
   EXPECT_THROW(vis4gs::FinishGaussianScores(cloud, settings, wrong), std::invalid_argument);
 }
 
+// A distributed run finishes each process's slice of the Gaussians (issue 31): the slices'
+// scores, put end to end, are the whole finish's bit for bit (the same operations on the same
+// sums), their counts add up to its counts and ScoreWarnings() of the sums gives its warnings.
+TEST(ArtifactScores, FinishedSlicesAreTheWholeFinish)
+{
+  GaussianCloud cloud;
+  cloud.Resize(5, 0);
+  SetGaussian(cloud, 0, 0, 0, 5, std::log(0.5f), std::log(0.3f), std::log(0.3f), 2);
+  SetGaussian(cloud, 1, 0.3f, 0.1f, 4, std::log(0.02f), std::log(0.4f), std::log(0.01f), 1);
+  SetGaussian(cloud, 2, 60, 0, -3, -2, -2, -2, 1); // seen by no view
+  SetGaussian(cloud, 3, -0.2f, 0.2f, 6, -1.5f, -2.5f, -2, 0);
+  SetGaussian(cloud, 4, std::nanf(""), 0, 5, -2, -2, -2, 1); // invalid: flagged
+  const std::vector<Camera> cameras{ MakeCamera(0), MakeCamera(-1), MakeCamera(0.5) };
+  OffsetImages images{ &cloud, { 0.2f, 0.1f, 0.3f }, { false, true, false } };
+  vis4gs::ScoreSettings settings;
+  settings.Request.RenderCost = settings.Request.CostPerContribution = true;
+  const auto partials = vis4gs::ComputeScorePartials(
+    cloud, cameras, settings, vis4gs::SelectViews(cameras, settings), images);
+  const auto whole = vis4gs::FinishGaussianScores(cloud, settings, partials);
+  ASSERT_EQ(whole.NoCoverageViewCount, 2u);
+  ASSERT_EQ(whole.InvalidCount, 1u);
+  ASSERT_EQ(whole.Warnings.size(), 4u); // without image, not evaluated, no view, invalid
+  for (const std::vector<std::size_t>& cuts :
+    { std::vector<std::size_t>{ 0, 5 }, { 0, 2, 5 }, { 0, 0, 3, 3, 5 }, { 0, 1, 2, 3, 4, 5 } })
+  {
+    vis4gs::GaussianScores joined;
+    std::size_t noCoverage = 0, noScored = 0, invalid = 0, notEvaluated = 0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+    {
+      const std::size_t first = cuts[k], count = cuts[k + 1] - cuts[k];
+      vis4gs::ScorePartials slice = partials;
+      for (std::vector<std::uint32_t>* v : slice.PerGaussianCounts())
+      {
+        *v = std::vector<std::uint32_t>(v->begin() + first, v->begin() + first + count);
+      }
+      for (std::vector<double>* v : slice.PerGaussianSums())
+      {
+        *v = std::vector<double>(v->begin() + first, v->begin() + first + count);
+      }
+      const auto part = vis4gs::FinishGaussianScores(cloud, settings, slice, first, count);
+      ASSERT_EQ(part.Flags.size(), count);
+      for (auto member : { &vis4gs::GaussianScores::ViewCoverage,
+             &vis4gs::GaussianScores::BlurScore,
+             &vis4gs::GaussianScores::NeedleScore,
+             &vis4gs::GaussianScores::NeedleShape,
+             &vis4gs::GaussianScores::RenderCost,
+             &vis4gs::GaussianScores::CostPerContribution })
+      {
+        (joined.*member)
+          .insert((joined.*member).end(), (part.*member).begin(), (part.*member).end());
+      }
+      joined.Flags.insert(joined.Flags.end(), part.Flags.begin(), part.Flags.end());
+      noCoverage += part.NoCoverageViewCount;
+      noScored += part.NoScoredViewCount;
+      invalid += part.InvalidCount;
+      notEvaluated += part.NotEvaluatedCount;
+      joined.ViewsUsed = part.ViewsUsed;
+      joined.ViewsWithoutImage = part.ViewsWithoutImage;
+    }
+    const std::string what = "cut into " + std::to_string(cuts.size() - 1);
+    auto same = [&what](const std::vector<double>& a, const std::vector<double>& b)
+    {
+      ASSERT_EQ(a.size(), b.size()) << what;
+      for (std::size_t g = 0; g < a.size(); ++g)
+      {
+        // Bit for bit, NaN (R/A never evaluated) included.
+        EXPECT_EQ(std::memcmp(&a[g], &b[g], sizeof(double)), 0) << what << ", Gaussian " << g;
+      }
+    };
+    same(joined.ViewCoverage, whole.ViewCoverage);
+    same(joined.BlurScore, whole.BlurScore);
+    same(joined.NeedleScore, whole.NeedleScore);
+    same(joined.NeedleShape, whole.NeedleShape);
+    same(joined.RenderCost, whole.RenderCost);
+    same(joined.CostPerContribution, whole.CostPerContribution);
+    EXPECT_EQ(joined.Flags, whole.Flags) << what;
+    EXPECT_EQ(noCoverage, whole.NoCoverageViewCount) << what;
+    EXPECT_EQ(noScored, whole.NoScoredViewCount) << what;
+    EXPECT_EQ(invalid, whole.InvalidCount) << what;
+    EXPECT_EQ(notEvaluated, whole.NotEvaluatedCount) << what;
+    joined.NoCoverageViewCount = noCoverage;
+    joined.InvalidCount = invalid;
+    joined.NotEvaluatedCount = notEvaluated;
+    EXPECT_EQ(vis4gs::ScoreWarnings(joined, settings.Request, cloud.Count), whole.Warnings) << what;
+  }
+  // A range outside the cloud.
+  EXPECT_THROW(
+    vis4gs::FinishGaussianScores(cloud, settings, partials, 3, 3), std::invalid_argument);
+}
+
 // The split: every view to exactly one process, largest cost first onto the least-loaded one
 // (an LPT schedule: within 4/3 of the optimum), deterministic, idle processes when views are
 // fewer, costs from pixels x Gaussians in view.

@@ -309,6 +309,20 @@ TEST(MultiViewRenderer, ErrorsLikeTheRasterizer)
   Camera cam = AxisCamera(0, 10, 10, 10);
   RasterImage<float> img;
   EXPECT_THROW(mv.Render(cam, img), std::invalid_argument);
+  // Tile rectangles are kept in 16 bits: a grid of 65535 tiles is the widest, one more is
+  // refused with the camera's name.
+  EXPECT_NO_THROW(mv.Project(AxisCamera(65535 * 16, 10, 1000, 1000)));
+  Camera wide = AxisCamera(65535 * 16 + 1, 10, 1000, 1000);
+  wide.Name = "widest";
+  try
+  {
+    mv.Project(wide);
+    ADD_FAILURE() << "a grid of 65536 tiles was projected";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("'widest'"), std::string::npos) << e.what();
+  }
   // An empty cloud renders the background.
   GaussianCloud empty;
   RasterSettings rs;
