@@ -75,9 +75,11 @@ case "$part" in
     ;;
   thread)
     build="${2:-$root/build-tsan}"
+    # history_size=7 (the most): the earlier access of a race is reported with its stack (which
+    # the suppressions file matches) even after the many accesses of a long session.
     # detect_deadlocks=0: Mesa's GLX holds more than the 64 mutexes at once that TSan's lock-order
     # detector can track per thread, and TSan then stops on an internal CHECK.
-    export TSAN_OPTIONS="suppressions=$root/Scripts/tsan-suppressions.txt:detect_deadlocks=0:$TSAN_OPTIONS"
+    export TSAN_OPTIONS="suppressions=$root/Scripts/tsan-suppressions.txt:detect_deadlocks=0:history_size=7:$TSAN_OPTIONS"
     # OpenMP's runtime (libgomp) is not built with TSan: the start and barriers of a parallel
     # loop are invisible to it, so that every loop (the splat sort, the log's chunk decoding)
     # shows as a race. One OpenMP thread; the program's own threads are what is under test.
@@ -100,6 +102,10 @@ case "$part" in
     "$build/bin/vis4gsCoreSplatsTests" --gtest_filter='SplatSortWorker.*'
     bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
       "$root/Data/Demo/vis4gs-demo.h5" "--self-test=$build/self-test" --resolution=1200,800
+    # The scene view's orbit and the four picks: frames made on the mapper's worker while the
+    # GUI thread moves the camera and the selector reads the last exact frame.
+    bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
+      "$root/Data/Demo/vis4gs-demo.h5" --benchmark --resolution=800,600
     ;;
   *)
     echo "usage: bash Scripts/run-sanitizers.sh core|full|thread [build dir]" >&2
