@@ -514,6 +514,10 @@ bool vtkGaussianSession::Connect()
     d.Log->SetFileName(this->FileName.c_str());
     d.Events->SetFileName(this->FileName.c_str());
     d.Log->UpdateInformation();
+    if (!d.Errors.empty())
+    {
+      return false; // the log reader's own error (no file, not HDF5) says it all
+    }
     const int count = d.Log->GetNumberOfSnapshots();
     if (count == 0)
     {

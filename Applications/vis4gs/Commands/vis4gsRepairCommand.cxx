@@ -151,7 +151,9 @@ int Run(const Vis4GSArguments& args)
   {
     std::vector<vis4gs::Camera> cameras;
     std::string error;
-    if (!vis4gs::TableToCameras(session->GetCamerasOutput(), cameras, &error))
+    vtkTable* table = session->GetCamerasOutput();
+    // No camera file found: an empty table, no columns either.
+    if (table->GetNumberOfRows() > 0 && !vis4gs::TableToCameras(table, cameras, &error))
     {
       throw std::runtime_error(sourcePath + ": the cameras: " + error);
     }
