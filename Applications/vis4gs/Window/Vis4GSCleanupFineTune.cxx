@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanelInternals.h"
+#include "Vis4GSPostResult.h"
 
 #include "GaussianIO.h"
 #include "Vis4GSDataModel.h"
@@ -163,9 +164,7 @@ bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
       {
         job->Error = e.what();
       }
-      job->Finished.store(true, std::memory_order_release);
-      QMetaObject::invokeMethod(
-        this, [this] { this->OnFineTuned(); }, Qt::QueuedConnection);
+      Vis4GSPostResult(this, [this] { this->OnFineTuned(); });
     });
   this->UpdateButtons();
   d->RepairWorker->start();
@@ -189,7 +188,6 @@ void Vis4GSCleanupPanel::OnFineTuned()
   d->RepairWorker->deleteLater();
   d->RepairWorker = nullptr;
   const std::shared_ptr<Internals::Repair> job = std::move(d->Repairing);
-  job->Finished.load(std::memory_order_acquire);
   d->Measure->setEnabled(d->Scene && d->Cameras);
   this->UpdateButtons();
   const vis4gs::FineTuneResult& r = job->Figures;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCleanupPanelInternals.h"
+#include "Vis4GSPostResult.h"
 
 #include "GaussianIO.h"
 #include "Vis4GSDataModel.h"
@@ -236,8 +237,7 @@ void Vis4GSCleanupPanel::MeasureRemoval()
       {
         job->Error = e.what();
       }
-      QMetaObject::invokeMethod(
-        this, [this] { this->OnMeasured(); }, Qt::QueuedConnection);
+      Vis4GSPostResult(this, [this] { this->OnMeasured(); });
     });
   d->Worker->start();
 }

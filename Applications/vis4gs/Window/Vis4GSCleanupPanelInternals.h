@@ -143,9 +143,6 @@ struct Vis4GSCleanupPanel::Internals
     std::vector<vis4gs::FineTuneFigureRow> Rows;
     std::atomic<bool> Cancel{ false };
     std::string Error;
-    // Released by the worker after its last write, acquired by OnFineTuned before the first
-    // read: QThread::wait() orders them by a futex ThreadSanitizer does not see.
-    std::atomic<bool> Finished{ false };
   };
   std::shared_ptr<Repair> Repairing, Repaired;
 };

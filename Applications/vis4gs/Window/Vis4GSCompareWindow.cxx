@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSCompareWindow.h"
+#include "Vis4GSPostResult.h"
 
 #include "Vis4GSComparison.h"
 
@@ -339,8 +340,7 @@ void Vis4GSCompareWindow::Open(const QString& a,
       {
         error = QString::fromStdString(e.what());
       }
-      QMetaObject::invokeMethod(
-        this, [this, c, error] { this->OnLoaded(c, error); }, Qt::QueuedConnection);
+      Vis4GSPostResult(this, [this, c, error] { this->OnLoaded(c, error); });
     });
   d->Worker->start();
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSMainWindow.h"
 #include "Vis4GSMainWindowInternals.h"
+#include "Vis4GSPostResult.h"
 #include "Vis4GSScoreStages.h"
 
 #include "Vis4GSCleanupPanel.h"
@@ -654,8 +655,7 @@ void Vis4GSMainWindow::Open(const QString& path)
       {
         error = QString::fromStdString(e.what());
       }
-      QMetaObject::invokeMethod(
-        this, [this, doc, error] { this->OnLoaded(doc, error); }, Qt::QueuedConnection);
+      Vis4GSPostResult(this, [this, doc, error] { this->OnLoaded(doc, error); });
     });
   d->Worker->start();
 }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSScoreStages.h"
+#include "Vis4GSPostResult.h"
 
 #include "Vis4GSDocument.h"
 
@@ -130,25 +131,18 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
         {
           stage.Label = label->GetNumberOfValues() > 0 ? label->GetValue(0) : std::string();
         }
-        this->HandedOver.fetch_add(1, std::memory_order_release);
-        QMetaObject::invokeMethod(
-          this->Context,
+        Vis4GSPostResult(this->Context,
           [this, scene, stage]
           {
-            this->HandedOver.load(std::memory_order_acquire);
             if (this->StageDone)
             {
               this->StageDone(scene, stage);
             }
-          },
-          Qt::QueuedConnection);
+          });
       }
-      this->HandedOver.fetch_add(1, std::memory_order_release);
-      QMetaObject::invokeMethod(
-        this->Context,
+      Vis4GSPostResult(this->Context,
         [this, scene, error, stopped]
         {
-          this->HandedOver.load(std::memory_order_acquire);
           this->Worker->wait();
           this->Worker->deleteLater();
           this->Worker = nullptr;
@@ -156,8 +150,7 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
           {
             this->Finished(scene, error, stopped);
           }
-        },
-        Qt::QueuedConnection);
+        });
     });
   this->Worker->start();
 }

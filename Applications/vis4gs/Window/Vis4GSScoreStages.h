@@ -89,10 +89,6 @@ private:
   QObject* Context;
   QThread* Worker = nullptr;
   std::shared_ptr<std::atomic<bool>> StopFlag;
-  // The worker releases its results through this counter before posting them, and the GUI
-  // thread acquires it before reading them: Qt's event queue orders the two by a futex that
-  // ThreadSanitizer does not see, so without it every stage's arrays showed as a race.
-  std::atomic<unsigned> HandedOver{ 0 };
 };
 
 #endif
