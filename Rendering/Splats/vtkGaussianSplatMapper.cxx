@@ -16,6 +16,8 @@
 // holds the OpenGL splats and what both paths share.
 #include "vtkGaussianSplatMapper.h"
 
+#include "ElapsedTime.h"
+
 #include "vtkGaussianCameraUtilities.h"
 #include "vtkGaussianSplatFS.h"
 #include "vtkGaussianSplatGS.h"
@@ -71,6 +73,8 @@
 #include <utility>
 #include <vector>
 
+using vis4gs::MsSince;
+
 namespace
 {
 // The shaders are the files in glsl/, embedded at build time (vtk_encode_string, as VTK's
@@ -79,11 +83,6 @@ std::string SplatVertexShader(bool instanced)
 {
   return std::string("//VTK::System::Dec\n") + vtkGaussianSplatProjection +
     (instanced ? vtkGaussianSplatInstancedVS : vtkGaussianSplatPointVS);
-}
-
-double MsSince(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // CPU time of the calling thread (not the process: the sort worker and the OpenGL driver's

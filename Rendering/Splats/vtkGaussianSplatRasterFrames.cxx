@@ -10,6 +10,8 @@
 =========================================================================*/
 #include "vtkGaussianSplatRasterFrames.h"
 
+#include "ElapsedTime.h"
+
 #include "vtkGaussianSplatRasterImageFS.h"
 
 #include "vtkOpenGLQuadHelper.h"
@@ -26,13 +28,7 @@
 #include <exception>
 #include <utility>
 
-namespace
-{
-double MsSince(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-}
+using vis4gs::MsSince;
 
 //------------------------------------------------------------------------------
 vtkGaussianSplatRasterFrames::vtkGaussianSplatRasterFrames()

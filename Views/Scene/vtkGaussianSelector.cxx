@@ -10,6 +10,7 @@
 =========================================================================*/
 #include "vtkGaussianSelector.h"
 
+#include "ElapsedTime.h"
 #include "GaussianOctree.h"
 #include "ScreenSelection.h"
 #include "SelectionSet.h"
@@ -40,13 +41,10 @@
 #include <memory>
 #include <vector>
 
+using vis4gs::MsSince;
+
 namespace
 {
-double MsSince(std::chrono::steady_clock::time_point t0)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // The projection and tile lists @p mapper last drew, when they are provably those of
 // @p scene's @p count Gaussians seen by @p view (same scene object and MTime, equal camera
 // and size; the mapper vouches for full resolution, ScaleModifier 1 and unmodified
