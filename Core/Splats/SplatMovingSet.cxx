@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SplatMovingSet.h"
 
+#include "ElapsedTime.h"
 #include "GaussianMath.h"
 #include "ThreadCount.h"
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -76,6 +78,7 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
     ++set.Reuses;
     return false;
   }
+  const auto start = std::chrono::steady_clock::now();
   // The Gaussians that stay selected keep their colour while the camera of the last full
   // colour evaluation is within the colour angle; the others are gathered from the scene.
   const bool keepColors = colorAngle > 0.0 && sameScene &&
@@ -83,7 +86,12 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   std::swap(set.Subset, set.PreviousSubset);
   std::swap(set.Compact, set.Previous);
   const int threads = ThreadCount(settings.Threads);
-  SelectSplatsForView(cloud, lod, camera, budget, set.Subset, threads, reuseAngle, &set.Keys);
+  if (!sameScene)
+  {
+    set.Selection.Boundary = 0; // (another scene's boundary says nothing about this one)
+  }
+  SelectSplatsInCells(cloud, lod, camera, budget, set.Subset, set.Selection, threads, reuseAngle);
+  set.LastSelectionMs = MsSince(start);
   const std::size_t m = set.Subset.size();
   // from[j]: Gaussian j's place in the previous set (kept colour), or -1.
   std::vector<std::int64_t>& from = set.From;
@@ -124,8 +132,11 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   };
   const float c0 = static_cast<float>(sh::C0);
   const auto& v = camera.WorldToCamera;
+  // The travel test's scale from a sample (a median needs no more, and sorting every depth
+  // would be a serial step of the rebuild).
+  const std::size_t stride = std::max<std::size_t>(1, m / 4096);
   std::vector<float>& depths = set.Depths;
-  depths.resize(m);
+  depths.resize((m + stride - 1) / stride);
   constexpr std::size_t Ahead = 8;
   const std::int64_t count = static_cast<std::int64_t>(m);
 #pragma omp parallel for schedule(static) num_threads(threads)
@@ -179,7 +190,10 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
         c.SH[3 * j + q] = haveSh ? (rgb[q] - 0.5f) / c0 : 0.0f;
       }
     }
-    depths[j] = static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]);
+    if (j % stride == 0)
+    {
+      depths[j / stride] = static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]);
+    }
   }
   // The median depth of those in front (the scale of the travel test).
   auto front = std::partition(depths.begin(), depths.end(), [](float z) { return z > 0.2f; });
@@ -208,6 +222,7 @@ bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   static std::atomic<std::uint64_t> generations{ 0 };
   set.Generation = ++generations;
   ++set.Rebuilds;
+  set.LastRebuildMs = MsSince(start);
   return true;
 }
 

@@ -57,11 +57,16 @@ struct SplatMovingSet
   std::size_t Rebuilds = 0;
   std::size_t Reuses = 0;
   std::size_t ColorRefreshes = 0;
+  /// Wall milliseconds of the last rebuild's selection and of the whole rebuild (benchmarks).
+  double LastSelectionMs = 0.0;
+  double LastRebuildMs = 0.0;
   /// The previous rebuild's Subset and Compact, and a rebuild's scratch (their buffers are
   /// reused, so that a rebuild does not page-fault tens of MB again; internal).
   std::vector<std::uint32_t> PreviousSubset;
   GaussianCloud Previous;
-  std::vector<std::uint16_t> Keys;
+  /// The selection's keys and last boundary (SelectSplatsInCells: a rebuild examines only the
+  /// cells that can hold a selected Gaussian).
+  SplatSelectionState Selection;
   std::vector<std::int64_t> From;
   std::vector<float> Depths;
 
@@ -75,7 +80,8 @@ struct SplatMovingSet
   int ShDegree = 0;
   bool Colors = true;
   double ReuseAngle = 0.0;
-  /// Median view depth of the selected Gaussians in front of the rebuild's camera.
+  /// Median view depth of the selected Gaussians in front of the rebuild's camera (of a
+  /// sample of at most 4,096 of them, evenly spaced).
   double Depth = 0.0;
 };
 
@@ -88,7 +94,8 @@ double SplatViewChangeAngle(const Camera& rank, const Camera& now, double depth)
 
 /**
  * Makes @p set hold the Gaussians of @p cloud a moving frame of @p camera draws under
- * @p budget (SelectSplatsForView), reusing it when it was made for the same cloud (address and
+ * @p budget (SelectSplatsForView's subset, by SelectSplatsInCells), reusing it when it was made for
+ * the same cloud (address and
  * @p cloudVersion), budget, SH degree and colour setting of @p settings, reuse angle and field
  * of view, and the view changed by at most @p reuseAngle radians since (SplatViewChangeAngle).
  * A rebuild evaluates the colours of the Gaussians newly selected; those of the Gaussians that

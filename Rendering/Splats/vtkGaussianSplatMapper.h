@@ -407,6 +407,19 @@ public:
   vtkGetMacro(LastRasterTime, double);
   ///@}
 
+  ///@{
+  /**
+   * CPU path: wall and CPU milliseconds (the whole process's, every thread) of the steps of
+   * the last frame made: 0 the level of detail (a moving frame's choice of Gaussians, or its
+   * reuse), 1 projection, 2 overlay, 3 binning, 4 compositing, 5 the image turned into
+   * texels; and of its texture upload and draw on the render thread (LastRasterDrawTime).
+   * Zeros when the cached image was reused. For the benchmarks: where a frame's time goes.
+   */
+  vtkGetVector6Macro(LastRasterPhaseTimes, double);
+  vtkGetVector6Macro(LastRasterPhaseCpuTimes, double);
+  vtkGetMacro(LastRasterDrawTime, double);
+  ///@}
+
   /**
    * CPU path: whether the last frame drew the InteractiveSplatBudget's Gaussians only (a
    * moving frame of a scene larger than the budget) instead of every Gaussian.
@@ -597,6 +610,9 @@ protected:
   double InteractiveUpdateRate = 1.0;
   double LastImageSampleDistance = 1.0;
   double LastRasterTime = 0.0;
+  double LastRasterPhaseTimes[6] = { 0, 0, 0, 0, 0, 0 };
+  double LastRasterPhaseCpuTimes[6] = { 0, 0, 0, 0, 0, 0 };
+  double LastRasterDrawTime = 0.0;
   vtkIdType InteractiveSplatBudget = 400000;
   double SelectionWeightThreshold = 0.01;
   double InteractiveReuseAngle = 6.0;

@@ -106,6 +106,11 @@ public:
     int Width = 0, Height = 0;
     std::size_t Drawn = 0;
     double Milliseconds = 0.0; ///< wall time of the production
+    /// Wall and process CPU milliseconds (all threads) of the production's steps, in the order
+    /// of vtkGaussianSplatMapper::GetLastRasterPhaseTimes(): the level of detail (selection or
+    /// reuse), projection, overlay, binning, compositing, texels.
+    std::array<double, 6> PhaseMs{};
+    std::array<double, 6> PhaseCpuMs{};
     bool Reduced = false;
     double SampleDistance = 1.0;
     bool Interactive = false;

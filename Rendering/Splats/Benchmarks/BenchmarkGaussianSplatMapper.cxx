@@ -359,6 +359,9 @@ int main(int argc, char* argv[])
       mapper->SetInteractiveImageSampleDistance(sampleDistance);
     }
     std::vector<double> inter, interCpu, psnr, dist, drawn;
+    // Per step of the moving frames (vtkGaussianSplatMapper::GetLastRasterPhaseTimes), summed.
+    double stepWall[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }, stepCpu[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    std::vector<double> lodStep;
     double firstInteractive = 0.0;
     std::size_t holes = 0;
     for (int f = 0; f < frames; ++f)
@@ -381,6 +384,25 @@ int main(int argc, char* argv[])
       }
       inter.push_back(t);
       interCpu.push_back(1000.0 * static_cast<double>(std::clock() - c) / CLOCKS_PER_SEC);
+      {
+        double w[6], cp[6];
+        mapper->GetLastRasterPhaseTimes(w);
+        mapper->GetLastRasterPhaseCpuTimes(cp);
+        double wallSum = 0, cpuSum = 0;
+        for (int k = 0; k < 6; ++k)
+        {
+          stepWall[k] += w[k];
+          stepCpu[k] += cp[k];
+          wallSum += w[k];
+          cpuSum += cp[k];
+        }
+        // The render thread's upload and draw, then what the Render() took besides (the
+        // OpenGL driver finishing the frame, VTK's own work).
+        stepWall[6] += mapper->GetLastRasterDrawTime();
+        stepWall[7] += t - wallSum - mapper->GetLastRasterDrawTime();
+        stepCpu[7] += interCpu.back() - cpuSum;
+        lodStep.push_back(w[0]);
+      }
       dist.push_back(mapper->GetLastImageSampleDistance());
       drawn.push_back(static_cast<double>(mapper->GetLastDrawnCount()));
       const auto low = grab();
@@ -449,6 +471,31 @@ int main(int argc, char* argv[])
       mean(interCpu),
       *std::max_element(inter.begin(), inter.end()),
       *std::max_element(interCpu.begin(), interCpu.end()));
+    const double frameCount = static_cast<double>(std::max<std::size_t>(1, inter.size()));
+    std::printf("  interactive frames, wall / CPU ms (level of detail step's wall):");
+    for (std::size_t k = 0; k < inter.size(); ++k)
+    {
+      std::printf(" %.1f / %.1f (%.1f)", inter[k], interCpu[k], lodStep[k]);
+    }
+    std::printf("\n");
+    std::printf("  interactive steps, mean wall / CPU ms: level of detail %.1f / %.1f, projection "
+                "%.1f / %.1f, overlay %.1f / %.1f, binning %.1f / %.1f, compositing %.1f / %.1f, "
+                "texels %.1f / %.1f; upload and draw %.1f; the rest of Render() %.1f / %.1f\n",
+      stepWall[0] / frameCount,
+      stepCpu[0] / frameCount,
+      stepWall[1] / frameCount,
+      stepCpu[1] / frameCount,
+      stepWall[2] / frameCount,
+      stepCpu[2] / frameCount,
+      stepWall[3] / frameCount,
+      stepCpu[3] / frameCount,
+      stepWall[4] / frameCount,
+      stepCpu[4] / frameCount,
+      stepWall[5] / frameCount,
+      stepCpu[5] / frameCount,
+      stepWall[6] / frameCount,
+      stepWall[7] / frameCount,
+      stepCpu[7] / frameCount);
     std::printf("  holes: %.0f pixels per moving frame covered in the full frame, background in "
                 "the moving one\n",
       static_cast<double>(holes) / std::max<std::size_t>(1, psnr.size()));
