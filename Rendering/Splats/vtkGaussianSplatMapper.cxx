@@ -688,6 +688,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     request.Reduced = reduced;
     request.ReuseAngle = this->InteractiveReuseAngle * vtkMath::Pi() / 180.0;
     request.ColorAngle = this->InteractiveColorAngle * vtkMath::Pi() / 180.0;
+    request.RebuildAhead = this->InteractiveRebuildAhead;
     if (reduced)
     {
       request.Settings.TransmittanceStop = this->InteractiveTransmittanceStop;
@@ -1264,6 +1265,7 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SelectionWeightThreshold: " << this->SelectionWeightThreshold << "\n";
   os << indent << "InteractiveReuseAngle: " << this->InteractiveReuseAngle << "\n";
   os << indent << "InteractiveColorAngle: " << this->InteractiveColorAngle << "\n";
+  os << indent << "InteractiveRebuildAhead: " << this->InteractiveRebuildAhead << "\n";
   os << indent << "InteractiveTransmittanceStop: " << this->InteractiveTransmittanceStop << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";

@@ -389,6 +389,23 @@ public:
 
   ///@{
   /**
+   * CPU path: once the view has moved this fraction of InteractiveReuseAngle away from the
+   * camera the level of detail's Gaussians were chosen for, the next choice starts on a
+   * builder thread for the current view (vis4gs::BuildSplatMovingSet), and the moving frames
+   * keep drawing the current choice until it is ready (a frame whose view the current choice
+   * no longer serves waits for it). The choice's work is the same; it leaves the frame's
+   * level-of-detail step and runs beside the frame, which on two cores then shares them with
+   * it (measured: no less CPU per moving frame, Documentation/accuracy-vs-runtime.md; in fast
+   * motion the choice made ahead may be stale and made again). 0 (default) chooses again only
+   * when a frame needs it, on the thread that makes the frame (the frames then depend on
+   * nothing but their cameras).
+   */
+  vtkSetClampMacro(InteractiveRebuildAhead, double, 0.0, 1.0);
+  vtkGetMacro(InteractiveRebuildAhead, double);
+  ///@}
+
+  ///@{
+  /**
    * CPU path: the transmittance at which a moving frame's pixel stops blending
    * (vis4gs::RasterSettings::TransmittanceStop): what remains behind it, at most this fraction
    * of the pixel, is left out. Still frames use the reference's 1e-4 whatever this is. Default
@@ -617,6 +634,7 @@ protected:
   double SelectionWeightThreshold = 0.01;
   double InteractiveReuseAngle = 6.0;
   double InteractiveColorAngle = 18.0;
+  double InteractiveRebuildAhead = 0.0;
   double InteractiveTransmittanceStop = 0.004;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;

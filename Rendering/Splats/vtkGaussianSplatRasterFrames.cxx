@@ -54,6 +54,7 @@ vtkGaussianSplatRasterFrames::~vtkGaussianSplatRasterFrames()
 {
   this->Cancel(); // (the frame in production is finished: the rasteriser cannot be stopped)
   this->SetAsynchronous(false);
+  this->FinishLodBuild(0);
   this->ImageTexture->Delete();
   this->DepthTexture->Delete();
 }
@@ -139,10 +140,28 @@ void vtkGaussianSplatRasterFrames::Submit(Request request)
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianSplatRasterFrames::FinishLodBuild(std::uint64_t cloudVersion)
+{
+  if (!this->LodBuilder.joinable())
+  {
+    return;
+  }
+  this->LodBuilder.join();
+  this->LodBuilt = false;
+  if (!this->LodBuildFailed && this->LodBuildVersion == cloudVersion && cloudVersion != 0)
+  {
+    vis4gs::PublishSplatMovingSet(this->LodSet);
+  }
+  this->LodSet.Next.Ready = false;
+  this->LodBuildCloud.reset();
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSplatRasterFrames::PrepareWantedLevelOfDetail()
 {
   if (this->LodWanted && this->LodSource != this->LodWantedVersion)
   {
+    this->FinishLodBuild(0); // (it reads the level of detail about to change)
     vis4gs::PrepareSplatLevelOfDetail(*this->LodWanted, this->Lod, this->LodWantedThreads);
     this->LodSource = this->LodWantedVersion;
   }
@@ -287,6 +306,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
   if (this->LodSource != 0 && this->LodSource != r.CloudVersion)
   {
     // A new scene: the old one's level of detail is not needed any more.
+    this->FinishLodBuild(0);
     this->Lod = vis4gs::SplatLevelOfDetail();
     this->LodSet = vis4gs::SplatMovingSet();
     this->LodWork = vis4gs::RasterWorkspace<float>();
@@ -304,6 +324,15 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         vis4gs::PrepareSplatLevelOfDetail(cloud, this->Lod, threads);
         this->LodSource = r.CloudVersion;
       }
+      // A rebuild started ahead of need becomes the set once it has finished, or when the
+      // current set does not serve this view any more (then this frame waits for it).
+      if (this->LodBuilder.joinable() &&
+        (this->LodBuilt.load() ||
+          !vis4gs::SplatMovingSetReusable(
+            cloud, r.CloudVersion, camera, r.Budget, r.Settings, r.ReuseAngle, this->LodSet)))
+      {
+        this->FinishLodBuild(r.CloudVersion);
+      }
       // The compact copy of the selected Gaussians, kept while the view moves less than the
       // reuse angle, is projected with its own kept preparation.
       vis4gs::UpdateSplatMovingSet(cloud,
@@ -315,6 +344,46 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         r.ReuseAngle,
         r.ColorAngle,
         this->LodSet);
+      if (r.RebuildAhead > 0.0 && r.ReuseAngle > 0.0 && !this->LodBuilder.joinable() &&
+        !vis4gs::SplatMovingSetReusable(cloud,
+          r.CloudVersion,
+          camera,
+          r.Budget,
+          r.Settings,
+          r.ReuseAngle,
+          this->LodSet,
+          r.RebuildAhead))
+      {
+        // The next set, for this view, on the builder thread: it reads the cloud, the level of
+        // detail and the published set, and writes only the set's spare buffers, while the
+        // frames keep projecting the published set.
+        this->LodBuildCloud = r.Cloud;
+        this->LodBuildVersion = r.CloudVersion;
+        this->LodBuildFailed = false;
+        this->LodBuilt = false;
+        this->LodBuilder = std::thread(
+          [this, camera, r]
+          {
+            try
+            {
+              vis4gs::BuildSplatMovingSet(*this->LodBuildCloud,
+                r.CloudVersion,
+                this->Lod,
+                camera,
+                r.Budget,
+                r.Settings,
+                r.ReuseAngle,
+                r.ColorAngle,
+                this->LodSet);
+            }
+            catch (const std::exception&)
+            {
+              // (dropped: the frame that needs a new set rebuilds it and reports the error)
+              this->LodBuildFailed = true;
+            }
+            this->LodBuilt = true;
+          });
+      }
       endStep(0);
       vis4gs::ProjectGaussians(this->LodSet.Compact,
         camera,

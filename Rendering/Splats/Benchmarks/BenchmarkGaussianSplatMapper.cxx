@@ -19,7 +19,9 @@
 //        [interactive transmittance stop=-1 (CPU rasteriser path: where a moving frame's pixel
 //         stops blending; -1 = the mapper's default)] [interactive colour angle=-1 (CPU
 //         rasteriser path: degrees before every colour of the moving frames' Gaussians is
-//         evaluated again; -1 = the mapper's default)]
+//         evaluated again; -1 = the mapper's default)] [interactive rebuild ahead=-1 (CPU
+//         rasteriser path: fraction of the reuse angle after which the next choice of
+//         Gaussians starts on a builder thread; 0 = off, -1 = the mapper's default)]
 #include "BenchmarkScene.h"
 #include "SplatSortWorker.h"
 #include "Vis4GSDataModel.h"
@@ -96,6 +98,7 @@ int main(int argc, char* argv[])
   const double reuseAngle = argc > 14 ? std::atof(argv[14]) : -1.0;
   const double transmittanceStop = argc > 15 ? std::atof(argv[15]) : -1.0;
   const double colorAngle = argc > 16 ? std::atof(argv[16]) : -1.0;
+  const double rebuildAhead = argc > 17 ? std::atof(argv[17]) : -1.0;
   const auto cloud = vis4gs::MakeBenchmarkScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
@@ -120,6 +123,10 @@ int main(int argc, char* argv[])
   if (colorAngle >= 0)
   {
     mapper->SetInteractiveColorAngle(colorAngle);
+  }
+  if (rebuildAhead >= 0)
+  {
+    mapper->SetInteractiveRebuildAhead(rebuildAhead);
   }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -447,7 +454,8 @@ int main(int argc, char* argv[])
       return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
     };
     std::printf("  interactive (sample distance %.2f, splat budget %lld, reuse angle %.1f deg, "
-                "colour angle %.1f deg, transmittance stop %g, %.0f drawn; first %.1f ms): %9.1f "
+                "colour angle %.1f deg, transmittance stop %g, rebuild ahead %g, %.0f drawn; "
+                "first %.1f ms): %9.1f "
                 "ms/frame = %6.2f fps, CPU %.1f ms/frame, PSNR against the full-quality frame "
                 "%.2f dB (min %.2f)\n",
       median(dist),
@@ -455,6 +463,7 @@ int main(int argc, char* argv[])
       mapper->GetInteractiveReuseAngle(),
       mapper->GetInteractiveColorAngle(),
       mapper->GetInteractiveTransmittanceStop(),
+      mapper->GetInteractiveRebuildAhead(),
       median(drawn),
       firstInteractive,
       median(inter),
