@@ -167,9 +167,9 @@ public:
    * rasteriser settings (vis4gs::RemovalBaselineRecorder in the score pass, or another filter's
    * GetMeasuredBaseline()); C++ only. Views it holds are not rendered "before"; the wanted
    * views with an image it lacks are rendered and added to a copy. One made for another number
-   * of Gaussians or cameras, or with other rasteriser settings, is an error; an empty one (no views)
-   * is none. Used with ReuseTiles only. Default null: the filter renders the "before" of every
-   * view itself (once per input).
+   * of Gaussians or cameras, or with other rasteriser settings, is an error; an empty one (no
+   * views) is none. Used with ReuseTiles only. Default null: the filter renders the "before" of
+   * every view itself (once per input).
    */
   void SetBaseline(std::shared_ptr<const vis4gs::RemovalBaseline> baseline);
   std::shared_ptr<const vis4gs::RemovalBaseline> GetBaseline() const;
