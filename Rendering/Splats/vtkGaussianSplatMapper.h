@@ -495,6 +495,20 @@ public:
   vtkBooleanMacro(AsynchronousFrames, bool);
   ///@}
 
+  ///@{
+  /**
+   * CPU path, AsynchronousFrames: the nice value of the frame worker and of the OpenMP threads
+   * it starts (vis4gs::LowerThreadPriority), taken when the worker starts (the first
+   * asynchronous frame). The render thread and the OpenGL driver's threads then run first when
+   * they have work, so that a pick's answer and the linked views' renders do not wait for the
+   * highlighted frame the same pick asked for (on two cores the worker's team takes both); the
+   * worker has the CPU whenever they wait. Frames are the same, only their timing changes.
+   * 0-19; default 10 (0: the render thread's priority).
+   */
+  vtkSetClampMacro(FrameWorkerNice, int, 0, 19);
+  vtkGetMacro(FrameWorkerNice, int);
+  ///@}
+
   /**
    * CPU path: whether the frame drawn by the last render is not yet the one for its camera
    * and display options (being produced, or finished and waiting for a render).
@@ -638,6 +652,7 @@ protected:
   double InteractiveTransmittanceStop = 0.004;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;
+  int FrameWorkerNice = 10;
   vtkLookupTable* ScoreLookupTable = nullptr;
   vtkIdType LastDrawnCount = 0;
   double LastSortTime = 0.0;

@@ -11,6 +11,7 @@
 #include "vtkGaussianSplatRasterFrames.h"
 
 #include "ElapsedTime.h"
+#include "ThreadCount.h"
 
 #include "vtkGaussianSplatRasterImageFS.h"
 
@@ -169,9 +170,18 @@ void vtkGaussianSplatRasterFrames::PrepareWantedLevelOfDetail()
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianSplatRasterFrames::SetWorkerNice(int nice)
+{
+  std::lock_guard<std::mutex> lock(this->Mutex);
+  this->WorkerNice = nice;
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSplatRasterFrames::Run()
 {
   std::unique_lock<std::mutex> lock(this->Mutex);
+  // Before any parallel region: the OpenMP team this thread starts inherits it.
+  vis4gs::LowerThreadPriority(this->WorkerNice);
   for (;;)
   {
     this->Wake.wait(lock, [this] { return this->Stop || this->Pending; });
@@ -186,9 +196,7 @@ void vtkGaussianSplatRasterFrames::Run()
     lock.lock();
     std::swap(this->Back, this->Ready);
     this->HasReady = true;
-    this->Working = false;
     lock.unlock();
-    this->Idle.notify_all();
     {
       std::lock_guard<std::mutex> callbackLock(this->CallbackMutex);
       if (this->Callback)
@@ -197,6 +205,11 @@ void vtkGaussianSplatRasterFrames::Run()
       }
     }
     lock.lock();
+    // Idle only once the callback has returned: whoever waited (Wait()) may then drop the
+    // callback knowing that none is still to come for these frames (a worker at a lower
+    // priority than the waiting thread may be preempted between the two).
+    this->Working = false;
+    this->Idle.notify_all();
     if (!this->Pending && this->LodWanted)
     {
       // (Working stays false: this is no frame; a request arriving meanwhile waits for it.)

@@ -139,6 +139,9 @@ public:
   void SetAsynchronous(bool on);
   bool GetAsynchronous() const { return this->Asynchronous; }
 
+  /// The worker's nice value (vis4gs::LowerThreadPriority), taken when the worker starts.
+  void SetWorkerNice(int nice);
+
   /// Called on the worker thread after each finished frame (asynchronous mode); clearing it
   /// waits for a call in progress.
   void SetFrameReadyCallback(std::function<void()> callback);
@@ -151,10 +154,11 @@ public:
   /// cloud version other than @p cloudVersion are dropped (false).
   bool TakeFinished(std::uint64_t cloudVersion, Frame& frame);
 
-  /// Whether a request is waiting or in production.
+  /// Whether a request is waiting or in production (its frame-ready callback included).
   bool Busy() const;
 
-  /// Blocks until no request is waiting or in production.
+  /// Blocks until no request is waiting or in production: every frame-ready callback of the
+  /// frames made so far has returned.
   void Wait();
 
   /// Drops the request not started yet (the scene changed).
@@ -226,6 +230,7 @@ private:
   Frame Ready; // finished, not taken yet
   bool HasReady = false;
   bool Asynchronous = false;
+  int WorkerNice = 0;
   std::thread Worker;
   std::mutex CallbackMutex; // held while the callback runs
   std::function<void()> Callback;
