@@ -705,6 +705,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     request.Reduced = reduced;
     request.ReuseAngle = this->InteractiveReuseAngle * vtkMath::Pi() / 180.0;
     request.ColorAngle = this->InteractiveColorAngle * vtkMath::Pi() / 180.0;
+    request.RebuildAhead = this->InteractiveRebuildAhead;
     if (reduced)
     {
       request.Settings.TransmittanceStop = this->InteractiveTransmittanceStop;
@@ -723,7 +724,11 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   }
 
   // Show the newest finished frame (synchronous: the one just made).
-  this->LastRasterTime = 0.0;
+  this->LastRasterTime = this->LastRasterDrawTime = 0.0;
+  std::fill_n(this->LastRasterPhaseTimes, 6, 0.0);
+  std::fill_n(this->LastRasterPhaseCpuTimes, 6, 0.0);
+  const auto drawStart = std::chrono::steady_clock::now();
+  bool uploaded = false;
   if (in.Frames.TakeFinished(in.CloudVersion, in.Shown))
   {
     const vtkGaussianSplatRasterFrames::Frame& frame = in.Shown;
@@ -745,7 +750,10 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     in.RasterDrawn = frame.Drawn;
     in.RasterReduced = frame.Reduced;
     ++in.FramesShown;
+    uploaded = true;
     this->LastRasterTime = frame.Milliseconds;
+    std::copy(frame.PhaseMs.begin(), frame.PhaseMs.end(), this->LastRasterPhaseTimes);
+    std::copy(frame.PhaseCpuMs.begin(), frame.PhaseCpuMs.end(), this->LastRasterPhaseCpuTimes);
     this->LastImageSampleDistance = frame.SampleDistance;
     if (frame.Interactive && this->AutoAdjustImageSampleDistances && rate > 0)
     {
@@ -770,6 +778,10 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   if (!in.Frames.Draw(renWin, depthCoeffs))
   {
     vtkErrorMacro("vtkGaussianSplatMapper: the image shaders failed to compile");
+  }
+  if (uploaded)
+  {
+    this->LastRasterDrawTime = vis4gs::MsSince(drawStart);
   }
 }
 
@@ -1255,10 +1267,22 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
+  os << indent << "LastRasterPhaseTimes:";
+  for (double t : this->LastRasterPhaseTimes)
+  {
+    os << " " << t;
+  }
+  os << "\n" << indent << "LastRasterPhaseCpuTimes:";
+  for (double t : this->LastRasterPhaseCpuTimes)
+  {
+    os << " " << t;
+  }
+  os << "\n" << indent << "LastRasterDrawTime: " << this->LastRasterDrawTime << "\n";
   os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
   os << indent << "SelectionWeightThreshold: " << this->SelectionWeightThreshold << "\n";
   os << indent << "InteractiveReuseAngle: " << this->InteractiveReuseAngle << "\n";
   os << indent << "InteractiveColorAngle: " << this->InteractiveColorAngle << "\n";
+  os << indent << "InteractiveRebuildAhead: " << this->InteractiveRebuildAhead << "\n";
   os << indent << "InteractiveTransmittanceStop: " << this->InteractiveTransmittanceStop << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";
