@@ -44,6 +44,26 @@ std::map<std::string, std::string> ImagesByName(const std::string& folder)
 }
 
 //------------------------------------------------------------------------------
+bool Vis4GSMatchImagesByName(std::vector<vis4gs::Camera>& cameras,
+  const std::string& folder,
+  std::string& error)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+  {
+    error = folder + ": not a folder";
+    return false;
+  }
+  const auto files = ImagesByName(folder);
+  for (vis4gs::Camera& camera : cameras)
+  {
+    const auto it = files.find(camera.Name);
+    camera.ImagePath = it == files.end() ? std::string() : it->second;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool Vis4GSTrainingImages(vtkTable* table,
   const std::string& imageDirectory,
   const std::array<float, 3>& background,
@@ -51,20 +71,10 @@ bool Vis4GSTrainingImages(vtkTable* table,
   vis4gs::TrainingImageProvider& images,
   std::string& error)
 {
-  if (!imageDirectory.empty())
+  if (!imageDirectory.empty() && !Vis4GSMatchImagesByName(cameras, imageDirectory, error))
   {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(imageDirectory, ec))
-    {
-      error = "ImageDirectory '" + imageDirectory + "' is not a folder.";
-      return false;
-    }
-    const auto files = ImagesByName(imageDirectory);
-    for (vis4gs::Camera& camera : cameras)
-    {
-      const auto it = files.find(camera.Name);
-      camera.ImagePath = it == files.end() ? std::string() : it->second;
-    }
+    error = "ImageDirectory '" + imageDirectory + "' is not a folder.";
+    return false;
   }
   std::shared_ptr<const vis4gs::TrainingLogReader> log;
   if (table)

@@ -35,6 +35,16 @@
 class vtkTable;
 
 /**
+ * Sets each camera's ImagePath to the regular file of @p folder whose name up to its first '.'
+ * is the camera's Name (the trainer's image_name), empty where none matches: the rule of every
+ * filter's ImageDirectory, and of the commands' and the application's `--images`. False, with
+ * the reason in @p error, when @p folder is not a folder.
+ */
+VIS4GSFILTERSDIAGNOSTICS_EXPORT bool Vis4GSMatchImagesByName(std::vector<vis4gs::Camera>& cameras,
+  const std::string& folder,
+  std::string& error);
+
+/**
  * Points @p cameras (read from @p table) at their images and returns in @p images the provider
  * that reads them with @p background behind transparent pixels. False, with the reason in
  * @p error, when @p imageDirectory is given and is not a folder, or when the log the table names

@@ -842,7 +842,22 @@ bool vtkGaussianSession::ProducePort(int port,
         ids->Resize(this->MaximumHistoryIds); // (sorted: the smallest ids stay)
         ids->SetNumberOfValues(this->MaximumHistoryIds);
       }
-      return d.Log->GetPropertyHistory(ids, vtkTable::SafeDownCast(output)) != 0;
+      const std::size_t before = d.Errors.size();
+      if (d.Log->GetPropertyHistory(ids, vtkTable::SafeDownCast(output)) != 0)
+      {
+        return true;
+      }
+      // Said as the history's: a client that pulls this port beside others (the timeline) can
+      // tell its user which part failed. (The reader's message may start with the file.)
+      const std::string named = this->FileName + ": ";
+      for (std::size_t e = before; e < d.Errors.size(); ++e)
+      {
+        std::string& text = d.Errors[e];
+        text = text.rfind(named, 0) == 0
+          ? named + "the property history: " + text.substr(named.size())
+          : "the property history: " + text;
+      }
+      return false;
     }
     case RemovalViewsPort:
     case RemovalTotalsPort:

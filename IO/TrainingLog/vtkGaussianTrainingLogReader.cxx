@@ -74,6 +74,146 @@ vtkSmartPointer<ArrayT> MakeColumn(const char* name,
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   return array;
 }
+
+/// The measured columns of a metrics row, in the log's order (the merged table's Test* too).
+const char* const MeasuredColumns[6] = { vis4gs::arrays::MetricLoss,
+  vis4gs::arrays::MetricL1,
+  vis4gs::arrays::MetricPSNR,
+  vis4gs::arrays::MetricSSIM,
+  vis4gs::arrays::MetricLPIPS,
+  vis4gs::arrays::MetricElapsed };
+
+/// The metrics port for the timeline: one row per iteration, the test columns Test*.
+void MergedMetrics(const vis4gs::MetricsTable& train,
+  const vis4gs::MetricsTable& test,
+  vtkTable* output)
+{
+  // One row per iteration: the train rows in order, then test-only iterations, sorted.
+  std::map<int, std::size_t> testRow;
+  for (std::size_t i = 0; i < test.Size(); ++i)
+  {
+    testRow.emplace(test.Iteration[i], i);
+  }
+  struct Row
+  {
+    int Iteration;
+    long long Train; // row in train or -1
+    long long Test;  // row in test or -1
+  };
+  std::vector<Row> rows;
+  std::map<int, bool> trainHas;
+  for (std::size_t i = 0; i < train.Size(); ++i)
+  {
+    auto t = testRow.find(train.Iteration[i]);
+    const bool first = trainHas.emplace(train.Iteration[i], true).second;
+    rows.push_back({ train.Iteration[i],
+      static_cast<long long>(i),
+      t != testRow.end() && first ? static_cast<long long>(t->second) : -1 });
+  }
+  for (const auto& t : testRow)
+  {
+    if (!trainHas.count(t.first))
+    {
+      rows.push_back({ t.first, -1, static_cast<long long>(t.second) });
+    }
+  }
+  std::stable_sort(
+    rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.Iteration < b.Iteration; });
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<int> iterations;
+  std::vector<vtkIdType> counts;
+  std::vector<double> columns[11];
+  for (const Row& r : rows)
+  {
+    iterations.push_back(r.Iteration);
+    counts.push_back(r.Train >= 0 ? train.NumGaussians[static_cast<std::size_t>(r.Train)]
+                                  : test.NumGaussians[static_cast<std::size_t>(r.Test)]);
+    if (r.Train >= 0)
+    {
+      const std::size_t i = static_cast<std::size_t>(r.Train);
+      const double v[6] = { train.Loss[i],
+        train.L1[i],
+        train.Psnr[i],
+        train.Ssim[i],
+        train.Lpips[i],
+        train.ElapsedSeconds[i] };
+      for (int c = 0; c < 6; ++c)
+      {
+        columns[c].push_back(v[c]);
+      }
+    }
+    else
+    {
+      for (int c = 0; c < 6; ++c)
+      {
+        columns[c].push_back(c == 5 ? test.ElapsedSeconds[static_cast<std::size_t>(r.Test)] : nan);
+      }
+    }
+    if (r.Test >= 0)
+    {
+      const std::size_t i = static_cast<std::size_t>(r.Test);
+      const double v[5] = { test.Loss[i], test.L1[i], test.Psnr[i], test.Ssim[i], test.Lpips[i] };
+      for (int c = 0; c < 5; ++c)
+      {
+        columns[6 + c].push_back(v[c]);
+      }
+    }
+    else
+    {
+      for (int c = 0; c < 5; ++c)
+      {
+        columns[6 + c].push_back(nan);
+      }
+    }
+  }
+  namespace names = vis4gs::arrays;
+  output->AddColumn(MakeColumn<vtkIntArray>(names::MetricIteration, iterations));
+  output->AddColumn(MakeColumn<vtkIdTypeArray>(names::MetricGaussians, counts));
+  for (int c = 0; c < 11; ++c)
+  {
+    const std::string name = c < 6 ? std::string(MeasuredColumns[c])
+                                   : std::string(names::MetricTestPrefix) + MeasuredColumns[c - 6];
+    output->AddColumn(MakeColumn<vtkDoubleArray>(name.c_str(), columns[c]));
+  }
+}
+
+/// The metrics port as the log holds it (MetricsAsLogged): the train rows, then the test rows.
+void LoggedMetrics(const vis4gs::MetricsTable& train,
+  const vis4gs::MetricsTable& test,
+  vtkTable* output)
+{
+  std::vector<int> iterations;
+  std::vector<vtkIdType> counts;
+  std::vector<int> split;
+  std::vector<double> columns[6];
+  for (const vis4gs::MetricsTable* table : { &train, &test })
+  {
+    for (std::size_t i = 0; i < table->Size(); ++i)
+    {
+      iterations.push_back(table->Iteration[i]);
+      counts.push_back(static_cast<vtkIdType>(table->NumGaussians[i]));
+      split.push_back(table == &test ? 1 : 0);
+      const double v[6] = { table->Loss[i],
+        table->L1[i],
+        table->Psnr[i],
+        table->Ssim[i],
+        table->Lpips[i],
+        table->ElapsedSeconds[i] };
+      for (int c = 0; c < 6; ++c)
+      {
+        columns[c].push_back(v[c]);
+      }
+    }
+  }
+  namespace names = vis4gs::arrays;
+  output->AddColumn(MakeColumn<vtkIntArray>(names::MetricIteration, iterations));
+  output->AddColumn(MakeColumn<vtkIdTypeArray>(names::MetricGaussians, counts));
+  for (int c = 0; c < 6; ++c)
+  {
+    output->AddColumn(MakeColumn<vtkDoubleArray>(MeasuredColumns[c], columns[c]));
+  }
+  output->AddColumn(MakeColumn<vtkIntArray>(names::CameraSplit, split));
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -103,6 +243,7 @@ void vtkGaussianTrainingLogReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LoadOpacities: " << this->LoadOpacities << "\n";
   os << indent << "LoadSH: " << this->LoadSH << "\n";
   os << indent << "LoadStatistics: " << this->LoadStatistics << "\n";
+  os << indent << "MetricsAsLogged: " << this->MetricsAsLogged << "\n";
   os << indent << "Repair: " << this->Repair << "\n";
   os << indent << "LoadedIteration: " << this->LoadedIteration << "\n";
   os << indent << "SnapshotReads: " << this->SnapshotReads << "\n";
@@ -420,102 +561,13 @@ int vtkGaussianTrainingLogReader::RequestData(vtkInformation* request,
       output->Initialize();
       const vis4gs::MetricsTable train = d.Log->ReadMetrics(false);
       const vis4gs::MetricsTable test = d.Log->ReadMetrics(true);
-      // One row per iteration: the train rows in order, then test-only iterations, sorted.
-      std::map<int, std::size_t> testRow;
-      for (std::size_t i = 0; i < test.Size(); ++i)
+      if (this->MetricsAsLogged)
       {
-        testRow.emplace(test.Iteration[i], i);
+        LoggedMetrics(train, test, output);
       }
-      struct Row
+      else
       {
-        int Iteration;
-        long long Train; // row in train or -1
-        long long Test;  // row in test or -1
-      };
-      std::vector<Row> rows;
-      std::map<int, bool> trainHas;
-      for (std::size_t i = 0; i < train.Size(); ++i)
-      {
-        auto t = testRow.find(train.Iteration[i]);
-        const bool first = trainHas.emplace(train.Iteration[i], true).second;
-        rows.push_back({ train.Iteration[i],
-          static_cast<long long>(i),
-          t != testRow.end() && first ? static_cast<long long>(t->second) : -1 });
-      }
-      for (const auto& t : testRow)
-      {
-        if (!trainHas.count(t.first))
-        {
-          rows.push_back({ t.first, -1, static_cast<long long>(t.second) });
-        }
-      }
-      std::stable_sort(rows.begin(),
-        rows.end(),
-        [](const Row& a, const Row& b) { return a.Iteration < b.Iteration; });
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      std::vector<int> iterations;
-      std::vector<vtkIdType> counts;
-      std::vector<double> columns[11];
-      for (const Row& r : rows)
-      {
-        iterations.push_back(r.Iteration);
-        counts.push_back(r.Train >= 0 ? train.NumGaussians[static_cast<std::size_t>(r.Train)]
-                                      : test.NumGaussians[static_cast<std::size_t>(r.Test)]);
-        if (r.Train >= 0)
-        {
-          const std::size_t i = static_cast<std::size_t>(r.Train);
-          const double v[6] = { train.Loss[i],
-            train.L1[i],
-            train.Psnr[i],
-            train.Ssim[i],
-            train.Lpips[i],
-            train.ElapsedSeconds[i] };
-          for (int c = 0; c < 6; ++c)
-          {
-            columns[c].push_back(v[c]);
-          }
-        }
-        else
-        {
-          for (int c = 0; c < 6; ++c)
-          {
-            columns[c].push_back(
-              c == 5 ? test.ElapsedSeconds[static_cast<std::size_t>(r.Test)] : nan);
-          }
-        }
-        if (r.Test >= 0)
-        {
-          const std::size_t i = static_cast<std::size_t>(r.Test);
-          const double v[5] = {
-            test.Loss[i], test.L1[i], test.Psnr[i], test.Ssim[i], test.Lpips[i]
-          };
-          for (int c = 0; c < 5; ++c)
-          {
-            columns[6 + c].push_back(v[c]);
-          }
-        }
-        else
-        {
-          for (int c = 0; c < 5; ++c)
-          {
-            columns[6 + c].push_back(nan);
-          }
-        }
-      }
-      namespace names = vis4gs::arrays;
-      output->AddColumn(MakeColumn<vtkIntArray>(names::MetricIteration, iterations));
-      output->AddColumn(MakeColumn<vtkIdTypeArray>(names::MetricGaussians, counts));
-      const char* measured[6] = { names::MetricLoss,
-        names::MetricL1,
-        names::MetricPSNR,
-        names::MetricSSIM,
-        names::MetricLPIPS,
-        names::MetricElapsed };
-      for (int c = 0; c < 11; ++c)
-      {
-        const std::string name =
-          c < 6 ? std::string(measured[c]) : std::string(names::MetricTestPrefix) + measured[c - 6];
-        output->AddColumn(MakeColumn<vtkDoubleArray>(name.c_str(), columns[c]));
+        MergedMetrics(train, test, output);
       }
     }
     if (wanted(3))

@@ -23,7 +23,8 @@
  *   lets vtkGaussianArtifactScoreFilter read it from the log.
  * - port 2, vtkTable: metrics, one row per logged iteration: Iteration, NumGaussians, Loss,
  *   L1, PSNR, SSIM, LPIPS, ElapsedSeconds from /metrics and TestL1, TestPSNR, TestSSIM,
- *   TestLPIPS, TestLoss from /metrics/test, merged by iteration (NaN where not measured).
+ *   TestLPIPS, TestLoss from /metrics/test, merged by iteration (NaN where not measured);
+ *   with MetricsAsLogged, the rows as the log holds them instead (see there).
  * - port 3, vtkTable: events in training order: Iteration, Kind (1 clone, 2 split,
  *   3 prune), Parent, Child (-1 for prunes); its field data holds `InitialIds` (the ids of
  *   the first snapshot) and `LastIteration` (the planned last iteration, or the last
@@ -95,6 +96,21 @@ public:
   vtkSetMacro(LoadStatistics, bool);
   vtkGetMacro(LoadStatistics, bool);
   vtkBooleanMacro(LoadStatistics, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Port 2 as the log holds it: every /metrics row in its order, then every /metrics/test
+   * row, with the columns Iteration, NumGaussians, Loss, L1, PSNR, SSIM, LPIPS,
+   * ElapsedSeconds of the row and Split (0 a /metrics row, 1 a /metrics/test row: the camera
+   * table's column and values, vis4gs::arrays::CameraSplit), no Test*
+   * columns. The merged table (off) has one row per iteration for the timeline, which keeps
+   * only the first test row of an iteration logged twice and sorts the rows; `vis4gs compare`
+   * writes each row (metrics.csv). Default: off.
+   */
+  vtkSetMacro(MetricsAsLogged, bool);
+  vtkGetMacro(MetricsAsLogged, bool);
+  vtkBooleanMacro(MetricsAsLogged, bool);
   ///@}
 
   ///@{
@@ -198,6 +214,7 @@ protected:
   bool LoadOpacities = true;
   bool LoadSH = true;
   bool LoadStatistics = false;
+  bool MetricsAsLogged = false;
   bool Repair = false;
   int LoadedIteration = -1;
   int SnapshotReads = 0;

@@ -4,13 +4,13 @@
 // differences.csv (per Gaussian id: born, died, moved, opacity or scale changed beyond a
 // threshold; Core/Selection/StateComparison.h), metrics.csv (PSNR, SSIM, L1 of both states in
 // every camera with an image, measured as RemovalEffect.h measures a clean-up, and the /metrics
-// tables of the logs) and report.html.
+// tables of the logs, as the sessions' metrics ports give them with the log reader's
+// MetricsAsLogged) and report.html.
 #include "Vis4GSCommand.h"
 
 #include "GaussianIO.h"
 #include "RemovalEffect.h"
 #include "StateComparison.h"
-#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSceneCameras.h"
@@ -19,6 +19,7 @@
 #include "vtkGaussianSceneReader.h"
 #include "vtkGaussianSession.h"
 #include "vtkGaussianStateComparisonFilter.h"
+#include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkDataArray.h"
 #include "vtkIdTypeArray.h"
@@ -35,9 +36,9 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace
 {
@@ -68,13 +69,22 @@ void Define(Vis4GSArguments& args)
   args.AddOption("output", "DIR", "vis4gs-compare", "Folder the results are written to.");
 }
 
-// One side of the comparison, as its session read it; its log for the /metrics curves.
+// One side of the comparison, as its session read it (also its log's /metrics rows).
 struct State
 {
   std::string Path;
-  std::shared_ptr<vis4gs::TrainingLogReader> Log;
+  vtkGaussianSession* Session = nullptr;
+  bool Log = false;   ///< whether it is a training log
   int Iteration = -1; ///< logged iteration; -1 for a scene file
   vtkIdType Count = 0;
+};
+
+// The training PSNR curve of a log (x: iteration, y: PSNR), named.
+struct Curve
+{
+  std::string Name;
+  std::vector<double> Iteration;
+  std::vector<double> Psnr;
 };
 
 // Reads @p session's Gaussians port (a scene "with its ids when it has them": the id property).
@@ -82,8 +92,11 @@ State ReadState(vtkGaussianSession* session, const char* which)
 {
   State s;
   s.Path = session->GetFileName();
+  s.Session = session;
   session->SetIdProperty("id");
   session->GetSceneReader()->IdPropertyOptionalOn();
+  // metrics.csv writes the log's rows as it holds them, not the timeline's merged table.
+  session->GetLogReader()->MetricsAsLoggedOn();
   const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
   if (!errors.empty())
   {
@@ -93,8 +106,7 @@ State ReadState(vtkGaussianSession* session, const char* which)
   if (session->GetIsTrainingLog())
   {
     s.Iteration = session->GetLoadedIteration();
-    // Only for its /metrics table, which the session's metrics port merges by iteration.
-    s.Log = std::make_shared<vis4gs::TrainingLogReader>(s.Path);
+    s.Log = true;
   }
   std::cout << "vis4gs compare: " << which << " = " << s.Path;
   if (s.Log)
@@ -124,20 +136,20 @@ const char* SplitName(vis4gs::CameraSplit split)
   return split == vis4gs::CameraSplit::Train ? "train" : "test";
 }
 
-// The training PSNR curves of the logs as one inline SVG (x: iteration, y: PSNR).
-std::string Curves(const std::vector<std::pair<std::string, vis4gs::MetricsTable>>& runs)
+// The training PSNR curves of the logs as one inline SVG.
+std::string Curves(const std::vector<Curve>& runs)
 {
   double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
-  for (const auto& run : runs)
+  for (const Curve& run : runs)
   {
-    for (std::size_t i = 0; i < run.second.Size(); ++i)
+    for (std::size_t i = 0; i < run.Iteration.size(); ++i)
     {
-      if (std::isfinite(run.second.Psnr[i]))
+      if (std::isfinite(run.Psnr[i]))
       {
-        x0 = std::min<double>(x0, run.second.Iteration[i]);
-        x1 = std::max<double>(x1, run.second.Iteration[i]);
-        y0 = std::min(y0, run.second.Psnr[i]);
-        y1 = std::max(y1, run.second.Psnr[i]);
+        x0 = std::min(x0, run.Iteration[i]);
+        x1 = std::max(x1, run.Iteration[i]);
+        y0 = std::min(y0, run.Psnr[i]);
+        y1 = std::max(y1, run.Psnr[i]);
       }
     }
   }
@@ -153,16 +165,16 @@ std::string Curves(const std::vector<std::pair<std::string, vis4gs::MetricsTable
   {
     s << "<polyline fill=\"none\" stroke=\"" << colours[r % 2]
       << "\" stroke-width=\"1.5\" points=\"";
-    for (std::size_t i = 0; i < runs[r].second.Size(); ++i)
+    for (std::size_t i = 0; i < runs[r].Iteration.size(); ++i)
     {
-      if (std::isfinite(runs[r].second.Psnr[i]))
+      if (std::isfinite(runs[r].Psnr[i]))
       {
-        s << 40 + 470 * (runs[r].second.Iteration[i] - x0) / (x1 - x0) << ","
-          << 190 - 170 * (runs[r].second.Psnr[i] - y0) / (y1 - y0) << " ";
+        s << 40 + 470 * (runs[r].Iteration[i] - x0) / (x1 - x0) << ","
+          << 190 - 170 * (runs[r].Psnr[i] - y0) / (y1 - y0) << " ";
       }
     }
     s << "\"/><text x=\"" << 50 + 160 * r << "\" y=\"14\" font-size=\"11\" fill=\""
-      << colours[r % 2] << "\">" << Vis4GSHtml(runs[r].first) << "</text>";
+      << colours[r % 2] << "\">" << Vis4GSHtml(runs[r].Name) << "</text>";
   }
   s << "<text x=\"40\" y=\"210\" font-size=\"11\">" << x0 << "</text><text x=\"510\" y=\"210\" "
     << "font-size=\"11\" text-anchor=\"end\">" << x1 << "</text><text x=\"2\" y=\"190\" "
@@ -277,7 +289,7 @@ int Run(const Vis4GSArguments& args)
 
   // metrics.csv: source a / b (the states, per view and "mean" per split), log-a / log-b (the
   // logs' /metrics and /metrics/test rows).
-  std::vector<std::pair<std::string, vis4gs::MetricsTable>> curves;
+  std::vector<Curve> curves;
   std::ostringstream csv;
   csv << "source,split,iteration,view,gaussians,psnr,ssim,l1\n" << std::setprecision(9);
   const State* states[] = { &a, &b };
@@ -317,29 +329,47 @@ int Run(const Vis4GSArguments& args)
     const State& state = *states[s];
     std::error_code ec;
     const bool sameLog = s == 1 && a.Log && fs::equivalent(a.Path, b.Path, ec);
-    if (!state.Log || !state.Log->HasMetrics() || sameLog)
+    if (!state.Log || !state.Session->GetLogReader()->HasMetrics() || sameLog)
     {
       continue;
     }
-    const std::string source = s == 0 ? "log-a" : "log-b";
-    for (const bool test : { false, true })
+    // The session's metrics port: /metrics's rows, then /metrics/test's (empty without them).
+    errors = Vis4GSUpdate(state.Session, vtkGaussianSession::MetricsPort);
+    if (!errors.empty())
     {
-      if (test && !state.Log->HasTestMetrics())
-      {
-        continue;
-      }
-      const vis4gs::MetricsTable table = state.Log->ReadMetrics(test);
-      for (std::size_t i = 0; i < table.Size(); ++i)
-      {
-        csv << source << "," << (test ? "test" : "train") << "," << table.Iteration[i] << ",,"
-            << table.NumGaussians[i] << "," << table.Psnr[i] << "," << table.Ssim[i] << ","
-            << table.L1[i] << "\n";
-      }
+      throw std::runtime_error(errors);
+    }
+    vtkTable* table = state.Session->GetMetricsOutput();
+    namespace names = vis4gs::arrays;
+    // (Split: 0 a /metrics row, 1 a /metrics/test row, as the cameras' Split.)
+    vtkDataArray* split = vtkDataArray::SafeDownCast(table->GetColumnByName(names::CameraSplit));
+    vtkDataArray* iteration =
+      vtkDataArray::SafeDownCast(table->GetColumnByName(names::MetricIteration));
+    vtkDataArray* gaussians =
+      vtkDataArray::SafeDownCast(table->GetColumnByName(names::MetricGaussians));
+    if (!split || !iteration || !gaussians)
+    {
+      throw std::runtime_error(
+        state.Path + ": the metrics table lacks its Split, Iteration or " + "NumGaussians column");
+    }
+    const std::string source = s == 0 ? "log-a" : "log-b";
+    Curve curve{ source + ": " + fs::path(state.Path).filename().string(), {}, {} };
+    for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+    {
+      const bool test = split->GetTuple1(r) != 0;
+      const double psnr = Figure(table, names::MetricPSNR, r);
+      csv << source << "," << (test ? "test" : "train") << ","
+          << static_cast<int>(iteration->GetTuple1(r)) << ",,"
+          << static_cast<long long>(gaussians->GetTuple1(r)) << "," << psnr << ","
+          << Figure(table, names::MetricSSIM, r) << "," << Figure(table, names::MetricL1, r)
+          << "\n";
       if (!test)
       {
-        curves.emplace_back(source + ": " + fs::path(state.Path).filename().string(), table);
+        curve.Iteration.push_back(iteration->GetTuple1(r));
+        curve.Psnr.push_back(psnr);
       }
     }
+    curves.push_back(std::move(curve));
   }
   vis4gs::WriteTextFile((staging.Get() / "metrics.csv").string(), csv.str());
 

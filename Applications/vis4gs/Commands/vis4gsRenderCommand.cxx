@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `vis4gs render`: an off-screen image of a scene from one camera with the exact CPU 3DGS
-// rasteriser (Core/Render through vtkGaussianRasterizer), written as an 8-bit PNG.
+// rasteriser (Core/Render through vtkGaussianRasterizer), written as an 8-bit PNG. The scene and
+// the cameras of --cameras are read through vtkGaussianSession, as every command reads them.
 #include "Vis4GSCommand.h"
 
 #include "ImageIO.h"
 #include "Vis4GSDataModel.h"
-#include "vtkGaussianCameraReader.h"
+#include "Vis4GSPipeline.h"
 #include "vtkGaussianRasterizer.h"
-#include "vtkGaussianSceneReader.h"
+#include "vtkGaussianSession.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -102,13 +103,23 @@ bool IsIndex(const std::string& s)
 int Run(const Vis4GSArguments& args)
 {
   const std::string scenePath = args.GetPositional("scene");
-  vtkNew<vtkGaussianSceneReader> reader;
-  reader->SetFileName(scenePath.c_str());
-  reader->Update();
-  vtkPolyData* scene = reader->GetOutput();
-  if (!scene || scene->GetNumberOfPoints() == 0)
+  if (vtkGaussianSession::IsTrainingLogPath(scenePath.c_str()))
   {
-    throw std::runtime_error(scenePath + ": no Gaussians could be read");
+    throw std::runtime_error(scenePath +
+      ": a training log; vis4gs render takes a scene file (vis4gs convert LOG scene.ply writes a "
+      "snapshot as one)");
+  }
+  // The session's Gaussians port (no scores); its cameras port only with --cameras (the
+  // default is a synthetic camera, not the cameras.json the session would find beside it).
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(scenePath.c_str());
+  session->ComputeScoresOff();
+  session->SetCamerasFileName(args.Get("cameras").c_str());
+  const std::string errors = Vis4GSUpdate(session, vtkGaussianSession::GaussiansPort);
+  vtkPolyData* scene = session->GetGaussiansOutput();
+  if (!errors.empty() || !scene || scene->GetNumberOfPoints() == 0)
+  {
+    throw std::runtime_error(errors.empty() ? scenePath + ": no Gaussians could be read" : errors);
   }
 
   std::vector<double> res;
@@ -137,20 +148,20 @@ int Run(const Vis4GSArguments& args)
   }
 
   vtkNew<vtkGaussianRasterizer> raster;
-  raster->SetInputConnection(0, reader->GetOutputPort());
-  vtkNew<vtkGaussianCameraReader> cameraReader;
+  raster->SetInputConnection(0, session->GetOutputPort(vtkGaussianSession::GaussiansPort));
   vtkNew<vtkTable> syntheticTable;
   const std::string camerasPath = args.Get("cameras");
   if (!camerasPath.empty())
   {
-    cameraReader->SetFileName(camerasPath.c_str());
-    cameraReader->SetRequireImages(false);
-    cameraReader->Update();
-    if (cameraReader->GetOutput()->GetNumberOfRows() == 0)
+    // (The session's camera reader requires no image: rendering needs none.)
+    const std::string cameraErrors = Vis4GSUpdate(session, vtkGaussianSession::CamerasPort);
+    vtkTable* cameras = session->GetCamerasOutput();
+    if (!cameraErrors.empty() || !cameras || cameras->GetNumberOfRows() == 0)
     {
-      throw std::runtime_error(camerasPath + ": no cameras could be read");
+      throw std::runtime_error(
+        cameraErrors.empty() ? camerasPath + ": no cameras could be read" : cameraErrors);
     }
-    raster->SetCamerasConnection(cameraReader->GetOutputPort());
+    raster->SetCamerasConnection(session->GetOutputPort(vtkGaussianSession::CamerasPort));
     const std::string which = args.Get("camera");
     if (IsIndex(which))
     {

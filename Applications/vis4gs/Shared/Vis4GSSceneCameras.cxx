@@ -3,10 +3,9 @@
 
 #include "TrainingLogReader.h"
 
+#include "Vis4GSTrainingImages.h"
 #include "vtkGaussianCameraReader.h"
 
-#include <filesystem>
-#include <map>
 #include <stdexcept>
 
 void Vis4GSSceneCameraRules(vtkGaussianCameraReader* reader)
@@ -25,19 +24,10 @@ bool Vis4GSLoadViewImage(std::size_t, const vis4gs::Camera& camera, vis4gs::Imag
 
 void Vis4GSAttachImagesByName(std::vector<vis4gs::Camera>& cameras, const std::string& folder)
 {
-  if (!std::filesystem::is_directory(folder))
+  // The filters' rule (their ImageDirectory), so that a command's --images and its filters agree.
+  std::string error;
+  if (!Vis4GSMatchImagesByName(cameras, folder, error))
   {
     throw std::runtime_error(folder + ": --images is not a folder");
-  }
-  std::map<std::string, std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder))
-  {
-    const std::string name = entry.path().filename().string();
-    files.emplace(name.substr(0, name.find('.')), entry.path().string());
-  }
-  for (vis4gs::Camera& c : cameras)
-  {
-    const auto it = files.find(c.Name);
-    c.ImagePath = it == files.end() ? std::string() : it->second;
   }
 }

@@ -26,8 +26,9 @@ void Vis4GSSceneCameraRules(vtkGaussianCameraReader* reader);
 
 /**
  * Sets each camera's ImagePath to the file of @p folder whose name up to its first dot is the
- * camera's name (`--images=DIR`), empty where none matches; throws std::runtime_error when
- * @p folder is no folder. Shared by `vis4gs analyze` and `vis4gs repair`.
+ * camera's name (`--images=DIR`), empty where none matches, by the filters' rule
+ * (Vis4GSMatchImagesByName, Filters/Diagnostics); throws std::runtime_error when @p folder is
+ * no folder. Shared by `vis4gs analyze`, `vis4gs repair` and the application.
  */
 void Vis4GSAttachImagesByName(std::vector<vis4gs::Camera>& cameras, const std::string& folder);
 

@@ -11,7 +11,8 @@ under the run's X server) must exit 0 with the views whose data is intact, each 
 the log read here with h5py: the scene (the last snapshot; for "snapshot" the one before, the
 last that can be read), the metrics; for "events" the history of selected Gaussians and no tree
 (the tree view says why); for "snapshot" the whole tree, and no history (it reads every
-snapshot; it says so). The reason is said once on standard
+snapshot; it says so, and with --self-test the window's status bar says so when a pick selects
+Gaussians). The reason is said once on standard
 error, naming the log and the damaged part.
 """
 import os
@@ -77,6 +78,15 @@ def main():
     check(all(log in line for line in said), f"{case}: the message names {log}")
     if self_test:
         check("self-test passed" in run.stdout + run.stderr, f"{case}: the scripted session passes")
+        if expect["tree"]:
+            # The history reads every snapshot: the timeline, which pulls it from the session
+            # when the pick selects, has none, and the status bar says why (issue 33).
+            said = [line for line in run.stdout.splitlines()
+                    if line.startswith("ok: the status bar says why the timeline has no history")]
+            check(len(said) == 1 and log in said[0] and "the property history" in said[0] and
+                  not re.search(r"0x[0-9a-fA-F]{6,}", said[0]),
+                  f"{case}: the status bar names the log and the history, no object address: "
+                  f"{said[0] if said else 'not said'}")
         finish(f"{case}: the window opens the intact views of the damaged log")
         return
 
@@ -99,8 +109,11 @@ def main():
     history = os.path.join(out, "history.vtt")
     if expect["tree"]:
         # The history reads every snapshot: a damaged one leaves it out, saying so.
-        check(not os.path.exists(history) and "no property history" in run.stderr,
-              f"{case}: no property history, and it says so")
+        said = [line for line in run.stderr.splitlines() if "no property history" in line]
+        check(not os.path.exists(history) and len(said) == 1 and
+              f"{log}: the property history: " in said[0],
+              f"{case}: no property history, and it says so once, naming the log: "
+              f"{said[0] if said else 'not said'}")
     else:
         check(os.path.exists(history) and read_vtk(history).GetNumberOfRows() > 0,
               f"{case}: the history of selected Gaussians is there")

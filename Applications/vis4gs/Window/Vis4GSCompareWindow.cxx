@@ -7,12 +7,13 @@
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
+#include "vtkGaussianSession.h"
 #include "vtkGaussianSplatMapper.h"
 #include "vtkGaussianTimelineChart.h"
 #include "vtkGaussianTimelineView.h"
-#include "vtkGaussianTrainingLogReader.h"
 
 #include "QVTKOpenGLNativeWidget.h"
+#include "vtkAnnotationLink.h"
 #include "vtkBoundingBox.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -101,7 +102,6 @@ struct Vis4GSCompareWindow::Internals
   vtkNew<vtkGaussianTimelineView> Timeline;
   vtkNew<vtkCallbackCommand> HubCommand;
   std::shared_ptr<Vis4GSComparison> Comparison;
-  vtkSmartPointer<vtkGaussianTrainingLogReader> HistoryLog; // A's log: the selection's history
   QThread* Worker = nullptr;
   QComboBox* Overlay = nullptr;
   QDoubleSpinBox* Thresholds[3] = { nullptr, nullptr, nullptr };
@@ -473,11 +473,17 @@ void Vis4GSCompareWindow::OnLoaded(std::shared_ptr<Vis4GSComparison> c, const QS
   d->TimelineWidget->setVisible(c->A.Metrics || c->B.Metrics);
   d->Hub->SetIteration(c->A.Iteration);
   d->Timeline->SetComparisonIteration(c->B.Iteration);
-  d->HistoryLog = nullptr;
-  if (c->A.Iteration >= 0)
+  // The timeline's bottom chart: the history of the first selected Gaussians in A's log, A's
+  // session's history port with the hub's selection on its input (as in the main window).
+  if (c->A.Session)
   {
-    d->HistoryLog = vtkSmartPointer<vtkGaussianTrainingLogReader>::New();
-    d->HistoryLog->SetFileName(c->A.Path.c_str());
+    c->A.Session->SetSelectionConnection(d->Hub->GetAnnotationLink()->GetOutputPort(2));
+    c->A.Session->SetMaximumHistoryIds(d->Timeline->GetMaximumHistoryLines());
+    d->Timeline->SetHistoryConnection(c->A.Session->GetOutputPort(vtkGaussianSession::HistoryPort));
+  }
+  else
+  {
+    d->Timeline->SetHistory(nullptr);
   }
   // The states share the cameras; B's when A has none.
   d->Views[0].View->SetCameras(c->A.Cameras ? c->A.Cameras : c->B.Cameras);
@@ -613,20 +619,9 @@ bool Vis4GSCompareWindow::ZoomToSelection()
 //------------------------------------------------------------------------------
 void Vis4GSCompareWindow::OnSelectionChanged()
 {
-  vtkNew<vtkIdTypeArray> ids;
-  d->Hub->GetSelectedIds(ids);
-  // The timeline's bottom chart: the history of the first selected Gaussians in A's log.
-  vtkNew<vtkTable> history;
-  if (d->HistoryLog && ids->GetNumberOfTuples() > 0)
-  {
-    vtkNew<vtkIdTypeArray> first;
-    first->SetArray(ids->GetPointer(0),
-      std::min<vtkIdType>(ids->GetNumberOfTuples(), d->Timeline->GetMaximumHistoryLines()),
-      1);
-    d->HistoryLog->GetPropertyHistory(first, history);
-  }
-  d->Timeline->SetHistory(history);
-  if (ids->GetNumberOfTuples() == 0)
+  // (The timeline's history is A's session's history port: the hub renders the timeline,
+  // which pulls it.)
+  if (d->Hub->GetNumberOfSelectedIds() == 0)
   {
     d->Sets->clearSelection();
   }
@@ -842,7 +837,7 @@ bool Vis4GSCompareWindow::RunSelfTest()
     "the timeline's cursors mark A's and B's iterations (" + std::to_string(t->GetIteration()) +
       ", " + std::to_string(t->GetComparisonIteration()) + ")");
   this->SelectSet(both);
-  if (d->HistoryLog)
+  if (c.A.Session)
   {
     check(t->GetNumberOfHistoryLines() ==
         std::min<int>(static_cast<int>(c.Ids[both].size()), t->GetMaximumHistoryLines()),

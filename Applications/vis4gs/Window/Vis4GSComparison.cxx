@@ -126,7 +126,7 @@ Vis4GSComparison::State ReadState(const std::string& path,
   }
   // A session per state, as `vis4gs compare` reads them: a log's snapshot, cameras and metrics,
   // or a scene file with its ids when it has them and the cameras found for it.
-  vtkNew<vtkGaussianSession> session;
+  auto session = vtkSmartPointer<vtkGaussianSession>::New();
   session->SetFileName(path.c_str());
   session->SetIteration(iteration);
   session->ComputeScoresOff();
@@ -158,6 +158,7 @@ Vis4GSComparison::State ReadState(const std::string& path,
   {
     s.Iteration = session->GetLoadedIteration();
     s.Name += " @" + std::to_string(s.Iteration);
+    s.Session = session;
     if (vtkTable* merged = session->GetMetricsOutput())
     {
       s.Metrics = MetricRows(merged, "");

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+class vtkGaussianSession;
 class vtkPolyData;
 class vtkTable;
 
@@ -34,6 +35,9 @@ struct Vis4GSComparison
     vtkSmartPointer<vtkPolyData> Scene;
     vtkSmartPointer<vtkTable> Cameras;              ///< null when none were found
     vtkSmartPointer<vtkTable> Metrics, TestMetrics; ///< a log's /metrics and /metrics/test
+    /// The session that read a log (null for a scene file): the window connects the timeline to
+    /// its history port, with the window's selection on its selection input.
+    vtkSmartPointer<vtkGaussianSession> Session;
   };
 
   /// The sets of ids the window lists; a Gaussian of both states may be in several of

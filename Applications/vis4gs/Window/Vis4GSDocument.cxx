@@ -9,6 +9,7 @@
 #include "Vis4GSSceneCameras.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkAnnotationLink.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -16,6 +17,7 @@
 #include "vtkFieldData.h"
 #include "vtkGaussianArtifactScoreFilter.h"
 #include "vtkGaussianSceneReader.h"
+#include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianSession.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
@@ -473,35 +475,6 @@ int Vis4GSDocument::LoadIteration(int iteration)
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkTable> Vis4GSDocument::History(const std::vector<std::int64_t>& ids) const
-{
-  auto table = vtkSmartPointer<vtkTable>::New();
-  if (!this->Session || !this->Reader || ids.empty())
-  {
-    return table;
-  }
-  vtkNew<vtkIdTypeArray> wanted;
-  wanted->SetNumberOfValues(static_cast<vtkIdType>(ids.size()));
-  for (std::size_t i = 0; i < ids.size(); ++i)
-  {
-    wanted->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(ids[i]));
-  }
-  // What the session's history port computes for a selection of these ids (its log reader's
-  // history query on the sorted ids), asked of the reader itself: in the window the session's
-  // selection input is the hub's, which these ids need not be.
-  std::sort(wanted->GetPointer(0), wanted->GetPointer(0) + wanted->GetNumberOfValues());
-  const vtkIdType unique = static_cast<vtkIdType>(
-    std::unique(wanted->GetPointer(0), wanted->GetPointer(0) + wanted->GetNumberOfValues()) -
-    wanted->GetPointer(0));
-  wanted->SetNumberOfValues(unique);
-  Vis4GSErrorCollector errors(this->Reader);
-  if (!this->Reader->GetPropertyHistory(wanted, table) || !errors.GetMessages().empty())
-  {
-    throw std::runtime_error(this->Path + ": the property history: " + errors.GetMessages());
-  }
-  return table;
-}
-
 std::vector<std::int64_t> Vis4GSDocument::HistoryDumpSelection() const
 {
   std::vector<std::int64_t> ids;
@@ -699,16 +672,27 @@ void Vis4GSDocument::DumpInputs(const std::string& folder) const
   }
   if (this->Reader && this->Scene)
   {
-    try
+    // The timeline's path: a hub's selection on the session's selection input (the annotation
+    // link's current selection), at most HistoryLines ids, the history port's table.
+    const std::vector<std::int64_t> selection = this->HistoryDumpSelection();
+    const std::vector<vtkIdType> ids(selection.begin(), selection.end());
+    vtkNew<vtkGaussianSelectionHub> hub;
+    hub->RenderOnChangeOff();
+    hub->SelectIds(ids.data(), static_cast<vtkIdType>(ids.size()));
+    this->Session->SetSelectionConnection(hub->GetAnnotationLink()->GetOutputPort(2));
+    this->Session->SetMaximumHistoryIds(HistoryLines);
+    const std::string errors = Vis4GSUpdate(this->Session, vtkGaussianSession::HistoryPort);
+    if (errors.empty())
     {
-      write(tables, this->History(this->HistoryDumpSelection()), "history.vtt");
+      write(tables, this->Session->GetHistoryOutput(), "history.vtt");
     }
-    catch (const std::exception& e)
+    else
     {
       // The history reads every snapshot: one that cannot be read leaves it out (the window's
       // timeline says so in the status bar); the other inputs are written.
-      std::cerr << "vis4gs view: warning: no property history: " << PlainError(e.what()) << "\n";
+      std::cerr << "vis4gs view: warning: no property history: " << errors << "\n";
     }
+    this->Session->SetSelectionConnection(nullptr);
   }
   if (this->Tree)
   {

@@ -55,7 +55,8 @@ struct Vis4GSDocument
   vtkSmartPointer<vtkTable> TestMetrics;
   vtkSmartPointer<vtkTree> Tree;   ///< genealogy filter output (null when the log has no events)
   vtkSmartPointer<vtkTable> Bands; ///< the genealogy filter's family bands
-  /// The pipeline: Scene, Cameras, Metrics, Tree, Bands and History() are its ports' data.
+  /// The pipeline: Scene, Cameras, Metrics, Tree and Bands are its ports' data; the timeline
+  /// takes its history port, the hub's selection on its selection input.
   vtkSmartPointer<vtkGaussianSession> Session;
   /// The session's log reader (null for a scene file): the header, the snapshot list and sizes
   /// (the text of panel C, the iteration slider).
@@ -101,18 +102,10 @@ struct Vis4GSDocument
   /// cannot are removed from Snapshots and named in Warnings. Throws when none can be read.
   void LoadLatestReadableSnapshot();
 
-  /**
-   * Property history of @p ids across the snapshots: the session's history port for that
-   * selection, the long table a script gets and the timeline draws
-   * (GaussianId, Iteration, Position, LogScale, Rotation, OpacityLogit, SHDC, Opacity, Scale).
-   * Empty table without a log or ids; throws std::runtime_error with the reader's errors.
-   */
-  vtkSmartPointer<vtkTable> History(const std::vector<std::int64_t>& ids) const;
-
   /// The window gives the timeline the history of at most this many selected Gaussians.
   static constexpr int HistoryLines = 16;
 
-  /// The selection whose History() DumpInputs writes: HistoryLines Gaussians of Scene at
+  /// The selection whose history DumpInputs writes: HistoryLines Gaussians of Scene at
   /// evenly spread rows (row k * n / HistoryLines), so that old and young ones are in it.
   std::vector<std::int64_t> HistoryDumpSelection() const;
 
@@ -162,8 +155,9 @@ struct Vis4GSDocument
    * Writes the views' inputs into @p folder, for comparing the application with a script
    * (`vis4gs view --dump-inputs`): scene.vtp (Shown(): Scene with the score arrays), and
    * as .vtt tables metrics, tree-vertices (the tree's vertex data plus ParentVertex),
-   * tree-edges (edge data), bands and history (History() of HistoryDumpSelection(), what
-   * the timeline gets when those Gaussians are selected), each when present. Throws
+   * tree-edges (edge data), bands and history (the session's history port with a selection
+   * hub's selection of HistoryDumpSelection() on its input, as the window connects the
+   * timeline: what it gets when those Gaussians are selected), each when present. Throws
    * std::runtime_error naming the file on failure.
    */
   void DumpInputs(const std::string& folder) const;

@@ -30,6 +30,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkGaussianOutputWindow.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
@@ -98,6 +99,10 @@ Vis4GSMainWindow::~Vis4GSMainWindow()
   d->Hub->RemoveObservers(vtkCommand::SelectionChangedEvent);
   d->Hub->RemoveObservers(vtkGaussianSelectionHub::IterationChangedEvent);
   d->Hub->RemoveAllViews();
+  if (d->ObservedSession) // (a document held elsewhere would call this window back)
+  {
+    d->ObservedSession->RemoveObserver(d->SessionErrorsTag);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -396,6 +401,27 @@ void Vis4GSMainWindow::BuildUi()
     });
   d->Hub->AddObserver(vtkCommand::SelectionChangedEvent, d->HubCommand);
   d->Hub->AddObserver(vtkGaussianSelectionHub::IterationChangedEvent, d->HubCommand);
+  // Session -> status bar: a port a view pulls (the history of a new selection, which reads
+  // every snapshot) fails inside the view's update, where no caller collects the error; an
+  // observed error is not printed by VTK's output window either. Posted, so that it comes after
+  // the "N Gaussians selected" of the same change.
+  d->SessionErrors->SetClientData(this);
+  d->SessionErrors->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void* call)
+    {
+      auto* self = static_cast<Vis4GSMainWindow*>(client);
+      const QString text = QString::fromStdString(
+        vtkGaussianOutputWindow::CleanMessage(static_cast<const char*>(call)));
+      Vis4GSPostResult(self,
+        [self, text]
+        {
+          self->statusBar()->showMessage(text, 15000);
+          if (self->d->SessionErrorsSaid.insert(text.toStdString()).second)
+          {
+            std::cerr << "vis4gs view: error: " << text.toStdString() << "\n";
+          }
+        });
+    });
 
   // Menus and shortcuts.
   QMenu* file = this->menuBar()->addMenu("&File");
@@ -730,6 +756,12 @@ void Vis4GSMainWindow::OnLoaded(std::shared_ptr<Vis4GSDocument> doc, const QStri
   // The views take the session's ports (as a script connects them); the hub's selection is
   // the session's selection input, so the timeline's history follows it when the hub renders.
   vtkGaussianSession* session = doc->Session;
+  if (d->ObservedSession)
+  {
+    d->ObservedSession->RemoveObserver(d->SessionErrorsTag);
+  }
+  d->ObservedSession = session;
+  d->SessionErrorsTag = session->AddObserver(vtkCommand::ErrorEvent, d->SessionErrors);
   if (doc->Tree)
   {
     d->Tree->SetInputConnection(session->GetOutputPort(vtkGaussianSession::TreePort));

@@ -21,12 +21,14 @@
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkTable.h"
+#include "vtkWeakPointer.h"
 
 #include <QTemporaryDir>
 
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 
 class QComboBox;
@@ -38,6 +40,7 @@ class QThread;
 class QVTKOpenGLNativeWidget;
 class Vis4GSCleanupPanel;
 class Vis4GSControlPanel;
+class vtkGaussianSession;
 struct Vis4GSDocument;
 
 struct Vis4GSMainWindow::Internals
@@ -78,6 +81,12 @@ struct Vis4GSMainWindow::Internals
   Vis4GSCleanupPanel* Cleanup = nullptr;
   QDockWidget* CleanupDock = nullptr;
   vtkNew<vtkCallbackCommand> HubCommand;
+  // The errors of the document's session when a view pulls its ports (the timeline's history
+  // of a selection): to the status bar, and once each to standard error.
+  vtkNew<vtkCallbackCommand> SessionErrors;
+  vtkWeakPointer<vtkGaussianSession> ObservedSession;
+  unsigned long SessionErrorsTag = 0;
+  std::set<std::string> SessionErrorsSaid;
   QThread* Worker = nullptr;
   // A harness's hooks (SetLoadHooks).
   std::function<void(int, const char*)> StageHook;

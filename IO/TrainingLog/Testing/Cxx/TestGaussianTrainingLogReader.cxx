@@ -97,6 +97,8 @@ int TestGaussianTrainingLogReader(int, char*[])
     test.Iteration = 1500;
     test.Psnr = 25.5;
     writer.AppendMetrics(test, true);
+    test.Psnr = 26.0; // the same iteration measured twice: the merged table keeps the first
+    writer.AppendMetrics(test, true);
     test.Iteration = 3050; // a test-only iteration
     test.Psnr = 27.0;
     writer.AppendMetrics(test, true);
@@ -156,6 +158,23 @@ int TestGaussianTrainingLogReader(int, char*[])
   CHECK(std::isnan(metrics->GetValueByName(13, "TestPSNR").ToDouble()));
   CHECK(metrics->GetValueByName(30, "Iteration").ToInt() == 3050);
   CHECK(std::isnan(metrics->GetValueByName(30, "Loss").ToDouble()));
+  // As logged (what `vis4gs compare` writes): every row, /metrics's then /metrics/test's, with
+  // their Split; the second test row of 1500 too.
+  reader->MetricsAsLoggedOn();
+  reader->Update(2);
+  metrics = reader->GetMetricsOutput();
+  CHECK(metrics->GetNumberOfRows() == 33 && !metrics->GetColumnByName("TestPSNR"));
+  CHECK(metrics->GetValueByName(29, "Iteration").ToInt() == 3000 &&
+    metrics->GetValueByName(29, "Split").ToInt() == 0 &&
+    std::fabs(metrics->GetValueByName(29, "Loss").ToDouble() - 1.0 / 30) < 1e-6);
+  const int testRows[3][2] = { { 1500, 255 }, { 1500, 260 }, { 3050, 270 } };
+  for (int r = 0; r < 3; ++r)
+  {
+    CHECK(metrics->GetValueByName(30 + r, "Split").ToInt() == 1 &&
+      metrics->GetValueByName(30 + r, "Iteration").ToInt() == testRows[r][0] &&
+      metrics->GetValueByName(30 + r, "PSNR").ToDouble() == testRows[r][1] / 10.0);
+  }
+  reader->MetricsAsLoggedOff();
   reader->Update(1);
   CHECK(reader->GetCamerasOutput()->GetNumberOfRows() == 1);
   CHECK(reader->GetSnapshotReads() == reads);
