@@ -11,6 +11,7 @@
 #include "vtkGaussianFineTuneFilter.h"
 
 #include "FineTune.h"
+#include "RemovalEffect.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSTrainingImages.h"
 
@@ -19,6 +20,7 @@
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkGaussianRemovalEffectFilter.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -32,6 +34,7 @@
 #include "vtkTable.h"
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <vector>
 
@@ -40,7 +43,7 @@ vtkStandardNewMacro(vtkGaussianFineTuneFilter);
 //------------------------------------------------------------------------------
 vtkGaussianFineTuneFilter::vtkGaussianFineTuneFilter()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);
 }
 
@@ -57,6 +60,18 @@ void vtkGaussianFineTuneFilter::SetCamerasData(vtkTable* cameras)
 void vtkGaussianFineTuneFilter::SetCamerasConnection(vtkAlgorithmOutput* output)
 {
   this->SetInputConnection(1, output);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianFineTuneFilter::SetRemovalFiguresData(vtkTable* figures)
+{
+  this->SetInputData(2, figures);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianFineTuneFilter::SetRemovalFiguresConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(2, output);
 }
 
 //------------------------------------------------------------------------------
@@ -85,6 +100,10 @@ vtkIdTypeArray* vtkGaussianFineTuneFilter::GetRemovedIds()
 int vtkGaussianFineTuneFilter::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPolyData" : "vtkTable");
+  if (port == 2)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -222,6 +241,36 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
   options.Seed = this->Seed;
   options.Threads = this->NumberOfThreads;
   options.LogPath = this->OutputLogFileName;
+  // The source and deleted states' figures given (a removal preview of this deletion).
+  vtkTable* given =
+    this->GetNumberOfInputConnections(2) > 0 ? vtkTable::GetData(inputVector[2]) : nullptr;
+  std::vector<vis4gs::ViewMetrics> givenSource, givenDeleted;
+  if (given)
+  {
+    std::vector<vis4gs::RemovalViewEffect> views;
+    if (!vtkGaussianRemovalEffectFilter::ViewsOfTable(given, views, &error))
+    {
+      vtkErrorMacro("The removal figures (input port 2) are not usable: " << error);
+      return 0;
+    }
+    givenSource.assign(cameras.size(), vis4gs::ViewMetrics());
+    givenDeleted.assign(cameras.size(), vis4gs::ViewMetrics());
+    for (const vis4gs::RemovalViewEffect& view : views)
+    {
+      if (view.CameraIndex >= cameras.size() || cameras[view.CameraIndex].Name != view.Name)
+      {
+        vtkErrorMacro("The removal figures (input port 2) are of other cameras: their view '"
+          << view.Name << "' is not camera " << view.CameraIndex << " of the camera table.");
+        return 0;
+      }
+      if (view.HasImage)
+      {
+        givenSource[view.CameraIndex] = view.Before;
+        givenDeleted[view.CameraIndex] = view.After;
+      }
+    }
+    options.Measure = false;
+  }
   options.Progress = [this](int done, int total)
   {
     this->UpdateProgress(static_cast<double>(done) / total);
@@ -236,6 +285,26 @@ int vtkGaussianFineTuneFilter::RequestData(vtkInformation*,
   {
     vtkErrorMacro("The fine-tune failed: " << e.what());
     return 0;
+  }
+  if (given && !result.Cancelled)
+  {
+    result.Source = std::move(givenSource);
+    result.Deleted = std::move(givenDeleted);
+    const auto t0 = std::chrono::steady_clock::now();
+    try
+    {
+      vis4gs::RemovalEffectOptions measure;
+      measure.Threads = this->NumberOfThreads;
+      result.RepairedFigures =
+        vis4gs::MeasureViewMetrics(result.Repaired, cameras, measure, images);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro("Measuring the repaired scene failed: " << e.what());
+      return 0;
+    }
+    result.MeasureSeconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   this->NumberOfRemoved = static_cast<vtkIdType>(result.Pruned.size());
   this->LastIteration = result.LastIteration;

@@ -26,6 +26,12 @@
  * TrainingLogFile names (as vtkGaussianArtifactScoreFilter does), other paths from their files.
  * Every camera needs an image.
  *
+ * Input port 2 (optional) is the removal's per-view table of the same deletion
+ * (vtkGaussianRemovalEffectFilter's port 0, e.g. the preview the application's clean-up panel
+ * shows): its "before" and "after" figures are the source and deleted states', taken as they
+ * are instead of measured again (vis4gs::FineTuneOptions::Measure off: the log's metrics rows
+ * are then the trainer's own), and only the repaired state is measured, after the fine-tune.
+ *
  * Output port 0 is the repaired Gaussians (polydata, GaussianId kept). Output port 1 is a
  * vtkTable of the figures, repair.csv's rows and columns (vis4gs::FineTuneFigureColumns():
  * view, split, psnr_source, psnr_deleted, psnr_repaired, ssim_..., l1_...): one "mean" row per
@@ -57,6 +63,12 @@ public:
   /// The camera table (input port 1).
   void SetCamerasData(vtkTable* cameras);
   void SetCamerasConnection(vtkAlgorithmOutput* output);
+
+  ///@{
+  /// The removal's per-view table (input port 2, optional; see above). Default none.
+  void SetRemovalFiguresData(vtkTable* figures);
+  void SetRemovalFiguresConnection(vtkAlgorithmOutput* output);
+  ///@}
 
   /// The figures table (output port 1) after an update.
   vtkTable* GetFiguresOutput();

@@ -27,6 +27,7 @@
 #include "vtkGaussianStateComparisonFilter.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -309,6 +310,29 @@ vtkTable* vtkGaussianSession::GetComparisonViewsOutput()
 {
   return vtkTable::SafeDownCast(this->GetOutputDataObject(ComparisonViewsPort));
 }
+vtkTable* vtkGaussianSession::GetRemovalViewsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(RemovalViewsPort));
+}
+vtkTable* vtkGaussianSession::GetRemovalTotalsOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(RemovalTotalsPort));
+}
+vtkImageData* vtkGaussianSession::GetRemovalPreviewOutput()
+{
+  return vtkImageData::SafeDownCast(this->GetOutputDataObject(RemovalPreviewPort));
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSession::SetRemovalPreviewView(vtkIdType camera)
+{
+  // (The filter's MTime is the session's: setting it there re-executes the session.)
+  this->Internals->Removal->SetPreviewView(camera);
+}
+vtkIdType vtkGaussianSession::GetRemovalPreviewView()
+{
+  return this->Internals->Removal->GetPreviewView();
+}
 
 //------------------------------------------------------------------------------
 void vtkGaussianSession::SetGaussiansData(vtkPolyData* gaussians)
@@ -411,6 +435,10 @@ int vtkGaussianSession::FillOutputPortInformation(int port, vtkInformation* info
   {
     type = "vtkPolyData";
   }
+  else if (port == RemovalPreviewPort)
+  {
+    type = "vtkImageData";
+  }
   else if (port == TreePort)
   {
     type = "vtkTree";
@@ -465,6 +493,11 @@ int vtkGaussianSession::RequestDataObject(vtkInformationVector* outInfo)
         wanted = compact ? vtkSmartPointer<vtkTree>(vtkSmartPointer<vtkGaussianCompactTree>::New())
                          : vtkSmartPointer<vtkTree>::New();
       }
+    }
+    else if (port == RemovalPreviewPort)
+    {
+      wanted =
+        output && output->IsA("vtkImageData") ? nullptr : vtkSmartPointer<vtkImageData>::New();
     }
     else if (!output || !output->IsA("vtkTable"))
     {
@@ -813,6 +846,7 @@ bool vtkGaussianSession::ProducePort(int port,
     }
     case RemovalViewsPort:
     case RemovalTotalsPort:
+    case RemovalPreviewPort:
     {
       vtkNew<vtkIdTypeArray> ids;
       if (!this->SelectionIds(inInfo, ids))
@@ -832,7 +866,11 @@ bool vtkGaussianSession::ProducePort(int port,
       {
         d.Removal->SetRemovedIds(ids);
       }
-      return pass(d.Removal, port == RemovalViewsPort ? 0 : 1);
+      if (port == RemovalPreviewPort && d.Removal->GetPreviewView() < 0)
+      {
+        return true;
+      }
+      return pass(d.Removal, port == RemovalViewsPort ? 0 : (port == RemovalTotalsPort ? 1 : 2));
     }
     case ComparisonPort:
     case ComparisonViewsPort:
@@ -866,6 +904,7 @@ void vtkGaussianSession::PrintSelf(ostream& os, vtkIndent indent)
     os << "(none)\n";
   }
   os << indent << "MaximumHistoryIds: " << this->MaximumHistoryIds << "\n";
+  os << indent << "RemovalPreviewView: " << this->Internals->Removal->GetPreviewView() << "\n";
   os << indent << "GaussiansData: " << this->Internals->GivenGaussians.GetPointer() << "\n";
   os << indent << "CamerasData: " << this->Internals->GivenCameras.GetPointer() << "\n";
   os << indent << "IsTrainingLog: " << this->IsTrainingLog << "\n";

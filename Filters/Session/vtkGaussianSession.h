@@ -35,7 +35,9 @@
  * events), 4 its family bands, 5 the property history of the selected Gaussians over the
  * snapshots (vtkGaussianTrainingLogReader::GetPropertyHistory's table; empty for a scene
  * file or no selection), 6 and 7 the removal effect of the selected Gaussians (the removal
- * filter's per-view and totals tables; empty without a selection). Only the requested port
+ * filter's per-view and totals tables; empty without a selection), 10 the removal's preview
+ * renders of camera RemovalPreviewView (the removal filter's port 2, a vtkImageData; empty
+ * without a selection or with RemovalPreviewView -1). Only the requested port
  * is computed: the tree is not built to show a snapshot, and the history, which reads every
  * snapshot, only when asked for.
  *
@@ -73,6 +75,7 @@ class vtkGaussianSceneReader;
 class vtkGaussianStateComparisonFilter;
 class vtkGaussianTrainingLogReader;
 class vtkIdTypeArray;
+class vtkImageData;
 class vtkPolyData;
 class vtkSelection;
 class vtkTable;
@@ -97,7 +100,8 @@ public:
     RemovalTotalsPort = 7,
     ComparisonPort = 8,
     ComparisonViewsPort = 9,
-    NumberOfPorts = 10
+    RemovalPreviewPort = 10,
+    NumberOfPorts = 11
   };
 
   ///@{
@@ -169,6 +173,16 @@ public:
    */
   void SetCompareIteration(int iteration);
   int GetCompareIteration();
+  ///@}
+
+  ///@{
+  /**
+   * The camera (index in the cameras port) whose renders before and after the removal of the
+   * selection port 10 holds (vtkGaussianRemovalEffectFilter::PreviewView). A new one renders
+   * those two images only: the removal's tables are kept. Default -1: none.
+   */
+  void SetRemovalPreviewView(vtkIdType camera);
+  vtkIdType GetRemovalPreviewView();
   ///@}
 
   ///@{
@@ -289,6 +303,9 @@ public:
   vtkTable* GetHistoryOutput();
   vtkTable* GetComparisonOutput();
   vtkTable* GetComparisonViewsOutput();
+  vtkTable* GetRemovalViewsOutput();
+  vtkTable* GetRemovalTotalsOutput();
+  vtkImageData* GetRemovalPreviewOutput();
   ///@}
 
   /// Includes the owned readers' and filters' settings.

@@ -7,8 +7,9 @@
 // self-contained HTML report (base64 PNGs, inline SVG histograms, tables, settings, timings).
 // With --select=RULE (Core/Selection/SelectionRule.h) it selects Gaussians by a rule over the
 // scores and attributes; --delete writes the scene without them (cleaned.ply) and --report
-// measures the deletion against the training and test images (Core/Selection/RemovalEffect.h):
-// before-after.csv and a section of the report with the per-view table and images.
+// measures the deletion against the training and test images (the session's removal ports,
+// vtkGaussianRemovalEffectFilter): before-after.csv and a section of the report with the
+// per-view table and images.
 // Over 1,200 lines on purpose: one command's flow (arguments, the session's reading and staged
 // scores, outputs, overlays, the report), each piece used only here; what other commands share is
 // in Vis4GSScoreOutputs, Vis4GSProgressiveStages and the session. (Next split: the HTML report.)
@@ -33,6 +34,7 @@
 #include "Vis4GSScoreOutputs.h"
 #include "Vis4GSStagingFolder.h"
 #include "vtkGaussianArtifactScoreFilter.h"
+#include "vtkGaussianRemovalEffectFilter.h"
 #include "vtkGaussianSceneReader.h"
 #include "vtkGaussianSession.h"
 #include "vtkGaussianTrainingLogReader.h"
@@ -41,6 +43,8 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -527,21 +531,23 @@ std::string Number(double v, int precision = 4)
   return out.str();
 }
 
-// Measures deleting @p selected, writes before-after.csv and the figures of the views that
-// changed most into @p folder, and returns the report's section.
-std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
+// Measures deleting @p selected (of @p cloud, the Core form of @p gaussians) through the removal
+// port of a session given @p gaussians and @p cameras (the "before" of the score pass,
+// @p baseline, given to its removal filter), writes before-after.csv and the figures of the
+// views that changed most (the session's preview port) into @p folder, and returns the report's
+// section. @p name (the scene's file) names the errors.
+std::string MeasureCleanup(const std::string& name,
+  vtkPolyData* gaussians,
+  const vis4gs::GaussianCloud& cloud,
   const std::vector<std::uint8_t>& selected,
   const std::vector<vis4gs::Camera>& cameras,
   const std::string& rule,
   int threads,
-  const vis4gs::RemovalBaseline& baseline,
+  vis4gs::RemovalBaseline baseline,
   int lossResolution,
   const fs::path& folder)
 {
   const auto t0 = Clock::now();
-  vis4gs::RemovalEffectOptions options;
-  options.Threads = threads;
-  options.TileBaseline = baseline;
   const std::size_t reused = baseline.MeasuredViews();
   const std::string before = reused > 0 ? "The \"before\" of " + std::to_string(reused) +
       " training views is the score pass's own render, measured as it was made. "
@@ -549,8 +555,33 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
       ", so every view was rendered again for the \"before\" (--loss-resolution=1 reuses the "
       "score pass's renders). "
                           : std::string();
-  const vis4gs::RemovalEffect effect =
-    vis4gs::MeasureRemovalEffect(cloud, selected, cameras, options, Vis4GSLoadViewImage);
+  // The cameras as the command uses them (their images: the PNG files written out of a log, or
+  // those --images attached), as data: the session reads no file again.
+  vtkNew<vtkTable> table;
+  vis4gs::CamerasToTable(cameras, table);
+  vtkNew<vtkGaussianSession> session;
+  session->SetFileName(name.c_str()); // (names its errors; no file is read)
+  session->SetGaussiansData(gaussians);
+  session->SetCamerasData(table);
+  session->ComputeScoresOff();
+  vtkNew<vtkIdTypeArray> ids;
+  for (std::size_t i = 0; i < cloud.Count; ++i)
+  {
+    if (selected[i])
+    {
+      ids->InsertNextValue(static_cast<vtkIdType>(cloud.GetId(i)));
+    }
+  }
+  session->SetSelectedIds(ids);
+  vtkGaussianRemovalEffectFilter* removal = session->GetRemovalEffectFilter();
+  removal->SetThreads(threads);
+  removal->SetBaseline(std::make_shared<const vis4gs::RemovalBaseline>(std::move(baseline)));
+  std::string errors = Vis4GSUpdate(session, vtkGaussianSession::RemovalViewsPort);
+  vis4gs::RemovalEffect effect;
+  if (!errors.empty() || !removal->GetEffect(effect, &errors))
+  {
+    throw std::runtime_error(errors);
+  }
   const double seconds = Since(t0);
   {
     std::ostringstream csv;
@@ -646,23 +677,34 @@ std::string MeasureCleanup(const vis4gs::GaussianCloud& cloud,
     html << "<h3>Images</h3><p>Per view: the training or test image, the render before and "
             "after, and the change of the absolute error (red: worse after the deletion, green: "
             "better; full intensity at the view's largest change).</p>\n";
-    const vis4gs::GaussianCloud cleaned = vis4gs::RemoveGaussians(cloud, selected);
     for (const vis4gs::RemovalViewEffect* v : shown)
     {
       const vis4gs::Camera& camera = cameras[v->CameraIndex];
       vis4gs::Image target;
       Vis4GSLoadViewImage(v->CameraIndex, camera, target);
-      const vis4gs::Image before = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cloud, camera));
-      const vis4gs::Image after = vis4gs::ClampedImage(vis4gs::Rasterize<float>(cleaned, camera));
-      html << "<div>";
-      const vis4gs::Image* targetImage = &target;
-      for (const auto& [suffix, image] : { std::make_pair("image", targetImage),
-             std::make_pair("before", &before),
-             std::make_pair("after", &after) })
+      // The renders the figures were measured on, from the session's preview port.
+      session->SetRemovalPreviewView(static_cast<vtkIdType>(v->CameraIndex));
+      errors = Vis4GSUpdate(session, vtkGaussianSession::RemovalPreviewPort);
+      if (!errors.empty())
       {
-        const fs::path file = folder / ("cleanup-" + v->Name + "-" + suffix + ".png");
-        vis4gs::WritePng(file.string(), *image);
-        html << Figure(file, v->Name + " " + suffix);
+        throw std::runtime_error(errors);
+      }
+      vis4gs::Image before, after;
+      if (!vtkGaussianRemovalEffectFilter::PreviewImage(
+            session->GetRemovalPreviewOutput(), true, before) ||
+        !vtkGaussianRemovalEffectFilter::PreviewImage(
+          session->GetRemovalPreviewOutput(), false, after))
+      {
+        throw std::runtime_error(camera.Name + ": the removal preview has no render");
+      }
+      html << "<div>";
+      const vis4gs::Image* images[3] = { &target, &before, &after };
+      const char* suffixes[3] = { "image", "before", "after" };
+      for (int k = 0; k < 3; ++k)
+      {
+        const fs::path file = folder / ("cleanup-" + v->Name + "-" + suffixes[k] + ".png");
+        vis4gs::WritePng(file.string(), *images[k]);
+        html << Figure(file, v->Name + " " + suffixes[k]);
       }
       const fs::path file = folder / ("cleanup-" + v->Name + "-change.png");
       vis4gs::WritePng(file.string(), ErrorChangeImage(before, after, target));
@@ -1040,12 +1082,14 @@ int Run(const Vis4GSArguments& args)
     }
     if (measure)
     {
-      cleanupHtml += MeasureCleanup(cloud,
+      cleanupHtml += MeasureCleanup(scene,
+        polyData,
+        cloud,
         selected,
         cameras,
         canonical,
         args.GetInt("threads"),
-        baseline,
+        std::move(baseline),
         args.GetInt("loss-resolution"),
         staging.Get());
     }

@@ -15,16 +15,21 @@
 // the "before" figures equal PSNR and L1 computed here in double from the rasteriser's render;
 // the rows are sorted worst PSNR change first; a view without an image is last, NaN; the
 // totals are the means per split; the selection by array and by ids agree; errors empty the
-// outputs.
+// outputs. A "before" given (SetBaseline, as the score pass's) and the preview renders
+// (PreviewView) give Core's MeasureRemovalEffect's figures and Rasterize's pixels bit for bit.
 #include "vtkGaussianRemovalEffectFilter.h"
 
 #include "GaussianCloud.h"
 #include "ImageIO.h"
 #include "Rasterizer.h"
+#include "RemovalEffect.h"
+#include "TrainingLogReader.h"
 #include "Vis4GSDataModel.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -34,9 +39,11 @@
 #include "vtkVariant.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -57,6 +64,77 @@ double Value(vtkTable* t, const char* column, vtkIdType row)
 {
   vtkAbstractArray* a = t->GetColumnByName(column);
   return a ? a->GetVariantValue(row).ToDouble() : std::numeric_limits<double>::quiet_NaN();
+}
+
+bool Same(double a, double b)
+{
+  return std::isnan(a) ? std::isnan(b) : a == b;
+}
+
+bool SameMetrics(const vis4gs::ViewMetrics& a, const vis4gs::ViewMetrics& b)
+{
+  return Same(a.Psnr, b.Psnr) && Same(a.Ssim, b.Ssim) && Same(a.L1, b.L1);
+}
+
+// The filter's tables (through GetEffect and read column by column) against @p core.
+bool SameAsCore(vtkGaussianRemovalEffectFilter* filter, const vis4gs::RemovalEffect& core)
+{
+  vis4gs::RemovalEffect e;
+  if (!filter->GetEffect(e) || e.Views.size() != core.Views.size() || e.Removed != core.Removed ||
+    e.Kept != core.Kept || e.ViewsWithoutImage != core.ViewsWithoutImage)
+  {
+    return false;
+  }
+  vtkTable* views = filter->GetOutput(0);
+  bool same = views->GetNumberOfRows() == static_cast<vtkIdType>(core.Views.size());
+  for (std::size_t r = 0; same && r < core.Views.size(); ++r)
+  {
+    const vis4gs::RemovalViewEffect& c = core.Views[r];
+    const vtkIdType row = static_cast<vtkIdType>(r);
+    same = e.Views[r].CameraIndex == c.CameraIndex && e.Views[r].Name == c.Name &&
+      e.Views[r].Split == c.Split && e.Views[r].Affected == c.Affected &&
+      e.Views[r].HasImage == c.HasImage && SameMetrics(e.Views[r].Before, c.Before) &&
+      SameMetrics(e.Views[r].After, c.After) &&
+      Value(views, "camera", row) == static_cast<double>(c.CameraIndex) &&
+      Same(Value(views, "psnr_before", row), c.Before.Psnr) &&
+      Same(Value(views, "psnr_after", row), c.After.Psnr) &&
+      Same(Value(views, "ssim_after", row), c.After.Ssim) &&
+      Same(Value(views, "l1_after", row), c.After.L1);
+  }
+  for (const auto& [mine, theirs] :
+    { std::make_pair(&e.Train, &core.Train), std::make_pair(&e.Test, &core.Test) })
+  {
+    same = same && mine->Views == theirs->Views && mine->AffectedViews == theirs->AffectedViews &&
+      SameMetrics(mine->Before, theirs->Before) && SameMetrics(mine->After, theirs->After);
+  }
+  return same;
+}
+
+// Output port 2's array @p name against @p image (rows top first there, bottom first here).
+bool SamePixels(vtkImageData* preview, const char* name, const vis4gs::Image& image)
+{
+  auto* pixels = vtkFloatArray::SafeDownCast(preview->GetPointData()->GetArray(name));
+  int dims[3];
+  preview->GetDimensions(dims);
+  if (!pixels || dims[0] != image.Width || dims[1] != image.Height ||
+    pixels->GetNumberOfComponents() != 3 || image.Channels != 3)
+  {
+    return false;
+  }
+  for (int y = 0; y < image.Height; ++y)
+  {
+    for (int x = 0; x < 3 * image.Width; ++x)
+    {
+      const float a = pixels->GetValue(static_cast<vtkIdType>(y) * 3 * image.Width + x);
+      const float b =
+        image.Pixels[static_cast<std::size_t>(image.Height - 1 - y) * 3 * image.Width + x];
+      if (std::memcmp(&a, &b, sizeof(float)) != 0)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 vis4gs::Camera MakeCamera(const std::string& name, bool lookBack, const std::string& image)
@@ -262,6 +340,87 @@ int TestGaussianRemovalEffectFilter(int, char*[])
       Value(filter->GetOutput(0), "affected", 0) == 0,
     "removing Gaussian 20 makes c perfect and leaves a");
 
+  // A "before" given, as the score pass's: the training views only (the score pass renders no
+  // test view). The filter renders the test view it lacks and nothing else "before", and its
+  // figures are Core's, computed here with a "before" of every view rendered anew.
+  {
+    const vis4gs::TrainingImageProvider images =
+      [](std::size_t, const vis4gs::Camera& camera, vis4gs::Image& image)
+    { return vis4gs::LoadCameraImage(nullptr, camera, image); };
+    const std::vector<std::uint8_t> removed = { 1, 0 };
+    vis4gs::RemovalEffectOptions options;
+    options.TileBaseline = vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images);
+    const vis4gs::RemovalEffect core =
+      vis4gs::MeasureRemovalEffect(cloud, removed, cameras, options, images);
+    options.TestViews = false;
+    auto trainOnly = std::make_shared<vis4gs::RemovalBaseline>(
+      vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images));
+    const std::size_t given = trainOnly->MeasuredViews();
+    vtkNew<vtkGaussianRemovalEffectFilter> first;
+    first->SetInputData(plain);
+    first->SetCamerasData(table);
+    vtkNew<vtkIdTypeArray> floater;
+    floater->InsertNextValue(10);
+    first->SetRemovedIds(floater);
+    first->SetBaseline(trainOnly);
+    first->Update();
+    Check(given == 2 && first->GetNumberOfBaselineViewsReused() == 2 &&
+        first->GetNumberOfBaselineViewsRendered() == 1,
+      "a given 'before' of the 2 training views: the test view alone is rendered 'before'");
+    Check(SameAsCore(first, core),
+      "with a given 'before': Core's MeasureRemovalEffect's figures, bit for bit");
+    Check(first->GetMeasuredBaseline() && first->GetMeasuredBaseline()->MeasuredViews() == 3 &&
+        trainOnly->MeasuredViews() == 2,
+      "the completed 'before' is handed on, the given one is left as it was");
+    // A second filter given the completed one renders nothing "before".
+    vtkNew<vtkGaussianRemovalEffectFilter> second;
+    second->SetInputData(plain);
+    second->SetCamerasData(table);
+    second->SetRemovedIds(floater);
+    second->SetBaseline(first->GetMeasuredBaseline());
+    second->Update();
+    Check(second->GetNumberOfBaselineViewsRendered() == 0 &&
+        second->GetNumberOfBaselineViewsReused() == 3 && SameAsCore(second, core),
+      "a second measurement given the first's 'before' renders no view 'before'");
+
+    // The preview renders: Core's renders of camera a before and after, bit for bit; a new
+    // PreviewView keeps the tables (the same arrays, not measured again).
+    vtkAbstractArray* column = second->GetOutput(0)->GetColumn(4);
+    const double after = second->GetSecondsAfter();
+    Check(second->GetPreviewOutput()->GetNumberOfPoints() == 0, "no preview by default");
+    for (vtkIdType view : { 0, 2 })
+    {
+      second->SetPreviewView(view);
+      second->Update();
+      const vis4gs::Camera& camera = cameras[static_cast<std::size_t>(view)];
+      const vis4gs::Image before =
+        vis4gs::ClampedImage(vis4gs::Rasterize<float>(cloud, camera, vis4gs::RasterSettings{}));
+      const vis4gs::Image cleaned = vis4gs::ClampedImage(vis4gs::Rasterize<float>(
+        vis4gs::RemoveGaussians(cloud, removed), camera, vis4gs::RasterSettings{}));
+      vtkImageData* preview = second->GetPreviewOutput();
+      Check(
+        SamePixels(preview, vtkGaussianRemovalEffectFilter::GetPreviewBeforeArrayName(), before) &&
+          SamePixels(preview, vtkGaussianRemovalEffectFilter::GetPreviewAfterArrayName(), cleaned),
+        "preview of camera " + std::to_string(view) + ": Core's renders, bit for bit");
+      Check(second->GetOutput(0)->GetColumn(4) == column && second->GetSecondsAfter() == after &&
+          SameAsCore(second, core),
+        "a new PreviewView keeps the tables");
+    }
+    vtkObject::GlobalWarningDisplayOff();
+    second->SetPreviewView(7);
+    second->Update();
+    Check(second->GetOutput(0)->GetNumberOfRows() == 0, "a PreviewView of no camera: an error");
+    // A "before" of another scene (another number of Gaussians) is refused.
+    auto other = std::make_shared<vis4gs::RemovalBaseline>(*trainOnly);
+    other->Gaussians = 3;
+    second->SetPreviewView(-1);
+    second->SetBaseline(other);
+    second->Update();
+    Check(
+      second->GetOutput(0)->GetNumberOfRows() == 0, "a given 'before' of another scene: an error");
+    vtkObject::GlobalWarningDisplayOn();
+  }
+
   // Errors: nothing to remove by; no camera table.
   vtkObject::GlobalWarningDisplayOff();
   filter->SetRemovedIds(nullptr);
@@ -276,7 +435,10 @@ int TestGaussianRemovalEffectFilter(int, char*[])
   std::ostringstream print;
   filter->Print(print);
   Check(print.str().find("RemovalArrayName: RuleSelected") != std::string::npos &&
-      print.str().find("TestViews: 0") != std::string::npos,
+      print.str().find("TestViews: 0") != std::string::npos &&
+      print.str().find("PreviewView: -1") != std::string::npos &&
+      print.str().find("Baseline: (none)") != std::string::npos &&
+      print.str().find("NumberOfBaselineViewsRendered: ") != std::string::npos,
     "PrintSelf");
   std::filesystem::remove_all(dir);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

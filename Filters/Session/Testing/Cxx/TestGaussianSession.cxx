@@ -27,6 +27,7 @@
 #include "vtkGaussianRuleSelectionFilter.h"
 #include "vtkGaussianTrainingLogReader.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -283,6 +284,25 @@ int TestGaussianSession(int, char*[])
   Check(totals->GetNumberOfRows() == 2 &&
       SameFields(removal->GetOutput(1)->GetRowData(), totals->GetRowData(), "removal"),
     "the removal port is the removal-effect filter's totals for the selection");
+  // The preview port: the filter's renders of the camera asked for, the tables kept.
+  Check(session->GetRemovalPreviewView() == -1 &&
+      session->Update(vtkGaussianSession::RemovalPreviewPort, nullptr) &&
+      session->GetRemovalPreviewOutput()->GetNumberOfPoints() == 0,
+    "no preview view by default: an empty preview port");
+  vtkAbstractArray* measured = session->GetRemovalEffectFilter()->GetOutput(1)->GetColumn(3);
+  session->SetRemovalPreviewView(1);
+  removal->SetPreviewView(1);
+  removal->Update();
+  Check(session->Update(vtkGaussianSession::RemovalPreviewPort, nullptr) != 0,
+    "the preview port updates");
+  Check(session->GetRemovalEffectFilter()->GetOutput(1)->GetColumn(3) == measured,
+    "a new preview view does not measure the removal again (the same totals arrays)");
+  Check(session->GetRemovalPreviewOutput()->GetNumberOfPoints() > 0 &&
+      SameFields(removal->GetPreviewOutput()->GetPointData(),
+        session->GetRemovalPreviewOutput()->GetPointData(),
+        "preview"),
+    "the preview port is the filter's renders of camera 1");
+  session->SetRemovalPreviewView(-1);
 
   // The rule's marks, with the views the scores used.
   session->SetRule("views<=3");
