@@ -16,7 +16,8 @@ import sys
 
 def read(path):
     """The series of one benchmark output: one per configuration of the rows (the older
-    11-column rows, or the 15-column rows with the reuse angles and the transmittance stop)."""
+    11-column rows, or the 15-column rows with the reuse angles and the transmittance stop,
+    or the 16-column rows that add the Gaussians a rebuild examined)."""
     name, series = path, {}
     with open(path) as f:
         for line in f:
@@ -25,11 +26,14 @@ def read(path):
                 scene = m.group(1).rstrip(",")
                 name = "synthetic %s" % m.group(2) if scene == "synthetic" else \
                     "%s (%s)" % (scene.split("/")[-2] if "/" in scene else scene, m.group(2))
+                d = re.search(r"sample distance ([0-9.]+)", line)
+                if d and float(d.group(1)) != 2.0:
+                    name += ", sample distance %s" % d.group(1)
             parts = line.split()
             if len(parts) == 11 and parts[0].isdigit():
                 key = name
                 row = (int(parts[0]), float(parts[7]), float(parts[9]))
-            elif len(parts) == 15 and parts[0].isdigit():
+            elif len(parts) in (15, 16) and parts[0].isdigit():
                 key = "%s, selected per frame" % name if parts[1] == "-" else \
                     "%s, kept %s deg, stop %g" % (name, parts[1], float(parts[2]))
                 row = (int(parts[0]), float(parts[9]), float(parts[11]))

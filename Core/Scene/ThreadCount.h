@@ -30,6 +30,10 @@ int ThreadCount(int requested);
  */
 bool LowerThreadPriority(int niceness);
 
+/// The nice value of the background workers of the views (the scene view's frames, the
+/// frustums' counts): below the GUI thread's 0, so that it runs first.
+constexpr int BackgroundThreadNice = 10;
+
 } // namespace vis4gs
 
 #endif

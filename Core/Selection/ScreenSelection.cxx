@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "ScreenSelection.h"
 
+#include "FastCoverage.h"
 #include "Footprint.h"
 #include "KernelIsa.h"
 #include "RasterKernel.h"
@@ -1111,19 +1112,16 @@ std::vector<std::uint32_t> CountVisibleInViews(const GaussianCloud& cloud,
   {
     return counts;
   }
-  RasterSettings settings;
-  settings.ComputeColors = false;
-  settings.Threads = threads;
-  FootprintOptions fo;
-  fo.Threads = threads;
+  // Visible = a footprint of at least one pixel: the fast coverage's test, which stops at the
+  // first pixel found (identical to projecting and counting every footprint pixel, as the
+  // test against the brute-force footprints checks), since a Frame of 200k Gaussians is counted
+  // on the GUI thread after the pick (4 views: ~150 ms counting pixels).
   for (std::size_t v = 0; v < cameras.size(); ++v)
   {
-    const auto proj = ProjectGaussians<float>(subset, cameras[v], settings);
-    const auto fp = ComputeFootprints<float>(proj, fo);
-    for (std::uint32_t c : fp.PixelCount)
-    {
-      counts[v] += c > 0 ? 1 : 0;
-    }
+    const std::vector<std::uint8_t> visible =
+      VisibleInView(subset, cameras[v], FootprintMode::Rasterizer, threads);
+    counts[v] = static_cast<std::uint32_t>(
+      std::count_if(visible.begin(), visible.end(), [](std::uint8_t f) { return f != 0; }));
   }
   return counts;
 }

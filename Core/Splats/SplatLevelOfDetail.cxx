@@ -510,24 +510,22 @@ std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
   // The floor: a little below the last boundary (a factor 2^(48/128) = 1.3 in contribution),
   // as the view moved little since; every key the selection can keep is at or above it.
   std::uint32_t floor = budget > 0 && state.Boundary > 48 ? state.Boundary - 48 : 1;
-  std::vector<std::uint16_t>& keys = state.Keys;
-  keys.resize(n);
   std::vector<std::vector<std::uint32_t>> hist(static_cast<std::size_t>(nt));
+  // Per thread, the Gaussians whose key reaches the floor: (key with the ring bit) << 32 |
+  // index. Nothing of the size of the cloud is read or written.
+  std::vector<std::vector<std::uint64_t>>& found = state.Candidates;
+  found.resize(static_cast<std::size_t>(nt));
   const std::int64_t cells = static_cast<std::int64_t>(lod.Cells.size());
   for (;;)
   {
     std::size_t examined = 0;
-    const std::int64_t count = static_cast<std::int64_t>(n);
 #pragma omp parallel num_threads(nt) reduction(+ : examined)
     {
-      std::vector<std::uint32_t>& h = hist[static_cast<std::size_t>(omp_get_thread_num())];
+      const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+      std::vector<std::uint32_t>& h = hist[t];
       h.assign(Bins, 0);
-      // (the skipped Gaussians' keys are 0: they cannot be selected)
-#pragma omp for schedule(static)
-      for (std::int64_t ii = 0; ii < count; ++ii)
-      {
-        keys[static_cast<std::size_t>(ii)] = 0;
-      }
+      std::vector<std::uint64_t>& mine = found[t];
+      mine.clear();
 #pragma omp for schedule(dynamic, 16)
       for (std::int64_t cc = 0; cc < cells; ++cc)
       {
@@ -543,26 +541,73 @@ std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
           const SplatCellEntry& e = lod.Entries[j];
           const float p[3] = { e.X, e.Y, e.Z };
           const std::uint32_t key = view.Key(p, e.Mass, e.Reach);
-          keys[e.Index] = static_cast<std::uint16_t>(key);
-          if (!(key & RingBit))
+          const std::uint32_t k = key & (RingBit - 1);
+          if (k >= floor && k > 0)
           {
-            ++h[key];
+            mine.push_back((static_cast<std::uint64_t>(key) << 32) | e.Index);
+            h[k] += key & RingBit ? 0 : 1;
           }
         }
       }
     }
     std::uint32_t boundary = 1;
     std::size_t take = 0;
-    if (FindBoundary(SumHistograms(hist), budget, floor, boundary, take))
+    if (!FindBoundary(SumHistograms(hist), budget, floor, boundary, take))
     {
-      ExtractSubset(keys, boundary, take, nt, subset);
-      state.Boundary = boundary;
-      state.Examined = examined;
-      return examined;
+      // The floor was above the boundary: every cell in the frustum again.
+      floor = 1;
+      state.Fallback = true;
+      continue;
     }
-    // The floor was above the boundary: every cell in the frustum again.
-    floor = 1;
-    state.Fallback = true;
+    // The ring's at or above the boundary, the view's own above it, and of those equal to it
+    // the first take in index order; then every kept index in ascending order.
+    // (each thread filters the Gaussians it found; the lists are then joined)
+    std::vector<std::vector<std::uint64_t>> keptBy(found.size()), tiesBy(found.size());
+#pragma omp parallel for schedule(static, 1) num_threads(nt)
+    for (int t = 0; t < nt; ++t)
+    {
+      for (std::uint64_t c : found[static_cast<std::size_t>(t)])
+      {
+        const std::uint32_t key = static_cast<std::uint32_t>(c >> 32);
+        const std::uint32_t k = key & (RingBit - 1);
+        const std::uint64_t index = c & 0xFFFFFFFFu;
+        if ((key & RingBit) ? k >= boundary : k > boundary)
+        {
+          keptBy[static_cast<std::size_t>(t)].push_back(index);
+        }
+        else if (!(key & RingBit) && k == boundary)
+        {
+          tiesBy[static_cast<std::size_t>(t)].push_back(index);
+        }
+      }
+    }
+    std::vector<std::uint64_t> kept, ties;
+    for (int t = 0; t < nt; ++t)
+    {
+      const auto& a = keptBy[static_cast<std::size_t>(t)];
+      const auto& b = tiesBy[static_cast<std::size_t>(t)];
+      kept.insert(kept.end(), a.begin(), a.end());
+      ties.insert(ties.end(), b.begin(), b.end());
+    }
+    take = std::min(take, ties.size());
+    std::nth_element(ties.begin(), ties.begin() + static_cast<std::ptrdiff_t>(take), ties.end());
+    kept.insert(kept.end(), ties.begin(), ties.begin() + static_cast<std::ptrdiff_t>(take));
+    const std::int64_t m = static_cast<std::int64_t>(kept.size());
+    std::vector<std::uint64_t> spare(kept.size());
+    int bits = 0;
+    while (bits < 32 && (std::uint64_t(n - 1) >> bits) != 0)
+    {
+      ++bits;
+    }
+    const std::uint64_t* sorted = RadixSortKeys(kept.data(), spare.data(), m, 0, bits, nt);
+    subset.resize(kept.size());
+    for (std::int64_t j = 0; j < m; ++j)
+    {
+      subset[static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(sorted[j]);
+    }
+    state.Boundary = boundary;
+    state.Examined = examined;
+    return examined;
   }
 }
 

@@ -74,8 +74,11 @@ struct SplatLevelOfDetail
 /// What SelectSplatsInCells keeps between the selections of one caller.
 struct SplatSelectionState
 {
-  /// Per Gaussian, the key of the last selection (internal).
+  /// Per Gaussian, the keys of a selection from every Gaussian (a level of detail without
+  /// cells), and per thread the Gaussians of the examined cells that reach the floor (internal:
+  /// kept so that they are not allocated again).
   std::vector<std::uint16_t> Keys;
+  std::vector<std::vector<std::uint64_t>> Candidates;
   /// The last selection's boundary key (0: none yet): the next one's floor is a little below.
   std::uint32_t Boundary = 0;
   /// Gaussians whose key the last selection computed, and whether it had to examine every

@@ -68,9 +68,10 @@ bool SameScene(const GaussianCloud& cloud,
   const RasterSettings& settings,
   const SplatMovingSet& set)
 {
-  return set.Generation != 0 && set.Cloud == &cloud && set.CloudVersion == cloudVersion &&
-    cloudVersion != 0 && set.ShDegree == UsedDegree(cloud, settings) &&
-    set.Colors == settings.ComputeColors;
+  const SplatMovingSetOrigin& made = set.Made;
+  return set.Generation != 0 && made.Cloud == &cloud && made.CloudVersion == cloudVersion &&
+    cloudVersion != 0 && made.ShDegree == UsedDegree(cloud, settings) &&
+    made.Colors == settings.ComputeColors;
 }
 }
 
@@ -90,9 +91,10 @@ bool SplatMovingSetReusable(const GaussianCloud& cloud,
     return std::abs(a.TanHalfFovX() - b.TanHalfFovX()) <= 1e-9 * a.TanHalfFovX() &&
       std::abs(a.TanHalfFovY() - b.TanHalfFovY()) <= 1e-9 * a.TanHalfFovY();
   };
+  const SplatMovingSetOrigin& made = set.Made;
   return reuseAngle > 0.0 && SameScene(cloud, cloudVersion, settings, set) &&
-    set.Budget == budget && set.ReuseAngle == reuseAngle && sameFov(set.Rank, camera) &&
-    SplatViewChangeAngle(set.Rank, camera, set.Depth) <= fraction * reuseAngle;
+    made.Budget == budget && made.ReuseAngle == reuseAngle && sameFov(made.Rank, camera) &&
+    SplatViewChangeAngle(made.Rank, camera, made.Depth) <= fraction * reuseAngle;
 }
 
 //------------------------------------------------------------------------------
@@ -137,7 +139,7 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   // The Gaussians that stay selected keep their colour while the camera of the last full
   // colour evaluation is within the colour angle; the others are gathered from the scene.
   const bool keepColors = colorAngle > 0.0 && sameScene &&
-    SplatViewChangeAngle(set.ColorRank, camera, set.Depth) <= colorAngle;
+    SplatViewChangeAngle(set.Made.ColorRank, camera, set.Made.Depth) <= colorAngle;
   const int threads = ThreadCount(settings.Threads);
   if (!sameScene)
   {
@@ -260,18 +262,18 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
     std::nth_element(depths.begin(), mid, front);
     depth = *mid;
   }
-  SplatMovingSet::Build& next = set.Next;
-  next.Rank = camera;
-  next.ColorRank = keepColors ? set.ColorRank : camera;
-  next.ColorsRefreshed = !keepColors;
-  next.Cloud = &cloud;
-  next.CloudVersion = cloudVersion;
-  next.Budget = budget;
-  next.ShDegree = degree;
-  next.Colors = colors;
-  next.ReuseAngle = reuseAngle;
-  next.Depth = depth;
-  next.Ready = true;
+  SplatMovingSetOrigin& made = set.Next.Made;
+  made.Rank = camera;
+  made.ColorRank = keepColors ? set.Made.ColorRank : camera;
+  made.Cloud = &cloud;
+  made.CloudVersion = cloudVersion;
+  made.Budget = budget;
+  made.ShDegree = degree;
+  made.Colors = colors;
+  made.ReuseAngle = reuseAngle;
+  made.Depth = depth;
+  set.Next.ColorsRefreshed = !keepColors;
+  set.Next.Ready = true;
   set.LastRebuildMs = MsSince(start);
 }
 
@@ -286,15 +288,7 @@ bool PublishSplatMovingSet(SplatMovingSet& set)
   std::swap(set.Subset, set.PreviousSubset);
   std::swap(set.Compact, set.Previous);
   set.ColorRefreshes += next.ColorsRefreshed ? 1 : 0;
-  set.Rank = next.Rank;
-  set.ColorRank = next.ColorRank;
-  set.Cloud = next.Cloud;
-  set.CloudVersion = next.CloudVersion;
-  set.Budget = next.Budget;
-  set.ShDegree = next.ShDegree;
-  set.Colors = next.Colors;
-  set.ReuseAngle = next.ReuseAngle;
-  set.Depth = next.Depth;
+  set.Made = next.Made;
   next.Ready = false;
   // Unique in the process, so that no cache keyed by it mistakes another set's compact cloud
   // (at the same addresses) for this one.

@@ -40,6 +40,22 @@
 namespace vis4gs
 {
 
+/// What a moving set was made for.
+struct SplatMovingSetOrigin
+{
+  /// The camera of the rebuild, and of the last rebuild that evaluated every colour.
+  Camera Rank, ColorRank;
+  const GaussianCloud* Cloud = nullptr;
+  std::uint64_t CloudVersion = 0;
+  std::size_t Budget = 0;
+  int ShDegree = 0;
+  bool Colors = true;
+  double ReuseAngle = 0.0;
+  /// Median view depth of the selected Gaussians in front of the rebuild's camera (of a
+  /// sample of at most 4,096 of them, evenly spaced).
+  double Depth = 0.0;
+};
+
 /// A moving frame's Gaussians and what they were made for (see the file's comment).
 struct SplatMovingSet
 {
@@ -71,34 +87,16 @@ struct SplatMovingSet
   std::vector<std::int64_t> From;
   std::vector<float> Depths;
 
-  // What the set was made for.
-  Camera Rank;
-  /// The camera of the last rebuild that evaluated every colour.
-  Camera ColorRank;
-  const GaussianCloud* Cloud = nullptr;
-  std::uint64_t CloudVersion = 0;
-  std::size_t Budget = 0;
-  int ShDegree = 0;
-  bool Colors = true;
-  double ReuseAngle = 0.0;
+  /// What the published set was made for (SplatMovingSetReusable compares a view with it).
+  SplatMovingSetOrigin Made;
   /// A rebuild made into the spare buffers and not published yet, and what it was made for
   /// (BuildSplatMovingSet, PublishSplatMovingSet).
   struct Build
   {
     bool Ready = false;
     bool ColorsRefreshed = false;
-    Camera Rank, ColorRank;
-    const GaussianCloud* Cloud = nullptr;
-    std::uint64_t CloudVersion = 0;
-    std::size_t Budget = 0;
-    int ShDegree = 0;
-    bool Colors = true;
-    double ReuseAngle = 0.0;
-    double Depth = 0.0;
+    SplatMovingSetOrigin Made;
   } Next;
-  /// Median view depth of the selected Gaussians in front of the rebuild's camera (of a
-  /// sample of at most 4,096 of them, evenly spaced).
-  double Depth = 0.0;
 };
 
 /**

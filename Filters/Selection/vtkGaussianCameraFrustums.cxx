@@ -11,6 +11,7 @@
 #include "vtkGaussianCameraFrustums.h"
 
 #include "ScreenSelection.h"
+#include "ThreadCount.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSIdColumn.h"
 
@@ -30,19 +31,117 @@
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
 #include "vtkTable.h"
+#include "vtkTimeStamp.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
+#include <cstdint>
 #include <exception>
 #include <memory>
+#include <mutex>
 #include <numeric>
+#include <string>
+#include <thread>
 #include <vector>
+
+namespace
+{
+// What a count is of: the selected ids, the scene and the camera table (identity and MTime of
+// each) and the training-views switch.
+using Key = std::array<vtkMTimeType, 7>;
+
+vtkMTimeType Stamp(const void* object)
+{
+  return static_cast<vtkMTimeType>(reinterpret_cast<std::uintptr_t>(object));
+}
+
+struct Job
+{
+  Key JobKey{};
+  std::shared_ptr<const vis4gs::GaussianCloud> Cloud;
+  std::vector<std::uint32_t> Rows;
+  std::vector<vis4gs::Camera> Cameras;
+};
+}
+
+// The background count: one worker thread, the newest request replacing one not started.
+struct vtkGaussianCameraFrustums::vtkInternals
+{
+  std::mutex Mutex; // guards everything below but Shown, ShownPending (RequestData's thread)
+  std::condition_variable Wake, Idle;
+  std::unique_ptr<Job> Pending;
+  bool Working = false;
+  Key WorkingKey{};
+  bool Stop = false;
+  bool Done = false;
+  Key DoneKey{};
+  std::vector<std::uint32_t> DoneCounts;
+  std::string DoneError;
+  std::atomic<vtkMTimeType> DoneTime{ 0 };
+  std::thread Worker;
+  std::mutex CallbackMutex; // held while the callback runs
+  std::function<void()> Callback;
+  std::vector<std::uint32_t> Shown; // the counts last output
+  bool ShownPending = false;
+
+  void Run()
+  {
+    // A background job: the GUI thread runs first (the OpenMP team inherits it).
+    vis4gs::LowerThreadPriority(vis4gs::BackgroundThreadNice);
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    for (;;)
+    {
+      this->Wake.wait(lock, [this] { return this->Stop || this->Pending; });
+      if (this->Stop)
+      {
+        return;
+      }
+      const std::unique_ptr<Job> job = std::move(this->Pending);
+      this->Working = true;
+      this->WorkingKey = job->JobKey;
+      lock.unlock();
+      std::vector<std::uint32_t> counts;
+      std::string error;
+      try
+      {
+        counts = vis4gs::CountVisibleInViews(*job->Cloud, job->Rows, job->Cameras);
+      }
+      catch (const std::exception& e)
+      {
+        error = e.what();
+      }
+      lock.lock();
+      this->Done = true;
+      this->DoneKey = job->JobKey;
+      this->DoneCounts = std::move(counts);
+      this->DoneError = std::move(error);
+      vtkTimeStamp stamp; // (the filter's MTime: its next update outputs these counts)
+      stamp.Modified();
+      this->DoneTime = stamp.GetMTime();
+      lock.unlock();
+      {
+        std::lock_guard<std::mutex> callbackLock(this->CallbackMutex);
+        if (this->Callback)
+        {
+          this->Callback();
+        }
+      }
+      lock.lock();
+      this->Working = false;
+      this->Idle.notify_all();
+    }
+  }
+};
 
 vtkStandardNewMacro(vtkGaussianCameraFrustums);
 vtkCxxSetObjectMacro(vtkGaussianCameraFrustums, SelectedIds, vtkIdTypeArray);
 
 //------------------------------------------------------------------------------
 vtkGaussianCameraFrustums::vtkGaussianCameraFrustums()
+  : Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(2);
 }
@@ -50,13 +149,45 @@ vtkGaussianCameraFrustums::vtkGaussianCameraFrustums()
 //------------------------------------------------------------------------------
 vtkGaussianCameraFrustums::~vtkGaussianCameraFrustums()
 {
+  vtkInternals& in = *this->Internals;
+  {
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    in.Stop = true;
+    in.Pending.reset();
+  }
+  in.Wake.notify_all();
+  if (in.Worker.joinable())
+  {
+    in.Worker.join();
+  }
   this->SetSelectedIds(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianCameraFrustums::SetCountsReadyCallback(std::function<void()> callback)
+{
+  std::lock_guard<std::mutex> lock(this->Internals->CallbackMutex);
+  this->Internals->Callback = std::move(callback);
+}
+
+//------------------------------------------------------------------------------
+bool vtkGaussianCameraFrustums::GetCountsPending()
+{
+  return this->Internals->ShownPending;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianCameraFrustums::WaitForCounts()
+{
+  vtkInternals& in = *this->Internals;
+  std::unique_lock<std::mutex> lock(in.Mutex);
+  in.Idle.wait(lock, [&in] { return !in.Working && !in.Pending; });
 }
 
 //------------------------------------------------------------------------------
 vtkMTimeType vtkGaussianCameraFrustums::GetMTime()
 {
-  vtkMTimeType t = this->Superclass::GetMTime();
+  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Internals->DoneTime.load());
   if (this->SelectedIds)
   {
     t = std::max(t, this->SelectedIds->GetMTime());
@@ -187,16 +318,72 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
       std::iota(rows.begin(), rows.end(), 0U);
       cloud = std::move(copy);
     }
-    try
+    vtkInternals& in = *this->Internals;
+    const Key key = { Stamp(this->SelectedIds),
+      this->SelectedIds->GetMTime(),
+      Stamp(scene),
+      scene->GetMTime(),
+      Stamp(table),
+      table->GetMTime(),
+      static_cast<vtkMTimeType>(this->TrainingViewsOnly) };
+    bool background = false, counted = false;
     {
-      counts = vis4gs::CountVisibleInViews(*cloud, rows, cams);
+      std::lock_guard<std::mutex> lock(in.Mutex);
+      background = in.Callback && this->BackgroundCountMinimum > 0 &&
+        static_cast<vtkIdType>(rows.size()) > this->BackgroundCountMinimum;
+      if (background && in.Done && in.DoneKey == key)
+      {
+        if (!in.DoneError.empty())
+        {
+          vtkErrorMacro("vtkGaussianCameraFrustums: " << in.DoneError);
+          return 0;
+        }
+        counts = in.DoneCounts;
+        background = false;
+        counted = true; // (by the worker: output as if made here)
+      }
+      else if (background)
+      {
+        if (!(in.Pending && in.Pending->JobKey == key) && !(in.Working && in.WorkingKey == key))
+        {
+          auto job = std::make_unique<Job>();
+          job->JobKey = key;
+          job->Cloud = cloud;
+          job->Rows = std::move(rows);
+          job->Cameras = cams;
+          in.Pending = std::move(job);
+          if (!in.Worker.joinable())
+          {
+            in.Worker = std::thread([&in] { in.Run(); });
+          }
+          in.Wake.notify_one();
+        }
+        // Until the worker is done: the counts last output, when they are of these cameras.
+        if (in.Shown.size() == cams.size())
+        {
+          counts = in.Shown;
+        }
+      }
     }
-    catch (const std::exception& e)
+    in.ShownPending = background;
+    if (!background && !counted)
     {
-      vtkErrorMacro("vtkGaussianCameraFrustums: " << e.what());
-      return 0;
+      try
+      {
+        counts = vis4gs::CountVisibleInViews(*cloud, rows, cams);
+      }
+      catch (const std::exception& e)
+      {
+        vtkErrorMacro("vtkGaussianCameraFrustums: " << e.what());
+        return 0;
+      }
     }
   }
+  else
+  {
+    this->Internals->ShownPending = false;
+  }
+  this->Internals->Shown = counts;
 
   // Depth of the drawn rectangle.
   double depth = this->FrustumDepth;
@@ -272,4 +459,6 @@ void vtkGaussianCameraFrustums::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SelectedIds: " << this->SelectedIds << "\n";
   os << indent << "FrustumDepth: " << this->FrustumDepth << "\n";
   os << indent << "TrainingViewsOnly: " << this->TrainingViewsOnly << "\n";
+  os << indent << "BackgroundCountMinimum: " << this->BackgroundCountMinimum << "\n";
+  os << indent << "CountsPending: " << this->Internals->ShownPending << "\n";
 }

@@ -652,7 +652,7 @@ protected:
   double InteractiveTransmittanceStop = 0.004;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;
-  int FrameWorkerNice = 10;
+  int FrameWorkerNice = 10; // (vis4gs::BackgroundThreadNice)
   vtkLookupTable* ScoreLookupTable = nullptr;
   vtkIdType LastDrawnCount = 0;
   double LastSortTime = 0.0;

@@ -337,12 +337,22 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         vis4gs::PrepareSplatLevelOfDetail(cloud, this->Lod, threads);
         this->LodSource = r.CloudVersion;
       }
+      // Whether the published set serves this view, or serves it with this fraction of the
+      // reuse angle to spare.
+      auto serves = [&](double fraction)
+      {
+        return vis4gs::SplatMovingSetReusable(cloud,
+          r.CloudVersion,
+          camera,
+          r.Budget,
+          r.Settings,
+          r.ReuseAngle,
+          this->LodSet,
+          fraction);
+      };
       // A rebuild started ahead of need becomes the set once it has finished, or when the
       // current set does not serve this view any more (then this frame waits for it).
-      if (this->LodBuilder.joinable() &&
-        (this->LodBuilt.load() ||
-          !vis4gs::SplatMovingSetReusable(
-            cloud, r.CloudVersion, camera, r.Budget, r.Settings, r.ReuseAngle, this->LodSet)))
+      if (this->LodBuilder.joinable() && (this->LodBuilt.load() || !serves(1.0)))
       {
         this->FinishLodBuild(r.CloudVersion);
       }
@@ -358,14 +368,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         r.ColorAngle,
         this->LodSet);
       if (r.RebuildAhead > 0.0 && r.ReuseAngle > 0.0 && !this->LodBuilder.joinable() &&
-        !vis4gs::SplatMovingSetReusable(cloud,
-          r.CloudVersion,
-          camera,
-          r.Budget,
-          r.Settings,
-          r.ReuseAngle,
-          this->LodSet,
-          r.RebuildAhead))
+        !serves(r.RebuildAhead))
       {
         // The next set, for this view, on the builder thread: it reads the cloud, the level of
         // detail and the published set, and writes only the set's spare buffers, while the

@@ -373,6 +373,10 @@ void vtkGaussianSceneView::Update()
 void vtkGaussianSceneView::Render()
 {
   this->Update();
+  if (this->Internals->Cameras && this->ShowFrustums)
+  {
+    this->UpdateFrustumColors();
+  }
   this->Superclass::Render();
 }
 
@@ -575,15 +579,23 @@ void vtkGaussianSceneView::UpdateFrustums()
       in.Hub->GetSelectedIds(ids);
     }
     in.Frustums->SetSelectedIds(ids);
-    in.Frustums->Update();
-    double range[2] = { 0, 1 };
-    if (vtkDataArray* counts =
-          in.Frustums->GetOutput()->GetPointData()->GetArray("VisibleSelectedCount"))
-    {
-      counts->GetRange(range);
-    }
-    in.FrustumMapper->SetScalarRange(0, std::max(1.0, range[1]));
+    this->UpdateFrustumColors();
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSceneView::UpdateFrustumColors()
+{
+  // (Also at each render: a large selection's counts arrive from the frustums' worker.)
+  auto& in = *this->Internals;
+  in.Frustums->Update();
+  double range[2] = { 0, 1 };
+  if (vtkDataArray* counts =
+        in.Frustums->GetOutput()->GetPointData()->GetArray("VisibleSelectedCount"))
+  {
+    counts->GetRange(range);
+  }
+  in.FrustumMapper->SetScalarRange(0, std::max(1.0, range[1]));
 }
 
 //------------------------------------------------------------------------------

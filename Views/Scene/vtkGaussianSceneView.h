@@ -304,6 +304,7 @@ private:
 #endif
   void UpdateOverlay();
   void UpdateFrustums();
+  void UpdateFrustumColors();
   void ApplyScene(vtkPolyData* scene);
   void ApplyCameras(vtkTable* cameras);
   void OnSelectionChanged();

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSSceneFrames.h"
 
+#include "vtkGaussianCameraFrustums.h"
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSplatMapper.h"
 
@@ -16,36 +17,41 @@ Vis4GSSceneFrames::Vis4GSSceneFrames(QObject* context, vtkGaussianSceneView* vie
   splats->AsynchronousFramesOn();
   std::shared_ptr<std::atomic<bool>> posted = this->Posted;
   // (Called on the mapper's worker thread: only the queued call touches the view.)
-  splats->SetFrameReadyCallback(
-    [context, view, posted]
+  auto ready = [context, view, posted]
+  {
+    if (!posted->exchange(true))
     {
-      if (!posted->exchange(true))
-      {
-        QMetaObject::invokeMethod(
-          context,
-          [view, posted]
-          {
-            *posted = false;
-            view->Render();
-          },
-          Qt::QueuedConnection);
-      }
-    });
+      QMetaObject::invokeMethod(
+        context,
+        [view, posted]
+        {
+          *posted = false;
+          view->Render();
+        },
+        Qt::QueuedConnection);
+    }
+  };
+  splats->SetFrameReadyCallback(ready);
+  // A large selection's frustum counts come from the frustums' worker the same way.
+  view->GetFrustums()->SetCountsReadyCallback(ready);
 }
 
 //------------------------------------------------------------------------------
 Vis4GSSceneFrames::~Vis4GSSceneFrames()
 {
   this->View->GetSplatMapper()->SetFrameReadyCallback(nullptr);
+  this->View->GetFrustums()->SetCountsReadyCallback(nullptr);
 }
 
 //------------------------------------------------------------------------------
 void Vis4GSSceneFrames::WaitForCurrent()
 {
   vtkGaussianSplatMapper* splats = this->View->GetSplatMapper();
-  if (splats->GetFramePending())
+  vtkGaussianCameraFrustums* frustums = this->View->GetFrustums();
+  if (splats->GetFramePending() || frustums->GetCountsPending())
   {
     splats->WaitForFrame();
+    frustums->WaitForCounts();
     this->View->Render();
   }
 }

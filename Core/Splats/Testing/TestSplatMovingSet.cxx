@@ -239,8 +239,8 @@ TEST(SplatMovingSet, ReusedWhileTheViewMovesLessThanTheAngle)
   const double moved[3] = { 0.2, 0.0, 0.0 };
   EXPECT_TRUE(
     UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, Origin), 900, settings, 0.05, 0.0, set));
-  EXPECT_GT(set.Depth, 4.0);
-  EXPECT_LT(set.Depth, 8.0);
+  EXPECT_GT(set.Made.Depth, 4.0);
+  EXPECT_LT(set.Made.Depth, 8.0);
   EXPECT_FALSE(
     UpdateSplatMovingSet(c, 2, lod, TurnedCamera(0.0, moved), 900, settings, 0.05, 0.0, set));
   const double far[3] = { 0.6, 0.0, 0.0 };

@@ -28,6 +28,7 @@
 #include "vtkTable.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 
@@ -154,6 +155,61 @@ int TestGaussianCameraFrustums(int argc, char* argv[])
         fail = 1;
       }
     }
+  }
+
+  {
+    // Counted on the worker (a callback set, the selection over BackgroundCountMinimum): the
+    // first output keeps the counts of the selection before (none: 0) and says so; once the
+    // worker is done (the callback called once) the next update, with no Modified() in between,
+    // has Core's counts. A selection under the minimum is counted at once.
+    vtkNew<vtkGaussianCameraFrustums> background;
+    background->SetInputData(0, table);
+    background->SetInputData(1, scene);
+    std::atomic<int> calls{ 0 };
+    background->SetCountsReadyCallback([&calls] { ++calls; });
+    background->SetBackgroundCountMinimum(static_cast<vtkIdType>(indices.size()) - 1);
+    background->SetSelectedIds(selected);
+    background->Update();
+    auto countsOf = [&background](int v)
+    {
+      auto* a = vtkIntArray::SafeDownCast(
+        background->GetOutput()->GetCellData()->GetArray("VisibleSelectedCount"));
+      return a ? a->GetValue(8 * v) : -1;
+    };
+    const bool pendingFirst = background->GetCountsPending();
+    const int staleFirst = countsOf(0);
+    background->WaitForCounts();
+    const int callsDone = calls;
+    background->Update();
+    bool same = !background->GetCountsPending();
+    for (int v = 0; v < 6; ++v)
+    {
+      same = same && countsOf(v) == static_cast<int>(expected[v]);
+    }
+    std::printf("background count: pending %d (view 0 shows %d meanwhile), %d callback(s), then "
+                "the counts %s\n",
+      pendingFirst ? 1 : 0,
+      staleFirst,
+      callsDone,
+      same ? "of Core" : "DIFFER");
+    if (!pendingFirst || staleFirst != 0 || callsDone != 1 || !same)
+    {
+      std::printf("FAILED: the background count is not pending first, then Core's\n");
+      fail = 1;
+    }
+    // Under the minimum: counted in RequestData.
+    background->SetBackgroundCountMinimum(static_cast<vtkIdType>(indices.size()));
+    vtkNew<vtkIdTypeArray> again;
+    again->DeepCopy(selected);
+    background->SetSelectedIds(again);
+    background->Update();
+    if (background->GetCountsPending() || countsOf(0) != static_cast<int>(expected[0]) ||
+      calls != 1)
+    {
+      std::printf("FAILED: a selection under the minimum was not counted at once\n");
+      fail = 1;
+    }
+    background->SetCountsReadyCallback(nullptr);
   }
 
   // Picture: frustums coloured by count (dark blue = none, red = most), selection highlighted.

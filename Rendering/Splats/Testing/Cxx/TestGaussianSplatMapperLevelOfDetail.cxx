@@ -8,7 +8,9 @@
 //     few reach the image's edge tiles;
 //  2. the still frame after an orbit of moving frames is the exact one bit for bit: the same
 //     window bytes as a mapper that never moved drew for that camera, and the CPU
-//     rasteriser's image (Core, Rasterize<float>) up to the framebuffer's 8-bit rounding;
+//     rasteriser's image (Core, Rasterize<float>) up to the framebuffer's 8-bit rounding; the
+//     same with the next choice of Gaussians made ahead on a builder thread
+//     (InteractiveRebuildAhead), whose moving frames stay reduced and close to the exact ones;
 //  3. a budget of 0, or one at least the scene's size, draws every Gaussian while moving;
 //  4. hiding by score applies to the reduced frame's Gaussians (fewer drawn, none hidden
 //     drawn: a range that hides everything draws nothing).
@@ -148,6 +150,40 @@ int TestGaussianSplatMapperLevelOfDetail(int, char*[])
   {
     std::printf("FAILED: the still frame is not the CPU rasteriser's image\n");
     fail = 1;
+  }
+
+  // 2b. The same orbit with the next choice made ahead on a builder thread
+  // (InteractiveRebuildAhead): every moving frame draws a reduced picture close to the exact
+  // one, and the still frame after it is again the exact frame bit for bit.
+  {
+    View ahead(scene);
+    ahead.Mapper->SetInteractiveSplatBudget(budget);
+    ahead.Mapper->SetInteractiveImageSampleDistance(2.0);
+    ahead.Mapper->SetInteractiveRebuildAhead(0.25);
+    ahead.Draw(0.3, false);
+    for (int f = 1; f <= 6; ++f)
+    {
+      const auto moving = ahead.Draw(0.3 + 0.03 * f, true);
+      const double p = splattest::Psnr(fresh.Draw(0.3 + 0.03 * f, false), moving);
+      if (!ahead.Mapper->GetLastFrameReduced() || ahead.Mapper->GetLastDrawnCount() == 0 ||
+        p < 20.0)
+      {
+        std::printf("FAILED: moving frame %d with rebuilds ahead: reduced %d, %lld drawn, "
+                    "%.2f dB against the exact frame\n",
+          f,
+          static_cast<int>(ahead.Mapper->GetLastFrameReduced()),
+          static_cast<long long>(ahead.Mapper->GetLastDrawnCount()),
+          p);
+        fail = 1;
+      }
+    }
+    const auto aheadStopped = ahead.Draw(0.5, false);
+    if (aheadStopped != exact || ahead.Mapper->GetLastFrameReduced())
+    {
+      std::printf("FAILED: the still frame after moving with rebuilds ahead is not the exact "
+                  "frame bit for bit\n");
+      fail = 1;
+    }
   }
 
   // 3. Budget 0 and a budget of at least the scene's size: every Gaussian while moving.
