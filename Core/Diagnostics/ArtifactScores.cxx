@@ -639,7 +639,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   const bool scores = request.Blur || request.Needle;
   const bool needCameras = request.NeedsCameras();
   const bool renderCost = request.NeedsCompositing();
-  const std::size_t n = count;
+  const std::size_t n = cloud.Count;
   if (first > cloud.Count || count > cloud.Count - first)
   {
     throw std::invalid_argument("Gaussians " + std::to_string(first) + " to " +
@@ -658,19 +658,20 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   {
     throw std::invalid_argument("the partial scores do not match the cloud or the request");
   }
+  // The range's loops run over g in [begin, end); the vectors keep the cloud's size.
+  const std::int64_t begin = static_cast<std::int64_t>(first);
+  const std::int64_t end = static_cast<std::int64_t>(first + count);
   GaussianScores out;
   out.Flags.assign(n, 0);
   // Invalid parameters (flag only; the rasteriser skips these Gaussians by itself).
   {
     std::size_t invalid = 0;
-    const std::int64_t sn = static_cast<std::int64_t>(n);
 #pragma omp parallel for reduction(+ : invalid) schedule(static)
-    for (std::int64_t g = 0; g < sn; ++g)
+    for (std::int64_t g = begin; g < end; ++g)
     {
-      const std::size_t i = static_cast<std::size_t>(g);
-      if (ClassOf(cloud, first + i) != GaussianClass::Drawn)
+      if (ClassOf(cloud, static_cast<std::size_t>(g)) != GaussianClass::Drawn)
       {
-        out.Flags[i] |= InvalidParameters;
+        out.Flags[g] |= InvalidParameters;
         ++invalid;
       }
     }
@@ -683,7 +684,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   {
     const auto t0 = Clock::now();
     shape.resize(n);
-    ComputeNeedleShapes(cloud.LogScales.data() + 3 * first, n, shape.data());
+    ComputeNeedleShapes(cloud.LogScales.data() + 3 * first, count, shape.data() + first);
     out.Timings.NeedleShape = Seconds(t0);
   }
   if (!needCameras)
@@ -730,9 +731,8 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   }
   const double invViews = out.ViewsUsed > 0 ? 1.0 / out.ViewsUsed : 0.0;
   std::size_t noCoverage = 0, noScored = 0;
-  const std::int64_t sn = static_cast<std::int64_t>(n);
 #pragma omp parallel for reduction(+ : noCoverage, noScored) schedule(static)
-  for (std::int64_t g = 0; g < sn; ++g)
+  for (std::int64_t g = begin; g < end; ++g)
   {
     if (request.ViewCoverage)
     {
@@ -778,11 +778,11 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (request.Blur)
     {
-      std::fill(out.BlurScore.begin(), out.BlurScore.end(), nan);
+      std::fill(out.BlurScore.begin() + begin, out.BlurScore.begin() + end, nan);
     }
     if (request.Needle)
     {
-      std::fill(out.NeedleScore.begin(), out.NeedleScore.end(), nan);
+      std::fill(out.NeedleScore.begin() + begin, out.NeedleScore.begin() + end, nan);
     }
   }
   if (renderCost)
@@ -793,7 +793,7 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
     }
     std::size_t notEvaluated = 0;
 #pragma omp parallel for reduction(+ : notEvaluated) schedule(static)
-    for (std::int64_t g = 0; g < sn; ++g)
+    for (std::int64_t g = begin; g < end; ++g)
     {
       const double cost = partials.RenderCostSum[g], contribution = partials.ContributionSum[g];
       notEvaluated += cost > 0 ? 0 : 1;

@@ -295,10 +295,14 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   ScorePartials partials);
 
 /**
- * FinishGaussianScores() of the Gaussians [first, first + count) alone: the per-Gaussian
- * vectors of @p partials hold theirs (count entries, every selected view summed), and so do
- * those of the result. For processes that each finish a slice of the Gaussians after a
- * reduce-scatter of the partials (vtkGaussianArtifactScoreFilter under MPI): its counts
+ * FinishGaussianScores() of the Gaussians [first, first + count) alone, in place: the
+ * per-Gaussian vectors of @p partials keep the cloud's size and only their entries in the range
+ * are read (every selected view summed there), and the result's vectors have the cloud's size
+ * with the range finished and every other entry as @p partials had it (vectors finished in the
+ * sums' memory: BlurScore, NeedleScore, RenderCost, the view counts) or 0 (the others). For
+ * processes that each finish a slice of the Gaussians after a reduce-scatter of the partials and
+ * then fill the other slices from the processes that finished them (vtkGaussianArtifactScoreFilter
+ * under MPI), with no buffer of a slice's size allocated on the way: its counts
  * (NoCoverageViewCount, ...) are the slice's, its warnings those of ScoreWarnings() for them.
  * Throws std::invalid_argument when the range is not in the cloud.
  */

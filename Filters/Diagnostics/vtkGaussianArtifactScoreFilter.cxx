@@ -213,54 +213,53 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
     return false;
   }
   // The element-wise sums of the partials (ScorePartials says why that is exact), each slice of
-  // the Gaussians summed on the process that finishes it (a reduce-scatter): no process sums,
-  // holds or finishes every Gaussian's partials, and the finished scores travel once.
+  // the Gaussians summed on the process that finishes it (a reduce-scatter): no process sums or
+  // finishes every Gaussian's partials, and the finished scores travel once. Everything happens
+  // in the vectors of the cloud's size that the views were summed in: on a virtual machine the
+  // first touch of fresh memory costs about 2.3 s of CPU a GiB (Documentation/performance.md,
+  // issue 31), so buffers of a slice's or the cloud's size for the exchange would cost a
+  // process about a second at 6.1M Gaussians, which one process does not pay.
   const std::size_t n = cloud.Count;
   auto sliceStart = [n, ranks](int r)
   { return static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / ranks); };
   const std::size_t first = sliceStart(rank), count = sliceStart(rank + 1) - first;
+  // At most this many values per MPI call: Open MPI's reduction allocates buffers of a call's
+  // size, and a scratch of this size receives the sums.
+  constexpr std::size_t chunk = std::size_t(1) << 19;
   static_assert(sizeof(unsigned int) == sizeof(std::uint32_t), "32-bit unsigned int");
-  auto scatterU32 = [&](std::vector<std::uint32_t>& v)
+  auto reduceScatter = [&](auto* values, auto* scratch)
   {
-    std::vector<std::uint32_t> mine(count, 0);
     for (int r = 0; r < ranks; ++r)
     {
-      const std::size_t b = sliceStart(r);
-      controller->Reduce(reinterpret_cast<const unsigned int*>(v.data() + b),
-        reinterpret_cast<unsigned int*>(mine.data()),
-        static_cast<vtkIdType>(sliceStart(r + 1) - b),
-        vtkCommunicator::SUM_OP,
-        r);
+      for (std::size_t b = sliceStart(r), e = sliceStart(r + 1); b < e; b += chunk)
+      {
+        const std::size_t length = std::min(chunk, e - b);
+        controller->Reduce(
+          values + b, scratch, static_cast<vtkIdType>(length), vtkCommunicator::SUM_OP, r);
+        if (r == rank)
+        {
+          std::copy(scratch, scratch + length, values + b);
+        }
+      }
     }
-    v.swap(mine);
   };
-  auto scatterF64 = [&](std::vector<double>& v)
   {
-    std::vector<double> mine(count, 0.0);
-    for (int r = 0; r < ranks; ++r)
+    std::vector<double> scratch(std::min(chunk, count));
+    // Every process has the same sizes (the same request): empty ones are skipped everywhere.
+    for (std::vector<std::uint32_t>* counts : partials.PerGaussianCounts())
     {
-      const std::size_t b = sliceStart(r);
-      controller->Reduce(v.data() + b,
-        mine.data(),
-        static_cast<vtkIdType>(sliceStart(r + 1) - b),
-        vtkCommunicator::SUM_OP,
-        r);
+      if (!counts->empty())
+      {
+        reduceScatter(reinterpret_cast<unsigned int*>(counts->data()),
+          reinterpret_cast<unsigned int*>(scratch.data()));
+      }
     }
-    v.swap(mine);
-  };
-  // Every process has the same sizes (the same request): empty ones are skipped everywhere.
-  for (std::vector<std::uint32_t>* counts : partials.PerGaussianCounts())
-  {
-    if (!counts->empty())
+    for (std::vector<double>* sums : partials.PerGaussianSums())
     {
-      scatterU32(*counts);
-    }
-  }
-  for (std::vector<double>* sums : partials.PerGaussianSums())
-  {
-    if (!sums->empty())
-    {
-      scatterF64(*sums);
+      if (!sums->empty())
+      {
+        reduceScatter(sums->data(), scratch.data());
+      }
     }
   }
   unsigned long long counts[2] = { partials.ViewsScored, partials.ViewsWithoutImage },
@@ -292,26 +291,23 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
                                   << (finishError.empty() ? "on another process" : finishError));
     return false;
   }
-  // Every process gets every slice's scores (each process's output holds them all).
-  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks)),
-    offsets(static_cast<std::size_t>(ranks));
-  for (int r = 0; r < ranks; ++r)
+  // Every process gets every slice's scores (each process's output holds them all): each
+  // slice is broadcast, in place, from the process that finished it.
+  auto gather = [&](auto& all, bool wanted)
   {
-    offsets[static_cast<std::size_t>(r)] = static_cast<vtkIdType>(sliceStart(r));
-    lengths[static_cast<std::size_t>(r)] =
-      static_cast<vtkIdType>(sliceStart(r + 1) - sliceStart(r));
-  }
-  auto gather = [&](auto& slice, bool wanted)
-  {
-    using Vector = std::remove_reference_t<decltype(slice)>;
-    Vector all;
-    if (wanted)
+    if (!wanted)
     {
-      all.resize(n);
-      controller->AllGatherV(
-        slice.data(), all.data(), static_cast<vtkIdType>(count), lengths.data(), offsets.data());
+      std::remove_reference_t<decltype(all)>().swap(all);
+      return;
     }
-    slice.swap(all);
+    all.resize(n); // (FinishGaussianScores gives the cloud's size)
+    for (int r = 0; r < ranks; ++r)
+    {
+      for (std::size_t b = sliceStart(r), e = sliceStart(r + 1); b < e; b += chunk)
+      {
+        controller->Broadcast(all.data() + b, static_cast<vtkIdType>(std::min(chunk, e - b)), r);
+      }
+    }
   };
   const vis4gs::ScoreRequest& req = settings.Request;
   const bool views = needCameras, imageScores = needCameras && (req.Blur || req.Needle);

@@ -820,9 +820,10 @@ TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
   EXPECT_THROW(vis4gs::FinishGaussianScores(cloud, settings, wrong), std::invalid_argument);
 }
 
-// A distributed run finishes each process's slice of the Gaussians (issue 31): the slices'
-// scores, put end to end, are the whole finish's bit for bit (the same operations on the same
-// sums), their counts add up to its counts and ScoreWarnings() of the sums gives its warnings.
+// A distributed run finishes each process's slice of the Gaussians in place (issue 31): the
+// slices' scores, put end to end, are the whole finish's bit for bit (the same operations on the
+// same sums, no entry outside the slice read), their counts add up to its counts and
+// ScoreWarnings() of the sums gives its warnings.
 TEST(ArtifactScores, FinishedSlicesAreTheWholeFinish)
 {
   GaussianCloud cloud;
@@ -846,21 +847,39 @@ TEST(ArtifactScores, FinishedSlicesAreTheWholeFinish)
     { std::vector<std::size_t>{ 0, 5 }, { 0, 2, 5 }, { 0, 0, 3, 3, 5 }, { 0, 1, 2, 3, 4, 5 } })
   {
     vis4gs::GaussianScores joined;
+    joined.ViewCoverage.assign(cloud.Count, -1.0);
+    for (auto member : { &vis4gs::GaussianScores::BlurScore,
+           &vis4gs::GaussianScores::NeedleScore,
+           &vis4gs::GaussianScores::NeedleShape,
+           &vis4gs::GaussianScores::RenderCost,
+           &vis4gs::GaussianScores::CostPerContribution })
+    {
+      (joined.*member).assign(cloud.Count, -1.0);
+    }
+    joined.Flags.assign(cloud.Count, 0xff);
     std::size_t noCoverage = 0, noScored = 0, invalid = 0, notEvaluated = 0;
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
     {
       const std::size_t first = cuts[k], count = cuts[k + 1] - cuts[k];
+      // The slice's sums are in place in vectors of the cloud's size; the others' entries are
+      // poisoned, so that reading one would show.
       vis4gs::ScorePartials slice = partials;
       for (std::vector<std::uint32_t>* v : slice.PerGaussianCounts())
       {
-        *v = std::vector<std::uint32_t>(v->begin() + first, v->begin() + first + count);
+        for (std::size_t g = 0; g < v->size(); ++g)
+        {
+          (*v)[g] = g >= first && g < first + count ? (*v)[g] : 0xdeadbeefu;
+        }
       }
       for (std::vector<double>* v : slice.PerGaussianSums())
       {
-        *v = std::vector<double>(v->begin() + first, v->begin() + first + count);
+        for (std::size_t g = 0; g < v->size(); ++g)
+        {
+          (*v)[g] = g >= first && g < first + count ? (*v)[g] : std::nan("");
+        }
       }
       const auto part = vis4gs::FinishGaussianScores(cloud, settings, slice, first, count);
-      ASSERT_EQ(part.Flags.size(), count);
+      ASSERT_EQ(part.Flags.size(), cloud.Count);
       for (auto member : { &vis4gs::GaussianScores::ViewCoverage,
              &vis4gs::GaussianScores::BlurScore,
              &vis4gs::GaussianScores::NeedleScore,
@@ -868,10 +887,14 @@ TEST(ArtifactScores, FinishedSlicesAreTheWholeFinish)
              &vis4gs::GaussianScores::RenderCost,
              &vis4gs::GaussianScores::CostPerContribution })
       {
-        (joined.*member)
-          .insert((joined.*member).end(), (part.*member).begin(), (part.*member).end());
+        ASSERT_EQ((part.*member).size(), cloud.Count);
+        std::copy((part.*member).begin() + first,
+          (part.*member).begin() + first + count,
+          (joined.*member).begin() + first);
       }
-      joined.Flags.insert(joined.Flags.end(), part.Flags.begin(), part.Flags.end());
+      std::copy(part.Flags.begin() + first,
+        part.Flags.begin() + first + count,
+        joined.Flags.begin() + first);
       noCoverage += part.NoCoverageViewCount;
       noScored += part.NoScoredViewCount;
       invalid += part.InvalidCount;
