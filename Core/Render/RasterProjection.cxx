@@ -660,9 +660,13 @@ void ProjectInto(const GaussianCloud& cloud,
   }
   else
   {
+    // A kept buffer gets 1/8 of slack, as ResizeKeep gives: the level of detail's subsets
+    // vary by a few thousand Gaussians from view to view, and each new maximum would otherwise
+    // allocate, clear and page-fault the whole buffer again on one thread.
+    const std::size_t capacity = reuse ? n + n / 8 : n;
     std::vector<ProjectedGaussian<T>>().swap(p.Gaussians);
-    p.Gaussians.reserve(n);
-    raster::internal::HugePages(p.Gaussians.data(), n * sizeof(ProjectedGaussian<T>));
+    p.Gaussians.reserve(capacity);
+    raster::internal::HugePages(p.Gaussians.data(), capacity * sizeof(ProjectedGaussian<T>));
     p.Gaussians.assign(n, ProjectedGaussian<T>());
   }
   if constexpr (std::is_same<T, float>::value)

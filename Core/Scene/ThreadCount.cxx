@@ -7,6 +7,13 @@
 #include <omp.h>
 #endif
 
+#ifdef __linux__
+#include <cerrno>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace vis4gs
 {
 
@@ -17,6 +24,27 @@ int ThreadCount(int requested)
 #else
   (void)requested;
   return 1;
+#endif
+}
+
+bool LowerThreadPriority(int niceness)
+{
+  if (niceness <= 0)
+  {
+    return true;
+  }
+#ifdef __linux__
+  // PRIO_PROCESS with a thread id sets that thread's nice value only (Linux, not POSIX).
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  errno = 0;
+  const int current = getpriority(PRIO_PROCESS, tid);
+  if (errno == 0 && current >= niceness)
+  {
+    return true;
+  }
+  return setpriority(PRIO_PROCESS, tid, std::min(niceness, 19)) == 0;
+#else
+  return false;
 #endif
 }
 

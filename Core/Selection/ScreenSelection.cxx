@@ -662,14 +662,9 @@ std::vector<std::uint32_t> FrameFromMaxima(const ViewProjection<float>& proj,
   return out;
 }
 
-// Frame's candidates: the projected Gaussians whose centre lies in [x0, x1] x [y0, y1] (corners
-// in any order; clipped to the image in place), ascending.
-std::vector<std::uint32_t> FrameCandidates(const ViewProjection<float>& proj,
-  int& x0,
-  int& y0,
-  int& x1,
-  int& y1,
-  int threads)
+// The rectangle [x0, x1] x [y0, y1] (corners in any order) clipped to @p proj's image in
+// place; false when nothing of it is left.
+bool ClipFrame(const ViewProjection<float>& proj, int& x0, int& y0, int& x1, int& y1)
 {
   if (x0 > x1)
   {
@@ -683,23 +678,42 @@ std::vector<std::uint32_t> FrameCandidates(const ViewProjection<float>& proj,
   y0 = std::max(0, y0);
   x1 = std::min(proj.Width - 1, x1);
   y1 = std::min(proj.Height - 1, y1);
+  return x0 <= x1 && y0 <= y1;
+}
+
+// Whether @p g is one of Frame's candidates for the clipped rectangle: visible, its centre in
+// the rectangle's pixels.
+inline bool CentreInFrame(const ProjectedGaussian<float>& g, int x0, int y0, int x1, int y1)
+{
+  const float ulo = x0 - 0.5f, uhi = x1 + 0.5f, vlo = y0 - 0.5f, vhi = y1 + 0.5f;
+  return g.IsVisible() && g.U >= ulo && g.U < uhi && g.V >= vlo && g.V < vhi;
+}
+
+// Frame's candidates: the projected Gaussians whose centre lies in [x0, x1] x [y0, y1] (corners
+// in any order; clipped to the image in place), ascending.
+std::vector<std::uint32_t> FrameCandidates(const ViewProjection<float>& proj,
+  int& x0,
+  int& y0,
+  int& x1,
+  int& y1,
+  int threads)
+{
   std::vector<std::uint32_t> candidates;
-  if (x0 > x1 || y0 > y1)
+  if (!ClipFrame(proj, x0, y0, x1, y1))
   {
     return candidates;
   }
-  const float ulo = x0 - 0.5f, uhi = x1 + 0.5f, vlo = y0 - 0.5f, vhi = y1 + 0.5f;
   {
     // Flags in parallel (the scan reads one cache line per Gaussian), compacted in order.
     const std::int64_t n = static_cast<std::int64_t>(proj.Gaussians.size());
     std::vector<std::uint8_t> inside(static_cast<std::size_t>(n));
     const ProjectedGaussian<float>* gs = proj.Gaussians.data();
     std::uint8_t* flags = inside.data();
+    const int cx0 = x0, cy0 = y0, cx1 = x1, cy1 = y1;
 #pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
     for (std::int64_t i = 0; i < n; ++i)
     {
-      const auto& g = gs[i];
-      flags[i] = g.IsVisible() && g.U >= ulo && g.U < uhi && g.V >= vlo && g.V < vhi;
+      flags[i] = CentreInFrame(gs[i], cx0, cy0, cx1, cy1);
     }
     for (std::int64_t i = 0; i < n; ++i)
     {
@@ -907,16 +921,21 @@ std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
   {
     throw std::invalid_argument("SelectFrame: the pixel weight record is of another image");
   }
-  std::vector<std::uint32_t> candidates =
-    FrameCandidates(projection, x0, y0, x1, y1, options.Threads);
-  if (options.IncludeOccluded || candidates.empty())
+  if (options.IncludeOccluded)
   {
-    return candidates;
+    return FrameCandidates(projection, x0, y0, x1, y1, options.Threads);
+  }
+  if (!ClipFrame(projection, x0, y0, x1, y1))
+  {
+    return {};
   }
   if (!(options.WeightThreshold > 0))
   {
     throw std::invalid_argument("SelectFrame: the weight threshold must be positive");
   }
+  // The Gaussians with a kept blend >= the threshold in the rectangle first, then the centre
+  // test on those only: a visible-only pick reads the rectangle's blends and its flagged
+  // Gaussians, not every projected Gaussian (about 100 bytes each: 0.5 GB at 4.89M).
   auto masks = TileMasks(record);
   for (int y = y0; y <= y1; ++y)
   {
@@ -928,11 +947,11 @@ std::vector<std::uint32_t> SelectFrame(const ViewProjection<float>& projection,
   const std::vector<std::uint8_t> flags =
     RecordedAt(record, projection.Gaussians.size(), masks, options.WeightThreshold);
   std::vector<std::uint32_t> out;
-  for (std::uint32_t i : candidates)
+  for (std::size_t i = 0; i < flags.size(); ++i)
   {
-    if (flags[i])
+    if (flags[i] && CentreInFrame(projection.Gaussians[i], x0, y0, x1, y1))
     {
-      out.push_back(i);
+      out.push_back(static_cast<std::uint32_t>(i));
     }
   }
   return out;

@@ -10,7 +10,11 @@ namespace vis4gs
 //------------------------------------------------------------------------------
 void NormalizeSelection(std::vector<std::int64_t>& values)
 {
-  std::sort(values.begin(), values.end());
+  // A pick's indices come ascending (a scan of the frame): checking is one pass, sorting more.
+  if (!std::is_sorted(values.begin(), values.end()))
+  {
+    std::sort(values.begin(), values.end());
+  }
   values.erase(std::unique(values.begin(), values.end()), values.end());
 }
 

@@ -16,6 +16,14 @@
  * reach) is computed once per scene (PrepareSplatLevelOfDetail); the selection per frame reads
  * 20 bytes per Gaussian and sorts nothing (SelectSplatsForView). The still frame projects
  * every Gaussian again (exact).
+ *
+ * A selection repeated while the view moves need not read every Gaussian: the preparation also
+ * groups the Gaussians into cells of similar mass (within a factor of sqrt 2) and position (a
+ * block of the Morton order), each with a bounding sphere and its largest mass, and
+ * SelectSplatsInCells examines only the cells that meet the view's frustum and whose largest
+ * possible key reaches a floor below the previous selection's boundary; the Gaussians it skips
+ * could not have been selected, so its subset is SelectSplatsForView's, Gaussian for Gaussian
+ * (it examines every cell again when the floor turns out too high).
  */
 #ifndef vis4gs_SplatLevelOfDetail_h
 #define vis4gs_SplatLevelOfDetail_h
@@ -30,6 +38,24 @@
 namespace vis4gs
 {
 
+/// One Gaussian of a cell (SplatLevelOfDetail::Entries): its position, mass, reach and index.
+struct SplatCellEntry
+{
+  float X, Y, Z, Mass, Reach;
+  std::uint32_t Index;
+};
+
+/// A cell of Gaussians of similar mass and position: Entries [Begin, End).
+struct SplatCell
+{
+  float Center[3];
+  /// Largest distance of an entry's position from Center, and of its 3-sigma sphere's far side
+  /// (distance + reach); infinite or NaN for a cell that is never culled.
+  float Radius, Extent;
+  float MaxMass;
+  std::uint32_t Begin, End;
+};
+
 /// The view-independent part of the level of detail of one cloud.
 struct SplatLevelOfDetail
 {
@@ -39,15 +65,35 @@ struct SplatLevelOfDetail
   /// Three times the largest scale (world units), per Gaussian: the radius of the sphere
   /// that holds its 3-sigma ellipsoid, for the frustum cull.
   std::vector<float> Reach;
+  /// The Gaussians of positive mass grouped by cell (cell after cell), and the cells; empty
+  /// when the preparation was asked for no cells.
+  std::vector<SplatCellEntry> Entries;
+  std::vector<SplatCell> Cells;
+};
+
+/// What SelectSplatsInCells keeps between the selections of one caller.
+struct SplatSelectionState
+{
+  /// Per Gaussian, the key of the last selection (internal).
+  std::vector<std::uint16_t> Keys;
+  /// The last selection's boundary key (0: none yet): the next one's floor is a little below.
+  std::uint32_t Boundary = 0;
+  /// Gaussians whose key the last selection computed, and whether it had to examine every
+  /// cell again because its floor was above the boundary (benchmarks, tests).
+  std::size_t Examined = 0;
+  bool Fallback = false;
 };
 
 /**
- * Fills @p lod for @p cloud (parallel with OpenMP, @p threads 0 = OpenMP's default). A cloud
- * whose arrays do not match its count gets zero masses (nothing is selected).
+ * Fills @p lod for @p cloud (parallel with OpenMP, @p threads 0 = OpenMP's default), with
+ * @p cells the cells of SelectSplatsInCells (at most @p cellSize Gaussians each). A cloud whose
+ * arrays do not match its count gets zero masses (nothing is selected).
  */
 void PrepareSplatLevelOfDetail(const GaussianCloud& cloud,
   SplatLevelOfDetail& lod,
-  int threads = 0);
+  int threads = 0,
+  bool cells = true,
+  std::size_t cellSize = 256);
 
 /**
  * The Gaussians of @p cloud a moving frame of @p camera draws under @p budget, into @p subset
@@ -73,6 +119,24 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   int threads = 0,
   double margin = 0.0,
   std::vector<std::uint16_t>* scratch = nullptr);
+
+/**
+ * SelectSplatsForView()'s subset (the same Gaussians; the return value is not its count in the
+ * frustum but the number of Gaussians examined), reading only the cells of @p lod that meet the
+ * frustum (widened by @p margin) and whose largest possible key reaches a floor: a little below
+ * @p state's previous boundary (0: every cell in the frustum). When fewer than @p budget
+ * Gaussians of the view's own frustum reach the floor it examines every cell in the frustum
+ * again (state.Fallback). @p lod without cells: SelectSplatsForView over the whole cloud.
+ * Throws std::invalid_argument as SelectSplatsForView does.
+ */
+std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
+  const SplatLevelOfDetail& lod,
+  const Camera& camera,
+  std::size_t budget,
+  std::vector<std::uint32_t>& subset,
+  SplatSelectionState& state,
+  int threads = 0,
+  double margin = 0.0);
 
 /// The ranking key of SelectSplatsForView() for a Gaussian of @p mass at view depth @p z
 /// (0 = never selected): the top 16 bits of the float mass / z^2.

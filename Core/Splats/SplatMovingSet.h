@@ -57,11 +57,17 @@ struct SplatMovingSet
   std::size_t Rebuilds = 0;
   std::size_t Reuses = 0;
   std::size_t ColorRefreshes = 0;
-  /// The previous rebuild's Subset and Compact, and a rebuild's scratch (their buffers are
-  /// reused, so that a rebuild does not page-fault tens of MB again; internal).
+  /// Wall milliseconds of the last rebuild's selection and of the whole rebuild (benchmarks).
+  double LastSelectionMs = 0.0;
+  double LastRebuildMs = 0.0;
+  /// The spare Subset and Compact a rebuild fills (BuildSplatMovingSet; the previous
+  /// rebuild's, whose buffers are reused so that a rebuild does not page-fault tens of MB
+  /// again), and a rebuild's scratch (internal).
   std::vector<std::uint32_t> PreviousSubset;
   GaussianCloud Previous;
-  std::vector<std::uint16_t> Keys;
+  /// The selection's keys and last boundary (SelectSplatsInCells: a rebuild examines only the
+  /// cells that can hold a selected Gaussian).
+  SplatSelectionState Selection;
   std::vector<std::int64_t> From;
   std::vector<float> Depths;
 
@@ -75,7 +81,23 @@ struct SplatMovingSet
   int ShDegree = 0;
   bool Colors = true;
   double ReuseAngle = 0.0;
-  /// Median view depth of the selected Gaussians in front of the rebuild's camera.
+  /// A rebuild made into the spare buffers and not published yet, and what it was made for
+  /// (BuildSplatMovingSet, PublishSplatMovingSet).
+  struct Build
+  {
+    bool Ready = false;
+    bool ColorsRefreshed = false;
+    Camera Rank, ColorRank;
+    const GaussianCloud* Cloud = nullptr;
+    std::uint64_t CloudVersion = 0;
+    std::size_t Budget = 0;
+    int ShDegree = 0;
+    bool Colors = true;
+    double ReuseAngle = 0.0;
+    double Depth = 0.0;
+  } Next;
+  /// Median view depth of the selected Gaussians in front of the rebuild's camera (of a
+  /// sample of at most 4,096 of them, evenly spaced).
   double Depth = 0.0;
 };
 
@@ -87,17 +109,51 @@ struct SplatMovingSet
 double SplatViewChangeAngle(const Camera& rank, const Camera& now, double depth);
 
 /**
+ * Whether @p set, as published, serves a moving frame of @p camera: made for the same cloud
+ * (address and @p cloudVersion), budget, SH degree and colour setting of @p settings, reuse
+ * angle and field of view, and the view changed by at most @p fraction times @p reuseAngle
+ * since (SplatViewChangeAngle). Never with @p reuseAngle 0.
+ */
+bool SplatMovingSetReusable(const GaussianCloud& cloud,
+  std::uint64_t cloudVersion,
+  const Camera& camera,
+  std::size_t budget,
+  const RasterSettings& settings,
+  double reuseAngle,
+  const SplatMovingSet& set,
+  double fraction = 1.0);
+
+/**
+ * UpdateSplatMovingSet()'s rebuild, into the spare buffers of @p set (PreviousSubset,
+ * Previous) and set.Next, without touching what the published set holds: another thread may
+ * project set.Compact and read set.Subset meanwhile, but must not change @p set until this
+ * returns. PublishSplatMovingSet() then makes it the set's. Throws as UpdateSplatMovingSet.
+ */
+void BuildSplatMovingSet(const GaussianCloud& cloud,
+  std::uint64_t cloudVersion,
+  const SplatLevelOfDetail& lod,
+  const Camera& camera,
+  std::size_t budget,
+  const RasterSettings& settings,
+  double reuseAngle,
+  double colorAngle,
+  SplatMovingSet& set);
+
+/// Makes the rebuild of BuildSplatMovingSet() the set's (a new Generation); false when none
+/// is waiting.
+bool PublishSplatMovingSet(SplatMovingSet& set);
+
+/**
  * Makes @p set hold the Gaussians of @p cloud a moving frame of @p camera draws under
- * @p budget (SelectSplatsForView), reusing it when it was made for the same cloud (address and
- * @p cloudVersion), budget, SH degree and colour setting of @p settings, reuse angle and field
- * of view, and the view changed by at most @p reuseAngle radians since (SplatViewChangeAngle).
- * A rebuild evaluates the colours of the Gaussians newly selected; those of the Gaussians that
- * stay selected are kept (a copy from the previous compact cloud instead of a gather of 192 B
- * of SH each from the scene) while the view is within @p colorAngle radians of the camera of
- * the last rebuild that evaluated every colour (0: every rebuild evaluates every colour).
- * Returns true when it was rebuilt. Parallel with OpenMP (settings.Threads). Throws
- * std::invalid_argument when @p lod does not match the cloud or an angle is negative or not
- * finite.
+ * @p budget (SelectSplatsForView's subset, by SelectSplatsInCells), reusing it while it serves
+ * the view (SplatMovingSetReusable with the whole @p reuseAngle), else rebuilt and published
+ * (BuildSplatMovingSet, PublishSplatMovingSet). A rebuild evaluates the colours of the Gaussians
+ * newly selected; those of the Gaussians that stay selected are kept (a copy from the previous
+ * compact cloud instead of a gather of 192 B of SH each from the scene) while the view is within @p
+ * colorAngle radians of the camera of the last rebuild that evaluated every colour (0: every
+ * rebuild evaluates every colour). Returns true when it was rebuilt. Parallel with OpenMP
+ * (settings.Threads). Throws std::invalid_argument when @p lod does not match the cloud or an angle
+ * is negative or not finite.
  */
 bool UpdateSplatMovingSet(const GaussianCloud& cloud,
   std::uint64_t cloudVersion,

@@ -12,6 +12,7 @@
 
 #include "ScreenSelection.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSIdColumn.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -137,25 +138,17 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
     const vtkIdType n = scene->GetNumberOfPoints();
     vtkDataArray* ids = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
     const bool haveIds = ids && ids->GetNumberOfTuples() == n;
-    // The selected rows. A sorted id column (a snapshot's) is searched per selected id, from
-    // the previous one's place on, instead of looking every row up among the wanted ids.
+    // The selected rows. A sorted id column (a snapshot's) is searched for the sorted ids in
+    // O(selection) (Vis4GSIdColumn.h), instead of looking every row up among the wanted ids.
     std::vector<std::uint32_t> rows;
-    auto* idArray = haveIds ? vtkIdTypeArray::SafeDownCast(ids) : nullptr;
-    const vtkIdType* idp =
-      idArray && idArray->GetNumberOfComponents() == 1 ? idArray->GetPointer(0) : nullptr;
-    if (idp && std::is_sorted(idp, idp + n))
+    std::vector<vtkIdType> found;
+    if (haveIds &&
+      vis4gs::RowsOfSortedIds(vtkIdTypeArray::SafeDownCast(ids),
+        wanted.data(),
+        static_cast<vtkIdType>(wanted.size()),
+        found))
     {
-      const vtkIdType* from = idp;
-      for (const vtkIdType id : wanted)
-      {
-        const auto range = std::equal_range(from, idp + n, id);
-        for (const vtkIdType* it = range.first; it != range.second; ++it)
-        {
-          rows.push_back(static_cast<std::uint32_t>(it - idp));
-        }
-        from = range.first;
-      }
-      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+      rows.assign(found.begin(), found.end());
     }
     else
     {

@@ -28,6 +28,7 @@
 
 #include "GaussianMath.h"
 #include "Rasterizer.h"
+#include "SortedIdLookup.h"
 #include "SplatAttributes.h"
 #include "SplatCamera.h"
 #include "SplatLevelOfDetail.h"
@@ -125,7 +126,9 @@ struct vtkGaussianSplatMapper::vtkInternals
   // search in the cloud's ids when they ascend (a reader's output: no table); else IdOrder,
   // the indices sorted by id (4 bytes per Gaussian).
   std::vector<std::uint32_t> IdOrder;
-  std::vector<float> Depths; // scratch of the synchronous sort
+  vis4gs::IdColumnOrder IdsOrder; // of the cloud's Ids (kept with the cloud: SetSharedGaussians
+                                  // swaps in equal values)
+  std::vector<float> Depths;      // scratch of the synchronous sort
   vtkMTimeType InputTime = 0;
   std::uint64_t CloudVersion = 0; // changes whenever Cloud is rebuilt (Work.Prepared's key)
   vtkMTimeType DisplayTime = 0;
@@ -268,40 +271,53 @@ struct vtkGaussianSplatMapper::vtkInternals
     {
       const std::vector<std::int64_t>& cloudIds = this->Cloud->Ids;
       this->Selected.assign(n, 0);
-      // Sorted ids (the hub's) are searched from the previous one's place on (on the render
-      // thread, once per selection).
       const vtkIdType* idp = ids->GetPointer(0);
-      const bool ascending = std::is_sorted(idp, idp + ids->GetNumberOfTuples());
-      auto from = cloudIds.begin();
-      for (vtkIdType k = 0; k < ids->GetNumberOfTuples(); ++k)
+      const vtkIdType count = ids->GetNumberOfTuples();
+      const bool ascending = std::is_sorted(idp, idp + count);
+      if (cloudIds.size() == n && ascending && this->IdsOrder.Sorted)
       {
-        const vtkIdType id = ids->GetValue(k);
-        if (cloudIds.size() != n)
+        // The hub's ids (sorted) in a snapshot's (sorted) ids: O(selection), on the render
+        // thread once per selection.
+        static_assert(sizeof(vtkIdType) == sizeof(std::int64_t), "64-bit vtkIdType");
+        vis4gs::ForEachRowOfSortedIds(cloudIds.data(),
+          n,
+          this->IdsOrder,
+          reinterpret_cast<const std::int64_t*>(idp),
+          static_cast<std::size_t>(count),
+          [&](std::size_t r) { this->Selected[r] = 1; });
+      }
+      else
+      {
+        // Any order: a binary search per id (in IdOrder when the cloud's ids do not ascend);
+        // without ids the id is the index.
+        for (vtkIdType k = 0; k < count; ++k)
         {
-          if (id >= 0 && id < static_cast<vtkIdType>(n))
+          const vtkIdType id = idp[k];
+          if (cloudIds.size() != n)
           {
-            this->Selected[id] = 1;
+            if (id >= 0 && id < static_cast<vtkIdType>(n))
+            {
+              this->Selected[id] = 1;
+            }
           }
-        }
-        else if (this->IdOrder.empty())
-        {
-          const auto range =
-            std::equal_range(ascending ? from : cloudIds.begin(), cloudIds.end(), id);
-          for (auto it = range.first; it != range.second; ++it)
+          else if (this->IdOrder.empty())
           {
-            this->Selected[static_cast<std::size_t>(it - cloudIds.begin())] = 1;
+            const auto range = std::equal_range(cloudIds.begin(), cloudIds.end(), id);
+            for (auto it = range.first; it != range.second; ++it)
+            {
+              this->Selected[static_cast<std::size_t>(it - cloudIds.begin())] = 1;
+            }
           }
-          from = range.first;
-        }
-        else
-        {
-          auto it = std::lower_bound(this->IdOrder.begin(),
-            this->IdOrder.end(),
-            id,
-            [&](std::uint32_t i, vtkIdType v) { return cloudIds[i] < v; });
-          for (; it != this->IdOrder.end() && cloudIds[*it] == id; ++it)
+          else
           {
-            this->Selected[*it] = 1;
+            auto it = std::lower_bound(this->IdOrder.begin(),
+              this->IdOrder.end(),
+              id,
+              [&](std::uint32_t i, vtkIdType v) { return cloudIds[i] < v; });
+            for (; it != this->IdOrder.end() && cloudIds[*it] == id; ++it)
+            {
+              this->Selected[*it] = 1;
+            }
           }
         }
       }
@@ -504,8 +520,8 @@ void vtkGaussianSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     // (the cloud's Ids are the input's GaussianId array: ConvertScene)
     std::vector<std::uint32_t>().swap(in.IdOrder);
     const std::vector<std::int64_t>& ids = cloud.Ids;
-    if (ids.size() == n && n <= std::numeric_limits<std::uint32_t>::max() &&
-      !std::is_sorted(ids.begin(), ids.end()))
+    in.IdsOrder = vis4gs::InspectIdColumn(ids.data(), ids.size());
+    if (ids.size() == n && n <= std::numeric_limits<std::uint32_t>::max() && !in.IdsOrder.Sorted)
     {
       in.IdOrder.resize(n);
       std::iota(in.IdOrder.begin(), in.IdOrder.end(), 0u);
@@ -600,6 +616,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   vtkInternals& in = *this->Internals;
   vtkOpenGLRenderWindow* renWin = in.Window;
   const std::size_t n = in.Cloud->Count;
+  in.Frames.SetWorkerNice(this->FrameWorkerNice);
   in.Frames.SetAsynchronous(this->AsynchronousFrames);
 
   // Resolution: reduced while interacting (VTK's desired update rate), full for still frames.
@@ -688,6 +705,7 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     request.Reduced = reduced;
     request.ReuseAngle = this->InteractiveReuseAngle * vtkMath::Pi() / 180.0;
     request.ColorAngle = this->InteractiveColorAngle * vtkMath::Pi() / 180.0;
+    request.RebuildAhead = this->InteractiveRebuildAhead;
     if (reduced)
     {
       request.Settings.TransmittanceStop = this->InteractiveTransmittanceStop;
@@ -706,7 +724,11 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   }
 
   // Show the newest finished frame (synchronous: the one just made).
-  this->LastRasterTime = 0.0;
+  this->LastRasterTime = this->LastRasterDrawTime = 0.0;
+  std::fill_n(this->LastRasterPhaseTimes, 6, 0.0);
+  std::fill_n(this->LastRasterPhaseCpuTimes, 6, 0.0);
+  const auto drawStart = std::chrono::steady_clock::now();
+  bool uploaded = false;
   if (in.Frames.TakeFinished(in.CloudVersion, in.Shown))
   {
     const vtkGaussianSplatRasterFrames::Frame& frame = in.Shown;
@@ -728,7 +750,10 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
     in.RasterDrawn = frame.Drawn;
     in.RasterReduced = frame.Reduced;
     ++in.FramesShown;
+    uploaded = true;
     this->LastRasterTime = frame.Milliseconds;
+    std::copy(frame.PhaseMs.begin(), frame.PhaseMs.end(), this->LastRasterPhaseTimes);
+    std::copy(frame.PhaseCpuMs.begin(), frame.PhaseCpuMs.end(), this->LastRasterPhaseCpuTimes);
     this->LastImageSampleDistance = frame.SampleDistance;
     if (frame.Interactive && this->AutoAdjustImageSampleDistances && rate > 0)
     {
@@ -753,6 +778,10 @@ void vtkGaussianSplatMapper::RenderRasterized(vtkRenderer* ren,
   if (!in.Frames.Draw(renWin, depthCoeffs))
   {
     vtkErrorMacro("vtkGaussianSplatMapper: the image shaders failed to compile");
+  }
+  if (uploaded)
+  {
+    this->LastRasterDrawTime = vis4gs::MsSince(drawStart);
   }
 }
 
@@ -1238,13 +1267,26 @@ void vtkGaussianSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastRasterTime: " << this->LastRasterTime << "\n";
+  os << indent << "LastRasterPhaseTimes:";
+  for (double t : this->LastRasterPhaseTimes)
+  {
+    os << " " << t;
+  }
+  os << "\n" << indent << "LastRasterPhaseCpuTimes:";
+  for (double t : this->LastRasterPhaseCpuTimes)
+  {
+    os << " " << t;
+  }
+  os << "\n" << indent << "LastRasterDrawTime: " << this->LastRasterDrawTime << "\n";
   os << indent << "InteractiveSplatBudget: " << this->InteractiveSplatBudget << "\n";
   os << indent << "SelectionWeightThreshold: " << this->SelectionWeightThreshold << "\n";
   os << indent << "InteractiveReuseAngle: " << this->InteractiveReuseAngle << "\n";
   os << indent << "InteractiveColorAngle: " << this->InteractiveColorAngle << "\n";
+  os << indent << "InteractiveRebuildAhead: " << this->InteractiveRebuildAhead << "\n";
   os << indent << "InteractiveTransmittanceStop: " << this->InteractiveTransmittanceStop << "\n";
   os << indent << "LastFrameReduced: " << this->LastFrameReduced << "\n";
   os << indent << "AsynchronousFrames: " << this->AsynchronousFrames << "\n";
+  os << indent << "FrameWorkerNice: " << this->FrameWorkerNice << "\n";
   os << indent << "ScoreLookupTable: " << this->ScoreLookupTable << "\n";
   os << indent << "LastDrawnCount: " << this->LastDrawnCount << "\n";
   os << indent << "LastSortTime: " << this->LastSortTime << "\n";

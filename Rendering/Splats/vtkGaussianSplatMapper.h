@@ -389,6 +389,23 @@ public:
 
   ///@{
   /**
+   * CPU path: once the view has moved this fraction of InteractiveReuseAngle away from the
+   * camera the level of detail's Gaussians were chosen for, the next choice starts on a
+   * builder thread for the current view (vis4gs::BuildSplatMovingSet), and the moving frames
+   * keep drawing the current choice until it is ready (a frame whose view the current choice
+   * no longer serves waits for it). The choice's work is the same; it leaves the frame's
+   * level-of-detail step and runs beside the frame, which on two cores then shares them with
+   * it (measured: no less CPU per moving frame, Documentation/accuracy-vs-runtime.md; in fast
+   * motion the choice made ahead may be stale and made again). 0 (default) chooses again only
+   * when a frame needs it, on the thread that makes the frame (the frames then depend on
+   * nothing but their cameras).
+   */
+  vtkSetClampMacro(InteractiveRebuildAhead, double, 0.0, 1.0);
+  vtkGetMacro(InteractiveRebuildAhead, double);
+  ///@}
+
+  ///@{
+  /**
    * CPU path: the transmittance at which a moving frame's pixel stops blending
    * (vis4gs::RasterSettings::TransmittanceStop): what remains behind it, at most this fraction
    * of the pixel, is left out. Still frames use the reference's 1e-4 whatever this is. Default
@@ -405,6 +422,19 @@ public:
    */
   vtkGetMacro(LastImageSampleDistance, double);
   vtkGetMacro(LastRasterTime, double);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path: wall and CPU milliseconds (the whole process's, every thread) of the steps of
+   * the last frame made: 0 the level of detail (a moving frame's choice of Gaussians, or its
+   * reuse), 1 projection, 2 overlay, 3 binning, 4 compositing, 5 the image turned into
+   * texels; and of its texture upload and draw on the render thread (LastRasterDrawTime).
+   * Zeros when the cached image was reused. For the benchmarks: where a frame's time goes.
+   */
+  vtkGetVector6Macro(LastRasterPhaseTimes, double);
+  vtkGetVector6Macro(LastRasterPhaseCpuTimes, double);
+  vtkGetMacro(LastRasterDrawTime, double);
   ///@}
 
   /**
@@ -463,6 +493,20 @@ public:
   vtkSetMacro(AsynchronousFrames, bool);
   vtkGetMacro(AsynchronousFrames, bool);
   vtkBooleanMacro(AsynchronousFrames, bool);
+  ///@}
+
+  ///@{
+  /**
+   * CPU path, AsynchronousFrames: the nice value of the frame worker and of the OpenMP threads
+   * it starts (vis4gs::LowerThreadPriority), taken when the worker starts (the first
+   * asynchronous frame). The render thread and the OpenGL driver's threads then run first when
+   * they have work, so that a pick's answer and the linked views' renders do not wait for the
+   * highlighted frame the same pick asked for (on two cores the worker's team takes both); the
+   * worker has the CPU whenever they wait. Frames are the same, only their timing changes.
+   * 0-19; default 10 (0: the render thread's priority).
+   */
+  vtkSetClampMacro(FrameWorkerNice, int, 0, 19);
+  vtkGetMacro(FrameWorkerNice, int);
   ///@}
 
   /**
@@ -597,13 +641,18 @@ protected:
   double InteractiveUpdateRate = 1.0;
   double LastImageSampleDistance = 1.0;
   double LastRasterTime = 0.0;
+  double LastRasterPhaseTimes[6] = { 0, 0, 0, 0, 0, 0 };
+  double LastRasterPhaseCpuTimes[6] = { 0, 0, 0, 0, 0, 0 };
+  double LastRasterDrawTime = 0.0;
   vtkIdType InteractiveSplatBudget = 400000;
   double SelectionWeightThreshold = 0.01;
   double InteractiveReuseAngle = 6.0;
   double InteractiveColorAngle = 18.0;
+  double InteractiveRebuildAhead = 0.0;
   double InteractiveTransmittanceStop = 0.004;
   bool LastFrameReduced = false;
   bool AsynchronousFrames = false;
+  int FrameWorkerNice = 10;
   vtkLookupTable* ScoreLookupTable = nullptr;
   vtkIdType LastDrawnCount = 0;
   double LastSortTime = 0.0;

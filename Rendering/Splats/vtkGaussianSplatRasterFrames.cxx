@@ -11,6 +11,7 @@
 #include "vtkGaussianSplatRasterFrames.h"
 
 #include "ElapsedTime.h"
+#include "ThreadCount.h"
 
 #include "vtkGaussianSplatRasterImageFS.h"
 
@@ -26,9 +27,21 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <time.h>
 #include <utility>
 
 using vis4gs::MsSince;
+
+namespace
+{
+// CPU milliseconds of the whole process (every thread: OpenMP's work of a step included).
+double ProcessCpuMs()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+}
 
 //------------------------------------------------------------------------------
 vtkGaussianSplatRasterFrames::vtkGaussianSplatRasterFrames()
@@ -42,6 +55,7 @@ vtkGaussianSplatRasterFrames::~vtkGaussianSplatRasterFrames()
 {
   this->Cancel(); // (the frame in production is finished: the rasteriser cannot be stopped)
   this->SetAsynchronous(false);
+  this->FinishLodBuild(0);
   this->ImageTexture->Delete();
   this->DepthTexture->Delete();
 }
@@ -127,10 +141,28 @@ void vtkGaussianSplatRasterFrames::Submit(Request request)
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianSplatRasterFrames::FinishLodBuild(std::uint64_t cloudVersion)
+{
+  if (!this->LodBuilder.joinable())
+  {
+    return;
+  }
+  this->LodBuilder.join();
+  this->LodBuilt = false;
+  if (!this->LodBuildFailed && this->LodBuildVersion == cloudVersion && cloudVersion != 0)
+  {
+    vis4gs::PublishSplatMovingSet(this->LodSet);
+  }
+  this->LodSet.Next.Ready = false;
+  this->LodBuildCloud.reset();
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSplatRasterFrames::PrepareWantedLevelOfDetail()
 {
   if (this->LodWanted && this->LodSource != this->LodWantedVersion)
   {
+    this->FinishLodBuild(0); // (it reads the level of detail about to change)
     vis4gs::PrepareSplatLevelOfDetail(*this->LodWanted, this->Lod, this->LodWantedThreads);
     this->LodSource = this->LodWantedVersion;
   }
@@ -138,9 +170,18 @@ void vtkGaussianSplatRasterFrames::PrepareWantedLevelOfDetail()
 }
 
 //------------------------------------------------------------------------------
+void vtkGaussianSplatRasterFrames::SetWorkerNice(int nice)
+{
+  std::lock_guard<std::mutex> lock(this->Mutex);
+  this->WorkerNice = nice;
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSplatRasterFrames::Run()
 {
   std::unique_lock<std::mutex> lock(this->Mutex);
+  // Before any parallel region: the OpenMP team this thread starts inherits it.
+  vis4gs::LowerThreadPriority(this->WorkerNice);
   for (;;)
   {
     this->Wake.wait(lock, [this] { return this->Stop || this->Pending; });
@@ -155,9 +196,7 @@ void vtkGaussianSplatRasterFrames::Run()
     lock.lock();
     std::swap(this->Back, this->Ready);
     this->HasReady = true;
-    this->Working = false;
     lock.unlock();
-    this->Idle.notify_all();
     {
       std::lock_guard<std::mutex> callbackLock(this->CallbackMutex);
       if (this->Callback)
@@ -166,6 +205,11 @@ void vtkGaussianSplatRasterFrames::Run()
       }
     }
     lock.lock();
+    // Idle only once the callback has returned: whoever waited (Wait()) may then drop the
+    // callback knowing that none is still to come for these frames (a worker at a lower
+    // priority than the waiting thread may be preempted between the two).
+    this->Working = false;
+    this->Idle.notify_all();
     if (!this->Pending && this->LodWanted)
     {
       // (Working stays false: this is no frame; a request arriving meanwhile waits for it.)
@@ -240,6 +284,20 @@ const vis4gs::RasterWorkspace<float>* vtkGaussianSplatRasterFrames::LastFullFram
 void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
 {
   const auto t0 = std::chrono::steady_clock::now();
+  // Each step's wall and CPU time, for the benchmarks (where a frame's time goes).
+  auto stepStart = t0;
+  double stepCpu = ProcessCpuMs();
+  f.PhaseMs.fill(0.0);
+  f.PhaseCpuMs.fill(0.0);
+  auto endStep = [&](int step)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    const double cpu = ProcessCpuMs();
+    f.PhaseMs[step] += std::chrono::duration<double, std::milli>(now - stepStart).count();
+    f.PhaseCpuMs[step] += cpu - stepCpu;
+    stepStart = now;
+    stepCpu = cpu;
+  };
   this->LodWanted.reset();
   f.Key = r.Key;
   f.CloudVersion = r.CloudVersion;
@@ -261,6 +319,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
   if (this->LodSource != 0 && this->LodSource != r.CloudVersion)
   {
     // A new scene: the old one's level of detail is not needed any more.
+    this->FinishLodBuild(0);
     this->Lod = vis4gs::SplatLevelOfDetail();
     this->LodSet = vis4gs::SplatMovingSet();
     this->LodWork = vis4gs::RasterWorkspace<float>();
@@ -278,6 +337,15 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         vis4gs::PrepareSplatLevelOfDetail(cloud, this->Lod, threads);
         this->LodSource = r.CloudVersion;
       }
+      // A rebuild started ahead of need becomes the set once it has finished, or when the
+      // current set does not serve this view any more (then this frame waits for it).
+      if (this->LodBuilder.joinable() &&
+        (this->LodBuilt.load() ||
+          !vis4gs::SplatMovingSetReusable(
+            cloud, r.CloudVersion, camera, r.Budget, r.Settings, r.ReuseAngle, this->LodSet)))
+      {
+        this->FinishLodBuild(r.CloudVersion);
+      }
       // The compact copy of the selected Gaussians, kept while the view moves less than the
       // reuse angle, is projected with its own kept preparation.
       vis4gs::UpdateSplatMovingSet(cloud,
@@ -289,6 +357,47 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         r.ReuseAngle,
         r.ColorAngle,
         this->LodSet);
+      if (r.RebuildAhead > 0.0 && r.ReuseAngle > 0.0 && !this->LodBuilder.joinable() &&
+        !vis4gs::SplatMovingSetReusable(cloud,
+          r.CloudVersion,
+          camera,
+          r.Budget,
+          r.Settings,
+          r.ReuseAngle,
+          this->LodSet,
+          r.RebuildAhead))
+      {
+        // The next set, for this view, on the builder thread: it reads the cloud, the level of
+        // detail and the published set, and writes only the set's spare buffers, while the
+        // frames keep projecting the published set.
+        this->LodBuildCloud = r.Cloud;
+        this->LodBuildVersion = r.CloudVersion;
+        this->LodBuildFailed = false;
+        this->LodBuilt = false;
+        this->LodBuilder = std::thread(
+          [this, camera, r]
+          {
+            try
+            {
+              vis4gs::BuildSplatMovingSet(*this->LodBuildCloud,
+                r.CloudVersion,
+                this->Lod,
+                camera,
+                r.Budget,
+                r.Settings,
+                r.ReuseAngle,
+                r.ColorAngle,
+                this->LodSet);
+            }
+            catch (const std::exception&)
+            {
+              // (dropped: the frame that needs a new set rebuilds it and reports the error)
+              this->LodBuildFailed = true;
+            }
+            this->LodBuilt = true;
+          });
+      }
+      endStep(0);
       vis4gs::ProjectGaussians(this->LodSet.Compact,
         camera,
         r.Settings,
@@ -301,6 +410,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
       vis4gs::ProjectGaussians(
         cloud, camera, r.Settings, work.Projection, work.Prepared, r.CloudVersion);
     }
+    endStep(1);
     vis4gs::ViewProjection<float>& projection = work.Projection;
     const std::size_t m = projection.Gaussians.size();
     f.Drawn = projection.Counts.Visible;
@@ -357,7 +467,9 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
         g.Opacity *= this->Display[4 * i + 3];
       }
     }
+    endStep(2);
     vis4gs::BinGaussians<float>(projection, threads, work.Bins, work.Scratch);
+    endStep(3);
     // Nothing replays the blending: the compositing reads the kernels from the projection.
     work.Composite.KeepKernels = false;
     // An exact frame keeps the blends the selections read (Brush and Frame then look them
@@ -374,6 +486,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
       &work.Composite,
       true,
       record ? &this->Weights : nullptr);
+    endStep(4);
     if (!r.Reduced)
     {
       std::lock_guard<std::mutex> lock(this->Mutex);
@@ -418,6 +531,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
       f.DepthTexels[d] = a > 0.0f ? this->Image.Depth[s] / a : 1.0e30f;
     }
   }
+  endStep(5);
   f.Milliseconds = MsSince(t0);
 }
 

@@ -43,6 +43,7 @@
 #include "vtkType.h"
 
 #include <array>
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -86,6 +87,10 @@ public:
     /// Radians the view may move before the colours of the Gaussians a reduced frame keeps
     /// drawing are evaluated again (0: at every choice).
     double ColorAngle = 0.0;
+    /// Fraction of ReuseAngle the view may move before the next choice of a reduced frame's
+    /// Gaussians starts on a builder thread, while the frames keep drawing the current one
+    /// (0: chosen again only when a frame needs it, on the producing thread).
+    double RebuildAhead = 0.0;
     bool FullResolution = false;
     double SampleDistance = 1.0;            ///< image pixels per screen pixel, for the record
     bool Interactive = false;               ///< a moving frame (the sample distance adapts to it)
@@ -106,6 +111,11 @@ public:
     int Width = 0, Height = 0;
     std::size_t Drawn = 0;
     double Milliseconds = 0.0; ///< wall time of the production
+    /// Wall and process CPU milliseconds (all threads) of the production's steps, in the order
+    /// of vtkGaussianSplatMapper::GetLastRasterPhaseTimes(): the level of detail (selection or
+    /// reuse), projection, overlay, binning, compositing, texels.
+    std::array<double, 6> PhaseMs{};
+    std::array<double, 6> PhaseCpuMs{};
     bool Reduced = false;
     double SampleDistance = 1.0;
     bool Interactive = false;
@@ -129,6 +139,9 @@ public:
   void SetAsynchronous(bool on);
   bool GetAsynchronous() const { return this->Asynchronous; }
 
+  /// The worker's nice value (vis4gs::LowerThreadPriority), taken when the worker starts.
+  void SetWorkerNice(int nice);
+
   /// Called on the worker thread after each finished frame (asynchronous mode); clearing it
   /// waits for a call in progress.
   void SetFrameReadyCallback(std::function<void()> callback);
@@ -141,10 +154,11 @@ public:
   /// cloud version other than @p cloudVersion are dropped (false).
   bool TakeFinished(std::uint64_t cloudVersion, Frame& frame);
 
-  /// Whether a request is waiting or in production.
+  /// Whether a request is waiting or in production (its frame-ready callback included).
   bool Busy() const;
 
-  /// Blocks until no request is waiting or in production.
+  /// Blocks until no request is waiting or in production: every frame-ready callback of the
+  /// frames made so far has returned.
   void Wait();
 
   /// Drops the request not started yet (the scene changed).
@@ -171,6 +185,9 @@ public:
 
 private:
   void Produce(const Request& request, Frame& frame);
+  // Waits for the builder thread; its rebuild becomes LodSet's when it was made for
+  // @p cloudVersion and did not fail (otherwise it is dropped).
+  void FinishLodBuild(std::uint64_t cloudVersion);
   void Run();
   void PrepareWantedLevelOfDetail();
 
@@ -184,6 +201,13 @@ private:
   std::uint64_t LodWantedVersion = 0;
   int LodWantedThreads = 0;
   vis4gs::SplatMovingSet LodSet; // the reduced frames' Gaussians, kept while the view moves
+  // A rebuild of LodSet ahead of need (Request::RebuildAhead): the thread, whether it has
+  // finished, the cloud it holds and that cloud's version.
+  std::thread LodBuilder;
+  std::atomic<bool> LodBuilt{ false };
+  bool LodBuildFailed = false;
+  std::shared_ptr<const vis4gs::GaussianCloud> LodBuildCloud;
+  std::uint64_t LodBuildVersion = 0;
   std::vector<double> LodScores;
   std::vector<std::uint8_t> LodSelected;
   std::vector<float> TrueColors;
@@ -206,6 +230,7 @@ private:
   Frame Ready; // finished, not taken yet
   bool HasReady = false;
   bool Asynchronous = false;
+  int WorkerNice = 0;
   std::thread Worker;
   std::mutex CallbackMutex; // held while the callback runs
   std::function<void()> Callback;

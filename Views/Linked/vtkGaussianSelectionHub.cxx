@@ -11,6 +11,7 @@
 #include "vtkGaussianSelectionHub.h"
 
 #include "Vis4GSDataModel.h" // vis4gs::arrays
+#include "Vis4GSIdColumn.h"
 
 #include "vtkAbstractArray.h"
 #include "vtkAnnotationLink.h"
@@ -47,7 +48,11 @@ struct ChartEntry
 
 void SortUnique(std::vector<vtkIdType>& ids)
 {
-  std::sort(ids.begin(), ids.end());
+  // The selector's ids come sorted: checking is one pass, sorting more.
+  if (!std::is_sorted(ids.begin(), ids.end()))
+  {
+    std::sort(ids.begin(), ids.end());
+  }
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
 }
 
@@ -523,6 +528,15 @@ void vtkGaussianSelectionHub::IdsToIndices(const vtkIdType* ids,
   auto* fast = vtkIdTypeArray::SafeDownCast(idColumn);
   auto* data = vtkDataArray::SafeDownCast(idColumn);
   const vtkIdType n = idColumn->GetNumberOfTuples();
+  std::vector<vtkIdType> found;
+  if (fast && vis4gs::RowsOfSortedIds(fast, ids, count, found))
+  {
+    // The hub's ids (ascending) in a snapshot's column (ascending): O(selection), in column
+    // order as the scan below.
+    indices->SetNumberOfTuples(static_cast<vtkIdType>(found.size()));
+    std::copy(found.begin(), found.end(), indices->GetPointer(0));
+    return;
+  }
   const bool sorted = IsSortedColumn(idColumn, fast, data);
   if (sorted && count * 20 < n)
   {
@@ -551,7 +565,7 @@ void vtkGaussianSelectionHub::IdsToIndices(const vtkIdType* ids,
   }
   if (sorted && std::is_sorted(ids, ids + count))
   {
-    // Many sorted ids (the hub's own list) in a sorted column: one merge, in column order as
+    // Many sorted ids in a sorted column of another type: one merge, in column order as
     // the scan below, without a hash set of a million ids.
     std::vector<vtkIdType> rows;
     vtkIdType k = 0;

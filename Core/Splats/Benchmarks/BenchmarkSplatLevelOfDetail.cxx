@@ -239,7 +239,7 @@ int main(int argc, char* argv[])
   std::printf("  level-of-detail preparation (once per scene): %.1f ms, CPU %.1f ms\n",
     rankMs,
     timer.LastCpuMs);
-  std::printf("  %10s %6s %7s %8s %10s %10s %10s %10s %8s %8s %8s %8s %8s %7s %8s\n",
+  std::printf("  %10s %6s %7s %8s %10s %10s %10s %10s %8s %8s %8s %8s %8s %7s %8s %9s\n",
     "budget",
     "reuse",
     "stop",
@@ -254,7 +254,8 @@ int main(int argc, char* argv[])
     "PSNR dB",
     "min dB",
     "holes",
-    "rebuilds");
+    "rebuilds",
+    "examined");
   auto mean = [](const std::vector<double>& v)
   {
     double sum = 0;
@@ -277,7 +278,7 @@ int main(int argc, char* argv[])
     vis4gs::RasterWorkspace<float> work;
     std::vector<std::uint32_t> subset;
     vis4gs::SplatMovingSet set;
-    std::vector<double> select, project, bin, blend, frame, cpu, psnr, holes, drawn;
+    std::vector<double> select, project, bin, blend, frame, cpu, psnr, holes, drawn, examined;
     for (int f = -2; f < frames; ++f)
     {
       // Frames -2 and -1 allocate the budget's buffers (once per budget, as the view keeps
@@ -297,8 +298,19 @@ int main(int argc, char* argv[])
         {
           if (reuse)
           {
-            vis4gs::UpdateSplatMovingSet(
-              cloud, 1, lod, cam, budget, settings, angle, colorAngle, set);
+            if (vis4gs::UpdateSplatMovingSet(
+                  cloud, 1, lod, cam, budget, settings, angle, colorAngle, set) &&
+              f >= 0)
+            {
+              examined.push_back(static_cast<double>(set.Selection.Examined));
+              std::printf("    frame %d: rebuild %.1f ms wall, of which selection %.1f ms (%zu "
+                          "Gaussians examined%s)\n",
+                f,
+                set.LastRebuildMs,
+                set.LastSelectionMs,
+                set.Selection.Examined,
+                set.Selection.Fallback ? ", every cell again" : "");
+            }
           }
           else
           {
@@ -354,7 +366,7 @@ int main(int argc, char* argv[])
       std::snprintf(reuseText, sizeof(reuseText), "%.0f/%.0f", row.Angle, row.Color);
     }
     std::printf("  %10zu %6s %7.5f %8.0f %10.1f %10.1f %10.1f %10.1f %8.1f %8.1f %8.2f %8.2f "
-                "%8.2f %7.0f %8zu\n",
+                "%8.2f %7.0f %8zu %9.0f\n",
       budget,
       reuseText,
       row.Stop,
@@ -369,7 +381,10 @@ int main(int argc, char* argv[])
       median(psnr),
       *std::min_element(psnr.begin(), psnr.end()),
       median(holes),
-      reuse ? set.Rebuilds : static_cast<std::size_t>(frames));
+      reuse ? set.Rebuilds : static_cast<std::size_t>(frames),
+      // (Gaussians whose key a rebuild computed, mean: SelectSplatsInCells' cells; every
+      // Gaussian without a moving set)
+      examined.empty() ? static_cast<double>(n) : mean(examined));
   }
   return 0;
 }

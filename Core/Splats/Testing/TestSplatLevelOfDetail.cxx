@@ -142,6 +142,129 @@ TEST(SplatLevelOfDetail, SelectionKeepsTheLargestContributionsInTheFrustum)
   EXPECT_THROW(SelectSplatsForView(c, lod, cam, 10, got, 1), std::invalid_argument);
 }
 
+namespace
+{
+// Clusters of Gaussians around and behind a camera at the origin, of masses over several
+// orders of magnitude, with a few non-finite ones and far floaters.
+GaussianCloud ClusteredCloud(std::size_t n, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  std::vector<float> centres;
+  for (int k = 0; k < 40; ++k)
+  {
+    centres.insert(centres.end(), { 8.0f * u(rng), 4.0f * u(rng), 4.0f + 8.0f * u(rng) });
+  }
+  GaussianCloud c;
+  c.Resize(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const float* centre = &centres[3 * (i % 40)];
+    const float spread = i % 500 == 0 ? 50.0f : 0.6f; // (a few far floaters)
+    for (int k = 0; k < 3; ++k)
+    {
+      c.Positions[3 * i + k] = centre[k] + spread * g(rng);
+      c.LogScales[3 * i + k] = -4.0f + 1.2f * g(rng) + (i % 777 == 0 ? 3.0f : 0.0f);
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      c.Rotations[4 * i + k] = (k == 0 ? 1.0f : 0.0f) + 0.3f * u(rng);
+    }
+    c.OpacityLogits[i] = 3.0f * u(rng);
+    if (i % 1009 == 0)
+    {
+      c.Positions[3 * i + 1] = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  return c;
+}
+
+// At @p centre, turned by @p yaw about the y axis from looking down +z; 160x120, 90 degrees.
+Camera YawCamera(double yaw, double cx)
+{
+  Camera c = IdentityCamera();
+  c.Width = 160;
+  c.Height = 120;
+  c.Fx = c.Fy = 80;
+  c.Cx = 80;
+  c.Cy = 60;
+  const double co = std::cos(yaw), si = std::sin(yaw);
+  c.WorldToCamera = { co, 0, -si, -co * cx, 0, 1, 0, 0, si, 0, co, -si * cx, 0, 0, 0, 1 };
+  return c;
+}
+}
+
+TEST(SplatLevelOfDetail, CellSelectionIsTheSelectionOfEveryGaussian)
+{
+  const std::size_t n = 60000;
+  const GaussianCloud c = ClusteredCloud(n, 9);
+  SplatLevelOfDetail lod;
+  PrepareSplatLevelOfDetail(c, lod, 2, true, 64);
+  ASSERT_GT(lod.Cells.size(), 100u);
+  // Every Gaussian of positive mass is in exactly one cell, with its own values.
+  std::vector<std::uint32_t> inCells, positive;
+  for (const SplatCell& cell : lod.Cells)
+  {
+    ASSERT_LE(cell.End - cell.Begin, 64u);
+    for (std::uint32_t j = cell.Begin; j < cell.End; ++j)
+    {
+      const SplatCellEntry& e = lod.Entries[j];
+      inCells.push_back(e.Index);
+      EXPECT_EQ(e.Mass, lod.Mass[e.Index]);
+      EXPECT_EQ(e.X, c.Positions[3 * e.Index]);
+      EXPECT_LE(e.Mass, cell.MaxMass);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (lod.Mass[i] > 0.0f)
+    {
+      positive.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  std::sort(inCells.begin(), inCells.end());
+  ASSERT_EQ(inCells, positive);
+  // Along a turn and a travel, with the boundary kept between selections (the floor), the
+  // subset is the whole cloud's selection, Gaussian for Gaussian.
+  bool culled = false;
+  for (std::size_t budget : { std::size_t(300), std::size_t(4000), std::size_t(0), n })
+  {
+    for (double margin : { 0.0, 0.1 })
+    {
+      SplatSelectionState state;
+      for (int step = 0; step < 6; ++step)
+      {
+        const Camera cam = YawCamera(0.05 * step, 0.1 * step);
+        std::vector<std::uint32_t> expected, got;
+        SelectSplatsForView(c, lod, cam, budget, expected, 2, margin);
+        SelectSplatsInCells(c, lod, cam, budget, got, state, 2, margin);
+        ASSERT_EQ(got, expected) << "budget " << budget << " margin " << margin << " step " << step;
+        culled = culled || state.Examined < positive.size() / 2;
+      }
+    }
+  }
+  EXPECT_TRUE(culled); // (the cells spared reading most Gaussians at least once)
+  // A floor above the boundary (a boundary kept from another view): every cell again, the
+  // same subset.
+  SplatSelectionState state;
+  state.Boundary = 0x7f00;
+  const Camera cam = YawCamera(0.3, 0.0);
+  std::vector<std::uint32_t> expected, got;
+  SelectSplatsForView(c, lod, cam, 2000, expected, 2);
+  SelectSplatsInCells(c, lod, cam, 2000, got, state, 2);
+  EXPECT_TRUE(state.Fallback);
+  EXPECT_EQ(got, expected);
+  // Without cells it selects from every Gaussian; a level of detail of another cloud throws.
+  SplatLevelOfDetail plain;
+  PrepareSplatLevelOfDetail(c, plain, 2, false);
+  EXPECT_TRUE(plain.Cells.empty());
+  SelectSplatsInCells(c, plain, cam, 2000, got, state, 2);
+  EXPECT_EQ(got, expected);
+  plain.Mass.pop_back();
+  EXPECT_THROW(SelectSplatsInCells(c, plain, cam, 10, got, state, 1), std::invalid_argument);
+}
+
 TEST(SplatLevelOfDetail, KeyOrdersLikeTheContribution)
 {
   EXPECT_EQ(SplatContributionKey(0.0f, 1.0f), 0u);

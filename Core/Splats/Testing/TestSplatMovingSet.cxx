@@ -308,3 +308,57 @@ TEST(SplatMovingSet, RebuildKeepsTheColoursOfTheGaussiansThatStayWithinTheColour
 }
 
 } // namespace vis4gs
+
+namespace vis4gs
+{
+TEST(SplatMovingSet, BuildFillsTheSpareBuffersAndPublishMakesThemTheSet)
+{
+  const GaussianCloud c = RandomCloud(5000, 17);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  const RasterSettings settings = TwoThreads();
+  const double angle = 0.1;
+  const Camera a = TurnedCamera(0.0, Origin), b = TurnedCamera(0.25, Origin);
+  SplatMovingSet set;
+  ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, a, 1000, settings, angle, 0.3, set));
+  EXPECT_TRUE(SplatMovingSetReusable(c, 1, a, 1000, settings, angle, set));
+  EXPECT_FALSE(SplatMovingSetReusable(c, 1, b, 1000, settings, angle, set));
+  // Past a fraction of the angle (the builder's trigger), within the whole angle (still drawn).
+  const Camera half = TurnedCamera(0.07, Origin);
+  EXPECT_TRUE(SplatMovingSetReusable(c, 1, half, 1000, settings, angle, set));
+  EXPECT_FALSE(SplatMovingSetReusable(c, 1, half, 1000, settings, angle, set, 0.5));
+  EXPECT_FALSE(SplatMovingSetReusable(c, 2, a, 1000, settings, angle, set)); // another version
+  EXPECT_FALSE(SplatMovingSetReusable(c, 1, a, 1000, settings, 0.0, set));   // angle 0
+  // A build for b leaves everything a frame reads as it was.
+  const std::vector<std::uint32_t> published = set.Subset;
+  const std::vector<float> positions = set.Compact.Positions;
+  const std::vector<float> colours = set.Compact.SH;
+  const std::uint64_t generation = set.Generation;
+  const std::size_t rebuilds = set.Rebuilds;
+  EXPECT_FALSE(set.Next.Ready);
+  BuildSplatMovingSet(c, 1, lod, b, 1000, settings, angle, 0.3, set);
+  EXPECT_TRUE(set.Next.Ready);
+  EXPECT_EQ(set.Subset, published);
+  EXPECT_EQ(set.Compact.Positions, positions);
+  EXPECT_EQ(set.Compact.SH, colours);
+  EXPECT_EQ(set.Generation, generation);
+  EXPECT_EQ(set.Rebuilds, rebuilds);
+  // Published, it is b's selection (with the margin), a new generation.
+  ASSERT_TRUE(PublishSplatMovingSet(set));
+  EXPECT_FALSE(PublishSplatMovingSet(set));
+  std::vector<std::uint32_t> expected;
+  SelectSplatsForView(c, lod, b, 1000, expected, 2, angle);
+  EXPECT_EQ(set.Subset, expected);
+  EXPECT_NE(set.Generation, generation);
+  EXPECT_EQ(set.Rebuilds, rebuilds + 1);
+  EXPECT_TRUE(SplatMovingSetReusable(c, 1, b, 1000, settings, angle, set));
+  // The same as a rebuild by UpdateSplatMovingSet from the same published set.
+  SplatMovingSet direct;
+  ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, a, 1000, settings, angle, 0.3, direct));
+  ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, b, 1000, settings, angle, 0.3, direct));
+  EXPECT_EQ(direct.Subset, set.Subset);
+  EXPECT_EQ(direct.Compact.Positions, set.Compact.Positions);
+  EXPECT_EQ(direct.Compact.SH, set.Compact.SH);
+  EXPECT_THROW(
+    BuildSplatMovingSet(c, 1, lod, b, 1000, settings, -1.0, 0.3, set), std::invalid_argument);
+}
+} // namespace vis4gs

@@ -19,7 +19,9 @@
 //        [interactive transmittance stop=-1 (CPU rasteriser path: where a moving frame's pixel
 //         stops blending; -1 = the mapper's default)] [interactive colour angle=-1 (CPU
 //         rasteriser path: degrees before every colour of the moving frames' Gaussians is
-//         evaluated again; -1 = the mapper's default)]
+//         evaluated again; -1 = the mapper's default)] [interactive rebuild ahead=-1 (CPU
+//         rasteriser path: fraction of the reuse angle after which the next choice of
+//         Gaussians starts on a builder thread; 0 = off, -1 = the mapper's default)]
 #include "BenchmarkScene.h"
 #include "SplatSortWorker.h"
 #include "Vis4GSDataModel.h"
@@ -96,6 +98,7 @@ int main(int argc, char* argv[])
   const double reuseAngle = argc > 14 ? std::atof(argv[14]) : -1.0;
   const double transmittanceStop = argc > 15 ? std::atof(argv[15]) : -1.0;
   const double colorAngle = argc > 16 ? std::atof(argv[16]) : -1.0;
+  const double rebuildAhead = argc > 17 ? std::atof(argv[17]) : -1.0;
   const auto cloud = vis4gs::MakeBenchmarkScene(n, degree, 1);
   vtkNew<vtkPolyData> scene;
   vis4gs::GaussianCloudToPolyData(cloud, scene);
@@ -120,6 +123,10 @@ int main(int argc, char* argv[])
   if (colorAngle >= 0)
   {
     mapper->SetInteractiveColorAngle(colorAngle);
+  }
+  if (rebuildAhead >= 0)
+  {
+    mapper->SetInteractiveRebuildAhead(rebuildAhead);
   }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -359,6 +366,9 @@ int main(int argc, char* argv[])
       mapper->SetInteractiveImageSampleDistance(sampleDistance);
     }
     std::vector<double> inter, interCpu, psnr, dist, drawn;
+    // Per step of the moving frames (vtkGaussianSplatMapper::GetLastRasterPhaseTimes), summed.
+    double stepWall[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }, stepCpu[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    std::vector<double> lodStep;
     double firstInteractive = 0.0;
     std::size_t holes = 0;
     for (int f = 0; f < frames; ++f)
@@ -381,6 +391,25 @@ int main(int argc, char* argv[])
       }
       inter.push_back(t);
       interCpu.push_back(1000.0 * static_cast<double>(std::clock() - c) / CLOCKS_PER_SEC);
+      {
+        double w[6], cp[6];
+        mapper->GetLastRasterPhaseTimes(w);
+        mapper->GetLastRasterPhaseCpuTimes(cp);
+        double wallSum = 0, cpuSum = 0;
+        for (int k = 0; k < 6; ++k)
+        {
+          stepWall[k] += w[k];
+          stepCpu[k] += cp[k];
+          wallSum += w[k];
+          cpuSum += cp[k];
+        }
+        // The render thread's upload and draw, then what the Render() took besides (the
+        // OpenGL driver finishing the frame, VTK's own work).
+        stepWall[6] += mapper->GetLastRasterDrawTime();
+        stepWall[7] += t - wallSum - mapper->GetLastRasterDrawTime();
+        stepCpu[7] += interCpu.back() - cpuSum;
+        lodStep.push_back(w[0]);
+      }
       dist.push_back(mapper->GetLastImageSampleDistance());
       drawn.push_back(static_cast<double>(mapper->GetLastDrawnCount()));
       const auto low = grab();
@@ -425,7 +454,8 @@ int main(int argc, char* argv[])
       return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
     };
     std::printf("  interactive (sample distance %.2f, splat budget %lld, reuse angle %.1f deg, "
-                "colour angle %.1f deg, transmittance stop %g, %.0f drawn; first %.1f ms): %9.1f "
+                "colour angle %.1f deg, transmittance stop %g, rebuild ahead %g, %.0f drawn; "
+                "first %.1f ms): %9.1f "
                 "ms/frame = %6.2f fps, CPU %.1f ms/frame, PSNR against the full-quality frame "
                 "%.2f dB (min %.2f)\n",
       median(dist),
@@ -433,6 +463,7 @@ int main(int argc, char* argv[])
       mapper->GetInteractiveReuseAngle(),
       mapper->GetInteractiveColorAngle(),
       mapper->GetInteractiveTransmittanceStop(),
+      mapper->GetInteractiveRebuildAhead(),
       median(drawn),
       firstInteractive,
       median(inter),
@@ -449,6 +480,31 @@ int main(int argc, char* argv[])
       mean(interCpu),
       *std::max_element(inter.begin(), inter.end()),
       *std::max_element(interCpu.begin(), interCpu.end()));
+    const double frameCount = static_cast<double>(std::max<std::size_t>(1, inter.size()));
+    std::printf("  interactive frames, wall / CPU ms (level of detail step's wall):");
+    for (std::size_t k = 0; k < inter.size(); ++k)
+    {
+      std::printf(" %.1f / %.1f (%.1f)", inter[k], interCpu[k], lodStep[k]);
+    }
+    std::printf("\n");
+    std::printf("  interactive steps, mean wall / CPU ms: level of detail %.1f / %.1f, projection "
+                "%.1f / %.1f, overlay %.1f / %.1f, binning %.1f / %.1f, compositing %.1f / %.1f, "
+                "texels %.1f / %.1f; upload and draw %.1f; the rest of Render() %.1f / %.1f\n",
+      stepWall[0] / frameCount,
+      stepCpu[0] / frameCount,
+      stepWall[1] / frameCount,
+      stepCpu[1] / frameCount,
+      stepWall[2] / frameCount,
+      stepCpu[2] / frameCount,
+      stepWall[3] / frameCount,
+      stepCpu[3] / frameCount,
+      stepWall[4] / frameCount,
+      stepCpu[4] / frameCount,
+      stepWall[5] / frameCount,
+      stepCpu[5] / frameCount,
+      stepWall[6] / frameCount,
+      stepWall[7] / frameCount,
+      stepCpu[7] / frameCount);
     std::printf("  holes: %.0f pixels per moving frame covered in the full frame, background in "
                 "the moving one\n",
       static_cast<double>(holes) / std::max<std::size_t>(1, psnr.size()));
