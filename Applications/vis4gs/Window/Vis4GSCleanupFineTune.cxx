@@ -5,9 +5,10 @@
 #include "GaussianIO.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
+#include "vtkGaussianFineTuneFilter.h"
 #include "vtkGaussianSelectionHub.h"
-#include "vtkGaussianTrainingLogReader.h"
 
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkStringArray.h"
 
@@ -21,12 +22,63 @@
 #include <QThread>
 
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
 
 using namespace Vis4GSCleanupTable;
+
+namespace
+{
+// The fine-tune filter's figures @p table (repair.csv's rows) into @p rows, and the repaired
+// figures per camera of @p cameras (NaN for the views without a row: without an image).
+std::string ReadFineTuneFigures(vtkTable* table,
+  const std::vector<vis4gs::Camera>& cameras,
+  std::vector<vis4gs::FineTuneFigureRow>& rows,
+  std::vector<vis4gs::ViewMetrics>& repaired)
+{
+  const std::vector<std::string>& columns = vis4gs::FineTuneFigureColumns();
+  auto* view = vtkStringArray::SafeDownCast(table->GetColumnByName(columns[0].c_str()));
+  auto* split = vtkStringArray::SafeDownCast(table->GetColumnByName(columns[1].c_str()));
+  std::vector<vtkDataArray*> values;
+  for (std::size_t c = 2; c < columns.size(); ++c)
+  {
+    values.push_back(vtkDataArray::SafeDownCast(table->GetColumnByName(columns[c].c_str())));
+  }
+  if (!view || !split || std::find(values.begin(), values.end(), nullptr) != values.end())
+  {
+    return "the fine-tune filter gave no figures table";
+  }
+  // The repaired figures per camera: the rows of the views with an image, in camera order.
+  repaired.assign(cameras.size(), vis4gs::ViewMetrics());
+  std::size_t camera = 0;
+  bool means = true; // (the "mean" rows come first)
+  for (vtkIdType r = 0; r < table->GetNumberOfRows(); ++r)
+  {
+    vis4gs::FineTuneFigureRow row{ view->GetValue(r), split->GetValue(r), {} };
+    for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      row.Values[k] = values[k]->GetTuple1(r);
+    }
+    means = means && row.View == "mean";
+    if (!means)
+    {
+      while (camera < cameras.size() && cameras[camera].Name != row.View)
+      {
+        ++camera;
+      }
+      if (camera < cameras.size())
+      {
+        repaired[camera] = { row.Values[2], row.Values[5], row.Values[8] };
+        ++camera;
+      }
+    }
+    rows.push_back(std::move(row));
+  }
+  return std::string();
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
@@ -52,61 +104,49 @@ bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
   auto job = std::make_shared<Internals::Repair>();
   job->Preview = d->Shown;
   job->LogPath = logPath;
-  vis4gs::FineTuneOptions& options = job->Options;
-  options.Iterations = iterations;
-  options.FreePositions = freePositions;
-  options.Densify = densify;
-  options.LogPath = logPath.toStdString();
-  options.Producer = std::string("vis4gs view ") + VIS4GS_VERSION;
+  job->Iterations = iterations;
+  job->FreePositions = freePositions;
+  job->Densify = densify;
+  job->SourceIteration = this->GetSourceIteration();
+  // A session of its own, given the scene measured (a shallow copy again: the preview's
+  // session stays the GUI thread's, for the difference images) and the cameras.
+  vtkNew<vtkPolyData> copy;
+  copy->ShallowCopy(d->Shown->Session->GetGaussiansData());
+  job->Session = this->GivenDataSession(copy);
+  vtkGaussianFineTuneFilter* tune = job->Session->GetFineTuneFilter();
+  tune->SetRemovedIds(d->Shown->Removed);
+  tune->SetSourceIteration(job->SourceIteration);
+  tune->SetIterations(iterations);
+  tune->SetFreePositions(freePositions);
+  tune->SetDensify(densify);
+  tune->SetOutputLogFileName(logPath.toStdString().c_str());
+  tune->SetProducer((std::string("vis4gs view ") + VIS4GS_VERSION).c_str());
   // The source and deleted figures are the preview's (the same per-tile sums as vis4gs
   // repair's): only the repaired scene is measured.
-  options.Measure = false;
+  vtkNew<vtkTable> figures;
+  figures->ShallowCopy(d->Shown->Session->GetRemovalViewsOutput());
+  tune->SetRemovalFiguresData(figures);
   if (auto* logFile = vtkStringArray::SafeDownCast(
         d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
   {
     if (logFile->GetNumberOfValues() == 1)
     {
+      // The filter names the repaired log after it and embeds the images when it does.
       job->SourceLog = QString::fromStdString(logFile->GetValue(0));
-      // The header as a script reads it: the repaired log keeps the scene name, and embeds
-      // the images when the source log does (as vis4gs repair).
-      vtkNew<vtkGaussianTrainingLogReader> log;
-      log->SetFileName(logFile->GetValue(0).c_str());
-      Vis4GSErrorCollector errors(log);
-      log->UpdateInformation();
-      if (!errors.GetMessages().empty())
-      {
-        return refuse(QString::fromStdString(errors.GetMessages()));
-      }
-      options.Scene = log->GetSceneName();
-      options.EmbedImages = log->HasImages();
     }
   }
-  if (job->SourceLog.isEmpty() && !d->SceneFile.isEmpty())
+  if (job->SourceLog.isEmpty())
   {
-    // A scene file, as vis4gs repair names it; its images are embedded (the default) so that
-    // the repaired log stands on its own.
-    job->SourceScene = d->SceneFile;
-    job->SourceCameras = d->SceneCameras;
-    options.Scene = QFileInfo(d->SceneFile).completeBaseName().toStdString();
+    // Its images embedded, so that the repaired log stands on its own; a scene file names it,
+    // as vis4gs repair does.
+    tune->SetEmbedImages(1);
+    if (!d->SceneFile.isEmpty())
+    {
+      job->SourceScene = d->SceneFile;
+      job->SourceCameras = d->SceneCameras;
+      tune->SetSceneName(QFileInfo(d->SceneFile).completeBaseName().toStdString().c_str());
+    }
   }
-  Internals::Repair* raw = job.get(); // (the job owns its options: no cycle)
-  options.Progress = [this, raw](int done, int total)
-  {
-    QMetaObject::invokeMethod(
-      this,
-      [this, done, total]
-      {
-        if (d->Progress && d->RepairWorker)
-        {
-          d->Progress(static_cast<double>(done) / total,
-            QString("fine-tuning the cleaned scene: iteration %1 of %2").arg(done).arg(total),
-            false);
-        }
-      },
-      Qt::QueuedConnection);
-    return !raw->Cancel;
-  };
-  const int source = this->GetSourceIteration();
   d->Repairing = job;
   d->RepairLabel->setText(QString("fine-tuning the deletion of %1 Gaussians for %2 iterations...")
                             .arg(d->Shown->Effect.Removed)
@@ -116,53 +156,62 @@ bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
     d->Progress(0, d->RepairLabel->text(), false);
   }
   d->RepairWorker = QThread::create(
-    [this, job, source]
+    [this, job, tune]
     {
-      try
+      // Each iteration's progress to the bar; Cancel aborts the filter after the iteration.
+      struct Context
       {
-        const Internals::Result& preview = *job->Preview;
-        job->Figures = vis4gs::FineTune(
-          *preview.Cloud, source, preview.Removed, preview.Cameras, preview.Images, job->Options);
-        if (!job->Figures.Cancelled)
+        Vis4GSCleanupPanel* Panel;
+        Internals::Repair* Job;
+      } context{ this, job.get() };
+      vtkNew<vtkCallbackCommand> progress;
+      progress->SetClientData(&context);
+      progress->SetCallback(
+        [](vtkObject* caller, unsigned long, void* client, void*)
         {
+          auto* c = static_cast<Context*>(client);
+          auto* filter = static_cast<vtkGaussianFineTuneFilter*>(caller);
+          const int total = c->Job->Iterations;
+          const int done = static_cast<int>(std::lround(filter->GetProgress() * total));
+          Vis4GSCleanupPanel* panel = c->Panel;
           QMetaObject::invokeMethod(
-            this,
-            [this]
+            panel,
+            [panel, done, total]
             {
-              if (d->Progress)
+              if (panel->d->Progress && panel->d->RepairWorker)
               {
-                d->Progress(-1, "measuring the repaired scene in every view", false);
+                panel->d->Progress(done < total ? static_cast<double>(done) / total : -1.0,
+                  done < total ? QString("fine-tuning the cleaned scene: iteration %1 of %2")
+                                   .arg(done)
+                                   .arg(total)
+                               : QString("measuring the repaired scene in every view"),
+                  false);
               }
             },
             Qt::QueuedConnection);
-          const std::size_t n = preview.Cameras.size();
-          job->Figures.Source.assign(n, vis4gs::ViewMetrics{});
-          job->Figures.Deleted.assign(n, vis4gs::ViewMetrics{});
-          for (std::size_t v = 0; v < preview.Baseline.Views.size() && v < n; ++v)
+          if (c->Job->Cancel)
           {
-            if (!preview.Baseline.Views[v].Empty())
-            {
-              job->Figures.Source[v] = preview.Baseline.Views[v].Metrics();
-            }
+            filter->AbortExecuteOn();
           }
-          for (const vis4gs::RemovalViewEffect& view : preview.Effect.Views)
-          {
-            if (view.HasImage && view.CameraIndex < n)
-            {
-              job->Figures.Deleted[view.CameraIndex] = view.After;
-            }
-          }
-          const auto t0 = std::chrono::steady_clock::now();
-          job->Figures.RepairedFigures = vis4gs::MeasureViewMetrics(
-            job->Figures.Repaired, preview.Cameras, vis4gs::RemovalEffectOptions{}, preview.Images);
-          job->Figures.MeasureSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          job->Rows = vis4gs::FineTuneFigureRows(job->Figures, preview.Cameras);
-        }
-      }
-      catch (const std::exception& e)
+        });
+      const unsigned long tag = tune->AddObserver(vtkCommand::ProgressEvent, progress);
+      const std::string errors = Vis4GSUpdate(tune, 0);
+      tune->RemoveObserver(tag);
+      job->LastIteration = tune->GetLastIteration();
+      job->TrainSeconds = tune->GetTrainSeconds();
+      job->MeasureSeconds = tune->GetMeasureSeconds();
+      if (!errors.empty())
       {
-        job->Error = e.what();
+        job->Error = errors;
+      }
+      else if (job->Cancel && tune->GetOutput()->GetNumberOfPoints() == 0)
+      {
+        job->Cancelled = true;
+      }
+      else
+      {
+        job->Error = ReadFineTuneFigures(
+          tune->GetFiguresOutput(), job->Preview->Cameras, job->Rows, job->RepairedFigures);
       }
       Vis4GSPostResult(this, [this] { this->OnFineTuned(); });
     });
@@ -190,14 +239,13 @@ void Vis4GSCleanupPanel::OnFineTuned()
   const std::shared_ptr<Internals::Repair> job = std::move(d->Repairing);
   d->Measure->setEnabled(d->Scene && d->Cameras);
   this->UpdateButtons();
-  const vis4gs::FineTuneResult& r = job->Figures;
-  if (!job->Error.empty() || r.Cancelled)
+  if (!job->Error.empty() || job->Cancelled)
   {
     d->RepairLabel->setText(!job->Error.empty()
         ? "fine-tune failed: " + QString::fromStdString(job->Error)
         : QString("Fine-tune cancelled after iteration %1 of %2: no log written.")
-            .arg(r.LastIteration - r.SourceIteration)
-            .arg(job->Options.Iterations));
+            .arg(std::max(0, job->LastIteration - job->SourceIteration))
+            .arg(job->Iterations));
     if (d->Progress)
     {
       d->Progress(1, d->RepairLabel->text(), true);
@@ -234,7 +282,7 @@ void Vis4GSCleanupPanel::OnFineTuned()
     {
       const std::size_t v = d->Views->item(row, 0)->data(Qt::UserRole).toULongLong();
       const vis4gs::ViewMetrics m =
-        v < r.RepairedFigures.size() ? r.RepairedFigures[v] : vis4gs::ViewMetrics{};
+        v < job->RepairedFigures.size() ? job->RepairedFigures[v] : vis4gs::ViewMetrics{};
       SetNumber(d->Views, row, RepairedColumn, m.Psnr);
       SetNumber(d->Views, row, RepairedColumn + 1, m.Ssim);
       SetNumber(d->Views, row, RepairedColumn + 2, m.L1);
@@ -253,10 +301,10 @@ void Vis4GSCleanupPanel::OnFineTuned()
   d->RepairLabel->setText(
     QString("Repaired (%1 iterations, positions %2, densification %3, %4 s): PSNR source -> "
             "deleted -> repaired: train %5 -> %6 -> %7 dB, test %8 -> %9 -> %10 dB. Log: %11")
-      .arg(job->Options.Iterations)
-      .arg(job->Options.FreePositions ? "free" : "fixed")
-      .arg(job->Options.Densify ? "on" : "off")
-      .arg(r.TrainSeconds + r.MeasureSeconds, 0, 'f', 1)
+      .arg(job->Iterations)
+      .arg(job->FreePositions ? "free" : "fixed")
+      .arg(job->Densify ? "on" : "off")
+      .arg(job->TrainSeconds + job->MeasureSeconds, 0, 'f', 1)
       .arg(psnr(0, 0))
       .arg(psnr(0, 1))
       .arg(psnr(0, 2))

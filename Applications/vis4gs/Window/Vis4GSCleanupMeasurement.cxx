@@ -4,8 +4,15 @@
 
 #include "GaussianIO.h"
 #include "Vis4GSDataModel.h"
-#include "Vis4GSTrainingImages.h"
+#include "Vis4GSPipeline.h"
+#include "vtkGaussianRemovalEffectFilter.h"
 #include "vtkGaussianSelectionHub.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkStringArray.h"
 
 #include <QApplication>
 #include <QImage>
@@ -61,50 +68,6 @@ void SetText(QTableWidget* table, int row, int column, const QString& text)
   table->setItem(row, column, new QTableWidgetItem(text));
 }
 
-// Renders the "before" of the wanted views with an image that @p baseline lacks (every view
-// for an empty baseline: the score pass keeps only the training views it renders). Returns
-// the number of views rendered.
-std::size_t CompleteBaseline(vis4gs::RemovalBaseline& baseline,
-  const vis4gs::GaussianCloud& cloud,
-  const std::vector<vis4gs::Camera>& cameras,
-  const vis4gs::RemovalEffectOptions& options,
-  const vis4gs::TrainingImageProvider& images)
-{
-  if (baseline.Views.empty())
-  {
-    baseline = vis4gs::MeasureRemovalBaseline(cloud, cameras, options, images);
-    return baseline.MeasuredViews();
-  }
-  std::vector<std::size_t> missing;
-  std::vector<vis4gs::Camera> subset;
-  for (std::size_t v = 0; v < cameras.size(); ++v)
-  {
-    if (baseline.Views[v].Empty())
-    {
-      missing.push_back(v);
-      subset.push_back(cameras[v]);
-    }
-  }
-  if (missing.empty())
-  {
-    return 0;
-  }
-  vis4gs::RemovalBaseline part = vis4gs::MeasureRemovalBaseline(cloud,
-    subset,
-    options,
-    [&images, &missing](std::size_t i, const vis4gs::Camera& camera, vis4gs::Image& image)
-    { return images(missing[i], camera, image); });
-  std::size_t rendered = 0;
-  for (std::size_t i = 0; i < missing.size(); ++i)
-  {
-    if (!part.Views[i].Empty())
-    {
-      baseline.Views[missing[i]] = std::move(part.Views[i]);
-      ++rendered;
-    }
-  }
-  return rendered;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -140,6 +103,39 @@ void Vis4GSCleanupTable::FillRow(QTableWidget* table,
 }
 
 //------------------------------------------------------------------------------
+QString Vis4GSCleanupPanel::SourceName() const
+{
+  if (d->Cameras)
+  {
+    if (auto* logFile = vtkStringArray::SafeDownCast(
+          d->Cameras->GetFieldData()->GetAbstractArray(vis4gs::arrays::CameraTrainingLogFile)))
+    {
+      if (logFile->GetNumberOfValues() == 1)
+      {
+        return QString::fromStdString(logFile->GetValue(0));
+      }
+    }
+  }
+  return d->SceneFile.isEmpty() ? QString("the scene shown") : d->SceneFile;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkGaussianSession> Vis4GSCleanupPanel::GivenDataSession(
+  vtkPolyData* gaussians) const
+{
+  auto session = vtkSmartPointer<vtkGaussianSession>::New();
+  session->SetFileName(this->SourceName().toStdString().c_str()); // (names its errors)
+  session->SetGaussiansData(gaussians);
+  // A table of its own (a shallow copy): updating a session marks its given data generated,
+  // and two sessions may run in two threads (a preview's in the GUI thread, a fine-tune's).
+  vtkNew<vtkTable> cameras;
+  cameras->ShallowCopy(d->Cameras);
+  session->SetCamerasData(cameras);
+  session->ComputeScoresOff();
+  return session;
+}
+
+//------------------------------------------------------------------------------
 void Vis4GSCleanupPanel::MeasureRemoval()
 {
   if (d->Worker || d->RepairWorker || !d->Scene || !d->Cameras)
@@ -149,45 +145,39 @@ void Vis4GSCleanupPanel::MeasureRemoval()
   auto job = std::make_shared<Internals::Result>();
   job->Scene = d->Scene;
   job->CameraTable = d->Cameras;
+  std::string error;
+  if (!vis4gs::TableToCameras(d->Cameras, job->Cameras, &error))
+  {
+    d->MeasureLabel->setText(QString::fromStdString(error));
+    return;
+  }
   // A shallow copy: the GUI thread may add score arrays to the scene while the worker reads.
   vtkNew<vtkPolyData> copy;
   copy->ShallowCopy(d->Scene);
-  job->Cloud = std::make_shared<vis4gs::GaussianCloud>();
-  std::string error;
-  if (!vis4gs::PolyDataToGaussianCloud(copy, *job->Cloud, &error) ||
-    !vis4gs::TableToCameras(d->Cameras, job->Cameras, &error))
+  // The selected Gaussians of this scene (the hub may hold ids of another snapshot too).
+  job->Removed = vtkSmartPointer<vtkIdTypeArray>::New();
+  vtkDataArray* ids = copy->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+  for (vtkIdType i = 0; i < copy->GetNumberOfPoints(); ++i)
   {
-    d->MeasureLabel->setText(QString::fromStdString(error));
-    return;
-  }
-  // The training images as the score and removal filters find them (Vis4GSTrainingImages):
-  // "/images/<name>" from the log that the camera table names, others from files.
-  if (!Vis4GSTrainingImages(
-        d->Cameras, std::string(), { 0.f, 0.f, 0.f }, job->Cameras, job->Images, error))
-  {
-    d->MeasureLabel->setText(QString::fromStdString(error));
-    return;
-  }
-  job->Removed.assign(job->Cloud->Count, 0);
-  std::size_t removed = 0;
-  for (std::size_t i = 0; i < job->Cloud->Count; ++i)
-  {
-    if (d->Hub->IsSelected(static_cast<vtkIdType>(job->Cloud->GetId(i))))
+    const vtkIdType id = ids ? static_cast<vtkIdType>(ids->GetTuple1(i)) : i;
+    if (d->Hub->IsSelected(id))
     {
-      job->Removed[i] = 1;
-      ++removed;
+      job->Removed->InsertNextValue(id);
     }
   }
+  const vtkIdType removed = job->Removed->GetNumberOfValues();
   if (removed == 0)
   {
     d->MeasureLabel->setText("Select Gaussians first (a rule, a brush, the histogram).");
     return;
   }
-  if (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras &&
-    d->Baseline.Views.size() == job->Cameras.size())
+  job->Session = this->GivenDataSession(copy);
+  job->Session->SetSelectedIds(job->Removed);
+  if (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras && d->Baseline &&
+    d->Baseline->Views.size() == job->Cameras.size())
   {
-    job->Baseline = d->Baseline;
-    job->BeforeReused = d->Baseline.MeasuredViews();
+    job->Session->GetRemovalEffectFilter()->SetBaseline(d->Baseline);
+    job->BeforeReused = d->Baseline->MeasuredViews();
   }
   d->Running = job;
   d->MeasuredChanges = d->Hub->GetNumberOfChanges();
@@ -200,42 +190,28 @@ void Vis4GSCleanupPanel::MeasureRemoval()
   {
     d->Progress(-1,
       what +
-        (job->BeforeReused == 0 ? ": rendering every view before"
-                                : ": rendering the views before that the score pass did not"),
+        (job->BeforeReused == 0 ? ": rendering every view before, then those it touches after"
+                                : ": rendering the views before that the score pass did not, "
+                                  "then those it touches after"),
       false);
   }
-  // RemovalEffect has no progress callback: the bar is a busy indicator with the step named.
+  // The removal filter has no progress events: the bar is a busy indicator with the step named.
   d->Worker = QThread::create(
-    [this, job, what]
+    [this, job]
     {
-      try
+      // Nothing else touches this session until the result is posted.
+      const std::string errors = Vis4GSUpdate(job->Session, vtkGaussianSession::RemovalViewsPort);
+      vtkGaussianRemovalEffectFilter* removal = job->Session->GetRemovalEffectFilter();
+      if (!errors.empty())
       {
-        vis4gs::RemovalEffectOptions options;
-        const auto t0 = std::chrono::steady_clock::now();
-        job->BeforeRendered =
-          CompleteBaseline(job->Baseline, *job->Cloud, job->Cameras, options, job->Images);
-        if (job->BeforeRendered > 0)
-        {
-          job->BaselineSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          QMetaObject::invokeMethod(
-            this,
-            [this, what]
-            {
-              if (d->Progress)
-              {
-                d->Progress(-1, what + ": rendering the views it touches after", false);
-              }
-            },
-            Qt::QueuedConnection);
-        }
-        options.TileBaseline = job->Baseline;
-        job->Effect = vis4gs::MeasureRemovalEffect(
-          *job->Cloud, job->Removed, job->Cameras, options, job->Images);
+        job->Error = errors;
       }
-      catch (const std::exception& e)
+      else if (removal->GetEffect(job->Effect, &job->Error))
       {
-        job->Error = e.what();
+        job->Baseline = removal->GetMeasuredBaseline();
+        job->BeforeRendered = static_cast<std::size_t>(removal->GetNumberOfBaselineViewsRendered());
+        job->BeforeReused = static_cast<std::size_t>(removal->GetNumberOfBaselineViewsReused());
+        job->BaselineSeconds = job->BeforeRendered > 0 ? removal->GetSecondsBefore() : -1;
       }
       Vis4GSPostResult(this, [this] { this->OnMeasured(); });
     });
@@ -400,11 +376,22 @@ void Vis4GSCleanupPanel::ShowDifference(int row)
   }
   QApplication::setOverrideCursor(Qt::WaitCursor);
   const vis4gs::Camera& camera = shown->Cameras[index];
-  vis4gs::RemovalEffectOptions options; // the measurement's rasteriser settings
-  const vis4gs::Image before =
-    vis4gs::ClampedImage(vis4gs::Rasterize<float>(*shown->Cloud, camera, options.Raster));
-  const vis4gs::Image after = vis4gs::ClampedImage(vis4gs::Rasterize<float>(
-    vis4gs::RemoveGaussians(*shown->Cloud, shown->Removed), camera, options.Raster));
+  // The session's preview port: the renders the figures were measured on (the measurement's
+  // worker has ended: the session is the GUI thread's now).
+  shown->Session->SetRemovalPreviewView(static_cast<vtkIdType>(index));
+  const std::string errors = Vis4GSUpdate(shown->Session, vtkGaussianSession::RemovalPreviewPort);
+  vtkImageData* preview = shown->Session->GetRemovalPreviewOutput();
+  vis4gs::Image before, after;
+  if (!errors.empty() || !vtkGaussianRemovalEffectFilter::PreviewImage(preview, true, before) ||
+    !vtkGaussianRemovalEffectFilter::PreviewImage(preview, false, after) ||
+    after.Pixels.size() != before.Pixels.size())
+  {
+    d->ImageCaption->setText(QString("%1: no preview (%2)")
+                               .arg(QString::fromStdString(camera.Name))
+                               .arg(QString::fromStdString(errors)));
+    QApplication::restoreOverrideCursor();
+    return;
+  }
   vis4gs::Image diff = after;
   const std::size_t pixels = static_cast<std::size_t>(after.Width) * after.Height;
   std::vector<double> change(pixels, 0.0);

@@ -364,19 +364,19 @@ void Vis4GSCleanupPanel::resizeEvent(QResizeEvent* event)
 //------------------------------------------------------------------------------
 void Vis4GSCleanupPanel::SetScoreBaseline(vtkPolyData* scene,
   vtkTable* cameras,
-  const vis4gs::RemovalBaseline& baseline)
+  std::shared_ptr<const vis4gs::RemovalBaseline> baseline)
 {
   // An earlier preview of the same scene may have measured more views (the test views).
-  if (!scene || scene != d->Scene.GetPointer() || cameras != d->Cameras.GetPointer() ||
-    baseline.MeasuredViews() == 0 ||
-    (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras &&
-      d->Baseline.MeasuredViews() >= baseline.MeasuredViews()))
+  if (!scene || scene != d->Scene.GetPointer() || cameras != d->Cameras.GetPointer() || !baseline ||
+    baseline->MeasuredViews() == 0 ||
+    (d->BaselineScene == d->Scene && d->BaselineCameras == d->Cameras && d->Baseline &&
+      d->Baseline->MeasuredViews() >= baseline->MeasuredViews()))
   {
     return;
   }
   d->BaselineScene = scene;
   d->BaselineCameras = cameras;
-  d->Baseline = baseline;
+  d->Baseline = std::move(baseline);
 }
 
 //------------------------------------------------------------------------------
@@ -403,7 +403,7 @@ Vis4GSCompareWindow* Vis4GSCleanupPanel::OpenComparison()
   const Internals::Repair& r = *d->Repaired;
   return r.SourceLog.isEmpty()
     ? Vis4GSCompareWindow::OpenWindow(this, r.SourceScene, -1, r.LogPath, r.SourceCameras)
-    : Vis4GSCompareWindow::OpenWindow(this, r.SourceLog, r.Figures.SourceIteration, r.LogPath);
+    : Vis4GSCompareWindow::OpenWindow(this, r.SourceLog, r.SourceIteration, r.LogPath);
 }
 
 //------------------------------------------------------------------------------
@@ -429,7 +429,7 @@ void Vis4GSCleanupPanel::SetScene(vtkPolyData* scene, vtkTable* cameras)
     // Another snapshot: its "before" is another one (and the old scene is released).
     d->BaselineScene = nullptr;
     d->BaselineCameras = nullptr;
-    d->Baseline = vis4gs::RemovalBaseline();
+    d->Baseline = nullptr;
   }
   d->Measure->setEnabled(scene && cameras && cameras->GetNumberOfRows() > 0);
   d->Measure->setToolTip(d->Measure->isEnabled()

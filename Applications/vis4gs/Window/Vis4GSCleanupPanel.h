@@ -6,21 +6,27 @@
  * selection hub's current selection (replace, add, subtract, intersect), so that histogram
  * brushing and the scene's selection modes combine with it; save and load the rule (the text
  * files `vis4gs analyze --select=@FILE` reads) and re-apply it when the iteration changes;
- * measure deleting the selection against the training and test images
- * (Core/Selection/RemovalEffect.h) in a worker thread, shown per view (worst first) and per
- * split, with the before / after / |difference| images of a chosen view; delete the selection
- * to a new PLY (the main window's export); fine-tune the previewed deletion (Core/Selection/
- * FineTune.h) and show the repaired figures as a third state, writing the repaired run's log,
- * which the main window or the comparison window opens.
+ * measure deleting the selection against the training and test images in a worker thread,
+ * shown per view (worst first) and per split, with the before / after / |difference| images of
+ * a chosen view; delete the selection to a new PLY (the main window's export); fine-tune the
+ * previewed deletion and show the repaired figures as a third state, writing the repaired
+ * run's log, which the main window or the comparison window opens.
  *
- * The "before" of a scene is measured once, per 16x16 tile, and reused by every later
- * measurement of the same scene and cameras (RemovalEffectOptions::TileBaseline): a preview
- * renders again only the tiles its selection changes. The application's score pass hands the
+ * The measurement, the preview images and the fine-tune run through the session
+ * (vtkGaussianSession, given the scene and cameras as data, one per measurement and one per
+ * fine-tune, as the application's scores do): its removal-effect ports (the tables and the
+ * preview renders of the view picked) and its vtkGaussianFineTuneFilter, given the preview's
+ * table as the source and deleted figures. The "before" of a scene is measured once, per
+ * 16x16 tile, and handed from one measurement's removal filter to the next of the same scene
+ * and cameras (vtkGaussianRemovalEffectFilter::SetBaseline): a preview renders again only the
+ * tiles its selection changes. The application's score pass hands the
  * panel the "before" of every training view it rendered at full resolution
  * (SetScoreBaseline()), so that the first preview renders only the test views "before".
  */
 #ifndef Vis4GSCleanupPanel_h
 #define Vis4GSCleanupPanel_h
+
+#include "vtkSmartPointer.h"
 
 #include <QWidget>
 
@@ -32,6 +38,7 @@ class QResizeEvent;
 class Vis4GSCompareWindow;
 class QString;
 class vtkGaussianSelectionHub;
+class vtkGaussianSession;
 class vtkPolyData;
 class vtkTable;
 
@@ -71,7 +78,7 @@ public:
    */
   void SetScoreBaseline(vtkPolyData* scene,
     vtkTable* cameras,
-    const vis4gs::RemovalBaseline& baseline);
+    std::shared_ptr<const vis4gs::RemovalBaseline> baseline);
 
   /**
    * A scene file (not a training log) shown: its @p path, the @p cameras option it was opened
@@ -117,12 +124,13 @@ public:
 
   /**
    * Starts fine-tuning the previewed deletion (the table shown, of the current selection and
-   * snapshot) for @p iterations with the built-in trainer (vis4gs::FineTune(), as `vis4gs
-   * repair`), positions fixed unless @p freePositions, densification off unless @p densify, in
-   * a worker thread with its progress in the progress bar and Cancel. The repaired run's log
-   * (the deletion as prune events at the snapshot's iteration, then the fine-tune) is written
-   * to @p logPath; the table gets the repaired figures of every view. False, with the reason
-   * shown, when there is no current preview or a worker runs.
+   * snapshot) for @p iterations with the built-in trainer (the session's
+   * vtkGaussianFineTuneFilter, as `vis4gs repair`, given the preview's figures of the source
+   * and deleted states), positions fixed unless @p freePositions, densification off unless @p
+   * densify, in a worker thread with its progress in the progress bar and Cancel. The repaired
+   * run's log (the deletion as prune events at the snapshot's iteration, then the fine-tune) is
+   * written to @p logPath; the table gets the repaired figures of every view. False, with the
+   * reason shown, when there is no current preview or a worker runs.
    */
   bool StartFineTune(const QString& logPath, int iterations, bool freePositions, bool densify);
   /// Asks the fine-tune running to stop after its current iteration (no log is written).
@@ -165,6 +173,11 @@ private:
   void OnMeasured();
   void OnFineTuned();
   void UpdateButtons();
+  /// The log the cameras come from, else the scene file: what names a session's errors.
+  QString SourceName() const;
+  /// A session given @p gaussians (a shallow copy of its own) and the panel's cameras (one
+  /// made here) as data, no scores: a measurement's or a fine-tune's own, run in a worker.
+  vtkSmartPointer<vtkGaussianSession> GivenDataSession(vtkPolyData* gaussians) const;
 
   struct Internals;
   std::unique_ptr<Internals> d;

@@ -4,8 +4,9 @@
  * @brief What the files of the clean-up panel share (Vis4GSCleanupPanel.h): its state, and the
  * columns of its before / after tables. The panel's parts are Vis4GSCleanupPanel.cxx (the
  * widgets, the rule and the selection), Vis4GSCleanupMeasurement.cxx (the before / after
- * measurement job, its table and difference images), Vis4GSCleanupFineTune.cxx (the fine-tune
- * job and its figures) and Vis4GSCleanupSelfTest.cxx (its part of `vis4gs view --self-test`).
+ * measurement job through a session's removal ports, its table and difference images),
+ * Vis4GSCleanupFineTune.cxx (the fine-tune job through a session's fine-tune filter and its
+ * figures) and Vis4GSCleanupSelfTest.cxx (its part of `vis4gs view --self-test`).
  */
 #ifndef Vis4GSCleanupPanelInternals_h
 #define Vis4GSCleanupPanelInternals_h
@@ -16,6 +17,8 @@
 #include "RemovalEffect.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkGaussianSession.h"
+#include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -96,23 +99,25 @@ struct Vis4GSCleanupPanel::Internals
   vtkIdType MeasuredChanges = -1; // the hub's change count of the selection measured
   QThread* Worker = nullptr;
   bool LastFailed = false;
-  // The "before" of BaselineScene in BaselineCameras per tile, reused (RemovalEffect.h): a
-  // preview renders only the tiles its selection changes.
+  // The "before" of BaselineScene in BaselineCameras per tile (the score pass's, or the last
+  // measurement's completed), given to the next measurement of that scene.
   vtkSmartPointer<vtkPolyData> BaselineScene;
   vtkSmartPointer<vtkTable> BaselineCameras;
-  vis4gs::RemovalBaseline Baseline;
-  // What the table shows (for the difference images).
+  std::shared_ptr<const vis4gs::RemovalBaseline> Baseline;
+  // A measurement (the table shown, the difference images, the fine-tune's deletion).
   struct Result
   {
-    vtkSmartPointer<vtkPolyData> Scene;
+    vtkSmartPointer<vtkPolyData> Scene; ///< the panel's scene measured
     vtkSmartPointer<vtkTable> CameraTable;
-    std::shared_ptr<vis4gs::GaussianCloud> Cloud;
-    std::vector<std::uint8_t> Removed;
-    std::vector<vis4gs::Camera> Cameras;
-    vis4gs::TrainingImageProvider Images;
-    vis4gs::RemovalEffect Effect;
-    vis4gs::RemovalBaseline Baseline;
-    double BaselineSeconds = -1; ///< < 0: the baseline was reused
+    /// The given-data session of this measurement (Gaussians: a shallow copy of Scene, which
+    /// the GUI thread may add score arrays to), its removal ports updated; the preview port is
+    /// updated in the GUI thread once the worker has ended.
+    vtkSmartPointer<vtkGaussianSession> Session;
+    vtkSmartPointer<vtkIdTypeArray> Removed; ///< the GaussianIds removed (selected and shown)
+    std::vector<vis4gs::Camera> Cameras;     ///< the camera table's, for the views' names
+    vis4gs::RemovalEffect Effect;            ///< the removal filter's tables (GetEffect)
+    std::shared_ptr<const vis4gs::RemovalBaseline> Baseline; ///< the "before" measured with
+    double BaselineSeconds = -1;                             ///< < 0: no view rendered "before"
     /// Views whose "before" this preview rendered, and those it reused (from the score pass or
     /// an earlier preview of the scene).
     std::size_t BeforeRendered = 0;
@@ -138,9 +143,20 @@ struct Vis4GSCleanupPanel::Internals
     QString SourceScene;             ///< the scene file fine-tuned (empty for a log)
     QString SourceCameras;           ///< its cameras option
     QString LogPath;
-    vis4gs::FineTuneOptions Options;
-    vis4gs::FineTuneResult Figures;
+    int Iterations = 0;
+    bool FreePositions = false;
+    bool Densify = false;
+    int SourceIteration = 0;
+    /// The given-data session whose vtkGaussianFineTuneFilter runs the fine-tune.
+    vtkSmartPointer<vtkGaussianSession> Session;
+    /// After it: the filter's figures (repair.csv's rows), the repaired figures per camera
+    /// (NaN without an image), the last iteration and the seconds.
     std::vector<vis4gs::FineTuneFigureRow> Rows;
+    std::vector<vis4gs::ViewMetrics> RepairedFigures;
+    int LastIteration = -1;
+    double TrainSeconds = 0;
+    double MeasureSeconds = 0;
+    bool Cancelled = false;
     std::atomic<bool> Cancel{ false };
     std::string Error;
   };

@@ -6,12 +6,16 @@
 #include "Vis4GSDataModel.h"
 #include "Vis4GSPipeline.h"
 #include "Vis4GSSelectionExport.h"
+#include "Vis4GSTrainingImages.h"
+#include "vtkGaussianFineTuneFilter.h"
+#include "vtkGaussianRemovalEffectFilter.h"
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSelectionHub.h"
 #include "vtkGaussianTrainingLogReader.h"
 
 #include "vtkDataArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkPointData.h"
 
 #include <QApplication>
@@ -141,14 +145,14 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     withoutScores->ShallowCopy(scene);
     withoutScores->GetPointData()->RemoveArray(vis4gs::arrays::ViewCoverage);
     withScores->ShallowCopy(scene);
-    const vis4gs::RemovalBaseline fromScores = d->Baseline;
+    const std::shared_ptr<const vis4gs::RemovalBaseline> fromScores = d->Baseline;
     d->Hub->SelectIds(brushed, 3, vtkGaussianSelectionHub::REPLACE);
     this->SetScene(withoutScores, table);
     ok = check(d->Hub->GetNumberOfSelectedIds() == brushedCount,
            "clean-up: a new iteration without its scores yet keeps the selection") &&
       ok;
     this->SetScoreBaseline(scene, table, fromScores);
-    ok = check(d->Baseline.MeasuredViews() == 0 && !d->BaselineScene,
+    ok = check(!d->Baseline && !d->BaselineScene,
            "clean-up: another snapshot drops the score pass's 'before', and a 'before' of "
            "a scene not shown is refused") &&
       ok;
@@ -160,10 +164,41 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     // What the main window hands over when the score pass of this scene ends.
     this->SetScoreBaseline(scene, table, fromScores);
   }
+  // The inputs of a measurement as Core takes them, read here from what the panel's session
+  // was given (its Gaussians, the camera table, the ids removed): the panel measured through
+  // Core itself before it ran the session (issue 33), and its figures, preview images and
+  // fine-tuned scene must be what Core gives.
+  struct CoreInputs
+  {
+    vis4gs::GaussianCloud Cloud;
+    std::vector<std::uint8_t> Removed;
+    std::vector<vis4gs::Camera> Cameras;
+    vis4gs::TrainingImageProvider Images;
+  };
+  auto coreInputs = [](const Internals::Result& shown, CoreInputs& in)
+  {
+    std::string error;
+    if (!vis4gs::PolyDataToGaussianCloud(shown.Session->GetGaussiansData(), in.Cloud, &error) ||
+      !vis4gs::TableToCameras(shown.CameraTable, in.Cameras, &error) ||
+      !Vis4GSTrainingImages(
+        shown.CameraTable, std::string(), { 0.f, 0.f, 0.f }, in.Cameras, in.Images, error))
+    {
+      return false;
+    }
+    const vtkIdType* removed = shown.Removed->GetPointer(0);
+    const std::set<vtkIdType> ids(removed, removed + shown.Removed->GetNumberOfValues());
+    in.Removed.assign(in.Cloud.Count, 0);
+    for (std::size_t i = 0; i < in.Cloud.Count; ++i)
+    {
+      in.Removed[i] = ids.count(static_cast<vtkIdType>(in.Cloud.GetId(i))) ? 1 : 0;
+    }
+    return true;
+  };
   // The "before" renders of a preview (the score pass renders no test view), its "after"
-  // renders (the affected views only), and its figures against those of the panel's own
-  // "before" rendered anew (what it did before it reused the score pass's): bit for bit.
-  auto checkReuse = [&check](const Internals::Result& shown, std::size_t reused, bool figures)
+  // renders (the affected views only), and its figures against those of a "before" rendered
+  // anew through Core (what the panel did before it reused the score pass's): bit for bit.
+  auto checkReuse = [&check, &coreInputs](
+                      const Internals::Result& shown, std::size_t reused, bool figures)
   {
     const vis4gs::RemovalEffect& effect = shown.Effect;
     std::size_t affected = 0;
@@ -184,20 +219,26 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     {
       return ok;
     }
+    CoreInputs in;
+    if (!check(coreInputs(shown, in), "clean-up: the measurement's inputs read back for Core"))
+    {
+      return false;
+    }
     vis4gs::RemovalEffectOptions options;
     const auto t0 = std::chrono::steady_clock::now();
-    options.TileBaseline =
-      vis4gs::MeasureRemovalBaseline(*shown.Cloud, shown.Cameras, options, shown.Images);
+    options.TileBaseline = vis4gs::MeasureRemovalBaseline(in.Cloud, in.Cameras, options, in.Images);
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const vis4gs::RemovalEffect fresh = vis4gs::MeasureRemovalEffect(
-      *shown.Cloud, shown.Removed, shown.Cameras, options, shown.Images);
+    const vis4gs::RemovalEffect fresh =
+      vis4gs::MeasureRemovalEffect(in.Cloud, in.Removed, in.Cameras, options, in.Images);
     auto same = [](const vis4gs::ViewMetrics& a, const vis4gs::ViewMetrics& b)
     {
       auto equal = [](double x, double y) { return std::isnan(x) ? std::isnan(y) : x == y; };
       return equal(a.Psnr, b.Psnr) && equal(a.Ssim, b.Ssim) && equal(a.L1, b.L1);
     };
-    bool identical = fresh.Views.size() == effect.Views.size() &&
+    bool identical = fresh.Views.size() == effect.Views.size() && fresh.Removed == effect.Removed &&
+      fresh.Kept == effect.Kept && fresh.Train.Views == effect.Train.Views &&
+      fresh.Test.AffectedViews == effect.Test.AffectedViews &&
       same(fresh.Train.Before, effect.Train.Before) &&
       same(fresh.Train.After, effect.Train.After) && same(fresh.Test.Before, effect.Test.Before) &&
       same(fresh.Test.After, effect.Test.After);
@@ -205,6 +246,7 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     {
       identical = fresh.Views[r].CameraIndex == effect.Views[r].CameraIndex &&
         fresh.Views[r].Affected == effect.Views[r].Affected &&
+        fresh.Views[r].HasImage == effect.Views[r].HasImage &&
         same(fresh.Views[r].Before, effect.Views[r].Before) &&
         same(fresh.Views[r].After, effect.Views[r].After);
     }
@@ -222,7 +264,7 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
   // 5. The measurement in the worker thread; the table and the images. The score pass (full
   //    resolution) rendered every training view: the preview renders none of them "before".
   const std::size_t fromScores =
-    d->BaselineScene == d->Scene ? d->Baseline.MeasuredViews() : std::size_t(0);
+    d->BaselineScene == d->Scene && d->Baseline ? d->Baseline->MeasuredViews() : std::size_t(0);
   this->MeasureRemoval();
   ok = check(this->WaitForMeasurement(), "clean-up: the removal was measured") && ok;
   if (!d->Shown)
@@ -249,6 +291,29 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
     ok;
   d->Views->setCurrentCell(0, 0);
   const double largest = d->Images[2]->property("largestChange").toDouble();
+  {
+    // The images shown are the session's preview port's: Core's renders of the worst view.
+    CoreInputs in;
+    const std::size_t view = d->Views->item(0, 0)->data(Qt::UserRole).toULongLong();
+    vtkImageData* preview = d->Shown->Session->GetRemovalPreviewOutput();
+    bool same = coreInputs(*d->Shown, in) && view < in.Cameras.size() && preview;
+    if (same)
+    {
+      const vis4gs::Image before = vis4gs::ClampedImage(
+        vis4gs::Rasterize<float>(in.Cloud, in.Cameras[view], vis4gs::RasterSettings{}));
+      const vis4gs::Image after = vis4gs::ClampedImage(vis4gs::Rasterize<float>(
+        vis4gs::RemoveGaussians(in.Cloud, in.Removed), in.Cameras[view], vis4gs::RasterSettings{}));
+      vis4gs::Image shownBefore, shownAfter;
+      same = vtkGaussianRemovalEffectFilter::PreviewImage(preview, true, shownBefore) &&
+        vtkGaussianRemovalEffectFilter::PreviewImage(preview, false, shownAfter) &&
+        shownBefore.Pixels == before.Pixels && shownAfter.Pixels == after.Pixels &&
+        !before.Pixels.empty();
+    }
+    ok = check(same,
+           "clean-up: the preview images of the worst view are Core's renders before and "
+           "after, bit for bit") &&
+      ok;
+  }
   ok = check(!d->Images[0]->pixmap(Qt::ReturnByValue).isNull() &&
            (largest > 0) == (d->Views->item(0, 2)->text() == "yes"),
          "clean-up: picking the worst view shows its before/after images (largest change " +
@@ -317,6 +382,43 @@ bool Vis4GSCleanupPanel::RunSelfTest(const QString& directory,
              std::to_string(this->GetSourceIteration()) + " (" +
              d->RepairLabel->text().toStdString() + ")") &&
       ok;
+    if (tuned)
+    {
+      // The session's fine-tune against Core's, run here as the panel ran it before (the
+      // preview's figures as the source and deleted states, the repaired state measured after):
+      // the same repaired Gaussians and figures, bit for bit.
+      CoreInputs in;
+      vis4gs::GaussianCloud tunedCloud;
+      bool same = coreInputs(*d->Repaired->Preview, in) &&
+        vis4gs::PolyDataToGaussianCloud(
+          d->Repaired->Session->GetFineTuneFilter()->GetOutput(), tunedCloud, nullptr);
+      if (same)
+      {
+        vis4gs::FineTuneOptions options;
+        options.Iterations = iterations;
+        options.Measure = false;
+        const vis4gs::FineTuneResult reference = vis4gs::FineTune(
+          in.Cloud, this->GetSourceIteration(), in.Removed, in.Cameras, in.Images, options);
+        const std::vector<vis4gs::ViewMetrics> figures = vis4gs::MeasureViewMetrics(
+          reference.Repaired, in.Cameras, vis4gs::RemovalEffectOptions{}, in.Images);
+        const vis4gs::GaussianCloud& r = reference.Repaired;
+        same = tunedCloud.Ids == r.Ids && tunedCloud.Positions == r.Positions &&
+          tunedCloud.LogScales == r.LogScales && tunedCloud.Rotations == r.Rotations &&
+          tunedCloud.OpacityLogits == r.OpacityLogits && tunedCloud.SH == r.SH &&
+          d->Repaired->RepairedFigures.size() == figures.size();
+        auto equal = [](double x, double y) { return std::isnan(x) ? std::isnan(y) : x == y; };
+        for (std::size_t v = 0; same && v < figures.size(); ++v)
+        {
+          const vis4gs::ViewMetrics& m = d->Repaired->RepairedFigures[v];
+          same = equal(m.Psnr, figures[v].Psnr) && equal(m.Ssim, figures[v].Ssim) &&
+            equal(m.L1, figures[v].L1);
+        }
+      }
+      ok = check(same,
+             "clean-up: the session's fine-tune gives Core's repaired Gaussians and figures, "
+             "bit for bit") &&
+        ok;
+    }
     std::vector<std::int64_t> deleted, pruned;
     for (vtkIdType id : selected())
     {

@@ -83,7 +83,7 @@ void Vis4GSMainWindow::StartScores()
     if (last)
     {
       // (After UpdateScene: it gives the panel the score cameras of the first pass.)
-      d->Cleanup->SetScoreBaseline(d->Doc->Shown(), cameras, *baseline);
+      d->Cleanup->SetScoreBaseline(d->Doc->Shown(), cameras, baseline);
     }
     emit this->scoreStageShown(stage.Number, stage.Of);
   };
