@@ -969,7 +969,12 @@ int Run(const Vis4GSArguments& args)
     std::cout << "vis4gs analyze: process " << mpi.Rank() << " of " << mpi.Size() << " rendered "
               << filter->GetNumberOfViewsRendered() << " of " << filter->GetNumberOfViewsUsed()
               << " views in " << Number(filter->GetComputeSeconds(), 2) << " s, reduction "
-              << Number(filter->GetReductionSeconds(), 3) << " s\n";
+              << Number(filter->GetReductionSeconds(), 3) << " s, preparation "
+              << (filter->GetPreparationProcesses() > 1
+                     ? "shared by " + std::to_string(filter->GetPreparationProcesses()) +
+                       " processes of this machine"
+                     : std::string("made alone"))
+              << "\n";
     if (mpi.Rank() != 0)
     {
       return 0; // process 0 has the reduced scores too and writes the outputs
