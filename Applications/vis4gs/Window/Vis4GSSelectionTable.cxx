@@ -144,8 +144,7 @@ int Vis4GSSelectionTable::GetNumberOfRows() const
 //------------------------------------------------------------------------------
 double Vis4GSSelectionTable::GetValue(int row, int column) const
 {
-  return row >= 0 && row < this->Model->Rows && column >= 0 &&
-      column < this->Model->Headers.size()
+  return row >= 0 && row < this->Model->Rows && column >= 0 && column < this->Model->Headers.size()
     ? this->Model->Value(row, column)
     : NAN;
 }
