@@ -33,6 +33,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 int TestGaussianCameraFrustums(int argc, char* argv[])
 {
@@ -112,6 +113,61 @@ int TestGaussianCameraFrustums(int argc, char* argv[])
   {
     std::printf("FAILED: the counts do not discriminate the views (%d..%d)\n", minCount, maxCount);
     fail = 1;
+  }
+  {
+    // The automatic depth is kept while the scene and cameras stay: another selection gives the
+    // same corners; once the scene's points move, the corners are those of a new filter on it.
+    auto corners = [](vtkPolyData* frustumsOut)
+    {
+      std::vector<double> xyz;
+      for (vtkIdType i = 0; i < frustumsOut->GetNumberOfPoints(); ++i)
+      {
+        double p[3];
+        frustumsOut->GetPoint(i, p);
+        xyz.insert(xyz.end(), p, p + 3);
+      }
+      return xyz;
+    };
+    const std::vector<double> before = corners(out);
+    vtkNew<vtkIdTypeArray> fewer;
+    fewer->InsertNextValue(indices.front());
+    frustums->SetSelectedIds(fewer);
+    frustums->Update();
+    const bool keptForSelection = corners(frustums->GetOutput()) == before;
+    vtkNew<vtkPolyData> moved;
+    moved->DeepCopy(scene);
+    frustums->SetInputData(1, moved);
+    frustums->Update();
+    for (vtkIdType i = 0; i < moved->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      moved->GetPoint(i, p);
+      moved->GetPoints()->SetPoint(i, 4 * p[0], 4 * p[1], 4 * p[2] + 300);
+    }
+    moved->GetPoints()->Modified();
+    frustums->Update();
+    vtkNew<vtkGaussianCameraFrustums> fresh;
+    fresh->SetInputData(0, table);
+    fresh->SetInputData(1, moved);
+    fresh->SetSelectedIds(fewer);
+    fresh->Update();
+    const std::vector<double> after = corners(frustums->GetOutput());
+    std::printf("automatic depth: kept for another selection %d, follows the moved scene %d\n",
+      keptForSelection ? 1 : 0,
+      after == corners(fresh->GetOutput()) && after != before ? 1 : 0);
+    if (!keptForSelection || after != corners(fresh->GetOutput()) || after == before)
+    {
+      std::printf("FAILED: the automatic depth is not kept per scene and cameras\n");
+      fail = 1;
+    }
+    frustums->SetInputData(1, scene);
+    frustums->SetSelectedIds(selected);
+    frustums->Update();
+    if (corners(frustums->GetOutput()) != before)
+    {
+      std::printf("FAILED: the automatic depth of the first scene is not found again\n");
+      fail = 1;
+    }
   }
   // Training views only.
   frustums->TrainingViewsOnlyOn();
