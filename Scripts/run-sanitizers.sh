@@ -15,7 +15,7 @@
 #       detail's GoogleTests, the mapper's level-of-detail and asynchronous-frames tests and the
 #       frustums' test, then under Xvfb `vis4gs view --self-test` on the demo log and
 #       `vis4gs view --benchmark` on the demo log and on a synthetic scene with cameras (orbit,
-#       picks, background frustum counts). About 20 minutes on 2 cores loaded by others, the
+#       picks, background frustum counts). About 20-30 minutes on 2 cores loaded by others, the
 #       build from ccache (Documentation/dev/TESTING.md). Suppressions: tsan-suppressions.txt.
 #
 # Any report fails the run (halt_on_error, exit status 1), naming the part. ccache is used when
