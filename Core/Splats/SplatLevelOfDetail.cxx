@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SplatLevelOfDetail.h"
 
+#include "ElapsedTime.h"
 #include "GaussianMath.h"
 #include "RadixSort.h"
 #include "ThreadCount.h"
@@ -200,9 +201,10 @@ void ExtractSubset(const std::vector<std::uint16_t>& keys,
   }
 }
 
-std::vector<std::uint64_t> SumHistograms(const std::vector<std::vector<std::uint32_t>>& hist)
+void SumHistograms(const std::vector<std::vector<std::uint32_t>>& hist,
+  std::vector<std::uint64_t>& total)
 {
-  std::vector<std::uint64_t> total(Bins, 0);
+  total.assign(Bins, 0);
   for (const auto& h : hist)
   {
     for (std::size_t b = 0; b < Bins; ++b)
@@ -210,7 +212,6 @@ std::vector<std::uint64_t> SumHistograms(const std::vector<std::vector<std::uint
       total[b] += h[b];
     }
   }
-  return total;
 }
 
 void CheckLevelOfDetail(const GaussianCloud& cloud, const SplatLevelOfDetail& lod)
@@ -459,12 +460,14 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   std::vector<std::uint16_t> own;
   std::vector<std::uint16_t>& keys = scratch ? *scratch : own;
   keys.resize(n);
-  std::vector<std::vector<std::uint32_t>> hist(static_cast<std::size_t>(nt));
+  // (zeroed here, not by each thread: a team smaller than nt, under OMP_THREAD_LIMIT, OMP_DYNAMIC
+  // or nested in a parallel region, leaves the histograms of the threads that did not start)
+  std::vector<std::vector<std::uint32_t>> hist(
+    static_cast<std::size_t>(nt), std::vector<std::uint32_t>(Bins, 0));
   std::size_t inside = 0;
 #pragma omp parallel num_threads(nt) reduction(+ : inside)
   {
     std::vector<std::uint32_t>& h = hist[static_cast<std::size_t>(omp_get_thread_num())];
-    h.assign(Bins, 0);
 #pragma omp for schedule(static)
     for (std::int64_t ii = 0; ii < count; ++ii)
     {
@@ -480,7 +483,9 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   }
   std::uint32_t boundary = 1;
   std::size_t take = 0;
-  FindBoundary(SumHistograms(hist), budget, 1, boundary, take);
+  std::vector<std::uint64_t> total;
+  SumHistograms(hist, total);
+  FindBoundary(total, budget, 1, boundary, take);
   ExtractSubset(keys, boundary, take, nt, subset);
   return inside;
 }
@@ -510,22 +515,38 @@ std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
   // The floor: a little below the last boundary (a factor 2^(48/128) = 1.3 in contribution),
   // as the view moved little since; every key the selection can keep is at or above it.
   std::uint32_t floor = budget > 0 && state.Boundary > 48 ? state.Boundary - 48 : 1;
-  std::vector<std::vector<std::uint32_t>> hist(static_cast<std::size_t>(nt));
-  // Per thread, the Gaussians whose key reaches the floor: (key with the ring bit) << 32 |
-  // index. Nothing of the size of the cloud is read or written.
+  // Per thread, the histogram of the view's own frustum and the Gaussians whose key reaches
+  // the floor: (key with the ring bit) << 32 | index. Nothing of the size of the cloud is read
+  // or written, and every buffer is the state's, kept between selections (no allocation or
+  // first touch of fresh pages once they have grown to the selection's size).
+  const std::size_t threadCount = static_cast<std::size_t>(nt);
+  std::vector<std::vector<std::uint32_t>>& hist = state.Histograms;
   std::vector<std::vector<std::uint64_t>>& found = state.Candidates;
-  found.resize(static_cast<std::size_t>(nt));
+  std::vector<std::vector<std::uint64_t>>& keptBy = state.KeptBy;
+  std::vector<std::vector<std::uint64_t>>& tiesBy = state.TiesBy;
+  for (auto* v : { &found, &keptBy, &tiesBy })
+  {
+    v->resize(threadCount);
+  }
+  hist.resize(threadCount);
+  std::vector<std::uint64_t>& total = state.Total;
   const std::int64_t cells = static_cast<std::int64_t>(lod.Cells.size());
+  auto stepStart = std::chrono::steady_clock::now();
   for (;;)
   {
     std::size_t examined = 0;
+    // (here, not by each thread: a smaller team leaves the lists of the threads that did not
+    // start, which would hold another view's candidates from an earlier selection)
+    for (std::size_t t = 0; t < found.size(); ++t)
+    {
+      hist[t].assign(Bins, 0);
+      found[t].clear();
+    }
 #pragma omp parallel num_threads(nt) reduction(+ : examined)
     {
       const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
       std::vector<std::uint32_t>& h = hist[t];
-      h.assign(Bins, 0);
       std::vector<std::uint64_t>& mine = found[t];
-      mine.clear();
 #pragma omp for schedule(dynamic, 16)
       for (std::int64_t cc = 0; cc < cells; ++cc)
       {
@@ -550,22 +571,28 @@ std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
         }
       }
     }
+    SumHistograms(hist, total);
     std::uint32_t boundary = 1;
     std::size_t take = 0;
-    if (!FindBoundary(SumHistograms(hist), budget, floor, boundary, take))
+    if (!FindBoundary(total, budget, floor, boundary, take))
     {
       // The floor was above the boundary: every cell in the frustum again.
       floor = 1;
       state.Fallback = true;
       continue;
     }
+    state.StepMs[0] = MsSince(stepStart);
+    stepStart = std::chrono::steady_clock::now();
     // The ring's at or above the boundary, the view's own above it, and of those equal to it
     // the first take in index order; then every kept index in ascending order.
     // (each thread filters the Gaussians it found; the lists are then joined)
-    std::vector<std::vector<std::uint64_t>> keptBy(found.size()), tiesBy(found.size());
 #pragma omp parallel for schedule(static, 1) num_threads(nt)
     for (int t = 0; t < nt; ++t)
     {
+      std::vector<std::uint64_t>& kept = keptBy[static_cast<std::size_t>(t)];
+      std::vector<std::uint64_t>& ties = tiesBy[static_cast<std::size_t>(t)];
+      kept.clear();
+      ties.clear();
       for (std::uint64_t c : found[static_cast<std::size_t>(t)])
       {
         const std::uint32_t key = static_cast<std::uint32_t>(c >> 32);
@@ -573,40 +600,45 @@ std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
         const std::uint64_t index = c & 0xFFFFFFFFu;
         if ((key & RingBit) ? k >= boundary : k > boundary)
         {
-          keptBy[static_cast<std::size_t>(t)].push_back(index);
+          kept.push_back(index);
         }
         else if (!(key & RingBit) && k == boundary)
         {
-          tiesBy[static_cast<std::size_t>(t)].push_back(index);
+          ties.push_back(index);
         }
       }
     }
-    std::vector<std::uint64_t> kept, ties;
-    for (int t = 0; t < nt; ++t)
+    std::vector<std::uint64_t>& kept = state.Kept;
+    std::vector<std::uint64_t>& ties = state.Ties;
+    kept.clear();
+    ties.clear();
+    for (std::size_t t = 0; t < threadCount; ++t)
     {
-      const auto& a = keptBy[static_cast<std::size_t>(t)];
-      const auto& b = tiesBy[static_cast<std::size_t>(t)];
-      kept.insert(kept.end(), a.begin(), a.end());
-      ties.insert(ties.end(), b.begin(), b.end());
+      kept.insert(kept.end(), keptBy[t].begin(), keptBy[t].end());
+      ties.insert(ties.end(), tiesBy[t].begin(), tiesBy[t].end());
     }
     take = std::min(take, ties.size());
     std::nth_element(ties.begin(), ties.begin() + static_cast<std::ptrdiff_t>(take), ties.end());
     kept.insert(kept.end(), ties.begin(), ties.begin() + static_cast<std::ptrdiff_t>(take));
+    state.StepMs[1] = MsSince(stepStart);
+    stepStart = std::chrono::steady_clock::now();
     const std::int64_t m = static_cast<std::int64_t>(kept.size());
-    std::vector<std::uint64_t> spare(kept.size());
+    state.Spare.resize(kept.size());
     int bits = 0;
     while (bits < 32 && (std::uint64_t(n - 1) >> bits) != 0)
     {
       ++bits;
     }
-    const std::uint64_t* sorted = RadixSortKeys(kept.data(), spare.data(), m, 0, bits, nt);
+    const std::uint64_t* sorted = RadixSortKeys(kept.data(), state.Spare.data(), m, 0, bits, nt);
     subset.resize(kept.size());
+#pragma omp parallel for schedule(static) num_threads(nt)
     for (std::int64_t j = 0; j < m; ++j)
     {
       subset[static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(sorted[j]);
     }
     state.Boundary = boundary;
     state.Examined = examined;
+    state.StepMs[2] = MsSince(stepStart);
     return examined;
   }
 }

@@ -151,25 +151,6 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   SelectSplatsInCells(cloud, lod, camera, budget, subset, set.Selection, threads, reuseAngle);
   set.LastSelectionMs = MsSince(start);
   const std::size_t m = subset.size();
-  // from[j]: Gaussian j's place in the published set (kept colour), or -1.
-  std::vector<std::int64_t>& from = set.From;
-  from.assign(m, -1);
-  if (keepColors)
-  {
-    const std::vector<std::uint32_t>& old = set.Subset;
-    std::size_t k = 0;
-    for (std::size_t j = 0; j < m; ++j)
-    {
-      while (k < old.size() && old[k] < subset[j])
-      {
-        ++k;
-      }
-      if (k < old.size() && old[k] == subset[j])
-      {
-        from[j] = static_cast<std::int64_t>(k);
-      }
-    }
-  }
   const GaussianCloud& prev = set.Compact;
   GaussianCloud& c = set.Previous;
   c.Count = m;
@@ -189,52 +170,72 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
     static_cast<float>(centre[0]), static_cast<float>(centre[1]), static_cast<float>(centre[2])
   };
   const float c0 = static_cast<float>(sh::C0);
-  const auto& v = camera.WorldToCamera;
-  // The travel test's scale from a sample (a median needs no more, and sorting every depth
-  // would be a serial step of the rebuild).
-  const std::size_t stride = std::max<std::size_t>(1, m / 4096);
-  std::vector<float>& depths = set.Depths;
-  depths.resize((m + stride - 1) / stride);
-  constexpr std::size_t Ahead = 8;
-  const std::int64_t count = static_cast<std::int64_t>(m);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::int64_t jj = 0; jj < count; ++jj)
+  const auto gatherStart = std::chrono::steady_clock::now();
+  std::size_t evaluated = 0;
+  // Each thread takes a contiguous part of the new subset: it merges it with the published
+  // subset (which Gaussians stay), copies those that stay from the published compact cloud
+  // (parameters and kept colour, contiguous), then gathers the others from the scene and
+  // evaluates their colour. The scene's Gaussians lie far apart (about 7 cache lines each at
+  // SH degree 3): the gather runs over the list of the new ones alone, so that its prefetch
+  // reaches Ahead new Gaussians ahead (among every selected one it would reach less than one).
+  std::vector<std::vector<std::uint32_t>>& fresh = set.Fresh;
+  fresh.resize(static_cast<std::size_t>(threads));
+  const std::vector<std::uint32_t>& old = set.Subset;
+#pragma omp parallel for schedule(static, 1) num_threads(threads) reduction(+ : evaluated)
+  for (int t = 0; t < threads; ++t)
   {
-    const std::size_t j = static_cast<std::size_t>(jj);
-    const std::size_t i = subset[j];
-    if (j + Ahead < m && from[j + Ahead] < 0)
+    const std::size_t b = m * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+    const std::size_t e = m * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
+    std::vector<std::uint32_t>& mine = fresh[static_cast<std::size_t>(t)];
+    mine.clear();
+    std::size_t k = keepColors && b < e
+      ? static_cast<std::size_t>(std::lower_bound(old.begin(), old.end(), subset[b]) - old.begin())
+      : old.size();
+    for (std::size_t j = b; j < e; ++j)
     {
-      // The gather is bound by memory latency (the selected Gaussians lie about a dozen apart
-      // in the scene's arrays, 192 B of SH each at degree 3): ask for a later one's lines now.
-      const std::size_t a = subset[j + Ahead];
-      if (haveSh)
+      while (k < old.size() && old[k] < subset[j])
       {
-        const char* q = reinterpret_cast<const char*>(&cloud.SH[a * shStride]);
-        for (std::size_t b = 0; b < shStride * sizeof(float); b += 64)
-        {
-          __builtin_prefetch(q + b);
-        }
+        ++k;
       }
-      __builtin_prefetch(&cloud.Positions[3 * a]);
-      __builtin_prefetch(&cloud.LogScales[3 * a]);
-      __builtin_prefetch(&cloud.Rotations[4 * a]);
-      __builtin_prefetch(&cloud.OpacityLogits[a]);
+      if (!keepColors || k >= old.size() || old[k] != subset[j])
+      {
+        mine.push_back(static_cast<std::uint32_t>(j));
+        continue;
+      }
+      std::copy_n(&prev.Positions[3 * k], 3, &c.Positions[3 * j]);
+      std::copy_n(&prev.LogScales[3 * k], 3, &c.LogScales[3 * j]);
+      std::copy_n(&prev.Rotations[4 * k], 4, &c.Rotations[4 * j]);
+      c.OpacityLogits[j] = prev.OpacityLogits[k];
+      std::copy_n(&prev.SH[3 * k], 3, &c.SH[3 * j]);
     }
-    const std::int64_t k = from[j];
-    // (the previous set's compact copy holds the same parameters, contiguous)
-    const GaussianCloud& src = k >= 0 ? prev : cloud;
-    const std::size_t at = k >= 0 ? static_cast<std::size_t>(k) : i;
-    const float* p = &src.Positions[3 * at];
-    std::copy_n(p, 3, &c.Positions[3 * j]);
-    std::copy_n(&src.LogScales[3 * at], 3, &c.LogScales[3 * j]);
-    std::copy_n(&src.Rotations[4 * at], 4, &c.Rotations[4 * j]);
-    c.OpacityLogits[j] = src.OpacityLogits[at];
-    if (k >= 0)
+    constexpr std::size_t Ahead = 8;
+    const std::size_t count = mine.size();
+    evaluated += count;
+    for (std::size_t q = 0; q < count; ++q)
     {
-      std::copy_n(&prev.SH[3 * at], 3, &c.SH[3 * j]);
-    }
-    else
-    {
+      if (q + Ahead < count)
+      {
+        const std::size_t a = subset[mine[q + Ahead]];
+        if (haveSh)
+        {
+          const char* line = reinterpret_cast<const char*>(&cloud.SH[a * shStride]);
+          for (std::size_t o = 0; o < shStride * sizeof(float); o += 64)
+          {
+            __builtin_prefetch(line + o);
+          }
+        }
+        __builtin_prefetch(&cloud.Positions[3 * a]);
+        __builtin_prefetch(&cloud.LogScales[3 * a]);
+        __builtin_prefetch(&cloud.Rotations[4 * a]);
+        __builtin_prefetch(&cloud.OpacityLogits[a]);
+      }
+      const std::size_t j = mine[q];
+      const std::size_t i = subset[j];
+      const float* p = &cloud.Positions[3 * i];
+      std::copy_n(p, 3, &c.Positions[3 * j]);
+      std::copy_n(&cloud.LogScales[3 * i], 3, &c.LogScales[3 * j]);
+      std::copy_n(&cloud.Rotations[4 * i], 4, &c.Rotations[4 * j]);
+      c.OpacityLogits[j] = cloud.OpacityLogits[i];
       float rgb[3] = { 0.5f, 0.5f, 0.5f };
       if (haveSh)
       {
@@ -243,16 +244,25 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
         // projection skips as the whole cloud's does.
         ViewColor<float>(&cloud.SH[i * shStride], degree, p, campos, rgb);
       }
-      for (int q = 0; q < 3; ++q)
+      for (int o = 0; o < 3; ++o)
       {
-        c.SH[3 * j + q] = haveSh ? (rgb[q] - 0.5f) / c0 : 0.0f;
+        c.SH[3 * j + o] = haveSh ? (rgb[o] - 0.5f) / c0 : 0.0f;
       }
     }
-    if (j % stride == 0)
-    {
-      depths[j / stride] = static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]);
-    }
   }
+  // The travel test's scale from a sample (a median needs no more, and sorting every depth
+  // would be a serial step of the rebuild).
+  const auto& v = camera.WorldToCamera;
+  const std::size_t stride = std::max<std::size_t>(1, m / 4096);
+  std::vector<float>& depths = set.Depths;
+  depths.clear();
+  for (std::size_t j = 0; j < m; j += stride)
+  {
+    const float* p = &c.Positions[3 * j];
+    depths.push_back(static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]));
+  }
+  set.LastGatherMs = MsSince(gatherStart);
+  set.LastEvaluated = evaluated;
   // The median depth of those in front (the scale of the travel test).
   auto front = std::partition(depths.begin(), depths.end(), [](float z) { return z > 0.2f; });
   double depth = 0.0;
@@ -275,6 +285,66 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   set.Next.ColorsRefreshed = !keepColors;
   set.Next.Ready = true;
   set.LastRebuildMs = MsSince(start);
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Capacity for @p count elements, each of its pages written once (resize's zeros), size kept.
+template <typename T>
+void Touch(std::vector<T>& v, std::size_t count)
+{
+  const std::size_t size = v.size();
+  if (count > size)
+  {
+    v.resize(count);
+    v.resize(size);
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+bool ReserveSplatMovingSet(SplatMovingSet& set, std::size_t count, int threads)
+{
+  if (set.Generation != 0 || set.Next.Ready)
+  {
+    return false;
+  }
+  const int nt = ThreadCount(threads);
+  for (auto* v : { &set.Subset, &set.PreviousSubset })
+  {
+    Touch(*v, count);
+  }
+  set.Fresh.resize(static_cast<std::size_t>(nt));
+  for (auto& v : set.Fresh)
+  {
+    Touch(v, count / static_cast<std::size_t>(nt) + 1);
+  }
+  for (GaussianCloud* c : { &set.Compact, &set.Previous })
+  {
+    Touch(c->Positions, 3 * count);
+    Touch(c->LogScales, 3 * count);
+    Touch(c->Rotations, 4 * count);
+    Touch(c->OpacityLogits, count);
+    Touch(c->SH, 3 * count);
+  }
+  SplatSelectionState& s = set.Selection;
+  const std::size_t threadCount = static_cast<std::size_t>(nt);
+  for (auto* v : { &s.Candidates, &s.KeptBy, &s.TiesBy })
+  {
+    v->resize(threadCount);
+  }
+  // (a thread's share of the candidates is not even: each gets room for most of them)
+  for (std::size_t t = 0; t < threadCount; ++t)
+  {
+    Touch(s.Candidates[t], count + count / 2);
+    Touch(s.KeptBy[t], count);
+    Touch(s.TiesBy[t], count / 16);
+  }
+  Touch(s.Kept, count);
+  Touch(s.Ties, count / 16);
+  Touch(s.Spare, count);
+  return true;
 }
 
 //------------------------------------------------------------------------------

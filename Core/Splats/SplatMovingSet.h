@@ -76,6 +76,10 @@ struct SplatMovingSet
   /// Wall milliseconds of the last rebuild's selection and of the whole rebuild (benchmarks).
   double LastSelectionMs = 0.0;
   double LastRebuildMs = 0.0;
+  /// Of the last rebuild: wall milliseconds of the gather (parameters and colours), and the
+  /// Gaussians whose colour it evaluated (benchmarks).
+  double LastGatherMs = 0.0;
+  std::size_t LastEvaluated = 0;
   /// The spare Subset and Compact a rebuild fills (BuildSplatMovingSet; the previous
   /// rebuild's, whose buffers are reused so that a rebuild does not page-fault tens of MB
   /// again), and a rebuild's scratch (internal).
@@ -84,7 +88,9 @@ struct SplatMovingSet
   /// The selection's keys and last boundary (SelectSplatsInCells: a rebuild examines only the
   /// cells that can hold a selected Gaussian).
   SplatSelectionState Selection;
-  std::vector<std::int64_t> From;
+  /// Per thread of a rebuild, the places in the new subset of the Gaussians it gathers from
+  /// the scene (not in the published set, or every one when the colours are evaluated again).
+  std::vector<std::vector<std::uint32_t>> Fresh;
   std::vector<float> Depths;
 
   /// What the published set was made for (SplatMovingSetReusable compares a view with it).
@@ -136,6 +142,16 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   double reuseAngle,
   double colorAngle,
   SplatMovingSet& set);
+
+/**
+ * Gives the buffers of @p set that rebuilds fill (both subsets and compact clouds, the
+ * selection's scratch) room for @p count Gaussians and writes every page of that room once, so
+ * that the first rebuilds of a scene neither allocate nor touch fresh memory (on a virtual
+ * machine the first touch of a page costs microseconds: about 50 ms of CPU for one set of
+ * 400,000). Meant once per scene, before its first moving frame: only a set with nothing
+ * published or built (Generation 0, no rebuild waiting) is changed; false otherwise.
+ */
+bool ReserveSplatMovingSet(SplatMovingSet& set, std::size_t count, int threads = 0);
 
 /// Makes the rebuild of BuildSplatMovingSet() the set's (a new Generation); false when none
 /// is waiting.

@@ -35,7 +35,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
@@ -80,12 +79,13 @@ struct vtkGaussianCameraFrustums::vtkInternals
   Key DoneKey{};
   std::vector<std::uint32_t> DoneCounts;
   std::string DoneError;
-  std::atomic<vtkMTimeType> DoneTime{ 0 };
   std::thread Worker;
   std::mutex CallbackMutex; // held while the callback runs
   std::function<void()> Callback;
   std::vector<std::uint32_t> Shown; // the counts last output
   bool ShownPending = false;
+  Key ShownKey{};         // what the counts last output wait for (while ShownPending)
+  vtkTimeStamp ShownDone; // GetMTime: when they were found done
   // The automatic depth last computed and what it is of (RequestData's thread only).
   double AutoDepth = 0;
   Key AutoDepthKey{};
@@ -122,9 +122,6 @@ struct vtkGaussianCameraFrustums::vtkInternals
       this->DoneKey = job->JobKey;
       this->DoneCounts = std::move(counts);
       this->DoneError = std::move(error);
-      vtkTimeStamp stamp; // (the filter's MTime: its next update outputs these counts)
-      stamp.Modified();
-      this->DoneTime = stamp.GetMTime();
       lock.unlock();
       {
         std::lock_guard<std::mutex> callbackLock(this->CallbackMutex);
@@ -191,10 +188,24 @@ void vtkGaussianCameraFrustums::WaitForCounts()
 //------------------------------------------------------------------------------
 vtkMTimeType vtkGaussianCameraFrustums::GetMTime()
 {
-  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Internals->DoneTime.load());
+  vtkInternals& in = *this->Internals;
+  vtkMTimeType t = this->Superclass::GetMTime();
   if (this->SelectedIds)
   {
     t = std::max(t, this->SelectedIds->GetMTime());
+  }
+  if (in.ShownPending)
+  {
+    // The counts the last output waits for are done: newer than that output, however early the
+    // worker finished. (A time stamped by the worker when done was older than the output when
+    // the count finished before the update that asked for it ended, which then looked up to
+    // date: the frustums kept the counts of the selection before.)
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    if (in.Done && in.DoneKey == in.ShownKey)
+    {
+      in.ShownDone.Modified();
+      t = std::max(t, in.ShownDone.GetMTime());
+    }
   }
   return t;
 }
@@ -345,6 +356,7 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
       {
         if (!in.DoneError.empty())
         {
+          in.ShownPending = false; // (reported once)
           vtkErrorMacro("vtkGaussianCameraFrustums: " << in.DoneError);
           return 0;
         }
@@ -376,6 +388,7 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
       }
     }
     in.ShownPending = background;
+    in.ShownKey = key;
     if (!background && !counted)
     {
       try

@@ -165,6 +165,10 @@ void vtkGaussianSplatRasterFrames::PrepareWantedLevelOfDetail()
     this->FinishLodBuild(0); // (it reads the level of detail about to change)
     vis4gs::PrepareSplatLevelOfDetail(*this->LodWanted, this->Lod, this->LodWantedThreads);
     this->LodSource = this->LodWantedVersion;
+    // The moving set's buffers too (the margin's ring adds a fifth at the default reuse angle,
+    // more at wider ones): its rebuilds then neither allocate nor touch fresh pages.
+    vis4gs::ReserveSplatMovingSet(
+      this->LodSet, this->LodWantedBudget + this->LodWantedBudget / 2, this->LodWantedThreads);
   }
   this->LodWanted.reset();
 }
@@ -505,6 +509,7 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
     this->LodWanted = wanted ? r.Cloud : nullptr;
     this->LodWantedVersion = wanted ? r.CloudVersion : 0;
     this->LodWantedThreads = threads;
+    this->LodWantedBudget = r.Budget;
   }
   catch (const std::exception& e)
   {

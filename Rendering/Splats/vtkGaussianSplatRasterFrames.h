@@ -200,6 +200,7 @@ private:
   std::shared_ptr<const vis4gs::GaussianCloud> LodWanted; // after the frame is handed over
   std::uint64_t LodWantedVersion = 0;
   int LodWantedThreads = 0;
+  std::size_t LodWantedBudget = 0;
   vis4gs::SplatMovingSet LodSet; // the reduced frames' Gaussians, kept while the view moves
   // A rebuild of LodSet ahead of need (Request::RebuildAhead): the thread, whether it has
   // finished, the cloud it holds and that cloud's version.

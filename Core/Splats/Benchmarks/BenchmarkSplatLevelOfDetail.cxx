@@ -304,12 +304,19 @@ int main(int argc, char* argv[])
             {
               examined.push_back(static_cast<double>(set.Selection.Examined));
               std::printf("    frame %d: rebuild %.1f ms wall, of which selection %.1f ms (%zu "
-                          "Gaussians examined%s)\n",
+                          "Gaussians examined%s; cells %.1f, filter %.1f, order %.1f) and "
+                          "gather %.1f ms (%zu of %zu colours evaluated)\n",
                 f,
                 set.LastRebuildMs,
                 set.LastSelectionMs,
                 set.Selection.Examined,
-                set.Selection.Fallback ? ", every cell again" : "");
+                set.Selection.Fallback ? ", every cell again" : "",
+                set.Selection.StepMs[0],
+                set.Selection.StepMs[1],
+                set.Selection.StepMs[2],
+                set.LastGatherMs,
+                set.LastEvaluated,
+                set.Subset.size());
             }
           }
           else

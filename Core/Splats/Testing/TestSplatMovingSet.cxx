@@ -362,3 +362,53 @@ TEST(SplatMovingSet, BuildFillsTheSpareBuffersAndPublishMakesThemTheSet)
     BuildSplatMovingSet(c, 1, lod, b, 1000, settings, -1.0, 0.3, set), std::invalid_argument);
 }
 } // namespace vis4gs
+
+namespace vis4gs
+{
+TEST(SplatMovingSet, ReservedSetRebuildsWithoutAllocatingAndLikeAnUnreservedOne)
+{
+  const GaussianCloud c = RandomCloud(6000, 19);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  const RasterSettings settings = TwoThreads();
+  const double angle = 0.1;
+  SplatMovingSet reserved, plain;
+  ASSERT_TRUE(ReserveSplatMovingSet(reserved, 3000, 2));
+  // Nothing of the set's content: only room.
+  EXPECT_TRUE(reserved.Subset.empty());
+  EXPECT_TRUE(reserved.Compact.Positions.empty());
+  EXPECT_GE(reserved.Subset.capacity(), 3000u);
+  EXPECT_GE(reserved.PreviousSubset.capacity(), 3000u);
+  EXPECT_GE(reserved.Compact.SH.capacity(), 9000u);
+  EXPECT_GE(reserved.Previous.Rotations.capacity(), 12000u);
+  // A turn of the camera in steps beyond the angle: a rebuild every frame, colours kept for
+  // some and evaluated for others.
+  const float* buffers[2] = { nullptr, nullptr };
+  for (int f = 0; f < 6; ++f)
+  {
+    const Camera camera = TurnedCamera(0.12 * f, Origin);
+    ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, camera, 1000, settings, angle, 0.3, reserved));
+    ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, camera, 1000, settings, angle, 0.3, plain));
+    ASSERT_LE(reserved.Subset.size(), 3000u);
+    ASSERT_EQ(reserved.Subset, plain.Subset) << f;
+    ASSERT_EQ(reserved.Compact.Positions, plain.Compact.Positions) << f;
+    ASSERT_EQ(reserved.Compact.OpacityLogits, plain.Compact.OpacityLogits) << f;
+    ASSERT_EQ(reserved.Compact.SH, plain.Compact.SH) << f;
+    EXPECT_EQ(reserved.ColorRefreshes, plain.ColorRefreshes);
+    // The two compact clouds swap at each rebuild and are never allocated again.
+    const float* data = reserved.Compact.Positions.data();
+    if (f < 2)
+    {
+      buffers[f] = data;
+    }
+    else
+    {
+      EXPECT_EQ(data, buffers[f % 2]) << f;
+    }
+  }
+  EXPECT_GT(reserved.ColorRefreshes, 1u);
+  EXPECT_LT(reserved.ColorRefreshes, 6u);
+  // Only before anything is published.
+  EXPECT_FALSE(ReserveSplatMovingSet(reserved, 4000, 2));
+  EXPECT_LT(reserved.Subset.capacity(), 4000u);
+}
+} // namespace vis4gs

@@ -368,7 +368,8 @@ int main(int argc, char* argv[])
     std::vector<double> inter, interCpu, psnr, dist, drawn;
     // Per step of the moving frames (vtkGaussianSplatMapper::GetLastRasterPhaseTimes), summed.
     double stepWall[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }, stepCpu[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
-    std::vector<double> lodStep;
+    std::vector<double>
+      lodStep; // (per frame: the level of detail's and the projection's wall, CPU)
     double firstInteractive = 0.0;
     std::size_t holes = 0;
     for (int f = 0; f < frames; ++f)
@@ -408,7 +409,7 @@ int main(int argc, char* argv[])
         stepWall[6] += mapper->GetLastRasterDrawTime();
         stepWall[7] += t - wallSum - mapper->GetLastRasterDrawTime();
         stepCpu[7] += interCpu.back() - cpuSum;
-        lodStep.push_back(w[0]);
+        lodStep.insert(lodStep.end(), { w[0], cp[0], w[1], cp[1] });
       }
       dist.push_back(mapper->GetLastImageSampleDistance());
       drawn.push_back(static_cast<double>(mapper->GetLastDrawnCount()));
@@ -481,10 +482,17 @@ int main(int argc, char* argv[])
       *std::max_element(inter.begin(), inter.end()),
       *std::max_element(interCpu.begin(), interCpu.end()));
     const double frameCount = static_cast<double>(std::max<std::size_t>(1, inter.size()));
-    std::printf("  interactive frames, wall / CPU ms (level of detail step's wall):");
+    std::printf("  interactive frames, wall / CPU ms (level of detail step's wall / CPU, "
+                "projection's wall / CPU):");
     for (std::size_t k = 0; k < inter.size(); ++k)
     {
-      std::printf(" %.1f / %.1f (%.1f)", inter[k], interCpu[k], lodStep[k]);
+      std::printf(" %.1f / %.1f (%.1f / %.1f, %.1f / %.1f)",
+        inter[k],
+        interCpu[k],
+        lodStep[4 * k],
+        lodStep[4 * k + 1],
+        lodStep[4 * k + 2],
+        lodStep[4 * k + 3]);
     }
     std::printf("\n");
     std::printf("  interactive steps, mean wall / CPU ms: level of detail %.1f / %.1f, projection "
