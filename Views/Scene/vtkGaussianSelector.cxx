@@ -358,10 +358,10 @@ void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indice
       static_cast<vtkIdType>(in.Current.size()),
       modifier);
   }
+  // (Callers hold GetSelection() and GetSelectedIds() across picks: both are refreshed.)
+  vtkSelection* sel = self->GetSelection();
   if (link)
   {
-    // (Without a link the vtkSelection is made only when asked for: GetSelection().)
-    vtkSelection* sel = self->GetSelection();
     link->SetCurrentSelection(sel);
     link->InvokeEvent(vtkCommand::AnnotationChangedEvent, sel);
   }
