@@ -291,10 +291,8 @@ vtkSelection* vtkGaussianSelector::GetSelection()
   vtkNew<vtkSelectionNode> node;
   node->SetContentType(vtkSelectionNode::PEDIGREEIDS);
   node->SetFieldType(vtkSelectionNode::POINT);
-  vtkNew<vtkIdTypeArray> list;
-  list->DeepCopy(in.SelectedIds);
-  list->SetName(vis4gs::arrays::GaussianId);
-  node->SetSelectionList(list);
+  // (The node holds the selector's array itself, refreshed at every pick as it is.)
+  node->SetSelectionList(in.SelectedIds);
   in.Selection->AddNode(node);
   return in.Selection;
 }
