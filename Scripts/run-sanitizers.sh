@@ -9,11 +9,14 @@
 #       Core|IO|Filters|Python; Python loads the instrumented modules with libasan preloaded).
 #       A cold build of everything: about 20-40 minutes on 2 cores.
 #   bash Scripts/run-sanitizers.sh thread [build dir, default build-tsan]
-#       The vis4gs program's own code with ThreadSanitizer (VIS4GS_TSAN_WHOLE=1: the whole
-#       project), and the scripted session of `vis4gs view` on the demo log (worker-thread
-#       load, scores in the background, iteration changes, the clean-up panel's measurement and
-#       fine-tune): vis4gs view --self-test under Xvfb; and the sort worker's GoogleTests
-#       (its thread, instrumented in that build too). Suppressions: tsan-suppressions.txt.
+#       ThreadSanitizer on the code where threads start and hand results over (the vis4gs
+#       program, the mapper, selector, hub, frustums, Core's Splats and Render;
+#       VIS4GS_TSAN_WHOLE=1: the whole project): the sort worker's, moving set's and level of
+#       detail's GoogleTests, the mapper's level-of-detail and asynchronous-frames tests and the
+#       frustums' test, then under Xvfb `vis4gs view --self-test` on the demo log and
+#       `vis4gs view --benchmark` on the demo log and on a synthetic scene with cameras (orbit,
+#       picks, background frustum counts). About 20 minutes on 2 cores loaded by others, the
+#       build from ccache (Documentation/dev/TESTING.md). Suppressions: tsan-suppressions.txt.
 #
 # Any report fails the run (halt_on_error, exit status 1), naming the part. ccache is used when
 # installed. VIS4GS_JOBS sets the build's parallelism (default: nproc).

@@ -174,8 +174,7 @@ bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
           const int total = c->Job->Iterations;
           const int done = static_cast<int>(std::lround(filter->GetProgress() * total));
           Vis4GSCleanupPanel* panel = c->Panel;
-          QMetaObject::invokeMethod(
-            panel,
+          Vis4GSPostResult(panel,
             [panel, done, total]
             {
               if (panel->d->Progress && panel->d->RepairWorker)
@@ -187,8 +186,7 @@ bool Vis4GSCleanupPanel::StartFineTune(const QString& logPath,
                                : QString("measuring the repaired scene in every view"),
                   false);
               }
-            },
-            Qt::QueuedConnection);
+            });
           if (c->Job->Cancel)
           {
             filter->AbortExecuteOn();

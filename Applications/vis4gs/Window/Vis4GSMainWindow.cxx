@@ -671,8 +671,7 @@ void Vis4GSMainWindow::Open(const QString& path)
           [this](double f, const std::string& m)
           {
             const QString message = QString::fromStdString(m);
-            QMetaObject::invokeMethod(
-              this, [this, f, message] { this->OnProgress(f, message); }, Qt::QueuedConnection);
+            Vis4GSPostResult(this, [this, f, message] { this->OnProgress(f, message); });
           },
           cameras,
           images);

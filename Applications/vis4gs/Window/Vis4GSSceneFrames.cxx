@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Vis4GSSceneFrames.h"
 
+#include "Vis4GSPostResult.h"
+
 #include "vtkGaussianCameraFrustums.h"
 #include "vtkGaussianSceneView.h"
 #include "vtkGaussianSplatMapper.h"
 
-#include <QMetaObject>
 #include <QObject>
 
 //------------------------------------------------------------------------------
@@ -21,14 +22,12 @@ Vis4GSSceneFrames::Vis4GSSceneFrames(QObject* context, vtkGaussianSceneView* vie
   {
     if (!posted->exchange(true))
     {
-      QMetaObject::invokeMethod(
-        context,
+      Vis4GSPostResult(context,
         [view, posted]
         {
           *posted = false;
           view->Render();
-        },
-        Qt::QueuedConnection);
+        });
     }
   };
   splats->SetFrameReadyCallback(ready);

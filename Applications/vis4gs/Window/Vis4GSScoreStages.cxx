@@ -13,7 +13,6 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
-#include <QMetaObject>
 #include <QObject>
 #include <QThread>
 
@@ -100,16 +99,14 @@ void Vis4GSScoreStages::Start(vtkSmartPointer<vtkPolyData> scene,
             images,
             [this, message](double f, const std::string&)
             {
-              QMetaObject::invokeMethod(
-                this->Context,
+              Vis4GSPostResult(this->Context,
                 [this, f, message]
                 {
                   if (this->Progress)
                   {
                     this->Progress(f, message);
                   }
-                },
-                Qt::QueuedConnection);
+                });
             },
             filterStage == 0 ? baseline.get() : nullptr,
             filterStage,
