@@ -96,16 +96,60 @@ case "$part" in
         -DVIS4GS_WARNINGS_AS_ERRORS=ON "${launcher[@]}" -DVIS4GS_PROGRAM_SANITIZER=thread \
         >/dev/null
     fi
-    cmake --build "$build" -j "$jobs" --target vis4gs vis4gsCoreSplatsTests
+    start=$SECONDS
+    cmake --build "$build" -j "$jobs" --target vis4gs vis4gsCoreSplatsTests \
+      vis4gsRenderingSplatsCxxTests vis4gsFiltersSelectionCxxTests MakeBenchmarkPly
+    echo "run-sanitizers.sh thread: built in $((SECONDS - start)) s"
     # The GPU renderer's sort worker (Core/Splats/SplatSortWorker) runs on hardware OpenGL
-    # only, not in the session under Xvfb: its GoogleTests drive its thread instead.
-    "$build/bin/vis4gsCoreSplatsTests" --gtest_filter='SplatSortWorker.*'
+    # only, not in the session under Xvfb: its GoogleTests drive its thread instead, with those
+    # of the moving set (the builder's spare buffers) and the level of detail.
+    "$build/bin/vis4gsCoreSplatsTests" \
+      --gtest_filter='SplatSortWorker.*:SplatMovingSet.*:SplatLevelOfDetail.*'
+    # The mapper's frame worker and level-of-detail builder (the level-of-detail test: rebuilds
+    # ahead on and off; the asynchronous frames: worker, newest request, scene replaced, modes
+    # switched, and an orbit with rebuilds ahead) and the frustums' background count.
+    (cd "$build" && bash "$root/Scripts/with-display.sh" --new ctest --output-on-failure \
+      --timeout 1800 -R 'RenderingSplatsCxx-TestGaussianSplatMapper(LevelOfDetail|AsyncFrames)$|FiltersSelectionCxx-TestGaussianCameraFrustums$')
+    echo "run-sanitizers.sh thread: tests done at $((SECONDS - start)) s"
     bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
       "$root/Data/Demo/vis4gs-demo.h5" "--self-test=$build/self-test" --resolution=1200,800
+    echo "run-sanitizers.sh thread: self-test done at $((SECONDS - start)) s"
     # The scene view's orbit and the four picks: frames made on the mapper's worker while the
-    # GUI thread moves the camera and the selector reads the last exact frame.
+    # GUI thread moves the camera and the selector reads the last exact frame's kept blends;
+    # the demo log's tree and linked views answer the picks through the hub.
     bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view \
       "$root/Data/Demo/vis4gs-demo.h5" --benchmark --resolution=800,600
+    echo "run-sanitizers.sh thread: demo benchmark done at $((SECONDS - start)) s"
+    # The same on a SYNTHETIC scene larger than the window's moving budget (400,000), so the
+    # orbit's frames are reduced (the level of detail made on the worker after the first exact
+    # frame, the moving set), with a ring of training cameras (cameras.json beside it) so that
+    # the frustums are shown and the Frame pick's selection, above BackgroundCountMinimum
+    # (20,000), is counted on the frustums' worker: the view starts at the first camera, at 7
+    # from the scene's centre, whence the Frame pick selects 49,149 Gaussians (3.5: 6,775).
+    scene="$build/tsan-scene"
+    mkdir -p "$scene"
+    [ -f "$scene/scene.ply" ] || "$build/benchmarks/MakeBenchmarkPly" "$scene/scene.ply" 450000 1 3
+    python3 - "$scene/cameras.json" <<'PY'
+import json, math, sys
+cams = []
+for k in range(12):
+    a = 2 * math.pi * k / 12
+    pos = [-7 * math.sin(a) * math.cos(-0.35), 7 * math.sin(-0.35),
+           -7 * math.cos(a) * math.cos(-0.35)]
+    n = math.sqrt(sum(v * v for v in pos))
+    z = [-v / n for v in pos]  # looks at the origin; y (down) is world +y made orthogonal
+    y = [0.0 - z[1] * z[0], 1.0 - z[1] * z[1], 0.0 - z[1] * z[2]]
+    n = math.sqrt(sum(v * v for v in y))
+    y = [v / n for v in y]
+    x = [y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]]
+    cams.append({"id": k, "img_name": "ring%02d" % k, "width": 640, "height": 480,
+                 "position": pos, "rotation": [[x[i], y[i], z[i]] for i in range(3)],
+                 "fx": 554.0, "fy": 554.0})
+json.dump(cams, open(sys.argv[1], "w"))
+PY
+    bash "$root/Scripts/with-display.sh" --new "$build/bin/vis4gs" view "$scene/scene.ply" \
+      --benchmark --resolution=800,600
+    echo "run-sanitizers.sh thread: scene benchmark done at $((SECONDS - start)) s"
     ;;
   *)
     echo "usage: bash Scripts/run-sanitizers.sh core|full|thread [build dir]" >&2

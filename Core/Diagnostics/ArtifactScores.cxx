@@ -276,7 +276,7 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     if (settings.SharedProjection && !wantWeights && !settings.BruteForceFootprints)
     {
       const auto t0 = Clock::now();
-      multi.reset(new MultiViewRenderer(cloud, raster));
+      multi.reset(new MultiViewRenderer(cloud, raster, settings.SharePreparation));
       out.Timings.Projection += Seconds(t0);
     }
     FootprintStats stats;

@@ -129,6 +129,12 @@ struct ScoreSettings
   /// (the previous implementation, kept for benchmarks and tests). Default true. The
   /// occlusion-aware variant and brute-force footprints always take the per-view path.
   bool SharedProjection = true;
+  /// Optional, for processes of one machine that each compute partials of some views
+  /// (ComputeScorePartials() under MPI): the shared projection's view-independent preparation
+  /// made once between them in memory they share (Render/MultiViewRenderer.h). Every process
+  /// constructs its renderer (so calls Map) even with no view. Default: none, each process
+  /// prepares every Gaussian. The scores are the same bits either way.
+  PreparationShare SharePreparation;
   /// Rasteriser options for the renders (background, SH degree). Threads are overridden.
   RasterSettings Raster;
   /// OpenMP threads; 0 uses OpenMP's default.

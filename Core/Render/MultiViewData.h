@@ -18,13 +18,51 @@
 namespace vis4gs
 {
 /// View-independent part of ProjectGaussians<float>, structure of arrays padded to 16 (not
-/// cleared on growth: the preparation writes every element, padding included).
+/// cleared: the preparation writes every element, padding included). The arrays are one block,
+/// its own or the caller's (MultiViewRenderer's PreparationShare: memory shared by processes).
 struct MultiViewPrepared
 {
-  raster::internal::RawVector<float> X, Y, Z, S00, S01, S02, S11, S12, S22, Opacity;
-  /// 3 per Gaussian when the colour is view-independent (degree 0)
-  raster::internal::RawVector<float> Color;
-  raster::internal::RawVector<std::int32_t> Valid; ///< -1 finite parameters, 0 not (or padding)
+  float *X = nullptr, *Y = nullptr, *Z = nullptr, *S00 = nullptr, *S01 = nullptr, *S02 = nullptr,
+        *S11 = nullptr, *S12 = nullptr, *S22 = nullptr, *Opacity = nullptr;
+  /// 3 per Gaussian when the colour is view-independent (degree 0), else null
+  float* Color = nullptr;
+  std::int32_t* Valid = nullptr; ///< -1 finite parameters, 0 not (or padding)
+  /// Bytes of the arrays of @p padded Gaussians (a multiple of 16), with or without Color.
+  static std::size_t Bytes(std::size_t padded, bool color)
+  {
+    return (11 + (color ? 3 : 0)) * padded * sizeof(float);
+  }
+  /// Points the arrays at @p memory (Bytes() of it) or, when null, at a block of its own
+  /// (kept when large enough).
+  void Allocate(std::size_t padded, bool color, void* memory = nullptr)
+  {
+    static_assert(sizeof(float) == sizeof(std::int32_t), "one block of 4-byte arrays");
+    float* base = static_cast<float*>(memory);
+    if (!base)
+    {
+      raster::internal::ResizeKeep(this->Own, Bytes(padded, color) / sizeof(float));
+      base = this->Own.data();
+    }
+    float** arrays[10] = { &this->X,
+      &this->Y,
+      &this->Z,
+      &this->S00,
+      &this->S01,
+      &this->S02,
+      &this->S11,
+      &this->S12,
+      &this->S22,
+      &this->Opacity };
+    for (int a = 0; a < 10; ++a)
+    {
+      *arrays[a] = base + a * padded;
+    }
+    this->Valid = reinterpret_cast<std::int32_t*>(base + 10 * padded);
+    this->Color = color ? base + 11 * padded : nullptr;
+  }
+
+private:
+  raster::internal::RawVector<float> Own;
 };
 
 /// The projection's lane outputs: 16 Gaussians of one view (MultiViewRenderer, ProjectGaussians).

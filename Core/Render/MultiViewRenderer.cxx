@@ -22,7 +22,9 @@ namespace vis4gs
 using namespace raster::internal;
 
 //------------------------------------------------------------------------------
-MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSettings& settings)
+MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud,
+  const RasterSettings& settings,
+  const PreparationShare& share)
   : Impl(new Data)
 {
   ValidateCloud(cloud, settings.ComputeColors);
@@ -36,26 +38,28 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
   d.ShDegree = std::max(0, d.ShDegree);
   d.ViewIndependentColor = d.ShDegree == 0;
   d.Threads = ThreadCount(settings.Threads);
-  // Not cleared: the loop below writes every element (padding too), on every thread, so that
-  // the fresh pages are touched in parallel.
   MultiViewPrepared& p = d.Prepared;
-  for (auto* v : { &p.X, &p.Y, &p.Z, &p.S00, &p.S01, &p.S02, &p.S11, &p.S12, &p.S22, &p.Opacity })
+  const bool color = d.Colors && d.ViewIndependentColor;
+  void* shared = nullptr;
+  if (share.Map)
   {
-    ResizeKeep(*v, d.Padded);
+    shared = share.Map(MultiViewPrepared::Bytes(d.Padded, color));
   }
-  ResizeKeep(p.Valid, d.Padded);
-  if (d.Colors && d.ViewIndependentColor)
-  {
-    ResizeKeep(p.Color, 3 * d.Padded);
-  }
+  // Not cleared: the loop below writes every element of its range (padding too), on every
+  // thread, so that the fresh pages are touched in parallel.
+  p.Allocate(d.Padded, color, shared);
   const int shStride = d.Colors ? 3 * cloud.ShCoefficientCount() : 0;
   const int shUsed = 3 * (d.ShDegree + 1) * (d.ShDegree + 1);
   const bool colors = d.Colors;
   const bool viewIndependent = d.ViewIndependentColor;
   const float mod = static_cast<float>(settings.ScaleModifier);
-  const std::int64_t count = static_cast<std::int64_t>(d.Padded);
+  // Shared: this process's part, in blocks of 16 (the lanes' unit).
+  const std::int64_t blocks = static_cast<std::int64_t>(d.Padded / 16);
+  const std::int64_t first = shared ? 16 * (blocks * share.Part / share.Parts) : 0;
+  const std::int64_t last =
+    shared ? 16 * (blocks * (share.Part + 1) / share.Parts) : static_cast<std::int64_t>(d.Padded);
 #pragma omp parallel for schedule(static) num_threads(d.Threads)
-  for (std::int64_t ii = 0; ii < count; ++ii)
+  for (std::int64_t ii = first; ii < last; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
     PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, p, i);
@@ -72,6 +76,10 @@ MultiViewRenderer::MultiViewRenderer(const GaussianCloud& cloud, const RasterSet
         p.Color[3 * i + ch] = std::max(col[ch], 0.0f);
       }
     }
+  }
+  if (shared && share.Wait)
+  {
+    share.Wait();
   }
 }
 

@@ -44,6 +44,29 @@
 namespace vis4gs
 {
 
+/**
+ * The view-independent preparation (about 48 bytes a Gaussian at SH degree 0, 44 otherwise)
+ * shared by processes of one machine that render the same cloud with the same settings (MPI):
+ * each prepares its part of the Gaussians into memory they all map, then all read every part.
+ * The memory is fresh for one process instead of each, and the preparation's CPU is divided
+ * (issue 31: on a virtual machine a first touch costs about 2.3 s of CPU a GiB). The prepared
+ * values are the same bits whoever writes them.
+ */
+struct PreparationShare
+{
+  /// Called by every process of the group, in the same order, with the same @p bytes: the
+  /// group's memory of that size (64-byte aligned, the same bytes in each), or null when it
+  /// cannot be made, then null in every process of the group (each prepares alone). Empty:
+  /// no sharing.
+  std::function<void*(std::size_t bytes)> Map;
+  /// Called by every process of the group once it has written its part: returns when every
+  /// part is written.
+  std::function<void()> Wait;
+  /// This process's part of the Gaussians, of Parts equal parts.
+  int Part = 0;
+  int Parts = 1;
+};
+
 class MultiViewRenderer
 {
 public:
@@ -51,9 +74,12 @@ public:
    * Prepares @p cloud (which must outlive this object and stay unchanged) for rendering with
    * @p settings (background, SH degree, scale modifier, colours, threads, instruction set:
    * KernelIsa 1 = generic vectors, 2 = AVX2, 3 = AVX-512, 0 = best; every path gives the
-   * same bits). Throws std::invalid_argument like ProjectGaussians() for a bad cloud.
+   * same bits). Throws std::invalid_argument like ProjectGaussians() for a bad cloud (before
+   * @p share is used). With @p share's Map, the preparation is the group's (PreparationShare).
    */
-  MultiViewRenderer(const GaussianCloud& cloud, const RasterSettings& settings = {});
+  MultiViewRenderer(const GaussianCloud& cloud,
+    const RasterSettings& settings = {},
+    const PreparationShare& share = {});
   ~MultiViewRenderer();
   MultiViewRenderer(const MultiViewRenderer&) = delete;
   MultiViewRenderer& operator=(const MultiViewRenderer&) = delete;

@@ -328,20 +328,7 @@ const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
   {
     // Spot check: a cloud changed under an unchanged version must not pass silently.
     MultiViewPrepared probe;
-    for (auto* v : { &probe.X,
-           &probe.Y,
-           &probe.Z,
-           &probe.S00,
-           &probe.S01,
-           &probe.S02,
-           &probe.S11,
-           &probe.S12,
-           &probe.S22,
-           &probe.Opacity })
-    {
-      v->assign(1, 0.0f);
-    }
-    probe.Valid.assign(1, 0);
+    probe.Allocate(16, false);
     const std::size_t samples = std::min<std::size_t>(64, n);
     for (std::size_t j = 0; j < samples; ++j)
     {
@@ -381,11 +368,7 @@ const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
   }
   c.Valid = false;
   const std::size_t padded = (n + 15) / 16 * 16;
-  for (auto* v : { &d.X, &d.Y, &d.Z, &d.S00, &d.S01, &d.S02, &d.S11, &d.S12, &d.S22, &d.Opacity })
-  {
-    ResizeKeep(*v, padded);
-  }
-  ResizeKeep(d.Valid, padded);
+  d.Allocate(padded, false);
   const std::int64_t count = static_cast<std::int64_t>(padded);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::int64_t ii = 0; ii < count; ++ii)
@@ -515,12 +498,9 @@ void ProjectFloatLanes(const GaussianCloud& cloud,
   {
     std::size_t local[6] = { 0, 0, 0, 0, 0, 0 };
     MultiViewPrepared in;
-    for (auto* v :
-      { &in.X, &in.Y, &in.Z, &in.S00, &in.S01, &in.S02, &in.S11, &in.S12, &in.S22, &in.Opacity })
-    {
-      v->assign(16, 0.0f);
-    }
-    in.Valid.assign(16, 0);
+    in.Allocate(16, false);
+    // (zeros, Valid 0 included: one block of 4-byte arrays)
+    std::fill(in.X, in.X + MultiViewPrepared::Bytes(16, false) / sizeof(float), 0.0f);
     MultiViewProjected out;
     for (auto* v : { &out.U,
            &out.V,

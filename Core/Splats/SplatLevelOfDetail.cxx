@@ -460,12 +460,14 @@ std::size_t SelectSplatsForView(const GaussianCloud& cloud,
   std::vector<std::uint16_t> own;
   std::vector<std::uint16_t>& keys = scratch ? *scratch : own;
   keys.resize(n);
-  std::vector<std::vector<std::uint32_t>> hist(static_cast<std::size_t>(nt));
+  // (zeroed here, not by each thread: a team smaller than nt, under OMP_THREAD_LIMIT, OMP_DYNAMIC
+  // or nested in a parallel region, leaves the histograms of the threads that did not start)
+  std::vector<std::vector<std::uint32_t>> hist(
+    static_cast<std::size_t>(nt), std::vector<std::uint32_t>(Bins, 0));
   std::size_t inside = 0;
 #pragma omp parallel num_threads(nt) reduction(+ : inside)
   {
     std::vector<std::uint32_t>& h = hist[static_cast<std::size_t>(omp_get_thread_num())];
-    h.assign(Bins, 0);
 #pragma omp for schedule(static)
     for (std::int64_t ii = 0; ii < count; ++ii)
     {
@@ -533,13 +535,18 @@ std::size_t SelectSplatsInCells(const GaussianCloud& cloud,
   for (;;)
   {
     std::size_t examined = 0;
+    // (here, not by each thread: a smaller team leaves the lists of the threads that did not
+    // start, which would hold another view's candidates from an earlier selection)
+    for (std::size_t t = 0; t < found.size(); ++t)
+    {
+      hist[t].assign(Bins, 0);
+      found[t].clear();
+    }
 #pragma omp parallel num_threads(nt) reduction(+ : examined)
     {
       const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
       std::vector<std::uint32_t>& h = hist[t];
-      h.assign(Bins, 0);
       std::vector<std::uint64_t>& mine = found[t];
-      mine.clear();
 #pragma omp for schedule(dynamic, 16)
       for (std::int64_t cc = 0; cc < cells; ++cc)
       {

@@ -14,6 +14,7 @@
 #include "ImageIO.h"
 #include "ScoreRegistry.h"
 #include "Vis4GSDataModel.h"
+#include "Vis4GSNodeSharedMemory.h"
 #include "Vis4GSTrainingImages.h"
 
 #include "vtkCommunicator.h"
@@ -136,8 +137,10 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
   const vis4gs::TrainingImageProvider& images,
   vis4gs::GaussianScores& scores,
   vtkIdType& rendered,
+  int& preparationProcesses,
   double seconds[2])
 {
+  preparationProcesses = 1;
   const auto start = std::chrono::steady_clock::now();
   const int rank = controller->GetLocalProcessId();
   const int ranks = controller->GetNumberOfProcesses();
@@ -164,9 +167,17 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
     }
     auto progress = [self](std::size_t done, std::size_t total)
     { self->UpdateProgress(total > 0 ? 0.95 * static_cast<double>(done) / total : 0.95); };
+    // (collective: every process or none, the same setting on each)
+    std::unique_ptr<Vis4GSNodeSharedMemory> node;
+    vis4gs::ScoreSettings local = settings;
+    if (needCameras && self->GetSharePreparation())
+    {
+      node.reset(new Vis4GSNodeSharedMemory(controller));
+      local.SharePreparation = node->Share();
+    }
     partials = vis4gs::ComputeScorePartials(cloud,
       cameras,
-      settings,
+      local,
       own,
       images,
       progress,
@@ -179,6 +190,18 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
     current = static_cast<std::size_t>(-1);
     SetViewInProgress("");
     rendered = static_cast<vtkIdType>(own.size());
+    if (node && node->Mapped())
+    {
+      preparationProcesses = node->Parts();
+    }
+    else if (node && !node->Failure().empty())
+    {
+      vtkWarningWithObjectMacro(self,
+        "process " << rank << " of " << ranks
+                   << ": the processes of this machine could not share the preparation of the "
+                      "projection ("
+                   << node->Failure() << "); each prepared it alone");
+    }
   }
   catch (const std::exception& e)
   {
@@ -483,6 +506,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
   this->NumberOfViewsWithoutImage = 0;
   this->NumberOfFlaggedGaussians = 0;
   this->NumberOfViewsRendered = 0;
+  this->PreparationProcesses = 1;
   this->ComputeSeconds = this->ReductionSeconds = 0;
 
   vis4gs::ScoreSettings settings;
@@ -635,6 +659,7 @@ int vtkGaussianArtifactScoreFilter::RequestData(vtkInformation* vtkNotUsed(reque
              images,
              scores,
              this->NumberOfViewsRendered,
+             this->PreparationProcesses,
              seconds))
   {
     return 0;
@@ -772,6 +797,8 @@ void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeSeconds: " << this->ComputeSeconds << "\n";
   os << indent << "ReductionSeconds: " << this->ReductionSeconds << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "SharePreparation: " << (this->SharePreparation ? "On" : "Off") << "\n";
+  os << indent << "PreparationProcesses: " << this->PreparationProcesses << "\n";
   os << indent << "ViewRendered: " << (this->ViewRendered ? "set" : "none") << "\n";
 }
 

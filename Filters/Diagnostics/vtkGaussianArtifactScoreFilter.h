@@ -264,6 +264,26 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
+  ///@{
+  /**
+   * With more than one process: whether the processes of one machine prepare the shared
+   * projection's view-independent part once between them, in memory they share
+   * (Vis4GSNodeSharedMemory; each prepares its part of the Gaussians), instead of each
+   * preparing every Gaussian in its own memory. Same scores bit for bit either way; when the
+   * memory cannot be made, every process prepares alone. Default on.
+   */
+  vtkSetMacro(SharePreparation, bool);
+  vtkGetMacro(SharePreparation, bool);
+  vtkBooleanMacro(SharePreparation, bool);
+  ///@}
+
+  /**
+   * Processes of this machine that shared the preparation in the last execution (this one
+   * included); 1 when this process prepared alone (one process, SharePreparation off, or the
+   * shared memory could not be made: then a warning says why).
+   */
+  vtkGetMacro(PreparationProcesses, int);
+
   /**
    * "view N ('name')" while a distributed execution renders view N in this process, else "".
    * A fixed buffer, safe to read from a signal handler (the vis4gs program's MPI session
@@ -336,6 +356,8 @@ protected:
   double ComputeSeconds = 0;
   double ReductionSeconds = 0;
   vtkMultiProcessController* Controller = nullptr;
+  bool SharePreparation = true;
+  int PreparationProcesses = 1;
 #ifndef __VTK_WRAP__
   ViewRenderedFunction ViewRendered;
 #endif

@@ -35,7 +35,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
@@ -80,12 +79,17 @@ struct vtkGaussianCameraFrustums::vtkInternals
   Key DoneKey{};
   std::vector<std::uint32_t> DoneCounts;
   std::string DoneError;
-  std::atomic<vtkMTimeType> DoneTime{ 0 };
   std::thread Worker;
   std::mutex CallbackMutex; // held while the callback runs
   std::function<void()> Callback;
   std::vector<std::uint32_t> Shown; // the counts last output
   bool ShownPending = false;
+  Key ShownKey{};         // what the counts last output wait for (while ShownPending)
+  vtkTimeStamp ShownDone; // GetMTime: when they were found done
+  // The automatic depth last computed and what it is of (RequestData's thread only).
+  double AutoDepth = 0;
+  Key AutoDepthKey{};
+  bool AutoDepthValid = false;
 
   void Run()
   {
@@ -118,9 +122,6 @@ struct vtkGaussianCameraFrustums::vtkInternals
       this->DoneKey = job->JobKey;
       this->DoneCounts = std::move(counts);
       this->DoneError = std::move(error);
-      vtkTimeStamp stamp; // (the filter's MTime: its next update outputs these counts)
-      stamp.Modified();
-      this->DoneTime = stamp.GetMTime();
       lock.unlock();
       {
         std::lock_guard<std::mutex> callbackLock(this->CallbackMutex);
@@ -187,10 +188,24 @@ void vtkGaussianCameraFrustums::WaitForCounts()
 //------------------------------------------------------------------------------
 vtkMTimeType vtkGaussianCameraFrustums::GetMTime()
 {
-  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Internals->DoneTime.load());
+  vtkInternals& in = *this->Internals;
+  vtkMTimeType t = this->Superclass::GetMTime();
   if (this->SelectedIds)
   {
     t = std::max(t, this->SelectedIds->GetMTime());
+  }
+  if (in.ShownPending)
+  {
+    // The counts the last output waits for are done: newer than that output, however early the
+    // worker finished. (A time stamped by the worker when done was older than the output when
+    // the count finished before the update that asked for it ended, which then looked up to
+    // date: the frustums kept the counts of the selection before.)
+    std::lock_guard<std::mutex> lock(in.Mutex);
+    if (in.Done && in.DoneKey == in.ShownKey)
+    {
+      in.ShownDone.Modified();
+      t = std::max(t, in.ShownDone.GetMTime());
+    }
   }
   return t;
 }
@@ -263,30 +278,36 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
   std::vector<std::uint32_t> counts(cams.size(), 0);
   if (scene && this->SelectedIds && this->SelectedIds->GetNumberOfTuples() > 0 && !cams.empty())
   {
-    std::vector<vtkIdType> wanted(this->SelectedIds->GetPointer(0),
-      this->SelectedIds->GetPointer(0) + this->SelectedIds->GetNumberOfTuples());
-    std::sort(wanted.begin(), wanted.end());
+    // The hub's ids come sorted: used in place, copied and sorted otherwise.
+    const vtkIdType* given = this->SelectedIds->GetPointer(0);
+    const vtkIdType count = this->SelectedIds->GetNumberOfTuples();
+    std::vector<vtkIdType> sorted;
+    if (!std::is_sorted(given, given + count))
+    {
+      sorted.assign(given, given + count);
+      std::sort(sorted.begin(), sorted.end());
+      given = sorted.data();
+    }
+    const vtkIdType* wantedBegin = given;
+    const vtkIdType* wantedEnd = given + count;
     const vtkIdType n = scene->GetNumberOfPoints();
     vtkDataArray* ids = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
     const bool haveIds = ids && ids->GetNumberOfTuples() == n;
     // The selected rows. A sorted id column (a snapshot's) is searched for the sorted ids in
     // O(selection) (Vis4GSIdColumn.h), instead of looking every row up among the wanted ids.
     std::vector<std::uint32_t> rows;
-    std::vector<vtkIdType> found;
-    if (haveIds &&
-      vis4gs::RowsOfSortedIds(vtkIdTypeArray::SafeDownCast(ids),
-        wanted.data(),
-        static_cast<vtkIdType>(wanted.size()),
-        found))
-    {
-      rows.assign(found.begin(), found.end());
-    }
-    else
+    rows.reserve(static_cast<std::size_t>(count));
+    const bool searched = haveIds &&
+      vis4gs::ForEachRowOfIds(vtkIdTypeArray::SafeDownCast(ids),
+        given,
+        count,
+        [&](vtkIdType r) { rows.push_back(static_cast<std::uint32_t>(r)); });
+    if (!searched)
     {
       for (vtkIdType i = 0; i < n; ++i)
       {
         const vtkIdType id = haveIds ? static_cast<vtkIdType>(ids->GetComponent(i, 0)) : i;
-        if (std::binary_search(wanted.begin(), wanted.end(), id))
+        if (std::binary_search(wantedBegin, wantedEnd, id))
         {
           rows.push_back(static_cast<std::uint32_t>(i));
         }
@@ -335,6 +356,7 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
       {
         if (!in.DoneError.empty())
         {
+          in.ShownPending = false; // (reported once)
           vtkErrorMacro("vtkGaussianCameraFrustums: " << in.DoneError);
           return 0;
         }
@@ -366,6 +388,7 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
       }
     }
     in.ShownPending = background;
+    in.ShownKey = key;
     if (!background && !counted)
     {
       try
@@ -385,9 +408,22 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
   }
   this->Internals->Shown = counts;
 
-  // Depth of the drawn rectangle.
+  // Depth of the drawn rectangle: the automatic one depends on the scene and the cameras
+  // only, and is kept until they change (a selection change does not sample the scene again).
   double depth = this->FrustumDepth;
-  if (!(depth > 0))
+  vtkInternals& in = *this->Internals;
+  const Key depthKey = { Stamp(scene),
+    scene ? scene->GetMTime() : 0,
+    Stamp(table),
+    table->GetMTime(),
+    static_cast<vtkMTimeType>(this->TrainingViewsOnly),
+    0,
+    0 };
+  if (!(depth > 0) && in.AutoDepthValid && in.AutoDepthKey == depthKey)
+  {
+    depth = in.AutoDepth;
+  }
+  else if (!(depth > 0))
   {
     std::vector<float> means;
     const vtkIdType n = scene ? scene->GetNumberOfPoints() : 0;
@@ -399,6 +435,9 @@ int vtkGaussianCameraFrustums::RequestData(vtkInformation* vtkNotUsed(request),
       means.insert(means.end(), { float(p[0]), float(p[1]), float(p[2]) });
     }
     depth = vis4gs::AutoFrustumDepth(cams, means.data(), means.size() / 3);
+    in.AutoDepth = depth;
+    in.AutoDepthKey = depthKey;
+    in.AutoDepthValid = true;
   }
 
   vtkNew<vtkPoints> points;

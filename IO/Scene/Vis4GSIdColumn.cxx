@@ -61,17 +61,6 @@ bool RowsOfSortedIds(vtkIdTypeArray* column,
   vtkIdType count,
   std::vector<vtkIdType>& rows)
 {
-  const IdColumnOrder order = IdColumnOrderOf(column);
-  if (!order.Sorted || count < 0 || (count > 0 && !ids) || !std::is_sorted(ids, ids + count))
-  {
-    return false;
-  }
-  ForEachRowOfSortedIds(reinterpret_cast<const std::int64_t*>(column->GetPointer(0)),
-    static_cast<std::size_t>(column->GetNumberOfTuples()),
-    order,
-    reinterpret_cast<const std::int64_t*>(ids),
-    static_cast<std::size_t>(count),
-    [&](std::size_t r) { rows.push_back(static_cast<vtkIdType>(r)); });
-  return true;
+  return ForEachRowOfIds(column, ids, count, [&](vtkIdType r) { rows.push_back(r); });
 }
 } // namespace vis4gs

@@ -23,11 +23,12 @@
 
 #include "SortedIdLookup.h"      // For IdColumnOrder
 #include "vis4gsIOSceneModule.h" // For export macro
+#include "vtkIdTypeArray.h"      // For the inline lookup
 #include "vtkType.h"             // For vtkIdType
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
-
-class vtkIdTypeArray;
 
 namespace vis4gs
 {
@@ -36,6 +37,33 @@ namespace vis4gs
  * Sorted), remembered for the last four columns of the calling thread until their MTime changes.
  */
 VIS4GSIOSCENE_EXPORT IdColumnOrder IdColumnOrderOf(vtkIdTypeArray* column);
+
+/**
+ * Calls @p row(r) for each row r of @p column holding one of @p ids (@p count of them,
+ * ascending), in ascending order (ForEachRowOfSortedIds()), without collecting the rows: the
+ * histogram counts a 200,000-Gaussian selection's values this way. Returns false, calling
+ * nothing, when @p column is not a sorted one-component vtkIdTypeArray or @p ids do not ascend.
+ */
+template <typename RowFunction>
+bool ForEachRowOfIds(vtkIdTypeArray* column,
+  const vtkIdType* ids,
+  vtkIdType count,
+  RowFunction&& row)
+{
+  static_assert(sizeof(vtkIdType) == sizeof(std::int64_t), "GaussianIds are 64-bit vtkIdTypes");
+  const IdColumnOrder order = IdColumnOrderOf(column);
+  if (!order.Sorted || count < 0 || (count > 0 && !ids) || !std::is_sorted(ids, ids + count))
+  {
+    return false;
+  }
+  ForEachRowOfSortedIds(reinterpret_cast<const std::int64_t*>(column->GetPointer(0)),
+    static_cast<std::size_t>(column->GetNumberOfTuples()),
+    order,
+    reinterpret_cast<const std::int64_t*>(ids),
+    static_cast<std::size_t>(count),
+    [&](std::size_t r) { row(static_cast<vtkIdType>(r)); });
+  return true;
+}
 
 /**
  * Appends to @p rows the rows of @p column holding one of @p ids (@p count of them, ascending),

@@ -105,6 +105,32 @@ bool IsSortedColumn(vtkAbstractArray* column, vtkIdTypeArray* fast, vtkDataArray
   return sorted;
 }
 
+// A selection of GaussianId pedigree ids holding @p list itself (the hub's fresh arrays: a
+// 200,000-Gaussian pick is not copied once more).
+vtkSmartPointer<vtkSelection> WrapPedigreeIds(vtkIdTypeArray* list)
+{
+  vtkNew<vtkSelectionNode> node;
+  node->SetContentType(vtkSelectionNode::PEDIGREEIDS);
+  node->SetFieldType(vtkSelectionNode::POINT);
+  list->SetName(vis4gs::arrays::GaussianId);
+  node->SetSelectionList(list);
+  auto selection = vtkSmartPointer<vtkSelection>::New();
+  selection->AddNode(node);
+  return selection;
+}
+
+// A selection of the indices @p list holds, holding @p list itself.
+vtkSmartPointer<vtkSelection> WrapIndices(vtkIdTypeArray* list, int fieldType)
+{
+  vtkNew<vtkSelectionNode> node;
+  node->SetContentType(vtkSelectionNode::INDICES);
+  node->SetFieldType(fieldType);
+  node->SetSelectionList(list);
+  auto selection = vtkSmartPointer<vtkSelection>::New();
+  selection->AddNode(node);
+  return selection;
+}
+
 void AppendList(vtkAbstractArray* list, std::vector<vtkIdType>& out)
 {
   if (!list)
@@ -275,7 +301,7 @@ void vtkGaussianSelectionHub::Publish(std::vector<vtkIdType>&& ids)
   vtkNew<vtkIdTypeArray> array;
   array->SetNumberOfTuples(static_cast<vtkIdType>(this->Selected.size()));
   std::copy(this->Selected.begin(), this->Selected.end(), array->GetPointer(0));
-  in.Link->SetCurrentSelection(MakePedigreeSelection(array));
+  in.Link->SetCurrentSelection(WrapPedigreeIds(array));
 
   for (auto& c : in.Charts)
   {
@@ -285,7 +311,7 @@ void vtkGaussianSelectionHub::Publish(std::vector<vtkIdType>&& ids)
     {
       IdsToIndices(array, column, rows);
     }
-    c.Link->SetCurrentSelection(MakeIndexSelection(rows, vtkSelectionNode::POINT));
+    c.Link->SetCurrentSelection(WrapIndices(rows, vtkSelectionNode::POINT));
     // vtkChartXY only re-reads its link when painting; make sure it does.
     c.Chart->Modified();
   }
@@ -528,13 +554,13 @@ void vtkGaussianSelectionHub::IdsToIndices(const vtkIdType* ids,
   auto* fast = vtkIdTypeArray::SafeDownCast(idColumn);
   auto* data = vtkDataArray::SafeDownCast(idColumn);
   const vtkIdType n = idColumn->GetNumberOfTuples();
-  std::vector<vtkIdType> found;
-  if (fast && vis4gs::RowsOfSortedIds(fast, ids, count, found))
+  // The hub's ids (ascending) in a snapshot's column (ascending): O(selection), in column
+  // order as the scan below, straight into @p indices (a column of unique ids, the usual one,
+  // gives at most one row per id).
+  indices->Allocate(count);
+  if (fast &&
+    vis4gs::ForEachRowOfIds(fast, ids, count, [&](vtkIdType r) { indices->InsertNextValue(r); }))
   {
-    // The hub's ids (ascending) in a snapshot's column (ascending): O(selection), in column
-    // order as the scan below.
-    indices->SetNumberOfTuples(static_cast<vtkIdType>(found.size()));
-    std::copy(found.begin(), found.end(), indices->GetPointer(0));
     return;
   }
   const bool sorted = IsSortedColumn(idColumn, fast, data);
@@ -632,36 +658,23 @@ void vtkGaussianSelectionHub::IndicesToIds(vtkIdTypeArray* indices,
 vtkSmartPointer<vtkSelection> vtkGaussianSelectionHub::MakeIndexSelection(vtkIdTypeArray* indices,
   int fieldType)
 {
-  vtkNew<vtkSelectionNode> node;
-  node->SetContentType(vtkSelectionNode::INDICES);
-  node->SetFieldType(fieldType);
   vtkNew<vtkIdTypeArray> list;
   if (indices)
   {
     list->DeepCopy(indices);
   }
-  node->SetSelectionList(list);
-  auto selection = vtkSmartPointer<vtkSelection>::New();
-  selection->AddNode(node);
-  return selection;
+  return WrapIndices(list, fieldType);
 }
 
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkSelection> vtkGaussianSelectionHub::MakePedigreeSelection(vtkIdTypeArray* ids)
 {
-  vtkNew<vtkSelectionNode> node;
-  node->SetContentType(vtkSelectionNode::PEDIGREEIDS);
-  node->SetFieldType(vtkSelectionNode::POINT);
   vtkNew<vtkIdTypeArray> list;
   if (ids)
   {
     list->DeepCopy(ids);
   }
-  list->SetName(vis4gs::arrays::GaussianId);
-  node->SetSelectionList(list);
-  auto selection = vtkSmartPointer<vtkSelection>::New();
-  selection->AddNode(node);
-  return selection;
+  return WrapPedigreeIds(list);
 }
 
 //------------------------------------------------------------------------------

@@ -13,6 +13,7 @@
 #include "GaussianCloud.h"
 #include "Vis4GSDataModel.h"
 #include "Vis4GSHubLink.h"
+#include "Vis4GSIdColumn.h"
 #include "Vis4GSViewInput.h"
 #include "vtkGaussianCameraFrustums.h"
 #include "vtkGaussianCameraUtilities.h"
@@ -305,6 +306,13 @@ void vtkGaussianSceneView::ApplyScene(vtkPolyData* scene)
   in.Selector->SetScene(scene);
   in.Frustums->SetInputData(1, scene);
   in.ShareGaussians();
+  if (scene)
+  {
+    // The id column's order (one pass over its ids) is learnt now rather than at the first pick
+    // (the linked views look their selections up in it on this thread).
+    vis4gs::IdColumnOrderOf(
+      vtkIdTypeArray::SafeDownCast(scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId)));
+  }
   this->UpdateOverlay();
   this->OnSelectionChanged();
   this->Modified();
@@ -566,7 +574,7 @@ void vtkGaussianSceneView::UpdateOverlay()
 }
 
 //------------------------------------------------------------------------------
-void vtkGaussianSceneView::UpdateFrustums()
+void vtkGaussianSceneView::UpdateFrustums(vtkIdTypeArray* selected)
 {
   auto& in = *this->Internals;
   const bool show = in.Cameras && this->ShowFrustums;
@@ -574,11 +582,11 @@ void vtkGaussianSceneView::UpdateFrustums()
   if (show)
   {
     vtkNew<vtkIdTypeArray> ids;
-    if (in.Hub)
+    if (!selected && in.Hub)
     {
       in.Hub->GetSelectedIds(ids);
     }
-    in.Frustums->SetSelectedIds(ids);
+    in.Frustums->SetSelectedIds(selected ? selected : ids.GetPointer());
     this->UpdateFrustumColors();
   }
 }
@@ -630,8 +638,9 @@ void vtkGaussianSceneView::OnSelectionChanged()
   in.Markers->SetPoints(points);
   in.Markers->SetVerts(verts);
   in.Markers->Modified();
+  // (The mapper and the frustums only read the ids: they share this copy of the hub's.)
   in.Mapper->SetSelectedIds(selected);
-  this->UpdateFrustums();
+  this->UpdateFrustums(selected);
 }
 
 //------------------------------------------------------------------------------

@@ -303,7 +303,8 @@ private:
   vtkIdType Select(int mode, const std::vector<std::array<double, 2>>& points, int combine);
 #endif
   void UpdateOverlay();
-  void UpdateFrustums();
+  // The frustums' selected ids: @p selected (the hub's ids), or a copy of the hub's.
+  void UpdateFrustums(vtkIdTypeArray* selected = nullptr);
   void UpdateFrustumColors();
   void ApplyScene(vtkPolyData* scene);
   void ApplyCameras(vtkTable* cameras);

@@ -350,14 +350,18 @@ void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indice
   in.Current = vis4gs::CombineSelection(hub ? std::vector<std::int64_t>() : in.Current,
     std::move(ids),
     static_cast<vis4gs::SelectionModifier>(hub ? REPLACE : modifier));
-  vtkSelection* sel = self->GetSelection();
   if (hub)
   {
     // The selector's modifiers are the hub's modes (both REPLACE, ADD, SUBTRACT, TOGGLE).
-    hub->SelectIds(this->Internals->SelectedIds, modifier);
+    static_assert(sizeof(vtkIdType) == sizeof(std::int64_t), "GaussianIds are 64-bit");
+    hub->SelectIds(reinterpret_cast<const vtkIdType*>(in.Current.data()),
+      static_cast<vtkIdType>(in.Current.size()),
+      modifier);
   }
   if (link)
   {
+    // (Without a link the vtkSelection is made only when asked for: GetSelection().)
+    vtkSelection* sel = self->GetSelection();
     link->SetCurrentSelection(sel);
     link->InvokeEvent(vtkCommand::AnnotationChangedEvent, sel);
   }

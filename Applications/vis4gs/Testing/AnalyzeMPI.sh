@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # vis4gs analyze under mpiexec (issue 18). Usage: AnalyzeMPI.sh MODE VIS4GS MPIEXEC LOG WORKDIR
 #  equal   2 processes give the single process's scores.csv (coverage and flags identical,
-#          blur/needle equal to the 9 printed digits), 3 processes on one view too
+#          blur/needle equal to the 9 printed digits), 3 processes on one view too; the
+#          preparation shared, and the same file when it cannot be
 #  killed  process 1 killed in its first view: mpiexec fails, the error names process and
 #          view, and the output folder holds no scores.csv, scores.ply or report.html
 #  plain   without mpiexec nothing mentions processes (no MPI started)
@@ -37,6 +38,17 @@ case "$mode" in
       --output="$work/two" > "$work/two.log" 2>&1 || fail "2 processes: $(tail -5 "$work/two.log")"
     grep -q "process 1 of 2 rendered [1-9][0-9]* of" "$work/two.log" || fail "process 1 rendered nothing"
     compare "$work/one/scores.csv" "$work/two/scores.csv"
+    # The two processes prepared the projection once between them in shared memory; when
+    # process 1 cannot map it, both prepare alone, it says why, and the file is the same.
+    [ "$(grep -c "preparation shared by 2 processes of this machine" "$work/two.log")" = 2 ] \
+      || fail "the preparation was not shared: $(grep rendered "$work/two.log")"
+    VIS4GS_TEST_NO_SHARED_MEMORY=1 "$mpiexec" -n 2 --oversubscribe -x VIS4GS_TEST_NO_SHARED_MEMORY \
+      "$vis4gs" analyze "$log" "${common[@]}" --output="$work/alone" > "$work/alone.log" 2>&1 \
+      || fail "2 processes, shared memory refused: $(tail -5 "$work/alone.log")"
+    grep -q "process 1 of 2: the processes of this machine could not share the preparation" \
+      "$work/alone.log" || fail "no warning for the refused shared memory"
+    [ "$(grep -c "preparation made alone" "$work/alone.log")" = 2 ] || fail "expected the fallback"
+    cmp "$work/two/scores.csv" "$work/alone/scores.csv" || fail "the fallback changed scores.csv"
     # One view (a stride past the view count) on 3 processes: two of them render none.
     "$vis4gs" analyze "$log" "${common[@]}" --view-stride=1000 --scores=coverage,blur \
       --output="$work/one-view" > "$work/ov1.log" 2>&1 || fail "single process, one view"

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 
 using namespace vis4gs;
@@ -428,6 +429,75 @@ TEST(MultiViewRenderer, SetColorsEqualsRasterizerOfRecolouredCopy)
       const RasterImage<float> ref = Rasterize<float>(copy, cam, rs);
       EXPECT_TRUE(SameBits(image.Color, ref.Color)) << colouring;
       EXPECT_TRUE(SameBits(image.Alpha, ref.Alpha)) << colouring;
+    }
+  }
+}
+
+// The preparation made in parts by several renderers in one block of memory (as processes of
+// one machine make it, PreparationShare) renders every view as the unshared renderer does, bit
+// for bit; so does a Map that gives null (the fallback: each prepares alone). Colours of SH
+// degree 0 are part of the shared block; of degree 3, evaluated per view.
+TEST(MultiViewRenderer, SharedPreparationEqualsUnshared)
+{
+  for (int degree : { 0, 3 })
+  {
+    const GaussianCloud cloud = StiffScene(degree);
+    for (int parts : { 2, 3 })
+    {
+      RasterSettings rs;
+      rs.Threads = 1 + parts % 2;
+      std::vector<unsigned char> memory;
+      int maps = 0, waits = 0;
+      std::vector<std::unique_ptr<MultiViewRenderer>> renderers;
+      for (int part = 0; part < parts; ++part)
+      {
+        PreparationShare share;
+        share.Part = part;
+        share.Parts = parts;
+        share.Map = [&](std::size_t bytes) -> void*
+        {
+          ++maps;
+          // One block for all: the first renderer's call sizes it; later ones must ask the same.
+          if (memory.empty())
+          {
+            // Garbage, not zeros: every element must be written by one of the parts.
+            memory.assign(bytes + 64, 0xA5);
+          }
+          EXPECT_EQ(memory.size(), bytes + 64);
+          const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(memory.data());
+          return memory.data() + (64 - at % 64) % 64;
+        };
+        share.Wait = [&]() { ++waits; };
+        renderers.emplace_back(new MultiViewRenderer(cloud, rs, share));
+      }
+      EXPECT_EQ(parts, maps);
+      EXPECT_EQ(parts, waits);
+      PreparationShare refused;
+      refused.Parts = 2;
+      refused.Part = 1;
+      refused.Map = [](std::size_t) -> void* { return nullptr; };
+      refused.Wait = [&]() { ADD_FAILURE() << "Wait() after a refused Map()"; };
+      MultiViewRenderer alone(cloud, rs, refused);
+      MultiViewRenderer unshared(cloud, rs);
+      for (const Camera& cam : Views(160, 120))
+      {
+        RasterImage<float> expected, image;
+        unshared.Render(cam, expected);
+        for (MultiViewRenderer* mv : { renderers.front().get(), renderers.back().get(), &alone })
+        {
+          mv->Render(cam, image);
+          EXPECT_TRUE(SameBits(image.Color, expected.Color)) << degree << " " << parts;
+          EXPECT_TRUE(SameBits(image.Depth, expected.Depth));
+          EXPECT_TRUE(SameCounts(mv->Counts(), unshared.Counts()));
+          const std::vector<float> map = OddMap(cam.Width, cam.Height, 5u);
+          FootprintOptions fo;
+          FootprintStats a, b;
+          unshared.Footprints(fo, map.data(), a);
+          mv->Footprints(fo, map.data(), b);
+          EXPECT_EQ(a.PixelCount, b.PixelCount);
+          EXPECT_TRUE(SameBits(a.MapSum, b.MapSum));
+        }
+      }
     }
   }
 }

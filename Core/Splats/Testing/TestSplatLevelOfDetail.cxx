@@ -5,6 +5,7 @@
 #include "GaussianMath.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -273,6 +274,44 @@ TEST(SplatLevelOfDetail, KeyOrdersLikeTheContribution)
   EXPECT_LT(SplatContributionKey(1.0f, 2.0f), SplatContributionKey(1.0f, 1.0f));
   EXPECT_EQ(SplatContributionKey(4.0f, 2.0f), SplatContributionKey(1.0f, 1.0f));
   EXPECT_LT(SplatContributionKey(1.0f, 1.0f), SplatContributionKey(1.02f, 1.0f));
+}
+
+// A team smaller than the threads asked (OMP_THREAD_LIMIT, OMP_DYNAMIC, or nested in a parallel
+// region as here) selects what a full team selects. The histograms of the threads that did not
+// start were left empty (a crash summing them) and the cell selection kept their candidate
+// lists from an earlier view (found by Scripts/run-sanitizers.sh thread, OMP_THREAD_LIMIT=1).
+TEST(SplatLevelOfDetail, ATeamSmallerThanAskedSelectsLikeAFullTeam)
+{
+  const GaussianCloud c = ClusteredCloud(60000, 9);
+  SplatLevelOfDetail lod;
+  PrepareSplatLevelOfDetail(c, lod, 2, true, 64);
+  const Camera first = YawCamera(0.0, 0.0), second = YawCamera(0.6, 0.3);
+  std::vector<std::uint32_t> expected, expectedCells, got, gotCells, before;
+  SelectSplatsForView(c, lod, second, 4000, expected, 1);
+  SplatSelectionState fresh;
+  SelectSplatsInCells(c, lod, second, 4000, expectedCells, fresh, 1);
+  ASSERT_EQ(expectedCells, expected);
+  // The candidate lists of a team of 4, at the first view.
+  SplatSelectionState state;
+  SelectSplatsInCells(c, lod, first, 4000, before, state, 4);
+  ASSERT_NE(before, expected);
+  int inner = 0;
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp single
+    {
+#pragma omp parallel num_threads(4)
+      {
+#pragma omp single
+        inner = omp_get_num_threads();
+      }
+      SelectSplatsForView(c, lod, second, 4000, got, 4);
+      SelectSplatsInCells(c, lod, second, 4000, gotCells, state, 4);
+    }
+  }
+  EXPECT_LT(inner, 4) << "the nested region was given every thread: nothing tested";
+  EXPECT_EQ(got, expected);
+  EXPECT_EQ(gotCells, expected);
 }
 
 } // namespace vis4gs

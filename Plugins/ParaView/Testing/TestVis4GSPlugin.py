@@ -131,12 +131,17 @@ if mode == "mpi":
             elif (str(int(mine[r])) if name == "NoVisibleView" else "%.9g" % mine[r]) != row[c]:
                 differ[name] = differ.get(name, 0) + 1
     check(not differ, f"Gaussians whose scores differ from {app_csv}: {differ}")
+    # The processes (all on this machine) prepared the projection once between them, in
+    # shared memory (Vis4GSNodeSharedMemory), and the scores above are still one process's.
+    scores.UpdatePropertyInformation()
+    shared = scores.GetPropertyValue("PreparationProcesses")
+    check(shared == ranks, f"preparation shared by {shared} processes, expected {ranks}")
     if failures:
         print("FAILED:", *failures, sep="\n  ")
         sys.exit(1)
     # No sys.exit here: pvbatch under mpiexec ends its other processes when the script ends.
     print(f"ParaView plugin on {ranks} processes: {len(app)} Gaussians' {', '.join(header[1:])} "
-          "= one process's scores.csv")
+          f"= one process's scores.csv, the preparation shared by {shared} processes")
 
 if mode == "scores":
     log, app_csv, arrays = sys.argv[3], sys.argv[4], sys.argv[5:]

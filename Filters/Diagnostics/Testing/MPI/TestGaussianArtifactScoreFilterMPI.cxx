@@ -32,10 +32,13 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkTable.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -422,6 +425,76 @@ void TestScene(vtkMPIController* controller, const Scene& scene)
 }
 }
 
+// The preparation shared by the processes of this machine (Vis4GSNodeSharedMemory) gives the
+// scores of every process preparing alone bit for bit (the same views on the same processes),
+// and so does the fallback when one process cannot map the shared memory
+// (VIS4GS_TEST_NO_SHARED_MEMORY), which that process reports in a warning.
+void TestSharedPreparation(vtkMPIController* controller, const Scene& scene)
+{
+  vtkNew<vtkPolyData> poly;
+  vis4gs::GaussianCloudToPolyData(scene.Cloud, poly);
+  vtkNew<vtkTable> table;
+  vis4gs::CamerasToTable(scene.Cameras, table);
+  const int ranks = controller->GetNumberOfProcesses();
+  auto run = [&](bool share, bool refuse, int& processes, std::string& warnings)
+  {
+    if (refuse)
+    {
+      setenv("VIS4GS_TEST_NO_SHARED_MEMORY", std::to_string(ranks - 1).c_str(), 1);
+    }
+    vtkNew<vtkGaussianArtifactScoreFilter> filter;
+    filter->SetController(controller);
+    filter->SetInputData(poly);
+    filter->SetCamerasData(table);
+    Check(filter->SetScores("coverage,blur,needle,render-cost"), "SetScores");
+    filter->SetSharePreparation(share);
+    vtkNew<vtkCallbackCommand> onWarning;
+    onWarning->SetCallback(OnError);
+    onWarning->SetClientData(&warnings);
+    filter->AddObserver(vtkCommand::WarningEvent, onWarning);
+    filter->Update();
+    unsetenv("VIS4GS_TEST_NO_SHARED_MEMORY");
+    processes = filter->GetPreparationProcesses();
+    vtkSmartPointer<vtkPolyData> out = filter->GetOutput();
+    return out;
+  };
+  int alone = 0, shared = 0, refused = 0;
+  std::string w0, w1, w2;
+  const auto a = run(false, false, alone, w0);
+  const auto b = run(true, false, shared, w1);
+  const auto c = run(true, true, refused, w2);
+  const std::string what = scene.Name + ", shared preparation";
+  // (every process of this test runs on one machine)
+  Check(alone == 1 && shared == ranks && refused == 1,
+    what + ": processes sharing " + std::to_string(alone) + " / " + std::to_string(shared) + " / " +
+      std::to_string(refused));
+  for (const char* name : { vis4gs::arrays::ViewCoverage,
+         vis4gs::arrays::BlurScore,
+         vis4gs::arrays::NeedleScore,
+         "RenderCost",
+         "NoVisibleView" })
+  {
+    vtkDataArray* x = a->GetPointData()->GetArray(name);
+    for (vtkPolyData* other : { b.GetPointer(), c.GetPointer() })
+    {
+      vtkDataArray* y = other->GetPointData()->GetArray(name);
+      bool same = x && y && x->GetNumberOfTuples() == y->GetNumberOfTuples() &&
+        x->GetNumberOfTuples() == static_cast<vtkIdType>(scene.Cloud.Count);
+      for (vtkIdType i = 0; same && i < x->GetNumberOfTuples(); ++i)
+      {
+        const double u = x->GetTuple1(i), v = y->GetTuple1(i);
+        same = std::memcmp(&u, &v, sizeof(u)) == 0;
+      }
+      Check(same, what + ": " + name + " not bit-identical to the unshared preparation's");
+    }
+  }
+  const bool warned = w2.find("VIS4GS_TEST_NO_SHARED_MEMORY") != std::string::npos &&
+    w2.find("each prepared it alone") != std::string::npos;
+  Check(warned == (Rank == ranks - 1), what + ": the fallback's warning: '" + w2 + "'");
+  Check((w0 + w1).find("could not share") == std::string::npos,
+    what + ": a fallback's warning without a fallback: " + w0 + w1);
+}
+
 // The pipeline pvbatch under mpiexec runs: every process asks for its own piece of the output,
 // and a reader that cannot split its file gives Gaussians to piece 0 only. The filter asks for
 // the whole scene on every process (else piece 1 had no Gaussians and process 0 waited forever
@@ -493,6 +566,7 @@ int main(int argc, char* argv[])
     TestScene(controller, random);
     TestScene(controller, demo);
     TestPieces(controller, random, folder);
+    TestSharedPreparation(controller, random);
   }
   catch (const std::exception& e)
   {

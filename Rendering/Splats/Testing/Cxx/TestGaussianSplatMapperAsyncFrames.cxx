@@ -9,7 +9,11 @@
 //     frame, the last camera's, and it is that camera's exact frame;
 //  3. no frame of a replaced scene is drawn: a frame of scene A finished after the input
 //     became scene B is dropped (nothing drawn), then B's exact frame is drawn;
-//  4. the synchronous and asynchronous modes switch back and forth without losing a frame.
+//  4. the synchronous and asynchronous modes switch back and forth without losing a frame;
+//  5. with the next choice of the moving frames' Gaussians made ahead on a builder thread
+//     (InteractiveRebuildAhead) beside the worker, the moving frames of an orbit are reduced
+//     and the still frame after it is the exact frame bit for bit (Scripts/run-sanitizers.sh
+//     thread runs this test: the worker, the builder and the render thread together).
 #include "SplatTestHelpers.h"
 
 #include "BenchmarkScene.h"
@@ -214,6 +218,35 @@ int TestGaussianSplatMapperAsyncFrames(int, char*[])
     if (sync != exact(exactB, 0.8) || async != exact(exactB, 0.4))
     {
       std::printf("FAILED: switching between the modes lost or changed a frame\n");
+      fail = 1;
+    }
+  }
+
+  // 5. An orbit with rebuilds ahead: steps of 0.01 rad, so that the builder starts every
+  // 1.5 degrees (a quarter of the default reuse angle of 6) and its set is published while the
+  // frames keep drawing the current one; every other step waits for its frame (a frame made
+  // while the builder runs), the others are replaced by the next request.
+  {
+    View view(sceneA, true);
+    view.Mapper->SetInteractiveRebuildAhead(0.25);
+    int notReduced = 0;
+    for (int f = 0; f < 16; ++f)
+    {
+      view.Request(0.3 + 0.01 * f, true);
+      if (f % 2 == 1)
+      {
+        view.Finish();
+        notReduced += view.Mapper->GetLastFrameReduced() ? 0 : 1;
+      }
+    }
+    view.Request(0.46, false);
+    const auto stopped = view.Finish();
+    std::printf(
+      "5. orbit with rebuilds ahead: %d of 8 awaited moving frames not reduced\n", notReduced);
+    if (notReduced != 0 || view.Mapper->GetLastFrameReduced() || stopped != exact(exactA, 0.46))
+    {
+      std::printf("FAILED: with rebuilds ahead, a moving frame was not reduced or the still "
+                  "frame is not the exact frame bit for bit\n");
       fail = 1;
     }
   }
