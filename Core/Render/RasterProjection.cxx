@@ -422,16 +422,30 @@ bool RefreshPreparedCloud(PreparedCloudCache& cache,
   const std::size_t padded = (n + 15) / 16 * 16;
   if (!c.Valid || from == 0 || to == 0 || c.Version != from || c.Cloud != &cloud ||
     c.ShDegree != cloud.ShDegree || c.ModBits != modBits || c.ShUsed != shUsed ||
-    c.Colors != colors || settings.KernelIsa < 0 || d.Valid.capacity() < padded ||
-    d.X.capacity() < padded)
+    c.Colors != colors || settings.KernelIsa < 0 || d.Color)
   {
     return false;
   }
-  for (auto* v : { &d.X, &d.Y, &d.Z, &d.S00, &d.S01, &d.S02, &d.S11, &d.S12, &d.S22, &d.Opacity })
+  // The arrays lie in one block, array a at a * padded: another padded count moves them (in
+  // the block when it has room, the lower arrays first when they shrink, the higher ones first
+  // when they grow); a new block loses them (then everything is prepared again).
+  const std::size_t before = (c.Count + 15) / 16 * 16;
+  if (padded != before)
   {
-    v->resize(padded); // (within the capacity: the kept preparation stays)
+    float* base = d.X;
+    d.Allocate(padded, false);
+    if (d.X != base)
+    {
+      c.Valid = false;
+      return false;
+    }
+    const std::size_t kept = std::min(before, padded);
+    for (int k = 0; k < 11; ++k)
+    {
+      const std::size_t a = static_cast<std::size_t>(padded > before ? 10 - k : k);
+      std::memmove(base + a * padded, base + a * before, kept * sizeof(float));
+    }
   }
-  d.Valid.resize(padded);
   const int threads = ThreadCount(settings.Threads);
   const std::int64_t count = static_cast<std::int64_t>(changed.size());
 #pragma omp parallel for schedule(static) num_threads(threads)

@@ -155,6 +155,7 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   const std::size_t m = selected.size();
   SplatMovingSet::Build& next = set.Next;
   next.Full = !keepColors;
+  next.Threads = threads;
   next.Count = m;
   // fresh[t]: the places in the selection of the Gaussians thread t gathers from the scene.
   std::vector<std::vector<std::uint32_t>>& fresh = set.Fresh;
@@ -490,7 +491,7 @@ bool PublishSplatMovingSet(SplatMovingSet& set)
       set.Subset[next.MoveTo[r]] = set.Subset[next.MoveFrom[r]];
     }
     const std::int64_t count = static_cast<std::int64_t>(next.PatchSlots.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(next.Threads)
     for (std::int64_t qq = 0; qq < count; ++qq)
     {
       const std::size_t q = static_cast<std::size_t>(qq);

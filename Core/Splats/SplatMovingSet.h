@@ -119,6 +119,7 @@ struct SplatMovingSet
     bool ColorsRefreshed = false;
     SplatMovingSetOrigin Made;
     bool Full = true;
+    int Threads = 1; ///< (of the publication's parallel writes: the build's)
     std::size_t Count = 0;
     GaussianCloud Patch;
     std::vector<std::uint32_t> PatchSlots, PatchIndices, MoveFrom, MoveTo;
