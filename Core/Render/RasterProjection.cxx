@@ -392,6 +392,91 @@ const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
 } // namespace
 
 //------------------------------------------------------------------------------
+bool RefreshPreparedCloud(PreparedCloudCache& cache,
+  const GaussianCloud& cloud,
+  std::uint64_t from,
+  std::uint64_t to,
+  const std::vector<std::uint32_t>& changed,
+  const RasterSettings& settings)
+{
+  const std::size_t n = cloud.Count;
+  for (std::uint32_t i : changed)
+  {
+    if (i >= n)
+    {
+      throw std::invalid_argument("RefreshPreparedCloud: changed Gaussian " + std::to_string(i) +
+        " is not below the cloud's count " + std::to_string(n));
+    }
+  }
+  // (the keys of ProjectFloatLanes and UsePreparedCloud)
+  const int degree = std::max(
+    0, settings.ShDegree < 0 ? cloud.ShDegree : std::min(settings.ShDegree, cloud.ShDegree));
+  const bool colors = settings.ComputeColors;
+  const int shStride = colors ? 3 * cloud.ShCoefficientCount() : 0;
+  const int shUsed = 3 * (degree + 1) * (degree + 1);
+  const float mod = static_cast<float>(settings.ScaleModifier);
+  std::uint32_t modBits;
+  std::memcpy(&modBits, &mod, sizeof(modBits));
+  PreparedCloudCache::Impl& c = cache.Internal();
+  MultiViewPrepared& d = c.Data;
+  const std::size_t padded = (n + 15) / 16 * 16;
+  if (!c.Valid || from == 0 || to == 0 || c.Version != from || c.Cloud != &cloud ||
+    c.ShDegree != cloud.ShDegree || c.ModBits != modBits || c.ShUsed != shUsed ||
+    c.Colors != colors || settings.KernelIsa < 0 || d.Color)
+  {
+    return false;
+  }
+  // The arrays lie in one block, array a at a * padded: another padded count moves them (in
+  // the block when it has room, the lower arrays first when they shrink, the higher ones first
+  // when they grow); a new block loses them (then everything is prepared again).
+  const std::size_t before = (c.Count + 15) / 16 * 16;
+  if (padded != before)
+  {
+    float* base = d.X;
+    d.Allocate(padded, false);
+    if (d.X != base)
+    {
+      c.Valid = false;
+      return false;
+    }
+    const std::size_t kept = std::min(before, padded);
+    for (int k = 0; k < 11; ++k)
+    {
+      const std::size_t a = static_cast<std::size_t>(padded > before ? 10 - k : k);
+      std::memmove(base + a * padded, base + a * before, kept * sizeof(float));
+    }
+  }
+  const int threads = ThreadCount(settings.Threads);
+  const std::int64_t count = static_cast<std::int64_t>(changed.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t jj = 0; jj < count; ++jj)
+  {
+    const std::size_t i = changed[static_cast<std::size_t>(jj)];
+    raster::internal::PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, d, i);
+  }
+  // The Gaussians beyond the previous count, and the padding.
+  for (std::size_t i = std::min(c.Count, n); i < padded; ++i)
+  {
+    raster::internal::PrepareGaussianForLanes(cloud, i, mod, shStride, shUsed, colors, d, i);
+  }
+  c.Version = to;
+  c.Count = n;
+  const float* arrays[5] = { cloud.Positions.data(),
+    cloud.LogScales.data(),
+    cloud.Rotations.data(),
+    cloud.OpacityLogits.data(),
+    cloud.SH.data() };
+  const std::size_t sizes[5] = { cloud.Positions.size(),
+    cloud.LogScales.size(),
+    cloud.Rotations.size(),
+    cloud.OpacityLogits.size(),
+    cloud.SH.size() };
+  std::copy(arrays, arrays + 5, c.Arrays);
+  std::copy(sizes, sizes + 5, c.Sizes);
+  return true;
+}
+
+//------------------------------------------------------------------------------
 namespace
 {
 // ProjectGaussians<float> steps 1-7 with the 16-lane projection (ProjectionLanes.inc, the

@@ -235,6 +235,26 @@ void ProjectGaussians(const GaussianCloud& cloud,
   std::uint64_t cloudVersion);
 
 /**
+ * Makes @p cache, which holds the preparation of version @p from of @p cloud for @p settings,
+ * hold that of version @p to by preparing again only the Gaussians @p changed (indices below
+ * cloud.Count, any order) and those beyond the Count it was prepared for: the caller's promise
+ * that no other Gaussian's parameters changed (a cloud that changes a few Gaussians in place
+ * between frames: the scene view's moving set, Core/Splats/SplatMovingSet.h). The next
+ * projection of version @p to reuses it, bit for bit the preparation of the whole cloud, with
+ * the usual spot check. Returns false, and changes nothing, when the cache does not hold
+ * version @p from of this cloud (address, SH degree, scale modifier, colours), when a version is
+ * 0, when the projection does not use the cache (KernelIsa -1) or when the cloud grew beyond
+ * the kept buffers: the next projection then prepares every Gaussian. Throws
+ * std::invalid_argument for an index of @p changed not below cloud.Count.
+ */
+bool RefreshPreparedCloud(PreparedCloudCache& cache,
+  const GaussianCloud& cloud,
+  std::uint64_t from,
+  std::uint64_t to,
+  const std::vector<std::uint32_t>& changed,
+  const RasterSettings& settings);
+
+/**
  * ProjectGaussians(cloud, camera, settings, projection, cache, cloudVersion) of the Gaussians
  * @p subset of @p cloud only: projection.Gaussians[j] is the cloud's Gaussian subset[j],
  * projected exactly as in the whole cloud's projection, bit for bit, and Counts count the

@@ -680,6 +680,21 @@ inline unsigned CountTrailingZeros(std::uint64_t b)
 #endif
 }
 
+// The number of set bits of @p b.
+inline int PopCount(std::uint64_t b)
+{
+#if defined(__GNUC__)
+  return __builtin_popcountll(b);
+#else
+  int n = 0;
+  for (; b != 0; b &= b - 1)
+  {
+    ++n;
+  }
+  return n;
+#endif
+}
+
 // Asks for both cache lines of a projected Gaussian (its centre, its status).
 inline void Prefetch(const ProjectedGaussian<float>* g)
 {
@@ -884,7 +899,13 @@ std::vector<std::uint32_t> RecordedAt(const PixelWeightRecord& record,
       }
     }
   }
+  std::size_t total = 0;
+  for (const std::uint64_t b : bits)
+  {
+    total += static_cast<std::size_t>(PopCount(b));
+  }
   std::vector<std::uint32_t> out;
+  out.reserve(total);
   for (std::size_t word = 0; word < bits.size(); ++word)
   {
     for (std::uint64_t b = bits[word]; b != 0; b &= b - 1)

@@ -136,32 +136,118 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   const int degree = UsedDegree(cloud, settings);
   const bool colors = settings.ComputeColors;
   const bool sameScene = SameScene(cloud, cloudVersion, settings, set);
-  // The Gaussians that stay selected keep their colour while the camera of the last full
-  // colour evaluation is within the colour angle; the others are gathered from the scene.
+  // The Gaussians that stay selected keep their colour (and their slot) while the camera of the
+  // last full colour evaluation is within the colour angle; the others are gathered from the
+  // scene.
   const bool keepColors = colorAngle > 0.0 && sameScene &&
     SplatViewChangeAngle(set.Made.ColorRank, camera, set.Made.Depth) <= colorAngle;
   const int threads = ThreadCount(settings.Threads);
+  const std::size_t threadCount = static_cast<std::size_t>(threads);
   if (!sameScene)
   {
     set.Selection.Boundary = 0; // (another scene's boundary says nothing about this one)
   }
-  // The new set goes into the spare buffers; the published Subset and Compact are only read
-  // (frames may project them meanwhile).
-  std::vector<std::uint32_t>& subset = set.PreviousSubset;
-  SelectSplatsInCells(cloud, lod, camera, budget, subset, set.Selection, threads, reuseAngle);
+  // The new selection goes into the scratch and set.Next; the published Subset, Sorted and
+  // Compact are only read (frames may project them meanwhile).
+  std::vector<std::uint32_t>& selected = set.Selected;
+  SelectSplatsInCells(cloud, lod, camera, budget, selected, set.Selection, threads, reuseAngle);
   set.LastSelectionMs = MsSince(start);
-  const std::size_t m = subset.size();
-  const GaussianCloud& prev = set.Compact;
-  GaussianCloud& c = set.Previous;
-  c.Count = m;
+  const std::size_t m = selected.size();
+  SplatMovingSet::Build& next = set.Next;
+  next.Full = !keepColors;
+  next.Threads = threads;
+  next.Count = m;
+  // fresh[t]: the places in the selection of the Gaussians thread t gathers from the scene.
+  std::vector<std::vector<std::uint32_t>>& fresh = set.Fresh;
+  fresh.resize(threadCount);
+  std::vector<std::uint32_t>& slotOf = set.SlotOf;
+  slotOf.resize(m);
+  const std::vector<std::uint64_t>& sorted = set.Sorted;
+  const std::size_t published = keepColors ? set.Subset.size() : 0;
+  std::vector<std::uint8_t>& stay = set.Stay;
+  stay.assign(published, 0);
+  const std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  // Each thread merges a contiguous part of the selection with the published set (ascending
+  // indices both): a Gaussian found there keeps its slot, the others are new.
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+  for (int t = 0; t < threads; ++t)
+  {
+    const std::size_t b = m * static_cast<std::size_t>(t) / threadCount;
+    const std::size_t e = m * static_cast<std::size_t>(t + 1) / threadCount;
+    std::vector<std::uint32_t>& mine = fresh[static_cast<std::size_t>(t)];
+    mine.clear();
+    std::size_t k = keepColors && b < e
+      ? static_cast<std::size_t>(
+          std::lower_bound(
+            sorted.begin(), sorted.end(), static_cast<std::uint64_t>(selected[b]) << 32) -
+          sorted.begin())
+      : sorted.size();
+    for (std::size_t j = b; j < e; ++j)
+    {
+      const std::uint64_t index = selected[j];
+      while (k < sorted.size() && (sorted[k] >> 32) < index)
+      {
+        ++k;
+      }
+      if (keepColors && k < sorted.size() && (sorted[k] >> 32) == index)
+      {
+        const std::uint32_t slot = static_cast<std::uint32_t>(sorted[k]);
+        slotOf[j] = slot;
+        stay[slot] = 1;
+      }
+      else
+      {
+        slotOf[j] = none;
+        mine.push_back(static_cast<std::uint32_t>(j));
+      }
+    }
+  }
+  std::size_t newCount = 0;
+  for (const auto& f : fresh)
+  {
+    newCount += f.size();
+  }
+  // The slots to fill below the new count: those whose Gaussian leaves, and the new ones beyond
+  // the published count. The new Gaussians take the first of them; the Gaussians that stay in
+  // slots beyond the new count move into the rest (as many).
+  std::vector<std::uint32_t>& free = set.Free;
+  free.clear();
+  next.MoveFrom.clear();
+  next.MoveTo.clear();
+  if (keepColors)
+  {
+    for (std::size_t slot = 0; slot < m; ++slot)
+    {
+      if (slot >= published || !stay[slot])
+      {
+        free.push_back(static_cast<std::uint32_t>(slot));
+      }
+    }
+    for (std::size_t slot = m; slot < published; ++slot)
+    {
+      if (stay[slot])
+      {
+        next.MoveFrom.push_back(static_cast<std::uint32_t>(slot));
+      }
+    }
+    for (std::size_t r = 0; r < next.MoveFrom.size(); ++r)
+    {
+      next.MoveTo.push_back(free[newCount + r]);
+    }
+  }
+  // The Gaussians gathered from the scene: the new ones, or every one (Full) in order.
+  GaussianCloud& c = next.Patch;
+  c.Count = newCount;
   c.ShDegree = 0;
   c.Ids.clear();
   c.Extra.clear();
-  c.Positions.resize(3 * m);
-  c.LogScales.resize(3 * m);
-  c.Rotations.resize(4 * m);
-  c.OpacityLogits.resize(m);
-  c.SH.resize(3 * m);
+  c.Positions.resize(3 * newCount);
+  c.LogScales.resize(3 * newCount);
+  c.Rotations.resize(4 * newCount);
+  c.OpacityLogits.resize(newCount);
+  c.SH.resize(3 * newCount);
+  next.PatchSlots.resize(keepColors ? newCount : 0);
+  next.PatchIndices.resize(keepColors ? newCount : 0);
   const bool haveSh = colors &&
     cloud.SH.size() == cloud.Count * 3 * static_cast<std::size_t>(cloud.ShCoefficientCount());
   const std::size_t shStride = 3 * static_cast<std::size_t>(cloud.ShCoefficientCount());
@@ -171,51 +257,24 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   };
   const float c0 = static_cast<float>(sh::C0);
   const auto gatherStart = std::chrono::steady_clock::now();
-  std::size_t evaluated = 0;
-  // Each thread takes a contiguous part of the new subset: it merges it with the published
-  // subset (which Gaussians stay), copies those that stay from the published compact cloud
-  // (parameters and kept colour, contiguous), then gathers the others from the scene and
-  // evaluates their colour. The scene's Gaussians lie far apart (about 7 cache lines each at
-  // SH degree 3): the gather runs over the list of the new ones alone, so that its prefetch
-  // reaches Ahead new Gaussians ahead (among every selected one it would reach less than one).
-  std::vector<std::vector<std::uint32_t>>& fresh = set.Fresh;
-  fresh.resize(static_cast<std::size_t>(threads));
-  const std::vector<std::uint32_t>& old = set.Subset;
-#pragma omp parallel for schedule(static, 1) num_threads(threads) reduction(+ : evaluated)
+  // The scene's Gaussians lie far apart (about 7 cache lines each at SH degree 3): each thread
+  // runs over its list of new ones, asking for the lines of the one Ahead places on.
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
   for (int t = 0; t < threads; ++t)
   {
-    const std::size_t b = m * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
-    const std::size_t e = m * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
-    std::vector<std::uint32_t>& mine = fresh[static_cast<std::size_t>(t)];
-    mine.clear();
-    std::size_t k = keepColors && b < e
-      ? static_cast<std::size_t>(std::lower_bound(old.begin(), old.end(), subset[b]) - old.begin())
-      : old.size();
-    for (std::size_t j = b; j < e; ++j)
+    const std::vector<std::uint32_t>& mine = fresh[static_cast<std::size_t>(t)];
+    std::size_t q0 = 0; // (this thread's first place in the patch)
+    for (int u = 0; u < t; ++u)
     {
-      while (k < old.size() && old[k] < subset[j])
-      {
-        ++k;
-      }
-      if (!keepColors || k >= old.size() || old[k] != subset[j])
-      {
-        mine.push_back(static_cast<std::uint32_t>(j));
-        continue;
-      }
-      std::copy_n(&prev.Positions[3 * k], 3, &c.Positions[3 * j]);
-      std::copy_n(&prev.LogScales[3 * k], 3, &c.LogScales[3 * j]);
-      std::copy_n(&prev.Rotations[4 * k], 4, &c.Rotations[4 * j]);
-      c.OpacityLogits[j] = prev.OpacityLogits[k];
-      std::copy_n(&prev.SH[3 * k], 3, &c.SH[3 * j]);
+      q0 += fresh[static_cast<std::size_t>(u)].size();
     }
     constexpr std::size_t Ahead = 8;
     const std::size_t count = mine.size();
-    evaluated += count;
-    for (std::size_t q = 0; q < count; ++q)
+    for (std::size_t r = 0; r < count; ++r)
     {
-      if (q + Ahead < count)
+      if (r + Ahead < count)
       {
-        const std::size_t a = subset[mine[q + Ahead]];
+        const std::size_t a = selected[mine[r + Ahead]];
         if (haveSh)
         {
           const char* line = reinterpret_cast<const char*>(&cloud.SH[a * shStride]);
@@ -229,13 +288,18 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
         __builtin_prefetch(&cloud.Rotations[4 * a]);
         __builtin_prefetch(&cloud.OpacityLogits[a]);
       }
-      const std::size_t j = mine[q];
-      const std::size_t i = subset[j];
+      const std::size_t q = q0 + r;
+      const std::size_t i = selected[mine[r]];
+      if (keepColors)
+      {
+        next.PatchSlots[q] = free[q];
+        next.PatchIndices[q] = static_cast<std::uint32_t>(i);
+      }
       const float* p = &cloud.Positions[3 * i];
-      std::copy_n(p, 3, &c.Positions[3 * j]);
-      std::copy_n(&cloud.LogScales[3 * i], 3, &c.LogScales[3 * j]);
-      std::copy_n(&cloud.Rotations[4 * i], 4, &c.Rotations[4 * j]);
-      c.OpacityLogits[j] = cloud.OpacityLogits[i];
+      std::copy_n(p, 3, &c.Positions[3 * q]);
+      std::copy_n(&cloud.LogScales[3 * i], 3, &c.LogScales[3 * q]);
+      std::copy_n(&cloud.Rotations[4 * i], 4, &c.Rotations[4 * q]);
+      c.OpacityLogits[q] = cloud.OpacityLogits[i];
       float rgb[3] = { 0.5f, 0.5f, 0.5f };
       if (haveSh)
       {
@@ -246,8 +310,36 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
       }
       for (int o = 0; o < 3; ++o)
       {
-        c.SH[3 * j + o] = haveSh ? (rgb[o] - 0.5f) / c0 : 0.0f;
+        c.SH[3 * q + o] = haveSh ? (rgb[o] - 0.5f) / c0 : 0.0f;
       }
+    }
+  }
+  set.LastGatherMs = MsSince(gatherStart);
+  set.LastEvaluated = newCount;
+  // The published Sorted after the publication: each selected Gaussian with its slot.
+  next.Sorted.resize(m);
+  {
+    std::size_t q = 0, moved = 0;
+    for (std::size_t j = 0; j < m; ++j)
+    {
+      std::uint32_t slot = static_cast<std::uint32_t>(j);
+      if (keepColors)
+      {
+        slot = slotOf[j];
+        if (slot == none)
+        {
+          slot = free[q++];
+        }
+        else if (slot >= m)
+        {
+          // (MoveFrom ascends)
+          moved = static_cast<std::size_t>(
+            std::lower_bound(next.MoveFrom.begin(), next.MoveFrom.end(), slot) -
+            next.MoveFrom.begin());
+          slot = next.MoveTo[moved];
+        }
+      }
+      next.Sorted[j] = (static_cast<std::uint64_t>(selected[j]) << 32) | slot;
     }
   }
   // The travel test's scale from a sample (a median needs no more, and sorting every depth
@@ -258,11 +350,9 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   depths.clear();
   for (std::size_t j = 0; j < m; j += stride)
   {
-    const float* p = &c.Positions[3 * j];
+    const float* p = &cloud.Positions[3 * static_cast<std::size_t>(selected[j])];
     depths.push_back(static_cast<float>(v[8] * p[0] + v[9] * p[1] + v[10] * p[2] + v[11]));
   }
-  set.LastGatherMs = MsSince(gatherStart);
-  set.LastEvaluated = evaluated;
   // The median depth of those in front (the scale of the travel test).
   auto front = std::partition(depths.begin(), depths.end(), [](float z) { return z > 0.2f; });
   double depth = 0.0;
@@ -272,7 +362,7 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
     std::nth_element(depths.begin(), mid, front);
     depth = *mid;
   }
-  SplatMovingSetOrigin& made = set.Next.Made;
+  SplatMovingSetOrigin& made = next.Made;
   made.Rank = camera;
   made.ColorRank = keepColors ? set.Made.ColorRank : camera;
   made.Cloud = &cloud;
@@ -282,8 +372,8 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
   made.Colors = colors;
   made.ReuseAngle = reuseAngle;
   made.Depth = depth;
-  set.Next.ColorsRefreshed = !keepColors;
-  set.Next.Ready = true;
+  next.ColorsRefreshed = !keepColors;
+  next.Ready = true;
   set.LastRebuildMs = MsSince(start);
 }
 
@@ -311,7 +401,16 @@ bool ReserveSplatMovingSet(SplatMovingSet& set, std::size_t count, int threads)
     return false;
   }
   const int nt = ThreadCount(threads);
-  for (auto* v : { &set.Subset, &set.PreviousSubset })
+  for (auto* v : { &set.Subset, &set.Selected, &set.SlotOf, &set.Free })
+  {
+    Touch(*v, count);
+  }
+  for (auto* v : { &set.Sorted, &set.Next.Sorted })
+  {
+    Touch(*v, count);
+  }
+  Touch(set.Stay, count);
+  for (auto* v : { &set.Next.PatchSlots, &set.Next.PatchIndices })
   {
     Touch(*v, count);
   }
@@ -320,7 +419,7 @@ bool ReserveSplatMovingSet(SplatMovingSet& set, std::size_t count, int threads)
   {
     Touch(v, count / static_cast<std::size_t>(nt) + 1);
   }
-  for (GaussianCloud* c : { &set.Compact, &set.Previous })
+  for (GaussianCloud* c : { &set.Compact, &set.Next.Patch })
   {
     Touch(c->Positions, 3 * count);
     Touch(c->LogScales, 3 * count);
@@ -355,17 +454,87 @@ bool PublishSplatMovingSet(SplatMovingSet& set)
   {
     return false;
   }
-  std::swap(set.Subset, set.PreviousSubset);
-  std::swap(set.Compact, set.Previous);
+  GaussianCloud& c = set.Compact;
+  const std::size_t m = next.Count;
+  if (next.Full)
+  {
+    std::swap(c, next.Patch);
+    set.Subset.resize(m);
+    for (std::size_t j = 0; j < m; ++j)
+    {
+      set.Subset[j] = static_cast<std::uint32_t>(next.Sorted[j] >> 32);
+    }
+    set.Changed.clear();
+    set.AllChanged = true;
+  }
+  else
+  {
+    auto copy = [&c](const GaussianCloud& from, std::size_t a, std::size_t b)
+    {
+      std::copy_n(&from.Positions[3 * a], 3, &c.Positions[3 * b]);
+      std::copy_n(&from.LogScales[3 * a], 3, &c.LogScales[3 * b]);
+      std::copy_n(&from.Rotations[4 * a], 4, &c.Rotations[4 * b]);
+      c.OpacityLogits[b] = from.OpacityLogits[a];
+      std::copy_n(&from.SH[3 * a], 3, &c.SH[3 * b]);
+    };
+    const std::size_t grown = std::max(m, c.Count);
+    c.Positions.resize(3 * grown);
+    c.LogScales.resize(3 * grown);
+    c.Rotations.resize(4 * grown);
+    c.OpacityLogits.resize(grown);
+    c.SH.resize(3 * grown);
+    set.Subset.resize(grown);
+    // The Gaussians beyond the new count that stay move down first, then the new ones land.
+    for (std::size_t r = 0; r < next.MoveFrom.size(); ++r)
+    {
+      copy(c, next.MoveFrom[r], next.MoveTo[r]);
+      set.Subset[next.MoveTo[r]] = set.Subset[next.MoveFrom[r]];
+    }
+    const std::int64_t count = static_cast<std::int64_t>(next.PatchSlots.size());
+#pragma omp parallel for schedule(static) num_threads(next.Threads)
+    for (std::int64_t qq = 0; qq < count; ++qq)
+    {
+      const std::size_t q = static_cast<std::size_t>(qq);
+      copy(next.Patch, q, next.PatchSlots[q]);
+      set.Subset[next.PatchSlots[q]] = next.PatchIndices[q];
+    }
+    c.Count = m;
+    c.Positions.resize(3 * m);
+    c.LogScales.resize(3 * m);
+    c.Rotations.resize(4 * m);
+    c.OpacityLogits.resize(m);
+    c.SH.resize(3 * m);
+    set.Subset.resize(m);
+    set.Changed.assign(next.PatchSlots.begin(), next.PatchSlots.end());
+    set.Changed.insert(set.Changed.end(), next.MoveTo.begin(), next.MoveTo.end());
+    set.AllChanged = false;
+  }
+  std::swap(set.Sorted, next.Sorted);
   set.ColorRefreshes += next.ColorsRefreshed ? 1 : 0;
   set.Made = next.Made;
   next.Ready = false;
   // Unique in the process, so that no cache keyed by it mistakes another set's compact cloud
   // (at the same addresses) for this one.
   static std::atomic<std::uint64_t> generations{ 0 };
+  set.PreviousGeneration = set.Generation;
   set.Generation = ++generations;
   ++set.Rebuilds;
   return true;
+}
+
+//------------------------------------------------------------------------------
+void ProjectSplatMovingSet(const SplatMovingSet& set,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache)
+{
+  if (!set.AllChanged)
+  {
+    RefreshPreparedCloud(
+      cache, set.Compact, set.PreviousGeneration, set.Generation, set.Changed, settings);
+  }
+  ProjectGaussians(set.Compact, camera, settings, projection, cache, set.Generation);
 }
 
 } // namespace vis4gs

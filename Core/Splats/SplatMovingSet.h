@@ -59,8 +59,11 @@ struct SplatMovingSetOrigin
 /// A moving frame's Gaussians and what they were made for (see the file's comment).
 struct SplatMovingSet
 {
-  /// Indices in the cloud of the selected Gaussians, ascending: Gaussian j of Compact is the
-  /// cloud's Subset[j].
+  /// Indices in the cloud of the selected Gaussians: Gaussian j of Compact (its slot j) is the
+  /// cloud's Subset[j]. A rebuild that keeps the colours leaves every Gaussian that stays
+  /// selected in its slot and writes only the new ones (into the slots of those that left), so
+  /// the order is not the cloud's; a rebuild that evaluates every colour writes them in the
+  /// cloud's order (ascending).
   std::vector<std::uint32_t> Subset;
   /// The selected Gaussians' positions, scales, rotations and opacities, and SH of degree 0
   /// holding their colour seen from the rebuild's camera centre (SH zero when colours are off).
@@ -68,6 +71,11 @@ struct SplatMovingSet
   /// Non-zero once built, a new value at every rebuild: the compact cloud's version for a
   /// PreparedCloudCache (Rasterizer.h).
   std::uint64_t Generation = 0;
+  /// The generation before the last publication and the slots that publication wrote (all of
+  /// them when AllChanged): ProjectSplatMovingSet() prepares only those again.
+  std::uint64_t PreviousGeneration = 0;
+  std::vector<std::uint32_t> Changed;
+  bool AllChanged = true;
   /// Rebuilds, reuses and rebuilds that evaluated every colour since construction (tests,
   /// benchmarks).
   std::size_t Rebuilds = 0;
@@ -80,28 +88,42 @@ struct SplatMovingSet
   /// Gaussians whose colour it evaluated (benchmarks).
   double LastGatherMs = 0.0;
   std::size_t LastEvaluated = 0;
-  /// The spare Subset and Compact a rebuild fills (BuildSplatMovingSet; the previous
-  /// rebuild's, whose buffers are reused so that a rebuild does not page-fault tens of MB
-  /// again), and a rebuild's scratch (internal).
-  std::vector<std::uint32_t> PreviousSubset;
-  GaussianCloud Previous;
-  /// The selection's keys and last boundary (SelectSplatsInCells: a rebuild examines only the
-  /// cells that can hold a selected Gaussian).
+  /// The published set's Gaussians as (index << 32 | slot), ascending (internal: a rebuild
+  /// merges its selection with it).
+  std::vector<std::uint64_t> Sorted;
+  /// A rebuild's scratch (internal, kept so that rebuilds neither allocate nor touch fresh
+  /// memory): its selection (ascending), the selection's keys, candidates and last boundary
+  /// (SelectSplatsInCells: a rebuild examines only the cells that can hold a selected Gaussian),
+  /// per thread the places in the selection of the Gaussians it gathers from the scene, per
+  /// published slot whether its Gaussian stays, per selected Gaussian its slot, the slots to
+  /// fill, and the travel test's sample of depths.
+  std::vector<std::uint32_t> Selected;
   SplatSelectionState Selection;
-  /// Per thread of a rebuild, the places in the new subset of the Gaussians it gathers from
-  /// the scene (not in the published set, or every one when the colours are evaluated again).
   std::vector<std::vector<std::uint32_t>> Fresh;
+  std::vector<std::uint8_t> Stay;
+  std::vector<std::uint32_t> SlotOf;
+  std::vector<std::uint32_t> Free;
   std::vector<float> Depths;
 
   /// What the published set was made for (SplatMovingSetReusable compares a view with it).
   SplatMovingSetOrigin Made;
-  /// A rebuild made into the spare buffers and not published yet, and what it was made for
-  /// (BuildSplatMovingSet, PublishSplatMovingSet).
+  /// A rebuild made and not published yet (BuildSplatMovingSet, PublishSplatMovingSet): what it
+  /// was made for, and what it writes into the published set. Full: Patch is the whole new
+  /// compact cloud (every colour evaluated). Otherwise Patch holds the new Gaussians, to be
+  /// written into the slots PatchSlots (Gaussians PatchIndices of the cloud), the Gaussians of
+  /// slots MoveFrom (beyond the new Count) move to the slots MoveTo, and the set shrinks or grows
+  /// to Count slots. Sorted: the published Sorted after it.
   struct Build
   {
     bool Ready = false;
     bool ColorsRefreshed = false;
     SplatMovingSetOrigin Made;
+    bool Full = true;
+    int Threads = 1; ///< (of the publication's parallel writes: the build's)
+    std::size_t Count = 0;
+    GaussianCloud Patch;
+    std::vector<std::uint32_t> PatchSlots, PatchIndices, MoveFrom, MoveTo;
+    std::vector<std::uint64_t> Sorted;
   } Next;
 };
 
@@ -128,8 +150,8 @@ bool SplatMovingSetReusable(const GaussianCloud& cloud,
   double fraction = 1.0);
 
 /**
- * UpdateSplatMovingSet()'s rebuild, into the spare buffers of @p set (PreviousSubset,
- * Previous) and set.Next, without touching what the published set holds: another thread may
+ * UpdateSplatMovingSet()'s rebuild, into set.Next and the scratch of @p set, without touching
+ * what the published set holds: another thread may
  * project set.Compact and read set.Subset meanwhile, but must not change @p set until this
  * returns. PublishSplatMovingSet() then makes it the set's. Throws as UpdateSplatMovingSet.
  */
@@ -154,8 +176,22 @@ void BuildSplatMovingSet(const GaussianCloud& cloud,
 bool ReserveSplatMovingSet(SplatMovingSet& set, std::size_t count, int threads = 0);
 
 /// Makes the rebuild of BuildSplatMovingSet() the set's (a new Generation); false when none
-/// is waiting.
+/// is waiting. Writes only the slots that change (Build), in place: no frame may project the
+/// set meanwhile.
 bool PublishSplatMovingSet(SplatMovingSet& set);
+
+/**
+ * ProjectGaussians(set.Compact, camera, settings, projection, cache, set.Generation)
+ * (Rasterizer.h), the view-independent preparation kept in @p cache between frames: after a
+ * publication that wrote only some slots, only those are prepared again (RefreshPreparedCloud,
+ * when @p cache holds the previous generation); the result is the whole projection's, bit for
+ * bit.
+ */
+void ProjectSplatMovingSet(const SplatMovingSet& set,
+  const Camera& camera,
+  const RasterSettings& settings,
+  ViewProjection<float>& projection,
+  PreparedCloudCache& cache);
 
 /**
  * Makes @p set hold the Gaussians of @p cloud a moving frame of @p camera draws under
@@ -165,7 +201,8 @@ bool PublishSplatMovingSet(SplatMovingSet& set);
  * newly selected; those of the Gaussians that stay selected are kept (a copy from the previous
  * compact cloud instead of a gather of 192 B of SH each from the scene) while the view is within @p
  * colorAngle radians of the camera of the last rebuild that evaluated every colour (0: every
- * rebuild evaluates every colour). Returns true when it was rebuilt. Parallel with OpenMP
+ * rebuild evaluates every colour); they also keep their slot in the compact cloud, so that such a
+ * rebuild writes only the new Gaussians. Returns true when it was rebuilt. Parallel with OpenMP
  * (settings.Threads). Throws std::invalid_argument when @p lod does not match the cloud or an angle
  * is negative or not finite.
  */

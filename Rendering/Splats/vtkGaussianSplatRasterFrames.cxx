@@ -405,12 +405,8 @@ void vtkGaussianSplatRasterFrames::Produce(const Request& r, Frame& f)
           });
       }
       endStep(0);
-      vis4gs::ProjectGaussians(this->LodSet.Compact,
-        camera,
-        r.Settings,
-        work.Projection,
-        work.Prepared,
-        this->LodSet.Generation);
+      vis4gs::ProjectSplatMovingSet(
+        this->LodSet, camera, r.Settings, work.Projection, work.Prepared);
     }
     else
     {

@@ -157,6 +157,7 @@ struct vtkGaussianSelectionHub::vtkInternals
   std::vector<ChartEntry> Charts;
   vtkNew<vtkCallbackCommand> LinkCommand;
   vtkNew<vtkCallbackCommand> ChartCommand;
+  vtkSmartPointer<vtkIdTypeArray> SelectedArray; // the ids the link holds
   bool Updating = false;
 };
 
@@ -171,8 +172,8 @@ vtkGaussianSelectionHub::vtkGaussianSelectionHub()
   in.ChartCommand->SetClientData(this);
   in.ChartCommand->SetCallback([](vtkObject* caller, unsigned long, void* client, void*)
     { static_cast<vtkGaussianSelectionHub*>(client)->OnChartChanged(caller); });
-  vtkNew<vtkIdTypeArray> none;
-  in.Link->SetCurrentSelection(MakePedigreeSelection(none));
+  in.SelectedArray = vtkSmartPointer<vtkIdTypeArray>::New();
+  in.Link->SetCurrentSelection(WrapPedigreeIds(in.SelectedArray));
   in.LinkObserver = in.Link->AddObserver(vtkCommand::AnnotationChangedEvent, in.LinkCommand);
 }
 
@@ -298,9 +299,10 @@ void vtkGaussianSelectionHub::Publish(std::vector<vtkIdType>&& ids)
   this->Selected = std::move(ids);
   ++this->NumberOfChanges;
 
-  vtkNew<vtkIdTypeArray> array;
+  auto array = vtkSmartPointer<vtkIdTypeArray>::New();
   array->SetNumberOfTuples(static_cast<vtkIdType>(this->Selected.size()));
   std::copy(this->Selected.begin(), this->Selected.end(), array->GetPointer(0));
+  in.SelectedArray = array;
   in.Link->SetCurrentSelection(WrapPedigreeIds(array));
 
   for (auto& c : in.Charts)
@@ -381,6 +383,12 @@ void vtkGaussianSelectionHub::GetSelectedIds(vtkIdTypeArray* ids)
   ids->SetNumberOfComponents(1);
   ids->SetNumberOfTuples(static_cast<vtkIdType>(this->Selected.size()));
   std::copy(this->Selected.begin(), this->Selected.end(), ids->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+vtkIdTypeArray* vtkGaussianSelectionHub::GetSelectedIdArray()
+{
+  return this->Internals->SelectedArray;
 }
 
 //------------------------------------------------------------------------------

@@ -117,6 +117,14 @@ public:
   ///@}
 
   /**
+   * The current selection as the array the hub's annotation link holds: a new array after
+   * every change, never modified afterwards, so that views may keep it instead of copying it
+   * (the scene view's splat mapper and frustums: 200,000 ids for a Frame at 4.89M). Read it
+   * only.
+   */
+  vtkIdTypeArray* GetSelectedIdArray();
+
+  /**
    * The current selection as a new vtkSelection of pedigree ids (`GaussianId`).
    */
   vtkSmartPointer<vtkSelection> GetCurrentSelection();

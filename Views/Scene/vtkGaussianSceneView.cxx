@@ -611,34 +611,52 @@ void vtkGaussianSceneView::OnSelectionChanged()
 {
   auto& in = *this->Internals;
   vtkPolyData* scene = in.Scene;
-  vtkNew<vtkIdTypeArray> selected;
-  if (in.Hub)
-  {
-    in.Hub->GetSelectedIds(selected);
-  }
+  // The hub's own array (never modified after a change): the mapper and the frustums keep it
+  // rather than a copy.
+  vtkSmartPointer<vtkIdTypeArray> selected = in.Hub
+    ? vtkSmartPointer<vtkIdTypeArray>(in.Hub->GetSelectedIdArray())
+    : vtkSmartPointer<vtkIdTypeArray>::New();
   this->HighlightCount = 0;
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> verts;
   if (scene)
   {
-    vtkNew<vtkIdTypeArray> rows;
-    vtkGaussianSelectionHub::IdsToIndices(
-      selected, scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId), rows);
-    this->HighlightCount = rows->GetNumberOfTuples();
-    // Markers (a point at the centre) for small selections, drawn over the splats.
-    if (this->HighlightCount <= this->MaximumNumberOfMarkers)
+    vtkDataArray* idColumn = scene->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+    // A selection too large for markers needs only its count in the scene.
+    vtkIdType found = 0;
+    const bool counted = selected->GetNumberOfTuples() > this->MaximumNumberOfMarkers &&
+      vis4gs::ForEachRowOfIds(vtkIdTypeArray::SafeDownCast(idColumn),
+        selected->GetPointer(0),
+        selected->GetNumberOfTuples(),
+        [&found](vtkIdType) { ++found; }) &&
+      found > this->MaximumNumberOfMarkers;
+    if (counted)
     {
-      for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
+      this->HighlightCount = found;
+    }
+    else
+    {
+      vtkNew<vtkIdTypeArray> rows;
+      vtkGaussianSelectionHub::IdsToIndices(selected, idColumn, rows);
+      this->HighlightCount = rows->GetNumberOfTuples();
+      // Markers (a point at the centre) for small selections, drawn over the splats.
+      if (this->HighlightCount <= this->MaximumNumberOfMarkers)
       {
-        const vtkIdType v = points->InsertNextPoint(scene->GetPoint(rows->GetValue(k)));
-        verts->InsertNextCell(1, &v);
+        for (vtkIdType k = 0; k < rows->GetNumberOfTuples(); ++k)
+        {
+          const vtkIdType v = points->InsertNextPoint(scene->GetPoint(rows->GetValue(k)));
+          verts->InsertNextCell(1, &v);
+        }
       }
     }
   }
   in.Markers->SetPoints(points);
   in.Markers->SetVerts(verts);
   in.Markers->Modified();
-  // (The mapper and the frustums only read the ids: they share this copy of the hub's.)
+  if (in.Mapper->GetSelectedIds() == selected)
+  {
+    in.Mapper->Modified(); // (a new scene, the same selection: its flags are made again)
+  }
   in.Mapper->SetSelectedIds(selected);
   this->UpdateFrustums(selected);
 }

@@ -291,10 +291,8 @@ vtkSelection* vtkGaussianSelector::GetSelection()
   vtkNew<vtkSelectionNode> node;
   node->SetContentType(vtkSelectionNode::PEDIGREEIDS);
   node->SetFieldType(vtkSelectionNode::POINT);
-  vtkNew<vtkIdTypeArray> list;
-  list->DeepCopy(in.SelectedIds);
-  list->SetName(vis4gs::arrays::GaussianId);
-  node->SetSelectionList(list);
+  // (The node holds the selector's array itself, refreshed at every pick as it is.)
+  node->SetSelectionList(in.SelectedIds);
   in.Selection->AddNode(node);
   return in.Selection;
 }
@@ -358,10 +356,10 @@ void vtkGaussianSelector::PublishIndices(const std::vector<unsigned int>& indice
       static_cast<vtkIdType>(in.Current.size()),
       modifier);
   }
+  // (Callers hold GetSelection() and GetSelectedIds() across picks: both are refreshed.)
+  vtkSelection* sel = self->GetSelection();
   if (link)
   {
-    // (Without a link the vtkSelection is made only when asked for: GetSelection().)
-    vtkSelection* sel = self->GetSelection();
     link->SetCurrentSelection(sel);
     link->InvokeEvent(vtkCommand::AnnotationChangedEvent, sel);
   }

@@ -4,6 +4,7 @@
 #include "Vis4GSCleanupPanel.h"
 #include "Vis4GSDocument.h"
 #include "Vis4GSMainWindow.h"
+#include "Vis4GSSelectionTable.h"
 
 #include "Vis4GSDataModel.h"
 #include "vtkGaussianCameraFrustums.h"
@@ -49,6 +50,7 @@
 #include <QSlider>
 #include <QStackedWidget>
 #include <QStatusBar>
+#include <QTableView>
 #include <QTimer>
 
 #include <algorithm>
@@ -655,6 +657,37 @@ bool RunSelfTest(Vis4GSMainWindow& w, const Vis4GSSelfTestOptions& options)
   const vtkIdType framed = hub->GetNumberOfSelectedIds();
   check(framed >= 1 && hub->IsSelected(targetId),
     "Frame around it selects it (" + std::to_string(framed) + " Gaussians)");
+  {
+    // Panel C's table: a row per selected Gaussian (at most 1000), each the scene's values.
+    Vis4GSSelectionTable* table = nullptr;
+    for (QTableView* view : w.findChildren<QTableView*>())
+    {
+      table = table ? table : dynamic_cast<Vis4GSSelectionTable*>(view);
+    }
+    vtkPolyData* shown = doc->Shown();
+    vtkDataArray* ids = shown->GetPointData()->GetArray(vis4gs::arrays::GaussianId);
+    vtkDataArray* opacity = shown->GetPointData()->GetArray("Opacity");
+    bool rowsRight =
+      table && ids && opacity && table->GetNumberOfRows() == std::min<vtkIdType>(framed, 1000);
+    for (int r = 0; rowsRight && r < table->GetNumberOfRows(); ++r)
+    {
+      const auto id = static_cast<vtkIdType>(table->GetValue(r, 0));
+      vtkIdType row = -1;
+      for (vtkIdType i = 0; i < ids->GetNumberOfTuples() && row < 0; ++i)
+      {
+        row = static_cast<vtkIdType>(ids->GetComponent(i, 0)) == id ? i : -1;
+      }
+      double p[3] = { NAN, NAN, NAN };
+      if (row >= 0)
+      {
+        shown->GetPoint(row, p);
+      }
+      rowsRight = row >= 0 && hub->IsSelected(id) && table->GetValue(r, 1) == p[0] &&
+        table->GetValue(r, 2) == p[1] && table->GetValue(r, 3) == p[2] &&
+        table->GetValue(r, 4) == opacity->GetComponent(row, 0);
+    }
+    check(rowsRight, "the selection table shows a row per framed Gaussian with its values");
+  }
   {
     vtkNew<vtkPoints> stroke;
     for (double dx : { -3.0, 0.0, 3.0 })

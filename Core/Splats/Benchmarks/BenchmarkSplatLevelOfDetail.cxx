@@ -330,8 +330,7 @@ int main(int argc, char* argv[])
         {
           if (reuse)
           {
-            vis4gs::ProjectGaussians(
-              set.Compact, cam, settings, work.Projection, work.Prepared, set.Generation);
+            vis4gs::ProjectSplatMovingSet(set, cam, settings, work.Projection, work.Prepared);
           }
           else
           {

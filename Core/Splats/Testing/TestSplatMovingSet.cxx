@@ -87,6 +87,21 @@ RasterSettings TwoThreads()
   settings.Threads = 2;
   return settings;
 }
+
+// The set's Gaussians in the cloud's order (a rebuild that keeps colours keeps slots instead).
+std::vector<std::uint32_t> Ascending(const SplatMovingSet& set)
+{
+  std::vector<std::uint32_t> v = set.Subset;
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// The slot of Gaussian @p index in @p set (its Subset's size when it is not there).
+std::size_t SlotOf(const SplatMovingSet& set, std::uint32_t index)
+{
+  return static_cast<std::size_t>(
+    std::find(set.Subset.begin(), set.Subset.end(), index) - set.Subset.begin());
+}
 }
 
 TEST(SplatMovingSet, ViewChangeAngleOfATurnAndOfATravel)
@@ -274,26 +289,42 @@ TEST(SplatMovingSet, RebuildKeepsTheColoursOfTheGaussiansThatStayWithinTheColour
     EXPECT_EQ(set.ColorRefreshes, 1u);
     ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, second, 800, settings, 0.1, colorAngle, set));
     EXPECT_EQ(set.ColorRefreshes, colorAngle > 0 ? 1u : 2u);
-    ASSERT_EQ(set.Subset, fresh.Subset);
-    EXPECT_EQ(set.Compact.Positions, fresh.Compact.Positions);
-    EXPECT_EQ(set.Compact.LogScales, fresh.Compact.LogScales);
-    EXPECT_EQ(set.Compact.Rotations, fresh.Compact.Rotations);
-    EXPECT_EQ(set.Compact.OpacityLogits, fresh.Compact.OpacityLogits);
+    ASSERT_EQ(Ascending(set), fresh.Subset);
+    ASSERT_EQ(set.Compact.Count, set.Subset.size());
     std::size_t kept = 0, changed = 0;
     for (std::size_t j = 0; j < set.Subset.size(); ++j)
     {
-      const auto at = std::lower_bound(old.Subset.begin(), old.Subset.end(), set.Subset[j]);
-      const bool stayed = at != old.Subset.end() && *at == set.Subset[j];
+      // Slot j holds Gaussian i, with the parameters of the cloud's and of fresh's slot f.
+      const std::uint32_t i = set.Subset[j];
+      const std::size_t f = static_cast<std::size_t>(
+        std::lower_bound(fresh.Subset.begin(), fresh.Subset.end(), i) - fresh.Subset.begin());
+      for (int q = 0; q < 3; ++q)
+      {
+        ASSERT_EQ(set.Compact.Positions[3 * j + q], c.Positions[3 * i + q]);
+        ASSERT_EQ(set.Compact.LogScales[3 * j + q], c.LogScales[3 * i + q]);
+      }
+      for (int q = 0; q < 4; ++q)
+      {
+        ASSERT_EQ(set.Compact.Rotations[4 * j + q], c.Rotations[4 * i + q]);
+      }
+      ASSERT_EQ(set.Compact.OpacityLogits[j], c.OpacityLogits[i]);
+      const auto at = std::lower_bound(old.Subset.begin(), old.Subset.end(), i);
+      const bool stayed = at != old.Subset.end() && *at == i;
       const std::size_t k = static_cast<std::size_t>(at - old.Subset.begin());
+      // A Gaussian that stays keeps its slot (old is a first build: in the cloud's order).
+      if (colorAngle > 0 && stayed)
+      {
+        ASSERT_TRUE(j == k || k >= set.Subset.size()) << j << " " << k;
+      }
       for (int q = 0; q < 3; ++q)
       {
         // Kept: the first camera's colour; evaluated: the second camera's.
         const float expected =
-          colorAngle > 0 && stayed ? old.Compact.SH[3 * k + q] : fresh.Compact.SH[3 * j + q];
+          colorAngle > 0 && stayed ? old.Compact.SH[3 * k + q] : fresh.Compact.SH[3 * f + q];
         ASSERT_EQ(set.Compact.SH[3 * j + q], expected) << j;
       }
       kept += stayed ? 1 : 0;
-      changed += stayed && old.Compact.SH[3 * k] != fresh.Compact.SH[3 * j] ? 1 : 0;
+      changed += stayed && old.Compact.SH[3 * k] != fresh.Compact.SH[3 * f] ? 1 : 0;
     }
     EXPECT_GT(kept, set.Subset.size() / 2);
     EXPECT_LT(kept, set.Subset.size());
@@ -347,7 +378,7 @@ TEST(SplatMovingSet, BuildFillsTheSpareBuffersAndPublishMakesThemTheSet)
   EXPECT_FALSE(PublishSplatMovingSet(set));
   std::vector<std::uint32_t> expected;
   SelectSplatsForView(c, lod, b, 1000, expected, 2, angle);
-  EXPECT_EQ(set.Subset, expected);
+  EXPECT_EQ(Ascending(set), expected);
   EXPECT_NE(set.Generation, generation);
   EXPECT_EQ(set.Rebuilds, rebuilds + 1);
   EXPECT_TRUE(SplatMovingSetReusable(c, 1, b, 1000, settings, angle, set));
@@ -377,12 +408,13 @@ TEST(SplatMovingSet, ReservedSetRebuildsWithoutAllocatingAndLikeAnUnreservedOne)
   EXPECT_TRUE(reserved.Subset.empty());
   EXPECT_TRUE(reserved.Compact.Positions.empty());
   EXPECT_GE(reserved.Subset.capacity(), 3000u);
-  EXPECT_GE(reserved.PreviousSubset.capacity(), 3000u);
+  EXPECT_GE(reserved.Selected.capacity(), 3000u);
   EXPECT_GE(reserved.Compact.SH.capacity(), 9000u);
-  EXPECT_GE(reserved.Previous.Rotations.capacity(), 12000u);
+  EXPECT_GE(reserved.Next.Patch.Rotations.capacity(), 12000u);
   // A turn of the camera in steps beyond the angle: a rebuild every frame, colours kept for
   // some and evaluated for others.
-  const float* buffers[2] = { nullptr, nullptr };
+  const float* buffers[2] = { reserved.Compact.Positions.data(),
+    reserved.Next.Patch.Positions.data() };
   for (int f = 0; f < 6; ++f)
   {
     const Camera camera = TurnedCamera(0.12 * f, Origin);
@@ -394,21 +426,110 @@ TEST(SplatMovingSet, ReservedSetRebuildsWithoutAllocatingAndLikeAnUnreservedOne)
     ASSERT_EQ(reserved.Compact.OpacityLogits, plain.Compact.OpacityLogits) << f;
     ASSERT_EQ(reserved.Compact.SH, plain.Compact.SH) << f;
     EXPECT_EQ(reserved.ColorRefreshes, plain.ColorRefreshes);
-    // The two compact clouds swap at each rebuild and are never allocated again.
+    // The compact cloud is written in place, or swapped with the patch that holds a whole new
+    // one: either of the two reserved buffers, never allocated again.
     const float* data = reserved.Compact.Positions.data();
-    if (f < 2)
-    {
-      buffers[f] = data;
-    }
-    else
-    {
-      EXPECT_EQ(data, buffers[f % 2]) << f;
-    }
+    EXPECT_TRUE(data == buffers[0] || data == buffers[1]) << f;
   }
   EXPECT_GT(reserved.ColorRefreshes, 1u);
   EXPECT_LT(reserved.ColorRefreshes, 6u);
   // Only before anything is published.
   EXPECT_FALSE(ReserveSplatMovingSet(reserved, 4000, 2));
   EXPECT_LT(reserved.Subset.capacity(), 4000u);
+}
+} // namespace vis4gs
+
+namespace vis4gs
+{
+TEST(SplatMovingSet, RebuildsWriteOnlyTheNewGaussiansAndTheProjectionPreparesOnlyThose)
+{
+  const GaussianCloud c = RandomCloud(8000, 23);
+  const SplatLevelOfDetail lod = PreparedLod(c);
+  const RasterSettings settings = TwoThreads();
+  SplatMovingSet set;
+  PreparedCloudCache kept;
+  ViewProjection<float> projection;
+  // Turns beyond the reuse angle, colours kept (a long colour angle): slots kept, then at last
+  // every colour evaluated again (colour angle 0).
+  const double yaws[] = { 0.0, 0.12, 0.24, 0.36, 0.25, 0.13, 0.01 };
+  std::size_t partial = 0, moves = 0;
+  for (std::size_t f = 0; f < sizeof(yaws) / sizeof(yaws[0]); ++f)
+  {
+    const Camera camera = TurnedCamera(yaws[f], Origin);
+    const double colorAngle = f + 1 < sizeof(yaws) / sizeof(yaws[0]) ? 3.0 : 0.0;
+    const std::vector<std::uint32_t> before = set.Subset;
+    const GaussianCloud compact = set.Compact;
+    ASSERT_TRUE(UpdateSplatMovingSet(c, 1, lod, camera, 1200, settings, 0.1, colorAngle, set));
+    // The selection (with the margin), each Gaussian once, each slot with its parameters.
+    std::vector<std::uint32_t> expected;
+    SelectSplatsForView(c, lod, camera, 1200, expected, 2, 0.1);
+    ASSERT_EQ(Ascending(set), expected) << f;
+    ASSERT_EQ(set.Compact.Count, expected.size());
+    std::size_t stayed = 0;
+    for (std::size_t j = 0; j < set.Subset.size(); ++j)
+    {
+      const std::uint32_t i = set.Subset[j];
+      for (int q = 0; q < 3; ++q)
+      {
+        ASSERT_EQ(set.Compact.Positions[3 * j + q], c.Positions[3 * i + q]) << f;
+      }
+      ASSERT_EQ(set.Compact.OpacityLogits[j], c.OpacityLogits[i]) << f;
+      // A Gaussian still in its slot keeps its colour; only the slots listed changed.
+      const bool changed =
+        std::find(set.Changed.begin(), set.Changed.end(), j) != set.Changed.end();
+      if (!set.AllChanged && !changed)
+      {
+        ASSERT_LT(j, before.size());
+        ASSERT_EQ(before[j], i) << f;
+        ASSERT_EQ(set.Compact.SH[3 * j], compact.SH[3 * j]) << f;
+        ++stayed;
+      }
+    }
+    partial += set.AllChanged ? 0 : 1;
+    // (the last publication's moves of Gaussians beyond a shrunk set stay listed in Next)
+    moves += set.AllChanged ? 0 : set.Next.MoveFrom.size();
+    if (!set.AllChanged)
+    {
+      EXPECT_GT(stayed, set.Subset.size() / 2) << f;
+      EXPECT_LT(set.Changed.size(), set.Subset.size() / 2) << f;
+      EXPECT_NE(SlotOf(set, expected.front()), set.Subset.size());
+    }
+    // The projection with the kept preparation, refreshed for the changed slots only, is a
+    // projection with a fresh one, bit for bit.
+    const std::size_t builds = kept.Builds();
+    ProjectSplatMovingSet(set, camera, settings, projection, kept);
+    EXPECT_EQ(kept.Builds(), builds + (f == 0 || set.AllChanged ? 1 : 0)) << f;
+    PreparedCloudCache fresh;
+    ViewProjection<float> reference;
+    ProjectGaussians(set.Compact, camera, settings, reference, fresh, set.Generation);
+    ASSERT_EQ(projection.Gaussians.size(), reference.Gaussians.size());
+    for (std::size_t j = 0; j < reference.Gaussians.size(); ++j)
+    {
+      const auto& a = projection.Gaussians[j];
+      const auto& b = reference.Gaussians[j];
+      ASSERT_EQ(a.Status, b.Status) << f << " " << j;
+      ASSERT_EQ(a.U, b.U);
+      ASSERT_EQ(a.ConicA, b.ConicA);
+      ASSERT_EQ(a.ConicB, b.ConicB);
+      ASSERT_EQ(a.Opacity, b.Opacity);
+      ASSERT_EQ(a.Color[0], b.Color[0]);
+    }
+  }
+  EXPECT_GE(partial, 4u);
+  EXPECT_GT(moves, 0u);
+  // The refresh refuses another version than the kept one, and indices beyond the cloud.
+  EXPECT_FALSE(RefreshPreparedCloud(kept,
+    set.Compact,
+    set.Generation + 7,
+    set.Generation + 8,
+    std::vector<std::uint32_t>{ 0 },
+    settings));
+  EXPECT_THROW(RefreshPreparedCloud(kept,
+                 set.Compact,
+                 set.Generation,
+                 set.Generation + 8,
+                 std::vector<std::uint32_t>{ static_cast<std::uint32_t>(set.Compact.Count) },
+                 settings),
+    std::invalid_argument);
 }
 } // namespace vis4gs

@@ -252,6 +252,10 @@ int TestGaussianCameraFrustums(int argc, char* argv[])
       same ? "of Core" : "DIFFER");
     if (!pendingFirst || staleFirst != 0 || callsDone != 1 || !same)
     {
+      for (int v = 0; v < 6; ++v)
+      {
+        std::printf("  view %d: %d, Core %u\n", v, countsOf(v), expected[v]);
+      }
       std::printf("FAILED: the background count is not pending first, then Core's\n");
       fail = 1;
     }

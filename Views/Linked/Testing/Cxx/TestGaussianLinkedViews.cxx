@@ -17,8 +17,12 @@
 #include "vtkAxis.h"
 #include "vtkCallbackCommand.h"
 #include "vtkContextMouseEvent.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
@@ -29,12 +33,115 @@
 
 #include "Vis4GSTestCheck.h"
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace
 {
 vis4gs::testing::CheckCounter Check;
+
+// The histogram's orange bars of a large selection against a scan of every row: ids in a column
+// with gaps (searched) and a contiguous one (offsets), a float array read by component, by its
+// largest component, and a double one (read through the generic path); repeated ids and ids the
+// scene lacks in the selection.
+void CheckSelectedCountsAgainstAScan()
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (const int gap : { 1, 3 })
+  {
+    const vtkIdType n = 5000;
+    vtkNew<vtkPolyData> scene;
+    vtkNew<vtkPoints> points;
+    points->SetNumberOfPoints(n);
+    vtkNew<vtkIdTypeArray> ids;
+    ids->SetName("GaussianId");
+    vtkNew<vtkFloatArray> opacity, scale;
+    vtkNew<vtkDoubleArray> blur;
+    opacity->SetName("Opacity");
+    scale->SetName("Scale");
+    scale->SetNumberOfComponents(3);
+    blur->SetName("BlurScore");
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      points->SetPoint(i, 0, 0, 0);
+      ids->InsertNextValue(10 + gap * i);
+      opacity->InsertNextValue(uniform(random));
+      scale->InsertNextTuple3(uniform(random), 2 * uniform(random), uniform(random));
+      blur->InsertNextValue(i % 97 == 0 ? NAN : uniform(random));
+    }
+    scene->SetPoints(points);
+    scene->GetPointData()->AddArray(ids);
+    scene->GetPointData()->AddArray(opacity);
+    scene->GetPointData()->AddArray(scale);
+    scene->GetPointData()->AddArray(blur);
+    std::vector<vtkIdType> chosen;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      if (uniform(random) < 0.3f)
+      {
+        chosen.push_back(10 + gap * i);
+        if (i % 50 == 0)
+        {
+          chosen.push_back(10 + gap * i); // repeated
+        }
+      }
+    }
+    chosen.push_back(2); // not in the scene
+    const std::set<vtkIdType> wanted(chosen.begin(), chosen.end());
+    vtkNew<vtkGaussianSelectionHub> hub;
+    vtkNew<vtkGaussianHistogramView> histogram;
+    histogram->SetNumberOfBins(16);
+    histogram->SetInputData(scene);
+    histogram->SetSelectionHub(hub);
+    hub->RenderOnChangeOff();
+    for (const auto& c : std::vector<std::pair<const char*, int>>{
+           { "Opacity", -1 }, { "Scale", 1 }, { "Scale", -1 }, { "BlurScore", -1 } })
+    {
+      histogram->SetArrayName(c.first);
+      histogram->SetComponent(c.second);
+      histogram->Update();
+      hub->ClearSelection();
+      hub->SelectIds(chosen.data(), static_cast<vtkIdType>(chosen.size()));
+      double edges[17];
+      histogram->GetBinEdges(edges);
+      vtkDataArray* values = scene->GetPointData()->GetArray(c.first);
+      std::vector<vtkIdType> expected(16, 0);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        if (!wanted.count(ids->GetValue(i)))
+        {
+          continue;
+        }
+        double v = values->GetComponent(i, c.second < 0 ? 0 : c.second);
+        for (int k = 1; c.second < 0 && k < values->GetNumberOfComponents(); ++k)
+        {
+          v = std::max(v, values->GetComponent(i, k));
+        }
+        if (std::isfinite(v))
+        {
+          const double t = (v - edges[0]) / (edges[16] - edges[0]) * 16;
+          ++expected[std::min(15, std::max(0, static_cast<int>(t)))];
+        }
+      }
+      bool same = true;
+      for (int b = 0; b < 16; ++b)
+      {
+        same = same && histogram->GetSelectedBinCount(b) == expected[b];
+      }
+      const std::string what = std::string("histogram: orange bars of ") + c.first +
+        " (component " + std::to_string(c.second) + ", id gap " + std::to_string(gap) +
+        ") equal a scan";
+      Check(same, what.c_str());
+    }
+  }
+}
 
 std::vector<vtkIdType> Values(vtkIdTypeArray* a)
 {
@@ -190,6 +297,8 @@ int TestGaussianLinkedViews(int argc, char* argv[])
   item->GetSelectedVertices(vertices);
   Check(vertices->GetNumberOfTuples() == 3, "tree shows the brushed Gaussians");
   Check(timeline->GetNumberOfHistoryLines() == 3, "timeline shows their histories");
+
+  CheckSelectedCountsAgainstAScan();
 
   // Final picture: the floater selected, the tree fitted, iteration 1500.
   hub->SelectIds(&floater, 1);
