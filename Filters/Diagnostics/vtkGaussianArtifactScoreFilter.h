@@ -270,7 +270,10 @@ public:
    * projection's view-independent part once between them, in memory they share
    * (Vis4GSNodeSharedMemory; each prepares its part of the Gaussians), instead of each
    * preparing every Gaussian in its own memory. Same scores bit for bit either way; when the
-   * memory cannot be made, every process prepares alone. Default on.
+   * memory cannot be made, every process prepares alone. Default off: on the 2-vCPU VM of
+   * Documentation/performance.md the processes' views ran slower with the shared block (its
+   * memory gets no huge pages there) than the memory it saves is worth (16 views of the
+   * Bicycle case, idle: 27.8 s shared against 24.1 s alone).
    */
   vtkSetMacro(SharePreparation, bool);
   vtkGetMacro(SharePreparation, bool);
@@ -356,7 +359,7 @@ protected:
   double ComputeSeconds = 0;
   double ReductionSeconds = 0;
   vtkMultiProcessController* Controller = nullptr;
-  bool SharePreparation = true;
+  bool SharePreparation = false;
   int PreparationProcesses = 1;
 #ifndef __VTK_WRAP__
   ViewRenderedFunction ViewRendered;

@@ -150,6 +150,11 @@ void Define(Vis4GSArguments& args)
     false,
     "Spread the training views over MPI processes (implied when launched by mpiexec; "
     "process 0 writes the outputs).");
+  args.AddFlag("share-preparation",
+    false,
+    "Under MPI: the processes of one machine prepare the view-independent part of the "
+    "projection once between them, in POSIX shared memory (less memory; the same scores; "
+    "slower views where shared memory gets no huge pages, as on the benchmark machine).");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -870,6 +875,7 @@ int Run(const Vis4GSArguments& args)
     f->SetFootprintMode(footprint == "ellipse" ? 1 : 0);
     f->SetFloatAccumulation(args.GetFlag("float-accumulation"));
     f->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
+    f->SetSharePreparation(args.GetFlag("share-preparation"));
   };
   ScoreColumns firstScores;
   std::string firstStage;

@@ -36,14 +36,21 @@ case "$mode" in
       || fail "single process: $(tail -3 "$work/one.log")"
     "$mpiexec" -n 2 --oversubscribe "$vis4gs" analyze "$log" "${common[@]}" \
       --output="$work/two" > "$work/two.log" 2>&1 || fail "2 processes: $(tail -5 "$work/two.log")"
+    [ "$(grep -c "preparation made alone" "$work/two.log")" = 2 ] \
+      || fail "the preparation was shared without --share-preparation"
+    "$mpiexec" -n 2 --oversubscribe "$vis4gs" analyze "$log" "${common[@]}" --share-preparation \
+      --output="$work/shared" > "$work/shared.log" 2>&1 \
+      || fail "2 processes sharing: $(tail -5 "$work/shared.log")"
+    cmp "$work/two/scores.csv" "$work/shared/scores.csv" || fail "sharing changed scores.csv"
     grep -q "process 1 of 2 rendered [1-9][0-9]* of" "$work/two.log" || fail "process 1 rendered nothing"
     compare "$work/one/scores.csv" "$work/two/scores.csv"
     # The two processes prepared the projection once between them in shared memory; when
     # process 1 cannot map it, both prepare alone, it says why, and the file is the same.
-    [ "$(grep -c "preparation shared by 2 processes of this machine" "$work/two.log")" = 2 ] \
-      || fail "the preparation was not shared: $(grep rendered "$work/two.log")"
+    [ "$(grep -c "preparation shared by 2 processes of this machine" "$work/shared.log")" = 2 ] \
+      || fail "the preparation was not shared: $(grep rendered "$work/shared.log")"
     VIS4GS_TEST_NO_SHARED_MEMORY=1 "$mpiexec" -n 2 --oversubscribe -x VIS4GS_TEST_NO_SHARED_MEMORY \
-      "$vis4gs" analyze "$log" "${common[@]}" --output="$work/alone" > "$work/alone.log" 2>&1 \
+      "$vis4gs" analyze "$log" "${common[@]}" --share-preparation --output="$work/alone" \
+      > "$work/alone.log" 2>&1 \
       || fail "2 processes, shared memory refused: $(tail -5 "$work/alone.log")"
     grep -q "process 1 of 2: the processes of this machine could not share the preparation" \
       "$work/alone.log" || fail "no warning for the refused shared memory"

@@ -101,8 +101,9 @@ if mode == "mpi":
     check(ranks == processes, f"{ranks} processes, expected {processes}")
     reader = Vis4GSTrainingLog(FileName=log)  # noqa: F821 (defined by the plugin)
     reader.UpdatePipelineInformation()
+    # SharePreparation (off by default) on: the path under test shares the preparation.
     scores = Vis4GSArtifactScores(Input=OutputPort(reader, 0),  # noqa: F821
-                                  Cameras=OutputPort(reader, 1))
+                                  Cameras=OutputPort(reader, 1), SharePreparation=1)
     scores.UpdatePipeline(time=list(reader.TimestepValues)[-1])
     data = servermanager.Fetch(scores)
     pd = data.GetPointData()
