@@ -294,6 +294,31 @@ PreparedCloudCache::Impl& PreparedCloudCache::Internal()
 
 namespace
 {
+// The five parameter arrays of a cloud, the part of the cache's key that says which cloud.
+struct CloudArrays
+{
+  explicit CloudArrays(const GaussianCloud& cloud)
+    : Arrays{ cloud.Positions.data(),
+      cloud.LogScales.data(),
+      cloud.Rotations.data(),
+      cloud.OpacityLogits.data(),
+      cloud.SH.data() }
+    , Sizes{ cloud.Positions.size(),
+      cloud.LogScales.size(),
+      cloud.Rotations.size(),
+      cloud.OpacityLogits.size(),
+      cloud.SH.size() }
+  {
+  }
+  void RememberIn(PreparedCloudCache::Impl& c) const
+  {
+    std::copy(this->Arrays, this->Arrays + 5, c.Arrays);
+    std::copy(this->Sizes, this->Sizes + 5, c.Sizes);
+  }
+  const float* Arrays[5];
+  std::size_t Sizes[5];
+};
+
 // The kept preparation of @p cloud for these settings: reused when the key matches (after a
 // bit-exact spot check of 64 Gaussians, std::logic_error on a difference), else recomputed.
 const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
@@ -307,16 +332,9 @@ const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
 {
   PreparedCloudCache::Impl& c = cache.Internal();
   const std::size_t n = cloud.Count;
-  const float* arrays[5] = { cloud.Positions.data(),
-    cloud.LogScales.data(),
-    cloud.Rotations.data(),
-    cloud.OpacityLogits.data(),
-    cloud.SH.data() };
-  const std::size_t sizes[5] = { cloud.Positions.size(),
-    cloud.LogScales.size(),
-    cloud.Rotations.size(),
-    cloud.OpacityLogits.size(),
-    cloud.SH.size() };
+  const CloudArrays current(cloud);
+  const float* const* arrays = current.Arrays;
+  const std::size_t* sizes = current.Sizes;
   std::uint32_t modBits;
   std::memcpy(&modBits, &mod, sizeof(modBits));
   const bool same = c.Valid && c.Version == version && c.Cloud == &cloud && c.Count == n &&
@@ -380,8 +398,7 @@ const MultiViewPrepared& UsePreparedCloud(PreparedCloudCache& cache,
   c.Cloud = &cloud;
   c.Count = n;
   c.ShDegree = cloud.ShDegree;
-  std::copy(arrays, arrays + 5, c.Arrays);
-  std::copy(sizes, sizes + 5, c.Sizes);
+  current.RememberIn(c);
   c.ModBits = modBits;
   c.ShUsed = shUsed;
   c.Colors = colors;
@@ -461,18 +478,7 @@ bool RefreshPreparedCloud(PreparedCloudCache& cache,
   }
   c.Version = to;
   c.Count = n;
-  const float* arrays[5] = { cloud.Positions.data(),
-    cloud.LogScales.data(),
-    cloud.Rotations.data(),
-    cloud.OpacityLogits.data(),
-    cloud.SH.data() };
-  const std::size_t sizes[5] = { cloud.Positions.size(),
-    cloud.LogScales.size(),
-    cloud.Rotations.size(),
-    cloud.OpacityLogits.size(),
-    cloud.SH.size() };
-  std::copy(arrays, arrays + 5, c.Arrays);
-  std::copy(sizes, sizes + 5, c.Sizes);
+  CloudArrays(cloud).RememberIn(c);
   return true;
 }
 

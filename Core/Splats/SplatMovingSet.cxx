@@ -477,13 +477,16 @@ bool PublishSplatMovingSet(SplatMovingSet& set)
       c.OpacityLogits[b] = from.OpacityLogits[a];
       std::copy_n(&from.SH[3 * a], 3, &c.SH[3 * b]);
     };
-    const std::size_t grown = std::max(m, c.Count);
-    c.Positions.resize(3 * grown);
-    c.LogScales.resize(3 * grown);
-    c.Rotations.resize(4 * grown);
-    c.OpacityLogits.resize(grown);
-    c.SH.resize(3 * grown);
-    set.Subset.resize(grown);
+    const auto resizeTo = [&](std::size_t n)
+    {
+      c.Positions.resize(3 * n);
+      c.LogScales.resize(3 * n);
+      c.Rotations.resize(4 * n);
+      c.OpacityLogits.resize(n);
+      c.SH.resize(3 * n);
+      set.Subset.resize(n);
+    };
+    resizeTo(std::max(m, c.Count));
     // The Gaussians beyond the new count that stay move down first, then the new ones land.
     for (std::size_t r = 0; r < next.MoveFrom.size(); ++r)
     {
@@ -499,12 +502,7 @@ bool PublishSplatMovingSet(SplatMovingSet& set)
       set.Subset[next.PatchSlots[q]] = next.PatchIndices[q];
     }
     c.Count = m;
-    c.Positions.resize(3 * m);
-    c.LogScales.resize(3 * m);
-    c.Rotations.resize(4 * m);
-    c.OpacityLogits.resize(m);
-    c.SH.resize(3 * m);
-    set.Subset.resize(m);
+    resizeTo(m);
     set.Changed.assign(next.PatchSlots.begin(), next.PatchSlots.end());
     set.Changed.insert(set.Changed.end(), next.MoveTo.begin(), next.MoveTo.end());
     set.AllChanged = false;
