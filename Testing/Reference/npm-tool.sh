@@ -30,23 +30,31 @@ package_version() {
 }
 
 # npm_install_once PREFIX PACKAGE_JSON VERSION SPEC... [-- NPM_FLAGS...]: installs SPEC (one or
-# more name@version) into PREFIX unless PACKAGE_JSON already says VERSION; a lock on PREFIX so
-# that parallel tests install once; skips naming the log when npm fails or the package is
-# still missing.
+# more name@version) into PREFIX once; a lock on PREFIX so that parallel tests install once;
+# skips naming the log when npm fails or the package is still missing. "Installed" is a marker
+# written after npm has finished, never the package's own package.json: npm extracts packages one
+# by one, so a test that saw the main package could start before its dependencies (e.g. three
+# for GaussianSplats3D) were there.
 npm_install_once() {
   local prefix="$1" package="$2" version="$3"
   shift 3
-  if [ "$(package_version "$package")" != "$version" ]; then
+  local marker="$prefix/.installed" want="$version $*"
+  if [ "$(cat "$marker" 2>/dev/null)" != "$want" ]; then
     mkdir -p "$prefix" || skip "cannot create $prefix"
     exec 9>"$prefix/.install-lock"
     flock 9
-    [ -f "$prefix/package.json" ] || echo '{"private": true}' >"$prefix/package.json"
-    if [ "$(package_version "$package")" != "$version" ] &&
-      ! timeout 600 npm install --prefix "$prefix" --no-audit --no-fund --loglevel=error "$@" \
+    if [ "$(cat "$marker" 2>/dev/null)" != "$want" ]; then
+      [ -f "$prefix/package.json" ] || echo '{"private": true}' >"$prefix/package.json"
+      if ! timeout 600 npm install --prefix "$prefix" --no-audit --no-fund --loglevel=error "$@" \
         >"$prefix/npm-install.log" 2>&1; then
-      tail -5 "$prefix/npm-install.log" >&2
-      skip "npm could not install $* (no registry access?); see $prefix/npm-install.log"
+        tail -5 "$prefix/npm-install.log" >&2
+        skip "npm could not install $* (no registry access?); see $prefix/npm-install.log"
+      fi
+      [ "$(package_version "$package")" = "$version" ] || skip "$package is missing after the install"
+      printf '%s' "$want" >"$marker.tmp" && mv -f "$marker.tmp" "$marker" ||
+        skip "cannot write $marker"
     fi
+    exec 9>&-
   fi
   [ "$(package_version "$package")" = "$version" ] || skip "$package is missing after the install"
 }
