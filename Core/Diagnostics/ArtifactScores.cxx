@@ -133,13 +133,17 @@ std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
 }
 
 //------------------------------------------------------------------------------
-ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
+namespace
+{
+// Both overloads: @p expected views (0: unknown, progress against the views taken so far).
+ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
   const std::vector<Camera>& cameras,
   const ScoreSettings& settings,
-  const std::vector<std::size_t>& ownViews,
+  const ScoreNextView& next,
   const TrainingImageProvider& images,
   const ScoreProgress& progress,
-  const ScoreViewStarted& viewStarted)
+  const ScoreViewStarted& viewStarted,
+  std::size_t expected)
 {
   const auto start = Clock::now();
   const ScoreRequest& request = settings.Request;
@@ -189,12 +193,33 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   }
 
   out.ViewIndices = SelectViews(cameras, settings);
-  for (std::size_t i : ownViews)
+  // The views taken from the queue, in order: the blur/needle pass takes them as it goes, the
+  // other passes go over them afterwards.
+  std::vector<std::size_t>& ownViews = out.RenderedViews;
+  std::vector<bool> taken(cameras.size(), false);
+  auto take = [&](std::size_t& i)
   {
+    if (!next || !next(i))
+    {
+      return false;
+    }
     if (std::find(out.ViewIndices.begin(), out.ViewIndices.end(), i) == out.ViewIndices.end())
     {
       throw std::invalid_argument(
         "camera " + std::to_string(i) + " is not one of the views the settings select");
+    }
+    if (taken[i])
+    {
+      throw std::invalid_argument("camera " + std::to_string(i) + " is given twice");
+    }
+    taken[i] = true;
+    ownViews.push_back(i);
+    return true;
+  };
+  if (!scores)
+  {
+    for (std::size_t i = 0; take(i);)
+    {
     }
   }
   for (std::size_t i : out.ViewIndices)
@@ -255,15 +280,16 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
       out.ContributionSum[g] += weights.WeightSum[g];
     }
   };
-  const std::size_t totalSteps = (request.ViewCoverage ? ownViews.size() : 0) +
-    (scores ? ownViews.size() : 0) + (renderCost ? ownViews.size() : 0);
+  // (with a queue, against the views taken so far: the blur/needle pass takes them as it goes)
+  const std::size_t passes =
+    (request.ViewCoverage ? 1 : 0) + (scores ? 1 : 0) + (renderCost ? 1 : 0);
   std::size_t done = 0;
   auto step = [&]()
   {
     ++done;
     if (progress)
     {
-      progress(done, totalSteps);
+      progress(done, passes * std::max(expected, ownViews.size()));
     }
   };
 
@@ -285,7 +311,7 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
     // views (each view's in input order would be 24 more bytes a Gaussian, allocated anew).
     GaussianWeightStats sortedWeights;
     sortedWeights.CountEvaluations = true;
-    for (std::size_t vi : ownViews)
+    for (std::size_t vi = 0; take(vi);)
     {
       if (viewStarted)
       {
@@ -577,6 +603,7 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   out.Timings.Total = Seconds(start);
   return out;
 }
+} // namespace
 
 //------------------------------------------------------------------------------
 GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
@@ -820,6 +847,47 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   out.Warnings = ScoreWarnings(out, request, cloud.Count);
   out.Timings.Total = pt.Total + Seconds(start);
   return out;
+}
+
+//------------------------------------------------------------------------------
+ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const std::vector<std::size_t>& views,
+  const TrainingImageProvider& images,
+  const ScoreProgress& progress,
+  const ScoreViewStarted& viewStarted)
+{
+  std::size_t k = 0;
+  return PartialsOfQueue(
+    cloud,
+    cameras,
+    settings,
+    [&](std::size_t& view)
+    {
+      if (k == views.size())
+      {
+        return false;
+      }
+      view = views[k++];
+      return true;
+    },
+    images,
+    progress,
+    viewStarted,
+    views.size());
+}
+
+//------------------------------------------------------------------------------
+ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const ScoreNextView& next,
+  const TrainingImageProvider& images,
+  const ScoreProgress& progress,
+  const ScoreViewStarted& viewStarted)
+{
+  return PartialsOfQueue(cloud, cameras, settings, next, images, progress, viewStarted, 0);
 }
 
 //------------------------------------------------------------------------------

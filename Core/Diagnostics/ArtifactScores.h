@@ -238,8 +238,8 @@ std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
  * Per-Gaussian partial results of the view-dependent scores over a subset of the selected
  * views: what a process that renders only some views contributes, so that the views can be
  * spread over processes (MPI, Filters/Diagnostics/vtkGaussianArtifactScoreFilter). Every
- * member except ViewIndices and Timings is a plain sum over views, so the partials of
- * disjoint view subsets combine by element-wise addition (integers exactly; BlurSum and
+ * member except ViewIndices, RenderedViews and Timings is a plain sum over views, so the partials
+ * of disjoint view subsets combine by element-wise addition (integers exactly; BlurSum and
  * NeedleSum in a different order than one process would use, hence last-bit differences of
  * Blur and Needle, never of View Coverage). omega(g,v) needs max_h |Omega(h,v)|, a per-view
  * quantity, so it is finished on the process that renders v and only omega*L' travels.
@@ -272,6 +272,8 @@ struct ScorePartials
   /// Views scored (with an image) and skipped for lack of one, among the views rendered.
   std::size_t ViewsScored = 0;
   std::size_t ViewsWithoutImage = 0;
+  /// The camera indices this call rendered, in order (not a sum: one process's own).
+  std::vector<std::size_t> RenderedViews;
   ScoreTimings Timings;
 };
 
@@ -287,6 +289,29 @@ ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
   const std::vector<Camera>& cameras,
   const ScoreSettings& settings,
   const std::vector<std::size_t>& views,
+  const TrainingImageProvider& images = {},
+  const ScoreProgress& progress = {},
+  const ScoreViewStarted& viewStarted = {});
+
+/**
+ * Gives the camera index of the next view to render in @p cameraIndex, or false when no view
+ * is left: a queue shared with other processes, so that whichever process is free takes the
+ * next view (dynamic balancing, vtkGaussianArtifactScoreFilter under MPI).
+ */
+using ScoreNextView = std::function<bool(std::size_t& cameraIndex)>;
+
+/**
+ * The partials of the views @p next hands out, taken one at a time as the blur/needle pass
+ * is ready for one; the other passes then go over the same views. Without a blur/needle pass
+ * (no image scores requested) every view is taken before the first is rendered: the passes
+ * without images batch their views. ScorePartials::RenderedViews lists the views taken, in
+ * order; with a queue that hands out the views of a vector in order, the result is identical to
+ * the overload above. Progress is reported against the views taken so far.
+ */
+ScorePartials ComputeScorePartials(const GaussianCloud& cloud,
+  const std::vector<Camera>& cameras,
+  const ScoreSettings& settings,
+  const ScoreNextView& next,
   const TrainingImageProvider& images = {},
   const ScoreProgress& progress = {},
   const ScoreViewStarted& viewStarted = {});

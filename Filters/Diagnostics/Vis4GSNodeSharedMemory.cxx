@@ -61,8 +61,18 @@ Vis4GSNodeSharedMemory::Vis4GSNodeSharedMemory(vtkMultiProcessController* contro
   controller->AllGather(key, keys.data(), KeySize);
   this->Leader = -1;
   this->NodeParts = 0;
+  this->Leaders.assign(static_cast<std::size_t>(ranks), -1);
   for (int r = 0; r < ranks; ++r)
   {
+    for (int q = 0; q <= r && this->Leaders[r] < 0; ++q)
+    {
+      if (std::memcmp(keys.data() + static_cast<std::size_t>(r) * KeySize,
+            keys.data() + static_cast<std::size_t>(q) * KeySize,
+            KeySize) == 0)
+      {
+        this->Leaders[r] = q;
+      }
+    }
     if (std::memcmp(keys.data() + static_cast<std::size_t>(r) * KeySize, key, KeySize) == 0)
     {
       if (this->Leader < 0)

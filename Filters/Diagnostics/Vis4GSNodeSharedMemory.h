@@ -32,6 +32,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 class vtkMultiProcessController;
 
@@ -47,6 +48,8 @@ public:
   /// This process's position among the processes of its machine, and their number.
   int Part() const { return this->NodePart; }
   int Parts() const { return this->NodeParts; }
+  /// The lowest process of @p rank's machine (processes with the same run on one machine).
+  int LeaderOf(int rank) const { return this->Leaders.at(static_cast<std::size_t>(rank)); }
 
   /**
    * Collective over every process of the controller: memory of @p bytes mapped by every
@@ -70,7 +73,8 @@ private:
   vtkMultiProcessController* Controller;
   int NodePart = 0;
   int NodeParts = 1;
-  int Leader = 0; ///< lowest process of this machine
+  int Leader = 0;           ///< lowest process of this machine
+  std::vector<int> Leaders; ///< lowest process of each process's machine
   void* Address = nullptr;
   std::size_t Bytes = 0;
   std::string Reason;

@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -150,23 +151,76 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
   std::size_t current = static_cast<std::size_t>(-1);
   try
   {
-    std::vector<std::size_t> own;
+    // Every process computes the same split from the same scene, cameras and settings.
+    std::vector<std::size_t> views, machineViews;
+    std::vector<double> costs;
+    std::vector<int> owner;
     if (needCameras)
     {
-      // Every process computes the same split from the same scene, cameras and settings.
-      const std::vector<std::size_t> views = vis4gs::SelectViews(cameras, settings);
-      const std::vector<int> owner =
-        vis4gs::SplitViewsByCost(vis4gs::EstimateViewCosts(cloud, cameras, views, settings), ranks);
-      for (std::size_t k = 0; k < views.size(); ++k)
+      views = vis4gs::SelectViews(cameras, settings);
+      costs = vis4gs::EstimateViewCosts(cloud, cameras, views, settings);
+      owner = vis4gs::SplitViewsByCost(costs, ranks);
+    }
+    // (collective: every process or none, the same settings on each)
+    std::unique_ptr<Vis4GSNodeSharedMemory> queue;
+    std::atomic<std::uint64_t>* taken = nullptr;
+    if (needCameras && (settings.Request.Blur || settings.Request.Needle) &&
+      self->GetDynamicViewBalancing())
+    {
+      static_assert(std::atomic<std::uint64_t>::is_always_lock_free,
+        "the queue's counter is shared between processes");
+      queue.reset(new Vis4GSNodeSharedMemory(controller));
+      // (zero-filled: the counter starts at 0 on every process of the machine)
+      taken = static_cast<std::atomic<std::uint64_t>*>(queue->Map(4096));
+      if (taken)
       {
-        if (owner[k] == rank)
+        // This machine's views (its processes' parts of the split), the costliest first: the
+        // last views taken are the cheapest, so the processes finish close together.
+        for (std::size_t k = 0; k < views.size(); ++k)
         {
-          own.push_back(views[k]);
+          if (queue->LeaderOf(owner[k]) == queue->LeaderOf(rank))
+          {
+            machineViews.push_back(k);
+          }
+        }
+        std::stable_sort(machineViews.begin(),
+          machineViews.end(),
+          [&costs](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+        for (std::size_t& k : machineViews)
+        {
+          k = views[k];
         }
       }
+      else
+      {
+        vtkWarningWithObjectMacro(self,
+          "process " << rank << " of " << ranks
+                     << ": the processes of this machine could not share a queue of views ("
+                     << (queue->Failure().empty() ? std::string("failed on another process")
+                                                  : queue->Failure())
+                     << "); each renders the views of the split by estimated cost");
+      }
     }
-    auto progress = [self](std::size_t done, std::size_t total)
-    { self->UpdateProgress(total > 0 ? 0.95 * static_cast<double>(done) / total : 0.95); };
+    std::vector<std::size_t> own;
+    for (std::size_t k = 0; !taken && k < views.size(); ++k)
+    {
+      if (owner[k] == rank)
+      {
+        own.push_back(views[k]);
+      }
+    }
+    auto progress = [self, taken, &machineViews](std::size_t done, std::size_t total)
+    {
+      if (taken)
+      {
+        // The machine's share of its views taken so far (this process's count is not known
+        // ahead).
+        const double all = static_cast<double>(std::max<std::size_t>(1, machineViews.size()));
+        self->UpdateProgress(0.95 * std::min(1.0, static_cast<double>(taken->load()) / all));
+        return;
+      }
+      self->UpdateProgress(total > 0 ? 0.95 * static_cast<double>(done) / total : 0.95);
+    };
     // (collective: every process or none, the same setting on each)
     std::unique_ptr<Vis4GSNodeSharedMemory> node;
     vis4gs::ScoreSettings local = settings;
@@ -175,21 +229,40 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
       node.reset(new Vis4GSNodeSharedMemory(controller));
       local.SharePreparation = node->Share();
     }
-    partials = vis4gs::ComputeScorePartials(cloud,
-      cameras,
-      local,
-      own,
-      images,
-      progress,
-      [&](std::size_t view)
-      {
-        current = view;
-        SetViewInProgress("view " + std::to_string(view) + " ('" + cameras[view].Name + "')");
-        MaybeKillForTest(rank, view);
-      });
+    auto viewStarted = [&](std::size_t view)
+    {
+      current = view;
+      SetViewInProgress("view " + std::to_string(view) + " ('" + cameras[view].Name + "')");
+      MaybeKillForTest(rank, view);
+    };
+    if (taken)
+    {
+      partials = vis4gs::ComputeScorePartials(
+        cloud,
+        cameras,
+        local,
+        [&](std::size_t& view)
+        {
+          const std::uint64_t k = taken->fetch_add(1);
+          if (k >= machineViews.size())
+          {
+            return false;
+          }
+          view = machineViews[static_cast<std::size_t>(k)];
+          return true;
+        },
+        images,
+        progress,
+        viewStarted);
+    }
+    else
+    {
+      partials =
+        vis4gs::ComputeScorePartials(cloud, cameras, local, own, images, progress, viewStarted);
+    }
     current = static_cast<std::size_t>(-1);
     SetViewInProgress("");
-    rendered = static_cast<vtkIdType>(own.size());
+    rendered = static_cast<vtkIdType>(partials.RenderedViews.size());
     if (node && node->Mapped())
     {
       preparationProcesses = node->Parts();
@@ -798,6 +871,7 @@ void vtkGaussianArtifactScoreFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReductionSeconds: " << this->ReductionSeconds << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "SharePreparation: " << (this->SharePreparation ? "On" : "Off") << "\n";
+  os << indent << "DynamicViewBalancing: " << (this->DynamicViewBalancing ? "On" : "Off") << "\n";
   os << indent << "PreparationProcesses: " << this->PreparationProcesses << "\n";
   os << indent << "ViewRendered: " << (this->ViewRendered ? "set" : "none") << "\n";
 }

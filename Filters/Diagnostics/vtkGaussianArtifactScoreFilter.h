@@ -280,6 +280,26 @@ public:
   vtkBooleanMacro(SharePreparation, bool);
   ///@}
 
+  ///@{
+  /**
+   * With more than one process and the blur or needle score requested: whether the processes
+   * of one machine take their views one at a time from a queue they share (a counter in
+   * Vis4GSNodeSharedMemory), the costliest first by EstimateViewCosts(), so that whichever
+   * process is free renders the next view, instead of each rendering the part that
+   * SplitViewsByCost() gives it. Machines still get their views from SplitViewsByCost() (the sum
+   * of their processes' parts). A process that runs slower, because its views cost more than
+   * estimated or because its core is shared, then takes fewer views, and no process waits for
+   * the slowest at the end for more than about one view. Which process renders which view then
+   * depends on timing: BlurScore and NeedleScore may differ from run to run in the last bits of
+   * a double (the order of the sums, as between one process and several already), the counts
+   * never. Off: the fixed split, the same bits on every run with the same processes. When the
+   * queue's memory cannot be made, the fixed split is used with a warning. Default on.
+   */
+  vtkSetMacro(DynamicViewBalancing, bool);
+  vtkGetMacro(DynamicViewBalancing, bool);
+  vtkBooleanMacro(DynamicViewBalancing, bool);
+  ///@}
+
   /**
    * Processes of this machine that shared the preparation in the last execution (this one
    * included); 1 when this process prepared alone (one process, SharePreparation off, or the
@@ -360,6 +380,7 @@ protected:
   double ReductionSeconds = 0;
   vtkMultiProcessController* Controller = nullptr;
   bool SharePreparation = false;
+  bool DynamicViewBalancing = true;
   int PreparationProcesses = 1;
 #ifndef __VTK_WRAP__
   ViewRenderedFunction ViewRendered;

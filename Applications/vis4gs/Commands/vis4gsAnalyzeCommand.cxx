@@ -155,6 +155,11 @@ void Define(Vis4GSArguments& args)
     "Under MPI: the processes of one machine prepare the view-independent part of the "
     "projection once between them, in POSIX shared memory (less memory; the same scores; "
     "slower views where shared memory gets no huge pages, as on the benchmark machine).");
+  args.AddFlag("static-view-split",
+    false,
+    "Under MPI: each process renders a fixed part of the views (split by estimated cost), the "
+    "same bits on every run, instead of the processes of a machine taking the next view from a "
+    "shared queue whenever one is free (the default: no process waits for a slower one).");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -876,6 +881,7 @@ int Run(const Vis4GSArguments& args)
     f->SetFloatAccumulation(args.GetFlag("float-accumulation"));
     f->SetOcclusionThreshold(args.GetDouble("occlusion-threshold"));
     f->SetSharePreparation(args.GetFlag("share-preparation"));
+    f->SetDynamicViewBalancing(!args.GetFlag("static-view-split"));
   };
   ScoreColumns firstScores;
   std::string firstStage;

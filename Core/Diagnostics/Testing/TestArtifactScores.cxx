@@ -5,6 +5,7 @@
 // scales, opacity logits at +-1000). Footprints in the expectations are counted here by a
 // plain scan of the tile rectangle with the rasteriser's kernel (the definition of Omega).
 #include "ArtifactScores.h"
+#include "ArtifactScoresTestScenes.h"
 #include "BenchmarkSceneUtils.h"
 #include "FastCoverage.h"
 #include "NeedleShape.h"
@@ -25,46 +26,9 @@ namespace
 
 using vis4gs::Camera;
 using vis4gs::GaussianCloud;
-
-Camera MakeCamera(double cz = 0, bool flipped = false, int w = 64, int h = 48)
-{
-  Camera c;
-  c.Name = "view";
-  c.Width = w;
-  c.Height = h;
-  c.Fx = c.Fy = 60;
-  c.Cx = w / 2.0;
-  c.Cy = h / 2.0;
-  // flipped: looking down -z from (0, 0, cz): R = diag(-1, 1, -1), t = -R C.
-  const double s = flipped ? -1 : 1;
-  c.WorldToCamera = { s, 0, 0, 0, 0, 1, 0, 0, 0, 0, s, -s * cz, 0, 0, 0, 1 };
-  return c;
-}
-
-void SetGaussian(GaussianCloud& cloud,
-  std::size_t i,
-  float x,
-  float y,
-  float z,
-  float ls0,
-  float ls1,
-  float ls2,
-  float logit)
-{
-  const float p[3] = { x, y, z };
-  const float ls[3] = { ls0, ls1, ls2 };
-  for (int k = 0; k < 3; ++k)
-  {
-    cloud.Positions[3 * i + k] = p[k];
-    cloud.LogScales[3 * i + k] = ls[k];
-    cloud.SH[3 * i + k] = 0.3f * static_cast<float>(k) - 0.2f;
-  }
-  cloud.Rotations[4 * i + 0] = 1;
-  cloud.Rotations[4 * i + 1] = 0;
-  cloud.Rotations[4 * i + 2] = 0;
-  cloud.Rotations[4 * i + 3] = 0;
-  cloud.OpacityLogits[i] = logit;
-}
+using vis4gs_test::MakeCamera;
+using vis4gs_test::OffsetImages;
+using vis4gs_test::SetGaussian;
 
 // Footprint sizes by a plain scan of each tile rectangle (the definition of Omega).
 std::vector<std::uint32_t> NaiveFootprints(const GaussianCloud& cloud, const Camera& camera)
@@ -91,32 +55,6 @@ std::vector<std::uint32_t> NaiveFootprints(const GaussianCloud& cloud, const Cam
   }
   return count;
 }
-
-// Images = the scene's own render + a constant offset per view, so that the loss map is
-// 0.8 * offset everywhere (the Laplacian of a constant is 0) whatever the render is.
-struct OffsetImages
-{
-  const GaussianCloud* Cloud;
-  std::vector<float> Offsets;
-  std::vector<bool> Missing;
-  bool operator()(std::size_t index, const Camera& camera, vis4gs::Image& image) const
-  {
-    if (index < this->Missing.size() && this->Missing[index])
-    {
-      return false;
-    }
-    const auto render = vis4gs::Rasterize<float>(*this->Cloud, camera);
-    image.Width = camera.Width;
-    image.Height = camera.Height;
-    image.Channels = 3;
-    image.Pixels = render.Color;
-    for (float& v : image.Pixels)
-    {
-      v += this->Offsets[index];
-    }
-    return true;
-  }
-};
 
 double Shape(const GaussianCloud& cloud, std::size_t i)
 {
@@ -757,219 +695,6 @@ TEST(ArtifactScores, SharedProjectionGivesIdenticalScores)
       }
     }
   }
-}
-
-// The pieces a distributed run is made of (issue 18): partials over disjoint view subsets,
-// added element by element, finished, equal ComputeGaussianScores (integers exactly, sums to
-// the last bits: only their order differs); a view outside the selection is refused.
-TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
-{
-  GaussianCloud cloud;
-  cloud.Resize(4, 0);
-  SetGaussian(cloud, 0, 0, 0, 5, std::log(0.5f), std::log(0.3f), std::log(0.3f), 2);
-  SetGaussian(cloud, 1, 0.3f, 0.1f, 4, std::log(0.02f), std::log(0.4f), std::log(0.01f), 1);
-  SetGaussian(cloud, 2, 60, 0, -3, -2, -2, -2, 1); // seen by no view
-  SetGaussian(cloud, 3, -0.2f, 0.2f, 6, -1.5f, -2.5f, -2, 0);
-  const std::vector<Camera> cameras{
-    MakeCamera(0), MakeCamera(10, true), MakeCamera(-1), MakeCamera(11, true), MakeCamera(0.5)
-  };
-  OffsetImages images{ &cloud, { 0.2f, 0.1f, 0.3f, 0.05f, 0.15f }, { false, false, false, true } };
-  vis4gs::ScoreSettings settings;
-  const auto whole = vis4gs::ComputeGaussianScores(cloud, cameras, settings, images);
-  const std::vector<std::size_t> first{ 0, 3 }, second{ 1, 2, 4 };
-  auto a = vis4gs::ComputeScorePartials(cloud, cameras, settings, first, images);
-  const auto b = vis4gs::ComputeScorePartials(cloud, cameras, settings, second, images);
-  for (std::size_t g = 0; g < cloud.Count; ++g)
-  {
-    a.CoverageViews[g] += b.CoverageViews[g];
-    a.ScoredViews[g] += b.ScoredViews[g];
-    a.BlurSum[g] += b.BlurSum[g];
-    a.NeedleSum[g] += b.NeedleSum[g];
-  }
-  a.ViewsScored += b.ViewsScored;
-  a.ViewsWithoutImage += b.ViewsWithoutImage;
-  const auto summed = vis4gs::FinishGaussianScores(cloud, settings, a);
-  EXPECT_EQ(summed.ViewCoverage, whole.ViewCoverage);
-  EXPECT_EQ(summed.CoverageViews, whole.CoverageViews);
-  EXPECT_EQ(summed.ScoredViews, whole.ScoredViews);
-  EXPECT_EQ(summed.Flags, whole.Flags);
-  EXPECT_EQ(summed.NeedleShape, whole.NeedleShape);
-  EXPECT_EQ(summed.ViewsWithoutImage, 1u);
-  EXPECT_EQ(summed.ViewsScored, whole.ViewsScored);
-  EXPECT_EQ(summed.Warnings, whole.Warnings);
-  EXPECT_GT(whole.BlurScore[0], 0);
-  for (std::size_t g = 0; g < cloud.Count; ++g)
-  {
-    EXPECT_NEAR(summed.BlurScore[g], whole.BlurScore[g], 1e-13 * std::abs(whole.BlurScore[g]));
-    EXPECT_NEAR(
-      summed.NeedleScore[g], whole.NeedleScore[g], 1e-13 * std::abs(whole.NeedleScore[g]));
-  }
-  // No view at all: buffers sized for the cloud, all zero.
-  const auto none = vis4gs::ComputeScorePartials(cloud, cameras, settings, {}, images);
-  EXPECT_EQ(none.CoverageViews, std::vector<std::uint32_t>(cloud.Count, 0));
-  EXPECT_EQ(none.BlurSum, std::vector<double>(cloud.Count, 0.0));
-  EXPECT_EQ(none.ViewIndices.size(), cameras.size());
-  // A view the settings do not select.
-  vis4gs::ScoreSettings stride;
-  stride.ViewStride = 2;
-  EXPECT_THROW(
-    vis4gs::ComputeScorePartials(cloud, cameras, stride, { 1 }, images), std::invalid_argument);
-  // Partials that do not match the cloud.
-  auto wrong = a;
-  wrong.BlurSum.pop_back();
-  EXPECT_THROW(vis4gs::FinishGaussianScores(cloud, settings, wrong), std::invalid_argument);
-}
-
-// A distributed run finishes each process's slice of the Gaussians in place (issue 31): the
-// slices' scores, put end to end, are the whole finish's bit for bit (the same operations on the
-// same sums, no entry outside the slice read), their counts add up to its counts and
-// ScoreWarnings() of the sums gives its warnings.
-TEST(ArtifactScores, FinishedSlicesAreTheWholeFinish)
-{
-  GaussianCloud cloud;
-  cloud.Resize(5, 0);
-  SetGaussian(cloud, 0, 0, 0, 5, std::log(0.5f), std::log(0.3f), std::log(0.3f), 2);
-  SetGaussian(cloud, 1, 0.3f, 0.1f, 4, std::log(0.02f), std::log(0.4f), std::log(0.01f), 1);
-  SetGaussian(cloud, 2, 60, 0, -3, -2, -2, -2, 1); // seen by no view
-  SetGaussian(cloud, 3, -0.2f, 0.2f, 6, -1.5f, -2.5f, -2, 0);
-  SetGaussian(cloud, 4, std::nanf(""), 0, 5, -2, -2, -2, 1); // invalid: flagged
-  const std::vector<Camera> cameras{ MakeCamera(0), MakeCamera(-1), MakeCamera(0.5) };
-  OffsetImages images{ &cloud, { 0.2f, 0.1f, 0.3f }, { false, true, false } };
-  vis4gs::ScoreSettings settings;
-  settings.Request.RenderCost = settings.Request.CostPerContribution = true;
-  const auto partials = vis4gs::ComputeScorePartials(
-    cloud, cameras, settings, vis4gs::SelectViews(cameras, settings), images);
-  const auto whole = vis4gs::FinishGaussianScores(cloud, settings, partials);
-  ASSERT_EQ(whole.NoCoverageViewCount, 2u);
-  ASSERT_EQ(whole.InvalidCount, 1u);
-  ASSERT_EQ(whole.Warnings.size(), 4u); // without image, not evaluated, no view, invalid
-  for (const std::vector<std::size_t>& cuts :
-    { std::vector<std::size_t>{ 0, 5 }, { 0, 2, 5 }, { 0, 0, 3, 3, 5 }, { 0, 1, 2, 3, 4, 5 } })
-  {
-    vis4gs::GaussianScores joined;
-    joined.ViewCoverage.assign(cloud.Count, -1.0);
-    for (auto member : { &vis4gs::GaussianScores::BlurScore,
-           &vis4gs::GaussianScores::NeedleScore,
-           &vis4gs::GaussianScores::NeedleShape,
-           &vis4gs::GaussianScores::RenderCost,
-           &vis4gs::GaussianScores::CostPerContribution })
-    {
-      (joined.*member).assign(cloud.Count, -1.0);
-    }
-    joined.Flags.assign(cloud.Count, 0xff);
-    std::size_t noCoverage = 0, noScored = 0, invalid = 0, notEvaluated = 0;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-    {
-      const std::size_t first = cuts[k], count = cuts[k + 1] - cuts[k];
-      // The slice's sums are in place in vectors of the cloud's size; the others' entries are
-      // poisoned, so that reading one would show.
-      vis4gs::ScorePartials slice = partials;
-      for (std::vector<std::uint32_t>* v : slice.PerGaussianCounts())
-      {
-        for (std::size_t g = 0; g < v->size(); ++g)
-        {
-          (*v)[g] = g >= first && g < first + count ? (*v)[g] : 0xdeadbeefu;
-        }
-      }
-      for (std::vector<double>* v : slice.PerGaussianSums())
-      {
-        for (std::size_t g = 0; g < v->size(); ++g)
-        {
-          (*v)[g] = g >= first && g < first + count ? (*v)[g] : std::nan("");
-        }
-      }
-      const auto part = vis4gs::FinishGaussianScores(cloud, settings, slice, first, count);
-      ASSERT_EQ(part.Flags.size(), cloud.Count);
-      for (auto member : { &vis4gs::GaussianScores::ViewCoverage,
-             &vis4gs::GaussianScores::BlurScore,
-             &vis4gs::GaussianScores::NeedleScore,
-             &vis4gs::GaussianScores::NeedleShape,
-             &vis4gs::GaussianScores::RenderCost,
-             &vis4gs::GaussianScores::CostPerContribution })
-      {
-        ASSERT_EQ((part.*member).size(), cloud.Count);
-        std::copy((part.*member).begin() + first,
-          (part.*member).begin() + first + count,
-          (joined.*member).begin() + first);
-      }
-      std::copy(part.Flags.begin() + first,
-        part.Flags.begin() + first + count,
-        joined.Flags.begin() + first);
-      noCoverage += part.NoCoverageViewCount;
-      noScored += part.NoScoredViewCount;
-      invalid += part.InvalidCount;
-      notEvaluated += part.NotEvaluatedCount;
-      joined.ViewsUsed = part.ViewsUsed;
-      joined.ViewsWithoutImage = part.ViewsWithoutImage;
-    }
-    const std::string what = "cut into " + std::to_string(cuts.size() - 1);
-    auto same = [&what](const std::vector<double>& a, const std::vector<double>& b)
-    {
-      ASSERT_EQ(a.size(), b.size()) << what;
-      for (std::size_t g = 0; g < a.size(); ++g)
-      {
-        // Bit for bit, NaN (R/A never evaluated) included.
-        EXPECT_EQ(std::memcmp(&a[g], &b[g], sizeof(double)), 0) << what << ", Gaussian " << g;
-      }
-    };
-    same(joined.ViewCoverage, whole.ViewCoverage);
-    same(joined.BlurScore, whole.BlurScore);
-    same(joined.NeedleScore, whole.NeedleScore);
-    same(joined.NeedleShape, whole.NeedleShape);
-    same(joined.RenderCost, whole.RenderCost);
-    same(joined.CostPerContribution, whole.CostPerContribution);
-    EXPECT_EQ(joined.Flags, whole.Flags) << what;
-    EXPECT_EQ(noCoverage, whole.NoCoverageViewCount) << what;
-    EXPECT_EQ(noScored, whole.NoScoredViewCount) << what;
-    EXPECT_EQ(invalid, whole.InvalidCount) << what;
-    EXPECT_EQ(notEvaluated, whole.NotEvaluatedCount) << what;
-    joined.NoCoverageViewCount = noCoverage;
-    joined.InvalidCount = invalid;
-    joined.NotEvaluatedCount = notEvaluated;
-    EXPECT_EQ(vis4gs::ScoreWarnings(joined, settings.Request, cloud.Count), whole.Warnings) << what;
-  }
-  // A range outside the cloud.
-  EXPECT_THROW(
-    vis4gs::FinishGaussianScores(cloud, settings, partials, 3, 3), std::invalid_argument);
-}
-
-// The split: every view to exactly one process, largest cost first onto the least-loaded one
-// (an LPT schedule: within 4/3 of the optimum), deterministic, idle processes when views are
-// fewer, costs from pixels x Gaussians in view.
-TEST(ArtifactScores, SplitViewsByCost)
-{
-  const std::vector<double> costs{ 5, 1, 1, 1, 1, 1, 4, 2 };
-  const std::vector<int> owner = vis4gs::SplitViewsByCost(costs, 2);
-  double load[2] = { 0, 0 };
-  for (std::size_t v = 0; v < costs.size(); ++v)
-  {
-    ASSERT_TRUE(owner[v] == 0 || owner[v] == 1);
-    load[owner[v]] += costs[v];
-  }
-  EXPECT_EQ(load[0], 8); // 5+1+1+1 and 4+2+1+1: the optimum here
-  EXPECT_EQ(load[1], 8);
-  EXPECT_EQ(owner, vis4gs::SplitViewsByCost(costs, 2));
-  // One costly view and ten cheap ones: a split by count would give 6 + 5 views.
-  const std::vector<int> skewed = vis4gs::SplitViewsByCost({ 10, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 }, 2);
-  EXPECT_EQ(std::count(skewed.begin(), skewed.end(), skewed[0]), 1); // the big view alone
-  const std::vector<int> few = vis4gs::SplitViewsByCost({ 3, 2 }, 5);
-  EXPECT_EQ(few, (std::vector<int>{ 0, 1 })); // processes 2..4 get nothing
-  EXPECT_TRUE(vis4gs::SplitViewsByCost({}, 3).empty());
-  EXPECT_THROW(vis4gs::SplitViewsByCost({ 1 }, 0), std::invalid_argument);
-
-  // Costs: a view that sees the Gaussians costs more than one looking away, and pixels count.
-  GaussianCloud cloud;
-  cloud.Resize(2, 0);
-  SetGaussian(cloud, 0, 0, 0, 5, -2, -2, -2, 1);
-  SetGaussian(cloud, 1, 0.2f, 0, 6, -2, -2, -2, 1);
-  const std::vector<Camera> cameras{
-    MakeCamera(0), MakeCamera(0, true), MakeCamera(0, false, 128, 96)
-  };
-  const auto cost = vis4gs::EstimateViewCosts(cloud, cameras, { 0, 1, 2 }, {});
-  ASSERT_EQ(cost.size(), 3u);
-  EXPECT_GT(cost[0], cost[1]);
-  EXPECT_DOUBLE_EQ(cost[2], 4 * cost[0]);
-  EXPECT_GT(cost[1], 0);
 }
 
 //------------------------------------------------------------------------------

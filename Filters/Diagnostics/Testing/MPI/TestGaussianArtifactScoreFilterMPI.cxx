@@ -308,58 +308,70 @@ void TestScene(vtkMPIController* controller, const Scene& scene)
   }
   for (const Config& config : Configs(train))
   {
-    const std::string what = scene.Name + ", " + config.Name;
     const vis4gs::GaussianScores one =
       vis4gs::ComputeGaussianScores(scene.Cloud, scene.Cameras, config.Settings, provider);
-    vtkNew<vtkGaussianArtifactScoreFilter> filter;
-    filter->SetController(controller);
-    filter->SetInputData(poly);
-    filter->SetCamerasData(table);
-    Configure(filter, config.Settings);
-    filter->Update();
-    vtkPointData* pd = filter->GetOutput()->GetPointData();
-    const auto& r = config.Settings.Request;
-    if (r.ViewCoverage)
+    // The views from the machine's shared queue (the default), then the fixed split.
+    for (const bool queue : { true, false })
     {
-      CompareExact(pd->GetArray(vis4gs::arrays::ViewCoverage), one.ViewCoverage, what);
+      const std::string what =
+        scene.Name + ", " + config.Name + (queue ? ", view queue" : ", fixed split");
+      vtkNew<vtkGaussianArtifactScoreFilter> filter;
+      filter->SetController(controller);
+      filter->SetInputData(poly);
+      filter->SetCamerasData(table);
+      Configure(filter, config.Settings);
+      filter->SetDynamicViewBalancing(queue);
+      filter->Update();
+      vtkPointData* pd = filter->GetOutput()->GetPointData();
+      const auto& r = config.Settings.Request;
+      if (r.ViewCoverage)
+      {
+        CompareExact(pd->GetArray(vis4gs::arrays::ViewCoverage), one.ViewCoverage, what);
+      }
+      if (r.Blur)
+      {
+        CompareRelative(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, what + " blur");
+      }
+      if (r.Needle)
+      {
+        CompareRelative(
+          pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, what + " needle");
+      }
+      if (r.RenderCost)
+      {
+        // Integer sums: exact in any order.
+        CompareExact(pd->GetArray("RenderCost"), one.RenderCost, what + " render cost");
+      }
+      if (r.CostPerContribution)
+      {
+        CompareRelative(
+          pd->GetArray("CostPerContribution"), one.CostPerContribution, what + " per contribution");
+      }
+      std::vector<double> flags(one.Flags.begin(), one.Flags.end());
+      CompareExact(pd->GetArray("NoVisibleView"), flags, what + " flags");
+      Check(filter->GetNumberOfViewsUsed() == static_cast<vtkIdType>(one.ViewsUsed),
+        what + ": views used");
+      Check(filter->GetNumberOfViewsWithoutImage() == static_cast<vtkIdType>(one.ViewsWithoutImage),
+        what + ": views without image");
+      // Every view rendered exactly once over the processes (the scores above would differ if a
+      // view were rendered twice and another not at all), and by its owner in the fixed split
+      // (also with the queue when there is no blur/needle pass to take views from it).
+      long long mine = filter->GetNumberOfViewsRendered(), all = 0;
+      controller->AllReduce(&mine, &all, 1, vtkCommunicator::SUM_OP);
+      Check(all == static_cast<long long>(one.ViewsUsed), what + ": views rendered in all");
+      if (!queue || !(r.Blur || r.Needle))
+      {
+        const std::vector<int> owner = vis4gs::SplitViewsByCost(
+          vis4gs::EstimateViewCosts(scene.Cloud, scene.Cameras, one.ViewIndices, config.Settings),
+          controller->GetNumberOfProcesses());
+        long long expected = 0;
+        for (int o : owner)
+        {
+          expected += o == Rank ? 1 : 0;
+        }
+        Check(mine == expected, what + ": views rendered here");
+      }
     }
-    if (r.Blur)
-    {
-      CompareRelative(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, what + " blur");
-    }
-    if (r.Needle)
-    {
-      CompareRelative(pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, what + " needle");
-    }
-    if (r.RenderCost)
-    {
-      // Integer sums: exact in any order.
-      CompareExact(pd->GetArray("RenderCost"), one.RenderCost, what + " render cost");
-    }
-    if (r.CostPerContribution)
-    {
-      CompareRelative(
-        pd->GetArray("CostPerContribution"), one.CostPerContribution, what + " per contribution");
-    }
-    std::vector<double> flags(one.Flags.begin(), one.Flags.end());
-    CompareExact(pd->GetArray("NoVisibleView"), flags, what + " flags");
-    Check(filter->GetNumberOfViewsUsed() == static_cast<vtkIdType>(one.ViewsUsed),
-      what + ": views used");
-    Check(filter->GetNumberOfViewsWithoutImage() == static_cast<vtkIdType>(one.ViewsWithoutImage),
-      what + ": views without image");
-    // Every view rendered exactly once over the processes, and by its owner in the split.
-    long long mine = filter->GetNumberOfViewsRendered(), all = 0;
-    controller->AllReduce(&mine, &all, 1, vtkCommunicator::SUM_OP);
-    Check(all == static_cast<long long>(one.ViewsUsed), what + ": views rendered in all");
-    const std::vector<int> owner = vis4gs::SplitViewsByCost(
-      vis4gs::EstimateViewCosts(scene.Cloud, scene.Cameras, one.ViewIndices, config.Settings),
-      controller->GetNumberOfProcesses());
-    long long expected = 0;
-    for (int o : owner)
-    {
-      expected += o == Rank ? 1 : 0;
-    }
-    Check(mine == expected, what + ": views rendered here");
   }
 
   // A view whose image cannot be read is left out of the image scores by the process that owns
@@ -395,32 +407,43 @@ void TestScene(vtkMPIController* controller, const Scene& scene)
   broken[badView].ImagePath = badFile.string();
   vtkNew<vtkTable> brokenTable;
   vis4gs::CamerasToTable(broken, brokenTable);
-  vtkNew<vtkGaussianArtifactScoreFilter> filter;
-  filter->SetController(controller);
-  filter->SetInputData(poly);
-  filter->SetCamerasData(brokenTable);
-  std::string errors;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetCallback(OnError);
-  onError->SetClientData(&errors);
-  filter->AddObserver(vtkCommand::WarningEvent, onError);
-  exact.Request.ViewCoverage = exact.Request.Blur = exact.Request.Needle = true;
-  Configure(filter, exact);
-  filter->Update();
-  std::vector<vis4gs::Camera> without = scene.Cameras;
-  without[badView].ImagePath.clear();
-  const vis4gs::GaussianScores one =
-    vis4gs::ComputeGaussianScores(scene.Cloud, without, exact, provider);
-  vtkPointData* pd = filter->GetOutput()->GetPointData();
-  CompareExact(pd->GetArray(vis4gs::arrays::ViewCoverage), one.ViewCoverage, scene.Name + " bad");
-  CompareRelative(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, scene.Name + " bad");
-  CompareRelative(pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, scene.Name + " bad");
-  Check(filter->GetNumberOfViewsWithoutImage() == static_cast<vtkIdType>(one.ViewsWithoutImage),
-    scene.Name + ": the unreadable view does not count as one without image");
-  if (Rank == victim)
+  // With the queue (the default) whichever process takes the view warns; the fixed split's
+  // owner is the victim.
+  for (const bool queue : { false, true })
   {
-    Check(errors.find(badFile.filename().string()) != std::string::npos,
-      scene.Name + ": no warning names " + badFile.string() + ": " + errors);
+    vtkNew<vtkGaussianArtifactScoreFilter> filter;
+    filter->SetDynamicViewBalancing(queue);
+    filter->SetController(controller);
+    filter->SetInputData(poly);
+    filter->SetCamerasData(brokenTable);
+    std::string errors;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetCallback(OnError);
+    onError->SetClientData(&errors);
+    filter->AddObserver(vtkCommand::WarningEvent, onError);
+    exact.Request.ViewCoverage = exact.Request.Blur = exact.Request.Needle = true;
+    Configure(filter, exact);
+    filter->Update();
+    std::vector<vis4gs::Camera> without = scene.Cameras;
+    without[badView].ImagePath.clear();
+    const vis4gs::GaussianScores one =
+      vis4gs::ComputeGaussianScores(scene.Cloud, without, exact, provider);
+    vtkPointData* pd = filter->GetOutput()->GetPointData();
+    CompareExact(pd->GetArray(vis4gs::arrays::ViewCoverage), one.ViewCoverage, scene.Name + " bad");
+    CompareRelative(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, scene.Name + " bad");
+    CompareRelative(
+      pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, scene.Name + " bad");
+    Check(filter->GetNumberOfViewsWithoutImage() == static_cast<vtkIdType>(one.ViewsWithoutImage),
+      scene.Name + ": the unreadable view does not count as one without image");
+    const bool named = errors.find(badFile.filename().string()) != std::string::npos;
+    int warned = named ? 1 : 0, warnedAll = 0;
+    controller->AllReduce(&warned, &warnedAll, 1, vtkCommunicator::SUM_OP);
+    Check(warnedAll == 1,
+      scene.Name + ": " + std::to_string(warnedAll) + " processes warn of " + badFile.string());
+    if (!queue && Rank == victim)
+    {
+      Check(named, scene.Name + ": no warning names " + badFile.string() + ": " + errors);
+    }
   }
 }
 }
@@ -448,6 +471,7 @@ void TestSharedPreparation(vtkMPIController* controller, const Scene& scene)
     filter->SetCamerasData(table);
     Check(filter->SetScores("coverage,blur,needle,render-cost"), "SetScores");
     filter->SetSharePreparation(share);
+    filter->SetDynamicViewBalancing(false); // (bit for bit needs the same views on each process)
     vtkNew<vtkCallbackCommand> onWarning;
     onWarning->SetCallback(OnError);
     onWarning->SetClientData(&warnings);
