@@ -259,6 +259,8 @@ ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
     out.ScoredViews.assign(n, 0);
     blurSum.assign(n, 0.0);
     needleSum.assign(n, 0.0);
+    out.BlurCompensation.assign(n, 0.0f);
+    out.NeedleCompensation.assign(n, 0.0f);
   }
   if (renderCost)
   {
@@ -408,8 +410,8 @@ ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
             const double lp = area * mapSum;
             const double omega = count * (1.0 / maxCount);
             out.ScoredViews[g] += 1;
-            blurSum[g] += omega * lp;
-            needleSum[g] += lp;
+            AddCompensated(blurSum[g], out.BlurCompensation[g], omega * lp);
+            AddCompensated(needleSum[g], out.NeedleCompensation[g], lp);
             if (shareCoverage)
             {
               out.CoverageViews[g] += 1;
@@ -458,8 +460,8 @@ ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
         const double lp = area * stats.MapSum[g];
         const double omega = count * invMax;
         out.ScoredViews[g] += 1;
-        blurSum[g] += omega * lp;
-        needleSum[g] += lp;
+        AddCompensated(blurSum[g], out.BlurCompensation[g], omega * lp);
+        AddCompensated(needleSum[g], out.NeedleCompensation[g], lp);
       }
       if (shareRenderCost)
       {
@@ -680,7 +682,8 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
   if ((request.ViewCoverage && partials.CoverageViews.size() != n) ||
     (scores &&
       (partials.ScoredViews.size() != n || partials.BlurSum.size() != n ||
-        partials.NeedleSum.size() != n)) ||
+        partials.NeedleSum.size() != n || partials.BlurCompensation.size() != n ||
+        partials.NeedleCompensation.size() != n)) ||
     (renderCost && (partials.RenderCostSum.size() != n || partials.ContributionSum.size() != n)))
   {
     throw std::invalid_argument("the partial scores do not match the cloud or the request");
@@ -790,11 +793,11 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
       }
       if (request.Blur)
       {
-        out.BlurScore[g] = out.BlurScore[g] / k;
+        out.BlurScore[g] = (out.BlurScore[g] + partials.BlurCompensation[g]) / k;
       }
       if (request.Needle)
       {
-        out.NeedleScore[g] = shape[g] * (out.NeedleScore[g] / k);
+        out.NeedleScore[g] = shape[g] * ((out.NeedleScore[g] + partials.NeedleCompensation[g]) / k);
       }
     }
   }

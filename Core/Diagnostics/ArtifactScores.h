@@ -53,10 +53,12 @@
 #include "MultiViewRenderer.h"
 #include "Rasterizer.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vis4gs
@@ -235,14 +237,42 @@ std::vector<std::size_t> SelectViews(const std::vector<Camera>& cameras,
   const ScoreSettings& settings);
 
 /**
+ * Adds @p term to the compensated sum (@p sum, @p compensation) (Neumaier: the rounding error
+ * of each addition goes into the compensation; a term or sum that is not finite is added
+ * plainly). The value of the sum is sum + compensation.
+ */
+inline void AddCompensated(double& sum, float& compensation, double term)
+{
+  const double t = sum + term;
+  if (std::isfinite(t))
+  {
+    const double bp = t - sum;
+    compensation =
+      static_cast<float>(static_cast<double>(compensation) + ((sum - (t - bp)) + (term - bp)));
+  }
+  sum = t;
+}
+
+/// Adds the compensated sum (@p otherSum, @p otherCompensation) to (@p sum, @p compensation):
+/// partials of two view subsets (processes) combined.
+inline void AddCompensated(double& sum,
+  float& compensation,
+  double otherSum,
+  float otherCompensation)
+{
+  AddCompensated(sum, compensation, otherSum);
+  compensation = static_cast<float>(static_cast<double>(compensation) + otherCompensation);
+}
+
+/**
  * Per-Gaussian partial results of the view-dependent scores over a subset of the selected
  * views: what a process that renders only some views contributes, so that the views can be
  * spread over processes (MPI, Filters/Diagnostics/vtkGaussianArtifactScoreFilter). Every
  * member except ViewIndices, RenderedViews and Timings is a plain sum over views, so the partials
  * of disjoint view subsets combine by element-wise addition (integers exactly; BlurSum and
- * NeedleSum in a different order than one process would use, hence last-bit differences of
- * Blur and Needle, never of View Coverage). omega(g,v) needs max_h |Omega(h,v)|, a per-view
- * quantity, so it is finished on the process that renders v and only omega*L' travels.
+ * NeedleSum are compensated sums, see BlurCompensation, combined with AddCompensated()). omega(g,v)
+ * needs max_h |Omega(h,v)|, a per-view quantity, so it is finished on the process that renders v
+ * and only omega*L' travels.
  */
 struct ScorePartials
 {
@@ -254,6 +284,16 @@ struct ScorePartials
   std::vector<std::uint32_t> ScoredViews;
   std::vector<double> BlurSum;
   std::vector<double> NeedleSum;
+  /// The rounding errors of BlurSum and NeedleSum (Neumaier's compensated summation): each sum
+  /// is BlurSum + BlurCompensation. Why: processes that render different views add the same
+  /// terms in different orders, and a plain double sum then differs in its last bits (at 194
+  /// views over 2 processes one BlurScore of 6.1M differed in its 9th digit, as written in
+  /// scores.csv). With the compensation the sum is within about n^2 2^-77 of the exact one
+  /// whatever the order (float compensation: its own error is 2^-24 of a term already 2^-53
+  /// of the sum), so the rounded scores agree bit for bit except where the exact sum lies that
+  /// close to a rounding boundary of a double. 4 bytes a Gaussian each.
+  std::vector<float> BlurCompensation;
+  std::vector<float> NeedleCompensation;
   /// Sums of R(g) and A(g) (empty without the render-cost pass). R is an integer, exact in a
   /// double up to 2^53.
   std::vector<double> RenderCostSum;
@@ -267,7 +307,14 @@ struct ScorePartials
   }
   std::vector<std::vector<double>*> PerGaussianSums()
   {
-    return { &this->BlurSum, &this->NeedleSum, &this->RenderCostSum, &this->ContributionSum };
+    return { &this->RenderCostSum, &this->ContributionSum };
+  }
+  /// The compensated sums and their compensations: combined over processes with
+  /// AddCompensated(), not by a plain sum.
+  std::vector<std::pair<std::vector<double>*, std::vector<float>*>> CompensatedSums()
+  {
+    return { { &this->BlurSum, &this->BlurCompensation },
+      { &this->NeedleSum, &this->NeedleCompensation } };
   }
   /// Views scored (with an image) and skipped for lack of one, among the views rendered.
   std::size_t ViewsScored = 0;

@@ -358,6 +358,49 @@ bool ComputeDistributed(vtkGaussianArtifactScoreFilter* self,
       }
     }
   }
+  // The compensated sums (ScorePartials::BlurCompensation says why): each slice's processes'
+  // sums and compensations gathered on the process that finishes it and added there in
+  // process order with AddCompensated(), so that the scores do not depend on which process
+  // rendered which view.
+  {
+    const std::size_t gatherChunk =
+      std::max<std::size_t>(4096, chunk / static_cast<std::size_t>(ranks));
+    std::vector<double> sums(std::min(gatherChunk, count) * ranks);
+    std::vector<float> compensations(sums.size());
+    for (const auto& [sum, compensation] : partials.CompensatedSums())
+    {
+      if (sum->empty())
+      {
+        continue;
+      }
+      for (int r = 0; r < ranks; ++r)
+      {
+        for (std::size_t b = sliceStart(r), e = sliceStart(r + 1); b < e; b += gatherChunk)
+        {
+          const std::size_t length = std::min(gatherChunk, e - b);
+          const vtkIdType l = static_cast<vtkIdType>(length);
+          controller->Gather(sum->data() + b, sums.data(), l, r);
+          controller->Gather(compensation->data() + b, compensations.data(), l, r);
+          if (r != rank)
+          {
+            continue;
+          }
+          for (std::size_t j = 0; j < length; ++j)
+          {
+            double s = sums[j];
+            float c = compensations[j];
+            for (int q = 1; q < ranks; ++q)
+            {
+              const std::size_t at = static_cast<std::size_t>(q) * length + j;
+              vis4gs::AddCompensated(s, c, sums[at], compensations[at]);
+            }
+            (*sum)[b + j] = s;
+            (*compensation)[b + j] = c;
+          }
+        }
+      }
+    }
+  }
   unsigned long long counts[2] = { partials.ViewsScored, partials.ViewsWithoutImage },
                      totals[2] = { 0, 0 };
   controller->AllReduce(counts, totals, 2, vtkCommunicator::SUM_OP);

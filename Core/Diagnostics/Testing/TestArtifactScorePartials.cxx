@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,8 +49,10 @@ TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
   {
     a.CoverageViews[g] += b.CoverageViews[g];
     a.ScoredViews[g] += b.ScoredViews[g];
-    a.BlurSum[g] += b.BlurSum[g];
-    a.NeedleSum[g] += b.NeedleSum[g];
+    vis4gs::AddCompensated(
+      a.BlurSum[g], a.BlurCompensation[g], b.BlurSum[g], b.BlurCompensation[g]);
+    vis4gs::AddCompensated(
+      a.NeedleSum[g], a.NeedleCompensation[g], b.NeedleSum[g], b.NeedleCompensation[g]);
   }
   a.ViewsScored += b.ViewsScored;
   a.ViewsWithoutImage += b.ViewsWithoutImage;
@@ -144,6 +148,11 @@ TEST(ArtifactScores, ViewsFromAQueue)
     EXPECT_NEAR(
       reversed.NeedleSum[g], fromList.NeedleSum[g], 1e-13 * std::abs(fromList.NeedleSum[g]));
   }
+  // The compensated sums make the finished scores independent of the order bit for bit.
+  const auto finishedList = vis4gs::FinishGaussianScores(cloud, settings, fromList);
+  const auto finishedReversed = vis4gs::FinishGaussianScores(cloud, settings, reversed);
+  EXPECT_EQ(finishedReversed.BlurScore, finishedList.BlurScore);
+  EXPECT_EQ(finishedReversed.NeedleScore, finishedList.NeedleScore);
   EXPECT_THROW(vis4gs::ComputeScorePartials(cloud, cameras, settings, queueOf({ 1, 1 }), images),
     std::invalid_argument);
   vis4gs::ScoreSettings stride;
@@ -318,4 +327,58 @@ TEST(ArtifactScores, SplitViewsByCost)
   EXPECT_GT(cost[0], cost[1]);
   EXPECT_DOUBLE_EQ(cost[2], 4 * cost[0]);
   EXPECT_GT(cost[1], 0);
+}
+
+// Compensated sums (ScorePartials::BlurCompensation): terms of very different magnitudes added
+// in any order, or split into two partial sums combined afterwards, give the same value bit for
+// bit, where the plain double sums of the same orders differ; infinities and NaN pass through.
+TEST(ArtifactScores, CompensatedSumsDoNotDependOnTheOrder)
+{
+  std::mt19937 random(31);
+  std::lognormal_distribution<double> magnitude(0.0, 6.0);
+  std::vector<double> terms(194);
+  for (double& t : terms)
+  {
+    t = magnitude(random);
+  }
+  auto compensated = [](const std::vector<double>& order, std::size_t split)
+  {
+    double a = 0, b = 0;
+    float ca = 0, cb = 0;
+    for (std::size_t k = 0; k < order.size(); ++k)
+    {
+      vis4gs::AddCompensated(k < split ? a : b, k < split ? ca : cb, order[k]);
+    }
+    vis4gs::AddCompensated(a, ca, b, cb);
+    return a + static_cast<double>(ca);
+  };
+  auto plain = [](const std::vector<double>& order)
+  {
+    double s = 0;
+    for (double t : order)
+    {
+      s += t;
+    }
+    return s;
+  };
+  const double reference = compensated(terms, terms.size());
+  bool plainDiffered = false;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    std::vector<double> order = terms;
+    std::shuffle(order.begin(), order.end(), random);
+    const std::size_t split = static_cast<std::size_t>(trial) % (order.size() + 1);
+    EXPECT_EQ(compensated(order, split), reference) << "trial " << trial;
+    plainDiffered = plainDiffered || plain(order) != plain(terms);
+  }
+  EXPECT_TRUE(plainDiffered); // (else the terms would not test anything)
+  // Special values: the sum is what a plain sum gives.
+  const double inf = std::numeric_limits<double>::infinity();
+  double s = 1.0;
+  float c = 0;
+  vis4gs::AddCompensated(s, c, inf);
+  vis4gs::AddCompensated(s, c, 1e-30);
+  EXPECT_EQ(s + static_cast<double>(c), inf);
+  vis4gs::AddCompensated(s, c, -inf);
+  EXPECT_TRUE(std::isnan(s + static_cast<double>(c)));
 }
