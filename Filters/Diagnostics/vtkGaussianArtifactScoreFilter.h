@@ -289,11 +289,11 @@ public:
    * SplitViewsByCost() gives it. Machines still get their views from SplitViewsByCost() (the sum
    * of their processes' parts). A process that runs slower, because its views cost more than
    * estimated or because its core is shared, then takes fewer views, and no process waits for
-   * the slowest at the end for more than about one view. Which process renders which view then
-   * depends on timing: BlurScore and NeedleScore may differ from run to run in the last bits of
-   * a double (the order of the sums, as between one process and several already), the counts
-   * never. Off: the fixed split, the same bits on every run with the same processes. When the
-   * queue's memory cannot be made, the fixed split is used with a warning. Default on.
+   * the slowest at the end for more than about one view. Which process renders which view
+   * then depends on timing; the scores do not (compensated sums, ScorePartials::BlurCompensation
+   * in Core/Diagnostics/ArtifactScores.h). Off: the fixed split, each view on the same process
+   * on every run (to reproduce a failure on a view, for instance). When the queue's memory
+   * cannot be made, the fixed split is used with a warning. Default on.
    */
   vtkSetMacro(DynamicViewBalancing, bool);
   vtkGetMacro(DynamicViewBalancing, bool);

@@ -158,8 +158,9 @@ void Define(Vis4GSArguments& args)
   args.AddFlag("static-view-split",
     false,
     "Under MPI: each process renders a fixed part of the views (split by estimated cost), the "
-    "same bits on every run, instead of the processes of a machine taking the next view from a "
-    "shared queue whenever one is free (the default: no process waits for a slower one).");
+    "same views on every run, instead of the processes of a machine taking the next view from a "
+    "shared queue whenever one is free (the default: no process waits for a slower one; the "
+    "scores are the same either way).");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -10,7 +10,8 @@
 =========================================================================*/
 // vtkGaussianArtifactScoreFilter distributed over MPI processes (run under mpiexec -n K)
 // against the single-process Core computation on every process: View Coverage, the visible
-// view counts and the flags identical, Blur and Needle within 1e-12 relative, for the demo log
+// view counts and the flags identical, Blur and Needle identical with the fixed split and within
+// 1e-12 relative with the machine's view queue (whose assignment varies), for the demo log
 // and a random scene with stiff Gaussians, for every approximation of the scores, with fewer
 // views than processes, and a failing view on one process (every process fails, the error
 // names the process and the view).
@@ -328,14 +329,18 @@ void TestScene(vtkMPIController* controller, const Scene& scene)
       {
         CompareExact(pd->GetArray(vis4gs::arrays::ViewCoverage), one.ViewCoverage, what);
       }
+      // Compensated sums (ScorePartials::BlurCompensation): the fixed split, whose views and
+      // order are the same on every run, gives one process's doubles bit for bit; with the
+      // queue the assignment varies with timing, and a sum within ~2^-77 of a rounding boundary
+      // could in principle round the other way, so that case is compared to 1e-12.
+      auto compare = queue ? CompareRelative : CompareExact;
       if (r.Blur)
       {
-        CompareRelative(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, what + " blur");
+        compare(pd->GetArray(vis4gs::arrays::BlurScore), one.BlurScore, what + " blur");
       }
       if (r.Needle)
       {
-        CompareRelative(
-          pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, what + " needle");
+        compare(pd->GetArray(vis4gs::arrays::NeedleScore), one.NeedleScore, what + " needle");
       }
       if (r.RenderCost)
       {
