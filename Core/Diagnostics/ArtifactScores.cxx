@@ -266,6 +266,7 @@ ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
   {
     out.RenderCostSum.assign(n, 0.0);
     out.ContributionSum.assign(n, 0.0);
+    out.ContributionCompensation.assign(n, 0.0f);
   }
   std::vector<bool> coveredByScorePass(cameras.size(), false);
   // The score pass's compositing also gives the render cost of the views it renders at full
@@ -279,7 +280,7 @@ ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
     for (std::int64_t g = 0; g < count; ++g)
     {
       out.RenderCostSum[g] += static_cast<double>(weights.Evaluations[g]);
-      out.ContributionSum[g] += weights.WeightSum[g];
+      AddCompensated(out.ContributionSum[g], out.ContributionCompensation[g], weights.WeightSum[g]);
     }
   };
   // (with a queue, against the views taken so far: the blur/needle pass takes them as it goes)
@@ -428,7 +429,8 @@ ScorePartials PartialsOfQueue(const GaussianCloud& cloud,
           {
             const std::uint32_t g = ids[static_cast<std::size_t>(k)];
             out.RenderCostSum[g] += static_cast<double>(sortedWeights.Evaluations[k]);
-            out.ContributionSum[g] += sortedWeights.WeightSum[k];
+            AddCompensated(
+              out.ContributionSum[g], out.ContributionCompensation[g], sortedWeights.WeightSum[k]);
           }
           costedByScorePass[vi] = true;
         }
@@ -684,7 +686,9 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
       (partials.ScoredViews.size() != n || partials.BlurSum.size() != n ||
         partials.NeedleSum.size() != n || partials.BlurCompensation.size() != n ||
         partials.NeedleCompensation.size() != n)) ||
-    (renderCost && (partials.RenderCostSum.size() != n || partials.ContributionSum.size() != n)))
+    (renderCost &&
+      (partials.RenderCostSum.size() != n || partials.ContributionSum.size() != n ||
+        partials.ContributionCompensation.size() != n)))
   {
     throw std::invalid_argument("the partial scores do not match the cloud or the request");
   }
@@ -825,7 +829,9 @@ GaussianScores FinishGaussianScores(const GaussianCloud& cloud,
 #pragma omp parallel for reduction(+ : notEvaluated) schedule(static)
     for (std::int64_t g = begin; g < end; ++g)
     {
-      const double cost = partials.RenderCostSum[g], contribution = partials.ContributionSum[g];
+      const double cost = partials.RenderCostSum[g],
+                   contribution =
+                     partials.ContributionSum[g] + partials.ContributionCompensation[g];
       notEvaluated += cost > 0 ? 0 : 1;
       if (request.CostPerContribution)
       {

@@ -298,6 +298,8 @@ struct ScorePartials
   /// double up to 2^53.
   std::vector<double> RenderCostSum;
   std::vector<double> ContributionSum;
+  /// ContributionSum's compensation, as BlurCompensation's.
+  std::vector<float> ContributionCompensation;
   /// Every per-Gaussian count and sum above, for a reduction over processes that needs to
   /// know nothing of the scores (the empty ones included: a process sizes its buffers as
   /// every other, from the same request).
@@ -305,16 +307,14 @@ struct ScorePartials
   {
     return { &this->CoverageViews, &this->ScoredViews };
   }
-  std::vector<std::vector<double>*> PerGaussianSums()
-  {
-    return { &this->RenderCostSum, &this->ContributionSum };
-  }
+  std::vector<std::vector<double>*> PerGaussianSums() { return { &this->RenderCostSum }; }
   /// The compensated sums and their compensations: combined over processes with
   /// AddCompensated(), not by a plain sum.
   std::vector<std::pair<std::vector<double>*, std::vector<float>*>> CompensatedSums()
   {
     return { { &this->BlurSum, &this->BlurCompensation },
-      { &this->NeedleSum, &this->NeedleCompensation } };
+      { &this->NeedleSum, &this->NeedleCompensation },
+      { &this->ContributionSum, &this->ContributionCompensation } };
   }
   /// Views scored (with an image) and skipped for lack of one, among the views rendered.
   std::size_t ViewsScored = 0;

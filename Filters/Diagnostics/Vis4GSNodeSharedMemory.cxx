@@ -13,6 +13,7 @@
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -59,33 +60,24 @@ Vis4GSNodeSharedMemory::Vis4GSNodeSharedMemory(vtkMultiProcessController* contro
   MachineKey(key);
   std::vector<char> keys(static_cast<std::size_t>(KeySize) * ranks);
   controller->AllGather(key, keys.data(), KeySize);
-  this->Leader = -1;
-  this->NodeParts = 0;
+  // Each process's machine is named by its lowest process with the same key.
+  auto keyOf = [&keys](int r) { return keys.data() + static_cast<std::size_t>(r) * KeySize; };
   this->Leaders.assign(static_cast<std::size_t>(ranks), -1);
   for (int r = 0; r < ranks; ++r)
   {
-    for (int q = 0; q <= r && this->Leaders[r] < 0; ++q)
+    for (int q = 0; this->Leaders[r] < 0; ++q) // (q = r matches at the latest)
     {
-      if (std::memcmp(keys.data() + static_cast<std::size_t>(r) * KeySize,
-            keys.data() + static_cast<std::size_t>(q) * KeySize,
-            KeySize) == 0)
+      if (std::memcmp(keyOf(r), keyOf(q), KeySize) == 0)
       {
         this->Leaders[r] = q;
       }
     }
-    if (std::memcmp(keys.data() + static_cast<std::size_t>(r) * KeySize, key, KeySize) == 0)
-    {
-      if (this->Leader < 0)
-      {
-        this->Leader = r;
-      }
-      if (r == rank)
-      {
-        this->NodePart = this->NodeParts;
-      }
-      ++this->NodeParts;
-    }
   }
+  this->Leader = this->Leaders[rank];
+  this->NodePart =
+    static_cast<int>(std::count(this->Leaders.begin(), this->Leaders.begin() + rank, this->Leader));
+  this->NodeParts =
+    static_cast<int>(std::count(this->Leaders.begin(), this->Leaders.end(), this->Leader));
 }
 
 //------------------------------------------------------------------------------

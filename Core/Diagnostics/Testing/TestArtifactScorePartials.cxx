@@ -26,8 +26,8 @@ using vis4gs_test::SetGaussian;
 } // namespace
 
 // The pieces a distributed run is made of (issue 18): partials over disjoint view subsets,
-// added element by element, finished, equal ComputeGaussianScores (integers exactly, sums to
-// the last bits: only their order differs); a view outside the selection is refused.
+// added element by element (the compensated sums with AddCompensated()), finished, equal
+// ComputeGaussianScores bit for bit; a view outside the selection is refused.
 TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
 {
   GaussianCloud cloud;
@@ -66,12 +66,8 @@ TEST(ArtifactScores, PartialsOfViewSubsetsAddUpToTheScores)
   EXPECT_EQ(summed.ViewsScored, whole.ViewsScored);
   EXPECT_EQ(summed.Warnings, whole.Warnings);
   EXPECT_GT(whole.BlurScore[0], 0);
-  for (std::size_t g = 0; g < cloud.Count; ++g)
-  {
-    EXPECT_NEAR(summed.BlurScore[g], whole.BlurScore[g], 1e-13 * std::abs(whole.BlurScore[g]));
-    EXPECT_NEAR(
-      summed.NeedleScore[g], whole.NeedleScore[g], 1e-13 * std::abs(whole.NeedleScore[g]));
-  }
+  EXPECT_EQ(summed.BlurScore, whole.BlurScore);
+  EXPECT_EQ(summed.NeedleScore, whole.NeedleScore);
   // No view at all: buffers sized for the cloud, all zero.
   const auto none =
     vis4gs::ComputeScorePartials(cloud, cameras, settings, std::vector<std::size_t>{}, images);
@@ -106,7 +102,7 @@ TEST(ArtifactScores, ViewsFromAQueue)
   };
   OffsetImages images{ &cloud, { 0.2f, 0.1f, 0.3f, 0.05f }, { false, false, false, false } };
   vis4gs::ScoreSettings settings;
-  settings.Request.RenderCost = true;
+  settings.Request.RenderCost = settings.Request.CostPerContribution = true;
   auto queueOf = [](std::vector<std::size_t> order, std::size_t* calls = nullptr)
   {
     return [order, calls, k = std::size_t(0)](std::size_t& view) mutable
@@ -153,6 +149,7 @@ TEST(ArtifactScores, ViewsFromAQueue)
   const auto finishedReversed = vis4gs::FinishGaussianScores(cloud, settings, reversed);
   EXPECT_EQ(finishedReversed.BlurScore, finishedList.BlurScore);
   EXPECT_EQ(finishedReversed.NeedleScore, finishedList.NeedleScore);
+  EXPECT_EQ(finishedReversed.CostPerContribution, finishedList.CostPerContribution);
   EXPECT_THROW(vis4gs::ComputeScorePartials(cloud, cameras, settings, queueOf({ 1, 1 }), images),
     std::invalid_argument);
   vis4gs::ScoreSettings stride;
